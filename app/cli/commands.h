@@ -1,0 +1,5 @@
+#pragma once
+
+namespace artcam::cli {
+int run(int argc, char** argv);
+}

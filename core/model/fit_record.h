@@ -1,0 +1,29 @@
+// Plain data shared by fitting, files and the GUI: point matches and the report of a fit.
+// Positions are in PIXELS of the source and target frames for image cameras (centres at
+// i + 0.5), object units for 3D; colours are linear RGB in [0, 1].
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+struct PointMatch {
+  Eigen::VectorXd source;  // 2 (image), 3 (object or colour) coordinates, not homogeneous
+  Eigen::VectorXd target;
+  bool enabled = true;
+};
+
+struct FitRecord {
+  std::string model;                 // "translation", "similarity", "affine", "homography", "quadratic"
+  int matches = 0;                   // enabled matches used
+  double rms_px = 0.0;               // reprojection residual in target pixels
+  double max_px = 0.0;
+  std::vector<double> residuals_px;  // one per enabled match, in match order
+  std::vector<double> singular_values;  // the smallest few of the design matrix, ascending
+  std::string reason;                // why this model (auto), one line
+};
+
+}  // namespace artcam

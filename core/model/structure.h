@@ -1,0 +1,57 @@
+// Structure analysis: which blocks of each Q_i are zero, and what class the geometry is.
+// Run once per camera; renderers pick the cheapest exact kernel from it (DESIGN §3,
+// "skip what a scene doesn't need").
+//
+// A position map is a homography exactly when every position tensor shares one linear factor:
+// Q_i = sym(l h_iᵀ) for a common l, so y_i = (x·h_i)/(x·h_n) (DESIGN §2). Affine, translation
+// and identity are special homographies.
+#pragma once
+
+#include "core/model/camera.h"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+enum class GeometryClass { Identity, Translation, Affine, Homography, Rational };
+
+std::string_view geometryClassName(GeometryClass c);
+
+struct StructureOptions {
+  // An entry counts as zero below this fraction of the largest entry of its stage.
+  double relative_zero = 1e-12;
+};
+
+struct CameraStructure {
+  // nonzero[s][i][a][b]: Q_i of stage s has a non-zero entry in rows of block a, columns of b.
+  std::vector<std::vector<std::vector<std::vector<bool>>>> nonzero;
+  // The position outputs depend on other blocks (pc/cp or colour/depth parts): splat, not gather.
+  bool geometry_depends_on_attributes = false;
+  // Colour or depth outputs differ from the identity map.
+  bool attributes_change = false;
+  GeometryClass geometry = GeometryClass::Rational;
+  // target_from_source in the normalised frames, column form, when geometry <= Homography
+  // (k×k for a position block of size k).
+  Eigen::MatrixXd homography;
+  // Position outputs that are not finite ratios anywhere (an all-zero denominator).
+  bool degenerate = false;
+
+  // One line, e.g. "position 3, 1 stage, geometry homography, colour unchanged".
+  std::string summary;
+};
+
+CameraStructure analyseStructure(const Camera& camera, const StructureOptions& options = {});
+
+// If the k tensors (each k×k, symmetric) share a common real linear factor l, returns the k×k
+// matrix H (column form, rows h_iᵀ) with Q_i = sym(l h_iᵀ) up to one common scale; else empty.
+std::optional<Eigen::MatrixXd> factorHomography(const std::vector<Eigen::MatrixXd>& q,
+                                                double relative_tolerance = 1e-10);
+
+// The tensors of homography H (column form) lifted into quadratic forms with l at infinity:
+// Q_i = sym(e_k h_iᵀ) where e_k is the homogeneous element.
+std::vector<Eigen::MatrixXd> liftHomography(const Eigen::MatrixXd& h);
+
+}  // namespace artcam
