@@ -1,0 +1,49 @@
+// Fitting an image camera (2D position block, n = 3) to point matches: the paper's §4 DLT
+// with conditioning on both sides, and the model ladder (DESIGN §2).
+//
+// Matches are in PIXELS of their frames (centres at i + 0.5). They are first taken to the
+// normalised frames of frames.h, then conditioned (centroid to the origin, RMS distance √2)
+// before the design matrix is built; the result is returned in the normalised frames, the way
+// cameras are stored.
+#pragma once
+
+#include "core/model/camera.h"
+#include "core/model/fit_record.h"
+#include "core/model/status.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace artcam {
+
+enum class ModelClass { Auto, Translation, Similarity, Affine, Homography, Quadratic };
+
+std::string_view modelClassName(ModelClass model);
+std::optional<ModelClass> modelClassFromName(std::string_view name);
+// Fewest matches that determine the class in 2D (translation 1 … quadratic 9).
+int minimumMatches(ModelClass model);
+
+struct FitOptions {
+  ModelClass model = ModelClass::Auto;
+  // Skip the conditioning step (for the raw-DLT benchmark only).
+  bool condition = true;
+  // Auto: a richer model must lower the held-out error by this factor to be chosen.
+  double auto_improvement = 0.9;
+};
+
+struct FitSummary {
+  Status status;      // not ok: no camera; message names the cause and how to fix it
+  Camera camera;      // valid when status.ok
+  FitRecord record;   // residuals, RMS, max, singular values, reason
+  std::string report() const;  // one line for the CLI and the status bar
+};
+
+FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize source_size,
+                          FrameSize target_size, const FitOptions& options = {});
+
+// Residuals (target pixels) of a camera on matches, in match order; infinity where unmapped.
+std::vector<double> reprojectionResiduals(const Camera& camera,
+                                          const std::vector<PointMatch>& matches);
+
+}  // namespace artcam

@@ -1,0 +1,53 @@
+// Images through OpenImageIO: every format it reads and writes (PNG, JPEG, TIFF 8/16-bit, EXR).
+//
+// Inside the engine pixels are ImageF: float, linear light, premultiplied alpha (DESIGN §1).
+// readImage decodes sRGB (or whatever OIIO reports as the file's colour space; 8/16-bit files
+// without a colour space are taken as sRGB, float files as linear) and premultiplies.
+// writeImage does the reverse and keeps the input's pixel format and metadata when given
+// them (ImageInfo from readImage), unless the options say otherwise. Saves are atomic: written
+// to a temporary file beside the target, then renamed, so no partial file is ever left.
+#pragma once
+
+#include "core/model/image.h"
+#include "core/model/status.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace artcam {
+
+// What a file said about itself, kept so export can write the same format and metadata.
+// Opaque to callers: holds an OpenImageIO ImageSpec without exposing OIIO in this header.
+struct ImageInfo {
+  std::string path;
+  std::string format_name;   // "png", "jpeg", "openexr", …
+  std::string pixel_type;    // "uint8", "uint16", "half", "float"
+  bool srgb = true;          // the file's values were sRGB-encoded
+  std::shared_ptr<const void> spec;  // OIIO::ImageSpec of the file (metadata to carry over)
+};
+
+struct LoadedImage {
+  ImageF image;
+  ImageInfo info;
+};
+
+struct ReadImageOptions {
+  // Progress in [0, 1]; return false to cancel (the read then fails with "cancelled").
+  std::function<bool(double)> progress;
+};
+
+Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options = {});
+
+struct WriteImageOptions {
+  // Empty: the input's pixel type if `like` is given, else the format's natural one
+  // (uint8 for PNG/JPEG, half for EXR). Else "uint8", "uint16", "half" or "float".
+  std::string pixel_type;
+  int jpeg_quality = 95;
+};
+
+// `like` (may be null) supplies metadata and the default pixel type.
+Status writeImage(const std::string& path, const ImageF& image, const ImageInfo* like = nullptr,
+                  const WriteImageOptions& options = {});
+
+}  // namespace artcam
