@@ -14,7 +14,9 @@
 #include "core/model/image.h"
 
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace artcam {
 
@@ -32,6 +34,12 @@ struct WarpOptions {
   // Newton: a pixel whose forward-mapped preimage misses its centre by more than this
   // (output pixels) has no preimage.
   double residual_tolerance_px = 1e-3;
+  // Testing and benchmarks: run the general rational (Newton) kernel even when the structure
+  // analysis found an exact one (identity … homography).
+  bool force_rational = false;
+  // Seed Newton with an inverse camera fitted to the forward map (DESIGN §3). Off: seeds come
+  // from the neighbouring pixel and the map linearised at the frame centre only.
+  bool fit_inverse_seed = true;
 };
 
 struct WarpSummary {
@@ -39,9 +47,23 @@ struct WarpSummary {
   std::string kernel;          // "identity", "affine", "homography", "rational", …
   long long transparent_pixels = 0;
   double render_ms = 0.0;
+  // Anything the caller may want to show, e.g. why the inverse seed could not be fitted.
+  std::string note;
 };
 
 // The output has the source's channels, plus an alpha channel if the source had none.
+// Size: options.width × options.height; 0×0 means the camera's target frame, and one of the
+// two 0 follows the target frame's aspect ratio. Sampling: see sampling.h (pixel centres at
+// i + 0.5, outside the source transparent).
+//
+// Errors: throws std::invalid_argument for a broken contract — an invalid camera or source,
+// negative sizes, a camera without a 2D position block, a camera whose geometry depends on
+// colour or depth (those need the splat renderer, DESIGN §3), or one that also transforms
+// colour/depth (not rendered here yet). A camera whose denominator is zero everywhere renders
+// fully transparent (kernel "degenerate").
+// Cancel: when options.progress returns false the render stops between bands of rows and
+// returns an EMPTY image with summary->cancelled set; a partial image is never returned.
+// The progress callback runs on the calling thread, never on a worker.
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options = {},
                  WarpSummary* summary = nullptr);
 

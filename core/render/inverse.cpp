@@ -1,0 +1,184 @@
+#include "core/render/inverse.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace artcam {
+namespace {
+
+class HomographyInverse final : public InverseMap {
+ public:
+  HomographyInverse(const Eigen::Matrix3d& target_from_source, FrameSize source_px) {
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(target_from_source);
+    if (!lu.isInvertible()) throw std::invalid_argument("the camera's homography is singular");
+    source_from_target_ = lu.inverse();
+    const double scale = source_from_target_.cwiseAbs().maxCoeff();
+    if (!(scale > 0.0) || !source_from_target_.allFinite())
+      throw std::invalid_argument("the camera's homography has no finite inverse");
+    source_from_target_ /= scale;  // a positive factor keeps every sign below
+    // With s_h = M t_h, the forward denominator at s_h / s_h3 is 1 / s_h3 (H M = I up to a
+    // positive scale): so the pole test compares the sign of s_h3 with the centre's.
+    const Eigen::Vector3d centre(source_px.width / 2.0, source_px.height / 2.0, 1.0);
+    centre_sign_positive_ = (target_from_source * centre).z() * scale > 0.0;
+  }
+
+  void row(int y, int width, Eigen::Vector2d* source, unsigned char* valid) const override {
+    Eigen::Vector3d h = source_from_target_ * Eigen::Vector3d(0.5, y + 0.5, 1.0);
+    const Eigen::Vector3d step = source_from_target_.col(0);
+    for (int x = 0; x < width; ++x, h += step) {
+      const double w = h.z();
+      const bool ok = centre_sign_positive_ ? w > 0.0 : w < 0.0;
+      if (ok) {
+        const double inv = 1.0 / w;
+        source[x] = Eigen::Vector2d(h.x() * inv, h.y() * inv);
+        valid[x] = source[x].allFinite() ? 1 : 0;
+      } else {
+        valid[x] = 0;
+      }
+    }
+  }
+
+ private:
+  Eigen::Matrix3d source_from_target_;
+  bool centre_sign_positive_ = true;
+};
+
+class RationalInverse final : public InverseMap {
+ public:
+  RationalInverse(RationalMap forward, std::optional<RationalMap> seed, FrameSize source_px,
+                  const RationalInverseOptions& options)
+      : forward_(std::move(forward)), seed_(std::move(seed)), options_(options) {
+    const auto centre = centreReference(forward_, source_px);
+    if (!centre) throw std::invalid_argument("the camera's position map is undefined at the source centre");
+    centre_ = *centre;
+    const Eigen::FullPivLU<Eigen::Matrix2d> lu(centre_.jacobian);
+    has_linear_ = lu.isInvertible();
+    if (has_linear_) centre_inverse_jacobian_ = lu.inverse();
+    // Iterates that wander this far from the frame have left the sheet of the map we render.
+    escape_ = 10.0 * std::hypot(source_px.width, source_px.height);
+  }
+
+  void row(int y, int width, Eigen::Vector2d* source, unsigned char* valid) const override {
+    std::optional<RowQuadratics> seed_row;
+    if (seed_) seed_row.emplace(seed_->stage(0), y);
+    bool have_previous = false;
+    Eigen::Vector2d previous;
+    for (int x = 0; x < width; ++x) {
+      const Eigen::Vector2d t(x + 0.5, y + 0.5);
+      Eigen::Vector2d s;
+      bool ok = false;
+      if (seed_row) {
+        Eigen::Vector2d start;
+        if (seed_row->current(start)) ok = solve(t, start, s);
+        seed_row->advance();
+      }
+      if (!ok && have_previous) ok = solve(t, previous, s);
+      if (!ok && has_linear_)
+        ok = solve(t, centre_.source + centre_inverse_jacobian_ * (t - centre_.target), s);
+      valid[x] = ok ? 1 : 0;
+      if (ok) {
+        source[x] = s;
+        previous = s;
+      }
+      have_previous = ok;
+    }
+  }
+
+ private:
+  // Damped Newton on forward(s) = t; the preimage must also lie on the centre's side of every
+  // pole curve and in the centre's fold (DESIGN §3).
+  bool solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out) const {
+    if (!start.allFinite()) return false;
+    Eigen::Vector2d s = start, f;
+    Eigen::Matrix2d j;
+    unsigned signs = 0;
+    if (!forward_.evaluate(s, f, &j, &signs)) return false;
+    Eigen::Vector2d r = f - t;
+    double rn = r.norm();
+    // Quadratic convergence takes a residual of 1e-3 px to far below this in one more step.
+    const double converged = 1e-4 * options_.residual_tolerance_px;
+    for (int it = 0; it < options_.max_iterations && rn > converged; ++it) {
+      const double det = j.determinant();
+      if (!(std::abs(det) > 0.0)) return false;
+      const Eigen::Vector2d step =
+          -Eigen::Vector2d(j(1, 1) * r.x() - j(0, 1) * r.y(), -j(1, 0) * r.x() + j(0, 0) * r.y()) /
+          det;
+      if (!step.allFinite()) return false;
+      // Backtrack until the residual drops: keeps the iterate off the pole curve, where a full
+      // step can jump to another branch of the rational map.
+      double lambda = 1.0;
+      bool improved = false;
+      for (int k = 0; k < 12 && !improved; ++k, lambda *= 0.5) {
+        const Eigen::Vector2d trial = s + lambda * step;
+        Eigen::Vector2d tf;
+        Eigen::Matrix2d tj;
+        unsigned ts = 0;
+        if (!forward_.evaluate(trial, tf, &tj, &ts)) continue;
+        const double trn = (tf - t).norm();
+        if (trn < rn) {
+          s = trial;
+          f = tf;
+          j = tj;
+          signs = ts;
+          r = tf - t;
+          rn = trn;
+          improved = true;
+        }
+      }
+      if (!improved) break;  // stalled: at rounding level or at a local minimum; judged below
+      if ((s - centre_.source).norm() > escape_) return false;
+    }
+    if (!(rn <= options_.residual_tolerance_px)) return false;
+    if (signs != centre_.denominator_signs) return false;      // beyond a pole curve
+    if ((j.determinant() > 0.0) != centre_.det_positive) return false;  // folded over
+    out = s;
+    return true;
+  }
+
+  RationalMap forward_;
+  std::optional<RationalMap> seed_;
+  RationalInverseOptions options_;
+  CentreReference centre_;
+  bool has_linear_ = false;
+  Eigen::Matrix2d centre_inverse_jacobian_ = Eigen::Matrix2d::Identity();
+  double escape_ = 0.0;
+};
+
+}  // namespace
+
+std::optional<CentreReference> centreReference(const RationalMap& forward, FrameSize source_px) {
+  const Eigen::Vector2d centre(source_px.width / 2.0, source_px.height / 2.0);
+  const double step = 0.01 * std::max(source_px.width, source_px.height);
+  // The centre itself, then a small spiral around it in case a pole passes exactly through it.
+  for (int ring = 0; ring < 4; ++ring) {
+    for (int k = 0; k < (ring == 0 ? 1 : 8); ++k) {
+      const double a = k * std::numbers::pi / 4.0;
+      const Eigen::Vector2d s = centre + ring * step * Eigen::Vector2d(std::cos(a), std::sin(a));
+      CentreReference ref;
+      if (!forward.evaluate(s, ref.target, &ref.jacobian, &ref.denominator_signs)) continue;
+      const double det = ref.jacobian.determinant();
+      if (!(std::abs(det) > 0.0)) continue;
+      ref.source = s;
+      ref.det_positive = det > 0.0;
+      return ref;
+    }
+  }
+  return std::nullopt;
+}
+
+std::unique_ptr<InverseMap> makeHomographyInverse(const Eigen::Matrix3d& target_from_source_px,
+                                                  FrameSize source_px) {
+  return std::make_unique<HomographyInverse>(target_from_source_px, source_px);
+}
+
+std::unique_ptr<InverseMap> makeRationalInverse(RationalMap forward, std::optional<RationalMap> seed,
+                                                FrameSize source_px,
+                                                const RationalInverseOptions& options) {
+  return std::make_unique<RationalInverse>(std::move(forward), std::move(seed), source_px, options);
+}
+
+}  // namespace artcam

@@ -1,0 +1,62 @@
+// Inverse position maps for the gather warp (DESIGN §3): for every output pixel centre
+// (x + 0.5, y + 0.5) of a row, the source point in source pixels, or "no preimage".
+//
+// Conventions: pixel frames (centres at i + 0.5, rational_map.h). "No preimage" covers the
+// cases DESIGN §3 names: beyond the pole curve x Q_n xᵀ = 0 (a denominator whose sign differs
+// from its sign at the source frame centre), folded (Jacobian determinant sign differs from the
+// centre's), and, for the rational kernel, Newton failing or missing the pixel centre by more
+// than the residual tolerance. A point that maps fine but lies outside the source image IS a
+// preimage: the sampler makes it transparent, fading at the border like every other tap.
+#pragma once
+
+#include "core/render/rational_map.h"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace artcam {
+
+class InverseMap {
+ public:
+  virtual ~InverseMap() = default;
+  // Fills source[x] and valid[x] (1: has a preimage) for x in [0, width) of output row y.
+  // Safe to call concurrently from several threads.
+  virtual void row(int y, int width, Eigen::Vector2d* source, unsigned char* valid) const = 0;
+};
+
+// Exact inverse of a homography (eq 1 with Q_i = sym(l h_iᵀ), DESIGN §2): invert the 3×3
+// matrix once and walk each row by one vector add per pixel.
+// `target_from_source_px`: column form, pixels on both sides.
+std::unique_ptr<InverseMap> makeHomographyInverse(const Eigen::Matrix3d& target_from_source_px,
+                                                  FrameSize source_px);
+
+struct RationalInverseOptions {
+  double residual_tolerance_px = 1e-3;
+  int max_iterations = 30;
+};
+
+// The general kernel: the inverse of a rational map is not rational (DESIGN §3), so each pixel
+// is solved by damped Newton on forward(s) = t with the analytic Jacobian (rational_map.h).
+// Starts, in order: `seed` (an approximate inverse camera, output px → source px, evaluated
+// incrementally along the row; may be null), the previous pixel's solution on the row, and the
+// forward map linearised at the source frame centre.
+std::unique_ptr<InverseMap> makeRationalInverse(RationalMap forward, std::optional<RationalMap> seed,
+                                                FrameSize source_px,
+                                                const RationalInverseOptions& options);
+
+// The reference the pole and fold tests compare with: the forward map at the source frame
+// centre (or the nearest point around it where the map is defined). Empty when the map is
+// undefined all around the centre.
+struct CentreReference {
+  Eigen::Vector2d source;
+  Eigen::Vector2d target;
+  Eigen::Matrix2d jacobian;
+  unsigned denominator_signs = 0;
+  bool det_positive = true;
+};
+std::optional<CentreReference> centreReference(const RationalMap& forward, FrameSize source_px);
+
+}  // namespace artcam

@@ -1,0 +1,26 @@
+// Splitting a render into bands of rows over worker threads (DESIGN §3 "on all cores"), with a
+// cancel hook polled between bands, after OpenImageIO's parallel_image + cancel callback.
+#pragma once
+
+#include <functional>
+
+namespace artcam {
+
+struct ParallelOptions {
+  int threads = 0;     // 0: std::thread::hardware_concurrency()
+  int band_rows = 16;  // rows per work item
+  // Called on the CALLING thread (never on a worker) after bands complete, with the fraction
+  // of rows done; return false to cancel. Bands already running finish, no new band starts.
+  std::function<bool(double)> progress;
+};
+
+// Runs `band(y_begin, y_end)` for consecutive bands covering [0, rows). `band` runs on worker
+// threads concurrently and must only write rows it was given. Returns false when cancelled.
+// An exception thrown by `band` stops the work and is rethrown here.
+bool parallelForRows(int rows, const ParallelOptions& options,
+                     const std::function<void(int, int)>& band);
+
+// The thread count `threads` stands for (0: all cores, at least 1).
+int resolveThreadCount(int threads);
+
+}  // namespace artcam

@@ -1,0 +1,93 @@
+#include "core/render/rational_map.h"
+
+#include "core/model/frames.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace artcam {
+
+RationalMap::RationalMap(const Camera& camera, FrameSize source_px, FrameSize target_px) {
+  const BlockLayout& layout = camera.layout();
+  const int p = layout.find(BlockKind::Position);
+  if (p < 0 || layout.blocks[p].size != 3)
+    throw std::invalid_argument("a pixel map needs a camera with a 2D position block (u, v, 1)");
+  if (!source_px.isImage() || !target_px.isImage())
+    throw std::invalid_argument("a pixel map needs positive source and target sizes");
+  Camera c = camera;
+  c.setFrames(source_px, target_px);
+  // Row-vector input x_n = x_p N_colᵀ, so H_row = N_colᵀ (frames.h); outputs mix by P_col.
+  changeInputFrame(c, p, normalizedFromPixelMatrix(source_px).transpose());
+  changeOutputFrame(c, p, pixelFromNormalizedMatrix(target_px));
+  c.symmetrize();  // the gradient 2 Q x below assumes symmetric storage (DESIGN §1)
+  const int off = layout.offsets[p];
+  for (const Stage& st : c.stages()) {
+    std::vector<Eigen::Matrix3d> q;
+    for (int i = 0; i < 3; ++i) q.emplace_back(st.q[off + i].block(off, off, 3, 3));
+    stages_.push_back(std::move(q));
+  }
+}
+
+bool RationalMap::evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& target,
+                           Eigen::Matrix2d* jacobian, unsigned* denominator_signs) const {
+  Eigen::Vector2d y = source;
+  Eigen::Matrix2d jac = Eigen::Matrix2d::Identity();
+  unsigned signs = 0;
+  for (size_t s = 0; s < stages_.size(); ++s) {
+    const std::vector<Eigen::Matrix3d>& q = stages_[s];
+    const Eigen::Vector3d x(y.x(), y.y(), 1.0);
+    const Eigen::Vector3d q0 = q[0] * x, q1 = q[1] * x, q2 = q[2] * x;
+    const double den = x.dot(q2);
+    // An exact zero or a denominator so small the ratio overflows both mean "on the pole".
+    if (!(std::abs(den) > 0.0)) return false;
+    const double inv = 1.0 / den;
+    const Eigen::Vector2d out(x.dot(q0) * inv, x.dot(q1) * inv);
+    if (!out.allFinite()) return false;
+    if (den < 0.0) signs |= 1u << s;
+    if (jacobian) {
+      // d(n_i / n_3) = (∇n_i − y_i ∇n_3) / n_3 with ∇(x Q xᵀ) = 2 (Q x) for symmetric Q (eq 2).
+      Eigen::Matrix2d j;
+      j.row(0) = 2.0 * inv * (q0.head<2>() - out.x() * q2.head<2>()).transpose();
+      j.row(1) = 2.0 * inv * (q1.head<2>() - out.y() * q2.head<2>()).transpose();
+      jac = (j * jac).eval();
+    }
+    y = out;
+  }
+  if (jacobian) {
+    if (!jac.allFinite()) return false;
+    *jacobian = jac;
+  }
+  target = y;
+  if (denominator_signs) *denominator_signs = signs;
+  return true;
+}
+
+RowQuadratics::RowQuadratics(const std::vector<Eigen::Matrix3d>& q, int y) {
+  const double v = y + 0.5;
+  const double u = 0.5;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Matrix3d& m = q[i];
+    // n(u) = m00 u² + 2 m01 u v + 2 m02 u + m11 v² + 2 m12 v + m22 for symmetric m.
+    value_[i] = m(0, 0) * u * u + 2.0 * m(0, 1) * u * v + 2.0 * m(0, 2) * u + m(1, 1) * v * v +
+                2.0 * m(1, 2) * v + m(2, 2);
+    delta_[i] = m(0, 0) * (2.0 * u + 1.0) + 2.0 * m(0, 1) * v + 2.0 * m(0, 2);
+    second_[i] = 2.0 * m(0, 0);
+  }
+}
+
+bool RowQuadratics::current(Eigen::Vector2d& out) const {
+  if (!(std::abs(value_[2]) > 0.0)) return false;
+  const Eigen::Vector2d r(value_[0] / value_[2], value_[1] / value_[2]);
+  if (!r.allFinite()) return false;
+  out = r;
+  return true;
+}
+
+void RowQuadratics::advance() {
+  for (int i = 0; i < 3; ++i) {
+    value_[i] += delta_[i];
+    delta_[i] += second_[i];
+  }
+}
+
+}  // namespace artcam

@@ -1,0 +1,60 @@
+// The 2D position map of a camera in PIXEL frames, for renderers (DESIGN §3).
+//
+// Conventions: pixel centres at i + 0.5 (frames.h). A camera stores its tensors in normalised
+// frames; here the first stage's input is re-expressed in source pixels and the last stage's
+// output in target pixels, so one stage computes, for x = (u, v, 1) a row vector,
+//   n_i = x Q_i xᵀ (eq 3, the position block only), y_i = n_i / n_3 (eq 1, 2).
+// A chain composes its stages (DESIGN §1); middle stages stay in normalised coordinates.
+//
+// Only the position block is read (its pp sub-blocks): callers check beforehand that the
+// geometry does not depend on colour or depth (CameraStructure::geometry_depends_on_attributes).
+#pragma once
+
+#include "core/model/camera.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace artcam {
+
+class RationalMap {
+ public:
+  RationalMap() = default;
+  // `source_px`/`target_px`: the pixel sizes the map should work in (any resolution of the
+  // camera's frames). Throws std::invalid_argument without a 2D position block.
+  RationalMap(const Camera& camera, FrameSize source_px, FrameSize target_px);
+
+  // Forward map with the analytic Jacobian d target / d source (may be null). Returns false
+  // where a denominator vanishes or the result is not finite; outputs are then untouched.
+  // `denominator_signs` (may be null) receives one bit per stage: bit s set when stage s's
+  // denominator n_3 is negative, for the pole test.
+  bool evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& target, Eigen::Matrix2d* jacobian,
+                unsigned* denominator_signs = nullptr) const;
+
+  int stageCount() const { return static_cast<int>(stages_.size()); }
+  // Stage s's three symmetric 3×3 forms (u, v, homogeneous).
+  const std::vector<Eigen::Matrix3d>& stage(int s) const { return stages_[s]; }
+
+ private:
+  std::vector<std::vector<Eigen::Matrix3d>> stages_;
+};
+
+// Evaluates one rational stage along a row of pixel centres (x + 0.5, y + 0.5) by forward
+// differences: each quadratic form n(x) = a x² + b x + c advances with two adds per pixel
+// (DESIGN §3). The rounding error grows like (row length)² · ε, about 1e-8 relative on a
+// 6000-pixel row: fine for seeds that Newton refines, not for final positions.
+class RowQuadratics {
+ public:
+  RowQuadratics(const std::vector<Eigen::Matrix3d>& q, int y);
+  // The stage's output at the current pixel; false (and no write) where n_3 = 0 or non-finite.
+  bool current(Eigen::Vector2d& out) const;
+  void advance();
+
+ private:
+  double value_[3];
+  double delta_[3];
+  double second_[3];
+};
+
+}  // namespace artcam
