@@ -9,7 +9,18 @@
 //              "singular_values": […], "reason": … } }                            // optional
 //
 // A newer version is refused with a clear message; a missing or malformed field is named by
-// its JSON path (e.g. "/stages/0/tensors/2/1: expected 3 numbers, found 2").
+// its JSON path (e.g. "/stages/0/tensors/2/1: expected 3 numbers, found 2"); a JSON syntax
+// error by line and column. Unknown fields are ignored (room for additions within version 1).
+//
+// Decisions:
+// - Tensors are kept exactly as written, symmetric or not: Q and (Q + Qᵀ)/2 are the same camera
+//   (DESIGN §1), and keeping the file's numbers makes read/write round trips bit-exact.
+// - Numbers round-trip bit-exactly (shortest round-trip decimal, correctly rounded on read).
+//   NaN/inf are refused both ways: JSON cannot hold them, and a literal that overflows
+//   (1e999) is refused on read.
+// - Frame sizes are whole numbers; [0, 0] for object space. Matches hold 2 or 3 numbers per
+//   side, the same for every match; "enabled" defaults to true. In "fit", "model", "matches",
+//   "rms_px", "max_px" are required, the lists and "reason" optional.
 #pragma once
 
 #include "core/model/camera.h"
@@ -34,6 +45,7 @@ struct ArtcamDocument {
 // `name` is used in error messages ("CAM.artcam: /frames/source: expected [w, h]").
 Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string& name);
 Result<ArtcamDocument> readArtcamFile(const std::string& path);
+// Throws std::invalid_argument if a number is not finite (writeArtcamFile reports it instead).
 std::string toArtcamJson(const ArtcamDocument& document);
 // Atomic: written beside the target, flushed, then renamed over it.
 Status writeArtcamFile(const std::string& path, const ArtcamDocument& document);

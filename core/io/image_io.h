@@ -6,6 +6,22 @@
 // writeImage does the reverse and keeps the input's pixel format and metadata when given
 // them (ImageInfo from readImage), unless the options say otherwise. Saves are atomic: written
 // to a temporary file beside the target, then renamed, so no partial file is ever left.
+//
+// Decisions:
+// - Colour space: OIIO's "oiio:ColorSpace" when it names a transfer we know (sRGB, Linear,
+//   Rec709, GammaCorrectedX); else 8/16-bit = sRGB, half/float = linear. Alpha is never encoded.
+// - Channels: 1 to 4 (Y, YA, RGB, RGBA); further channels of a file are not read.
+// - Write: the format follows the extension. Pixel type = options, else `like`'s, else the
+//   format's natural one, then fitted to what the format stores (EXR has no 8/16-bit: half;
+//   PNG has no float: uint16; JPEG/BMP/TGA/GIF/WebP: uint8). Float/half files are written
+//   linear; integer files in `like`'s transfer if it was an integer file, else sRGB. Integers
+//   are rounded to nearest and clamped. EXR keeps premultiplied alpha; other formats get
+//   unpremultiplied colour (alpha 0 -> colour 0). A format without alpha (JPEG) gets the
+//   image composited over black.
+// - Metadata of `like` is carried over except what no longer applies: "oiio:*" and other
+//   format-private attributes ("tiff:*", "png:*", "openexr:*", …), thumbnails, Exif pixel
+//   dimensions, compression settings unless the format is the same, and the ICC profile and
+//   Exif:ColorSpace unless the transfer is the same.
 #pragma once
 
 #include "core/model/image.h"
@@ -24,6 +40,7 @@ struct ImageInfo {
   std::string format_name;   // "png", "jpeg", "openexr", …
   std::string pixel_type;    // "uint8", "uint16", "half", "float"
   bool srgb = true;          // the file's values were sRGB-encoded
+  std::string colour_space;  // transfer decoded on read: "sRGB", "Linear", "Rec709", "GammaCorrected2.2"
   std::shared_ptr<const void> spec;  // OIIO::ImageSpec of the file (metadata to carry over)
 };
 

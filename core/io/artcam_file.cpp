@@ -1,0 +1,410 @@
+// .artcam reading and writing. Reading walks the JSON with its path in hand so every refusal
+// names the field (RFC 6901 pointer); the Camera constructor then checks the model itself.
+// Doubles survive bit-exactly: nlohmann writes the shortest string that reads back to the same
+// double and reads with correct rounding, which the tests check on random and edge values.
+#include "core/io/artcam_file.h"
+
+#include "core/io/atomic_file.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace artcam {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Internal unwinding from deep inside the reader; turned into a Status at the API boundary.
+struct Refusal {
+  std::string message;  // "<path>: <cause>" or a cause that needs no path
+};
+
+[[noreturn]] void refuse(const std::string& path, const std::string& cause) {
+  throw Refusal{path + ": " + cause};
+}
+
+std::string describe(const Json& j) {
+  if (j.is_string() || j.is_number() || j.is_boolean() || j.is_null()) {
+    std::string text = j.dump();
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    return j.is_null() ? "null" : text;
+  }
+  return std::string("an ") + (j.is_array() ? "array" : "object");
+}
+
+const Json& field(const Json& object, const std::string& path, const char* key) {
+  const auto it = object.find(key);
+  if (it == object.end()) refuse(path + "/" + key, "missing");
+  return *it;
+}
+
+const Json& objectAt(const Json& j, const std::string& path) {
+  if (!j.is_object()) refuse(path, "expected an object, found " + describe(j));
+  return j;
+}
+
+const Json& arrayAt(const Json& j, const std::string& path, const std::string& of) {
+  if (!j.is_array()) refuse(path, "expected an array of " + of + ", found " + describe(j));
+  return j;
+}
+
+double numberAt(const Json& j, const std::string& path) {
+  if (!j.is_number()) refuse(path, "expected a number, found " + describe(j));
+  const double value = j.get<double>();
+  // JSON has no NaN/inf, but an overflowing literal such as 1e999 reads as inf.
+  if (!std::isfinite(value)) refuse(path, "not a finite number");
+  return value;
+}
+
+long long wholeNumberAt(const Json& j, const std::string& path, long long min) {
+  if (!j.is_number_integer())
+    refuse(path, "expected a whole number, found " + describe(j));
+  if (j.is_number_unsigned() && j.get<unsigned long long>() > (1ULL << 31))
+    refuse(path, "number out of range: " + describe(j));
+  const long long value = j.get<long long>();
+  if (value < min || value > (1LL << 31))
+    refuse(path, "expected a whole number of at least " + std::to_string(min) + ", found " +
+                     std::to_string(value));
+  return value;
+}
+
+std::vector<double> numbersAt(const Json& j, const std::string& path, size_t count) {
+  const std::string expected = std::to_string(count) + " numbers";
+  if (!j.is_array()) refuse(path, "expected " + expected + ", found " + describe(j));
+  if (j.size() != count)
+    refuse(path, "expected " + expected + ", found " + std::to_string(j.size()));
+  std::vector<double> values;
+  for (size_t k = 0; k < count; ++k) values.push_back(numberAt(j[k], path + "/" + std::to_string(k)));
+  return values;
+}
+
+Eigen::VectorXd pointAt(const Json& j, const std::string& path, size_t expected_size) {
+  if (!j.is_array()) refuse(path, "expected 2 or 3 numbers, found " + describe(j));
+  if (expected_size == 0 && j.size() != 2 && j.size() != 3)
+    refuse(path, "expected 2 or 3 numbers, found " + std::to_string(j.size()));
+  const std::vector<double> v = numbersAt(j, path, expected_size ? expected_size : j.size());
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+std::string stringAt(const Json& j, const std::string& path) {
+  if (!j.is_string()) refuse(path, "expected a string, found " + describe(j));
+  return j.get<std::string>();
+}
+
+FrameSize frameAt(const Json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 2) refuse(path, "expected [w, h], found " + describe(j));
+  return {static_cast<int>(wholeNumberAt(j[0], path + "/0", 0)),
+          static_cast<int>(wholeNumberAt(j[1], path + "/1", 0))};
+}
+
+std::vector<Block> blocksAt(const Json& j, const std::string& path) {
+  arrayAt(j, path, "blocks");
+  if (j.empty()) refuse(path, "expected at least one block");
+  std::vector<Block> blocks;
+  for (size_t b = 0; b < j.size(); ++b) {
+    const std::string here = path + "/" + std::to_string(b);
+    const Json& block = objectAt(j[b], here);
+    const std::string kind_name = stringAt(field(block, here, "kind"), here + "/kind");
+    const std::optional<BlockKind> kind = blockKindFromName(kind_name);
+    if (!kind)
+      refuse(here + "/kind",
+             "unknown block kind \"" + kind_name + "\" (expected position, colour or depth)");
+    const Block parsed{*kind, static_cast<int>(wholeNumberAt(field(block, here, "size"),
+                                                             here + "/size", 1))};
+    if (!isValidBlock(parsed))
+      refuse(here + "/size", std::to_string(parsed.size) + " elements is not a valid " +
+                                 kind_name + " block");
+    blocks.push_back(parsed);
+  }
+  return blocks;
+}
+
+Stage stageAt(const Json& j, const std::string& path, int n) {
+  const Json& tensors_json = field(objectAt(j, path), path, "tensors");
+  const std::string tensors_path = path + "/tensors";
+  const size_t count = static_cast<size_t>(n);
+  arrayAt(tensors_json, tensors_path, "tensors");
+  if (tensors_json.size() != count)
+    refuse(tensors_path, "expected " + std::to_string(n) + " tensors (one per element), found " +
+                             std::to_string(tensors_json.size()));
+  Stage stage;
+  for (size_t i = 0; i < count; ++i) {
+    const std::string tensor_path = tensors_path + "/" + std::to_string(i);
+    const Json& rows = tensors_json[i];
+    arrayAt(rows, tensor_path, "rows");
+    if (rows.size() != count)
+      refuse(tensor_path,
+             "expected " + std::to_string(n) + " rows, found " + std::to_string(rows.size()));
+    Eigen::MatrixXd q(n, n);
+    for (size_t r = 0; r < count; ++r) {
+      const std::vector<double> row = numbersAt(rows[r], tensor_path + "/" + std::to_string(r), count);
+      for (size_t c = 0; c < count; ++c)
+        q(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = row[c];
+    }
+    stage.q.push_back(std::move(q));
+  }
+  return stage;
+}
+
+std::vector<PointMatch> matchesAt(const Json& j, const std::string& path) {
+  arrayAt(j, path, "matches");
+  std::vector<PointMatch> matches;
+  size_t source_size = 0, target_size = 0;  // fixed by the first match
+  for (size_t m = 0; m < j.size(); ++m) {
+    const std::string here = path + "/" + std::to_string(m);
+    const Json& match = objectAt(j[m], here);
+    PointMatch parsed;
+    parsed.source = pointAt(field(match, here, "source"), here + "/source", source_size);
+    parsed.target = pointAt(field(match, here, "target"), here + "/target", target_size);
+    source_size = static_cast<size_t>(parsed.source.size());
+    target_size = static_cast<size_t>(parsed.target.size());
+    if (const auto it = match.find("enabled"); it != match.end()) {
+      if (!it->is_boolean()) refuse(here + "/enabled", "expected true or false, found " + describe(*it));
+      parsed.enabled = it->get<bool>();
+    }
+    matches.push_back(std::move(parsed));
+  }
+  return matches;
+}
+
+std::vector<double> numberListAt(const Json& j, const std::string& path) {
+  arrayAt(j, path, "numbers");
+  return numbersAt(j, path, j.size());
+}
+
+FitRecord fitAt(const Json& j, const std::string& path) {
+  objectAt(j, path);
+  FitRecord fit;
+  fit.model = stringAt(field(j, path, "model"), path + "/model");
+  fit.matches = static_cast<int>(wholeNumberAt(field(j, path, "matches"), path + "/matches", 0));
+  fit.rms_px = numberAt(field(j, path, "rms_px"), path + "/rms_px");
+  fit.max_px = numberAt(field(j, path, "max_px"), path + "/max_px");
+  if (j.contains("residuals_px"))
+    fit.residuals_px = numberListAt(j["residuals_px"], path + "/residuals_px");
+  if (j.contains("singular_values"))
+    fit.singular_values = numberListAt(j["singular_values"], path + "/singular_values");
+  if (j.contains("reason")) fit.reason = stringAt(j["reason"], path + "/reason");
+  return fit;
+}
+
+ArtcamDocument documentAt(const Json& root) {
+  if (!root.is_object()) throw Refusal{"expected a JSON object at the top level, found " + describe(root)};
+  const auto format = root.find("format");
+  if (format == root.end()) throw Refusal{"/format: missing (not an ARTcam file)"};
+  if (!format->is_string() || format->get<std::string>() != "artcam")
+    refuse("/format", "expected \"artcam\", found " + describe(*format) + " (not an ARTcam file)");
+  const long long version = wholeNumberAt(field(root, "", "version"), "/version", 1);
+  if (version > kArtcamFormatVersion)
+    throw Refusal{"written by a newer ARTcam (version " + std::to_string(version) +
+                  "; this build reads up to " + std::to_string(kArtcamFormatVersion) + ")"};
+
+  std::vector<Block> blocks = blocksAt(field(root, "", "blocks"), "/blocks");
+  const int n = BlockLayout(blocks).dimension;
+  const Json& frames = objectAt(field(root, "", "frames"), "/frames");
+  const FrameSize source = frameAt(field(frames, "/frames", "source"), "/frames/source");
+  const FrameSize target = frameAt(field(frames, "/frames", "target"), "/frames/target");
+  const Json& stages_json = arrayAt(field(root, "", "stages"), "/stages", "stages");
+  if (stages_json.empty()) refuse("/stages", "expected at least one stage");
+  std::vector<Stage> stages;
+  for (size_t s = 0; s < stages_json.size(); ++s)
+    stages.push_back(stageAt(stages_json[s], "/stages/" + std::to_string(s), n));
+
+  std::optional<Camera> camera;
+  try {
+    camera.emplace(std::move(blocks), std::move(stages), source, target);
+  } catch (const std::invalid_argument& e) {
+    throw Refusal{std::string("invalid camera: ") + e.what()};
+  }
+  ArtcamDocument document{std::move(*camera), {}, std::nullopt};
+  if (root.contains("matches")) document.matches = matchesAt(root["matches"], "/matches");
+  if (root.contains("fit")) document.fit = fitAt(root["fit"], "/fit");
+  return document;
+}
+
+// ---- writing ----
+
+// Builds the JSON and remembers the first non-finite number (JSON cannot hold it; nlohmann
+// would silently write null).
+struct Builder {
+  std::string bad_path;
+
+  Json number(double v, const std::string& path) {
+    if (!std::isfinite(v) && bad_path.empty()) bad_path = path;
+    return v;
+  }
+  Json numbers(const double* v, size_t count, const std::string& path) {
+    Json array = Json::array();
+    for (size_t k = 0; k < count; ++k) array.push_back(number(v[k], path + "/" + std::to_string(k)));
+    return array;
+  }
+  Json vector(const Eigen::VectorXd& v, const std::string& path) {
+    return numbers(v.data(), static_cast<size_t>(v.size()), path);
+  }
+
+  Json document(const ArtcamDocument& d) {
+    const Camera& camera = d.camera;
+    Json root;
+    root["format"] = "artcam";
+    root["version"] = kArtcamFormatVersion;
+    Json blocks = Json::array();
+    for (const Block& b : camera.blocks())
+      blocks.push_back({{"kind", std::string(blockKindName(b.kind))}, {"size", b.size}});
+    root["blocks"] = blocks;
+    root["frames"] = {{"source", {camera.sourceSize().width, camera.sourceSize().height}},
+                      {"target", {camera.targetSize().width, camera.targetSize().height}}};
+    Json stages = Json::array();
+    for (size_t s = 0; s < camera.stages().size(); ++s) {
+      Json tensors = Json::array();
+      const auto& q = camera.stages()[s].q;
+      for (size_t i = 0; i < q.size(); ++i) {
+        const std::string path = "/stages/" + std::to_string(s) + "/tensors/" + std::to_string(i);
+        Json rows = Json::array();
+        for (Eigen::Index r = 0; r < q[i].rows(); ++r) {
+          const Eigen::VectorXd row = q[i].row(r).transpose();
+          rows.push_back(vector(row, path + "/" + std::to_string(r)));
+        }
+        tensors.push_back(std::move(rows));
+      }
+      stages.push_back({{"tensors", std::move(tensors)}});
+    }
+    root["stages"] = std::move(stages);
+    if (!d.matches.empty()) {
+      Json matches = Json::array();
+      for (size_t m = 0; m < d.matches.size(); ++m) {
+        const std::string path = "/matches/" + std::to_string(m);
+        matches.push_back({{"source", vector(d.matches[m].source, path + "/source")},
+                           {"target", vector(d.matches[m].target, path + "/target")},
+                           {"enabled", d.matches[m].enabled}});
+      }
+      root["matches"] = std::move(matches);
+    }
+    if (d.fit) {
+      const FitRecord& f = *d.fit;
+      root["fit"] = {
+          {"model", f.model},
+          {"matches", f.matches},
+          {"rms_px", number(f.rms_px, "/fit/rms_px")},
+          {"max_px", number(f.max_px, "/fit/max_px")},
+          {"residuals_px", numbers(f.residuals_px.data(), f.residuals_px.size(), "/fit/residuals_px")},
+          {"singular_values",
+           numbers(f.singular_values.data(), f.singular_values.size(), "/fit/singular_values")},
+          {"reason", f.reason}};
+    }
+    return root;
+  }
+};
+
+std::string oneLine(const Json& j) {
+  if (j.is_array()) {
+    std::string out = "[";
+    for (size_t k = 0; k < j.size(); ++k) out += (k ? ", " : "") + oneLine(j[k]);
+    return out + "]";
+  }
+  if (j.is_object()) {
+    std::string out = "{";
+    bool first = true;
+    for (const auto& [key, value] : j.items()) {
+      out += (first ? "" : ", ") + Json(key).dump() + ": " + oneLine(value);
+      first = false;
+    }
+    return out + "}";
+  }
+  return j.dump();
+}
+
+// Pretty JSON (indent 2) that keeps rows of numbers and short objects on one line, so a
+// tensor reads as a matrix and a match list as one match per line.
+void emit(const Json& j, int indent, std::string& out) {
+  constexpr size_t kLineWidth = 100;
+  const bool container = j.is_array() || j.is_object();
+  const bool flat = j.is_array() && std::none_of(j.begin(), j.end(), [](const Json& e) {
+                      return e.is_array() || e.is_object();
+                    });
+  const std::string line = oneLine(j);
+  if (!container || j.empty() || flat || static_cast<size_t>(indent) + line.size() <= kLineWidth) {
+    out += line;
+    return;
+  }
+  const std::string pad(static_cast<size_t>(indent + 2), ' ');
+  out += j.is_array() ? "[\n" : "{\n";
+  size_t k = 0;
+  for (const auto& [key, value] : j.items()) {
+    out += pad;
+    if (j.is_object()) out += Json(key).dump() + ": ";
+    emit(value, indent + 2, out);
+    out += ++k < j.size() ? ",\n" : "\n";
+  }
+  out += std::string(static_cast<size_t>(indent), ' ') + (j.is_array() ? "]" : "}");
+}
+
+// "line L, column C" of the byte nlohmann stopped at (1-based, counted in bytes).
+std::string positionOf(std::string_view text, size_t byte) {
+  const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
+  size_t line = 1, line_start = 0;
+  for (size_t k = 0; k < end; ++k)
+    if (text[k] == '\n') ++line, line_start = k + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(end - line_start + 1);
+}
+
+}  // namespace
+
+Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string& name) {
+  Json root;
+  try {
+    root = Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error& e) {
+    std::string cause = e.what();
+    // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: ".
+    if (const size_t at = cause.find("syntax error"); at != std::string::npos)
+      cause = cause.substr(at);
+    else if (const size_t colon = cause.find(": "); colon != std::string::npos)
+      cause = cause.substr(colon + 2);
+    return Result<ArtcamDocument>::failure(name + ": " + positionOf(text, e.byte) +
+                                           ": invalid JSON: " + cause);
+  }
+  try {
+    return Result<ArtcamDocument>::success(documentAt(root));
+  } catch (const Refusal& refusal) {
+    return Result<ArtcamDocument>::failure(name + ": " + refusal.message);
+  }
+}
+
+Result<ArtcamDocument> readArtcamFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Result<ArtcamDocument>::failure(path + ": cannot read: no such file or not readable");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return Result<ArtcamDocument>::failure(path + ": cannot read: I/O error");
+  return parseArtcamJson(text.str(), path);
+}
+
+std::string toArtcamJson(const ArtcamDocument& document) {
+  Builder builder;
+  const Json root = builder.document(document);
+  if (!builder.bad_path.empty())
+    throw std::invalid_argument("cannot write .artcam: " + builder.bad_path + " is not a finite number");
+  std::string out;
+  emit(root, 0, out);
+  return out + "\n";
+}
+
+Status writeArtcamFile(const std::string& path, const ArtcamDocument& document) {
+  try {
+    document.camera.validate();
+  } catch (const std::invalid_argument& e) {
+    return Status::failure(path + ": cannot write: invalid camera: " + e.what());
+  }
+  Builder builder;
+  builder.document(document);
+  if (!builder.bad_path.empty())
+    return Status::failure(path + ": cannot write: " + builder.bad_path + " is not a finite number");
+  return writeTextAtomically(path, toArtcamJson(document));
+}
+
+}  // namespace artcam

@@ -1,0 +1,168 @@
+// Images through OpenImageIO 2.4, converted to the engine's linear, premultiplied ImageF.
+//
+// Decisions (see also image_io.h):
+// - Files are opened with "oiio:UnassociatedAlpha" = 1 so OIIO hands over the stored values;
+//   otherwise it premultiplies PNG/TIFF alpha itself in the ENCODED (sRGB) integer domain,
+//   which is both lossy and wrong in linear light. The spec then tells us whether the stored
+//   colour is associated (EXR, TIFF "associated alpha") or not (PNG, most TIFF).
+// - 8/16-bit values decode through a 256/65536-entry table of the exact transfer function.
+// - On write, colour is unpremultiplied (alpha 0 -> colour 0) and encoded for every format
+//   except OpenEXR, whose convention is premultiplied linear; "oiio:UnassociatedAlpha" = 1
+//   tells OIIO not to unpremultiply a second time.
+#include "core/io/image_io.h"
+
+#include "core/io/atomic_file.h"
+#include "core/io/io_text.h"
+#include "core/io/transfer.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+
+namespace artcam {
+
+namespace {
+
+using io_text::oneLine;
+
+std::string pixelTypeName(OIIO::TypeDesc type) {
+  switch (type.basetype) {
+    case OIIO::TypeDesc::UINT8:
+    case OIIO::TypeDesc::INT8: return "uint8";
+    case OIIO::TypeDesc::UINT16:
+    case OIIO::TypeDesc::INT16: return "uint16";
+    case OIIO::TypeDesc::HALF: return "half";
+    default: return "float";
+  }
+}
+
+struct ProgressContext {
+  const std::function<bool(double)>* progress = nullptr;
+  bool cancelled = false;
+};
+
+// OIIO's callback returns true to ABORT; ours returns false to cancel.
+bool oiioProgress(void* opaque, float portion_done) {
+  auto* context = static_cast<ProgressContext*>(opaque);
+  if (!(*context->progress)(static_cast<double>(portion_done))) context->cancelled = true;
+  return context->cancelled;
+}
+
+template <class T>
+std::vector<float> decodeTable(const Transfer& transfer) {
+  constexpr int kMax = std::numeric_limits<T>::max();
+  std::vector<float> table(kMax + 1);
+  for (int v = 0; v <= kMax; ++v)
+    table[static_cast<size_t>(v)] = static_cast<float>(transfer.decode(static_cast<double>(v) / kMax));
+  return table;
+}
+
+template <class T>
+void decodeIntegers(const std::vector<T>& stored, const Transfer& transfer, ImageF& image) {
+  constexpr float kMax = static_cast<float>(std::numeric_limits<T>::max());
+  const std::vector<float> table = decodeTable<T>(transfer);
+  const size_t channels = static_cast<size_t>(image.channels);
+  for (size_t k = 0; k < stored.size(); ++k) {
+    const bool alpha = static_cast<int>(k % channels) == image.alpha_channel;
+    image.data[k] = alpha ? static_cast<float>(stored[k]) / kMax : table[stored[k]];
+  }
+}
+
+// Float path, and every case the tables do not cover.
+void decodeFloats(const Transfer& transfer, bool associated_encoded, ImageF& image) {
+  if (transfer.kind == Transfer::Kind::Linear) return;
+  const size_t channels = static_cast<size_t>(image.channels);
+  for (size_t p = 0; p < image.data.size(); p += channels) {
+    float* px = image.data.data() + p;
+    // Associated alpha over encoded values: unpremultiply in the encoded domain first.
+    const float a = image.alpha_channel >= 0 ? px[image.alpha_channel] : 1.0f;
+    const bool divide = associated_encoded && a > 0.0f;
+    for (size_t c = 0; c < channels; ++c) {
+      if (static_cast<int>(c) == image.alpha_channel) continue;
+      const double stored = divide ? static_cast<double>(px[c]) / a : px[c];
+      px[c] = static_cast<float>(transfer.decode(stored) * (divide ? a : 1.0f));
+    }
+  }
+}
+
+void premultiply(ImageF& image) {
+  if (image.alpha_channel < 0) return;
+  const size_t channels = static_cast<size_t>(image.channels);
+  for (size_t p = 0; p < image.data.size(); p += channels) {
+    float* px = image.data.data() + p;
+    for (size_t c = 0; c < channels; ++c)
+      if (static_cast<int>(c) != image.alpha_channel) px[c] *= px[image.alpha_channel];
+  }
+}
+
+}  // namespace
+
+Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options) {
+  using R = Result<LoadedImage>;
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    return R::failure(path + ": cannot read: " +
+                      (std::filesystem::exists(path, error) ? "not a file" : "no such file"));
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) return R::failure(path + ": cannot read: " + oneLine(OIIO::geterror()));
+  const OIIO::ImageSpec spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    return R::failure(path + ": cannot read: the image is empty");
+  if (spec.depth > 1) return R::failure(path + ": cannot read: volume images are not supported");
+
+  // Channels beyond the fourth (EXR depth, masks) are left behind.
+  const int channels = std::min(spec.nchannels, 4);
+  const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+  const std::string pixel_type = pixelTypeName(spec.format);
+  const Transfer transfer = Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
+                                .value_or(io_text::isIntegerPixelType(pixel_type) ? Transfer::srgb() : Transfer::linear());
+  const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
+  const bool linear = transfer.kind == Transfer::Kind::Linear;
+
+  LoadedImage loaded;
+  loaded.image = ImageF(spec.width, spec.height, channels, alpha);
+  ImageF& image = loaded.image;
+  ProgressContext context{options.progress ? &options.progress : nullptr};
+  const OIIO::ProgressCallback callback = options.progress ? &oiioProgress : nullptr;
+  auto read = [&](OIIO::TypeDesc type, void* data) {
+    return in->read_image(0, 0, 0, channels, type, data, OIIO::AutoStride, OIIO::AutoStride,
+                          OIIO::AutoStride, callback, &context);
+  };
+
+  bool ok = true;
+  const bool tables = (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
+                      (!associated || linear);
+  if (tables && spec.format == OIIO::TypeDesc::UINT8) {
+    std::vector<std::uint8_t> stored(image.data.size());
+    ok = read(OIIO::TypeDesc::UINT8, stored.data());
+    if (ok && !context.cancelled) decodeIntegers(stored, transfer, image);
+  } else if (tables) {
+    std::vector<std::uint16_t> stored(image.data.size());
+    ok = read(OIIO::TypeDesc::UINT16, stored.data());
+    if (ok && !context.cancelled) decodeIntegers(stored, transfer, image);
+  } else {
+    ok = read(OIIO::TypeDesc::FLOAT, image.data.data());
+    if (ok && !context.cancelled) decodeFloats(transfer, associated && !linear, image);
+  }
+  if (context.cancelled) return R::failure(path + ": cannot read: cancelled");
+  if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));
+  if (!associated) premultiply(image);
+  in->close();
+
+  loaded.info.path = path;
+  loaded.info.format_name = in->format_name();
+  loaded.info.pixel_type = pixel_type;
+  loaded.info.srgb = transfer.kind == Transfer::Kind::Srgb;
+  loaded.info.colour_space = transfer.colourSpaceName();
+  loaded.info.spec = std::make_shared<const OIIO::ImageSpec>(spec);
+  if (options.progress) options.progress(1.0);
+  return R::success(std::move(loaded));
+}
+
+}  // namespace artcam

@@ -1,0 +1,197 @@
+// writeImage (declared in image_io.h): ImageF (linear, premultiplied) -> any OIIO format,
+// atomically. The decisions are listed in image_io.h.
+#include "core/io/atomic_file.h"
+#include "core/io/image_io.h"
+#include "core/io/io_text.h"
+#include "core/io/transfer.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <set>
+
+namespace artcam {
+
+namespace {
+
+using io_text::lower;
+using io_text::oneLine;
+using io_text::replaceAll;
+
+bool isIntegerType(const std::string& type) { return io_text::isIntegerPixelType(type); }
+
+OIIO::TypeDesc typeOf(const std::string& pixel_type) {
+  if (pixel_type == "uint8") return OIIO::TypeDesc::UINT8;
+  if (pixel_type == "uint16") return OIIO::TypeDesc::UINT16;
+  if (pixel_type == "half") return OIIO::TypeDesc::HALF;
+  return OIIO::TypeDesc::FLOAT;
+}
+
+// The pixel type the format can actually store, closest to the one asked for.
+std::string fitPixelType(const std::string& wanted, const std::string& format) {
+  static const std::set<std::string> kEightBitOnly{"jpeg", "bmp", "targa", "gif", "webp", "ico", "heif"};
+  if (format == "openexr") return isIntegerType(wanted) ? "half" : wanted;
+  if (format == "hdr") return "float";
+  if (kEightBitOnly.count(format)) return "uint8";
+  if (format == "png" || format == "pnm") return isIntegerType(wanted) ? wanted : "uint16";
+  return wanted;
+}
+
+std::string naturalPixelType(const std::string& format) {
+  return format == "openexr" ? "half" : format == "hdr" ? "float" : "uint8";
+}
+
+// Whether an attribute of the source file still describes the written one.
+bool keepAttribute(const std::string& name, bool same_format, bool same_transfer) {
+  const std::string n = lower(name);
+  if (n == "compression" || n == "compressionquality") return same_format;
+  if (n == "iccprofile" || n == "exif:colorspace") return same_transfer;
+  if (n.rfind("thumbnail_", 0) == 0 || n == "planarconfig") return false;
+  if (n == "exif:pixelxdimension" || n == "exif:pixelydimension") return false;
+  const size_t colon = n.find(':');
+  if (colon == std::string::npos) return true;
+  // Prefixed names are standard metadata blocks or format-private details (tiff:, png:, oiio:).
+  static const std::set<std::string> kPortable{"exif", "gps", "iptc", "xmp", "photoshop"};
+  return kPortable.count(n.substr(0, colon)) > 0;
+}
+
+std::vector<std::string> defaultChannelNames(int channels, int alpha) {
+  std::vector<std::string> names;
+  const char* colour_names[] = {"R", "G", "B"};
+  const int colours = channels - (alpha >= 0 ? 1 : 0);
+  int next_colour = 0;
+  for (int c = 0; c < channels; ++c) {
+    if (c == alpha) names.push_back("A");
+    else if (colours == 1) names.push_back("Y"), ++next_colour;
+    else names.push_back(next_colour < 3 ? colour_names[next_colour++] : "A");
+  }
+  return names;
+}
+
+template <class T>
+std::vector<T> quantise(const std::vector<float>& values) {
+  constexpr double kMax = static_cast<double>(std::numeric_limits<T>::max());
+  std::vector<T> out(values.size());
+  for (size_t k = 0; k < values.size(); ++k) {
+    const double v = values[k];
+    // !(v > 0) also catches NaN.
+    out[k] = static_cast<T>(!(v > 0.0) ? 0.0 : v >= 1.0 ? kMax : std::floor(v * kMax + 0.5));
+  }
+  return out;
+}
+
+}  // namespace
+
+Status writeImage(const std::string& path, const ImageF& image, const ImageInfo* like,
+                  const WriteImageOptions& options) {
+  const std::string fail = path + ": cannot write: ";
+  if (image.empty()) return Status::failure(fail + "the image is empty");
+  if (image.channels < 1 || image.channels > 4 || image.alpha_channel >= image.channels ||
+      image.data.size() != static_cast<size_t>(image.width) * static_cast<size_t>(image.height) *
+                               static_cast<size_t>(image.channels))
+    return Status::failure(fail + "malformed image (channels or data size)");
+
+  auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
+  if (!out) {
+    OIIO::geterror();  // clear the thread's pending message
+    const std::string extension = std::filesystem::path(path).extension().string();
+    return Status::failure(path + (extension.empty()
+        ? ": no file extension to choose an image format from"
+        : ": no image format for extension \"" + extension + "\""));
+  }
+  const std::string format = out->format_name();
+
+  std::string wanted = options.pixel_type;
+  if (wanted.empty() && like) wanted = like->pixel_type;
+  if (wanted.empty()) wanted = naturalPixelType(format);
+  if (!isIntegerType(wanted) && wanted != "half" && wanted != "float")
+    return Status::failure(fail + "unknown pixel type \"" + wanted + "\" (uint8, uint16, half or float)");
+  const std::string pixel_type = fitPixelType(wanted, format);
+  const bool integer = isIntegerType(pixel_type);
+
+  std::optional<Transfer> like_transfer =
+      like ? Transfer::fromColourSpace(like->colour_space) : std::nullopt;
+  if (like && !like_transfer) like_transfer = like->srgb ? Transfer::srgb() : Transfer::linear();
+  const Transfer transfer = !integer ? Transfer::linear()
+                            : like && isIntegerType(like->pixel_type) ? *like_transfer
+                                                                      : Transfer::srgb();
+
+  const bool keep_alpha = image.alpha_channel >= 0 && out->supports("alpha");
+  const bool associated = format == "openexr";
+  const int channels = image.channels - (image.alpha_channel >= 0 && !keep_alpha ? 1 : 0);
+  const int alpha = keep_alpha ? image.alpha_channel : -1;
+
+  OIIO::ImageSpec spec(image.width, image.height, channels, typeOf(pixel_type));
+  const auto* like_spec = like ? static_cast<const OIIO::ImageSpec*>(like->spec.get()) : nullptr;
+  if (like_spec) {
+    const bool same_format = like->format_name == format;
+    const bool same_transfer = like_transfer && *like_transfer == transfer;
+    for (const OIIO::ParamValue& p : like_spec->extra_attribs)
+      if (keepAttribute(p.name().string(), same_format, same_transfer)) spec.extra_attribs.push_back(p);
+  }
+  spec.channelnames = like_spec && like_spec->nchannels == channels && like_spec->alpha_channel == alpha
+                          ? like_spec->channelnames
+                          : defaultChannelNames(channels, alpha);
+  spec.alpha_channel = alpha;
+  spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
+  if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
+  if (format == "jpeg") {
+    const int quality = std::clamp(options.jpeg_quality, 1, 100);
+    spec.attribute("CompressionQuality", quality);
+    spec.attribute("Compression", "jpeg:" + std::to_string(quality));
+  }
+
+  // Encoded values in the written channel order.
+  std::vector<float> encoded;
+  encoded.reserve(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) *
+                  static_cast<size_t>(channels));
+  const size_t in_channels = static_cast<size_t>(image.channels);
+  for (size_t p = 0; p < image.data.size(); p += in_channels) {
+    const float* px = image.data.data() + p;
+    const float a = image.alpha_channel >= 0 ? px[image.alpha_channel] : 1.0f;
+    // Unassociated output divides by alpha; alpha 0 has no colour.
+    const bool divide = alpha >= 0 && !associated;
+    for (size_t c = 0; c < in_channels; ++c) {
+      if (static_cast<int>(c) == image.alpha_channel) {
+        if (keep_alpha) encoded.push_back(a);
+        continue;
+      }
+      const double linear = !divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0;
+      encoded.push_back(static_cast<float>(transfer.encode(linear)));
+    }
+  }
+  std::vector<std::uint8_t> bytes;
+  std::vector<std::uint16_t> words;
+  OIIO::TypeDesc data_type = OIIO::TypeDesc::FLOAT;
+  const void* data = encoded.data();
+  if (pixel_type == "uint8") {
+    bytes = quantise<std::uint8_t>(encoded);
+    data_type = OIIO::TypeDesc::UINT8;
+    data = bytes.data();
+  } else if (pixel_type == "uint16") {
+    words = quantise<std::uint16_t>(encoded);
+    data_type = OIIO::TypeDesc::UINT16;
+    data = words.data();
+  }
+
+  return writeAtomically(path, [&](const std::string& temp) {
+    // OIIO names the file it was given; the user knows only the target.
+    auto failure = [&](const std::string& message) {
+      return Status::failure(fail + replaceAll(oneLine(message), temp, path));
+    };
+    if (!out->open(temp, spec)) return failure(out->geterror());
+    if (!out->write_image(data_type, data)) {
+      const std::string message = out->geterror();
+      out->close();
+      return failure(message);
+    }
+    if (!out->close()) return failure(out->geterror());
+    return Status::success();
+  });
+}
+
+}  // namespace artcam

@@ -1,0 +1,221 @@
+// Strict CSV for match and point lists: numbers parse with std::from_chars (correctly rounded,
+// locale-free, the whole field or nothing), so a typo is reported instead of read as 0. Blank
+// lines and lines starting with '#' are skipped; CRLF and a UTF-8 BOM are tolerated.
+#include "core/io/matches_csv.h"
+
+#include "core/io/atomic_file.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string_view>
+
+namespace artcam {
+
+namespace {
+
+struct Line {
+  int number = 0;  // 1-based line in the file
+  std::string_view text;
+};
+
+std::string_view trim(std::string_view s) {
+  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  while (!s.empty() && space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> splitFields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+// The lines that carry data: blank lines and '#' comments dropped, line numbers kept.
+std::vector<Line> contentLines(std::string_view text) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  std::vector<Line> lines;
+  int number = 0;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    ++number;
+    const std::string_view line = trim(text.substr(start, end - start));
+    if (!line.empty() && line.front() != '#') lines.push_back({number, line});
+    start = end + 1;
+  }
+  return lines;
+}
+
+std::optional<double> parseNumber(std::string_view field) {
+  if (!field.empty() && field.front() == '+') field.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+  if (error != std::errc() || end != field.data() + field.size() || field.empty()) return std::nullopt;
+  return value;
+}
+
+std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+std::optional<std::string> readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return std::nullopt;
+  return text.str();
+}
+
+// Parses `count` numbers from the fields starting at `first`; the message names the column.
+std::optional<std::string> parseNumbers(const std::vector<std::string_view>& fields,
+                                        const std::vector<std::string>& names, double* out) {
+  for (size_t k = 0; k < names.size(); ++k) {
+    const std::string where = "column " + std::to_string(k + 1) + " (" + names[k] + ")";
+    if (fields[k].empty()) return where + ": empty";
+    const std::optional<double> value = parseNumber(fields[k]);
+    if (!value) return where + ": not a number: " + quoted(fields[k]);
+    if (!std::isfinite(*value)) return where + ": not a finite number: " + quoted(fields[k]);
+    out[k] = *value;
+  }
+  return std::nullopt;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c); });
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ",") + n;
+  return out;
+}
+
+}  // namespace
+
+Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension) {
+  using R = Result<std::vector<PointMatch>>;
+  if (dimension != 2 && dimension != 3)
+    return R::failure(path + ": matches must have 2 or 3 coordinates per side, not " +
+                      std::to_string(dimension));
+  const std::optional<std::string> text = readText(path);
+  if (!text) return R::failure(path + ": cannot read: no such file or not readable");
+
+  std::vector<std::string> names = dimension == 2
+      ? std::vector<std::string>{"src_x", "src_y", "dst_x", "dst_y"}
+      : std::vector<std::string>{"src_x", "src_y", "src_z", "dst_x", "dst_y", "dst_z"};
+  const size_t numbers = names.size();
+  const std::vector<Line> lines = contentLines(*text);
+  if (lines.empty()) return R::failure(path + ": empty, expected the header " + joined(names));
+
+  // Header: the coordinate columns, optionally followed by "enabled" (0/1, true/false).
+  const std::vector<std::string_view> header = splitFields(lines.front().text);
+  std::vector<std::string> header_names;
+  for (std::string_view h : header) header_names.push_back(lower(h));
+  bool has_enabled = false;
+  std::vector<std::string> with_enabled = names;
+  with_enabled.push_back("enabled");
+  if (header_names == with_enabled) {
+    has_enabled = true;
+  } else if (header_names != names) {
+    return R::failure(path + ":" + std::to_string(lines.front().number) + ": expected the header " +
+                      joined(names) + ", found " + quoted(lines.front().text));
+  }
+
+  std::vector<PointMatch> matches;
+  for (size_t l = 1; l < lines.size(); ++l) {
+    const std::string where = path + ":" + std::to_string(lines[l].number) + ": ";
+    const std::vector<std::string_view> fields = splitFields(lines[l].text);
+    const size_t expected = numbers + (has_enabled ? 1 : 0);
+    if (fields.size() != expected)
+      return R::failure(where + "expected " + std::to_string(numbers) + " numbers" +
+                        (has_enabled ? " and enabled" : "") + ", found " +
+                        std::to_string(fields.size()) + (has_enabled ? " fields" : ""));
+    double values[6] = {};
+    if (const auto error = parseNumbers(fields, names, values)) return R::failure(where + *error);
+    PointMatch match;
+    const int d = dimension;
+    match.source = Eigen::Map<const Eigen::VectorXd>(values, d);
+    match.target = Eigen::Map<const Eigen::VectorXd>(values + d, d);
+    if (has_enabled) {
+      const std::string flag = lower(fields[numbers]);
+      if (flag == "1" || flag == "true") {
+        match.enabled = true;
+      } else if (flag == "0" || flag == "false") {
+        match.enabled = false;
+      } else {
+        return R::failure(where + "column " + std::to_string(numbers + 1) +
+                          " (enabled): expected 0, 1, true or false, found " + quoted(fields[numbers]));
+      }
+    }
+    matches.push_back(std::move(match));
+  }
+  return R::success(std::move(matches));
+}
+
+Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path) {
+  using R = Result<std::vector<Eigen::Vector2d>>;
+  const std::optional<std::string> text = readText(path);
+  if (!text) return R::failure(path + ": cannot read: no such file or not readable");
+  const std::vector<std::string> names{"x", "y"};
+  std::vector<Eigen::Vector2d> points;
+  const std::vector<Line> lines = contentLines(*text);
+  for (size_t l = 0; l < lines.size(); ++l) {
+    const std::string where = path + ":" + std::to_string(lines[l].number) + ": ";
+    const std::vector<std::string_view> fields = splitFields(lines[l].text);
+    if (fields.size() != 2)
+      return R::failure(where + "expected 2 numbers, found " + std::to_string(fields.size()));
+    // The first line may be a header: two names, neither a number.
+    if (l == 0 && !parseNumber(fields[0]) && !parseNumber(fields[1])) continue;
+    double values[2] = {};
+    if (const auto error = parseNumbers(fields, names, values)) return R::failure(where + *error);
+    points.emplace_back(values[0], values[1]);
+  }
+  return R::success(std::move(points));
+}
+
+Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches) {
+  const Eigen::Index d = matches.empty() ? 2 : matches.front().source.size();
+  if (d != 2 && d != 3)
+    return Status::failure(path + ": cannot write: matches must have 2 or 3 coordinates per side");
+  bool any_disabled = false;
+  for (size_t m = 0; m < matches.size(); ++m) {
+    const PointMatch& match = matches[m];
+    if (match.source.size() != d || match.target.size() != d)
+      return Status::failure(path + ": cannot write: match " + std::to_string(m) +
+                             " has a different number of coordinates than match 0");
+    if (!match.source.allFinite() || !match.target.allFinite())
+      return Status::failure(path + ": cannot write: match " + std::to_string(m) +
+                             " has a non-finite coordinate");
+    any_disabled = any_disabled || !match.enabled;
+  }
+  std::string text = d == 2 ? "src_x,src_y,dst_x,dst_y" : "src_x,src_y,src_z,dst_x,dst_y,dst_z";
+  if (any_disabled) text += ",enabled";
+  text += "\n";
+  char buffer[32];
+  for (const PointMatch& match : matches) {
+    for (Eigen::Index k = 0; k < 2 * d; ++k) {
+      const double v = k < d ? match.source[k] : match.target[k - d];
+      // %.17g, but locale-free: a GUI process runs under the user's locale (decimal commas).
+      const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
+      text += (k ? "," : "") + std::string(buffer, result.ptr);
+    }
+    if (any_disabled) text += match.enabled ? ",1" : ",0";
+    text += "\n";
+  }
+  return writeTextAtomically(path, text);
+}
+
+}  // namespace artcam
