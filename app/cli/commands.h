@@ -1,5 +1,35 @@
+// The artcam subcommands. Each takes the arguments after its name, prints its results on
+// stdout, and reports a failure by throwing: UsageError (exit 2, usage shown) or
+// CommandError (exit 1): one line naming the file, the place and the cause.
 #pragma once
 
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 namespace artcam::cli {
+
+struct CommandError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Command {
+  const char* name;
+  const char* summary;
+  const char* usage;  // full --help text
+  int (*run)(const std::vector<std::string>& args);
+};
+
+int fitCommand(const std::vector<std::string>& args);
+int mapCommand(const std::vector<std::string>& args);
+int warpCommand(const std::vector<std::string>& args);
+int infoCommand(const std::vector<std::string>& args);
+
+extern const char* const kFitUsage;
+extern const char* const kMapUsage;
+extern const char* const kWarpUsage;
+extern const char* const kInfoUsage;
+
 int run(int argc, char** argv);
-}
+
+}  // namespace artcam::cli

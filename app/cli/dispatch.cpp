@@ -1,0 +1,66 @@
+#include "app/cli/args.h"
+#include "app/cli/commands.h"
+
+#include <cstdio>
+#include <exception>
+#include <string_view>
+
+namespace artcam::cli {
+namespace {
+
+const Command kCommands[] = {
+    {"fit", "fit a camera to point matches (CSV)", kFitUsage, fitCommand},
+    {"map", "map source pixels through a camera", kMapUsage, mapCommand},
+    {"warp", "warp an image through a camera", kWarpUsage, warpCommand},
+    {"info", "describe a camera file", kInfoUsage, infoCommand},
+};
+
+void printHelp() {
+  std::printf(
+      "artcam — ARTcam Studio on the command line: fit, inspect and apply Attributed Rational\n"
+      "Tensor cameras (every output coordinate a ratio of quadratic forms of the input).\n\n"
+      "usage: artcam <command> [options]   (artcam <command> --help for details)\n\n"
+      "commands:\n");
+  for (const Command& c : kCommands) std::printf("  %-6s %s\n", c.name, c.summary);
+  std::printf(
+      "\nPixels: centres at i + 0.5, (0, 0) the top-left corner, y down. Cameras are stored\n"
+      "in normalised frames, so a camera made on a preview applies to the full-size photo.\n"
+      "Errors: one line on stderr naming the file, the place and the cause; exit status 1\n"
+      "(2 for a usage error); no partial output file is ever left behind.\n");
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    printHelp();
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("artcam 0.1.0\n");
+    return 0;
+  }
+  for (const Command& c : kCommands) {
+    if (args[0] != c.name) continue;
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    for (const std::string& a : rest)
+      if (a == "--help" || a == "-h") {
+        std::printf("%s", c.usage);
+        return 0;
+      }
+    try {
+      return c.run(rest);
+    } catch (const UsageError& e) {
+      std::fprintf(stderr, "artcam %s: %s\n%s", c.name, e.what(), c.usage);
+      return 2;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "artcam %s: %s\n", c.name, e.what());
+      return 1;
+    }
+  }
+  std::fprintf(stderr, "artcam: unknown command \"%s\" (try artcam --help)\n", args[0].c_str());
+  return 2;
+}
+
+}  // namespace artcam::cli
