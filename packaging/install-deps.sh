@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs what ARTcam Studio needs to build and run on Debian 12, from Debian's packages.
+# Skips apt entirely when everything is already there. Run as root (or with sudo available).
+set -euo pipefail
+
+packages=(build-essential cmake ninja-build ccache pkg-config
+  qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev)
+# --with-display adds what the screenshot/demo path needs to show a window without a screen.
+if [[ "${1:-}" == "--with-display" ]]; then packages+=(xvfb xauth); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
