@@ -3,6 +3,8 @@
 #include "core/fit/fit_image.h"
 #include "core/render/inverse.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <string>
 #include <vector>
