@@ -367,6 +367,19 @@ Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string&
       cause = cause.substr(colon + 2);
     return Result<ArtcamDocument>::failure(name + ": " + positionOf(text, e.byte) +
                                            ": invalid JSON: " + cause);
+  } catch (const Json::out_of_range& e) {
+    // An overflowing literal ("number overflow parsing '1e999'"): nlohmann gives no position,
+    // so find the literal it quotes.
+    const std::string what = e.what();
+    const size_t open = what.find('\'');
+    const size_t close = what.rfind('\'');
+    const std::string literal = open < close ? what.substr(open + 1, close - open - 1) : "";
+    const size_t at = literal.empty() ? std::string_view::npos : text.find(literal);
+    return Result<ArtcamDocument>::failure(
+        name + ": " + (at == std::string_view::npos ? "" : positionOf(text, at + 1) + ": ") +
+        "not a finite number: " + (literal.empty() ? what : literal));
+  } catch (const Json::exception& e) {
+    return Result<ArtcamDocument>::failure(name + ": invalid JSON: " + e.what());
   }
   try {
     return Result<ArtcamDocument>::success(documentAt(root));

@@ -57,12 +57,22 @@ std::vector<Line> contentLines(std::string_view text) {
   return lines;
 }
 
-std::optional<double> parseNumber(std::string_view field) {
+// The whole field must be a number. std::from_chars leaves the value untouched on overflow
+// and underflow (1e999, 1e-999), so those are reported as out of range rather than guessed.
+enum class Parsed { Number, NotNumber, OutOfRange };
+
+Parsed parseNumber(std::string_view field, double& value) {
   if (!field.empty() && field.front() == '+') field.remove_prefix(1);
-  double value = 0.0;
+  if (field.empty()) return Parsed::NotNumber;
   const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
-  if (error != std::errc() || end != field.data() + field.size() || field.empty()) return std::nullopt;
-  return value;
+  if (end != field.data() + field.size()) return Parsed::NotNumber;
+  if (error == std::errc::result_out_of_range) return Parsed::OutOfRange;
+  return error == std::errc() ? Parsed::Number : Parsed::NotNumber;
+}
+
+bool isNumber(std::string_view field) {
+  double ignored = 0.0;
+  return parseNumber(field, ignored) != Parsed::NotNumber;
 }
 
 std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
@@ -76,16 +86,16 @@ std::optional<std::string> readText(const std::string& path) {
   return text.str();
 }
 
-// Parses `count` numbers from the fields starting at `first`; the message names the column.
+// Parses one number per name from the leading fields; the message names the column.
 std::optional<std::string> parseNumbers(const std::vector<std::string_view>& fields,
                                         const std::vector<std::string>& names, double* out) {
   for (size_t k = 0; k < names.size(); ++k) {
     const std::string where = "column " + std::to_string(k + 1) + " (" + names[k] + ")";
     if (fields[k].empty()) return where + ": empty";
-    const std::optional<double> value = parseNumber(fields[k]);
-    if (!value) return where + ": not a number: " + quoted(fields[k]);
-    if (!std::isfinite(*value)) return where + ": not a finite number: " + quoted(fields[k]);
-    out[k] = *value;
+    const Parsed parsed = parseNumber(fields[k], out[k]);
+    if (parsed == Parsed::NotNumber) return where + ": not a number: " + quoted(fields[k]);
+    if (parsed == Parsed::OutOfRange) return where + ": out of range for a double: " + quoted(fields[k]);
+    if (!std::isfinite(out[k])) return where + ": not a finite number: " + quoted(fields[k]);
   }
   return std::nullopt;
 }
@@ -178,7 +188,7 @@ Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path) {
     if (fields.size() != 2)
       return R::failure(where + "expected 2 numbers, found " + std::to_string(fields.size()));
     // The first line may be a header: two names, neither a number.
-    if (l == 0 && !parseNumber(fields[0]) && !parseNumber(fields[1])) continue;
+    if (l == 0 && !isNumber(fields[0]) && !isNumber(fields[1])) continue;
     double values[2] = {};
     if (const auto error = parseNumbers(fields, names, values)) return R::failure(where + *error);
     points.emplace_back(values[0], values[1]);

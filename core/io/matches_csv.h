@@ -1,6 +1,13 @@
 // CSV inputs of the CLI (DESIGN §5): match lists with the header `src_x,src_y,dst_x,dst_y`
 // (pixels; 3D: src_x,src_y,src_z,dst_x,dst_y,dst_z), and point lists `x,y` (a header line is
-// allowed). Errors name the file, the line and the cause.
+// allowed). Errors name the file, the line and the cause ("matches.csv:7: expected 4 numbers,
+// found 3").
+//
+// Strict on purpose (a typo must not become a 0): numbers are the whole field, parsed with
+// std::from_chars (correctly rounded, locale-free; a leading '+' is allowed); NaN, inf and
+// out-of-range literals are refused. Blank lines and lines starting with '#' are skipped;
+// CRLF, spaces around fields and a UTF-8 BOM are tolerated. A match list may end with an
+// `enabled` column (0/1/true/false); writeMatchesCsv adds it when a match is disabled.
 #pragma once
 
 #include "core/model/fit_record.h"
@@ -16,7 +23,7 @@ namespace artcam {
 // dimension 2 or 3: coordinates per side.
 Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension = 2);
 Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path);
-// Writes the header and rows with %.17g numbers (atomic).
+// Writes the header and rows with %.17g numbers (locale-free, round-trip exact; atomic).
 Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches);
 
 }  // namespace artcam
