@@ -13,7 +13,8 @@ namespace artcam::cli {
 
 const char* const kFitUsage =
     "usage: artcam fit MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
-    "                  [--model auto|translation|similarity|affine|homography|quadratic] [--json]\n\n"
+    "                  [--model auto|translation|similarity|affine|homography|quadratic] [--json]\n"
+    "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n\n"
     "Fits a camera to point matches. MATCHES.csv has the header src_x,src_y,dst_x,dst_y\n"
     "(pixels, centres at i + 0.5). --size is the source image size; --target-size the target's\n"
     "(default: the same). --model auto (default) picks the simplest model whose held-out error\n"
@@ -21,22 +22,31 @@ const char* const kFitUsage =
     "stays a homography). The quadratic model needs at least 9 well-spread matches.\n"
     "Prints the model, match count, RMS and max residual (px); --json prints one JSON object\n"
     "{model, matches, rms_px, max_px, residuals_px, singular_values, reason, output}.\n"
-    "The .artcam file keeps the matches and the fit report.\n";
+    "The .artcam file keeps the matches and the fit report.\n"
+    "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
+    "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n";
 
 int fitCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
                          {"--size", "", true},
                          {"--target-size", "", true},
                          {"--model", "", true},
+                         {"--dim", "", true},
                          {"--json", "", false}});
   args.expectPositional(1, "MATCHES.csv");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
-  const auto size_text = args.value("--size");
-  if (!size_text) throw UsageError("missing --size WxH (the source image size)");
-  const FrameSize source = parseSize(*size_text, "--size");
-  const FrameSize target =
-      args.has("--target-size") ? parseSize(*args.value("--target-size"), "--target-size") : source;
+  const std::string dim = args.valueOr("--dim", "2");
+  if (dim != "2" && dim != "3") throw UsageError("--dim expects 2 or 3");
+  const int dimension = dim == "3" ? 3 : 2;
+  FrameSize source, target;
+  if (dimension == 2) {
+    const auto size_text = args.value("--size");
+    if (!size_text) throw UsageError("missing --size WxH (the source image size)");
+    source = parseSize(*size_text, "--size");
+    target = args.has("--target-size") ? parseSize(*args.value("--target-size"), "--target-size")
+                                       : source;
+  }
   FitOptions options;
   const std::string model_name = args.valueOr("--model", "auto");
   const auto model = modelClassFromName(model_name);
@@ -44,9 +54,10 @@ int fitCommand(const std::vector<std::string>& argv) {
   options.model = *model;
 
   const std::string& csv = args.positional()[0];
-  const auto matches = readMatchesCsv(csv, 2);
+  const auto matches = readMatchesCsv(csv, dimension);
   if (!matches) throw CommandError(matches.status.message);
-  const FitSummary fit = fitImageCamera(*matches, source, target, options);
+  const FitSummary fit = dimension == 2 ? fitImageCamera(*matches, source, target, options)
+                                        : fitObjectCamera(*matches, options);
   if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
   ArtcamDocument doc{fit.camera, *matches, fit.record};

@@ -1,14 +1,22 @@
 #include "core/fit/dlt.h"
 
-#include "core/model/camera.h"
-
-#include <Eigen/QR>
 #include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 namespace artcam {
 namespace {
 
-Eigen::VectorXd ascending(const Eigen::VectorXd& descending) { return descending.reverse(); }
+Eigen::Index dimensionOf(const Points& src) { return src.empty() ? 2 : src.front().size(); }
+
+// Singular values ascending, padded with zeros to `unknowns` (a short matrix has more nulls).
+Eigen::VectorXd ascendingPadded(const Eigen::VectorXd& descending, Eigen::Index unknowns) {
+  Eigen::VectorXd sv = Eigen::VectorXd::Zero(unknowns);
+  sv.head(descending.size()) = descending;
+  return sv.reverse();
+}
 
 int nullDimension(const Eigen::VectorXd& asc) {
   const double largest = asc[asc.size() - 1];
@@ -18,120 +26,122 @@ int nullDimension(const Eigen::VectorXd& asc) {
   return std::max(n, 1);
 }
 
-void liftLinear(DltSolution& s) {
+// The null vector of the design matrix: the right singular vector of the smallest value.
+DltSolution nullSpace(const Eigen::MatrixXd& design, Eigen::VectorXd& null_vector) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(design, Eigen::ComputeFullV);
+  DltSolution s;
+  s.singular_values = ascendingPadded(svd.singularValues(), design.cols());
+  s.null_dimension = nullDimension(s.singular_values);
+  null_vector = svd.matrixV().col(design.cols() - 1);
+  return s;
+}
+
+DltSolution linearLeastSquares(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                               Eigen::MatrixXd& x) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  DltSolution s;
   s.linear = true;
-  const Eigen::Vector3d infinity(0, 0, 1);
-  for (int i = 0; i < 3; ++i) s.q[i] = symmetricOuter(infinity, s.h.row(i).transpose());
+  s.singular_values = ascendingPadded(svd.singularValues(), a.cols());
+  s.null_dimension = nullDimension(s.singular_values);
+  x = svd.solve(b);
+  return s;
 }
 
 }  // namespace
 
-DltSolution solveQuadraticDlt(const std::vector<Eigen::Vector2d>& src,
-                              const std::vector<Eigen::Vector2d>& dst) {
+DltSolution solveQuadraticDlt(const Points& src, const Points& dst) {
+  const Eigen::Index n = dimensionOf(src) + 1;
+  const Eigen::Index terms = n * (n + 1) / 2;
   const Eigen::Index m = static_cast<Eigen::Index>(src.size());
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(2 * m, 18);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m * (n - 1), n * terms);
+  Eigen::VectorXd x(n), chi(terms);
   for (Eigen::Index k = 0; k < m; ++k) {
-    const double u = src[k].x(), v = src[k].y();
-    Eigen::Matrix<double, 1, 6> chi;
-    chi << u * u, 2 * u * v, 2 * u, v * v, 2 * v, 1.0;  // upper triangle, off-diagonals doubled
-    d.block<1, 6>(2 * k, 0) = chi;
-    d.block<1, 6>(2 * k, 12) = -dst[k].x() * chi;
-    d.block<1, 6>(2 * k + 1, 6) = chi;
-    d.block<1, 6>(2 * k + 1, 12) = -dst[k].y() * chi;
+    x << src[k], 1.0;
+    Eigen::Index c = 0;
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index l = j; l < n; ++l) chi[c++] = (j == l ? 1.0 : 2.0) * x[j] * x[l];
+    for (Eigen::Index i = 0; i < n - 1; ++i) {
+      const Eigen::Index row = k * (n - 1) + i;
+      d.row(row).segment(i * terms, terms) = chi.transpose();
+      d.row(row).segment((n - 1) * terms, terms) = -dst[k][i] * chi.transpose();
+    }
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(d, Eigen::ComputeFullV);
-  DltSolution s;
-  Eigen::VectorXd sv = Eigen::VectorXd::Zero(18);
-  sv.head(svd.singularValues().size()) = svd.singularValues();
-  s.singular_values = ascending(sv);
-  s.null_dimension = nullDimension(s.singular_values);
-  const Eigen::VectorXd r = svd.matrixV().col(17);
-  for (int i = 0; i < 3; ++i) {
-    const auto ri = r.segment<6>(6 * i);
-    s.q[i] << ri[0], ri[1], ri[2],  //
-        ri[1], ri[3], ri[4],        //
-        ri[2], ri[4], ri[5];
+  Eigen::VectorXd r;
+  DltSolution s = nullSpace(d, r);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::MatrixXd q(n, n);
+    Eigen::Index c = i * terms;
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index l = j; l < n; ++l) q(j, l) = q(l, j) = r[c++];
+    s.q.push_back(std::move(q));
   }
   return s;
 }
 
-DltSolution solveHomographyDlt(const std::vector<Eigen::Vector2d>& src,
-                               const std::vector<Eigen::Vector2d>& dst) {
+DltSolution solveProjectiveDlt(const Points& src, const Points& dst) {
+  const Eigen::Index n = dimensionOf(src) + 1;
   const Eigen::Index m = static_cast<Eigen::Index>(src.size());
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(2 * m, 9);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m * (n - 1), n * n);
+  Eigen::RowVectorXd x(n);
   for (Eigen::Index k = 0; k < m; ++k) {
-    const Eigen::RowVector3d x(src[k].x(), src[k].y(), 1.0);
-    d.block<1, 3>(2 * k, 0) = x;
-    d.block<1, 3>(2 * k, 6) = -dst[k].x() * x;
-    d.block<1, 3>(2 * k + 1, 3) = x;
-    d.block<1, 3>(2 * k + 1, 6) = -dst[k].y() * x;
+    x << src[k].transpose(), 1.0;
+    for (Eigen::Index i = 0; i < n - 1; ++i) {
+      const Eigen::Index row = k * (n - 1) + i;
+      d.row(row).segment(i * n, n) = x;
+      d.row(row).segment((n - 1) * n, n) = -dst[k][i] * x;
+    }
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(d, Eigen::ComputeFullV);
-  DltSolution s;
-  Eigen::VectorXd sv = Eigen::VectorXd::Zero(9);
-  sv.head(svd.singularValues().size()) = svd.singularValues();
-  s.singular_values = ascending(sv);
-  s.null_dimension = nullDimension(s.singular_values);
-  const Eigen::VectorXd h = svd.matrixV().col(8);
-  s.h << h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], h[8];
-  liftLinear(s);
+  Eigen::VectorXd h;
+  DltSolution s = nullSpace(d, h);
+  s.linear = true;
+  s.h = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      h.data(), n, n);
   return s;
 }
 
-DltSolution solveAffine(const std::vector<Eigen::Vector2d>& src,
-                        const std::vector<Eigen::Vector2d>& dst) {
+DltSolution solveAffine(const Points& src, const Points& dst) {
+  const Eigen::Index dim = dimensionOf(src);
   const Eigen::Index m = static_cast<Eigen::Index>(src.size());
-  Eigen::MatrixXd a(m, 3);
-  Eigen::MatrixXd b(m, 2);
+  Eigen::MatrixXd a(m, dim + 1), b(m, dim), x;
   for (Eigen::Index k = 0; k < m; ++k) {
-    a.row(k) << src[k].x(), src[k].y(), 1.0;
-    b.row(k) << dst[k].x(), dst[k].y();
+    a.row(k) << src[k].transpose(), 1.0;
+    b.row(k) = dst[k].transpose();
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  DltSolution s;
-  s.singular_values = ascending(svd.singularValues());
-  s.null_dimension = s.singular_values[0] <= kNullTolerance * s.singular_values[2] ? 2 : 1;
-  const Eigen::MatrixXd x = svd.solve(b);  // 3×2
-  s.h.setIdentity();
-  s.h.topRows<2>() = x.transpose();
-  liftLinear(s);
+  DltSolution s = linearLeastSquares(a, b, x);
+  s.h = Eigen::MatrixXd::Identity(dim + 1, dim + 1);
+  s.h.topRows(dim) = x.transpose();
   return s;
 }
 
-DltSolution solveSimilarity(const std::vector<Eigen::Vector2d>& src,
-                            const std::vector<Eigen::Vector2d>& dst) {
+DltSolution solveSimilarity(const Points& src, const Points& dst) {
+  if (dimensionOf(src) != 2) throw std::invalid_argument("the similarity solver is 2D only");
   const Eigen::Index m = static_cast<Eigen::Index>(src.size());
-  Eigen::MatrixXd a(2 * m, 4);
-  Eigen::VectorXd b(2 * m);
+  Eigen::MatrixXd a(2 * m, 4), b(2 * m, 1), x;
   for (Eigen::Index k = 0; k < m; ++k) {
-    const double u = src[k].x(), v = src[k].y();
+    const double u = src[k][0], v = src[k][1];
     a.row(2 * k) << u, -v, 1.0, 0.0;
     a.row(2 * k + 1) << v, u, 0.0, 1.0;
-    b[2 * k] = dst[k].x();
-    b[2 * k + 1] = dst[k].y();
+    b(2 * k, 0) = dst[k][0];
+    b(2 * k + 1, 0) = dst[k][1];
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  DltSolution s;
-  s.singular_values = ascending(svd.singularValues());
-  s.null_dimension = s.singular_values[0] <= kNullTolerance * s.singular_values[3] ? 2 : 1;
-  const Eigen::Vector4d x = svd.solve(b);
-  s.h << x[0], -x[1], x[2],  //
-      x[1], x[0], x[3],      //
+  DltSolution s = linearLeastSquares(a, b, x);
+  s.h = Eigen::MatrixXd(3, 3);
+  s.h << x(0, 0), -x(1, 0), x(2, 0),  //
+      x(1, 0), x(0, 0), x(3, 0),      //
       0.0, 0.0, 1.0;
-  liftLinear(s);
   return s;
 }
 
-DltSolution solveTranslation(const std::vector<Eigen::Vector2d>& src,
-                             const std::vector<Eigen::Vector2d>& dst) {
-  Eigen::Vector2d t = Eigen::Vector2d::Zero();
+DltSolution solveTranslation(const Points& src, const Points& dst) {
+  const Eigen::Index dim = dimensionOf(src);
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(dim);
   for (size_t k = 0; k < src.size(); ++k) t += dst[k] - src[k];
   t /= static_cast<double>(std::max<size_t>(src.size(), 1));
   DltSolution s;
+  s.linear = true;
   s.singular_values = Eigen::VectorXd::Constant(1, std::sqrt(static_cast<double>(src.size())));
-  s.h.setIdentity();
-  s.h.col(2).head<2>() = t;
-  liftLinear(s);
+  s.h = Eigen::MatrixXd::Identity(dim + 1, dim + 1);
+  s.h.col(dim).head(dim) = t;
   return s;
 }
 

@@ -1,41 +1,37 @@
-// Minimal solvers in CONDITIONED coordinates (normalize.h): each builds its constraint matrix
-// and solves it; the caller undoes the conditioning. They return no model on degeneracy
-// instead of garbage.
+// Solvers in CONDITIONED coordinates (normalize.h) for a position block of n = d + 1 elements
+// (d = 2 image, 3 object space). Each builds its constraint matrix and solves it; the caller
+// undoes the conditioning. A null space of more than one dimension is reported, never papered
+// over.
 //
-// Quadratic: the paper's §4. Unknowns are the upper triangles of the symmetric Q_1..Q_3 with
-// off-diagonal monomials doubled (eq 10): χ = (u², 2uv, 2u, v², 2v, 1), 18 unknowns, two rows
-// per match: [χ, 0, -X χ] and [0, χ, -Y χ]. The tensor is the SVD null vector of the design
-// matrix.
+// Quadratic: the paper's §4. Unknowns are the upper triangles of the symmetric Q_1..Q_n with
+// off-diagonal monomials doubled (eq 10): in 2D χ = (u², 2uv, 2u, v², 2v, 1), 18 unknowns; in
+// 3D 40. Each match gives n - 1 rows: row i holds χ in r_i's slot and -y_i χ in r_n's. The
+// tensor is the SVD null vector of that design matrix.
 #pragma once
 
 #include <Eigen/Core>
 
-#include <array>
-#include <optional>
 #include <vector>
 
 namespace artcam {
 
+using Points = std::vector<Eigen::VectorXd>;
+
 struct DltSolution {
-  std::array<Eigen::Matrix3d, 3> q;   // quadratic: the tensors; linear models: lifted
-  Eigen::Matrix3d h = Eigen::Matrix3d::Identity();  // linear models: target_from_source (column)
-  bool linear = false;                // true: h is the model, q its lift
-  Eigen::VectorXd singular_values;    // of the design matrix, ascending
-  int null_dimension = 1;             // >1: the data do not determine the model
+  std::vector<Eigen::MatrixXd> q;  // quadratic: the n tensors
+  Eigen::MatrixXd h;               // linear models: target_from_source, n×n column form
+  bool linear = false;             // true: h is the model
+  Eigen::VectorXd singular_values; // of the design matrix, ascending
+  int null_dimension = 1;          // >1: the data do not determine the model
 };
 
 // Relative singular value below which a direction counts as null.
 inline constexpr double kNullTolerance = 1e-9;
 
-DltSolution solveQuadraticDlt(const std::vector<Eigen::Vector2d>& src,
-                              const std::vector<Eigen::Vector2d>& dst);
-DltSolution solveHomographyDlt(const std::vector<Eigen::Vector2d>& src,
-                               const std::vector<Eigen::Vector2d>& dst);
-DltSolution solveAffine(const std::vector<Eigen::Vector2d>& src,
-                        const std::vector<Eigen::Vector2d>& dst);
-DltSolution solveSimilarity(const std::vector<Eigen::Vector2d>& src,
-                            const std::vector<Eigen::Vector2d>& dst);
-DltSolution solveTranslation(const std::vector<Eigen::Vector2d>& src,
-                             const std::vector<Eigen::Vector2d>& dst);
+DltSolution solveQuadraticDlt(const Points& src, const Points& dst);
+DltSolution solveProjectiveDlt(const Points& src, const Points& dst);  // homography
+DltSolution solveAffine(const Points& src, const Points& dst);
+DltSolution solveSimilarity(const Points& src, const Points& dst);     // 2D only
+DltSolution solveTranslation(const Points& src, const Points& dst);
 
 }  // namespace artcam

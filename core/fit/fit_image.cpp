@@ -8,9 +8,9 @@
 #include <Eigen/LU>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -18,15 +18,28 @@ namespace artcam {
 
 namespace {
 
-constexpr std::array<ModelClass, 5> kLadder = {ModelClass::Translation, ModelClass::Similarity,
-                                                ModelClass::Affine, ModelClass::Homography,
-                                                ModelClass::Quadratic};
-// Held-out errors below this are "exact" (pixels): differences there are rounding, not fit.
-constexpr double kExactPx = 1e-6;
+// Held-out errors below this are "exact" (target units): differences there are rounding.
+constexpr double kExactError = 1e-6;
 
-struct Points {
-  std::vector<Eigen::Vector2d> src;  // normalised source frame
-  std::vector<Eigen::Vector2d> dst;  // normalised target frame
+// One fitting problem, whatever its dimension: points in the frames the tensors are stored in
+// (normalised for images, raw for object space), and how to turn tensors into a camera.
+struct Problem {
+  int dimension = 2;
+  Points src, dst;
+  double target_units_per_stored_unit = 1.0;  // pixels per normalised unit for images
+  std::function<Camera(const std::vector<Eigen::MatrixXd>&)> make_camera;
+  std::vector<ModelClass> ladder;
+
+  Problem subset(const std::vector<int>& keep) const {
+    Problem p = *this;
+    p.src.clear();
+    p.dst.clear();
+    for (int k : keep) {
+      p.src.push_back(src[k]);
+      p.dst.push_back(dst[k]);
+    }
+    return p;
+  }
 };
 
 struct ModelFit {
@@ -49,20 +62,31 @@ std::string moreMatches(int have, int need) {
 }
 
 // Scale so the largest entry is 1 and the denominator is positive at the frame centre: the
-// same camera, written the same way whichever null vector sign the SVD returned.
-void canonicalise(std::array<Eigen::Matrix3d, 3>& q) {
+// same camera, written the same way whichever null-vector sign the SVD returned.
+void canonicalise(std::vector<Eigen::MatrixXd>& q) {
   double scale = 0.0;
-  for (const Eigen::Matrix3d& m : q) scale = std::max(scale, m.cwiseAbs().maxCoeff());
-  if (q[2](2, 2) < 0.0) scale = -scale;
+  for (const Eigen::MatrixXd& m : q) scale = std::max(scale, m.cwiseAbs().maxCoeff());
+  const Eigen::Index h = q.back().rows() - 1;
+  if (q.back()(h, h) < 0.0) scale = -scale;
   if (scale != 0.0)
-    for (Eigen::Matrix3d& m : q) m /= scale;
+    for (Eigen::MatrixXd& m : q) m /= scale;
 }
 
-ModelFit fitModel(ModelClass model, const Points& pts, FrameSize source_size,
-                  FrameSize target_size, bool condition) {
+std::optional<Eigen::VectorXd> mapStored(const Camera& camera, const Eigen::VectorXd& p) {
+  Eigen::VectorXd x(p.size() + 1);
+  x << p, 1.0;
+  const Eigen::VectorXd z = camera.evaluateHomogeneous(x);
+  const double w = z[p.size()];
+  if (w == 0.0) return std::nullopt;
+  Eigen::VectorXd y = z.head(p.size()) / w;
+  if (!y.allFinite()) return std::nullopt;
+  return y;
+}
+
+ModelFit fitModel(ModelClass model, const Problem& pb, bool condition) {
   ModelFit out;
-  const int m = static_cast<int>(pts.src.size());
-  const int need = minimumMatches(model);
+  const int m = static_cast<int>(pb.src.size());
+  const int need = minimumMatches(model, pb.dimension);
   const std::string name(modelClassName(model));
   if (m < need) {
     out.status = Status::failure(std::to_string(m) + " match" + (m == 1 ? "" : "es") + "; the " +
@@ -70,7 +94,7 @@ ModelFit fitModel(ModelClass model, const Points& pts, FrameSize source_size,
                                  moreMatches(m, need) + ")");
     return out;
   }
-  const int distinct = countDistinct(pts.src);
+  const int distinct = countDistinct(pb.src);
   if (distinct < need) {
     out.status = Status::failure("only " + std::to_string(distinct) +
                                  " distinct source points among " + std::to_string(m) +
@@ -78,25 +102,29 @@ ModelFit fitModel(ModelClass model, const Points& pts, FrameSize source_size,
                                  " (" + moreMatches(distinct, need) + ")");
     return out;
   }
-  const bool needs_2d_spread = model != ModelClass::Translation && model != ModelClass::Similarity;
-  if (needs_2d_spread && collinearity(pts.src) < 1e-7) {
-    out.status = Status::failure("all " + std::to_string(m) +
-                                 " source points lie on one line; the " + name +
-                                 " model needs points spread over the image");
+  const bool needs_spread = model != ModelClass::Translation && model != ModelClass::Similarity;
+  if (needs_spread && spreadRatio(pb.src) < 1e-7) {
+    out.status = Status::failure("all " + std::to_string(m) + " source points lie on one " +
+                                 (pb.dimension == 2 ? "line" : "plane") + "; the " + name +
+                                 " model needs points spread over the " +
+                                 (pb.dimension == 2 ? "image" : "volume"));
     return out;
   }
 
+  const Eigen::Index n = pb.dimension + 1;
   const bool use_conditioning = condition && model != ModelClass::Translation;
-  const Eigen::Matrix3d ts = use_conditioning ? conditioningTransform(pts.src) : Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d td = use_conditioning ? conditioningTransform(pts.dst) : Eigen::Matrix3d::Identity();
-  const std::vector<Eigen::Vector2d> src = applyTransform(ts, pts.src);
-  const std::vector<Eigen::Vector2d> dst = applyTransform(td, pts.dst);
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd ts = use_conditioning ? conditioningTransform(pb.src) : identity;
+  const Eigen::MatrixXd td = use_conditioning ? conditioningTransform(pb.dst) : identity;
+  const Points src = applyTransform(ts, pb.src);
+  const Points dst = applyTransform(td, pb.dst);
 
-  if (model == ModelClass::Quadratic && conicDegeneracy(src) < 1e-9) {
-    out.status = Status::failure("all " + std::to_string(m) +
-                                 " source points lie on one conic (such as a circle or two "
-                                 "lines), so the quadratic model is not determined; add matches "
-                                 "off that curve");
+  if (model == ModelClass::Quadratic && quadricDegeneracy(src) < 1e-9) {
+    out.status = Status::failure(
+        "all " + std::to_string(m) + " source points lie on one " +
+        (pb.dimension == 2 ? "conic (such as a circle or two lines)" : "quadric surface") +
+        ", so the quadratic model is not determined; add matches off that " +
+        (pb.dimension == 2 ? "curve" : "surface"));
     return out;
   }
 
@@ -105,7 +133,7 @@ ModelFit fitModel(ModelClass model, const Points& pts, FrameSize source_size,
     case ModelClass::Translation: s = solveTranslation(src, dst); break;
     case ModelClass::Similarity: s = solveSimilarity(src, dst); break;
     case ModelClass::Affine: s = solveAffine(src, dst); break;
-    case ModelClass::Homography: s = solveHomographyDlt(src, dst); break;
+    case ModelClass::Homography: s = solveProjectiveDlt(src, dst); break;
     case ModelClass::Quadratic:
     case ModelClass::Auto: s = solveQuadraticDlt(src, dst); break;
   }
@@ -113,12 +141,12 @@ ModelFit fitModel(ModelClass model, const Points& pts, FrameSize source_size,
   if (s.null_dimension > 1 && model == ModelClass::Quadratic) {
     // Exact homography data: Q_i = sym(l h_iᵀ) fits for every line l (DESIGN §2), and an
     // arbitrary null vector is 0/0 along l. Fix l to the line at infinity: the homography.
-    const DltSolution h = solveHomographyDlt(src, dst);
+    const DltSolution h = solveProjectiveDlt(src, dst);
     if (h.null_dimension == 1) {
-      s = h;
-      out.note = "the data are a homography (quadratic null space " +
-                 std::to_string(out.singular_values.size() > 0 ? 3 : 0) +
+      out.note = "the data are a homography (the quadratic null space is " +
+                 std::to_string(s.null_dimension) +
                  "-dimensional), so l is fixed at the line at infinity";
+      s = h;
     }
   }
   if (s.null_dimension > 1) {
@@ -129,27 +157,39 @@ ModelFit fitModel(ModelClass model, const Points& pts, FrameSize source_size,
     return out;
   }
 
-  // Undo conditioning: input x_c(row) = x_n(row) tsᵀ gives Q ← tsᵀ Q ts; output y_n = td⁻¹ y_c.
-  std::array<Eigen::Matrix3d, 3> q;
-  const Eigen::Matrix3d td_inv = td.inverse();
+  // Undo conditioning. Input: x_c(row) = x(row) tsᵀ, so Q ← tsᵀ Q ts (the row-vector form of the
+  // paper's §5 substitution). Output: y = td⁻¹ y_c mixes the tensors, Q'_i = Σ_j (td⁻¹)_ij Q_j.
+  const Eigen::MatrixXd td_inv = td.inverse();
+  std::vector<Eigen::MatrixXd> q;
   if (s.linear) {
-    const Eigen::Matrix3d h = td_inv * s.h * ts;
-    const std::vector<Eigen::MatrixXd> lifted = liftHomography(h);
-    for (int i = 0; i < 3; ++i) q[i] = lifted[i];
+    q = liftHomography(td_inv * s.h * ts);
   } else {
-    std::array<Eigen::Matrix3d, 3> qs;
-    for (int i = 0; i < 3; ++i) qs[i] = ts.transpose() * s.q[i] * ts;
-    for (int i = 0; i < 3; ++i) {
-      q[i].setZero();
-      for (int j = 0; j < 3; ++j) q[i] += td_inv(i, j) * qs[j];
+    std::vector<Eigen::MatrixXd> qs;
+    for (const Eigen::MatrixXd& qc : s.q) qs.push_back(ts.transpose() * qc * ts);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Eigen::MatrixXd mixed = Eigen::MatrixXd::Zero(n, n);
+      for (Eigen::Index j = 0; j < n; ++j) mixed += td_inv(i, j) * qs[j];
+      q.push_back(std::move(mixed));
     }
   }
   canonicalise(q);
-  if (!(q[0].allFinite() && q[1].allFinite() && q[2].allFinite())) {
-    out.status = Status::failure("the " + name + " fit produced non-finite entries");
-    return out;
+  for (const Eigen::MatrixXd& qi : q)
+    if (!qi.allFinite()) {
+      out.status = Status::failure("the " + name + " fit produced non-finite entries");
+      return out;
+    }
+  out.camera = pb.make_camera(q);
+  return out;
+}
+
+std::vector<double> residuals(const Camera& camera, const Problem& pb) {
+  std::vector<double> out;
+  out.reserve(pb.src.size());
+  for (size_t k = 0; k < pb.src.size(); ++k) {
+    const auto y = mapStored(camera, pb.src[k]);
+    out.push_back(y ? (*y - pb.dst[k]).norm() * pb.target_units_per_stored_unit
+                    : std::numeric_limits<double>::infinity());
   }
-  out.camera = Camera::rtcam({q[0], q[1], q[2]}, source_size, target_size);
   return out;
 }
 
@@ -160,35 +200,121 @@ double rms(const std::vector<double>& r) {
   return std::sqrt(sum / static_cast<double>(r.size()));
 }
 
-// K-fold held-out RMS error in target pixels; NaN when the folds leave too few matches.
-double heldOutError(ModelClass model, const Points& pts, FrameSize source_size,
-                    FrameSize target_size, bool condition) {
-  const int m = static_cast<int>(pts.src.size());
+// K-fold held-out RMS error in target units; NaN when the folds leave too few matches.
+double heldOutError(ModelClass model, const Problem& pb, bool condition) {
+  const int m = static_cast<int>(pb.src.size());
   const int folds = m > 5000 ? 3 : std::min(m, 10);
-  if (folds < 2 || m - (m + folds - 1) / folds < minimumMatches(model))
+  if (folds < 2 || m - (m + folds - 1) / folds < minimumMatches(model, pb.dimension))
     return std::numeric_limits<double>::quiet_NaN();
-  const double scale = std::max(target_size.width, target_size.height) / 2.0;
   double sum = 0.0;
   for (int f = 0; f < folds; ++f) {
-    Points train;
-    std::vector<int> held;
-    for (int k = 0; k < m; ++k) {
-      if (k % folds == f) {
-        held.push_back(k);
-      } else {
-        train.src.push_back(pts.src[k]);
-        train.dst.push_back(pts.dst[k]);
-      }
-    }
-    const ModelFit fit = fitModel(model, train, source_size, target_size, condition);
+    std::vector<int> train, held;
+    for (int k = 0; k < m; ++k) (k % folds == f ? held : train).push_back(k);
+    const ModelFit fit = fitModel(model, pb.subset(train), condition);
     if (!fit.status) return std::numeric_limits<double>::quiet_NaN();
-    for (int k : held) {
-      const auto y = targetFromSourceNormalized(fit.camera, pts.src[k]);
-      const double e = y ? (*y - pts.dst[k]).norm() * scale : std::numeric_limits<double>::infinity();
-      sum += e * e;
-    }
+    for (double e : residuals(fit.camera, pb.subset(held))) sum += e * e;
   }
   return std::sqrt(sum / m);
+}
+
+// The ladder (DESIGN §2): the simplest model whose held-out error a richer one does not beat
+// by more than options.auto_improvement; an exactly determined richer model (no held-out check
+// possible) wins only where the validated ones do not fit exactly.
+ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chosen,
+                 std::string& reason) {
+  struct Candidate {
+    ModelClass model;
+    ModelFit fit;
+    double held_out;
+    double train_rms;
+  };
+  std::vector<Candidate> candidates;
+  std::string rejected;
+  ModelFit first_failure;
+  for (ModelClass model : pb.ladder) {
+    ModelFit f = fitModel(model, pb, options.condition);
+    if (!f.status) {
+      if (first_failure.status) first_failure = f;
+      if (static_cast<int>(pb.src.size()) >= minimumMatches(model, pb.dimension))
+        rejected += std::string(rejected.empty() ? "" : "; ") + std::string(modelClassName(model)) +
+                    ": " + f.status.message;
+      continue;
+    }
+    const double train = rms(residuals(f.camera, pb));
+    const double held = heldOutError(model, pb, options.condition);
+    candidates.push_back({model, std::move(f), held, train});
+  }
+  if (candidates.empty()) return first_failure;
+  double best = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : candidates)
+    if (!std::isnan(c.held_out)) best = std::min(best, std::max(c.held_out, kExactError));
+  const Candidate* pick = nullptr;
+  for (const Candidate& c : candidates)
+    if (!std::isnan(c.held_out) &&
+        std::max(c.held_out, kExactError) * options.auto_improvement <= best) {
+      pick = &c;
+      break;
+    }
+  for (const Candidate& c : candidates) {
+    const bool exact_unvalidated = std::isnan(c.held_out) && c.train_rms <= kExactError;
+    if (exact_unvalidated && (!pick || (c.model > pick->model && pick->train_rms > kExactError)))
+      pick = &c;
+  }
+  if (!pick) pick = &candidates.back();
+  chosen = pick->model;
+  std::ostringstream why;
+  why << "auto chose " << modelClassName(chosen) << "; held-out RMS:";
+  for (const Candidate& c : candidates)
+    why << " " << modelClassName(c.model) << " "
+        << (std::isnan(c.held_out) ? std::string("n/a (exactly determined)") : fmt(c.held_out));
+  if (!rejected.empty()) why << "; not determined: " << rejected;
+  reason = why.str();
+  return pick->fit;
+}
+
+FitSummary solve(const Problem& pb, const FitOptions& options) {
+  FitSummary summary;
+  ModelClass chosen = options.model;
+  ModelFit fit;
+  if (options.model == ModelClass::Auto) {
+    fit = fitAuto(pb, options, chosen, summary.record.reason);
+  } else if (std::find(pb.ladder.begin(), pb.ladder.end(), options.model) == pb.ladder.end()) {
+    fit.status = Status::failure("the " + std::string(modelClassName(options.model)) +
+                                 " model is not available in " + std::to_string(pb.dimension) + "D");
+  } else {
+    fit = fitModel(options.model, pb, options.condition);
+  }
+  if (!fit.status) {
+    summary.status = fit.status;
+    return summary;
+  }
+  summary.camera = fit.camera;
+  summary.record.model = std::string(modelClassName(chosen));
+  summary.record.matches = static_cast<int>(pb.src.size());
+  summary.record.residuals_px = residuals(fit.camera, pb);
+  summary.record.rms_px = rms(summary.record.residuals_px);
+  summary.record.max_px = *std::max_element(summary.record.residuals_px.begin(),
+                                            summary.record.residuals_px.end());
+  for (Eigen::Index i = 0; i < std::min<Eigen::Index>(3, fit.singular_values.size()); ++i)
+    summary.record.singular_values.push_back(fit.singular_values[i]);
+  if (!fit.note.empty())
+    summary.record.reason += (summary.record.reason.empty() ? "" : "; ") + fit.note;
+  return summary;
+}
+
+// Checks the enabled matches and collects them; an empty message means all is well.
+std::string collect(const std::vector<PointMatch>& matches, int dimension,
+                    std::vector<const PointMatch*>& used) {
+  for (size_t k = 0; k < matches.size(); ++k) {
+    const PointMatch& match = matches[k];
+    if (!match.enabled) continue;
+    if (match.source.size() != dimension || match.target.size() != dimension)
+      return "match " + std::to_string(k + 1) + " is not a " + std::to_string(dimension) + "D match";
+    if (!match.source.allFinite() || !match.target.allFinite())
+      return "match " + std::to_string(k + 1) + " has a non-finite coordinate";
+    used.push_back(&match);
+  }
+  return used.empty() ? "no enabled matches" : "";
 }
 
 }  // namespace
@@ -212,13 +338,18 @@ std::optional<ModelClass> modelClassFromName(std::string_view name) {
   return std::nullopt;
 }
 
-int minimumMatches(ModelClass model) {
+int minimumMatches(ModelClass model, int dimension) {
+  const int n = dimension + 1;
   switch (model) {
     case ModelClass::Translation: return 1;
     case ModelClass::Similarity: return 2;
-    case ModelClass::Affine: return 3;
-    case ModelClass::Homography: return 4;
-    case ModelClass::Quadratic: return 9;  // 18 unknowns up to scale, 2 equations per match
+    case ModelClass::Affine: return dimension + 1;
+    case ModelClass::Homography: return dimension + 2;
+    case ModelClass::Quadratic: {
+      // n²(n+1)/2 unknowns up to scale, n - 1 equations per match (paper §4).
+      const int unknowns = n * n * (n + 1) / 2 - 1;
+      return (unknowns + n - 2) / (n - 1);
+    }
     case ModelClass::Auto: return 1;
   }
   return 1;
@@ -237,117 +368,61 @@ std::vector<double> reprojectionResiduals(const Camera& camera,
 
 std::string FitSummary::report() const {
   if (!status) return "fit failed: " + status.message;
+  const int p = camera.layout().find(BlockKind::Position);
+  const char* units = p >= 0 && camera.blocks()[p].size == 4 ? " units" : " px";
   std::ostringstream s;
-  s << record.model << ", " << record.matches << " matches, RMS " << fmt(record.rms_px)
-    << " px, max " << fmt(record.max_px) << " px";
+  s << record.model << ", " << record.matches << " matches, RMS " << fmt(record.rms_px) << units
+    << ", max " << fmt(record.max_px) << units;
   return s.str();
 }
 
 FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize source_size,
                           FrameSize target_size, const FitOptions& options) {
-  FitSummary summary;
   if (!source_size.isImage() || !target_size.isImage()) {
+    FitSummary summary;
     summary.status = Status::failure("the source and target frame sizes must be positive");
     return summary;
   }
-  std::vector<PointMatch> used;
-  Points pts;
-  for (size_t k = 0; k < matches.size(); ++k) {
-    const PointMatch& match = matches[k];
-    if (!match.enabled) continue;
-    if (match.source.size() < 2 || match.target.size() < 2) {
-      summary.status = Status::failure("match " + std::to_string(k + 1) + " is not a 2D match");
-      return summary;
-    }
-    if (!match.source.head<2>().allFinite() || !match.target.head<2>().allFinite()) {
-      summary.status =
-          Status::failure("match " + std::to_string(k + 1) + " has a non-finite coordinate");
-      return summary;
-    }
-    used.push_back(match);
-    pts.src.push_back(normalizedFromPixel(source_size, match.source.head<2>()));
-    pts.dst.push_back(normalizedFromPixel(target_size, match.target.head<2>()));
-  }
-  if (used.empty()) {
-    summary.status = Status::failure("no enabled matches");
+  std::vector<const PointMatch*> used;
+  if (const std::string error = collect(matches, 2, used); !error.empty()) {
+    FitSummary summary;
+    summary.status = Status::failure(error);
     return summary;
   }
+  Problem pb;
+  pb.dimension = 2;
+  for (const PointMatch* match : used) {
+    pb.src.push_back(normalizedFromPixel(source_size, match->source.head<2>()));
+    pb.dst.push_back(normalizedFromPixel(target_size, match->target.head<2>()));
+  }
+  pb.target_units_per_stored_unit = std::max(target_size.width, target_size.height) / 2.0;
+  pb.make_camera = [&](const std::vector<Eigen::MatrixXd>& q) {
+    return Camera({Block{BlockKind::Position, 3}}, {Stage{q}}, source_size, target_size);
+  };
+  pb.ladder = {ModelClass::Translation, ModelClass::Similarity, ModelClass::Affine,
+               ModelClass::Homography, ModelClass::Quadratic};
+  return solve(pb, options);
+}
 
-  ModelClass chosen = options.model;
-  ModelFit fit;
-  if (options.model != ModelClass::Auto) {
-    fit = fitModel(options.model, pts, source_size, target_size, options.condition);
-  } else {
-    // The ladder (DESIGN §2): the simplest model whose held-out error a richer one does not
-    // beat by more than options.auto_improvement; an exactly determined richer model (no
-    // held-out check possible) wins only where the validated ones do not fit exactly.
-    struct Candidate {
-      ModelClass model;
-      ModelFit fit;
-      double held_out;
-      double train_rms;
-    };
-    std::vector<Candidate> candidates;
-    std::string rejected;
-    for (ModelClass model : kLadder) {
-      ModelFit f = fitModel(model, pts, source_size, target_size, options.condition);
-      if (!f.status) {
-        if (static_cast<int>(used.size()) >= minimumMatches(model))
-          rejected += std::string(rejected.empty() ? "" : "; ") + std::string(modelClassName(model)) +
-                      " not determined";
-        continue;
-      }
-      const double train = rms(reprojectionResiduals(f.camera, used));
-      const double held = heldOutError(model, pts, source_size, target_size, options.condition);
-      candidates.push_back({model, std::move(f), held, train});
-    }
-    if (candidates.empty()) {
-      summary.status = fitModel(ModelClass::Translation, pts, source_size, target_size, true).status;
-      if (summary.status) summary.status = Status::failure("no model could be fitted: " + rejected);
-      return summary;
-    }
-    double best = std::numeric_limits<double>::infinity();
-    for (const Candidate& c : candidates)
-      if (!std::isnan(c.held_out)) best = std::min(best, std::max(c.held_out, kExactPx));
-    const Candidate* pick = nullptr;
-    for (const Candidate& c : candidates)
-      if (!std::isnan(c.held_out) && std::max(c.held_out, kExactPx) * options.auto_improvement <= best) {
-        pick = &c;
-        break;
-      }
-    for (const Candidate& c : candidates) {
-      const bool richer_exact = std::isnan(c.held_out) && c.train_rms <= kExactPx;
-      if (richer_exact && (!pick || (c.model > pick->model && pick->train_rms > kExactPx))) pick = &c;
-    }
-    if (!pick) pick = &candidates.back();
-    chosen = pick->model;
-    fit = pick->fit;
-    std::ostringstream why;
-    why << "auto chose " << modelClassName(chosen) << "; held-out RMS:";
-    for (const Candidate& c : candidates)
-      why << " " << modelClassName(c.model) << " "
-          << (std::isnan(c.held_out) ? std::string("n/a (exactly determined)") : fmt(c.held_out) + " px");
-    if (!rejected.empty()) why << "; " << rejected;
-    summary.record.reason = why.str();
-  }
-  if (!fit.status) {
-    summary.status = fit.status;
+FitSummary fitObjectCamera(const std::vector<PointMatch>& matches, const FitOptions& options) {
+  std::vector<const PointMatch*> used;
+  if (const std::string error = collect(matches, 3, used); !error.empty()) {
+    FitSummary summary;
+    summary.status = Status::failure(error);
     return summary;
   }
-  summary.camera = fit.camera;
-  summary.record.model = std::string(modelClassName(chosen));
-  summary.record.matches = static_cast<int>(used.size());
-  summary.record.residuals_px = reprojectionResiduals(fit.camera, used);
-  summary.record.rms_px = rms(summary.record.residuals_px);
-  summary.record.max_px = summary.record.residuals_px.empty()
-                              ? 0.0
-                              : *std::max_element(summary.record.residuals_px.begin(),
-                                                  summary.record.residuals_px.end());
-  for (Eigen::Index i = 0; i < std::min<Eigen::Index>(3, fit.singular_values.size()); ++i)
-    summary.record.singular_values.push_back(fit.singular_values[i]);
-  if (!fit.note.empty())
-    summary.record.reason += (summary.record.reason.empty() ? "" : "; ") + fit.note;
-  return summary;
+  Problem pb;
+  pb.dimension = 3;
+  for (const PointMatch* match : used) {
+    pb.src.push_back(match->source);
+    pb.dst.push_back(match->target);
+  }
+  pb.make_camera = [](const std::vector<Eigen::MatrixXd>& q) {
+    return Camera({Block{BlockKind::Position, 4}}, {Stage{q}}, {}, {});
+  };
+  pb.ladder = {ModelClass::Translation, ModelClass::Affine, ModelClass::Homography,
+               ModelClass::Quadratic};
+  return solve(pb, options);
 }
 
 }  // namespace artcam

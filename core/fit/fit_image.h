@@ -21,8 +21,10 @@ enum class ModelClass { Auto, Translation, Similarity, Affine, Homography, Quadr
 
 std::string_view modelClassName(ModelClass model);
 std::optional<ModelClass> modelClassFromName(std::string_view name);
-// Fewest matches that determine the class in 2D (translation 1 … quadratic 9).
-int minimumMatches(ModelClass model);
+// Fewest matches that determine the class: 2D (dimension 2) translation 1 … quadratic 9;
+// object space (dimension 3) translation 1, affine 4, homography 5, quadratic 13 (40 unknowns
+// up to scale, 3 equations per match; the paper's formula rounds it up to 14).
+int minimumMatches(ModelClass model, int dimension = 2);
 
 struct FitOptions {
   ModelClass model = ModelClass::Auto;
@@ -41,6 +43,10 @@ struct FitSummary {
 
 FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize source_size,
                           FrameSize target_size, const FitOptions& options = {});
+
+// Object-space cameras (position block (X, Y, Z, 1), n = 4) from 3D matches, in object units;
+// no frames. The ladder is translation, affine, homography (4×4 projective), quadratic.
+FitSummary fitObjectCamera(const std::vector<PointMatch>& matches, const FitOptions& options = {});
 
 // Residuals (target pixels) of a camera on matches, in match order; infinity where unmapped.
 std::vector<double> reprojectionResiduals(const Camera& camera,

@@ -7,59 +7,67 @@
 
 namespace artcam {
 
-Eigen::Matrix3d conditioningTransform(const std::vector<Eigen::Vector2d>& points) {
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& p : points) centroid += p;
+Eigen::MatrixXd conditioningTransform(const Points& points) {
+  const Eigen::Index d = points.empty() ? 2 : points.front().size();
+  Eigen::VectorXd centroid = Eigen::VectorXd::Zero(d);
+  for (const Eigen::VectorXd& p : points) centroid += p;
   centroid /= static_cast<double>(std::max<size_t>(points.size(), 1));
   double sum_sq = 0.0;
-  for (const Eigen::Vector2d& p : points) sum_sq += (p - centroid).squaredNorm();
+  for (const Eigen::VectorXd& p : points) sum_sq += (p - centroid).squaredNorm();
   const double rms = std::sqrt(sum_sq / static_cast<double>(std::max<size_t>(points.size(), 1)));
-  const double s = rms > 0.0 ? std::sqrt(2.0) / rms : 1.0;
-  Eigen::Matrix3d t;
-  t << s, 0.0, -s * centroid.x(),  //
-      0.0, s, -s * centroid.y(),   //
-      0.0, 0.0, 1.0;
+  const double s = rms > 0.0 ? std::sqrt(static_cast<double>(d)) / rms : 1.0;
+  Eigen::MatrixXd t = Eigen::MatrixXd::Identity(d + 1, d + 1);
+  t.topLeftCorner(d, d) *= s;
+  t.col(d).head(d) = -s * centroid;
   return t;
 }
 
-std::vector<Eigen::Vector2d> applyTransform(const Eigen::Matrix3d& t,
-                                            const std::vector<Eigen::Vector2d>& points) {
-  std::vector<Eigen::Vector2d> out;
+Points applyTransform(const Eigen::MatrixXd& t, const Points& points) {
+  Points out;
   out.reserve(points.size());
-  for (const Eigen::Vector2d& p : points) {
-    const Eigen::Vector3d q = t * Eigen::Vector3d(p.x(), p.y(), 1.0);
-    out.push_back(q.head<2>() / q[2]);
+  for (const Eigen::VectorXd& p : points) {
+    const Eigen::Index d = p.size();
+    const Eigen::VectorXd q = t.leftCols(d) * p + t.col(d);
+    out.push_back(q.head(d) / q[d]);
   }
   return out;
 }
 
-int countDistinct(std::vector<Eigen::Vector2d> points) {
-  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+int countDistinct(Points points) {
+  std::sort(points.begin(), points.end(), [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return std::lexicographical_compare(a.data(), a.data() + a.size(), b.data(), b.data() + b.size());
   });
   return static_cast<int>(std::unique(points.begin(), points.end()) - points.begin());
 }
 
-double collinearity(const std::vector<Eigen::Vector2d>& points) {
+double spreadRatio(const Points& points) {
   if (points.size() < 2) return 0.0;
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& p : points) centroid += p;
+  const Eigen::Index d = points.front().size();
+  Eigen::VectorXd centroid = Eigen::VectorXd::Zero(d);
+  for (const Eigen::VectorXd& p : points) centroid += p;
   centroid /= static_cast<double>(points.size());
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Eigen::Vector2d& p : points) scatter += (p - centroid) * (p - centroid).transpose();
-  const Eigen::Vector2d sv = Eigen::JacobiSVD<Eigen::Matrix2d>(scatter).singularValues();
-  return sv[0] > 0.0 ? std::sqrt(sv[1] / sv[0]) : 0.0;
+  Eigen::MatrixXd centred(static_cast<Eigen::Index>(points.size()), d);
+  for (size_t k = 0; k < points.size(); ++k)
+    centred.row(static_cast<Eigen::Index>(k)) = (points[k] - centroid).transpose();
+  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(centred).singularValues();
+  return sv[0] > 0.0 ? sv[d - 1] / sv[0] : 0.0;
 }
 
-double conicDegeneracy(const std::vector<Eigen::Vector2d>& conditioned_points) {
-  if (conditioned_points.size() < 6) return 0.0;
-  Eigen::MatrixXd m(conditioned_points.size(), 6);
+double quadricDegeneracy(const Points& conditioned_points) {
+  if (conditioned_points.empty()) return 0.0;
+  const Eigen::Index n = conditioned_points.front().size() + 1;
+  const Eigen::Index terms = n * (n + 1) / 2;
+  if (static_cast<Eigen::Index>(conditioned_points.size()) < terms) return 0.0;
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(conditioned_points.size()), terms);
   for (size_t r = 0; r < conditioned_points.size(); ++r) {
-    const double u = conditioned_points[r].x(), v = conditioned_points[r].y();
-    m.row(static_cast<Eigen::Index>(r)) << u * u, u * v, v * v, u, v, 1.0;
+    Eigen::VectorXd x(n);
+    x << conditioned_points[r], 1.0;
+    Eigen::Index c = 0;
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index k = j; k < n; ++k) m(static_cast<Eigen::Index>(r), c++) = x[j] * x[k];
   }
   const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(m).singularValues();
-  return sv[0] > 0.0 ? sv[5] / sv[0] : 0.0;
+  return sv[0] > 0.0 ? sv[terms - 1] / sv[0] : 0.0;
 }
 
 }  // namespace artcam
