@@ -103,7 +103,10 @@ ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& 
   if (copy) {
     report.kernel = "identity";
   } else if (exact) {
-    report.kernel = geometryClassName(structure.geometry);
+    // An identity between frames of different pixel sizes is an axis-aligned scaling.
+    report.kernel = structure.geometry == GeometryClass::Identity
+                        ? "affine"
+                        : std::string(geometryClassName(structure.geometry));
     // The homography is stored normalised (frames.h); in pixels it is P_out · H · N_source.
     const Eigen::Matrix3d h = structure.homography;
     inverse = makeHomographyInverse(
