@@ -104,6 +104,13 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
         : ": no image format for extension \"" + extension + "\""));
   }
   const std::string format = out->format_name();
+  // OIIO 2.4's JPEG writer lets libjpeg's default error handler call exit() on this error, so
+  // it must never reach it.
+  constexpr int kJpegMaxSide = 65500;
+  if (format == "jpeg" && (image.width > kJpegMaxSide || image.height > kJpegMaxSide))
+    return Status::failure(fail + "JPEG stores at most " + std::to_string(kJpegMaxSide) +
+                           " pixels per side, the image is " + std::to_string(image.width) + "x" +
+                           std::to_string(image.height));
 
   std::string wanted = options.pixel_type;
   if (wanted.empty() && like) wanted = like->pixel_type;

@@ -118,6 +118,12 @@ class TestArtcamFile : public QObject {
     QVERIFY(mapped && (*mapped - Eigen::Vector2d(0.25, -0.5)).norm() == 0.0);
   }
 
+  void readsTheBundledSample() {
+    const Result<ArtcamDocument> sample = readArtcamFile(test::resourcePath("sample.artcam"));
+    QVERIFY2(sample.ok(), sample.status.message.c_str());
+    QVERIFY(sample->camera.sourceSize().isImage());
+  }
+
   void roundTripIsBitExact() {
     QTemporaryDir dir;
     const std::string path = dir.filePath("cam.artcam").toStdString();
