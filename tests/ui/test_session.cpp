@@ -1,0 +1,179 @@
+// Files: project save/open round trip (atomic, exact pairs), photo loading off the GUI
+// thread, .artcam export/import, full-resolution export, and the pairs table editing both ways.
+#include "core/io/image_io.h"
+#include "tests/ui/ui_fixtures.h"
+#include "ui/commands.h"
+#include "ui/document.h"
+#include "ui/panels/pairs_panel.h"
+#include "ui/project_file.h"
+#include "ui/session.h"
+
+#include <QDir>
+#include <QSignalSpy>
+#include <QStandardPaths>
+#include <QTableView>
+#include <QTemporaryDir>
+#include <QtTest/QtTest>
+
+using namespace artcam;
+using namespace artcam::ui;
+
+class TestSession : public QObject {
+  Q_OBJECT
+
+  QTemporaryDir dir_;
+
+  QString writeSamplePhoto() {
+    const QString path = dir_.filePath("photo.png");
+    const PhotoPtr p = test::syntheticPhoto();
+    const Status s = writeImage(path.toStdString(), p->full.image);
+    if (!s) qWarning("%s", s.message.c_str());
+    return path;
+  }
+
+ private slots:
+  void initTestCase() {
+    QStandardPaths::setTestModeEnabled(true);
+    QVERIFY(dir_.isValid());
+  }
+
+  void projectRoundTripIsExact() {
+    Project p;
+    p.photo_path = dir_.filePath("photo.png");
+    p.pairs = test::ninePairs();
+    p.pairs[3].enabled = false;
+    p.pairs[0].source = {1.0 / 3.0, 2.0 / 7.0};  // needs all 17 digits
+    p.model = ModelClass::Homography;
+    p.view.scale = 1.5;
+    p.view.centre = QPointF(100.25, 50.5);
+    p.view.preview_mode = 2;
+    const QString path = dir_.filePath("a.artcamproj");
+    QVERIFY(writeProject(path, p).ok);
+    const Result<Project> back = readProject(path);
+    QVERIFY2(back.ok(), back.status.message.c_str());
+    QCOMPARE(back->photo_path, p.photo_path);
+    QVERIFY(back->pairs == p.pairs);
+    QCOMPARE(back->model, p.model);
+    QCOMPARE(back->view.scale, 1.5);
+    QCOMPARE(back->view.centre, p.view.centre);
+    QCOMPARE(back->view.preview_mode, 2);
+    // The photo is stored relative to the project, so the folder can move.
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QVERIFY(f.readAll().contains("\"photo\": \"photo.png\""));
+  }
+
+  void projectErrorsNameTheCause() {
+    const auto newer = parseProject(R"({"format":"artcam-studio-project","version":99,"photo":"x.png"})", "p.artcamproj");
+    QVERIFY(!newer.ok());
+    QVERIFY(QString::fromStdString(newer.status.message).contains("newer"));
+    const auto bad = parseProject(R"({"format":"artcam-studio-project","version":1,"photo":"x.png","pairs":[{"source":[1],"target":[2,3]}]})", "p.artcamproj");
+    QVERIFY(!bad.ok());
+    QVERIFY(QString::fromStdString(bad.status.message).contains("/pairs/0/source"));
+  }
+
+  void sessionSavesAndReopens() {
+    const QString photo = writeSamplePhoto();
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    session.openPhoto(photo);
+    QTRY_VERIFY_WITH_TIMEOUT(doc.photo() != nullptr, 20000);
+    QCOMPARE(doc.frame().width, 320);
+    for (const Pair& p : test::ninePairs()) doc.undoStack()->push(new AddPairCommand(&doc, p));
+    QVERIFY(doc.isModified());
+    const QString project = dir_.filePath("session.artcamproj");
+    QVERIFY(session.saveProjectTo(project));
+    QVERIFY(!doc.isModified());
+    const std::vector<Pair> saved = doc.pairs();
+
+    Document doc2;
+    Session session2(&doc2, nullptr);
+    session2.setInteractive(false);
+    session2.openPath(project);
+    QTRY_VERIFY_WITH_TIMEOUT(doc2.photo() != nullptr, 20000);
+    QVERIFY(doc2.pairs() == saved);
+    QVERIFY(doc2.fit().status.ok);
+    QCOMPARE(doc2.camera().stages()[0].q, doc.camera().stages()[0].q);
+    QVERIFY(!doc2.isModified());
+  }
+
+  void missingPhotoIsAnErrorNamingTheFile() {
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    QSignalSpy errors(&session, &Session::errorOccurred);
+    session.openPhoto(dir_.filePath("does-not-exist.png"));
+    QTRY_COMPARE_WITH_TIMEOUT(errors.size(), 1, 20000);
+    QVERIFY(errors.front().front().toString().contains("does-not-exist.png"));
+    QVERIFY(!doc.photo());
+  }
+
+  void artcamExportImportAndImageExport() {
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    doc.reset(test::syntheticPhoto(), test::ninePairs(), ModelClass::Quadratic);
+    QVERIFY(doc.fit().status.ok);
+    const QString cam = dir_.filePath("cam.artcam");
+    QVERIFY(session.exportArtcam(cam));
+
+    Document doc2;
+    Session session2(&doc2, nullptr);
+    session2.setInteractive(false);
+    doc2.reset(test::syntheticPhoto());
+    session2.importArtcam(cam);
+    QCOMPARE(doc2.pairs().size(), size_t{9});
+    doc2.undoStack()->push(new SetModelCommand(&doc2, ModelClass::Quadratic));
+    QCOMPARE(doc2.camera().stages()[0].q, doc.camera().stages()[0].q);
+    doc2.undoStack()->undo();
+    doc2.undoStack()->undo();  // the import is one undo step
+    QCOMPARE(doc2.pairs().size(), size_t{0});
+
+    QSignalSpy finished(&session, &Session::exportFinished);
+    const QString out = dir_.filePath("warped.png");
+    session.exportImage(out);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.size(), 1, 60000);
+    QVERIFY2(finished.front().at(0).toBool(), qPrintable(finished.front().at(1).toString()));
+    const Result<LoadedImage> back = readImage(out.toStdString());
+    QVERIFY(back.ok());
+    QCOMPARE(back->image.width, 320);
+    QCOMPARE(back->image.height, 240);
+  }
+
+  void pairsTableEditsBothWays() {
+    Document doc;
+    doc.reset(test::syntheticPhoto(), test::ninePairs());
+    PairsPanel panel(&doc);
+    QAbstractItemModel* model = panel.table()->model();
+    QCOMPARE(model->rowCount(), 9);
+    QVERIFY(model->setData(model->index(2, PairsTableModel::TargetX), 123.5, Qt::EditRole));
+    QCOMPARE(doc.pairs()[2].target.x(), 123.5);
+    QCOMPARE(doc.undoStack()->count(), 1);
+    QVERIFY(model->setData(model->index(2, PairsTableModel::Enabled), Qt::Unchecked, Qt::CheckStateRole));
+    QVERIFY(!doc.pairs()[2].enabled);
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    QVERIFY(doc.pairs() == test::ninePairs());
+    QCOMPARE(model->data(model->index(2, PairsTableModel::TargetX), Qt::EditRole).toDouble(),
+             test::ninePairs()[2].target.x());
+    // Selection travels both ways.
+    doc.setSelection({1, 4});
+    QCOMPARE(panel.table()->selectionModel()->selectedRows().size(), 2);
+    panel.table()->selectRow(6);
+    QCOMPARE(doc.selection(), std::vector<int>{6});
+  }
+
+  void bannerCountsMissingPairs() {
+    Document doc;
+    doc.reset(test::syntheticPhoto());
+    PairsPanel panel(&doc);
+    doc.undoStack()->push(new SetModelCommand(&doc, ModelClass::Quadratic));
+    std::vector<Pair> pairs = test::ninePairs();
+    for (int i = 0; i < 5; ++i) doc.undoStack()->push(new AddPairCommand(&doc, pairs[static_cast<size_t>(i)]));
+    QVERIFY2(panel.bannerText().contains("4 more"), qPrintable(panel.bannerText()));
+  }
+};
+
+QTEST_MAIN(TestSession)
+#include "test_session.moc"

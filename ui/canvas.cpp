@@ -1,0 +1,223 @@
+#include "ui/canvas.h"
+
+#include "ui/document.h"
+#include "ui/tools/tool.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QPainterPath>
+#include <QWheelEvent>
+
+#include <algorithm>
+#include <cmath>
+
+namespace artcam::ui {
+namespace {
+
+QPointF toQt(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
+
+void drawArrow(QPainter& painter, const QPointF& from, const QPointF& to) {
+  painter.drawLine(from, to);
+  const QPointF d = to - from;
+  const double len = std::hypot(d.x(), d.y());
+  if (len < 6.0) return;
+  const QPointF u = d / len;
+  const QPointF n(-u.y(), u.x());
+  constexpr double kHead = 8.0;
+  QPainterPath head;
+  head.moveTo(to);
+  head.lineTo(to - u * kHead + n * kHead * 0.45);
+  head.lineTo(to - u * kHead - n * kHead * 0.45);
+  head.closeSubpath();
+  painter.fillPath(head, painter.pen().color());
+}
+
+}  // namespace
+
+Canvas::Canvas(Document* document, QWidget* parent) : QWidget(parent), document_(document) {
+  setMouseTracking(true);  // tools draw rubber lines to the cursor
+  setFocusPolicy(Qt::StrongFocus);
+  setMinimumSize(200, 150);
+  setAttribute(Qt::WA_OpaquePaintEvent);
+  connect(document_, &Document::photoChanged, this, &Canvas::onPhotoChanged);
+  connect(document_, &Document::pairsChanged, this, qOverload<>(&QWidget::update));
+  connect(document_, &Document::selectionChanged, this, qOverload<>(&QWidget::update));
+}
+
+Canvas::~Canvas() = default;
+
+void Canvas::setTool(std::unique_ptr<Tool> tool) {
+  if (tool_) tool_->cancel();
+  tool_ = std::move(tool);
+  update();
+}
+
+QColor Canvas::residualColour(double residual_px) {
+  if (residual_px < 0.0 || !std::isfinite(residual_px)) return QColor(255, 40, 40);
+  const double t = std::clamp(residual_px / kRedResidualPx, 0.0, 1.0);
+  // Through yellow so mid residuals read as "warning", not as a muddy brown.
+  const int r = static_cast<int>(std::lround(255 * std::min(1.0, 2 * t)));
+  const int g = static_cast<int>(std::lround(220 * std::min(1.0, 2 * (1 - t))));
+  return QColor(r, g, 40);
+}
+
+void Canvas::zoomToFit() {
+  if (!document_->photo()) return;
+  const FrameSize f = document_->frame();
+  view_.fit(QSizeF(size()), QSizeF(f.width, f.height));
+  follow_fit_ = true;
+  update();
+  emit viewChanged();
+}
+
+void Canvas::zoomActual() {
+  view_.setScaleAt(1.0, QPointF(width() / 2.0, height() / 2.0));
+  userMovedView();
+}
+
+void Canvas::zoomIn() {
+  view_.zoomAt(1.25, QPointF(width() / 2.0, height() / 2.0));
+  userMovedView();
+}
+
+void Canvas::zoomOut() {
+  view_.zoomAt(1.0 / 1.25, QPointF(width() / 2.0, height() / 2.0));
+  userMovedView();
+}
+
+void Canvas::setView(double scale, const QPointF& image_centre) {
+  view_.setScaleAt(scale, QPointF(width() / 2.0, height() / 2.0));
+  view_.setCentre(QSizeF(size()), image_centre);
+  userMovedView();
+}
+
+void Canvas::userMovedView() {
+  follow_fit_ = false;
+  update();
+  emit viewChanged();
+}
+
+void Canvas::onPhotoChanged() {
+  if (tool_) tool_->cancel();
+  zoomToFit();
+}
+
+void Canvas::paintEvent(QPaintEvent*) {
+  QPainter painter(this);
+  painter.fillRect(rect(), QColor(48, 48, 52));
+  const PhotoPtr& photo = document_->photo();
+  if (!photo) {
+    painter.setPen(QColor(180, 180, 180));
+    painter.drawText(rect(), Qt::AlignCenter, tr("Open a photo (Ctrl+O) or drop one here"));
+    return;
+  }
+  const FrameSize f = photo->size();
+  const QRectF target = view_.widgetFromImage(QRectF(0, 0, f.width, f.height));
+  // Smooth when minifying; nearest when magnifying so pixels are visible for precise clicks.
+  painter.setRenderHint(QPainter::SmoothPixmapTransform, view_.scale() < 1.0);
+  painter.drawImage(target, photo->display);
+  painter.setRenderHint(QPainter::Antialiasing, true);
+  paintPairs(painter);
+  if (tool_) tool_->paint(painter);
+}
+
+void Canvas::paintPairs(QPainter& painter) {
+  const auto& pairs = document_->pairs();
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const Pair& p = pairs[i];
+    const int index = static_cast<int>(i);
+    const QPointF s = view_.widgetFromImage(toQt(p.source));
+    const QPointF t = view_.widgetFromImage(toQt(p.target));
+    const bool selected = document_->isSelected(index);
+    const QColor colour = p.enabled ? residualColour(document_->residual(index)) : QColor(150, 150, 150);
+    if (selected) {
+      painter.setPen(QPen(QColor(80, 160, 255), 5.0));
+      painter.drawLine(s, t);
+    }
+    painter.setPen(QPen(colour, 2.0, p.enabled ? Qt::SolidLine : Qt::DashLine));
+    drawArrow(painter, s, t);
+    painter.setBrush(Qt::NoBrush);
+    painter.setPen(QPen(Qt::black, 3.0));
+    painter.drawEllipse(s, 4.5, 4.5);
+    painter.setPen(QPen(selected ? QColor(80, 160, 255) : Qt::white, 1.5));
+    painter.drawEllipse(s, 4.5, 4.5);
+    painter.setBrush(colour);
+    painter.setPen(QPen(Qt::black, 1.0));
+    painter.drawRect(QRectF(t.x() - 3.5, t.y() - 3.5, 7, 7));
+    painter.setBrush(Qt::NoBrush);
+    painter.setPen(Qt::white);
+    painter.drawText(s + QPointF(6, -6), QString::number(index + 1));
+  }
+}
+
+void Canvas::resizeEvent(QResizeEvent*) {
+  if (follow_fit_) zoomToFit();
+}
+
+void Canvas::mousePressEvent(QMouseEvent* event) {
+  if (event->button() == Qt::MiddleButton ||
+      (event->button() == Qt::LeftButton && space_down_)) {
+    panning_ = true;
+    pan_last_ = event->position().toPoint();
+    setCursor(Qt::ClosedHandCursor);
+    return;
+  }
+  if (tool_ && document_->photo()) tool_->mousePress(event);
+}
+
+void Canvas::mouseMoveEvent(QMouseEvent* event) {
+  if (panning_) {
+    const QPoint p = event->position().toPoint();
+    view_.panBy(QPointF(p - pan_last_));
+    pan_last_ = p;
+    userMovedView();
+    return;
+  }
+  emit cursorMoved(view_.imageFromWidget(event->position()));
+  if (tool_ && document_->photo()) tool_->mouseMove(event);
+}
+
+void Canvas::mouseReleaseEvent(QMouseEvent* event) {
+  if (panning_) {
+    if (event->button() == Qt::MiddleButton || event->button() == Qt::LeftButton) {
+      panning_ = false;
+      setCursor(space_down_ ? Qt::OpenHandCursor : Qt::ArrowCursor);
+    }
+    return;
+  }
+  if (tool_ && document_->photo()) tool_->mouseRelease(event);
+}
+
+void Canvas::wheelEvent(QWheelEvent* event) {
+  const double steps = event->angleDelta().y() / 120.0;
+  if (steps == 0.0) return;
+  view_.zoomAt(std::pow(1.25, steps), event->position());
+  userMovedView();
+}
+
+void Canvas::keyPressEvent(QKeyEvent* event) {
+  if (event->key() == Qt::Key_Space && !event->isAutoRepeat()) {
+    space_down_ = true;
+    if (!panning_) setCursor(Qt::OpenHandCursor);
+    return;
+  }
+  if (tool_ && tool_->keyPress(event)) return;
+  QWidget::keyPressEvent(event);
+}
+
+void Canvas::keyReleaseEvent(QKeyEvent* event) {
+  if (event->key() == Qt::Key_Space && !event->isAutoRepeat()) {
+    space_down_ = false;
+    if (!panning_) setCursor(Qt::ArrowCursor);
+    return;
+  }
+  QWidget::keyReleaseEvent(event);
+}
+
+void Canvas::leaveEvent(QEvent* event) {
+  update();
+  QWidget::leaveEvent(event);
+}
+
+}  // namespace artcam::ui

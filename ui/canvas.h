@@ -1,0 +1,75 @@
+// The editing canvas: paints the photo and the pairs (arrows source → target, coloured by
+// residual green → red), owns the view transform (zoom, pan) and forwards every other pointer
+// and key event to the active tool.
+//
+// Pan: middle drag, or space + left drag. Zoom: wheel (about the cursor), zoomToFit (Ctrl+0),
+// zoomActual (Ctrl+1), zoomIn/zoomOut (Ctrl+= / Ctrl+-). Until the user zooms or pans, the
+// view refits on resize.
+#pragma once
+
+#include "ui/view_transform.h"
+
+#include <QPoint>
+#include <QWidget>
+
+#include <memory>
+
+namespace artcam::ui {
+
+class Document;
+class Tool;
+
+class Canvas : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit Canvas(Document* document, QWidget* parent = nullptr);
+  ~Canvas() override;
+
+  Document* document() const { return document_; }
+  const ViewTransform& view() const { return view_; }
+  void setTool(std::unique_ptr<Tool> tool);
+  Tool* tool() const { return tool_.get(); }
+
+  // Residual (px) drawn fully red; below it the arrow blends from green.
+  static constexpr double kRedResidualPx = 4.0;
+  static QColor residualColour(double residual_px);
+
+ public slots:
+  void zoomToFit();
+  void zoomActual();
+  void zoomIn();
+  void zoomOut();
+  // Restores a saved view (scale and image point at the centre).
+  void setView(double scale, const QPointF& image_centre);
+
+ signals:
+  void viewChanged();
+  void cursorMoved(const QPointF& image_point);
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
+  void keyReleaseEvent(QKeyEvent* event) override;
+  void leaveEvent(QEvent* event) override;
+
+ private:
+  void onPhotoChanged();
+  void paintPairs(QPainter& painter);
+  void userMovedView();
+
+  Document* document_;
+  ViewTransform view_;
+  std::unique_ptr<Tool> tool_;
+  bool follow_fit_ = true;   // refit on resize until the user zooms or pans
+  bool space_down_ = false;
+  bool panning_ = false;
+  QPoint pan_last_;
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,96 @@
+// Every document edit is a QUndoCommand (STYLE, after Qt's undoframework example). Commands
+// store old and new values, never deltas, so undo restores state bit-exactly; the document
+// refits from that state. Drags push one MovePairsCommand per mouse move and merge them
+// (mergeWith) into one step per gesture.
+#pragma once
+
+#include "core/fit/fit_image.h"
+#include "ui/document.h"
+
+#include <QUndoCommand>
+
+#include <optional>
+#include <vector>
+
+namespace artcam::ui {
+
+enum CommandId { kMovePairsId = 1001 };
+
+class AddPairCommand : public QUndoCommand {
+ public:
+  AddPairCommand(Document* document, Pair pair, int index = -1);  // -1: append
+  void redo() override;
+  void undo() override;
+
+ private:
+  Document* document_;
+  Pair pair_;
+  int index_;
+};
+
+// Changes several pairs at once (moves, table edits, enable toggles). Consecutive commands
+// with the same non-zero `gesture` and the same indices merge into one undo step.
+class MovePairsCommand : public QUndoCommand {
+ public:
+  MovePairsCommand(Document* document, std::vector<int> indices, std::vector<Pair> before,
+                   std::vector<Pair> after, int gesture, const QString& text);
+  void redo() override;
+  void undo() override;
+  int id() const override { return gesture_ != 0 ? kMovePairsId : -1; }
+  bool mergeWith(const QUndoCommand* other) override;
+
+ private:
+  Document* document_;
+  std::vector<int> indices_;
+  std::vector<Pair> before_;
+  std::vector<Pair> after_;
+  int gesture_;
+};
+
+class DeletePairsCommand : public QUndoCommand {
+ public:
+  DeletePairsCommand(Document* document, std::vector<int> indices);
+  void redo() override;
+  void undo() override;
+
+ private:
+  Document* document_;
+  std::vector<int> indices_;  // ascending
+  std::vector<Pair> pairs_;
+};
+
+class SetModelCommand : public QUndoCommand {
+ public:
+  SetModelCommand(Document* document, ModelClass model);
+  void redo() override;
+  void undo() override;
+
+ private:
+  Document* document_;
+  ModelClass before_;
+  ModelClass after_;
+};
+
+// Sets or clears the hand-made camera (tensor edits, .artcam import). Tensor edits of the same
+// entry in a row merge.
+class SetCameraCommand : public QUndoCommand {
+ public:
+  SetCameraCommand(Document* document, std::optional<Camera> camera, const QString& text,
+                   int merge_key = 0);
+  void redo() override;
+  void undo() override;
+  int id() const override { return merge_key_ != 0 ? merge_key_ : -1; }
+  bool mergeWith(const QUndoCommand* other) override;
+
+ private:
+  Document* document_;
+  std::optional<Camera> before_;
+  std::optional<Camera> after_;
+  int merge_key_;
+};
+
+// Helpers the tools and panels use so they never build commands by hand.
+void pushTogglePairsEnabled(Document* document, const std::vector<int>& indices);
+void pushDeleteSelection(Document* document);
+
+}  // namespace artcam::ui

@@ -1,0 +1,103 @@
+// The model every panel shares: the photo, the point pairs, the model class, the camera and
+// its fit. Panels read it and listen to its signals; they change it only through the
+// QUndoCommands of commands.h (STYLE: every document edit is a command), which call the
+// mutators below. Selection is view state: not undoable, not saved.
+//
+// Frames: pairs are in PIXELS of the photo (centres at i + 0.5); source and target frames are
+// both the photo's size. The camera is in normalised frames (core/model/frames.h).
+#pragma once
+
+#include "core/fit/fit_image.h"
+#include "core/model/camera.h"
+#include "ui/photo.h"
+
+#include <QObject>
+#include <QUndoStack>
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <vector>
+
+namespace artcam::ui {
+
+struct Pair {
+  Eigen::Vector2d source{0.0, 0.0};  // where a feature is in the photo
+  Eigen::Vector2d target{0.0, 0.0};  // where the camera should send it
+  bool enabled = true;
+
+  bool operator==(const Pair& o) const {
+    return source == o.source && target == o.target && enabled == o.enabled;
+  }
+};
+
+enum class Endpoint { Source, Target };
+
+class Document : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit Document(QObject* parent = nullptr);
+
+  QUndoStack* undoStack() { return &undo_stack_; }
+
+  // --- photo (not undoable: a new photo starts a new session) ---
+  const PhotoPtr& photo() const { return photo_; }
+  FrameSize frame() const;
+  // Replaces everything: photo, pairs, model; clears the undo stack and marks clean.
+  void reset(PhotoPtr photo, std::vector<Pair> pairs = {}, ModelClass model = ModelClass::Auto,
+             std::optional<Camera> manual_camera = std::nullopt);
+
+  // --- pairs: raw mutators for commands.h ---
+  const std::vector<Pair>& pairs() const { return pairs_; }
+  void insertPair(int index, const Pair& pair);
+  void removePair(int index);
+  // Sets several pairs at once and refits once (drags of a multi-selection).
+  void setPairs(const std::vector<int>& indices, const std::vector<Pair>& values);
+  int enabledPairCount() const;
+  std::vector<PointMatch> matches() const;  // all pairs, with their enabled flags
+
+  // --- model and camera ---
+  ModelClass model() const { return model_; }
+  void setModel(ModelClass model);
+  // A camera set by hand (tensor edits, .artcam import) replaces the fitted one until cleared.
+  const std::optional<Camera>& manualCamera() const { return manual_camera_; }
+  void setManualCamera(std::optional<Camera> camera);
+  const FitSummary& fit() const { return fit_; }
+  // Manual camera, else the fitted one, else identity (too few or degenerate pairs).
+  const Camera& camera() const { return camera_; }
+  // Enabled pairs still missing before the chosen model is determined (0 when enough).
+  int pairsNeeded() const;
+  // Residual (target px) of pair `index` under the current fit; negative if unknown.
+  double residual(int index) const;
+
+  // --- selection (view state) ---
+  const std::vector<int>& selection() const { return selection_; }
+  bool isSelected(int index) const;
+  void setSelection(std::vector<int> indices);
+
+  bool isModified() const { return !undo_stack_.isClean(); }
+
+ signals:
+  void photoChanged();
+  void pairsChanged();       // any pair added, removed or changed
+  void pairCountChanged();   // rows added or removed (tables reset)
+  void modelChanged();
+  void cameraChanged();      // after every refit, even if the camera came out equal
+  void selectionChanged();
+
+ private:
+  void refit();
+
+  QUndoStack undo_stack_;
+  PhotoPtr photo_;
+  std::vector<Pair> pairs_;
+  ModelClass model_ = ModelClass::Auto;
+  std::optional<Camera> manual_camera_;
+  FitSummary fit_;
+  Camera camera_;
+  std::vector<double> residual_by_pair_;
+  std::vector<int> selection_;
+};
+
+}  // namespace artcam::ui

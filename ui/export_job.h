@@ -1,0 +1,40 @@
+// Full-resolution export of the warped photo in a worker thread: warpImage on the original
+// pixels with progress and cancel (polled between tiles), then writeImage with the photo's
+// format and metadata (atomic). Results come back by queued signals; exceptions stop here.
+#pragma once
+
+#include "core/model/camera.h"
+#include "ui/photo.h"
+
+#include <QString>
+#include <QThread>
+
+#include <atomic>
+
+namespace artcam::ui {
+
+class ExportJob : public QThread {
+  Q_OBJECT
+
+ public:
+  ExportJob(PhotoPtr photo, Camera camera, QString path, QObject* parent = nullptr);
+  ~ExportJob() override;  // cancels and joins
+
+  void cancel() { cancel_ = true; }
+
+ signals:
+  void progressChanged(int percent);
+  // ok false: message says why (or that it was cancelled).
+  void done(bool ok, const QString& message);
+
+ protected:
+  void run() override;
+
+ private:
+  PhotoPtr photo_;
+  Camera camera_;
+  QString path_;
+  std::atomic<bool> cancel_{false};
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,68 @@
+#include "ui/fit_status.h"
+
+#include "core/model/structure.h"
+#include "ui/document.h"
+#include "ui/preview_controller.h"
+
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QProgressBar>
+
+namespace artcam::ui {
+
+FitStatus::FitStatus(Document* document, PreviewController* preview, QWidget* parent)
+    : QWidget(parent), document_(document), preview_(preview), model_(new QLabel(this)),
+      residual_(new QLabel(this)), render_(new QLabel(this)), progress_(new QProgressBar(this)) {
+  progress_->setRange(0, 100);
+  progress_->setMaximumWidth(160);
+  progress_->setFormat(tr("Loading %p%"));
+  progress_->hide();
+  auto* layout = new QHBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addWidget(progress_);
+  layout->addWidget(model_);
+  layout->addWidget(residual_);
+  layout->addWidget(render_);
+  connect(document_, &Document::cameraChanged, this, &FitStatus::updateFit);
+  connect(preview_, &PreviewController::previewChanged, this, &FitStatus::updateRender);
+  updateFit();
+  updateRender();
+}
+
+QString FitStatus::modelText() const { return model_->text(); }
+QString FitStatus::residualText() const { return residual_->text(); }
+QString FitStatus::renderText() const { return render_->text(); }
+
+void FitStatus::setLoadProgress(int percent) {
+  progress_->setVisible(percent >= 0);
+  if (percent >= 0) progress_->setValue(percent);
+}
+
+void FitStatus::updateFit() {
+  const FitSummary& fit = document_->fit();
+  if (document_->manualCamera()) {
+    model_->setText(tr("Camera: set by hand (%1)")
+                        .arg(QString::fromStdString(analyseStructure(document_->camera()).summary)));
+  } else if (fit.status.ok) {
+    model_->setText(tr("Model: %1").arg(QString::fromStdString(fit.record.model)));
+  } else {
+    model_->setText(tr("Model: none (identity)"));
+  }
+  if (fit.status.ok && !document_->manualCamera())
+    residual_->setText(tr("RMS %1 px · max %2 px").arg(fit.record.rms_px, 0, 'f', 2).arg(fit.record.max_px, 0, 'f', 2));
+  else
+    residual_->setText(QString());
+  residual_->setToolTip(QString::fromStdString(fit.status.ok ? fit.report() : fit.status.message));
+}
+
+void FitStatus::updateRender() {
+  if (preview_->image().isNull()) {
+    render_->setText(QString());
+    return;
+  }
+  render_->setText(tr("Preview %1 ms%2")
+                       .arg(preview_->lastRenderMs(), 0, 'f', 0)
+                       .arg(preview_->imageIsFinal() ? QString() : tr(" (coarse)")));
+}
+
+}  // namespace artcam::ui

@@ -1,0 +1,55 @@
+// The main window assembles only (STYLE): it creates the document, canvas, panels, preview
+// and session, lays them out in docks, makes the menus, toolbars and shortcuts, and wires
+// signals. Editing logic lives in the tools, commands and document; file logic in Session.
+#pragma once
+
+#include <QMainWindow>
+
+class QMenu;
+
+namespace artcam::ui {
+
+class Canvas;
+class Document;
+class FitStatus;
+class PairsPanel;
+class PreviewController;
+class PreviewView;
+class Session;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  Document* document() const { return document_; }
+  Canvas* canvas() const { return canvas_; }
+  Session* session() const { return session_; }
+  PreviewController* preview() const { return preview_; }
+  PreviewView* previewView() const { return preview_view_; }
+  PairsPanel* pairsPanel() const { return pairs_panel_; }
+  FitStatus* fitStatus() const { return fit_status_; }
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+
+ private:
+  void createMenus();
+  void rebuildRecentMenu();
+  void updateTitle();
+
+  Document* document_;
+  PreviewController* preview_;
+  Canvas* canvas_;
+  PreviewView* preview_view_;
+  PairsPanel* pairs_panel_;
+  FitStatus* fit_status_;
+  Session* session_;
+  QMenu* recent_menu_ = nullptr;
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,179 @@
+#include "ui/panels/pairs_panel.h"
+
+#include "ui/commands.h"
+#include "ui/document.h"
+
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QItemSelectionModel>
+#include <QLabel>
+#include <QPushButton>
+#include <QTableView>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+namespace artcam::ui {
+
+PairsTableModel::PairsTableModel(Document* document, QObject* parent)
+    : QAbstractTableModel(parent), document_(document) {
+  connect(document_, &Document::pairCountChanged, this, [this] {
+    beginResetModel();
+    endResetModel();
+  });
+  connect(document_, &Document::pairsChanged, this, [this] {
+    if (rowCount() > 0) emit dataChanged(index(0, 0), index(rowCount() - 1, ColumnCount - 1));
+  });
+}
+
+int PairsTableModel::rowCount(const QModelIndex& parent) const {
+  return parent.isValid() ? 0 : static_cast<int>(document_->pairs().size());
+}
+
+int PairsTableModel::columnCount(const QModelIndex& parent) const {
+  return parent.isValid() ? 0 : ColumnCount;
+}
+
+QVariant PairsTableModel::data(const QModelIndex& index, int role) const {
+  if (!index.isValid() || index.row() >= rowCount()) return {};
+  const Pair& p = document_->pairs()[static_cast<size_t>(index.row())];
+  const int c = index.column();
+  if (c == Enabled && role == Qt::CheckStateRole) return p.enabled ? Qt::Checked : Qt::Unchecked;
+  if (role == Qt::TextAlignmentRole && c != Enabled)
+    return QVariant::fromValue(Qt::AlignRight | Qt::AlignVCenter);
+  const double values[] = {0.0, p.source.x(), p.source.y(), p.target.x(), p.target.y()};
+  if (role == Qt::EditRole && c >= SourceX && c <= TargetY) return values[c];
+  if (role != Qt::DisplayRole) return {};
+  if (c >= SourceX && c <= TargetY) return QString::number(values[c], 'f', 2);
+  if (c == Residual) {
+    const double r = document_->residual(index.row());
+    if (r < 0.0) return QString();
+    return std::isfinite(r) ? QString::number(r, 'f', 2) : tr("unmapped");
+  }
+  return {};
+}
+
+QVariant PairsTableModel::headerData(int section, Qt::Orientation orientation, int role) const {
+  if (role != Qt::DisplayRole) return {};
+  if (orientation == Qt::Vertical) return section + 1;
+  switch (section) {
+    case Enabled: return tr("On");
+    case SourceX: return tr("Source x");
+    case SourceY: return tr("Source y");
+    case TargetX: return tr("Target x");
+    case TargetY: return tr("Target y");
+    case Residual: return tr("Residual px");
+    default: return {};
+  }
+}
+
+Qt::ItemFlags PairsTableModel::flags(const QModelIndex& index) const {
+  Qt::ItemFlags f = QAbstractTableModel::flags(index);
+  if (index.column() == Enabled) f |= Qt::ItemIsUserCheckable;
+  else if (index.column() != Residual) f |= Qt::ItemIsEditable;
+  return f;
+}
+
+bool PairsTableModel::setData(const QModelIndex& index, const QVariant& value, int role) {
+  if (!index.isValid() || index.row() >= rowCount()) return false;
+  const int row = index.row();
+  const Pair before = document_->pairs()[static_cast<size_t>(row)];
+  if (index.column() == Enabled && role == Qt::CheckStateRole) {
+    const bool on = value.toInt() == Qt::Checked;
+    if (on == before.enabled) return false;
+    pushTogglePairsEnabled(document_, {row});
+    return true;
+  }
+  if (role != Qt::EditRole) return false;
+  bool ok = false;
+  const double v = value.toDouble(&ok);
+  if (!ok || !std::isfinite(v)) return false;
+  Pair after = before;
+  switch (index.column()) {
+    case SourceX: after.source.x() = v; break;
+    case SourceY: after.source.y() = v; break;
+    case TargetX: after.target.x() = v; break;
+    case TargetY: after.target.y() = v; break;
+    default: return false;
+  }
+  if (after == before) return false;
+  document_->undoStack()->push(
+      new MovePairsCommand(document_, {row}, {before}, {after}, 0, tr("Edit pair %1").arg(row + 1)));
+  return true;
+}
+
+PairsPanel::PairsPanel(Document* document, QWidget* parent)
+    : QWidget(parent), document_(document), model_(new PairsTableModel(document, this)),
+      table_(new QTableView(this)), banner_(new QLabel(this)) {
+  table_->setModel(model_);
+  table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  table_->setSelectionMode(QAbstractItemView::ExtendedSelection);
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->verticalHeader()->setDefaultSectionSize(22);
+  banner_->setWordWrap(true);
+  auto* remove = new QPushButton(tr("Delete"), this);
+  remove->setToolTip(tr("Delete the selected pairs (Del)"));
+  auto* toggle = new QPushButton(tr("Enable/disable"), this);
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(remove);
+  buttons->addWidget(toggle);
+  buttons->addStretch(1);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(2, 2, 2, 2);
+  layout->addWidget(banner_);
+  layout->addWidget(table_, 1);
+  layout->addLayout(buttons);
+
+  connect(remove, &QPushButton::clicked, this, [this] { pushDeleteSelection(document_); });
+  connect(toggle, &QPushButton::clicked, this,
+          [this] { pushTogglePairsEnabled(document_, document_->selection()); });
+  connect(document_, &Document::cameraChanged, this, &PairsPanel::updateBanner);
+  connect(document_, &Document::selectionChanged, this, &PairsPanel::selectionFromDocument);
+  connect(document_, &Document::pairCountChanged, this, &PairsPanel::selectionFromDocument);
+  connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this,
+          &PairsPanel::selectionToDocument);
+  updateBanner();
+}
+
+QString PairsPanel::bannerText() const { return banner_->text(); }
+
+void PairsPanel::updateBanner() {
+  QString text;
+  if (!document_->photo()) {
+    text = tr("Open a photo, then click a source point and its target.");
+  } else if (document_->manualCamera()) {
+    text = tr("Camera set by hand: the pairs are shown with its residuals but not fitted.");
+  } else if (const int need = document_->pairsNeeded(); need > 0) {
+    text = tr("Need %n more pair(s) for this model.", nullptr, need);
+  } else if (!document_->fit().status.ok) {
+    text = QString::fromStdString(document_->fit().status.message);
+  } else {
+    text = QString::fromStdString(document_->fit().report());
+  }
+  banner_->setText(text);
+  const bool problem = document_->photo() && !document_->manualCamera() && !document_->fit().status.ok;
+  banner_->setStyleSheet(problem ? "color: #d08000;" : "");
+}
+
+void PairsPanel::selectionFromDocument() {
+  if (syncing_) return;
+  syncing_ = true;
+  QItemSelection sel;
+  for (int row : document_->selection())
+    sel.select(model_->index(row, 0), model_->index(row, PairsTableModel::ColumnCount - 1));
+  table_->selectionModel()->select(sel, QItemSelectionModel::ClearAndSelect);
+  if (!document_->selection().empty())
+    table_->scrollTo(model_->index(document_->selection().back(), 0));
+  syncing_ = false;
+}
+
+void PairsPanel::selectionToDocument() {
+  if (syncing_) return;
+  syncing_ = true;
+  std::vector<int> rows;
+  for (const QModelIndex& i : table_->selectionModel()->selectedRows()) rows.push_back(i.row());
+  document_->setSelection(rows);
+  syncing_ = false;
+}
+
+}  // namespace artcam::ui

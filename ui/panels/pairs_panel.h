@@ -1,0 +1,57 @@
+// The pairs table: one row per pair (enabled, source x/y, target x/y, residual), edited both
+// ways: typing a coordinate or toggling the check box pushes an undo command; canvas edits
+// and selection show up here through the document's signals. A banner says how many more
+// pairs the chosen model needs while it is underdetermined, or why the fit failed.
+#pragma once
+
+#include <QAbstractTableModel>
+#include <QWidget>
+
+class QLabel;
+class QTableView;
+
+namespace artcam::ui {
+
+class Document;
+
+class PairsTableModel : public QAbstractTableModel {
+  Q_OBJECT
+
+ public:
+  enum Column { Enabled, SourceX, SourceY, TargetX, TargetY, Residual, ColumnCount };
+
+  explicit PairsTableModel(Document* document, QObject* parent = nullptr);
+
+  int rowCount(const QModelIndex& parent = {}) const override;
+  int columnCount(const QModelIndex& parent = {}) const override;
+  QVariant data(const QModelIndex& index, int role) const override;
+  QVariant headerData(int section, Qt::Orientation orientation, int role) const override;
+  Qt::ItemFlags flags(const QModelIndex& index) const override;
+  bool setData(const QModelIndex& index, const QVariant& value, int role) override;
+
+ private:
+  Document* document_;
+};
+
+class PairsPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit PairsPanel(Document* document, QWidget* parent = nullptr);
+
+  QTableView* table() const { return table_; }
+  QString bannerText() const;
+
+ private:
+  void updateBanner();
+  void selectionFromDocument();
+  void selectionToDocument();
+
+  Document* document_;
+  PairsTableModel* model_;
+  QTableView* table_;
+  QLabel* banner_;
+  bool syncing_ = false;
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,63 @@
+// The live preview renderer (STYLE, after Qt's Mandelbrot example): one thread, one pending
+// request slot where the newest request wins, std::atomic restart/abort flags polled between
+// tiles through WarpOptions::progress, a coarse pass (1/4 size) before the full preview, and
+// results delivered by queued signals carrying a QImage and the request's generation stamp.
+// Every exception stops at run(); it becomes a `failed` signal, never reaches the event loop.
+#pragma once
+
+#include "core/model/camera.h"
+#include "core/model/image.h"
+
+#include <QImage>
+#include <QMutex>
+#include <QString>
+#include <QThread>
+#include <QWaitCondition>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+
+namespace artcam::ui {
+
+struct RenderRequest {
+  std::shared_ptr<const ImageF> source;  // the downscaled preview source
+  Camera camera;
+  int width = 0;  // full-pass output size (the coarse pass is a quarter of it)
+  int height = 0;
+  quint64 generation = 0;
+};
+
+class RenderWorker : public QThread {
+  Q_OBJECT
+
+ public:
+  static constexpr int kCoarseFactor = 4;
+
+  explicit RenderWorker(QObject* parent = nullptr);
+  ~RenderWorker() override;  // aborts any render and joins the thread
+
+  // GUI thread. Replaces the pending request; cancels the one in flight at its next tile.
+  void request(RenderRequest request);
+  // Stops the thread (idempotent); called by the destructor.
+  void shutdown();
+
+ signals:
+  // `final_pass` is false for the coarse pass. render_ms is the warp time of that pass.
+  void rendered(const QImage& image, quint64 generation, bool final_pass, double render_ms);
+  void failed(const QString& message, quint64 generation);
+
+ protected:
+  void run() override;
+
+ private:
+  bool keepGoing() const { return !restart_.load() && !abort_.load(); }
+
+  QMutex mutex_;
+  QWaitCondition condition_;
+  std::optional<RenderRequest> pending_;  // guarded by mutex_
+  std::atomic<bool> restart_{false};
+  std::atomic<bool> abort_{false};
+};
+
+}  // namespace artcam::ui

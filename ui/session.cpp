@@ -1,0 +1,314 @@
+#include "ui/session.h"
+
+#include "core/io/artcam_file.h"
+#include "ui/commands.h"
+#include "ui/document.h"
+#include "ui/export_job.h"
+#include "ui/image_loader.h"
+
+#include <QCoreApplication>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMessageBox>
+#include <QProgressDialog>
+#include <QSettings>
+
+namespace artcam::ui {
+namespace {
+
+const char kRecentKey[] = "recentFiles";
+
+QString photoFilter() {
+  return QCoreApplication::translate(
+      "Session", "Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.bmp *.webp);;All files (*)");
+}
+
+QString projectFilter() {
+  return QCoreApplication::translate("Session", "ARTcam Studio projects (*.%1)").arg(kProjectExtension);
+}
+
+}  // namespace
+
+Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
+    : QObject(parent), document_(document), dialog_parent_(dialog_parent) {
+  connect(document_->undoStack(), &QUndoStack::cleanChanged, this, &Session::titleChanged);
+}
+
+Session::~Session() {
+  if (export_job_) export_job_->cancel();
+  delete export_job_.data();
+  delete loader_.data();
+}
+
+QString Session::displayName() const {
+  if (!project_path_.isEmpty()) return QFileInfo(project_path_).fileName();
+  if (document_->photo()) return QFileInfo(document_->photo()->path).fileName();
+  return tr("Untitled");
+}
+
+QStringList Session::recentFiles() const {
+  return QSettings().value(kRecentKey).toStringList();
+}
+
+void Session::addRecent(const QString& path) {
+  QStringList list = recentFiles();
+  const QString abs = QFileInfo(path).absoluteFilePath();
+  list.removeAll(abs);
+  list.prepend(abs);
+  while (list.size() > kMaxRecentFiles) list.removeLast();
+  QSettings().setValue(kRecentKey, list);
+  emit recentFilesChanged();
+}
+
+void Session::showError(const QString& title, const QString& message) {
+  emit errorOccurred(message);
+  emit statusMessage(message);
+  if (interactive_) QMessageBox::critical(dialog_parent_, title, message);
+}
+
+void Session::openPath(const QString& path) {
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  if (suffix == kProjectExtension) openProject(path);
+  else if (suffix == "artcam") importArtcam(path);
+  else openPhoto(path);
+}
+
+void Session::openPhoto(const QString& path) {
+  if (!maybeSave()) return;
+  project_path_.clear();
+  startLoading(path, std::nullopt);
+}
+
+void Session::openProject(const QString& path) {
+  if (!maybeSave()) return;
+  Result<Project> project = readProject(path);
+  if (!project) {
+    showError(tr("Open project"), QString::fromStdString(project.status.message));
+    return;
+  }
+  pending_project_path_ = QFileInfo(path).absoluteFilePath();
+  startLoading(project->photo_path, std::move(*project.value));
+}
+
+void Session::startLoading(const QString& photo_path, std::optional<Project> project) {
+  if (loader_) {
+    // A newer open replaces the one in flight; its result is never applied.
+    disconnect(loader_, nullptr, this, nullptr);
+    loader_->cancel();
+    connect(loader_, &QThread::finished, loader_, &QObject::deleteLater);
+  }
+  pending_project_ = std::move(project);
+  auto* loader = new ImageLoader(photo_path, this);
+  loader_ = loader;
+  connect(loader, &ImageLoader::progressChanged, this, &Session::loadProgress);
+  connect(loader, &ImageLoader::loaded, this, [this, loader](const PhotoPtr& photo) {
+    if (loader != loader_) return;
+    if (pending_project_) {
+      Project p = std::move(*pending_project_);
+      pending_project_.reset();
+      std::optional<Camera> manual = p.manual_camera;
+      if (manual) manual->setFrames(photo->size(), photo->size());
+      document_->reset(photo, std::move(p.pairs), p.model, std::move(manual));
+      project_path_ = pending_project_path_;
+      addRecent(project_path_);
+      emit viewStateLoaded(p.view);
+    } else {
+      document_->reset(photo);
+      addRecent(photo->path);
+    }
+    emit titleChanged();
+    emit statusMessage(tr("Loaded %1 (%2×%3)")
+                           .arg(QFileInfo(photo->path).fileName())
+                           .arg(photo->size().width)
+                           .arg(photo->size().height));
+  });
+  connect(loader, &ImageLoader::failed, this, [this, loader](const QString& message) {
+    if (loader != loader_) return;
+    pending_project_.reset();
+    showError(tr("Open photo"), message);
+  });
+  connect(loader, &QThread::finished, this, [this, loader] {
+    if (loader == loader_) loader_ = nullptr;
+    loader->deleteLater();
+    emit loadProgress(-1);
+  });
+  emit loadProgress(0);
+  loader->start();
+}
+
+bool Session::saveProjectTo(const QString& path) {
+  if (!document_->photo()) {
+    showError(tr("Save project"), tr("Nothing to save: open a photo first."));
+    return false;
+  }
+  Project p;
+  p.photo_path = QFileInfo(document_->photo()->path).absoluteFilePath();
+  p.pairs = document_->pairs();
+  p.model = document_->model();
+  p.manual_camera = document_->manualCamera();
+  if (view_state_) p.view = view_state_();
+  const Status status = writeProject(path, p);
+  if (!status) {
+    showError(tr("Save project"), QString::fromStdString(status.message));
+    return false;
+  }
+  project_path_ = QFileInfo(path).absoluteFilePath();
+  document_->undoStack()->setClean();
+  addRecent(project_path_);
+  emit titleChanged();
+  emit statusMessage(tr("Saved %1").arg(path));
+  return true;
+}
+
+void Session::importArtcam(const QString& path) {
+  const PhotoPtr& photo = document_->photo();
+  if (!photo) {
+    showError(tr("Import camera"), tr("Open a photo before importing a camera onto it."));
+    return;
+  }
+  Result<ArtcamDocument> doc = readArtcamFile(path.toStdString());
+  if (!doc) {
+    showError(tr("Import camera"), QString::fromStdString(doc.status.message));
+    return;
+  }
+  const Camera& cam = doc->camera;
+  if (cam.blocks().size() != 1 || cam.blocks()[0] != Block{BlockKind::Position, 3}) {
+    showError(tr("Import camera"),
+              tr("%1: only image position cameras can be edited here (this one has %2 blocks).")
+                  .arg(path)
+                  .arg(cam.blocks().size()));
+    return;
+  }
+  QUndoStack* stack = document_->undoStack();
+  stack->beginMacro(tr("Import %1").arg(QFileInfo(path).fileName()));
+  if (!doc->matches.empty() && cam.sourceSize().isImage()) {
+    // Matches are pixels of the camera's frames: rescale to this photo's pixels.
+    const double sx = static_cast<double>(photo->size().width) / cam.sourceSize().width;
+    const double sy = static_cast<double>(photo->size().height) / cam.sourceSize().height;
+    const FrameSize t = cam.targetSize().isImage() ? cam.targetSize() : cam.sourceSize();
+    const double tx = static_cast<double>(photo->size().width) / t.width;
+    const double ty = static_cast<double>(photo->size().height) / t.height;
+    for (const PointMatch& m : doc->matches) {
+      if (m.source.size() != 2 || m.target.size() != 2) continue;
+      Pair p;
+      p.source = {m.source[0] * sx, m.source[1] * sy};
+      p.target = {m.target[0] * tx, m.target[1] * ty};
+      p.enabled = m.enabled;
+      stack->push(new AddPairCommand(document_, p));
+    }
+    stack->push(new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
+  } else {
+    Camera c = cam;
+    c.setFrames(photo->size(), photo->size());
+    stack->push(new SetCameraCommand(document_, std::move(c), tr("Set camera")));
+  }
+  stack->endMacro();
+  emit statusMessage(tr("Imported %1").arg(path));
+}
+
+bool Session::exportArtcam(const QString& path) {
+  ArtcamDocument doc;
+  doc.camera = document_->camera();
+  doc.matches = document_->matches();
+  if (!document_->manualCamera() && document_->fit().status.ok) doc.fit = document_->fit().record;
+  const Status status = writeArtcamFile(path.toStdString(), doc);
+  if (!status) {
+    showError(tr("Export camera"), QString::fromStdString(status.message));
+    return false;
+  }
+  emit statusMessage(tr("Exported camera to %1").arg(path));
+  return true;
+}
+
+void Session::exportImage(const QString& path) {
+  if (!document_->photo()) {
+    showError(tr("Export image"), tr("Nothing to export: open a photo first."));
+    return;
+  }
+  if (export_job_) {
+    showError(tr("Export image"), tr("An export is already running."));
+    return;
+  }
+  auto* job = new ExportJob(document_->photo(), document_->camera(), path, this);
+  export_job_ = job;
+  QProgressDialog* dialog = nullptr;
+  if (interactive_) {
+    dialog = new QProgressDialog(tr("Exporting %1…").arg(QFileInfo(path).fileName()), tr("Cancel"),
+                                 0, 100, dialog_parent_);
+    dialog->setWindowModality(Qt::WindowModal);
+    dialog->setMinimumDuration(300);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    connect(job, &ExportJob::progressChanged, dialog, &QProgressDialog::setValue);
+    connect(dialog, &QProgressDialog::canceled, job, &ExportJob::cancel, Qt::DirectConnection);
+  }
+  connect(job, &ExportJob::done, this, [this, dialog](bool ok, const QString& message) {
+    if (dialog) dialog->close();
+    if (ok) emit statusMessage(message);
+    else if (!message.isEmpty()) showError(tr("Export image"), message);
+    emit exportFinished(ok, message);
+  });
+  connect(job, &QThread::finished, job, &QObject::deleteLater);
+  job->start();
+}
+
+void Session::openDialog() {
+  const QString path = QFileDialog::getOpenFileName(
+      dialog_parent_, tr("Open photo or project"), QString(),
+      tr("Photos and projects (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.bmp *.webp *.%1);;")
+              .arg(kProjectExtension) + projectFilter() + ";;" + photoFilter());
+  if (!path.isEmpty()) openPath(path);
+}
+
+bool Session::save() {
+  if (project_path_.isEmpty()) return saveAs();
+  return saveProjectTo(project_path_);
+}
+
+bool Session::saveAs() {
+  if (!document_->photo()) return false;
+  QString suggestion = project_path_;
+  if (suggestion.isEmpty()) {
+    const QFileInfo info(document_->photo()->path);
+    suggestion = info.absoluteDir().filePath(info.completeBaseName() + "." + kProjectExtension);
+  }
+  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Save project"), suggestion, projectFilter());
+  if (path.isEmpty()) return false;
+  if (QFileInfo(path).suffix().isEmpty()) path += QString(".") + kProjectExtension;
+  return saveProjectTo(path);
+}
+
+void Session::importArtcamDialog() {
+  const QString path = QFileDialog::getOpenFileName(dialog_parent_, tr("Import camera"), QString(),
+                                                    tr("ARTcam cameras (*.artcam)"));
+  if (!path.isEmpty()) importArtcam(path);
+}
+
+void Session::exportArtcamDialog() {
+  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export camera"), QString(),
+                                              tr("ARTcam cameras (*.artcam)"));
+  if (path.isEmpty()) return;
+  if (QFileInfo(path).suffix().isEmpty()) path += ".artcam";
+  exportArtcam(path);
+}
+
+void Session::exportImageDialog() {
+  if (!document_->photo()) return;
+  const QFileInfo info(document_->photo()->path);
+  const QString suggestion =
+      info.absoluteDir().filePath(info.completeBaseName() + "_warped." + info.suffix());
+  const QString path =
+      QFileDialog::getSaveFileName(dialog_parent_, tr("Export warped image"), suggestion, photoFilter());
+  if (!path.isEmpty()) exportImage(path);
+}
+
+bool Session::maybeSave() {
+  if (!document_->isModified() || !interactive_) return true;
+  const auto answer = QMessageBox::warning(
+      dialog_parent_, tr("Unsaved changes"),
+      tr("%1 has unsaved changes. Save them?").arg(displayName()),
+      QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
+  if (answer == QMessageBox::Save) return save();
+  return answer == QMessageBox::Discard;
+}
+
+}  // namespace artcam::ui

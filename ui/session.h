@@ -1,0 +1,89 @@
+// File operations of one editing session: open photo (off the GUI thread, with progress),
+// open/save project (atomic), import/export .artcam, export the warped image (worker with a
+// cancellable progress dialog), recent files, and the save prompt on close. Errors are shown
+// as dialogs naming the file and the cause. MainWindow only wires actions to these slots.
+#pragma once
+
+#include "ui/export_job.h"
+#include "ui/image_loader.h"
+#include "ui/project_file.h"
+
+#include <QObject>
+#include <QPointer>
+#include <QString>
+#include <QStringList>
+
+#include <functional>
+#include <optional>
+
+class QWidget;
+
+namespace artcam::ui {
+
+class Document;
+
+class Session : public QObject {
+  Q_OBJECT
+
+ public:
+  static constexpr int kMaxRecentFiles = 10;
+
+  Session(Document* document, QWidget* dialog_parent, QObject* parent = nullptr);
+  ~Session() override;
+
+  // Supplies the view state to save; MainWindow sets it from the canvas and preview.
+  void setViewStateProvider(std::function<ViewState()> provider) { view_state_ = std::move(provider); }
+  // When false, errors are only emitted (errorOccurred) rather than shown modally (tests).
+  void setInteractive(bool interactive) { interactive_ = interactive; }
+
+  const QString& projectPath() const { return project_path_; }
+  QString displayName() const;
+  bool isLoading() const { return loader_ != nullptr; }
+  QStringList recentFiles() const;
+
+ public slots:
+  // Decides by extension: project, .artcam (import) or photo.
+  void openPath(const QString& path);
+  void openPhoto(const QString& path);
+  void openProject(const QString& path);
+  bool saveProjectTo(const QString& path);
+  void importArtcam(const QString& path);
+  bool exportArtcam(const QString& path);
+  void exportImage(const QString& path);
+
+  // Dialog-driven versions for the menus.
+  void openDialog();
+  bool save();
+  bool saveAs();
+  void importArtcamDialog();
+  void exportArtcamDialog();
+  void exportImageDialog();
+  // Asks to save unsaved changes; false when the user cancelled.
+  bool maybeSave();
+
+ signals:
+  void loadProgress(int percent);  // -1: finished or failed
+  void statusMessage(const QString& message);
+  void errorOccurred(const QString& message);
+  void titleChanged();
+  void recentFilesChanged();
+  void viewStateLoaded(const artcam::ui::ViewState& view);
+  void exportFinished(bool ok, const QString& message);
+
+ private:
+  void startLoading(const QString& photo_path, std::optional<Project> project);
+  void showError(const QString& title, const QString& message);
+  void addRecent(const QString& path);
+
+  Document* document_;
+  QWidget* dialog_parent_;
+  std::function<ViewState()> view_state_;
+  bool interactive_ = true;
+  QString project_path_;
+  QPointer<ImageLoader> loader_;
+  std::optional<Project> pending_project_;
+  QString pending_project_path_;
+  QPointer<ExportJob> export_job_;
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,59 @@
+// The pair tool: click a source point, then its target, to add a pair. On existing points:
+// click selects (Shift toggles), drag moves the grabbed endpoint of every selected pair (one
+// merged undo step per drag), a drag on empty space selects with a rubber band, Delete removes
+// the selection, Escape drops a half-made pair.
+#pragma once
+
+#include "ui/document.h"
+#include "ui/tools/tool.h"
+
+#include <QPointF>
+
+#include <optional>
+#include <vector>
+
+namespace artcam::ui {
+
+class PairTool : public Tool {
+ public:
+  // Widget pixels within which a click grabs an endpoint.
+  static constexpr double kHitRadius = 8.0;
+  // Widget pixels a press must travel before it is a drag rather than a click.
+  static constexpr double kDragThreshold = 4.0;
+
+  PairTool(Canvas* canvas, Document* document);
+
+  void mousePress(QMouseEvent* event) override;
+  void mouseMove(QMouseEvent* event) override;
+  void mouseRelease(QMouseEvent* event) override;
+  bool keyPress(QKeyEvent* event) override;
+  void paint(QPainter& painter) override;
+  void cancel() override;
+
+  bool hasPendingSource() const { return pending_source_.has_value(); }
+
+ private:
+  struct Hit {
+    int index;
+    Endpoint endpoint;
+  };
+  enum class Gesture { None, PressedEmpty, PressedPoint, Dragging, RubberBand };
+
+  std::optional<Hit> hitTest(const QPointF& widget) const;
+  QPointF imagePoint(const QPointF& widget) const;
+  void dragTo(const QPointF& widget);
+
+  Gesture gesture_ = Gesture::None;
+  QPointF press_widget_;
+  QPointF cursor_widget_;
+  bool shift_ = false;
+  std::optional<Eigen::Vector2d> pending_source_;
+  // Dragging state: grabbed endpoint, the pairs moved and their values at press time.
+  Hit grabbed_{-1, Endpoint::Source};
+  std::vector<int> drag_indices_;
+  std::vector<Pair> drag_before_;
+  int gesture_id_ = 0;  // merges the MovePairsCommands of one drag
+  static int next_gesture_id_;
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,37 @@
+// A canvas tool (STYLE, after Krita's KoToolBase): the canvas owns no editing logic, it only
+// forwards pointer and key events here. Positions arrive in widget coordinates; tools convert
+// them with the canvas's ViewTransform. Pan and zoom are the canvas's own and never reach tools.
+#pragma once
+
+class QKeyEvent;
+class QMouseEvent;
+class QPainter;
+
+namespace artcam::ui {
+
+class Canvas;
+class Document;
+
+class Tool {
+ public:
+  Tool(Canvas* canvas, Document* document) : canvas_(canvas), document_(document) {}
+  virtual ~Tool() = default;
+  Tool(const Tool&) = delete;
+  Tool& operator=(const Tool&) = delete;
+
+  virtual void mousePress(QMouseEvent* event) = 0;
+  virtual void mouseMove(QMouseEvent* event) = 0;
+  virtual void mouseRelease(QMouseEvent* event) = 0;
+  // Returns whether the key was used.
+  virtual bool keyPress(QKeyEvent* event) = 0;
+  // Overlay in widget coordinates, drawn after the photo and the pairs.
+  virtual void paint(QPainter& painter) = 0;
+  // Drop any half-made gesture (tool switch, new photo).
+  virtual void cancel() = 0;
+
+ protected:
+  Canvas* canvas_;
+  Document* document_;
+};
+
+}  // namespace artcam::ui
