@@ -94,7 +94,7 @@ class TestKernels : public QObject {
     // The horizon u_n = −1/1.5 crosses the frame: beyond it the map has no preimage.
     Eigen::Matrix3d horizon = id;
     horizon(2, 0) = 1.5;
-    QTest::newRow("homography with horizon in frame") << 160 << horizon << "homography" << 64LL;
+    QTest::newRow("homography with horizon in frame") << 160 << horizon << "homography" << 160LL;
   }
 
   void exactKernelsAgreeWithRational() {
