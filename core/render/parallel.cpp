@@ -65,9 +65,11 @@ bool parallelForRows(int rows, const ParallelOptions& options,
   {
     std::unique_lock<std::mutex> lock(mutex);
     int reported = -1;
-    while (finished_workers < workers) {
+    // Loop until every worker has finished AND the last count has been reported: the callback
+    // sees 1.0 at least once, and a "stop" it returns is honoured even when the work won the race.
+    for (;;) {
       changed.wait(lock, [&] { return finished_workers == workers || done_rows != reported; });
-      if (options.progress && done_rows != reported && !stop) {
+      if (done_rows != reported && options.progress && !stop) {
         reported = done_rows;
         const double fraction = static_cast<double>(done_rows) / rows;
         lock.unlock();
@@ -80,6 +82,7 @@ bool parallelForRows(int rows, const ParallelOptions& options,
       } else {
         reported = done_rows;
       }
+      if (finished_workers == workers && done_rows == reported) break;
     }
   }
   for (std::thread& t : pool) t.join();

@@ -10,7 +10,9 @@ struct ParallelOptions {
   int threads = 0;     // 0: std::thread::hardware_concurrency()
   int band_rows = 16;  // rows per work item
   // Called on the CALLING thread (never on a worker) after bands complete, with the fraction
-  // of rows done; return false to cancel. Bands already running finish, no new band starts.
+  // of rows done, at least once (with 1.0 when nothing was cancelled); return false to cancel.
+  // Bands already running finish, no new band starts; a false is honoured even after the
+  // last band, so a caller that said "stop" never receives a result.
   std::function<bool(double)> progress;
 };
 
