@@ -63,8 +63,7 @@ double numberAt(const Json& j, const std::string& path) {
 }
 
 long long wholeNumberAt(const Json& j, const std::string& path, long long min) {
-  if (!j.is_number_integer())
-    refuse(path, "expected a whole number, found " + describe(j));
+  if (!j.is_number_integer()) refuse(path, "expected a whole number, found " + describe(j));
   if (j.is_number_unsigned() && j.get<unsigned long long>() > (1ULL << 31))
     refuse(path, "number out of range: " + describe(j));
   const long long value = j.get<long long>();
@@ -80,7 +79,8 @@ std::vector<double> numbersAt(const Json& j, const std::string& path, size_t cou
   if (j.size() != count)
     refuse(path, "expected " + expected + ", found " + std::to_string(j.size()));
   std::vector<double> values;
-  for (size_t k = 0; k < count; ++k) values.push_back(numberAt(j[k], path + "/" + std::to_string(k)));
+  for (size_t k = 0; k < count; ++k)
+    values.push_back(numberAt(j[k], path + "/" + std::to_string(k)));
   return values;
 }
 
@@ -115,11 +115,11 @@ std::vector<Block> blocksAt(const Json& j, const std::string& path) {
     if (!kind)
       refuse(here + "/kind",
              "unknown block kind \"" + kind_name + "\" (expected position, colour or depth)");
-    const Block parsed{*kind, static_cast<int>(wholeNumberAt(field(block, here, "size"),
-                                                             here + "/size", 1))};
+    const Block parsed{
+        *kind, static_cast<int>(wholeNumberAt(field(block, here, "size"), here + "/size", 1))};
     if (!isValidBlock(parsed))
-      refuse(here + "/size", std::to_string(parsed.size) + " elements is not a valid " +
-                                 kind_name + " block");
+      refuse(here + "/size",
+             std::to_string(parsed.size) + " elements is not a valid " + kind_name + " block");
     blocks.push_back(parsed);
   }
   return blocks;
@@ -143,7 +143,8 @@ Stage stageAt(const Json& j, const std::string& path, int n) {
              "expected " + std::to_string(n) + " rows, found " + std::to_string(rows.size()));
     Eigen::MatrixXd q(n, n);
     for (size_t r = 0; r < count; ++r) {
-      const std::vector<double> row = numbersAt(rows[r], tensor_path + "/" + std::to_string(r), count);
+      const std::vector<double> row =
+          numbersAt(rows[r], tensor_path + "/" + std::to_string(r), count);
       for (size_t c = 0; c < count; ++c)
         q(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = row[c];
     }
@@ -165,7 +166,8 @@ std::vector<PointMatch> matchesAt(const Json& j, const std::string& path) {
     source_size = static_cast<size_t>(parsed.source.size());
     target_size = static_cast<size_t>(parsed.target.size());
     if (const auto it = match.find("enabled"); it != match.end()) {
-      if (!it->is_boolean()) refuse(here + "/enabled", "expected true or false, found " + describe(*it));
+      if (!it->is_boolean())
+        refuse(here + "/enabled", "expected true or false, found " + describe(*it));
       parsed.enabled = it->get<bool>();
     }
     matches.push_back(std::move(parsed));
@@ -194,7 +196,8 @@ FitRecord fitAt(const Json& j, const std::string& path) {
 }
 
 ArtcamDocument documentAt(const Json& root) {
-  if (!root.is_object()) throw Refusal{"expected a JSON object at the top level, found " + describe(root)};
+  if (!root.is_object())
+    throw Refusal{"expected a JSON object at the top level, found " + describe(root)};
   const auto format = root.find("format");
   if (format == root.end()) throw Refusal{"/format: missing (not an ARTcam file)"};
   if (!format->is_string() || format->get<std::string>() != "artcam")
@@ -240,7 +243,8 @@ struct Builder {
   }
   Json numbers(const double* v, size_t count, const std::string& path) {
     Json array = Json::array();
-    for (size_t k = 0; k < count; ++k) array.push_back(number(v[k], path + "/" + std::to_string(k)));
+    for (size_t k = 0; k < count; ++k)
+      array.push_back(number(v[k], path + "/" + std::to_string(k)));
     return array;
   }
   Json vector(const Eigen::VectorXd& v, const std::string& path) {
@@ -286,15 +290,15 @@ struct Builder {
     }
     if (d.fit) {
       const FitRecord& f = *d.fit;
-      root["fit"] = {
-          {"model", f.model},
-          {"matches", f.matches},
-          {"rms_px", number(f.rms_px, "/fit/rms_px")},
-          {"max_px", number(f.max_px, "/fit/max_px")},
-          {"residuals_px", numbers(f.residuals_px.data(), f.residuals_px.size(), "/fit/residuals_px")},
-          {"singular_values",
-           numbers(f.singular_values.data(), f.singular_values.size(), "/fit/singular_values")},
-          {"reason", f.reason}};
+      root["fit"] = {{"model", f.model},
+                     {"matches", f.matches},
+                     {"rms_px", number(f.rms_px, "/fit/rms_px")},
+                     {"max_px", number(f.max_px, "/fit/max_px")},
+                     {"residuals_px",
+                      numbers(f.residuals_px.data(), f.residuals_px.size(), "/fit/residuals_px")},
+                     {"singular_values", numbers(f.singular_values.data(), f.singular_values.size(),
+                                                 "/fit/singular_values")},
+                     {"reason", f.reason}};
     }
     return root;
   }
@@ -390,7 +394,8 @@ Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string&
 
 Result<ArtcamDocument> readArtcamFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return Result<ArtcamDocument>::failure(path + ": cannot read: no such file or not readable");
+  if (!in)
+    return Result<ArtcamDocument>::failure(path + ": cannot read: no such file or not readable");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) return Result<ArtcamDocument>::failure(path + ": cannot read: I/O error");
@@ -401,7 +406,8 @@ std::string toArtcamJson(const ArtcamDocument& document) {
   Builder builder;
   const Json root = builder.document(document);
   if (!builder.bad_path.empty())
-    throw std::invalid_argument("cannot write .artcam: " + builder.bad_path + " is not a finite number");
+    throw std::invalid_argument("cannot write .artcam: " + builder.bad_path +
+                                " is not a finite number");
   std::string out;
   emit(root, 0, out);
   return out + "\n";
@@ -416,7 +422,8 @@ Status writeArtcamFile(const std::string& path, const ArtcamDocument& document) 
   Builder builder;
   builder.document(document);
   if (!builder.bad_path.empty())
-    return Status::failure(path + ": cannot write: " + builder.bad_path + " is not a finite number");
+    return Status::failure(path + ": cannot write: " + builder.bad_path +
+                           " is not a finite number");
   return writeTextAtomically(path, toArtcamJson(document));
 }
 

@@ -32,11 +32,15 @@ using io_text::oneLine;
 std::string pixelTypeName(OIIO::TypeDesc type) {
   switch (type.basetype) {
     case OIIO::TypeDesc::UINT8:
-    case OIIO::TypeDesc::INT8: return "uint8";
+    case OIIO::TypeDesc::INT8:
+      return "uint8";
     case OIIO::TypeDesc::UINT16:
-    case OIIO::TypeDesc::INT16: return "uint16";
-    case OIIO::TypeDesc::HALF: return "half";
-    default: return "float";
+    case OIIO::TypeDesc::INT16:
+      return "uint16";
+    case OIIO::TypeDesc::HALF:
+      return "half";
+    default:
+      return "float";
   }
 }
 
@@ -57,7 +61,8 @@ std::vector<float> decodeTable(const Transfer& transfer) {
   constexpr int kMax = std::numeric_limits<T>::max();
   std::vector<float> table(kMax + 1);
   for (int v = 0; v <= kMax; ++v)
-    table[static_cast<size_t>(v)] = static_cast<float>(transfer.decode(static_cast<double>(v) / kMax));
+    table[static_cast<size_t>(v)] =
+        static_cast<float>(transfer.decode(static_cast<double>(v) / kMax));
   return table;
 }
 
@@ -118,10 +123,13 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
 
   // Channels beyond the fourth (EXR depth, masks) are left behind.
   const int channels = std::min(spec.nchannels, 4);
-  const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+  const int alpha =
+      spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
   const std::string pixel_type = pixelTypeName(spec.format);
-  const Transfer transfer = Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
-                                .value_or(io_text::isIntegerPixelType(pixel_type) ? Transfer::srgb() : Transfer::linear());
+  const Transfer transfer =
+      Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
+          .value_or(io_text::isIntegerPixelType(pixel_type) ? Transfer::srgb()
+                                                            : Transfer::linear());
   const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
   const bool linear = transfer.kind == Transfer::Kind::Linear;
 
@@ -136,8 +144,9 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   };
 
   bool ok = true;
-  const bool tables = (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
-                      (!associated || linear);
+  const bool tables =
+      (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
+      (!associated || linear);
   if (tables && spec.format == OIIO::TypeDesc::UINT8) {
     std::vector<std::uint8_t> stored(image.data.size());
     ok = read(OIIO::TypeDesc::UINT8, stored.data());

@@ -37,10 +37,11 @@ namespace artcam {
 // Opaque to callers: holds an OpenImageIO ImageSpec without exposing OIIO in this header.
 struct ImageInfo {
   std::string path;
-  std::string format_name;   // "png", "jpeg", "openexr", …
-  std::string pixel_type;    // "uint8", "uint16", "half", "float"
-  bool srgb = true;          // the file's values were sRGB-encoded
-  std::string colour_space;  // transfer decoded on read: "sRGB", "Linear", "Rec709", "GammaCorrected2.2"
+  std::string format_name;  // "png", "jpeg", "openexr", …
+  std::string pixel_type;   // "uint8", "uint16", "half", "float"
+  bool srgb = true;         // the file's values were sRGB-encoded
+  std::string
+      colour_space;  // transfer decoded on read: "sRGB", "Linear", "Rec709", "GammaCorrected2.2"
   std::shared_ptr<const void> spec;  // OIIO::ImageSpec of the file (metadata to carry over)
 };
 

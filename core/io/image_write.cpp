@@ -33,7 +33,8 @@ OIIO::TypeDesc typeOf(const std::string& pixel_type) {
 
 // The pixel type the format can actually store, closest to the one asked for.
 std::string fitPixelType(const std::string& wanted, const std::string& format) {
-  static const std::set<std::string> kEightBitOnly{"jpeg", "bmp", "targa", "gif", "webp", "ico", "heif"};
+  static const std::set<std::string> kEightBitOnly{"jpeg", "bmp", "targa", "gif",
+                                                   "webp", "ico", "heif"};
   if (format == "openexr") return isIntegerType(wanted) ? "half" : wanted;
   if (format == "hdr") return "float";
   if (kEightBitOnly.count(format)) return "uint8";
@@ -65,9 +66,12 @@ std::vector<std::string> defaultChannelNames(int channels, int alpha) {
   const int colours = channels - (alpha >= 0 ? 1 : 0);
   int next_colour = 0;
   for (int c = 0; c < channels; ++c) {
-    if (c == alpha) names.push_back("A");
-    else if (colours == 1) names.push_back("Y"), ++next_colour;
-    else names.push_back(next_colour < 3 ? colour_names[next_colour++] : "A");
+    if (c == alpha)
+      names.push_back("A");
+    else if (colours == 1)
+      names.push_back("Y"), ++next_colour;
+    else
+      names.push_back(next_colour < 3 ? colour_names[next_colour++] : "A");
   }
   return names;
 }
@@ -100,8 +104,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     OIIO::geterror();  // clear the thread's pending message
     const std::string extension = std::filesystem::path(path).extension().string();
     return Status::failure(path + (extension.empty()
-        ? ": no file extension to choose an image format from"
-        : ": no image format for extension \"" + extension + "\""));
+                                       ? ": no file extension to choose an image format from"
+                                       : ": no image format for extension \"" + extension + "\""));
   }
   const std::string format = out->format_name();
   // OIIO 2.4's JPEG writer lets libjpeg's default error handler call exit() on this error, so
@@ -116,14 +120,15 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   if (wanted.empty() && like) wanted = like->pixel_type;
   if (wanted.empty()) wanted = naturalPixelType(format);
   if (!isIntegerType(wanted) && wanted != "half" && wanted != "float")
-    return Status::failure(fail + "unknown pixel type \"" + wanted + "\" (uint8, uint16, half or float)");
+    return Status::failure(fail + "unknown pixel type \"" + wanted +
+                           "\" (uint8, uint16, half or float)");
   const std::string pixel_type = fitPixelType(wanted, format);
   const bool integer = isIntegerType(pixel_type);
 
   std::optional<Transfer> like_transfer =
       like ? Transfer::fromColourSpace(like->colour_space) : std::nullopt;
   if (like && !like_transfer) like_transfer = like->srgb ? Transfer::srgb() : Transfer::linear();
-  const Transfer transfer = !integer ? Transfer::linear()
+  const Transfer transfer = !integer                                  ? Transfer::linear()
                             : like && isIntegerType(like->pixel_type) ? *like_transfer
                                                                       : Transfer::srgb();
 
@@ -138,11 +143,13 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     const bool same_format = like->format_name == format;
     const bool same_transfer = like_transfer && *like_transfer == transfer;
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
-      if (keepAttribute(p.name().string(), same_format, same_transfer)) spec.extra_attribs.push_back(p);
+      if (keepAttribute(p.name().string(), same_format, same_transfer))
+        spec.extra_attribs.push_back(p);
   }
-  spec.channelnames = like_spec && like_spec->nchannels == channels && like_spec->alpha_channel == alpha
-                          ? like_spec->channelnames
-                          : defaultChannelNames(channels, alpha);
+  spec.channelnames =
+      like_spec && like_spec->nchannels == channels && like_spec->alpha_channel == alpha
+          ? like_spec->channelnames
+          : defaultChannelNames(channels, alpha);
   spec.alpha_channel = alpha;
   spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);

@@ -25,6 +25,8 @@ inline std::string lower(std::string s) {
   return s;
 }
 
-inline bool isIntegerPixelType(const std::string& type) { return type == "uint8" || type == "uint16"; }
+inline bool isIntegerPixelType(const std::string& type) {
+  return type == "uint8" || type == "uint16";
+}
 
 }  // namespace artcam::io_text

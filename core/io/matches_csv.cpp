@@ -34,7 +34,8 @@ std::vector<std::string_view> splitFields(std::string_view line) {
   size_t start = 0;
   while (true) {
     const size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    fields.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -94,7 +95,8 @@ std::optional<std::string> parseNumbers(const std::vector<std::string_view>& fie
     if (fields[k].empty()) return where + ": empty";
     const Parsed parsed = parseNumber(fields[k], out[k]);
     if (parsed == Parsed::NotNumber) return where + ": not a number: " + quoted(fields[k]);
-    if (parsed == Parsed::OutOfRange) return where + ": out of range for a double: " + quoted(fields[k]);
+    if (parsed == Parsed::OutOfRange)
+      return where + ": out of range for a double: " + quoted(fields[k]);
     if (!std::isfinite(out[k])) return where + ": not a finite number: " + quoted(fields[k]);
   }
   return std::nullopt;
@@ -102,8 +104,9 @@ std::optional<std::string> parseNumbers(const std::vector<std::string_view>& fie
 
 std::string lower(std::string_view s) {
   std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c); });
+  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) {
+    return static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c);
+  });
   return out;
 }
 
@@ -123,9 +126,10 @@ Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dime
   const std::optional<std::string> text = readText(path);
   if (!text) return R::failure(path + ": cannot read: no such file or not readable");
 
-  std::vector<std::string> names = dimension == 2
-      ? std::vector<std::string>{"src_x", "src_y", "dst_x", "dst_y"}
-      : std::vector<std::string>{"src_x", "src_y", "src_z", "dst_x", "dst_y", "dst_z"};
+  std::vector<std::string> names =
+      dimension == 2
+          ? std::vector<std::string>{"src_x", "src_y", "dst_x", "dst_y"}
+          : std::vector<std::string>{"src_x", "src_y", "src_z", "dst_x", "dst_y", "dst_z"};
   const size_t numbers = names.size();
   const std::vector<Line> lines = contentLines(*text);
   if (lines.empty()) return R::failure(path + ": empty, expected the header " + joined(names));
@@ -167,7 +171,8 @@ Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dime
         match.enabled = false;
       } else {
         return R::failure(where + "column " + std::to_string(numbers + 1) +
-                          " (enabled): expected 0, 1, true or false, found " + quoted(fields[numbers]));
+                          " (enabled): expected 0, 1, true or false, found " +
+                          quoted(fields[numbers]));
       }
     }
     matches.push_back(std::move(match));
@@ -219,7 +224,8 @@ Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& m
     for (Eigen::Index k = 0; k < 2 * d; ++k) {
       const double v = k < d ? match.source[k] : match.target[k - d];
       // %.17g, but locale-free: a GUI process runs under the user's locale (decimal commas).
-      const auto result = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
+      const auto result =
+          std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
       text += (k ? "," : "") + std::string(buffer, result.ptr);
     }
     if (any_disabled) text += match.enabled ? ",1" : ",0";

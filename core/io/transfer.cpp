@@ -13,9 +13,15 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-double srgbDecode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
-double srgbEncode(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
-double rec709Decode(double v) { return v < 0.081 ? v / 4.5 : std::pow((v + 0.099) / 1.099, 1.0 / 0.45); }
+double srgbDecode(double v) {
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+double srgbEncode(double l) {
+  return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+}
+double rec709Decode(double v) {
+  return v < 0.081 ? v / 4.5 : std::pow((v + 0.099) / 1.099, 1.0 / 0.45);
+}
 double rec709Encode(double l) { return l < 0.018 ? 4.5 * l : 1.099 * std::pow(l, 0.45) - 0.099; }
 
 template <class F>
@@ -28,8 +34,8 @@ double mirrored(double v, F f) {
 std::optional<Transfer> Transfer::fromColourSpace(std::string_view name) {
   const std::string s = lower(name);
   if (s.empty()) return std::nullopt;
-  if (s == "linear" || s == "lin_srgb" || s == "lin_rec709" || s == "scene_linear" ||
-      s == "raw" || s.rfind("linear", 0) == 0 || s == "acescg")
+  if (s == "linear" || s == "lin_srgb" || s == "lin_rec709" || s == "scene_linear" || s == "raw" ||
+      s.rfind("linear", 0) == 0 || s == "acescg")
     return linear();
   if (s == "srgb" || s == "srgb_texture" || s == "srgb_rec709_display" || s == "srgb texture")
     return srgb();
@@ -47,9 +53,12 @@ std::optional<Transfer> Transfer::fromColourSpace(std::string_view name) {
 
 std::string Transfer::colourSpaceName() const {
   switch (kind) {
-    case Kind::Linear: return "Linear";
-    case Kind::Srgb: return "sRGB";
-    case Kind::Rec709: return "Rec709";
+    case Kind::Linear:
+      return "Linear";
+    case Kind::Srgb:
+      return "sRGB";
+    case Kind::Rec709:
+      return "Rec709";
     case Kind::Gamma: {
       char buffer[32];
       const auto result = std::to_chars(buffer, buffer + sizeof buffer, gamma);
@@ -61,20 +70,28 @@ std::string Transfer::colourSpaceName() const {
 
 double Transfer::decode(double v) const {
   switch (kind) {
-    case Kind::Linear: return v;
-    case Kind::Srgb: return mirrored(v, srgbDecode);
-    case Kind::Rec709: return mirrored(v, rec709Decode);
-    case Kind::Gamma: return mirrored(v, [g = gamma](double x) { return std::pow(x, g); });
+    case Kind::Linear:
+      return v;
+    case Kind::Srgb:
+      return mirrored(v, srgbDecode);
+    case Kind::Rec709:
+      return mirrored(v, rec709Decode);
+    case Kind::Gamma:
+      return mirrored(v, [g = gamma](double x) { return std::pow(x, g); });
   }
   return v;
 }
 
 double Transfer::encode(double l) const {
   switch (kind) {
-    case Kind::Linear: return l;
-    case Kind::Srgb: return mirrored(l, srgbEncode);
-    case Kind::Rec709: return mirrored(l, rec709Encode);
-    case Kind::Gamma: return mirrored(l, [g = gamma](double x) { return std::pow(x, 1.0 / g); });
+    case Kind::Linear:
+      return l;
+    case Kind::Srgb:
+      return mirrored(l, srgbEncode);
+    case Kind::Rec709:
+      return mirrored(l, rec709Encode);
+    case Kind::Gamma:
+      return mirrored(l, [g = gamma](double x) { return std::pow(x, 1.0 / g); });
   }
   return l;
 }

@@ -18,15 +18,30 @@ using Json = nlohmann::json;
 
 namespace {
 
-bool sameBits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
 
 // Doubles across the whole range: random bit patterns plus the edges a naive writer loses.
 std::vector<double> awkwardDoubles(size_t random_count) {
-  std::vector<double> values{0.0, -0.0, 1.0, -1.0, 0.1, 1.0 / 3.0, 1e300, -1e300, 1e-300,
-                             std::numeric_limits<double>::max(), std::numeric_limits<double>::lowest(),
-                             std::numeric_limits<double>::min(), std::numeric_limits<double>::denorm_min(),
-                             -std::numeric_limits<double>::denorm_min(), 3.5 * std::numeric_limits<double>::denorm_min(),
-                             std::nextafter(1.0, 2.0), 9007199254740993.0, 123456789012345678.0};
+  std::vector<double> values{0.0,
+                             -0.0,
+                             1.0,
+                             -1.0,
+                             0.1,
+                             1.0 / 3.0,
+                             1e300,
+                             -1e300,
+                             1e-300,
+                             std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::lowest(),
+                             std::numeric_limits<double>::min(),
+                             std::numeric_limits<double>::denorm_min(),
+                             -std::numeric_limits<double>::denorm_min(),
+                             3.5 * std::numeric_limits<double>::denorm_min(),
+                             std::nextafter(1.0, 2.0),
+                             9007199254740993.0,
+                             123456789012345678.0};
   while (values.size() < random_count) {
     const double v = std::bit_cast<double>(static_cast<std::uint64_t>(test::rng()()));
     if (std::isfinite(v)) values.push_back(v);
@@ -87,7 +102,8 @@ class TestArtcamFile : public QObject {
     const Result<ArtcamDocument> result = parseArtcamJson(text, "cam.artcam");
     if (result.ok()) return "ACCEPTED";
     const QString message = QString::fromStdString(result.status.message);
-    if (!message.startsWith("cam.artcam: ") || message.contains('\n')) return "BADLY FORMED: " + message;
+    if (!message.startsWith("cam.artcam: ") || message.contains('\n'))
+      return "BADLY FORMED: " + message;
     return message;
   }
   static std::string mutated(const std::function<void(Json&)>& change) {
@@ -96,10 +112,10 @@ class TestArtcamFile : public QObject {
     return j.dump(1);
   }
 
-#define EXPECT_REFUSAL(text, fragment)                                                     \
-  do {                                                                                     \
-    const QString m = refusal(text);                                                       \
-    if (!m.contains(QString::fromUtf8(fragment))) QFAIL(qPrintable("got: " + m));          \
+#define EXPECT_REFUSAL(text, fragment)                                            \
+  do {                                                                            \
+    const QString m = refusal(text);                                              \
+    if (!m.contains(QString::fromUtf8(fragment))) QFAIL(qPrintable("got: " + m)); \
   } while (0)
 
  private slots:
@@ -145,7 +161,12 @@ class TestArtcamFile : public QObject {
             const double b = read->camera.stages()[s].q[i](r, c);
             if (!sameBits(a, b))
               QFAIL(qPrintable(QString("stage %1 tensor %2 (%3,%4): %5 read back as %6")
-                                   .arg(s).arg(i).arg(r).arg(c).arg(a, 0, 'g', 17).arg(b, 0, 'g', 17)));
+                                   .arg(s)
+                                   .arg(i)
+                                   .arg(r)
+                                   .arg(c)
+                                   .arg(a, 0, 'g', 17)
+                                   .arg(b, 0, 'g', 17)));
           }
     QCOMPARE(read->matches.size(), original.matches.size());
     for (size_t m = 0; m < original.matches.size(); ++m) {
@@ -182,7 +203,8 @@ class TestArtcamFile : public QObject {
   }
 
   void writesReadableJson() {
-    const std::string text = toArtcamJson({Camera::identity({{BlockKind::Position, 3}}, {64, 48}, {64, 48}), {}, std::nullopt});
+    const std::string text = toArtcamJson(
+        {Camera::identity({{BlockKind::Position, 3}}, {64, 48}, {64, 48}), {}, std::nullopt});
     QVERIFY(text.rfind("{\n  \"format\": \"artcam\",\n  \"version\": 1,", 0) == 0);
     QVERIFY2(text.find("[0.0, 0.0, 0.5]") != std::string::npos, text.c_str());  // a row per line
     QVERIFY(text.find("\"matches\"") == std::string::npos);  // optional parts omitted when empty
@@ -197,9 +219,12 @@ class TestArtcamFile : public QObject {
   }
 
   void refusesStructuralErrorsByPath() {
-    EXPECT_REFUSAL(mutated([](Json& j) { j["frames"].erase("source"); }), "cam.artcam: /frames/source: missing");
+    EXPECT_REFUSAL(mutated([](Json& j) { j["frames"].erase("source"); }),
+                   "cam.artcam: /frames/source: missing");
     EXPECT_REFUSAL(mutated([](Json& j) { j.erase("stages"); }), "/stages: missing");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["stages"][0]["tensors"][2][1] = {0, 0}; }),
+    EXPECT_REFUSAL(mutated([](Json& j) {
+                     j["stages"][0]["tensors"][2][1] = {0, 0};
+                   }),
                    "cam.artcam: /stages/0/tensors/2/1: expected 3 numbers, found 2");
     EXPECT_REFUSAL(mutated([](Json& j) { j["stages"][0]["tensors"].erase(2); }),
                    "/stages/0/tensors: expected 3 tensors (one per element), found 2");
@@ -209,17 +234,25 @@ class TestArtcamFile : public QObject {
                    "/stages/0/tensors/0/0/1: expected a number, found \"x\"");
     EXPECT_REFUSAL(mutated([](Json& j) { j["stages"][0]["tensors"][0][0][1] = nullptr; }),
                    "/stages/0/tensors/0/0/1: expected a number, found null");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["stages"] = Json::array(); }), "/stages: expected at least one stage");
+    EXPECT_REFUSAL(mutated([](Json& j) { j["stages"] = Json::array(); }),
+                   "/stages: expected at least one stage");
     EXPECT_REFUSAL(mutated([](Json& j) { j["blocks"][0]["kind"] = "smell"; }),
                    "/blocks/0/kind: unknown block kind \"smell\"");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["blocks"][0]["size"] = 5; }), "/blocks/0/size: 5 elements");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["frames"]["target"] = {640}; }), "/frames/target: expected [w, h]");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["frames"]["target"] = {640.5, 480}; }),
+    EXPECT_REFUSAL(mutated([](Json& j) { j["blocks"][0]["size"] = 5; }),
+                   "/blocks/0/size: 5 elements");
+    EXPECT_REFUSAL(mutated([](Json& j) { j["frames"]["target"] = {640}; }),
+                   "/frames/target: expected [w, h]");
+    EXPECT_REFUSAL(mutated([](Json& j) {
+                     j["frames"]["target"] = {640.5, 480};
+                   }),
                    "/frames/target/0: expected a whole number");
     EXPECT_REFUSAL(mutated([](Json& j) { j["frames"]["target"] = {0, 0}; }), "invalid camera: ");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["matches"][1]["target"] = {1, 2, 3}; }),
+    EXPECT_REFUSAL(mutated([](Json& j) {
+                     j["matches"][1]["target"] = {1, 2, 3};
+                   }),
                    "/matches/1/target: expected 2 numbers, found 3");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["matches"][0]["enabled"] = 1; }), "/matches/0/enabled: expected true or false");
+    EXPECT_REFUSAL(mutated([](Json& j) { j["matches"][0]["enabled"] = 1; }),
+                   "/matches/0/enabled: expected true or false");
     EXPECT_REFUSAL(mutated([](Json& j) { j["fit"].erase("rms_px"); }), "/fit/rms_px: missing");
     EXPECT_REFUSAL("[1, 2]", "cam.artcam: expected a JSON object at the top level");
   }
@@ -227,8 +260,10 @@ class TestArtcamFile : public QObject {
   void refusesOtherFormatsAndNewerVersions() {
     EXPECT_REFUSAL(mutated([](Json& j) { j["version"] = 2; }),
                    "cam.artcam: written by a newer ARTcam (version 2; this build reads up to 1)");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["version"] = 0; }), "/version: expected a whole number of at least 1");
-    EXPECT_REFUSAL(mutated([](Json& j) { j["version"] = "1"; }), "/version: expected a whole number");
+    EXPECT_REFUSAL(mutated([](Json& j) { j["version"] = 0; }),
+                   "/version: expected a whole number of at least 1");
+    EXPECT_REFUSAL(mutated([](Json& j) { j["version"] = "1"; }),
+                   "/version: expected a whole number");
     EXPECT_REFUSAL(mutated([](Json& j) { j.erase("version"); }), "/version: missing");
     EXPECT_REFUSAL(mutated([](Json& j) { j["format"] = "photoshop"; }),
                    "/format: expected \"artcam\", found \"photoshop\"");
@@ -276,18 +311,21 @@ class TestArtcamFile : public QObject {
     document.fit->rms_px = std::numeric_limits<double>::quiet_NaN();
     Status status = writeArtcamFile(path, document);
     QVERIFY(!status.ok);
-    QVERIFY2(status.message == path + ": cannot write: /fit/rms_px is not a finite number", status.message.c_str());
+    QVERIFY2(status.message == path + ": cannot write: /fit/rms_px is not a finite number",
+             status.message.c_str());
     QVERIFY_THROWS_EXCEPTION(std::invalid_argument, toArtcamJson(document));
 
     document = richDocument();
     document.matches[3].target[1] = std::numeric_limits<double>::infinity();
     status = writeArtcamFile(path, document);
-    QVERIFY2(!status.ok && status.message.find("/matches/3/target/1") != std::string::npos, status.message.c_str());
+    QVERIFY2(!status.ok && status.message.find("/matches/3/target/1") != std::string::npos,
+             status.message.c_str());
 
     document = richDocument();
     document.camera.stages()[1].q[4](2, 3) = std::numeric_limits<double>::quiet_NaN();
     status = writeArtcamFile(path, document);
-    QVERIFY2(!status.ok && status.message.find("invalid camera") != std::string::npos, status.message.c_str());
+    QVERIFY2(!status.ok && status.message.find("invalid camera") != std::string::npos,
+             status.message.c_str());
 
     std::ifstream after_stream(path);
     const std::string after((std::istreambuf_iterator<char>(after_stream)), {});

@@ -16,7 +16,8 @@ std::string contents(const std::string& path) {
 }
 
 QStringList entries(const QTemporaryDir& dir) {
-  return QDir(dir.path()).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
+  return QDir(dir.path())
+      .entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
 }
 
 }  // namespace
@@ -47,7 +48,8 @@ class TestAtomicFile : public QObject {
     QVERIFY(status.ok);
     const QFileInfo info(QString::fromStdString(seen));
     QCOMPARE(info.absolutePath(), QDir(dir.path()).absolutePath());
-    QVERIFY2(info.fileName().startsWith(".out.tmp-") && info.fileName().endsWith(".png"), seen.c_str());
+    QVERIFY2(info.fileName().startsWith(".out.tmp-") && info.fileName().endsWith(".png"),
+             seen.c_str());
   }
 
   void failedWriteLeavesThePreviousFileUntouched() {
@@ -67,10 +69,11 @@ class TestAtomicFile : public QObject {
   void throwingWriterCleansUp() {
     QTemporaryDir dir;
     const std::string path = dir.filePath("a.txt").toStdString();
-    QVERIFY_THROWS_EXCEPTION(std::runtime_error, writeAtomically(path, [](const std::string& temp) -> Status {
-      std::ofstream(temp) << "partial";
-      throw std::runtime_error("boom");
-    }));
+    QVERIFY_THROWS_EXCEPTION(std::runtime_error,
+                             writeAtomically(path, [](const std::string& temp) -> Status {
+                               std::ofstream(temp) << "partial";
+                               throw std::runtime_error("boom");
+                             }));
     QVERIFY(entries(dir).isEmpty());
   }
 

@@ -17,11 +17,13 @@ using namespace artcam;
 
 namespace {
 
-double srgbToLinear(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
+double srgbToLinear(double v) {
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
 
 template <class T>
-bool writeRaw(const std::string& path, int w, int h, int c, OIIO::TypeDesc type, const std::vector<T>& data,
-              const std::function<void(OIIO::ImageSpec&)>& tweak = {}) {
+bool writeRaw(const std::string& path, int w, int h, int c, OIIO::TypeDesc type,
+              const std::vector<T>& data, const std::function<void(OIIO::ImageSpec&)>& tweak = {}) {
   auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
   if (!out) return false;
   OIIO::ImageSpec spec(w, h, c, type);
@@ -30,7 +32,8 @@ bool writeRaw(const std::string& path, int w, int h, int c, OIIO::TypeDesc type,
 }
 
 template <class T>
-std::vector<T> readRaw(const std::string& path, OIIO::TypeDesc type, OIIO::ImageSpec* spec_out = nullptr) {
+std::vector<T> readRaw(const std::string& path, OIIO::TypeDesc type,
+                       OIIO::ImageSpec* spec_out = nullptr) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto in = OIIO::ImageInput::open(path, &config);
@@ -43,7 +46,8 @@ std::vector<T> readRaw(const std::string& path, OIIO::TypeDesc type, OIIO::Image
 }
 
 QStringList entries(const QTemporaryDir& dir) {
-  return QDir(dir.path()).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
+  return QDir(dir.path())
+      .entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
 }
 
 }  // namespace
@@ -121,7 +125,8 @@ class TestImageIo : public QObject {
     QVERIFY(half.ok());
     QCOMPARE(half->info.pixel_type, std::string("half"));
     for (size_t k = 0; k < image.data.size(); ++k)
-      QVERIFY(std::abs(half->image.data[k] - image.data[k]) <= 1e-3f * std::abs(image.data[k]) + 1e-6f);
+      QVERIFY(std::abs(half->image.data[k] - image.data[k]) <=
+              1e-3f * std::abs(image.data[k]) + 1e-6f);
   }
 
   void pngAlphaIsPremultipliedInsideAndUnassociatedOutside() {
@@ -161,7 +166,8 @@ class TestImageIo : public QObject {
 
   void jpegWithoutAlphaIsCompositedOverBlack() {
     ImageF image(8, 8, 4, 3);
-    for (size_t k = 0; k < image.data.size(); k += 4) image.data[k] = 0.5f, image.data[k + 3] = 0.5f;
+    for (size_t k = 0; k < image.data.size(); k += 4)
+      image.data[k] = 0.5f, image.data[k + 3] = 0.5f;
     QVERIFY(writeImage(path("c.jpg"), image).ok);
     const auto loaded = readImage(path("c.jpg"));
     QVERIFY2(loaded.ok(), loaded.status.message.c_str());
@@ -171,11 +177,12 @@ class TestImageIo : public QObject {
 
   void metadataIsCarriedOver() {
     std::vector<std::uint8_t> pixels(4 * 4 * 3, 128);
-    QVERIFY(writeRaw(path("meta.tif"), 4, 4, 3, OIIO::TypeDesc::UINT8, pixels, [](OIIO::ImageSpec& s) {
-      s.attribute("ImageDescription", "a lens that expands red");
-      s.attribute("Artist", "ARTcam tests");
-      s.attribute("tiff:RowsPerStrip", 1);
-    }));
+    QVERIFY(
+        writeRaw(path("meta.tif"), 4, 4, 3, OIIO::TypeDesc::UINT8, pixels, [](OIIO::ImageSpec& s) {
+          s.attribute("ImageDescription", "a lens that expands red");
+          s.attribute("Artist", "ARTcam tests");
+          s.attribute("tiff:RowsPerStrip", 1);
+        }));
     const auto loaded = readImage(path("meta.tif"));
     QVERIFY(loaded.ok());
     QVERIFY(writeImage(path("meta_out.png"), loaded->image, &loaded->info).ok);
@@ -187,14 +194,14 @@ class TestImageIo : public QObject {
 
     // A custom attribute in an EXR travels to the written EXR.
     std::vector<float> linear(4 * 4 * 3, 0.25f);
-    QVERIFY(writeRaw(path("meta.exr"), 4, 4, 3, OIIO::TypeDesc::FLOAT, linear, [](OIIO::ImageSpec& s) {
-      s.attribute("artcamNote", "shot on a pinhole");
-    }));
+    QVERIFY(writeRaw(path("meta.exr"), 4, 4, 3, OIIO::TypeDesc::FLOAT, linear,
+                     [](OIIO::ImageSpec& s) { s.attribute("artcamNote", "shot on a pinhole"); }));
     const auto exr = readImage(path("meta.exr"));
     QVERIFY(exr.ok());
     QVERIFY(writeImage(path("meta_out.exr"), exr->image, &exr->info).ok);
     readRaw<float>(path("meta_out.exr"), OIIO::TypeDesc::FLOAT, &spec);
-    QCOMPARE(QString::fromStdString(spec.get_string_attribute("artcamNote")), QString("shot on a pinhole"));
+    QCOMPARE(QString::fromStdString(spec.get_string_attribute("artcamNote")),
+             QString("shot on a pinhole"));
     QCOMPARE(spec.format, OIIO::TypeDesc(OIIO::TypeDesc::FLOAT));  // like's pixel type kept
   }
 
@@ -205,7 +212,8 @@ class TestImageIo : public QObject {
     std::ofstream(path("junk.jpg")) << "this is not a JPEG\nat all\n";
     const auto junk = readImage(path("junk.jpg"));
     QVERIFY(!junk.ok());
-    QVERIFY2(junk.status.message.rfind(path("junk.jpg") + ": cannot read: ", 0) == 0, junk.status.message.c_str());
+    QVERIFY2(junk.status.message.rfind(path("junk.jpg") + ": cannot read: ", 0) == 0,
+             junk.status.message.c_str());
     QVERIFY(junk.status.message.find('\n') == std::string::npos);
   }
 
@@ -214,7 +222,10 @@ class TestImageIo : public QObject {
     QVERIFY(writeImage(path("big.png"), image).ok);
     std::vector<double> seen;
     ReadImageOptions options;
-    options.progress = [&](double f) { seen.push_back(f); return true; };
+    options.progress = [&](double f) {
+      seen.push_back(f);
+      return true;
+    };
     QVERIFY(readImage(path("big.png"), options).ok());
     QVERIFY(!seen.empty() && seen.back() == 1.0);
     options.progress = [](double) { return false; };
@@ -252,7 +263,8 @@ class TestImageIo : public QObject {
     QCOMPARE(entries(dir), QStringList{"keep.png"});
     // A JPEG too large for libjpeg is refused up front (libjpeg would exit() the process).
     status = writeImage(dir.filePath("wide.jpg").toStdString(), ImageF(70000, 1, 3));
-    QVERIFY2(!status.ok && status.message.find("65500") != std::string::npos, status.message.c_str());
+    QVERIFY2(!status.ok && status.message.find("65500") != std::string::npos,
+             status.message.c_str());
     QCOMPARE(entries(dir), QStringList{"keep.png"});
   }
 };

@@ -33,12 +33,12 @@ class TestMatchesCsv : public QObject {
  private slots:
   void readsMatchesExactly() {
     const std::string path = write("m.csv",
-        "\xEF\xBB\xBF# pairs clicked on IMG_0001\r\n"
-        "src_x, src_y, dst_x, dst_y\r\n"
-        "\r\n"
-        "0.1,2,+3.5,-4e-3\r\n"
-        "   # indented comment\n"
-        "10.25 ,\t20.5, 1e2 ,0.30000000000000004\n");
+                                   "\xEF\xBB\xBF# pairs clicked on IMG_0001\r\n"
+                                   "src_x, src_y, dst_x, dst_y\r\n"
+                                   "\r\n"
+                                   "0.1,2,+3.5,-4e-3\r\n"
+                                   "   # indented comment\n"
+                                   "10.25 ,\t20.5, 1e2 ,0.30000000000000004\n");
     const auto result = readMatchesCsv(path);
     QVERIFY2(result.ok(), result.status.message.c_str());
     QCOMPARE(result->size(), size_t(2));
@@ -49,8 +49,9 @@ class TestMatchesCsv : public QObject {
   }
 
   void readsThreeDimensionsAndEnabledColumn() {
-    const std::string path = write("m3.csv",
-        "src_x,src_y,src_z,dst_x,dst_y,dst_z,enabled\n1,2,3,4,5,6,1\n7,8,9,10,11,12,false\n");
+    const std::string path =
+        write("m3.csv",
+              "src_x,src_y,src_z,dst_x,dst_y,dst_z,enabled\n1,2,3,4,5,6,1\n7,8,9,10,11,12,false\n");
     const auto result = readMatchesCsv(path, 3);
     QVERIFY2(result.ok(), result.status.message.c_str());
     QCOMPARE(result->size(), size_t(2));
@@ -65,9 +66,11 @@ class TestMatchesCsv : public QObject {
     QCOMPARE(refusal(header + "1,2,3,4\n# c\n\n1,2,3,4\n1,2,3,4\n1,2,3\n"),
              QString("matches.csv:7: expected 4 numbers, found 3"));
     QCOMPARE(refusal(header + "1,2,3,4,\n"), QString("matches.csv:2: expected 4 numbers, found 5"));
-    QCOMPARE(refusal("1,2,3,4\n"),
-             QString("matches.csv:1: expected the header src_x,src_y,dst_x,dst_y, found \"1,2,3,4\""));
-    QCOMPARE(refusal(""), QString("matches.csv: empty, expected the header src_x,src_y,dst_x,dst_y"));
+    QCOMPARE(
+        refusal("1,2,3,4\n"),
+        QString("matches.csv:1: expected the header src_x,src_y,dst_x,dst_y, found \"1,2,3,4\""));
+    QCOMPARE(refusal(""),
+             QString("matches.csv: empty, expected the header src_x,src_y,dst_x,dst_y"));
     QCOMPARE(refusal(header + "1,nan,3,4\n"),
              QString("matches.csv:2: column 2 (src_y): not a finite number: \"nan\""));
     QCOMPARE(refusal(header + "1,2,inf,4\n"),
@@ -78,12 +81,17 @@ class TestMatchesCsv : public QObject {
              QString("matches.csv:2: column 2 (src_y): not a number: \"2.5px\""));
     QCOMPARE(refusal(header + "1,,3,4\n"), QString("matches.csv:2: column 2 (src_y): empty"));
     QCOMPARE(refusal(header + "1;2;3;4\n"), QString("matches.csv:2: expected 4 numbers, found 1"));
-    QCOMPARE(refusal("src_x,src_y,dst_x,dst_y,enabled\n1,2,3,4,maybe\n"),
-             QString("matches.csv:2: column 5 (enabled): expected 0, 1, true or false, found \"maybe\""));
-    QVERIFY(refusal(header + "1,2,3,4\n", 3)
-                .startsWith("matches.csv:1: expected the header src_x,src_y,src_z,dst_x,dst_y,dst_z, found"));
+    QCOMPARE(
+        refusal("src_x,src_y,dst_x,dst_y,enabled\n1,2,3,4,maybe\n"),
+        QString(
+            "matches.csv:2: column 5 (enabled): expected 0, 1, true or false, found \"maybe\""));
+    QVERIFY(
+        refusal(header + "1,2,3,4\n", 3)
+            .startsWith(
+                "matches.csv:1: expected the header src_x,src_y,src_z,dst_x,dst_y,dst_z, found"));
     const auto missing = readMatchesCsv(dir_.filePath("absent.csv").toStdString());
-    QVERIFY(!missing.ok() && missing.status.message.find("absent.csv: cannot read") != std::string::npos);
+    QVERIFY(!missing.ok() &&
+            missing.status.message.find("absent.csv: cannot read") != std::string::npos);
   }
 
   void writeReadRoundTripIsExact() {
@@ -118,9 +126,11 @@ class TestMatchesCsv : public QObject {
     const std::string bad = write("r.csv", "x,y\n1,2\n3\n");
     const auto refused = readPointsCsv(bad);
     QVERIFY(!refused.ok());
-    QCOMPARE(QString::fromStdString(refused.status.message), QString::fromStdString(bad + ":3: expected 2 numbers, found 1"));
+    QCOMPARE(QString::fromStdString(refused.status.message),
+             QString::fromStdString(bad + ":3: expected 2 numbers, found 1"));
     const auto late_header = readPointsCsv(write("s.csv", "1,2\nx,y\n"));
-    QVERIFY(!late_header.ok() && late_header.status.message.find(":2: column 1 (x): not a number") != std::string::npos);
+    QVERIFY(!late_header.ok() &&
+            late_header.status.message.find(":2: column 1 (x): not a number") != std::string::npos);
   }
 };
 
