@@ -5,6 +5,8 @@
 #include "core/io/image_io.h"
 #include "core/render/warp.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
@@ -15,8 +17,10 @@ const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
     "                   [--threads N] [--stats] [--force]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
-    "The output has the camera's target frame size, or --size; pixels with no preimage are\n"
-    "transparent (an alpha channel is added where the format has one; else they are black).\n"
+    "The output has the camera's target frame size scaled by IN's size over the camera's\n"
+    "source frame (a camera made on a preview applies to the full photo), or --size.\n"
+    "Pixels with no preimage are transparent (an alpha channel is added where the format has\n"
+    "one; else they are black).\n"
     "OUT keeps IN's pixel type and metadata. OUT is written atomically; it may not be IN\n"
     "unless --force is given. --stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr\n"
     "(the render alone, without file I/O).\n";
@@ -60,6 +64,14 @@ int warpCommand(const std::vector<std::string>& argv) {
   const auto image = readImage(input);
   if (!image) throw CommandError(image.status.message);
 
+  if (options.width == 0 && options.height == 0 && doc->camera.sourceSize().isImage()) {
+    // The camera may have been made on a preview: scale its target frame by the ratio between
+    // this photo and the source frame it was made for (normalised frames make that exact).
+    const double scale =
+        static_cast<double>(image->image.width) / doc->camera.sourceSize().width;
+    options.width = std::max(1, static_cast<int>(std::lround(doc->camera.targetSize().width * scale)));
+    options.height = std::max(1, static_cast<int>(std::lround(doc->camera.targetSize().height * scale)));
+  }
   WarpSummary summary;
   const ImageF warped = warpImage(image->image, doc->camera, options, &summary);
   if (const Status s = writeImage(*output, warped, &image->info); !s) throw CommandError(s.message);
