@@ -49,6 +49,9 @@ MainWindow::MainWindow(QWidget* parent)
   pairs_dock->setWidget(pairs_panel_);
   addDockWidget(Qt::RightDockWidgetArea, pairs_dock);
 
+  // The preview is the point of the session: give it room beside the canvas.
+  resizeDocks({preview_dock}, {560}, Qt::Horizontal);
+  resizeDocks({preview_dock, pairs_dock}, {420, 360}, Qt::Vertical);
   statusBar()->addPermanentWidget(fit_status_);
   connect(session_, &Session::statusMessage, this,
           [this](const QString& m) { statusBar()->showMessage(m, 8000); });

@@ -87,7 +87,8 @@ void Session::openProject(const QString& path) {
     return;
   }
   pending_project_path_ = QFileInfo(path).absoluteFilePath();
-  startLoading(project->photo_path, std::move(*project.value));
+  const QString photo_path = project->photo_path;  // copied: the project is moved below
+  startLoading(photo_path, std::move(*project.value));
 }
 
 void Session::startLoading(const QString& photo_path, std::optional<Project> project) {

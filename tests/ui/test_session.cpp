@@ -90,8 +90,10 @@ class TestSession : public QObject {
     Document doc2;
     Session session2(&doc2, nullptr);
     session2.setInteractive(false);
+    QSignalSpy errors(&session2, &Session::errorOccurred);
     session2.openPath(project);
-    QTRY_VERIFY_WITH_TIMEOUT(doc2.photo() != nullptr, 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(doc2.photo() != nullptr || !errors.isEmpty(), 20000);
+    QVERIFY2(errors.isEmpty(), errors.isEmpty() ? "" : qPrintable(errors.front().front().toString()));
     QVERIFY(doc2.pairs() == saved);
     QVERIFY(doc2.fit().status.ok);
     QCOMPARE(doc2.camera().stages()[0].q, doc.camera().stages()[0].q);
