@@ -5,6 +5,7 @@
 #include "ui/document.h"
 #include "ui/fit_status.h"
 #include "ui/panels/pairs_panel.h"
+#include "ui/panels/tensor_panel.h"
 #include "ui/preview_controller.h"
 #include "ui/preview_view.h"
 #include "ui/session.h"
@@ -48,6 +49,11 @@ MainWindow::MainWindow(QWidget* parent)
   pairs_dock->setObjectName("pairsDock");
   pairs_dock->setWidget(pairs_panel_);
   addDockWidget(Qt::RightDockWidgetArea, pairs_dock);
+  auto* tensor_dock = new QDockWidget(tr("Tensors"), this);
+  tensor_dock->setObjectName("tensorDock");
+  tensor_dock->setWidget(new TensorPanel(document_, this));
+  tabifyDockWidget(pairs_dock, tensor_dock);
+  pairs_dock->raise();
 
   // The preview is the point of the session: give it room beside the canvas.
   resizeDocks({preview_dock}, {560}, Qt::Horizontal);

@@ -1,0 +1,63 @@
+// The tensor panel: typed entries become symmetric edits as undo commands; presets.
+#include "core/model/structure.h"
+#include "tests/ui/ui_fixtures.h"
+#include "ui/document.h"
+#include "ui/panels/tensor_panel.h"
+
+#include <QTableWidget>
+#include <QtTest/QtTest>
+
+using namespace artcam;
+using namespace artcam::ui;
+
+class TestTensorPanel : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void typedEntryIsASymmetricUndoableEdit() {
+    Document doc;
+    doc.reset(test::syntheticPhoto(), test::ninePairs(), ModelClass::Quadratic);
+    QVERIFY(doc.fit().status.ok);
+    const Camera fitted = doc.camera();
+    TensorPanel panel(&doc);
+    QCOMPARE(panel.tables().size(), size_t{3});
+    QTableWidget* q3 = panel.tables()[2];
+    // Shown with 10 significant digits; the tooltip holds all 17.
+    QCOMPARE(q3->item(0, 1)->text(), QString::number(fitted.stages()[0].q[2](0, 1), 'g', 10));
+    QCOMPARE(q3->item(0, 1)->toolTip().toDouble(), fitted.stages()[0].q[2](0, 1));
+    q3->item(0, 1)->setText("0.125");  // as if typed
+    QVERIFY(doc.manualCamera().has_value());
+    QCOMPARE(doc.camera().stages()[0].q[2](0, 1), 0.125);
+    QCOMPARE(doc.camera().stages()[0].q[2](1, 0), 0.125);
+    QCOMPARE(q3->item(1, 0)->text(), QString("0.125"));  // mirrored in the table
+    QCOMPARE(doc.undoStack()->count(), 1);
+    q3->item(2, 2)->setText("not a number");  // refused, old value back
+    QCOMPARE(doc.undoStack()->count(), 1);
+    QCOMPARE(q3->item(2, 2)->text(), QString::number(doc.camera().stages()[0].q[2](2, 2), 'g', 10));
+    doc.undoStack()->undo();
+    QVERIFY(!doc.manualCamera());
+    QCOMPARE(doc.camera().stages()[0].q, fitted.stages()[0].q);
+  }
+
+  void presets() {
+    Document doc;
+    doc.reset(test::syntheticPhoto());
+    TensorPanel panel(&doc);
+    panel.applyPreset("pincushion");
+    QCOMPARE(analyseStructure(doc.camera()).geometry, GeometryClass::Rational);
+    // Pincushion pushes a corner outwards, barrel pulls it in; the centre stays.
+    const Eigen::Vector2d corner(10.0, 10.0), centre(160.0, 120.0);
+    const auto out = targetPixelFromSourcePixel(doc.camera(), corner);
+    QVERIFY(out && out->x() < corner.x() && out->y() < corner.y());
+    QVERIFY((*targetPixelFromSourcePixel(doc.camera(), centre) - centre).norm() < 1e-9);
+    panel.applyPreset("barrel");
+    const auto in = targetPixelFromSourcePixel(doc.camera(), corner);
+    QVERIFY(in && in->x() > corner.x() && in->y() > corner.y());
+    panel.applyPreset("identity");
+    QCOMPARE(analyseStructure(doc.camera()).geometry, GeometryClass::Identity);
+    QCOMPARE(doc.undoStack()->count(), 3);
+  }
+};
+
+QTEST_MAIN(TestTensorPanel)
+#include "test_tensor_panel.moc"

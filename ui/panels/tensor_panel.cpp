@@ -1,0 +1,195 @@
+#include "ui/panels/tensor_panel.h"
+
+#include "ui/commands.h"
+#include "ui/document.h"
+
+#include <QComboBox>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+namespace artcam::ui {
+namespace {
+
+// Element names inside x, e.g. "u v w" for an image position, "ar ag ab a" for colour.
+QStringList elementNames(const Camera& camera) {
+  QStringList names;
+  for (const Block& b : camera.blocks()) {
+    QStringList local;
+    switch (b.kind) {
+      case BlockKind::Position:
+        local = b.size == 3 ? QStringList{"u", "v", "w"} : QStringList{"X", "Y", "Z", "W"};
+        break;
+      case BlockKind::Colour: local = {"ar", "ag", "ab", "a"}; break;
+      case BlockKind::Depth: local = {"d", "dh"}; break;
+    }
+    while (local.size() < b.size) local << QString("x%1").arg(names.size() + local.size());
+    names << local.mid(0, b.size);
+  }
+  return names;
+}
+
+QString blockOf(const Camera& camera, int element) {
+  const BlockLayout& l = camera.layout();
+  for (size_t b = 0; b < l.blocks.size(); ++b)
+    if (element >= l.offsets[b] && element < l.offsets[b] + l.blocks[b].size) {
+      const std::string_view n = blockKindName(l.blocks[b].kind);
+      return QString::fromUtf8(n.data(), static_cast<qsizetype>(n.size()));
+    }
+  return {};
+}
+
+// Merge keys for SetCameraCommand must not collide with other command ids (commands.h).
+constexpr int kTensorEditMergeBase = 0;  // typed edits are separate undo steps: no merging
+
+}  // namespace
+
+Camera radialCamera(double k, FrameSize frame) {
+  Eigen::Matrix3d q1 = Eigen::Matrix3d::Zero(), q2 = Eigen::Matrix3d::Zero(), q3 = Eigen::Matrix3d::Zero();
+  q1(0, 2) = q1(2, 0) = 0.5;  // u·w
+  q2(1, 2) = q2(2, 1) = 0.5;  // v·w
+  q3(0, 0) = q3(1, 1) = -k;   // w² - k (u² + v²)
+  q3(2, 2) = 1.0;
+  return Camera::rtcam({q1, q2, q3}, frame, frame);
+}
+
+TensorPanel::TensorPanel(Document* document, QWidget* parent)
+    : QWidget(parent), document_(document), stage_box_(new QComboBox(this)),
+      preset_box_(new QComboBox(this)), tables_layout_(new QVBoxLayout) {
+  preset_box_->addItem(tr("Identity"), "identity");
+  preset_box_->addItem(tr("Barrel"), "barrel");
+  preset_box_->addItem(tr("Pincushion"), "pincushion");
+  auto* apply = new QPushButton(tr("Apply preset"), this);
+  auto* fitted = new QPushButton(tr("Use fitted"), this);
+  fitted->setToolTip(tr("Go back to the camera fitted from the pairs"));
+  auto* top = new QHBoxLayout;
+  top->addWidget(new QLabel(tr("Stage"), this));
+  top->addWidget(stage_box_);
+  top->addStretch(1);
+  top->addWidget(preset_box_);
+  top->addWidget(apply);
+  top->addWidget(fitted);
+  auto* content = new QWidget(this);
+  content->setLayout(tables_layout_);
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidgetResizable(true);
+  scroll->setWidget(content);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(2, 2, 2, 2);
+  layout->addLayout(top);
+  layout->addWidget(scroll, 1);
+
+  connect(apply, &QPushButton::clicked, this,
+          [this] { applyPreset(preset_box_->currentData().toString()); });
+  connect(fitted, &QPushButton::clicked, this, [this] {
+    if (document_->manualCamera())
+      document_->undoStack()->push(new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
+  });
+  connect(stage_box_, &QComboBox::currentIndexChanged, this, [this](int) { refresh(); });
+  connect(document_, &Document::cameraChanged, this, &TensorPanel::rebuild);
+  rebuild();
+}
+
+void TensorPanel::rebuild() {
+  const Camera& cam = document_->camera();
+  const int n = cam.dimension();
+  const int stages = static_cast<int>(cam.stages().size());
+  if (n != built_dimension_ || stages != built_stages_) {
+    for (QTableWidget* t : tables_) delete t->parentWidget();
+    tables_.clear();
+    {
+      const QSignalBlocker block(stage_box_);
+      stage_box_->clear();
+      for (int s = 0; s < stages; ++s) stage_box_->addItem(QString::number(s + 1));
+    }
+    const QStringList names = elementNames(cam);
+    for (int i = 0; i < n; ++i) {
+      auto* box = new QGroupBox(tr("Q%1 → %2 (%3)").arg(i + 1).arg(names.value(i), blockOf(cam, i)), this);
+      auto* table = new QTableWidget(n, n, box);
+      table->setHorizontalHeaderLabels(names);
+      table->setVerticalHeaderLabels(names);
+      table->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+      table->verticalHeader()->setDefaultSectionSize(22);
+      table->setMinimumHeight(24 + 22 * n);
+      table->setSizeAdjustPolicy(QAbstractScrollArea::AdjustToContents);
+      auto* box_layout = new QVBoxLayout(box);
+      box_layout->setContentsMargins(2, 2, 2, 2);
+      box_layout->addWidget(table);
+      tables_layout_->addWidget(box);
+      tables_.push_back(table);
+      connect(table, &QTableWidget::itemChanged, this, [this, i](QTableWidgetItem* item) {
+        if (updating_) return;
+        bool ok = false;
+        const double v = item->text().toDouble(&ok);
+        if (!ok || !std::isfinite(v)) {
+          refresh();  // put the old value back
+          return;
+        }
+        setEntry(std::max(0, stage_box_->currentIndex()), i, item->row(), item->column(), v);
+      });
+    }
+    built_dimension_ = n;
+    built_stages_ = stages;
+  }
+  refresh();
+}
+
+void TensorPanel::refresh() {
+  const Camera& cam = document_->camera();
+  const int stage = std::max(0, stage_box_->currentIndex());
+  if (stage >= static_cast<int>(cam.stages().size())) return;
+  updating_ = true;
+  const auto& q = cam.stages()[static_cast<size_t>(stage)].q;
+  for (size_t i = 0; i < tables_.size() && i < q.size(); ++i) {
+    QTableWidget* t = tables_[i];
+    for (int r = 0; r < q[i].rows(); ++r)
+      for (int c = 0; c < q[i].cols(); ++c) {
+        const QString text = QString::number(q[i](r, c), 'g', 10);
+        QTableWidgetItem* item = t->item(r, c);
+        if (!item) {
+          item = new QTableWidgetItem;
+          item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+          t->setItem(r, c, item);
+        }
+        if (item->text() != text) item->setText(text);
+        item->setToolTip(QString::number(q[i](r, c), 'g', 17));
+      }
+  }
+  updating_ = false;
+}
+
+void TensorPanel::setEntry(int stage, int element, int row, int col, double value) {
+  Camera cam = document_->camera();
+  auto& stages = cam.stages();
+  if (stage < 0 || stage >= static_cast<int>(stages.size())) return;
+  auto& q = stages[static_cast<size_t>(stage)].q;
+  if (element < 0 || element >= static_cast<int>(q.size())) return;
+  Eigen::MatrixXd& m = q[static_cast<size_t>(element)];
+  if (row < 0 || col < 0 || row >= m.rows() || col >= m.cols()) return;
+  if (m(row, col) == value && m(col, row) == value) return;
+  m(row, col) = value;
+  m(col, row) = value;  // symmetric storage (DESIGN §1)
+  document_->undoStack()->push(new SetCameraCommand(
+      document_, std::move(cam), tr("Set Q%1(%2, %3) = %4").arg(element + 1).arg(row + 1).arg(col + 1).arg(value),
+      kTensorEditMergeBase));
+}
+
+void TensorPanel::applyPreset(const QString& name) {
+  FrameSize f = document_->frame();
+  if (!f.isImage()) return;
+  std::optional<Camera> cam;
+  if (name == "identity") cam = Camera::identity({Block{BlockKind::Position, 3}}, f, f);
+  else if (name == "barrel") cam = radialCamera(-kPresetStrength, f);
+  else if (name == "pincushion") cam = radialCamera(kPresetStrength, f);
+  if (!cam) return;
+  document_->undoStack()->push(new SetCameraCommand(document_, std::move(cam), tr("Preset: %1").arg(name)));
+}
+
+}  // namespace artcam::ui
