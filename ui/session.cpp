@@ -252,6 +252,10 @@ void Session::exportImage(const QString& path) {
   job->start();
 }
 
+void Session::cancelExport() {
+  if (export_job_) export_job_->cancel();
+}
+
 void Session::openDialog() {
   const QString path = QFileDialog::getOpenFileName(
       dialog_parent_, tr("Open photo or project"), QString(),

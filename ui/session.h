@@ -50,6 +50,8 @@ class Session : public QObject {
   void importArtcam(const QString& path);
   bool exportArtcam(const QString& path);
   void exportImage(const QString& path);
+  // Stops a running export at its next tile (the progress dialog's Cancel does the same).
+  void cancelExport();
 
   // Dialog-driven versions for the menus.
   void openDialog();

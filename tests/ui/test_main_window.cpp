@@ -12,6 +12,10 @@
 #include "ui/session.h"
 
 #include <QAction>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QMimeData>
+#include <QUrl>
 #include <QStandardPaths>
 #include <QtTest/QtTest>
 
@@ -32,6 +36,7 @@ class TestMainWindow : public QObject {
     window.session()->openPath(QString::fromStdString(artcam::test::resourcePath("coffee.png")));
     QTRY_VERIFY_WITH_TIMEOUT(window.document()->photo() != nullptr, 30000);
     QCOMPARE(window.document()->frame().width, 600);
+    QVERIFY(window.windowTitle().startsWith("coffee.png"));
     Document* doc = window.document();
     for (const Pair& p : ui::test::ninePairs(600, 400)) doc->undoStack()->push(new AddPairCommand(doc, p));
     QVERIFY(window.isWindowModified());
@@ -59,6 +64,22 @@ class TestMainWindow : public QObject {
     // Closing mid-render must not hang or crash (the worker is joined in the destructor).
     doc->undoStack()->undo();
     QVERIFY(window.close());  // non-interactive session: no prompt
+  }
+
+  void droppedFileOpens() {
+    MainWindow window;
+    window.session()->setInteractive(false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(QString::fromStdString(artcam::test::resourcePath("coffee.png")))});
+    const QPoint at(200, 200);
+    QDragEnterEvent enter(at, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QCoreApplication::sendEvent(&window, &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(QPointF(at), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QCoreApplication::sendEvent(&window, &drop);
+    QTRY_VERIFY_WITH_TIMEOUT(window.document()->photo() != nullptr, 30000);
   }
 };
 

@@ -123,6 +123,22 @@ class TestPairTool : public QObject {
     QCOMPARE(doc_->selection(), expected);
   }
 
+  void middleDragAndSpaceDragPan() {
+    const QPointF before = canvas_->view().offset();
+    QWidget* w = canvas_.get();
+    test::sendMouse(w, QEvent::MouseButtonPress, QPoint(100, 100), Qt::MiddleButton, Qt::MiddleButton);
+    test::sendMouse(w, QEvent::MouseMove, QPoint(130, 90), Qt::NoButton, Qt::MiddleButton);
+    test::sendMouse(w, QEvent::MouseButtonRelease, QPoint(130, 90), Qt::MiddleButton, Qt::NoButton);
+    QCOMPARE(canvas_->view().offset(), before + QPointF(30, -10));
+    QTest::keyPress(w, Qt::Key_Space);
+    test::drag(w, QPoint(200, 200), QPoint(190, 240));
+    QTest::keyRelease(w, Qt::Key_Space);
+    QCOMPARE(canvas_->view().offset(), before + QPointF(20, 30));
+    QCOMPARE(doc_->pairs().size(), size_t{0});  // panning never reaches the tool
+    auto* tool = dynamic_cast<PairTool*>(canvas_->tool());
+    QVERIFY(tool && !tool->hasPendingSource());
+  }
+
   void escapeDropsHalfMadePair() {
     QTest::mouseClick(canvas_.get(), Qt::LeftButton, Qt::NoModifier, QPoint(400, 300));
     auto* tool = dynamic_cast<PairTool*>(canvas_->tool());

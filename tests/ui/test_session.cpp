@@ -143,6 +143,22 @@ class TestSession : public QObject {
     QCOMPARE(back->image.height, 240);
   }
 
+  void exportCanBeCancelled() {
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    // Large enough that the export is still running when Cancel arrives.
+    doc.reset(test::syntheticPhoto(3000, 3000), test::ninePairs(3000, 3000), ModelClass::Quadratic);
+    QSignalSpy finished(&session, &Session::exportFinished);
+    const QString out = dir_.filePath("cancelled.png");
+    session.exportImage(out);
+    session.cancelExport();
+    QTRY_COMPARE_WITH_TIMEOUT(finished.size(), 1, 60000);
+    QVERIFY(!finished.front().at(0).toBool());
+    QVERIFY(finished.front().at(1).toString().contains("cancelled"));
+    QVERIFY(!QFile::exists(out));  // nothing partial left behind
+  }
+
   void pairsTableEditsBothWays() {
     Document doc;
     doc.reset(test::syntheticPhoto(), test::ninePairs());
