@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   parser.setApplicationDescription("Warp photographs through an ARTcam camera.");
   parser.addHelpOption();
   parser.addVersionOption();
-  parser.addPositionalArgument("file", "A photo, project (.artcamproj) or camera (.artcam) to open.");
+  parser.addPositionalArgument("file",
+                               "A photo, project (.artcamproj) or camera (.artcam) to open.");
   parser.process(app);
 
   artcam::ui::MainWindow window;

@@ -130,7 +130,8 @@ void Canvas::paintPairs(QPainter& painter) {
     const QPointF s = view_.widgetFromImage(toQt(p.source));
     const QPointF t = view_.widgetFromImage(toQt(p.target));
     const bool selected = document_->isSelected(index);
-    const QColor colour = p.enabled ? residualColour(document_->residual(index)) : QColor(150, 150, 150);
+    const QColor colour =
+        p.enabled ? residualColour(document_->residual(index)) : QColor(150, 150, 150);
     if (selected) {
       painter.setPen(QPen(QColor(80, 160, 255), 5.0));
       painter.drawLine(s, t);
@@ -156,8 +157,7 @@ void Canvas::resizeEvent(QResizeEvent*) {
 }
 
 void Canvas::mousePressEvent(QMouseEvent* event) {
-  if (event->button() == Qt::MiddleButton ||
-      (event->button() == Qt::LeftButton && space_down_)) {
+  if (event->button() == Qt::MiddleButton || (event->button() == Qt::LeftButton && space_down_)) {
     panning_ = true;
     pan_last_ = event->position().toPoint();
     setCursor(Qt::ClosedHandCursor);

@@ -66,7 +66,7 @@ class Canvas : public QWidget {
   Document* document_;
   ViewTransform view_;
   std::unique_ptr<Tool> tool_;
-  bool follow_fit_ = true;   // refit on resize until the user zooms or pans
+  bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
   bool panning_ = false;
   QPoint pan_last_;

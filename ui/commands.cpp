@@ -7,7 +7,8 @@
 namespace artcam::ui {
 
 AddPairCommand::AddPairCommand(Document* document, Pair pair, int index)
-    : document_(document), pair_(std::move(pair)),
+    : document_(document),
+      pair_(std::move(pair)),
       index_(index < 0 ? static_cast<int>(document->pairs().size()) : index) {
   setText(QCoreApplication::translate("commands", "Add pair"));
 }
@@ -16,10 +17,13 @@ void AddPairCommand::redo() { document_->insertPair(index_, pair_); }
 void AddPairCommand::undo() { document_->removePair(index_); }
 
 MovePairsCommand::MovePairsCommand(Document* document, std::vector<int> indices,
-                                   std::vector<Pair> before, std::vector<Pair> after,
-                                   int gesture, const QString& text)
-    : document_(document), indices_(std::move(indices)), before_(std::move(before)),
-      after_(std::move(after)), gesture_(gesture) {
+                                   std::vector<Pair> before, std::vector<Pair> after, int gesture,
+                                   const QString& text)
+    : document_(document),
+      indices_(std::move(indices)),
+      before_(std::move(before)),
+      after_(std::move(after)),
+      gesture_(gesture) {
   setText(text);
 }
 
@@ -64,7 +68,9 @@ void SetModelCommand::undo() { document_->setModel(before_); }
 
 SetCameraCommand::SetCameraCommand(Document* document, std::optional<Camera> camera,
                                    const QString& text, int merge_key)
-    : document_(document), before_(document->manualCamera()), after_(std::move(camera)),
+    : document_(document),
+      before_(document->manualCamera()),
+      after_(std::move(camera)),
       merge_key_(merge_key) {
   setText(text);
 }
@@ -89,9 +95,9 @@ void pushTogglePairsEnabled(Document* document, const std::vector<int>& indices)
     q.enabled = !p.enabled;
     after.push_back(q);
   }
-  document->undoStack()->push(new MovePairsCommand(
-      document, indices, std::move(before), std::move(after), 0,
-      QCoreApplication::translate("commands", "Toggle pair enabled")));
+  document->undoStack()->push(
+      new MovePairsCommand(document, indices, std::move(before), std::move(after), 0,
+                           QCoreApplication::translate("commands", "Toggle pair enabled")));
 }
 
 void pushDeleteSelection(Document* document) {

@@ -16,9 +16,7 @@ Camera identityCamera(FrameSize f) {
 
 }  // namespace
 
-Document::Document(QObject* parent) : QObject(parent) {
-  camera_ = identityCamera({});
-}
+Document::Document(QObject* parent) : QObject(parent) { camera_ = identityCamera({}); }
 
 FrameSize Document::frame() const { return photo_ ? photo_->size() : FrameSize{}; }
 
@@ -74,8 +72,8 @@ void Document::setPairs(const std::vector<int>& indices, const std::vector<Pair>
 }
 
 int Document::enabledPairCount() const {
-  return static_cast<int>(std::count_if(pairs_.begin(), pairs_.end(),
-                                        [](const Pair& p) { return p.enabled; }));
+  return static_cast<int>(
+      std::count_if(pairs_.begin(), pairs_.end(), [](const Pair& p) { return p.enabled; }));
 }
 
 std::vector<PointMatch> Document::matches() const {
@@ -139,9 +137,9 @@ void Document::refit() {
     } else if (enabledPairCount() == 0) {
       fit_.status = Status::failure("No point pairs yet: click a source point, then its target.");
     } else if (const int need = pairsNeeded(); need > 0) {
-      fit_.status = Status::failure("Need " + std::to_string(need) + " more pair" +
-                                    (need == 1 ? "" : "s") + " for the " +
-                                    std::string(modelClassName(model_)) + " model.");
+      fit_.status =
+          Status::failure("Need " + std::to_string(need) + " more pair" + (need == 1 ? "" : "s") +
+                          " for the " + std::string(modelClassName(model_)) + " model.");
     } else {
       FitOptions options;
       options.model = model_;

@@ -80,10 +80,10 @@ class Document : public QObject {
 
  signals:
   void photoChanged();
-  void pairsChanged();       // any pair added, removed or changed
-  void pairCountChanged();   // rows added or removed (tables reset)
+  void pairsChanged();      // any pair added, removed or changed
+  void pairCountChanged();  // rows added or removed (tables reset)
   void modelChanged();
-  void cameraChanged();      // after every refit, even if the camera came out equal
+  void cameraChanged();  // after every refit, even if the camera came out equal
   void selectionChanged();
 
  private:

@@ -8,7 +8,10 @@
 namespace artcam::ui {
 
 ExportJob::ExportJob(PhotoPtr photo, Camera camera, QString path, QObject* parent)
-    : QThread(parent), photo_(std::move(photo)), camera_(std::move(camera)), path_(std::move(path)) {}
+    : QThread(parent),
+      photo_(std::move(photo)),
+      camera_(std::move(camera)),
+      path_(std::move(path)) {}
 
 ExportJob::~ExportJob() {
   cancel_ = true;

@@ -11,8 +11,13 @@
 namespace artcam::ui {
 
 FitStatus::FitStatus(Document* document, PreviewController* preview, QWidget* parent)
-    : QWidget(parent), document_(document), preview_(preview), model_(new QLabel(this)),
-      residual_(new QLabel(this)), render_(new QLabel(this)), progress_(new QProgressBar(this)) {
+    : QWidget(parent),
+      document_(document),
+      preview_(preview),
+      model_(new QLabel(this)),
+      residual_(new QLabel(this)),
+      render_(new QLabel(this)),
+      progress_(new QProgressBar(this)) {
   progress_->setRange(0, 100);
   progress_->setMaximumWidth(160);
   progress_->setFormat(tr("Loading %p%"));
@@ -41,15 +46,18 @@ void FitStatus::setLoadProgress(int percent) {
 void FitStatus::updateFit() {
   const FitSummary& fit = document_->fit();
   if (document_->manualCamera()) {
-    model_->setText(tr("Camera: set by hand (%1)")
-                        .arg(QString::fromStdString(analyseStructure(document_->camera()).summary)));
+    model_->setText(
+        tr("Camera: set by hand (%1)")
+            .arg(QString::fromStdString(analyseStructure(document_->camera()).summary)));
   } else if (fit.status.ok) {
     model_->setText(tr("Model: %1").arg(QString::fromStdString(fit.record.model)));
   } else {
     model_->setText(tr("Model: none (identity)"));
   }
   if (fit.status.ok && !document_->manualCamera())
-    residual_->setText(tr("RMS %1 px · max %2 px").arg(fit.record.rms_px, 0, 'f', 2).arg(fit.record.max_px, 0, 'f', 2));
+    residual_->setText(tr("RMS %1 px · max %2 px")
+                           .arg(fit.record.rms_px, 0, 'f', 2)
+                           .arg(fit.record.max_px, 0, 'f', 2));
   else
     residual_->setText(QString());
   residual_->setToolTip(QString::fromStdString(fit.status.ok ? fit.report() : fit.status.message));

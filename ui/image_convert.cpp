@@ -19,7 +19,8 @@ const std::array<std::uint8_t, kLutSize>& srgbLut() {
     for (int i = 0; i < kLutSize; ++i) {
       const double v = static_cast<double>(i) / (kLutSize - 1);
       const double e = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-      t[static_cast<size_t>(i)] = static_cast<std::uint8_t>(std::lround(std::clamp(e, 0.0, 1.0) * 255.0));
+      t[static_cast<size_t>(i)] =
+          static_cast<std::uint8_t>(std::lround(std::clamp(e, 0.0, 1.0) * 255.0));
     }
     return t;
   }();

@@ -31,8 +31,10 @@
 namespace artcam::ui {
 
 MainWindow::MainWindow(QWidget* parent)
-    : QMainWindow(parent), document_(new Document(this)),
-      preview_(new PreviewController(document_, this)), canvas_(new Canvas(document_, this)),
+    : QMainWindow(parent),
+      document_(new Document(this)),
+      preview_(new PreviewController(document_, this)),
+      canvas_(new Canvas(document_, this)),
       preview_view_(new PreviewView(document_, preview_, this)),
       pairs_panel_(new PairsPanel(document_, this)),
       fit_status_(new FitStatus(document_, preview_, this)),
@@ -64,8 +66,9 @@ MainWindow::MainWindow(QWidget* parent)
   connect(session_, &Session::loadProgress, fit_status_, &FitStatus::setLoadProgress);
   connect(session_, &Session::titleChanged, this, &MainWindow::updateTitle);
   connect(session_, &Session::recentFilesChanged, this, &MainWindow::rebuildRecentMenu);
-  connect(preview_, &PreviewController::renderFailed, this,
-          [this](const QString& m) { statusBar()->showMessage(tr("Preview failed: %1").arg(m), 8000); });
+  connect(preview_, &PreviewController::renderFailed, this, [this](const QString& m) {
+    statusBar()->showMessage(tr("Preview failed: %1").arg(m), 8000);
+  });
   connect(document_->undoStack(), &QUndoStack::cleanChanged, this, &MainWindow::updateTitle);
   connect(document_, &Document::photoChanged, this, &MainWindow::updateTitle);
   session_->setViewStateProvider([this] {
@@ -97,7 +100,8 @@ void MainWindow::createMenus() {
   recent_menu_ = file->addMenu(tr("Open &Recent"));
   rebuildRecentMenu();
   file->addSeparator();
-  QAction* save = file->addAction(tr("&Save Project"), QKeySequence::Save, session_, &Session::save);
+  QAction* save =
+      file->addAction(tr("&Save Project"), QKeySequence::Save, session_, &Session::save);
   file->addAction(tr("Save Project &As…"), QKeySequence::SaveAs, session_, &Session::saveAs);
   file->addSeparator();
   file->addAction(tr("&Import Camera (.artcam)…"), session_, &Session::importArtcamDialog);
@@ -124,7 +128,7 @@ void MainWindow::createMenus() {
     for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
     document_->setSelection(all);
   });
-  edit->addAction(tr("&Enable/Disable Selected Pairs"), QKeySequence(tr("E")), this,
+  edit->addAction(tr("&Enable/Disable Selected Pairs"), this,
                   [this] { pushTogglePairsEnabled(document_, document_->selection()); });
   bar->addAction(undo);
   bar->addAction(redo);
@@ -134,7 +138,8 @@ void MainWindow::createMenus() {
   view->addAction(tr("Zoom to &Fit"), QKeySequence(tr("Ctrl+0")), canvas_, &Canvas::zoomToFit);
   view->addAction(tr("&Actual Pixels"), QKeySequence(tr("Ctrl+1")), canvas_, &Canvas::zoomActual);
   QAction* zoom_in = view->addAction(tr("Zoom &In"), canvas_, &Canvas::zoomIn);
-  zoom_in->setShortcuts({QKeySequence(tr("Ctrl+=")), QKeySequence(tr("Ctrl++")), QKeySequence::ZoomIn});
+  zoom_in->setShortcuts(
+      {QKeySequence(tr("Ctrl+=")), QKeySequence(tr("Ctrl++")), QKeySequence::ZoomIn});
   QAction* zoom_out = view->addAction(tr("Zoom &Out"), canvas_, &Canvas::zoomOut);
   zoom_out->setShortcuts({QKeySequence(tr("Ctrl+-")), QKeySequence::ZoomOut});
   view->addSeparator();
@@ -143,9 +148,12 @@ void MainWindow::createMenus() {
   QMenu* model = menuBar()->addMenu(tr("&Model"));
   auto* group = new QActionGroup(this);
   const std::pair<ModelClass, QString> models[] = {
-      {ModelClass::Auto, tr("&Auto (simplest that fits)")}, {ModelClass::Translation, tr("&Translation")},
-      {ModelClass::Similarity, tr("&Similarity")},           {ModelClass::Affine, tr("A&ffine")},
-      {ModelClass::Homography, tr("&Homography")},           {ModelClass::Quadratic, tr("&Rational quadratic")}};
+      {ModelClass::Auto, tr("&Auto (simplest that fits)")},
+      {ModelClass::Translation, tr("&Translation")},
+      {ModelClass::Similarity, tr("&Similarity")},
+      {ModelClass::Affine, tr("A&ffine")},
+      {ModelClass::Homography, tr("&Homography")},
+      {ModelClass::Quadratic, tr("&Rational quadratic")}};
   for (const auto& [m, label] : models) {
     QAction* a = model->addAction(label);
     a->setCheckable(true);
@@ -153,22 +161,26 @@ void MainWindow::createMenus() {
     group->addAction(a);
     const ModelClass chosen = m;
     connect(a, &QAction::triggered, this, [this, chosen] {
-      if (document_->model() != chosen) document_->undoStack()->push(new SetModelCommand(document_, chosen));
+      if (document_->model() != chosen)
+        document_->undoStack()->push(new SetModelCommand(document_, chosen));
     });
-    connect(document_, &Document::modelChanged, a, [this, a, chosen] { a->setChecked(document_->model() == chosen); });
+    connect(document_, &Document::modelChanged, a,
+            [this, a, chosen] { a->setChecked(document_->model() == chosen); });
   }
   model->addSeparator();
   model->addAction(tr("Use &Fitted Camera"), this, [this] {
     if (document_->manualCamera())
-      document_->undoStack()->push(new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
+      document_->undoStack()->push(
+          new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
   });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About ARTcam Studio"), this, [this] {
-    QMessageBox::about(this, tr("About ARTcam Studio"),
-                       tr("<b>ARTcam Studio</b><p>Warp photographs through one rational tensor camera: "
-                          "click a source point, then where it should go. Middle drag or Space+drag pans, "
-                          "the wheel zooms, Del deletes selected pairs, Esc drops a half-made pair.</p>"));
+    QMessageBox::about(
+        this, tr("About ARTcam Studio"),
+        tr("<b>ARTcam Studio</b><p>Warp photographs through one rational tensor camera: "
+           "click a source point, then where it should go. Middle drag or Space+drag pans, "
+           "the wheel zooms, Del deletes selected pairs, Esc drops a half-made pair.</p>"));
   });
 }
 
@@ -177,7 +189,8 @@ void MainWindow::rebuildRecentMenu() {
   recent_menu_->clear();
   const QStringList files = session_->recentFiles();
   for (const QString& f : files)
-    recent_menu_->addAction(QFileInfo(f).fileName(), this, [this, f] { session_->openPath(f); })->setToolTip(f);
+    recent_menu_->addAction(QFileInfo(f).fileName(), this, [this, f] { session_->openPath(f); })
+        ->setToolTip(f);
   recent_menu_->setEnabled(!files.isEmpty());
 }
 
@@ -187,8 +200,10 @@ void MainWindow::updateTitle() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  if (session_->maybeSave()) event->accept();
-  else event->ignore();
+  if (session_->maybeSave())
+    event->accept();
+  else
+    event->ignore();
 }
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {

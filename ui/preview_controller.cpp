@@ -11,9 +11,10 @@ PreviewController::PreviewController(Document* document, QObject* parent)
   // Queued: the worker emits from its own thread; values cross by copy.
   connect(&worker_, &RenderWorker::rendered, this, &PreviewController::onRendered,
           Qt::QueuedConnection);
-  connect(&worker_, &RenderWorker::failed, this,
-          [this](const QString& message, quint64) { emit renderFailed(message); },
-          Qt::QueuedConnection);
+  connect(
+      &worker_, &RenderWorker::failed, this,
+      [this](const QString& message, quint64) { emit renderFailed(message); },
+      Qt::QueuedConnection);
 }
 
 PreviewController::~PreviewController() { worker_.shutdown(); }

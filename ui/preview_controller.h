@@ -21,7 +21,7 @@ class PreviewController : public QObject {
   explicit PreviewController(Document* document, QObject* parent = nullptr);
   ~PreviewController() override;
 
-  const QImage& image() const { return image_; }            // newest warped preview
+  const QImage& image() const { return image_; }  // newest warped preview
   quint64 imageGeneration() const { return image_generation_; }
   bool imageIsFinal() const { return image_final_; }
   quint64 requestedGeneration() const { return generation_; }

@@ -68,14 +68,16 @@ void PreviewArea::paintEvent(QPaintEvent*) {
     painter.fillRect(r, QColor(90, 90, 90));
     constexpr int kCell = 8;
     for (int y = static_cast<int>(r.top()); y < r.bottom(); y += kCell)
-      for (int x = static_cast<int>(r.left()) + ((y / kCell) % 2) * kCell; x < r.right(); x += 2 * kCell)
+      for (int x = static_cast<int>(r.left()) + ((y / kCell) % 2) * kCell; x < r.right();
+           x += 2 * kCell)
         painter.fillRect(QRect(x, y, kCell, kCell), QColor(120, 120, 120));
     painter.restore();
   };
   switch (mode_) {
     case PreviewMode::SideBySide: {
       const QRectF left = fitted(QRectF(0, 0, width() / 2.0 - 2, height()), aspect);
-      const QRectF right = fitted(QRectF(width() / 2.0 + 2, 0, width() / 2.0 - 2, height()), aspect);
+      const QRectF right =
+          fitted(QRectF(width() / 2.0 + 2, 0, width() / 2.0 - 2, height()), aspect);
       painter.drawImage(left, source);
       checker(right);
       if (!warped.isNull()) painter.drawImage(right, warped);
@@ -116,8 +118,10 @@ void PreviewArea::paintEvent(QPaintEvent*) {
 }
 
 PreviewView::PreviewView(Document* document, PreviewController* controller, QWidget* parent)
-    : QWidget(parent), area_(new PreviewArea(document, controller, this)),
-      mode_box_(new QComboBox(this)), slider_(new QSlider(Qt::Horizontal, this)) {
+    : QWidget(parent),
+      area_(new PreviewArea(document, controller, this)),
+      mode_box_(new QComboBox(this)),
+      slider_(new QSlider(Qt::Horizontal, this)) {
   mode_box_->addItem(tr("Side by side"), static_cast<int>(PreviewMode::SideBySide));
   mode_box_->addItem(tr("Overlay"), static_cast<int>(PreviewMode::Overlay));
   mode_box_->addItem(tr("Split"), static_cast<int>(PreviewMode::Split));
@@ -137,8 +141,10 @@ PreviewView::PreviewView(Document* document, PreviewController* controller, QWid
     updateSliderRole();
   });
   connect(slider_, &QSlider::valueChanged, this, [this](int v) {
-    if (area_->mode() == PreviewMode::Split) area_->setSplit(v / 100.0);
-    else area_->setOpacity(v / 100.0);
+    if (area_->mode() == PreviewMode::Split)
+      area_->setSplit(v / 100.0);
+    else
+      area_->setOpacity(v / 100.0);
   });
   updateSliderRole();
 }
@@ -155,9 +161,11 @@ void PreviewView::setOpacity(double opacity) {
 void PreviewView::updateSliderRole() {
   const PreviewMode m = area_->mode();
   slider_->setEnabled(m == PreviewMode::Overlay || m == PreviewMode::Split);
-  slider_->setToolTip(m == PreviewMode::Split ? tr("Divider position") : tr("Warped image opacity"));
+  slider_->setToolTip(m == PreviewMode::Split ? tr("Divider position")
+                                              : tr("Warped image opacity"));
   const QSignalBlocker block(slider_);
-  slider_->setValue(static_cast<int>((m == PreviewMode::Split ? area_->split() : area_->opacity()) * 100 + 0.5));
+  slider_->setValue(
+      static_cast<int>((m == PreviewMode::Split ? area_->split() : area_->opacity()) * 100 + 0.5));
 }
 
 }  // namespace artcam::ui

@@ -86,8 +86,9 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
                      ? photo
                      : QFileInfo(project_path).absoluteDir().absoluteFilePath(photo);
   const auto model = modelClassFromName(str(root["model"].toString("auto")));
-  if (!model) return Result<Project>::failure(name + ": /model: unknown model \"" +
-                                              str(root["model"].toString()) + "\"");
+  if (!model)
+    return Result<Project>::failure(name + ": /model: unknown model \"" +
+                                    str(root["model"].toString()) + "\"");
   p.model = *model;
   const QJsonArray pairs = root["pairs"].toArray();
   for (qsizetype i = 0; i < pairs.size(); ++i) {
@@ -130,7 +131,8 @@ Status writeProject(const QString& path, const Project& project) {
     file.cancelWriting();
     return Status::failure(str(path) + ": write failed: " + str(file.errorString()));
   }
-  if (!file.commit()) return Status::failure(str(path) + ": could not save: " + str(file.errorString()));
+  if (!file.commit())
+    return Status::failure(str(path) + ": could not save: " + str(file.errorString()));
   return Status::success();
 }
 

@@ -24,7 +24,8 @@ QString photoFilter() {
 }
 
 QString projectFilter() {
-  return QCoreApplication::translate("Session", "ARTcam Studio projects (*.%1)").arg(kProjectExtension);
+  return QCoreApplication::translate("Session", "ARTcam Studio projects (*.%1)")
+      .arg(kProjectExtension);
 }
 
 }  // namespace
@@ -46,9 +47,7 @@ QString Session::displayName() const {
   return tr("Untitled");
 }
 
-QStringList Session::recentFiles() const {
-  return QSettings().value(kRecentKey).toStringList();
-}
+QStringList Session::recentFiles() const { return QSettings().value(kRecentKey).toStringList(); }
 
 void Session::addRecent(const QString& path) {
   QStringList list = recentFiles();
@@ -68,9 +67,12 @@ void Session::showError(const QString& title, const QString& message) {
 
 void Session::openPath(const QString& path) {
   const QString suffix = QFileInfo(path).suffix().toLower();
-  if (suffix == kProjectExtension) openProject(path);
-  else if (suffix == "artcam") importArtcam(path);
-  else openPhoto(path);
+  if (suffix == kProjectExtension)
+    openProject(path);
+  else if (suffix == "artcam")
+    importArtcam(path);
+  else
+    openPhoto(path);
 }
 
 void Session::openPhoto(const QString& path) {
@@ -244,8 +246,10 @@ void Session::exportImage(const QString& path) {
   }
   connect(job, &ExportJob::done, this, [this, dialog](bool ok, const QString& message) {
     if (dialog) dialog->close();
-    if (ok) emit statusMessage(message);
-    else if (!message.isEmpty()) showError(tr("Export image"), message);
+    if (ok)
+      emit statusMessage(message);
+    else if (!message.isEmpty())
+      showError(tr("Export image"), message);
     emit exportFinished(ok, message);
   });
   connect(job, &QThread::finished, job, &QObject::deleteLater);
@@ -260,7 +264,8 @@ void Session::openDialog() {
   const QString path = QFileDialog::getOpenFileName(
       dialog_parent_, tr("Open photo or project"), QString(),
       tr("Photos and projects (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.bmp *.webp *.%1);;")
-              .arg(kProjectExtension) + projectFilter() + ";;" + photoFilter());
+              .arg(kProjectExtension) +
+          projectFilter() + ";;" + photoFilter());
   if (!path.isEmpty()) openPath(path);
 }
 
@@ -276,7 +281,8 @@ bool Session::saveAs() {
     const QFileInfo info(document_->photo()->path);
     suggestion = info.absoluteDir().filePath(info.completeBaseName() + "." + kProjectExtension);
   }
-  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Save project"), suggestion, projectFilter());
+  QString path =
+      QFileDialog::getSaveFileName(dialog_parent_, tr("Save project"), suggestion, projectFilter());
   if (path.isEmpty()) return false;
   if (QFileInfo(path).suffix().isEmpty()) path += QString(".") + kProjectExtension;
   return saveProjectTo(path);
@@ -301,8 +307,8 @@ void Session::exportImageDialog() {
   const QFileInfo info(document_->photo()->path);
   const QString suggestion =
       info.absoluteDir().filePath(info.completeBaseName() + "_warped." + info.suffix());
-  const QString path =
-      QFileDialog::getSaveFileName(dialog_parent_, tr("Export warped image"), suggestion, photoFilter());
+  const QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export warped image"),
+                                                    suggestion, photoFilter());
   if (!path.isEmpty()) exportImage(path);
 }
 

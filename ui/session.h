@@ -32,7 +32,9 @@ class Session : public QObject {
   ~Session() override;
 
   // Supplies the view state to save; MainWindow sets it from the canvas and preview.
-  void setViewStateProvider(std::function<ViewState()> provider) { view_state_ = std::move(provider); }
+  void setViewStateProvider(std::function<ViewState()> provider) {
+    view_state_ = std::move(provider);
+  }
   // When false, errors are only emitted (errorOccurred) rather than shown modally (tests).
   void setInteractive(bool interactive) { interactive_ = interactive; }
 

@@ -15,8 +15,8 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QMimeData>
-#include <QUrl>
 #include <QStandardPaths>
+#include <QUrl>
 #include <QtTest/QtTest>
 
 using namespace artcam;
@@ -38,11 +38,13 @@ class TestMainWindow : public QObject {
     QCOMPARE(window.document()->frame().width, 600);
     QVERIFY(window.windowTitle().startsWith("coffee.png"));
     Document* doc = window.document();
-    for (const Pair& p : ui::test::ninePairs(600, 400)) doc->undoStack()->push(new AddPairCommand(doc, p));
+    for (const Pair& p : ui::test::ninePairs(600, 400))
+      doc->undoStack()->push(new AddPairCommand(doc, p));
     QVERIFY(window.isWindowModified());
-    QTRY_VERIFY_WITH_TIMEOUT(window.preview()->imageIsFinal() &&
-                                 window.preview()->imageGeneration() == window.preview()->requestedGeneration(),
-                             30000);
+    QTRY_VERIFY_WITH_TIMEOUT(
+        window.preview()->imageIsFinal() &&
+            window.preview()->imageGeneration() == window.preview()->requestedGeneration(),
+        30000);
     QVERIFY(window.fitStatus()->residualText().contains("RMS"));
     QVERIFY(window.fitStatus()->modelText().startsWith("Model: "));
     QVERIFY(window.fitStatus()->renderText().contains("ms"));
@@ -72,7 +74,8 @@ class TestMainWindow : public QObject {
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     QMimeData mime;
-    mime.setUrls({QUrl::fromLocalFile(QString::fromStdString(artcam::test::resourcePath("coffee.png")))});
+    mime.setUrls(
+        {QUrl::fromLocalFile(QString::fromStdString(artcam::test::resourcePath("coffee.png")))});
     const QPoint at(200, 200);
     QDragEnterEvent enter(at, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
     QCoreApplication::sendEvent(&window, &enter);

@@ -43,8 +43,10 @@ class TestPairTool : public QObject {
 
   void clickPairs(const std::vector<Pair>& pairs) {
     for (const Pair& p : pairs) {
-      QTest::mouseClick(canvas_.get(), Qt::LeftButton, Qt::NoModifier, test::widgetPoint(*canvas_, p.source));
-      QTest::mouseClick(canvas_.get(), Qt::LeftButton, Qt::NoModifier, test::widgetPoint(*canvas_, p.target));
+      QTest::mouseClick(canvas_.get(), Qt::LeftButton, Qt::NoModifier,
+                        test::widgetPoint(*canvas_, p.source));
+      QTest::mouseClick(canvas_.get(), Qt::LeftButton, Qt::NoModifier,
+                        test::widgetPoint(*canvas_, p.target));
     }
   }
 
@@ -126,7 +128,8 @@ class TestPairTool : public QObject {
   void middleDragAndSpaceDragPan() {
     const QPointF before = canvas_->view().offset();
     QWidget* w = canvas_.get();
-    test::sendMouse(w, QEvent::MouseButtonPress, QPoint(100, 100), Qt::MiddleButton, Qt::MiddleButton);
+    test::sendMouse(w, QEvent::MouseButtonPress, QPoint(100, 100), Qt::MiddleButton,
+                    Qt::MiddleButton);
     test::sendMouse(w, QEvent::MouseMove, QPoint(130, 90), Qt::NoButton, Qt::MiddleButton);
     test::sendMouse(w, QEvent::MouseButtonRelease, QPoint(130, 90), Qt::MiddleButton, Qt::NoButton);
     QCOMPARE(canvas_->view().offset(), before + QPointF(30, -10));
@@ -171,11 +174,13 @@ class TestPairTool : public QObject {
     QCOMPARE(n + 1, static_cast<int>(states.size()));
     for (int i = n - 1; i >= 0; --i) {
       doc_->undoStack()->undo();
-      QVERIFY2(Snapshot::of(*doc_) == states[static_cast<size_t>(i)], qPrintable(QString("undo to %1").arg(i)));
+      QVERIFY2(Snapshot::of(*doc_) == states[static_cast<size_t>(i)],
+               qPrintable(QString("undo to %1").arg(i)));
     }
     for (int i = 1; i <= n; ++i) {
       doc_->undoStack()->redo();
-      QVERIFY2(Snapshot::of(*doc_) == states[static_cast<size_t>(i)], qPrintable(QString("redo to %1").arg(i)));
+      QVERIFY2(Snapshot::of(*doc_) == states[static_cast<size_t>(i)],
+               qPrintable(QString("redo to %1").arg(i)));
     }
   }
 };

@@ -121,7 +121,9 @@ class TestPreview : public QObject {
     RenderWorker worker;
     QList<quint64> finals;
     connect(&worker, &RenderWorker::rendered, this,
-            [&](const QImage&, quint64 g, bool final_pass, double) { if (final_pass) finals << g; });
+            [&](const QImage&, quint64 g, bool final_pass, double) {
+              if (final_pass) finals << g;
+            });
     for (quint64 g = 1; g <= 50; ++g) {
       RenderRequest r;
       r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);

@@ -64,10 +64,13 @@ class TestSession : public QObject {
   }
 
   void projectErrorsNameTheCause() {
-    const auto newer = parseProject(R"({"format":"artcam-studio-project","version":99,"photo":"x.png"})", "p.artcamproj");
+    const auto newer = parseProject(
+        R"({"format":"artcam-studio-project","version":99,"photo":"x.png"})", "p.artcamproj");
     QVERIFY(!newer.ok());
     QVERIFY(QString::fromStdString(newer.status.message).contains("newer"));
-    const auto bad = parseProject(R"({"format":"artcam-studio-project","version":1,"photo":"x.png","pairs":[{"source":[1],"target":[2,3]}]})", "p.artcamproj");
+    const auto bad = parseProject(
+        R"({"format":"artcam-studio-project","version":1,"photo":"x.png","pairs":[{"source":[1],"target":[2,3]}]})",
+        "p.artcamproj");
     QVERIFY(!bad.ok());
     QVERIFY(QString::fromStdString(bad.status.message).contains("/pairs/0/source"));
   }
@@ -93,7 +96,8 @@ class TestSession : public QObject {
     QSignalSpy errors(&session2, &Session::errorOccurred);
     session2.openPath(project);
     QTRY_VERIFY_WITH_TIMEOUT(doc2.photo() != nullptr || !errors.isEmpty(), 20000);
-    QVERIFY2(errors.isEmpty(), errors.isEmpty() ? "" : qPrintable(errors.front().front().toString()));
+    QVERIFY2(errors.isEmpty(),
+             errors.isEmpty() ? "" : qPrintable(errors.front().front().toString()));
     QVERIFY(doc2.pairs() == saved);
     QVERIFY(doc2.fit().status.ok);
     QCOMPARE(doc2.camera().stages()[0].q, doc.camera().stages()[0].q);
@@ -168,7 +172,8 @@ class TestSession : public QObject {
     QVERIFY(model->setData(model->index(2, PairsTableModel::TargetX), 123.5, Qt::EditRole));
     QCOMPARE(doc.pairs()[2].target.x(), 123.5);
     QCOMPARE(doc.undoStack()->count(), 1);
-    QVERIFY(model->setData(model->index(2, PairsTableModel::Enabled), Qt::Unchecked, Qt::CheckStateRole));
+    QVERIFY(model->setData(model->index(2, PairsTableModel::Enabled), Qt::Unchecked,
+                           Qt::CheckStateRole));
     QVERIFY(!doc.pairs()[2].enabled);
     doc.undoStack()->undo();
     doc.undoStack()->undo();
@@ -188,7 +193,8 @@ class TestSession : public QObject {
     PairsPanel panel(&doc);
     doc.undoStack()->push(new SetModelCommand(&doc, ModelClass::Quadratic));
     std::vector<Pair> pairs = test::ninePairs();
-    for (int i = 0; i < 5; ++i) doc.undoStack()->push(new AddPairCommand(&doc, pairs[static_cast<size_t>(i)]));
+    for (int i = 0; i < 5; ++i)
+      doc.undoStack()->push(new AddPairCommand(&doc, pairs[static_cast<size_t>(i)]));
     QVERIFY2(panel.bannerText().contains("4 more"), qPrintable(panel.bannerText()));
   }
 };

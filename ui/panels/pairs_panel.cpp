@@ -57,20 +57,29 @@ QVariant PairsTableModel::headerData(int section, Qt::Orientation orientation, i
   if (role != Qt::DisplayRole) return {};
   if (orientation == Qt::Vertical) return section + 1;
   switch (section) {
-    case Enabled: return tr("On");
-    case SourceX: return tr("Source x");
-    case SourceY: return tr("Source y");
-    case TargetX: return tr("Target x");
-    case TargetY: return tr("Target y");
-    case Residual: return tr("Residual px");
-    default: return {};
+    case Enabled:
+      return tr("On");
+    case SourceX:
+      return tr("Source x");
+    case SourceY:
+      return tr("Source y");
+    case TargetX:
+      return tr("Target x");
+    case TargetY:
+      return tr("Target y");
+    case Residual:
+      return tr("Residual px");
+    default:
+      return {};
   }
 }
 
 Qt::ItemFlags PairsTableModel::flags(const QModelIndex& index) const {
   Qt::ItemFlags f = QAbstractTableModel::flags(index);
-  if (index.column() == Enabled) f |= Qt::ItemIsUserCheckable;
-  else if (index.column() != Residual) f |= Qt::ItemIsEditable;
+  if (index.column() == Enabled)
+    f |= Qt::ItemIsUserCheckable;
+  else if (index.column() != Residual)
+    f |= Qt::ItemIsEditable;
   return f;
 }
 
@@ -90,21 +99,33 @@ bool PairsTableModel::setData(const QModelIndex& index, const QVariant& value, i
   if (!ok || !std::isfinite(v)) return false;
   Pair after = before;
   switch (index.column()) {
-    case SourceX: after.source.x() = v; break;
-    case SourceY: after.source.y() = v; break;
-    case TargetX: after.target.x() = v; break;
-    case TargetY: after.target.y() = v; break;
-    default: return false;
+    case SourceX:
+      after.source.x() = v;
+      break;
+    case SourceY:
+      after.source.y() = v;
+      break;
+    case TargetX:
+      after.target.x() = v;
+      break;
+    case TargetY:
+      after.target.y() = v;
+      break;
+    default:
+      return false;
   }
   if (after == before) return false;
-  document_->undoStack()->push(
-      new MovePairsCommand(document_, {row}, {before}, {after}, 0, tr("Edit pair %1").arg(row + 1)));
+  document_->undoStack()->push(new MovePairsCommand(document_, {row}, {before}, {after}, 0,
+                                                    tr("Edit pair %1").arg(row + 1)));
   return true;
 }
 
 PairsPanel::PairsPanel(Document* document, QWidget* parent)
-    : QWidget(parent), document_(document), model_(new PairsTableModel(document, this)),
-      table_(new QTableView(this)), banner_(new QLabel(this)) {
+    : QWidget(parent),
+      document_(document),
+      model_(new PairsTableModel(document, this)),
+      table_(new QTableView(this)),
+      banner_(new QLabel(this)) {
   table_->setModel(model_);
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::ExtendedSelection);
@@ -151,7 +172,8 @@ void PairsPanel::updateBanner() {
     text = QString::fromStdString(document_->fit().report());
   }
   banner_->setText(text);
-  const bool problem = document_->photo() && !document_->manualCamera() && !document_->fit().status.ok;
+  const bool problem =
+      document_->photo() && !document_->manualCamera() && !document_->fit().status.ok;
   banner_->setStyleSheet(problem ? "color: #d08000;" : "");
 }
 

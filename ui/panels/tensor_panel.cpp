@@ -27,8 +27,12 @@ QStringList elementNames(const Camera& camera) {
       case BlockKind::Position:
         local = b.size == 3 ? QStringList{"u", "v", "w"} : QStringList{"X", "Y", "Z", "W"};
         break;
-      case BlockKind::Colour: local = {"ar", "ag", "ab", "a"}; break;
-      case BlockKind::Depth: local = {"d", "dh"}; break;
+      case BlockKind::Colour:
+        local = {"ar", "ag", "ab", "a"};
+        break;
+      case BlockKind::Depth:
+        local = {"d", "dh"};
+        break;
     }
     while (local.size() < b.size) local << QString("x%1").arg(names.size() + local.size());
     names << local.mid(0, b.size);
@@ -52,7 +56,8 @@ constexpr int kTensorEditMergeBase = 0;  // typed edits are separate undo steps:
 }  // namespace
 
 Camera radialCamera(double k, FrameSize frame) {
-  Eigen::Matrix3d q1 = Eigen::Matrix3d::Zero(), q2 = Eigen::Matrix3d::Zero(), q3 = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d q1 = Eigen::Matrix3d::Zero(), q2 = Eigen::Matrix3d::Zero(),
+                  q3 = Eigen::Matrix3d::Zero();
   q1(0, 2) = q1(2, 0) = 0.5;  // u·w
   q2(1, 2) = q2(2, 1) = 0.5;  // v·w
   q3(0, 0) = q3(1, 1) = -k;   // w² - k (u² + v²)
@@ -61,8 +66,11 @@ Camera radialCamera(double k, FrameSize frame) {
 }
 
 TensorPanel::TensorPanel(Document* document, QWidget* parent)
-    : QWidget(parent), document_(document), stage_box_(new QComboBox(this)),
-      preset_box_(new QComboBox(this)), tables_layout_(new QVBoxLayout) {
+    : QWidget(parent),
+      document_(document),
+      stage_box_(new QComboBox(this)),
+      preset_box_(new QComboBox(this)),
+      tables_layout_(new QVBoxLayout) {
   preset_box_->addItem(tr("Identity"), "identity");
   preset_box_->addItem(tr("Barrel"), "barrel");
   preset_box_->addItem(tr("Pincushion"), "pincushion");
@@ -90,7 +98,8 @@ TensorPanel::TensorPanel(Document* document, QWidget* parent)
           [this] { applyPreset(preset_box_->currentData().toString()); });
   connect(fitted, &QPushButton::clicked, this, [this] {
     if (document_->manualCamera())
-      document_->undoStack()->push(new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
+      document_->undoStack()->push(
+          new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
   });
   connect(stage_box_, &QComboBox::currentIndexChanged, this, [this](int) { refresh(); });
   connect(document_, &Document::cameraChanged, this, &TensorPanel::rebuild);
@@ -111,7 +120,8 @@ void TensorPanel::rebuild() {
     }
     const QStringList names = elementNames(cam);
     for (int i = 0; i < n; ++i) {
-      auto* box = new QGroupBox(tr("Q%1 → %2 (%3)").arg(i + 1).arg(names.value(i), blockOf(cam, i)), this);
+      auto* box =
+          new QGroupBox(tr("Q%1 → %2 (%3)").arg(i + 1).arg(names.value(i), blockOf(cam, i)), this);
       auto* table = new QTableWidget(n, n, box);
       table->setHorizontalHeaderLabels(names);
       table->setVerticalHeaderLabels(names);
@@ -177,7 +187,8 @@ void TensorPanel::setEntry(int stage, int element, int row, int col, double valu
   m(row, col) = value;
   m(col, row) = value;  // symmetric storage (DESIGN §1)
   document_->undoStack()->push(new SetCameraCommand(
-      document_, std::move(cam), tr("Set Q%1(%2, %3) = %4").arg(element + 1).arg(row + 1).arg(col + 1).arg(value),
+      document_, std::move(cam),
+      tr("Set Q%1(%2, %3) = %4").arg(element + 1).arg(row + 1).arg(col + 1).arg(value),
       kTensorEditMergeBase));
 }
 
@@ -185,11 +196,15 @@ void TensorPanel::applyPreset(const QString& name) {
   FrameSize f = document_->frame();
   if (!f.isImage()) return;
   std::optional<Camera> cam;
-  if (name == "identity") cam = Camera::identity({Block{BlockKind::Position, 3}}, f, f);
-  else if (name == "barrel") cam = radialCamera(-kPresetStrength, f);
-  else if (name == "pincushion") cam = radialCamera(kPresetStrength, f);
+  if (name == "identity")
+    cam = Camera::identity({Block{BlockKind::Position, 3}}, f, f);
+  else if (name == "barrel")
+    cam = radialCamera(-kPresetStrength, f);
+  else if (name == "pincushion")
+    cam = radialCamera(kPresetStrength, f);
   if (!cam) return;
-  document_->undoStack()->push(new SetCameraCommand(document_, std::move(cam), tr("Preset: %1").arg(name)));
+  document_->undoStack()->push(
+      new SetCameraCommand(document_, std::move(cam), tr("Preset: %1").arg(name)));
 }
 
 }  // namespace artcam::ui

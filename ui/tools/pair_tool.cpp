@@ -16,7 +16,9 @@ int PairTool::next_gesture_id_ = 1;
 
 namespace {
 
-double distance(const QPointF& a, const QPointF& b) { return std::hypot(a.x() - b.x(), a.y() - b.y()); }
+double distance(const QPointF& a, const QPointF& b) {
+  return std::hypot(a.x() - b.x(), a.y() - b.y());
+}
 
 Eigen::Vector2d toEigen(const QPointF& p) { return {p.x(), p.y()}; }
 
@@ -60,8 +62,10 @@ void PairTool::mousePress(QMouseEvent* event) {
   grabbed_ = *hit;
   if (shift_) {
     std::vector<int> sel = document_->selection();
-    if (document_->isSelected(hit->index)) std::erase(sel, hit->index);
-    else sel.push_back(hit->index);
+    if (document_->isSelected(hit->index))
+      std::erase(sel, hit->index);
+    else
+      sel.push_back(hit->index);
     document_->setSelection(sel);
     gesture_ = Gesture::None;
     return;
@@ -83,7 +87,8 @@ void PairTool::mouseMove(QMouseEvent* event) {
         gesture_id_ = next_gesture_id_++;
         drag_indices_ = document_->selection();
         drag_before_.clear();
-        for (int i : drag_indices_) drag_before_.push_back(document_->pairs().at(static_cast<size_t>(i)));
+        for (int i : drag_indices_)
+          drag_before_.push_back(document_->pairs().at(static_cast<size_t>(i)));
         dragTo(cursor_widget_);
       }
       break;
@@ -102,10 +107,10 @@ void PairTool::dragTo(const QPointF& widget) {
   const Eigen::Vector2d d = toEigen(delta);
   std::vector<Pair> after = drag_before_;
   for (Pair& p : after) (grabbed_.endpoint == Endpoint::Source ? p.source : p.target) += d;
-  document_->undoStack()->push(new MovePairsCommand(
-      document_, drag_indices_, drag_before_, std::move(after), gesture_id_,
-      QCoreApplication::translate("PairTool", "Move %n point(s)", nullptr,
-                                  static_cast<int>(drag_indices_.size()))));
+  document_->undoStack()->push(
+      new MovePairsCommand(document_, drag_indices_, drag_before_, std::move(after), gesture_id_,
+                           QCoreApplication::translate("PairTool", "Move %n point(s)", nullptr,
+                                                       static_cast<int>(drag_indices_.size()))));
 }
 
 void PairTool::mouseRelease(QMouseEvent* event) {
@@ -133,8 +138,10 @@ void PairTool::mouseRelease(QMouseEvent* event) {
       std::vector<int> sel = shift_ ? document_->selection() : std::vector<int>{};
       const auto& pairs = document_->pairs();
       for (size_t i = 0; i < pairs.size(); ++i) {
-        const QPointF s = canvas_->view().widgetFromImage(QPointF(pairs[i].source.x(), pairs[i].source.y()));
-        const QPointF t = canvas_->view().widgetFromImage(QPointF(pairs[i].target.x(), pairs[i].target.y()));
+        const QPointF s =
+            canvas_->view().widgetFromImage(QPointF(pairs[i].source.x(), pairs[i].source.y()));
+        const QPointF t =
+            canvas_->view().widgetFromImage(QPointF(pairs[i].target.x(), pairs[i].target.y()));
         if (band.contains(s) || band.contains(t)) sel.push_back(static_cast<int>(i));
       }
       document_->setSelection(sel);
@@ -164,7 +171,8 @@ bool PairTool::keyPress(QKeyEvent* event) {
 
 void PairTool::paint(QPainter& painter) {
   if (pending_source_) {
-    const QPointF s = canvas_->view().widgetFromImage(QPointF(pending_source_->x(), pending_source_->y()));
+    const QPointF s =
+        canvas_->view().widgetFromImage(QPointF(pending_source_->x(), pending_source_->y()));
     painter.setPen(QPen(QColor(255, 220, 0), 1.5, Qt::DashLine));
     painter.drawLine(s, cursor_widget_);
     painter.setPen(QPen(QColor(255, 220, 0), 2.0));
