@@ -50,7 +50,11 @@ void FitStatus::updateFit() {
         tr("Camera: set by hand (%1)")
             .arg(QString::fromStdString(analyseStructure(document_->camera()).summary)));
   } else if (fit.status.ok) {
-    model_->setText(tr("Model: %1").arg(QString::fromStdString(fit.record.model)));
+    // Under auto, say what the ladder chose; the reason is in the tooltip.
+    const QString chosen = QString::fromStdString(fit.record.model);
+    model_->setText(document_->model() == ModelClass::Auto ? tr("Model: auto → %1").arg(chosen)
+                                                           : tr("Model: %1").arg(chosen));
+    model_->setToolTip(QString::fromStdString(fit.record.reason));
   } else {
     model_->setText(tr("Model: none (identity)"));
   }
