@@ -96,6 +96,7 @@ class TestPreview : public QObject {
     Document doc;
     doc.reset(photo, test::ninePairs(1024, 1024));
     QVERIFY(doc.fit().status.ok);
+    int interrupted = 0;
     for (int round = 0; round < 5; ++round) {
       auto worker = std::make_unique<RenderWorker>();
       QSignalSpy spy(worker.get(), &RenderWorker::rendered);
@@ -111,7 +112,33 @@ class TestPreview : public QObject {
       t.start();
       worker.reset();  // the destructor aborts between tiles and joins
       QVERIFY2(t.elapsed() < 5000, "worker took too long to stop");
+      bool final_seen = false;
+      for (const QList<QVariant>& args : spy) final_seen = final_seen || args.at(2).toBool();
+      if (!final_seen) ++interrupted;
     }
+    QVERIFY2(interrupted > 0, "no round stopped before its final pass: the test proves nothing");
+  }
+
+  void coarsePassComesFirst() {
+    const PhotoPtr photo = test::syntheticPhoto();
+    Document doc;
+    doc.reset(photo, test::ninePairs());
+    RenderWorker worker;
+    QList<QPair<bool, int>> passes;  // (final, width)
+    connect(&worker, &RenderWorker::rendered, this,
+            [&](const QImage& image, quint64, bool final_pass, double) {
+              passes << qMakePair(final_pass, image.width());
+            });
+    RenderRequest r;
+    r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
+    r.camera = doc.camera();
+    r.width = photo->preview.width;
+    r.height = photo->preview.height;
+    r.generation = 1;
+    worker.request(r);
+    QTRY_COMPARE_WITH_TIMEOUT(passes.size(), 2, 30000);
+    QCOMPARE(passes[0], qMakePair(false, 320 / RenderWorker::kCoarseFactor));
+    QCOMPARE(passes[1], qMakePair(true, 320));
   }
 
   void newestRequestWins() {
