@@ -2,6 +2,8 @@
 
 #include "core/fit/dlt.h"
 #include "core/fit/normalize.h"
+#include "core/fit/poles.h"
+#include "core/fit/refine.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 
@@ -29,6 +31,9 @@ struct Problem {
   double target_units_per_stored_unit = 1.0;  // pixels per normalised unit for images
   std::function<Camera(const std::vector<Eigen::MatrixXd>&)> make_camera;
   std::vector<ModelClass> ladder;
+  // Images: the source frame in normalised coordinates, for the pole check.
+  Eigen::Vector2d frame_lo = Eigen::Vector2d(-1, -1);
+  Eigen::Vector2d frame_hi = Eigen::Vector2d(1, 1);
 
   Problem subset(const std::vector<int>& keep) const {
     Problem p = *this;
@@ -47,6 +52,8 @@ struct ModelFit {
   Camera camera;
   Eigen::VectorXd singular_values;
   std::string note;
+  double algebraic_rms = -1.0;  // stored units, before refinement
+  PoleCheck poles;
 };
 
 std::string fmt(double v) {
@@ -83,7 +90,7 @@ std::optional<Eigen::VectorXd> mapStored(const Camera& camera, const Eigen::Vect
   return y;
 }
 
-ModelFit fitModel(ModelClass model, const Problem& pb, bool condition) {
+ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
   ModelFit out;
   const int m = static_cast<int>(pb.src.size());
   const int need = minimumMatches(model, pb.dimension);
@@ -182,6 +189,61 @@ ModelFit fitModel(ModelClass model, const Problem& pb, bool condition) {
   return out;
 }
 
+
+double rmsStored(const Camera& camera, const Problem& pb);
+
+// Refines a quadratic start by LM (never worse, never trading pole-free for a pole).
+void refineFit(ModelFit& fit, const Problem& pb) {
+  RefineOptions ro;
+  ro.frame_lo = pb.frame_lo;
+  ro.frame_hi = pb.frame_hi;
+  RefineSummary rs;
+  fit.camera = refineReprojection(fit.camera, pb.src, pb.dst, ro, &rs);
+  fit.algebraic_rms = rs.initial_rms;
+}
+
+// The algebraic fit, then (images) refinement and the pole rule of DESIGN §2.
+ModelFit fitModel(ModelClass model, const Problem& pb, const FitOptions& options) {
+  ModelFit fit = fitAlgebraic(model, pb, options.condition);
+  if (!fit.status || pb.dimension != 2) return fit;
+  const bool quadratic = model == ModelClass::Quadratic && fit.note.empty();
+  if (quadratic && options.refine) refineFit(fit, pb);
+  fit.poles = checkDenominator(Eigen::Matrix3d(fit.camera.stages()[0].q[2]), pb.frame_lo, pb.frame_hi);
+  if (fit.poles.pole_free || !options.require_pole_free) return fit;
+
+  const std::string where = fit.poles.describe();
+  if (model != ModelClass::Quadratic) {
+    fit.status = Status::failure("the " + std::string(modelClassName(model)) + " fitted to these "
+                                 "matches " + where + " (normalised coordinates)");
+    return fit;
+  }
+  // The algebraic solution put its zero curve through the frame (as with "mustache" lens
+  // data); refinement started there would keep it. Start again from the lifted homography and
+  // affine fits and keep the best pole-free result.
+  ModelFit best;
+  best.status = Status::failure("no pole-free quadratic camera was found for these matches: the "
+                                "algebraic solution " + where + ", and refinement from the "
+                                "homography and affine fits did not remove it");
+  double best_rms = std::numeric_limits<double>::infinity();
+  for (ModelClass start : {ModelClass::Homography, ModelClass::Affine}) {
+    ModelFit f = fitAlgebraic(start, pb, options.condition);
+    if (!f.status) continue;
+    if (!checkDenominator(Eigen::Matrix3d(f.camera.stages()[0].q[2]), pb.frame_lo, pb.frame_hi).pole_free)
+      continue;
+    if (options.refine) refineFit(f, pb);
+    f.poles = checkDenominator(Eigen::Matrix3d(f.camera.stages()[0].q[2]), pb.frame_lo, pb.frame_hi);
+    const double r = rmsStored(f.camera, pb);
+    if (f.poles.pole_free && r < best_rms) {
+      best_rms = r;
+      f.note = "the algebraic quadratic had a pole in the frame; refined from the " +
+               std::string(modelClassName(start)) + " fit instead";
+      f.singular_values = fit.singular_values;
+      best = std::move(f);
+    }
+  }
+  return best;
+}
+
 std::vector<double> residuals(const Camera& camera, const Problem& pb) {
   std::vector<double> out;
   out.reserve(pb.src.size());
@@ -200,8 +262,12 @@ double rms(const std::vector<double>& r) {
   return std::sqrt(sum / static_cast<double>(r.size()));
 }
 
+double rmsStored(const Camera& camera, const Problem& pb) {
+  return rms(residuals(camera, pb)) / pb.target_units_per_stored_unit;
+}
+
 // K-fold held-out RMS error in target units; NaN when the folds leave too few matches.
-double heldOutError(ModelClass model, const Problem& pb, bool condition) {
+double heldOutError(ModelClass model, const Problem& pb, const FitOptions& options) {
   const int m = static_cast<int>(pb.src.size());
   const int folds = m > 5000 ? 3 : std::min(m, 10);
   if (folds < 2 || m - (m + folds - 1) / folds < minimumMatches(model, pb.dimension))
@@ -210,7 +276,7 @@ double heldOutError(ModelClass model, const Problem& pb, bool condition) {
   for (int f = 0; f < folds; ++f) {
     std::vector<int> train, held;
     for (int k = 0; k < m; ++k) (k % folds == f ? held : train).push_back(k);
-    const ModelFit fit = fitModel(model, pb.subset(train), condition);
+    const ModelFit fit = fitModel(model, pb.subset(train), options);
     if (!fit.status) return std::numeric_limits<double>::quiet_NaN();
     for (double e : residuals(fit.camera, pb.subset(held))) sum += e * e;
   }
@@ -221,7 +287,7 @@ double heldOutError(ModelClass model, const Problem& pb, bool condition) {
 // by more than options.auto_improvement; an exactly determined richer model (no held-out check
 // possible) wins only where the validated ones do not fit exactly.
 ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chosen,
-                 std::string& reason) {
+                 std::string& reason, double& held_out) {
   struct Candidate {
     ModelClass model;
     ModelFit fit;
@@ -232,7 +298,7 @@ ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chose
   std::string rejected;
   ModelFit first_failure;
   for (ModelClass model : pb.ladder) {
-    ModelFit f = fitModel(model, pb, options.condition);
+    ModelFit f = fitModel(model, pb, options);
     if (!f.status) {
       if (first_failure.status) first_failure = f;
       if (static_cast<int>(pb.src.size()) >= minimumMatches(model, pb.dimension))
@@ -241,7 +307,7 @@ ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chose
       continue;
     }
     const double train = rms(residuals(f.camera, pb));
-    const double held = heldOutError(model, pb, options.condition);
+    const double held = heldOutError(model, pb, options);
     candidates.push_back({model, std::move(f), held, train});
   }
   if (candidates.empty()) return first_failure;
@@ -262,6 +328,7 @@ ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chose
   }
   if (!pick) pick = &candidates.back();
   chosen = pick->model;
+  held_out = pick->held_out;
   std::ostringstream why;
   why << "auto chose " << modelClassName(chosen) << "; held-out RMS:";
   for (const Candidate& c : candidates)
@@ -276,13 +343,15 @@ FitSummary solve(const Problem& pb, const FitOptions& options) {
   FitSummary summary;
   ModelClass chosen = options.model;
   ModelFit fit;
+  double held_out = std::numeric_limits<double>::quiet_NaN();
   if (options.model == ModelClass::Auto) {
-    fit = fitAuto(pb, options, chosen, summary.record.reason);
+    fit = fitAuto(pb, options, chosen, summary.record.reason, held_out);
   } else if (std::find(pb.ladder.begin(), pb.ladder.end(), options.model) == pb.ladder.end()) {
     fit.status = Status::failure("the " + std::string(modelClassName(options.model)) +
                                  " model is not available in " + std::to_string(pb.dimension) + "D");
   } else {
-    fit = fitModel(options.model, pb, options.condition);
+    fit = fitModel(options.model, pb, options);
+    if (fit.status && pb.src.size() <= 2000) held_out = heldOutError(options.model, pb, options);
   }
   if (!fit.status) {
     summary.status = fit.status;
@@ -299,6 +368,14 @@ FitSummary solve(const Problem& pb, const FitOptions& options) {
     summary.record.singular_values.push_back(fit.singular_values[i]);
   if (!fit.note.empty())
     summary.record.reason += (summary.record.reason.empty() ? "" : "; ") + fit.note;
+  if (!std::isnan(held_out)) summary.record.held_out_rms_px = held_out;
+  if (fit.algebraic_rms >= 0)
+    summary.record.algebraic_rms_px = fit.algebraic_rms * pb.target_units_per_stored_unit;
+  if (pb.dimension == 2) {
+    summary.record.pole_checked = true;
+    summary.record.pole_free = fit.poles.pole_free;
+    summary.record.pole_margin = fit.poles.margin;
+  }
   return summary;
 }
 
@@ -396,6 +473,9 @@ FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize sour
     pb.dst.push_back(normalizedFromPixel(target_size, match->target.head<2>()));
   }
   pb.target_units_per_stored_unit = std::max(target_size.width, target_size.height) / 2.0;
+  pb.frame_lo = normalizedFromPixel(source_size, {0.0, 0.0});
+  pb.frame_hi = normalizedFromPixel(source_size, {static_cast<double>(source_size.width),
+                                                  static_cast<double>(source_size.height)});
   pb.make_camera = [&](const std::vector<Eigen::MatrixXd>& q) {
     return Camera({Block{BlockKind::Position, 3}}, {Stage{q}}, source_size, target_size);
   };

@@ -32,6 +32,11 @@ struct FitOptions {
   bool condition = true;
   // Auto: a richer model must lower the held-out error by this factor to be chosen.
   double auto_improvement = 0.9;
+  // Levenberg–Marquardt on the reprojection error after the DLT (quadratic models; refine.h).
+  bool refine = true;
+  // Image cameras: refuse a camera whose denominator vanishes inside the source frame; for
+  // the quadratic, first retry from the lifted homography and affine fits (poles.h).
+  bool require_pole_free = true;
 };
 
 struct FitSummary {

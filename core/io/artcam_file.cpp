@@ -192,6 +192,23 @@ FitRecord fitAt(const Json& j, const std::string& path) {
   if (j.contains("singular_values"))
     fit.singular_values = numberListAt(j["singular_values"], path + "/singular_values");
   if (j.contains("reason")) fit.reason = stringAt(j["reason"], path + "/reason");
+  if (j.contains("held_out_rms_px"))
+    fit.held_out_rms_px = numberAt(j["held_out_rms_px"], path + "/held_out_rms_px");
+  if (j.contains("algebraic_rms_px"))
+    fit.algebraic_rms_px = numberAt(j["algebraic_rms_px"], path + "/algebraic_rms_px");
+  if (j.contains("pole_free")) {
+    if (!j["pole_free"].is_boolean())
+      refuse(path + "/pole_free", "expected true or false, found " + describe(j["pole_free"]));
+    fit.pole_checked = true;
+    fit.pole_free = j["pole_free"].get<bool>();
+  }
+  if (j.contains("pole_margin")) fit.pole_margin = numberAt(j["pole_margin"], path + "/pole_margin");
+  if (j.contains("inliers"))
+    for (const double v : numberListAt(j["inliers"], path + "/inliers")) {
+      if (v < 0 || v != std::floor(v) || v > 1e9)
+        refuse(path + "/inliers", "expected whole numbers ≥ 0");
+      fit.inliers.push_back(static_cast<int>(v));
+    }
   return fit;
 }
 
@@ -299,6 +316,15 @@ struct Builder {
                      {"singular_values", numbers(f.singular_values.data(), f.singular_values.size(),
                                                  "/fit/singular_values")},
                      {"reason", f.reason}};
+      if (f.held_out_rms_px >= 0)
+        root["fit"]["held_out_rms_px"] = number(f.held_out_rms_px, "/fit/held_out_rms_px");
+      if (f.algebraic_rms_px >= 0)
+        root["fit"]["algebraic_rms_px"] = number(f.algebraic_rms_px, "/fit/algebraic_rms_px");
+      if (f.pole_checked) {
+        root["fit"]["pole_free"] = f.pole_free;
+        root["fit"]["pole_margin"] = number(f.pole_margin, "/fit/pole_margin");
+      }
+      if (!f.inliers.empty()) root["fit"]["inliers"] = f.inliers;
     }
     return root;
   }

@@ -24,6 +24,12 @@ struct FitRecord {
   std::vector<double> residuals_px;  // one per enabled match, in match order
   std::vector<double> singular_values;  // the smallest few of the design matrix, ascending
   std::string reason;                // why this model (auto), one line
+  double held_out_rms_px = -1.0;     // K-fold (leave-one-out up to 10 matches); -1: not computable
+  double algebraic_rms_px = -1.0;    // before refinement; -1: not refined
+  bool pole_checked = false;         // the pole check applies (single-stage 2D cameras)
+  bool pole_free = true;             // the denominator keeps one sign over the source frame
+  double pole_margin = 1.0;          // min |denominator| / max |denominator| over the frame
+  std::vector<int> inliers;          // robust fits: indices (into the enabled matches) kept
 };
 
 }  // namespace artcam

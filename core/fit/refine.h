@@ -1,0 +1,41 @@
+// Levenberg–Marquardt refinement of an image camera's reprojection error (DESIGN §2): the
+// algebraic DLT minimises |D r|, which weighs matches by their denominators; the geometric
+// error is what a user sees. Works in the normalised frames on the 18 upper-triangle entries
+// of Q_1..Q_3 (scale is a gauge freedom: the damping handles it and steps are renormalised).
+//
+// Guarantees: the result is never worse than the start (only cost-reducing steps are taken)
+// and, when the start is pole-free over the source frame, so is the result (a step that puts
+// a pole in the frame is rejected like one that raises the cost).
+#pragma once
+
+#include "core/model/camera.h"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+struct RefineOptions {
+  int max_iterations = 100;
+  double relative_tolerance = 1e-10;  // stop when the cost falls by less than this fraction
+  bool keep_pole_free = true;
+  // The source frame in normalised coordinates (for the pole check).
+  Eigen::Vector2d frame_lo = Eigen::Vector2d(-1, -1);
+  Eigen::Vector2d frame_hi = Eigen::Vector2d(1, 1);
+};
+
+struct RefineSummary {
+  double initial_rms = 0.0;  // normalised target units
+  double final_rms = 0.0;
+  int iterations = 0;
+  std::string stop_reason;
+};
+
+// src/dst: matched points in the normalised source and target frames.
+Camera refineReprojection(const Camera& start, const std::vector<Eigen::VectorXd>& src,
+                          const std::vector<Eigen::VectorXd>& dst, const RefineOptions& options,
+                          RefineSummary* summary = nullptr);
+
+}  // namespace artcam
