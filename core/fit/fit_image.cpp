@@ -4,6 +4,7 @@
 #include "core/fit/normalize.h"
 #include "core/fit/poles.h"
 #include "core/fit/refine.h"
+#include "core/fit/robust.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 
@@ -351,7 +352,8 @@ FitSummary solve(const Problem& pb, const FitOptions& options) {
                                  " model is not available in " + std::to_string(pb.dimension) + "D");
   } else {
     fit = fitModel(options.model, pb, options);
-    if (fit.status && pb.src.size() <= 2000) held_out = heldOutError(options.model, pb, options);
+    if (fit.status && options.diagnostics && pb.src.size() <= 2000)
+      held_out = heldOutError(options.model, pb, options);
   }
   if (!fit.status) {
     summary.status = fit.status;
@@ -464,6 +466,33 @@ FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize sour
   if (const std::string error = collect(matches, 2, used); !error.empty()) {
     FitSummary summary;
     summary.status = Status::failure(error);
+    return summary;
+  }
+  if (options.robust) {
+    // Find the inliers, fit them as usual, and report every enabled match's residual.
+    std::vector<PointMatch> enabled;
+    for (const PointMatch* match : used) enabled.push_back(*match);
+    RobustOptions ro;
+    ro.threshold_px = options.robust_threshold_px;
+    const RobustResult inl = findInliers(enabled, source_size, target_size, options.model, ro);
+    if (!inl.status) {
+      FitSummary summary;
+      summary.status = inl.status;
+      return summary;
+    }
+    std::vector<PointMatch> kept;
+    for (int k : inl.inliers) kept.push_back(enabled[k]);
+    FitOptions plain = options;
+    plain.robust = false;
+    FitSummary summary = fitImageCamera(kept, source_size, target_size, plain);
+    if (!summary.status) return summary;
+    summary.record.inliers = inl.inliers;
+    summary.record.residuals_px = reprojectionResiduals(summary.camera, enabled);
+    summary.record.reason += std::string(summary.record.reason.empty() ? "" : "; ") + "robust: " +
+                             std::to_string(inl.inliers.size()) + " of " +
+                             std::to_string(enabled.size()) + " matches within " +
+                             fmt(options.robust_threshold_px) + " px after " +
+                             std::to_string(inl.iterations) + " iterations";
     return summary;
   }
   Problem pb;

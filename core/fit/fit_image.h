@@ -37,6 +37,11 @@ struct FitOptions {
   // Image cameras: refuse a camera whose denominator vanishes inside the source frame; for
   // the quadratic, first retry from the lifted homography and affine fits (poles.h).
   bool require_pole_free = true;
+  // Held-out (cross-validated) error of a named model, for the report. Off inside RANSAC.
+  bool diagnostics = true;
+  // MSAC/LO-RANSAC over minimal sets first, then the fit on the inliers (robust.h).
+  bool robust = false;
+  double robust_threshold_px = 3.0;
 };
 
 struct FitSummary {
