@@ -14,6 +14,7 @@ namespace artcam::cli {
 const char* const kFitUsage =
     "usage: artcam fit MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
     "                  [--model auto|translation|similarity|affine|homography|quadratic] [--json]\n"
+    "                  [--no-refine] [--robust [--threshold PX]] [--allow-poles]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n\n"
     "Fits a camera to point matches. MATCHES.csv has the header src_x,src_y,dst_x,dst_y\n"
     "(pixels, centres at i + 0.5). --size is the source image size; --target-size the target's\n"
@@ -23,6 +24,11 @@ const char* const kFitUsage =
     "Prints the model, match count, RMS and max residual (px); --json prints one JSON object\n"
     "{model, matches, rms_px, max_px, residuals_px, singular_values, reason, output}.\n"
     "The .artcam file keeps the matches and the fit report.\n"
+    "The quadratic is refined by Levenberg–Marquardt on the reprojection error (--no-refine\n"
+    "keeps the algebraic SVD solution). A camera whose denominator vanishes inside the source\n"
+    "frame (a pole) is refused, after retrying from the homography and affine fits, unless\n"
+    "--allow-poles. --robust samples minimal sets (MSAC with local optimisation) and fits the\n"
+    "matches within --threshold px (default 3); the inlier indices are printed and stored.\n"
     "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
     "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n";
 
@@ -32,6 +38,10 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--target-size", "", true},
                          {"--model", "", true},
                          {"--dim", "", true},
+                         {"--no-refine", "", false},
+                         {"--robust", "", false},
+                         {"--threshold", "", true},
+                         {"--allow-poles", "", false},
                          {"--json", "", false}});
   args.expectPositional(1, "MATCHES.csv");
   const auto output = args.value("--output");
@@ -52,6 +62,18 @@ int fitCommand(const std::vector<std::string>& argv) {
   const auto model = modelClassFromName(model_name);
   if (!model) throw UsageError("unknown --model \"" + model_name + "\"");
   options.model = *model;
+  options.refine = !args.has("--no-refine");
+  options.require_pole_free = !args.has("--allow-poles");
+  options.robust = args.has("--robust");
+  if (args.has("--threshold")) {
+    if (!options.robust) throw UsageError("--threshold goes with --robust");
+    try {
+      options.robust_threshold_px = std::stod(*args.value("--threshold"));
+    } catch (const std::exception&) {
+      throw UsageError("--threshold expects a number of pixels");
+    }
+    if (!(options.robust_threshold_px > 0)) throw UsageError("--threshold must be positive");
+  }
 
   const std::string& csv = args.positional()[0];
   const auto matches = readMatchesCsv(csv, dimension);
@@ -64,7 +86,7 @@ int fitCommand(const std::vector<std::string>& argv) {
   if (const Status s = writeArtcamFile(*output, doc); !s) throw CommandError(s.message);
 
   if (args.has("--json")) {
-    const nlohmann::json j = {{"model", fit.record.model},
+    nlohmann::json j = {{"model", fit.record.model},
                               {"matches", fit.record.matches},
                               {"rms_px", fit.record.rms_px},
                               {"max_px", fit.record.max_px},
@@ -72,10 +94,30 @@ int fitCommand(const std::vector<std::string>& argv) {
                               {"singular_values", fit.record.singular_values},
                               {"reason", fit.record.reason},
                               {"output", *output}};
+    nlohmann::json& jr = j;
+    if (fit.record.held_out_rms_px >= 0) jr["held_out_rms_px"] = fit.record.held_out_rms_px;
+    if (fit.record.algebraic_rms_px >= 0) jr["algebraic_rms_px"] = fit.record.algebraic_rms_px;
+    if (fit.record.pole_checked) {
+      jr["pole_free"] = fit.record.pole_free;
+      jr["pole_margin"] = fit.record.pole_margin;
+    }
+    if (options.robust) jr["inliers"] = fit.record.inliers;
     std::printf("%s\n", j.dump().c_str());
   } else {
     std::printf("%s\n", fit.report().c_str());
     if (!fit.record.reason.empty()) std::printf("%s\n", fit.record.reason.c_str());
+    if (fit.record.held_out_rms_px >= 0)
+      std::printf("held-out RMS %.4g (cross-validated)\n", fit.record.held_out_rms_px);
+    if (fit.record.algebraic_rms_px >= 0)
+      std::printf("refined from the algebraic RMS %.4g\n", fit.record.algebraic_rms_px);
+    if (fit.record.pole_checked)
+      std::printf("%s over the source frame (margin %.3g)\n",
+                  fit.record.pole_free ? "pole-free" : "HAS A POLE", fit.record.pole_margin);
+    if (options.robust) {
+      std::printf("inliers (%zu):", fit.record.inliers.size());
+      for (int k : fit.record.inliers) std::printf(" %d", k + 1);
+      std::printf("\n");
+    }
     std::printf("wrote %s\n", output->c_str());
   }
   return 0;

@@ -2,6 +2,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "core/io/artcam_file.h"
+#include "core/fit/poles.h"
 #include "core/model/structure.h"
 
 #include <cstdio>
@@ -30,6 +31,7 @@ int infoCommand(const std::vector<std::string>& argv) {
   std::printf("frames:    source %dx%d, target %dx%d (tensors in the normalised frames)\n",
               camera.sourceSize().width, camera.sourceSize().height, camera.targetSize().width,
               camera.targetSize().height);
+  std::printf("poles:     %s\n", checkPoles(camera).describe().c_str());
   if (structure.geometry != GeometryClass::Rational && structure.homography.size() > 0) {
     std::printf("homography (target_from_source, normalised, column form):\n");
     for (Eigen::Index r = 0; r < structure.homography.rows(); ++r) {

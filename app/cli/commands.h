@@ -24,11 +24,13 @@ int fitCommand(const std::vector<std::string>& args);
 int mapCommand(const std::vector<std::string>& args);
 int warpCommand(const std::vector<std::string>& args);
 int infoCommand(const std::vector<std::string>& args);
+int benchCommand(const std::vector<std::string>& args);
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
 extern const char* const kWarpUsage;
 extern const char* const kInfoUsage;
+extern const char* const kBenchUsage;
 
 int run(int argc, char** argv);
 

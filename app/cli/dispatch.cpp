@@ -13,6 +13,7 @@ const Command kCommands[] = {
     {"map", "map source pixels through a camera", kMapUsage, mapCommand},
     {"warp", "warp an image through a camera", kWarpUsage, warpCommand},
     {"info", "describe a camera file", kInfoUsage, infoCommand},
+    {"bench", "time the render kernels (CSV, plot)", kBenchUsage, benchCommand},
 };
 
 void printHelp() {

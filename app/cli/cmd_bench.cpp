@@ -1,0 +1,356 @@
+// artcam bench render: speed and position error of every render kernel and filter (issue 5).
+// A benchmark, not a test: figures are medians of repeated renders on a photo-sized image made
+// in code; the error is the distance (source pixels) between the fused kernel's source
+// positions and an exact double-precision inverse (coordinates.h, makeReferenceInverse).
+#include "app/cli/args.h"
+#include "app/cli/commands.h"
+#include "core/io/image_io.h"
+#include "core/model/frames.h"
+#include "core/model/structure.h"
+#include "core/render/coordinates.h"
+#include "core/render/warp.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace artcam::cli {
+
+const char* const kBenchUsage =
+    "usage: artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
+    "                           [--peer DIR]\n\n"
+    "Times the fused warp on a WxH RGB8 image made in code (default 6000x4000): each kernel\n"
+    "(identity, translation-copy, affine, homography, rational, and a minifying homography\n"
+    "with anti-aliasing) with each filter, on each thread count of LIST (default 1,2), as the\n"
+    "median of N renders (default 5). Prints CSV on stdout:\n"
+    "  source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share\n"
+    "where the error is the distance of the kernel's source positions from an exact\n"
+    "double-precision inverse on a sample of rows. --peer DIR runs DIR/cvwarp (the OpenCV\n"
+    "maps + remap peer of ../shared/peerbench) on the same image and adds its rows.\n"
+    "--plot writes a PNG of speed (x, log) against error (y, log), one colour per kernel.\n";
+
+namespace {
+
+struct Case {
+  std::string name;
+  Camera camera;
+  bool antialias = false;
+};
+
+// A photo-like RGB8 image: smooth gradients, edges and hash noise, made in code.
+std::vector<std::uint8_t> makeImage(int w, int h) {
+  std::vector<std::uint8_t> img(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint32_t n = static_cast<std::uint32_t>(x) * 73856093u ^ static_cast<std::uint32_t>(y) * 19349663u;
+      n = (n ^ (n >> 13)) * 0x5bd1e995u;
+      const int noise = static_cast<int>(n >> 28) - 8;
+      std::uint8_t* p = img.data() + (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3;
+      const bool check = ((x / 97) + (y / 89)) % 2 == 0;
+      p[0] = static_cast<std::uint8_t>(std::clamp(40 + 160 * x / w + noise, 0, 255));
+      p[1] = static_cast<std::uint8_t>(std::clamp(40 + 160 * y / h + noise, 0, 255));
+      p[2] = static_cast<std::uint8_t>(std::clamp((check ? 200 : 50) + noise, 0, 255));
+    }
+  return img;
+}
+
+Camera homography(const Eigen::Matrix3d& h, FrameSize size) {
+  Stage stage;
+  for (const Eigen::MatrixXd& q : liftHomography(h)) stage.q.push_back(q);
+  return Camera({Block{BlockKind::Position, 3}}, {stage}, size, size);
+}
+
+std::vector<Case> makeCases(FrameSize size) {
+  std::vector<Case> cases;
+  const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();
+  cases.push_back({"identity", Camera::identity({Block{BlockKind::Position, 3}}, size, size), false});
+  Eigen::Matrix3d t = id;
+  const double s = std::max(size.width, size.height) / 2.0;  // normalised frame scale (frames.h)
+  t(0, 2) = 3.0 / s;
+  t(1, 2) = -2.0 / s;
+  cases.push_back({"translation-copy", homography(t, size), false});
+  Eigen::Matrix3d a = id;
+  a << 1.02, 0.05, 0.01, -0.04, 0.99, -0.02, 0, 0, 1;
+  cases.push_back({"affine", homography(a, size), false});
+  Eigen::Matrix3d h = a;
+  h(2, 0) = 0.03;
+  h(2, 1) = -0.02;
+  cases.push_back({"homography", homography(h, size), false});
+  // The peer's mild lens-like map (peerbench/common.hpp default_map) as our forward camera.
+  const double p[3][6] = {{0.030, 0.020, 1.000, -0.010, 0.010, 0.005},
+                          {0.010, -0.020, 0.015, 0.030, 0.980, -0.004},
+                          {0.020, 0.010, 0.040, -0.020, -0.030, 1.000}};
+  std::vector<Eigen::Matrix3d> q(3);
+  for (int k = 0; k < 3; ++k)
+    q[static_cast<size_t>(k)] << p[k][0], p[k][1] / 2, p[k][2] / 2, p[k][1] / 2, p[k][3],
+        p[k][4] / 2, p[k][2] / 2, p[k][4] / 2, p[k][5];
+  cases.push_back({"rational", Camera::rtcam(q, size, size), false});
+  Eigen::Matrix3d m = id;
+  m(0, 0) = m(1, 1) = 2.5;  // the target shows the source at 1/2.5 scale
+  m(2, 0) = 0.1;
+  cases.push_back({"homography-minify", homography(m, size), true});
+  return cases;
+}
+
+struct PositionError {
+  double max = 0.0, rms = 0.0;
+  long long validity_mismatch = 0;
+};
+
+PositionError measureError(const Camera& camera, FrameSize size) {
+  const CameraStructure structure = analyseStructure(camera);
+  const KernelChoice choice = makeCoordinateKernel(camera, structure, size, size, {});
+  const auto reference = makeReferenceInverse(camera, structure, size, size);
+  PositionError e;
+  double sum = 0.0;
+  long long count = 0;
+  std::vector<Eigen::Vector2d> exact(static_cast<size_t>(size.width));
+  std::vector<unsigned char> exact_valid(static_cast<size_t>(size.width));
+  float sx[kSpanPixels], sy[kSpanPixels];
+  unsigned char valid[kSpanPixels];
+  const int step = std::max(1, size.height / 60);
+  for (int y = step / 2; y < size.height; y += step) {
+    reference->row(y, size.width, exact.data(), exact_valid.data());
+    for (int x0 = 0; x0 < size.width; x0 += kSpanPixels) {
+      const int n = std::min(kSpanPixels, size.width - x0);
+      choice.kernel->span(y, x0, n, sx, sy, valid);
+      for (int i = 0; i < n; ++i) {
+        const size_t k = static_cast<size_t>(x0 + i);
+        if ((valid[i] != 0) != (exact_valid[k] != 0)) ++e.validity_mismatch;
+        if (!valid[i] || !exact_valid[k]) continue;
+        const double d = std::hypot(sx[i] - exact[k].x(), sy[i] - exact[k].y());
+        e.max = std::max(e.max, d);
+        sum += d * d;
+        ++count;
+      }
+    }
+  }
+  e.rms = count ? std::sqrt(sum / count) : 0.0;
+  return e;
+}
+
+struct Row {
+  std::string source, kernel, filter;
+  int threads = 1;
+  double ms = 0, mpix = 0, max_err = -1, rms_err = -1, newton_share = 0;
+};
+
+void printRow(const Row& r) {
+  const auto num = [](double v) { return v < 0 ? std::string() : std::to_string(v); };
+  std::printf("%s,%s,%s,%d,%.2f,%.1f,%s,%s,%.4f\n", r.source.c_str(), r.kernel.c_str(),
+              r.filter.c_str(), r.threads, r.ms, r.mpix, num(r.max_err).c_str(),
+              num(r.rms_err).c_str(), r.newton_share);
+  std::fflush(stdout);
+}
+
+// OpenCV peer rows from peerbench's cvwarp (its report format: name, threads, ms, Mpix/s).
+std::vector<Row> runPeer(const std::string& dir, const std::vector<std::uint8_t>& img, FrameSize size,
+                         int reps) {
+  std::vector<Row> rows;
+  const std::string exe = dir + "/cvwarp";
+  if (!std::filesystem::exists(exe)) {
+    std::fprintf(stderr, "bench: no %s, peer skipped\n", exe.c_str());
+    return rows;
+  }
+  const std::filesystem::path ppm = std::filesystem::temp_directory_path() / "artcam-bench-peer.ppm";
+  if (FILE* f = std::fopen(ppm.c_str(), "wb")) {
+    std::fprintf(f, "P6\n%d %d\n255\n", size.width, size.height);
+    std::fwrite(img.data(), 1, img.size(), f);
+    std::fclose(f);
+  }
+  // cvwarp also writes img/cv_linear.ppm relative to its working directory: run it in /tmp.
+  std::filesystem::create_directories(std::filesystem::temp_directory_path() / "img");
+  const std::string cmd = "cd " + std::filesystem::temp_directory_path().string() + " && " + exe +
+                          " " + ppm.string() + " " + std::to_string(reps) + " 2>/dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return rows;
+  std::map<std::pair<std::string, int>, double> ms;
+  char line[512];
+  while (std::fgets(line, sizeof line, pipe)) {
+    // Lines end in "<threads> <ms> <Mpix/s>"; the name is the words before.
+    std::vector<std::string> words;
+    for (char* tok = std::strtok(line, " \t\n"); tok; tok = std::strtok(nullptr, " \t\n"))
+      words.emplace_back(tok);
+    if (words.size() < 4) continue;
+    int thr = 0;
+    double t = 0;
+    try {
+      thr = std::stoi(words[words.size() - 3]);
+      t = std::stod(words[words.size() - 2]);
+    } catch (const std::exception&) {
+      continue;
+    }
+    std::string name;
+    for (size_t i = 0; i + 3 < words.size(); ++i) name += (i ? " " : "") + words[i];
+    ms[{name, thr}] = t;
+  }
+  pclose(pipe);
+  const double mpix = size.width * static_cast<double>(size.height) / 1e6;
+  for (int thr = 1; thr <= 2; ++thr) {
+    const auto get = [&](const std::string& n) {
+      const auto it = ms.find({n, thr});
+      return it == ms.end() ? -1.0 : it->second;
+    };
+    const double maps = get("maps: auto-vectorised loop (-O3 -march=native)");
+    const struct { const char* filter; double remap; } peers[] = {
+        {"nearest", get("remap INTER_NEAREST, float maps")},
+        {"bilinear", get("remap INTER_LINEAR, float maps")},
+        {"bicubic", get("remap INTER_CUBIC, float maps")}};
+    for (const auto& p : peers) {
+      if (maps < 0 || p.remap < 0) continue;
+      Row r;
+      r.source = "opencv-maps+remap";
+      r.kernel = "rational";
+      r.filter = p.filter;
+      r.threads = thr;
+      r.ms = maps + p.remap;
+      r.mpix = mpix / (r.ms / 1000.0);
+      // INTER_LINEAR/CUBIC quantise positions to 1/32 px: up to 1/64 px off per axis.
+      r.max_err = p.filter == std::string("nearest") ? -1 : std::sqrt(2.0) / 64.0;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+void drawPlot(const std::vector<Row>& rows, const std::string& path) {
+  const int w = 800, h = 500, left = 60, bottom = 40, right = 20, top = 20;
+  ImageF img(w, h, 3);
+  std::fill(img.data.begin(), img.data.end(), 1.0f);
+  const auto put = [&](int x, int y, const float c[3]) {
+    if (x < 0 || y < 0 || x >= w || y >= h) return;
+    float* p = img.pixel(x, y);
+    for (int k = 0; k < 3; ++k) p[k] = c[k];
+  };
+  const float black[3] = {0, 0, 0}, grey[3] = {0.8f, 0.8f, 0.8f};
+  // x: log10 Mpix/s in [0, 4]; y: log10 max error in [−8, 0] (0 error drawn at the bottom).
+  const auto xOf = [&](double mpix) {
+    return left + static_cast<int>((w - left - right) * std::clamp(std::log10(std::max(mpix, 1.0)) / 4.0, 0.0, 1.0));
+  };
+  const auto yOf = [&](double err) {
+    const double l = err > 0 ? std::log10(err) : -8.0;
+    return h - bottom - static_cast<int>((h - top - bottom) * std::clamp((l + 8.0) / 8.0, 0.0, 1.0));
+  };
+  for (int d = 0; d <= 4; ++d)
+    for (int y = top; y < h - bottom; ++y) put(xOf(std::pow(10.0, d)), y, grey);
+  for (int d = -8; d <= 0; ++d)
+    for (int x = left; x < w - right; ++x) put(x, yOf(std::pow(10.0, d)), grey);
+  for (int x = left; x < w - right; ++x) put(x, h - bottom, black);
+  for (int y = top; y < h - bottom; ++y) put(left, y, black);
+  const float target[3] = {0.9f, 0.3f, 0.3f};  // the 1/256 px budget
+  for (int x = left; x < w - right; x += 2) put(x, yOf(1.0 / 256.0), target);
+  const std::map<std::string, std::array<float, 3>> colours = {
+      {"identity", {0.1f, 0.1f, 0.1f}},       {"translation-copy", {0.5f, 0.5f, 0.5f}},
+      {"affine", {0.1f, 0.6f, 0.1f}},         {"homography", {0.1f, 0.3f, 0.9f}},
+      {"rational", {0.9f, 0.5f, 0.0f}},       {"homography-minify", {0.6f, 0.1f, 0.7f}}};
+  for (const Row& r : rows) {
+    auto it = colours.find(r.kernel);
+    std::array<float, 3> c = it == colours.end() ? std::array<float, 3>{0, 0, 0} : it->second;
+    const bool peer = r.source != "artcam";
+    if (peer) c = {0.9f, 0.1f, 0.1f};
+    const int cx = xOf(r.mpix), cy = yOf(std::max(r.max_err, 0.0));
+    const int rad = r.threads == 1 ? 3 : 5;
+    for (int dy = -rad; dy <= rad; ++dy)
+      for (int dx = -rad; dx <= rad; ++dx)
+        if (!peer || std::abs(dx) == std::abs(dy) || dx == 0 || dy == 0) put(cx + dx, cy + dy, c.data());
+  }
+  if (const Status s = writeImage(path, img); !s) throw CommandError(s.message);
+}
+
+double medianOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int benchCommand(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--size", "", true},
+                         {"--reps", "", true},
+                         {"--threads", "", true},
+                         {"--plot", "", true},
+                         {"--peer", "", true}});
+  args.expectPositional(1, "what to benchmark (render)");
+  if (args.positional()[0] != "render") throw UsageError("only \"bench render\" exists");
+  const FrameSize size = args.has("--size") ? parseSize(*args.value("--size"), "--size")
+                                            : FrameSize{6000, 4000};
+  int reps = 5;
+  std::vector<int> thread_counts;
+  try {
+    reps = std::max(1, std::stoi(args.valueOr("--reps", "5")));
+    std::string list = args.valueOr("--threads", "1,2");
+    for (size_t p = 0; p < list.size();) {
+      const size_t comma = list.find(',', p);
+      thread_counts.push_back(std::max(1, std::stoi(list.substr(p, comma - p))));
+      p = comma == std::string::npos ? list.size() : comma + 1;
+    }
+  } catch (const std::exception&) {
+    throw UsageError("--reps and --threads expect whole numbers (--threads 1,2)");
+  }
+
+  const std::vector<std::uint8_t> pixels = makeImage(size.width, size.height);
+  const ConstImageView src = packedView<const void>(pixels.data(), size.width, size.height, 3, PixelType::UInt8);
+  std::vector<std::uint8_t> out_pixels(pixels.size());
+  const ImageView dst = packedView<void>(out_pixels.data(), size.width, size.height, 3, PixelType::UInt8);
+  const double mpix = size.width * static_cast<double>(size.height) / 1e6;
+
+  std::printf("source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share\n");
+  std::vector<Row> rows;
+  for (const Case& c : makeCases(size)) {
+    const PositionError err = measureError(c.camera, size);
+    if (err.validity_mismatch)
+      std::fprintf(stderr, "bench: %s: %lld sampled pixels differ from the reference in having a "
+                   "preimage\n", c.name.c_str(), err.validity_mismatch);
+    for (Filter f : {Filter::Nearest, Filter::Bilinear, Filter::Bicubic}) {
+      if (c.antialias && f != Filter::Bilinear) continue;
+      for (int threads : thread_counts) {
+        WarpOptions o;
+        o.filter = f;
+        o.threads = threads;
+        o.antialias = c.antialias;
+        std::vector<double> times;
+        WarpSummary s;
+        warpImage(src, c.camera, dst, o, &s);  // warm-up
+        for (int r = 0; r < reps; ++r) {
+          warpImage(src, c.camera, dst, o, &s);
+          times.push_back(s.render_ms);
+        }
+        Row row;
+        row.source = "artcam";
+        row.kernel = c.name;
+        row.filter = std::string(filterName(f)) + (c.antialias ? "+aa" : "");
+        row.threads = threads;
+        row.ms = medianOf(times);
+        row.mpix = mpix / (row.ms / 1000.0);
+        row.max_err = err.max;
+        row.rms_err = err.rms;
+        row.newton_share = s.newton_pixels / (mpix * 1e6);
+        printRow(row);
+        rows.push_back(row);
+      }
+    }
+  }
+  if (args.has("--peer"))
+    for (const Row& r : runPeer(*args.value("--peer"), pixels, size, reps)) {
+      printRow(r);
+      rows.push_back(r);
+    }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::fprintf(stderr, "peak_rss_mib=%.1f (image in + out: %.1f MiB)\n", usage.ru_maxrss / 1024.0,
+               2.0 * static_cast<double>(pixels.size()) / (1024.0 * 1024.0));
+  if (args.has("--plot")) drawPlot(rows, *args.value("--plot"));
+  return 0;
+}
+
+}  // namespace artcam::cli
