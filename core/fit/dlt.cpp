@@ -1,5 +1,6 @@
 #include "core/fit/dlt.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -49,7 +50,54 @@ DltSolution linearLeastSquares(const Eigen::MatrixXd& a, const Eigen::MatrixXd& 
 
 }  // namespace
 
+// The 2D quadratic DLT through its 18×18 normal matrix, accumulated from 6×6 blocks: with
+// rows [χ, 0, -Xχ] and [0, χ, -Yχ], DᵀD = [[A, 0, -B], [0, A, -C], [-B, -C, E]] where A = Σχχᵀ,
+// B = ΣXχχᵀ, C = ΣYχχᵀ, E = Σ(X² + Y²)χχᵀ. O(m) with a small constant instead of an SVD of a
+// 2m×18 matrix; conditioning keeps the squared condition number harmless at the noise levels
+// of real data. Used for many matches only: small exact problems keep the SVD.
+DltSolution solveQuadraticNormal2d(const Points& src, const Points& dst) {
+  using M6 = Eigen::Matrix<double, 6, 6>;
+  M6 a = M6::Zero(), b = M6::Zero(), c = M6::Zero(), e = M6::Zero();
+  Eigen::Matrix<double, 6, 1> chi;
+  for (size_t k = 0; k < src.size(); ++k) {
+    const double u = src[k][0], v = src[k][1], x = dst[k][0], y = dst[k][1];
+    chi << u * u, 2 * u * v, 2 * u, v * v, 2 * v, 1.0;
+    const M6 outer = chi * chi.transpose();
+    a += outer;
+    b += x * outer;
+    c += y * outer;
+    e += (x * x + y * y) * outer;
+  }
+  Eigen::Matrix<double, 18, 18> normal = Eigen::Matrix<double, 18, 18>::Zero();
+  normal.block<6, 6>(0, 0) = a;
+  normal.block<6, 6>(6, 6) = a;
+  normal.block<6, 6>(0, 12) = -b;
+  normal.block<6, 6>(12, 0) = -b;
+  normal.block<6, 6>(6, 12) = -c;
+  normal.block<6, 6>(12, 6) = -c;
+  normal.block<6, 6>(12, 12) = e;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 18, 18>> eig(normal);
+  DltSolution s;
+  s.singular_values = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
+  // Eigenvalues of DᵀD carry absolute errors near eps·λmax, so a null direction is one whose
+  // singular value is below √eps of the largest, not kNullTolerance.
+  const double largest = s.singular_values[17];
+  s.null_dimension = 0;
+  for (int i = 0; i < 18; ++i)
+    if (s.singular_values[i] <= 1e-7 * largest) ++s.null_dimension;
+  s.null_dimension = std::max(s.null_dimension, 1);
+  const Eigen::Matrix<double, 18, 1> r = eig.eigenvectors().col(0);
+  for (int i = 0; i < 3; ++i) {
+    Eigen::MatrixXd q(3, 3);
+    const auto ri = r.segment<6>(6 * i);
+    q << ri[0], ri[1], ri[2], ri[1], ri[3], ri[4], ri[2], ri[4], ri[5];
+    s.q.push_back(std::move(q));
+  }
+  return s;
+}
+
 DltSolution solveQuadraticDlt(const Points& src, const Points& dst) {
+  if (dimensionOf(src) == 2 && src.size() > kNormalEquationsFrom) return solveQuadraticNormal2d(src, dst);
   const Eigen::Index n = dimensionOf(src) + 1;
   const Eigen::Index terms = n * (n + 1) / 2;
   const Eigen::Index m = static_cast<Eigen::Index>(src.size());

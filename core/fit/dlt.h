@@ -27,6 +27,9 @@ struct DltSolution {
 
 // Relative singular value below which a direction counts as null.
 inline constexpr double kNullTolerance = 1e-9;
+// From this many 2D matches on, the quadratic DLT solves its normal matrix instead of an SVD of
+// the design matrix (O(m) and ~10× faster; exact small problems keep the SVD's accuracy).
+inline constexpr size_t kNormalEquationsFrom = 40;
 
 DltSolution solveQuadraticDlt(const Points& src, const Points& dst);
 DltSolution solveProjectiveDlt(const Points& src, const Points& dst);  // homography

@@ -127,7 +127,7 @@ ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
   const Points src = applyTransform(ts, pb.src);
   const Points dst = applyTransform(td, pb.dst);
 
-  if (model == ModelClass::Quadratic && quadricDegeneracy(src) < 1e-9) {
+  if (model == ModelClass::Quadratic && quadricDegeneracy(src) < 1e-7) {
     out.status = Status::failure(
         "all " + std::to_string(m) + " source points lie on one " +
         (pb.dimension == 2 ? "conic (such as a circle or two lines)" : "quadric surface") +
@@ -248,6 +248,20 @@ ModelFit fitModel(ModelClass model, const Problem& pb, const FitOptions& options
 std::vector<double> residuals(const Camera& camera, const Problem& pb) {
   std::vector<double> out;
   out.reserve(pb.src.size());
+  if (pb.dimension == 2 && camera.stages().size() == 1 && camera.dimension() == 3) {
+    // Fixed-size evaluation: this runs over every match of every candidate and fold.
+    const Eigen::Matrix3d q0 = camera.stages()[0].q[0], q1 = camera.stages()[0].q[1],
+                          q2 = camera.stages()[0].q[2];
+    for (size_t k = 0; k < pb.src.size(); ++k) {
+      const Eigen::Vector3d x(pb.src[k][0], pb.src[k][1], 1.0);
+      const double w = x.dot(q2 * x);
+      const Eigen::Vector2d y(x.dot(q0 * x) / w, x.dot(q1 * x) / w);
+      const double e = (y - Eigen::Vector2d(pb.dst[k][0], pb.dst[k][1])).norm();
+      out.push_back(std::isfinite(e) ? e * pb.target_units_per_stored_unit
+                                     : std::numeric_limits<double>::infinity());
+    }
+    return out;
+  }
   for (size_t k = 0; k < pb.src.size(); ++k) {
     const auto y = mapStored(camera, pb.src[k]);
     out.push_back(y ? (*y - pb.dst[k]).norm() * pb.target_units_per_stored_unit

@@ -1,6 +1,6 @@
 #include "core/fit/normalize.h"
 
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -46,11 +46,12 @@ double spreadRatio(const Points& points) {
   Eigen::VectorXd centroid = Eigen::VectorXd::Zero(d);
   for (const Eigen::VectorXd& p : points) centroid += p;
   centroid /= static_cast<double>(points.size());
-  Eigen::MatrixXd centred(static_cast<Eigen::Index>(points.size()), d);
-  for (size_t k = 0; k < points.size(); ++k)
-    centred.row(static_cast<Eigen::Index>(k)) = (points[k] - centroid).transpose();
-  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(centred).singularValues();
-  return sv[0] > 0.0 ? sv[d - 1] / sv[0] : 0.0;
+  // Singular values of the centred points are the square roots of the scatter matrix's
+  // eigenvalues; at √eps relative resolution, enough for the 1e-7 threshold callers use.
+  Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(d, d);
+  for (const Eigen::VectorXd& p : points) scatter += (p - centroid) * (p - centroid).transpose();
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scatter).eigenvalues();
+  return ev[d - 1] > 0.0 ? std::sqrt(std::max(ev[0], 0.0) / ev[d - 1]) : 0.0;
 }
 
 double quadricDegeneracy(const Points& conditioned_points) {
@@ -58,16 +59,19 @@ double quadricDegeneracy(const Points& conditioned_points) {
   const Eigen::Index n = conditioned_points.front().size() + 1;
   const Eigen::Index terms = n * (n + 1) / 2;
   if (static_cast<Eigen::Index>(conditioned_points.size()) < terms) return 0.0;
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(conditioned_points.size()), terms);
-  for (size_t r = 0; r < conditioned_points.size(); ++r) {
-    Eigen::VectorXd x(n);
-    x << conditioned_points[r], 1.0;
+  // Through the monomials' normal matrix (O(m)); √eps resolution suits the 1e-7 threshold.
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(terms, terms);
+  Eigen::VectorXd x(n), mono(terms);
+  for (const Eigen::VectorXd& p : conditioned_points) {
+    x << p, 1.0;
     Eigen::Index c = 0;
     for (Eigen::Index j = 0; j < n; ++j)
-      for (Eigen::Index k = j; k < n; ++k) m(static_cast<Eigen::Index>(r), c++) = x[j] * x[k];
+      for (Eigen::Index k = j; k < n; ++k) mono[c++] = x[j] * x[k];
+    normal.selfadjointView<Eigen::Lower>().rankUpdate(mono);
   }
-  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(m).singularValues();
-  return sv[0] > 0.0 ? sv[terms - 1] / sv[0] : 0.0;
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(normal, Eigen::EigenvaluesOnly).eigenvalues();
+  return ev[terms - 1] > 0.0 ? std::sqrt(std::max(ev[0], 0.0) / ev[terms - 1]) : 0.0;
 }
 
 }  // namespace artcam

@@ -25,6 +25,7 @@ int countDistinct(Points points);
 // Smallest over largest singular value of the centred points: 0 when they span fewer than d
 // dimensions (collinear in 2D, coplanar in 3D).
 double spreadRatio(const Points& points);
+// (Both ratios are resolved to about 1e-8: compare them with thresholds of 1e-7 or more.)
 // Smallest over largest singular value of the quadratic monomials of conditioned points: 0 when
 // every point lies on one conic (2D) or quadric (3D), where Q_i + a_i C fits as well.
 double quadricDegeneracy(const Points& conditioned_points);

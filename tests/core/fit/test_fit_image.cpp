@@ -184,6 +184,23 @@ class TestFitImage : public QObject {
     QVERIFY2(err < 0.35, qPrintable(QString::number(err)));
   }
 
+  // Many matches take the normal-equation path; it must stay exact on exact data, also with
+  // coordinates offset far from the origin (1e4…1e6 px).
+  void manyExactMatchesStayExact() {
+    for (double offset : {0.0, 1e4, 1e5, 1e6}) {
+      const FrameSize big{static_cast<int>(2 * offset + 600), static_cast<int>(2 * offset + 400)};
+      const Camera truth = test::randomRationalCamera(big, big, 0.1);
+      std::vector<Eigen::Vector2d> src;
+      for (const Eigen::Vector2d& p : spreadPoints(20, FrameSize{600, 400}))
+        src.push_back(p + Eigen::Vector2d(offset, offset));
+      FitOptions o;
+      o.model = ModelClass::Quadratic;
+      const FitSummary s = fitImageCamera(matchesThrough(truth, src), big, big, o);
+      QVERIFY2(s.status.ok, s.status.message.c_str());
+      QVERIFY2(s.record.max_px < 1e-6, (s.report() + " offset " + std::to_string(offset)).c_str());
+    }
+  }
+
   // Conditioning keeps the null space accurate far from the origin.
   void largeOffsetsStayExact() {
     const FrameSize big{2000000, 1500000};
