@@ -25,6 +25,7 @@ int mapCommand(const std::vector<std::string>& args);
 int warpCommand(const std::vector<std::string>& args);
 int infoCommand(const std::vector<std::string>& args);
 int benchCommand(const std::vector<std::string>& args);
+int benchFitCommand(const std::vector<std::string>& args);  // artcam bench fit
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;

@@ -1,0 +1,193 @@
+// artcam bench fit: time against error for every fitting method (issue 4). A benchmark, not a
+// test: medians of repeated fits on matches made in code from a known rational camera, the
+// error measured against that true map on a dense grid (target pixels).
+#include "app/cli/args.h"
+#include "app/cli/commands.h"
+#include "core/fit/fit_image.h"
+#include "core/io/image_io.h"
+#include "core/model/frames.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace artcam::cli {
+
+const char* const kBenchFitUsage =
+    "usage: artcam bench fit [--counts LIST] [--noise LIST] [--plot OUT.png] [--seconds S]\n\n"
+    "Fits cameras to matches made from a known rational lens on a 6000x4000 frame, for each\n"
+    "method (raw-dlt: no conditioning; dlt: conditioned; refine: + Levenberg-Marquardt;\n"
+    "robust: + MSAC/LO-RANSAC with 20 % gross outliers added; auto: the model ladder), match\n"
+    "count (default 9,30,100,1000,10000,100000) and noise level in px (default 0,0.5,2).\n"
+    "Prints CSV: method,matches,noise_px,median_us,reps,rms_err_px,max_err_px\n"
+    "where the error is against the true map over the frame. --plot writes a PNG of time (x,\n"
+    "log) against error (y, log): the Pareto view. --seconds bounds each cell's timing (0.3).\n";
+
+namespace {
+
+const FrameSize kFrame{6000, 4000};
+
+struct Method {
+  const char* name;
+  FitOptions options;
+  bool outliers;
+};
+
+Camera lensCamera() {
+  // A pincushion lens with a little perspective: 1 - k r² in the denominator (normalised).
+  Camera c = Camera::identity({Block{BlockKind::Position, 3}}, kFrame, kFrame);
+  c.stages()[0].q[2](0, 0) = -0.08;
+  c.stages()[0].q[2](1, 1) = -0.08;
+  c.stages()[0].q[2](0, 2) = c.stages()[0].q[2](2, 0) = 0.02;
+  c.stages()[0].q[0](0, 1) = c.stages()[0].q[0](1, 0) = 0.03;
+  return c;
+}
+
+std::vector<PointMatch> makeMatches(const Camera& truth, int count, double noise, bool outliers,
+                                    std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> ux(0, kFrame.width), uy(0, kFrame.height);
+  std::normal_distribution<double> gauss(0.0, noise > 0 ? noise : 1.0);
+  std::vector<PointMatch> m;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector2d s(ux(rng), uy(rng));
+    Eigen::Vector2d t = *targetPixelFromSourcePixel(truth, s);
+    if (noise > 0) t += Eigen::Vector2d(gauss(rng), gauss(rng));
+    if (outliers && k % 5 == 0) t = Eigen::Vector2d(ux(rng), uy(rng));
+    m.push_back({s, t, true});
+  }
+  return m;
+}
+
+void mapError(const Camera& fit, const Camera& truth, double& rms, double& max) {
+  double sum = 0.0;
+  max = 0.0;
+  int n = 0;
+  for (int j = 0; j <= 40; ++j)
+    for (int i = 0; i <= 40; ++i, ++n) {
+      const Eigen::Vector2d p(kFrame.width * i / 40.0, kFrame.height * j / 40.0);
+      const auto a = targetPixelFromSourcePixel(fit, p), b = targetPixelFromSourcePixel(truth, p);
+      const double e = a && b ? (*a - *b).norm() : 1e9;
+      sum += e * e;
+      max = std::max(max, e);
+    }
+  rms = std::sqrt(sum / n);
+}
+
+std::vector<double> parseList(const std::string& text, const std::string& option) {
+  std::vector<double> out;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    try {
+      out.push_back(std::stod(item));
+    } catch (const std::exception&) {
+      throw UsageError(option + " expects a comma-separated list of numbers");
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+struct Row {
+  std::string method;
+  int matches;
+  double noise, median_us, rms, max;
+};
+
+// Time (x) against error (y), both log scale, one colour per method.
+void plot(const std::vector<Row>& rows, const std::vector<Method>& methods, const std::string& path) {
+  const int w = 800, h = 600, margin = 50;
+  ImageF img(w, h, 3);
+  std::fill(img.data.begin(), img.data.end(), 1.0f);
+  const auto axis = [&](int x0, int y0, int x1, int y1) {
+    for (int t = 0; t <= 1000; ++t) {
+      const int x = x0 + (x1 - x0) * t / 1000, y = y0 + (y1 - y0) * t / 1000;
+      float* p = img.pixel(x, y);
+      p[0] = p[1] = p[2] = 0.0f;
+    }
+  };
+  axis(margin, h - margin, w - margin, h - margin);
+  axis(margin, margin, margin, h - margin);
+  const float colours[][3] = {{0.8f, 0.1f, 0.1f}, {0.1f, 0.5f, 0.1f}, {0.1f, 0.2f, 0.8f},
+                              {0.7f, 0.5f, 0.0f}, {0.5f, 0.0f, 0.6f}};
+  // x: log10(µs) in [0, 6]; y: log10(px) in [-10, 3].
+  for (const Row& r : rows) {
+    const size_t mi = static_cast<size_t>(
+        std::find_if(methods.begin(), methods.end(), [&](const Method& m) { return r.method == m.name; }) -
+        methods.begin());
+    const double lx = std::clamp(std::log10(std::max(r.median_us, 1.0)) / 6.0, 0.0, 1.0);
+    const double ly = std::clamp((std::log10(std::max(r.rms, 1e-10)) + 10.0) / 13.0, 0.0, 1.0);
+    const int cx = margin + static_cast<int>(lx * (w - 2 * margin));
+    const int cy = h - margin - static_cast<int>(ly * (h - 2 * margin));
+    const int radius = 2 + static_cast<int>(std::log10(r.matches));
+    for (int dy = -radius; dy <= radius; ++dy)
+      for (int dx = -radius; dx <= radius; ++dx)
+        if (dx * dx + dy * dy <= radius * radius && cx + dx >= 0 && cx + dx < w && cy + dy >= 0 && cy + dy < h)
+          std::copy(colours[mi % 5], colours[mi % 5] + 3, img.pixel(cx + dx, cy + dy));
+  }
+  if (const Status s = writeImage(path, img); !s) throw CommandError(s.message);
+}
+
+}  // namespace
+
+int benchFitCommand(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--counts", "", true}, {"--noise", "", true}, {"--plot", "", true},
+                         {"--seconds", "", true}});
+  args.expectPositional(0, "");
+  const std::vector<double> counts =
+      parseList(args.valueOr("--counts", "9,30,100,1000,10000,100000"), "--counts");
+  const std::vector<double> noises = parseList(args.valueOr("--noise", "0,0.5,2"), "--noise");
+  const double seconds = parseList(args.valueOr("--seconds", "0.3"), "--seconds").front();
+
+  std::vector<Method> methods(5);
+  methods[0] = {"raw-dlt", {}, false};
+  methods[0].options.condition = false;
+  methods[1] = {"dlt", {}, false};
+  methods[2] = {"refine", {}, false};
+  methods[3] = {"robust", {}, true};
+  methods[4] = {"auto", {}, false};
+  for (int i = 0; i < 4; ++i) methods[i].options.model = ModelClass::Quadratic;
+  for (Method& m : methods) m.options.diagnostics = false;
+  methods[0].options.refine = methods[1].options.refine = false;
+  methods[3].options.robust = true;
+  methods[3].options.robust_threshold_px = 6.0;
+
+  const Camera truth = lensCamera();
+  std::mt19937_64 rng(42);
+  std::vector<Row> rows;
+  std::printf("method,matches,noise_px,median_us,reps,rms_err_px,max_err_px\n");
+  for (const Method& method : methods)
+    for (double count : counts)
+      for (double noise : noises) {
+        const int n = static_cast<int>(count);
+        if ((method.outliers || method.options.model == ModelClass::Auto) && n > 10000) continue;
+        const std::vector<PointMatch> matches = makeMatches(truth, n, noise, method.outliers, rng);
+        std::vector<double> times;
+        FitSummary fit;
+        const auto begin = std::chrono::steady_clock::now();
+        do {
+          const auto t0 = std::chrono::steady_clock::now();
+          fit = fitImageCamera(matches, kFrame, kFrame, method.options);
+          times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+        } while (times.size() < 3 ||
+                 (times.size() < 200 &&
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() < seconds));
+        std::sort(times.begin(), times.end());
+        Row row{method.name, n, noise, times[times.size() / 2], -1, -1};
+        if (fit.status) mapError(fit.camera, truth, row.rms, row.max);
+        std::printf("%s,%d,%g,%.1f,%zu,%.3g,%.3g\n", method.name, n, noise, row.median_us,
+                    times.size(), row.rms, row.max);
+        std::fflush(stdout);
+        if (fit.status) rows.push_back(row);
+      }
+  if (const auto path = args.value("--plot")) plot(rows, methods, *path);
+  return 0;
+}
+
+}  // namespace artcam::cli
