@@ -27,7 +27,10 @@
 namespace artcam::cli {
 
 const char* const kBenchUsage =
-    "usage: artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
+    "usage: artcam bench fit [--counts LIST] [--noise LIST] [--plot OUT.png] [--seconds S]\n"
+    "         time against error of every fitting method (raw DLT, conditioned DLT, + refine,\n"
+    "         + robust, auto) over match counts and noise levels; CSV on stdout\n"
+    "       artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
     "                           [--peer DIR]\n\n"
     "Times the fused warp on a WxH RGB8 image made in code (default 6000x4000): each kernel\n"
     "(identity, translation-copy, affine, homography, rational, and a minifying homography\n"
@@ -121,9 +124,10 @@ PositionError measureError(const Camera& camera, FrameSize size) {
   const int step = std::max(1, size.height / 60);
   for (int y = step / 2; y < size.height; y += step) {
     reference->row(y, size.width, exact.data(), exact_valid.data());
+    RowState row_state;
     for (int x0 = 0; x0 < size.width; x0 += kSpanPixels) {
       const int n = std::min(kSpanPixels, size.width - x0);
-      choice.kernel->span(y, x0, n, sx, sy, valid);
+      choice.kernel->span(y, x0, n, sx, sy, valid, row_state);
       for (int i = 0; i < n; ++i) {
         const size_t k = static_cast<size_t>(x0 + i);
         if ((valid[i] != 0) != (exact_valid[k] != 0)) ++e.validity_mismatch;
@@ -275,13 +279,14 @@ double medianOf(std::vector<double> v) {
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& argv) {
+  if (!argv.empty() && argv[0] == "fit") return benchFitCommand({argv.begin() + 1, argv.end()});
   const Args args(argv, {{"--size", "", true},
                          {"--reps", "", true},
                          {"--threads", "", true},
                          {"--plot", "", true},
                          {"--peer", "", true}});
   args.expectPositional(1, "what to benchmark (render)");
-  if (args.positional()[0] != "render") throw UsageError("only \"bench render\" exists");
+  if (args.positional()[0] != "render") throw UsageError("bench what? \"render\" or \"fit\"");
   const FrameSize size = args.has("--size") ? parseSize(*args.value("--size"), "--size")
                                             : FrameSize{6000, 4000};
   int reps = 5;

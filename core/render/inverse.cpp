@@ -47,20 +47,17 @@ class HomographyInverse final : public InverseMap {
   bool centre_sign_positive_ = true;
 };
 
+// From a close start Newton converges in 2–4 steps; a start that needs more is a poor one
+// (near a pole of the seed, across a fold), and the next start is cheaper than persisting.
+constexpr int kQuickIterations = 8;
+
 class RationalInverse final : public InverseMap {
  public:
   RationalInverse(RationalMap forward, std::optional<RationalMap> seed, FrameSize source_px,
                   const RationalInverseOptions& options)
-      : forward_(std::move(forward)), seed_(std::move(seed)), options_(options) {
-    const auto centre = centreReference(forward_, source_px);
-    if (!centre) throw std::invalid_argument("the camera's position map is undefined at the source centre");
-    centre_ = *centre;
-    const Eigen::FullPivLU<Eigen::Matrix2d> lu(centre_.jacobian);
-    has_linear_ = lu.isInvertible();
-    if (has_linear_) centre_inverse_jacobian_ = lu.inverse();
-    // Iterates that wander this far from the frame have left the sheet of the map we render.
-    escape_ = 10.0 * std::hypot(source_px.width, source_px.height);
-  }
+      : newton_(std::move(forward), source_px, options.residual_tolerance_px),
+        seed_(std::move(seed)),
+        options_(options) {}
 
   void row(int y, int width, Eigen::Vector2d* source, unsigned char* valid) const override {
     std::optional<RowQuadratics> seed_row;
@@ -74,14 +71,11 @@ class RationalInverse final : public InverseMap {
       if (seed_row) seed_row->advance();
       bool ok = false;
       // Within a run of solved pixels, extrapolating the last two solutions is within ~1e-3 px
-      // of the answer (one or two Newton steps) — measured faster than the fitted seed, which
-      // is only good to ~0.5 px and poor where it extrapolates past the source frame.
-      if (run >= 2) ok = solve(t, 2.0 * previous - before_previous, s, kQuickIterations);
-      if (!ok && have_seed) ok = solve(t, seed_start, s, kQuickIterations);
-      if (!ok && run >= 1) ok = solve(t, previous, s, kQuickIterations);
-      if (!ok && has_linear_)
-        ok = solve(t, centre_.source + centre_inverse_jacobian_ * (t - centre_.target), s,
-                   options_.max_iterations);
+      // of the answer (one or two Newton steps).
+      if (run >= 2) ok = newton_.solve(t, 2.0 * previous - before_previous, s, kQuickIterations);
+      if (!ok && have_seed) ok = newton_.solve(t, seed_start, s, kQuickIterations);
+      if (!ok && run >= 1) ok = newton_.solve(t, previous, s, kQuickIterations);
+      if (!ok) ok = newton_.solveFromCentre(t, s, options_.max_iterations);
       valid[x] = ok ? 1 : 0;
       if (ok) {
         source[x] = s;
@@ -95,71 +89,80 @@ class RationalInverse final : public InverseMap {
   }
 
  private:
-  // Damped Newton on forward(s) = t; the preimage must also lie on the centre's side of every
-  // pole curve and in the centre's fold (DESIGN §3).
-  // From a close start Newton converges in 2–4 steps; a start that needs more is a poor one
-  // (near a pole of the seed, across a fold), and the next start is cheaper than persisting.
-  static constexpr int kQuickIterations = 8;
-
-  bool solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out,
-             int max_iterations) const {
-    if (!start.allFinite()) return false;
-    Eigen::Vector2d s = start, f;
-    Eigen::Matrix2d j;
-    unsigned signs = 0;
-    if (!forward_.evaluate(s, f, &j, &signs)) return false;
-    Eigen::Vector2d r = f - t;
-    double rn = r.norm();
-    // Quadratic convergence takes a residual of 1e-3 px to far below this in one more step.
-    const double converged = 1e-4 * options_.residual_tolerance_px;
-    for (int it = 0; it < max_iterations && rn > converged; ++it) {
-      const double det = j.determinant();
-      if (!(std::abs(det) > 0.0)) return false;
-      const Eigen::Vector2d step =
-          -Eigen::Vector2d(j(1, 1) * r.x() - j(0, 1) * r.y(), -j(1, 0) * r.x() + j(0, 0) * r.y()) /
-          det;
-      if (!step.allFinite()) return false;
-      // Backtrack until the residual drops: keeps the iterate off the pole curve, where a full
-      // step can jump to another branch of the rational map.
-      double lambda = 1.0;
-      bool improved = false;
-      for (int k = 0; k < 12 && !improved; ++k, lambda *= 0.5) {
-        const Eigen::Vector2d trial = s + lambda * step;
-        Eigen::Vector2d tf;
-        Eigen::Matrix2d tj;
-        unsigned ts = 0;
-        if (!forward_.evaluate(trial, tf, &tj, &ts)) continue;
-        const double trn = (tf - t).norm();
-        if (trn < rn) {
-          s = trial;
-          f = tf;
-          j = tj;
-          signs = ts;
-          r = tf - t;
-          rn = trn;
-          improved = true;
-        }
-      }
-      if (!improved) break;  // stalled: at rounding level or at a local minimum; judged below
-      if ((s - centre_.source).norm() > escape_) return false;
-    }
-    if (!(rn <= options_.residual_tolerance_px)) return false;
-    if (signs != centre_.denominator_signs) return false;      // beyond a pole curve
-    if ((j.determinant() > 0.0) != centre_.det_positive) return false;  // folded over
-    out = s;
-    return true;
-  }
-
-  RationalMap forward_;
+  NewtonInverse newton_;
   std::optional<RationalMap> seed_;
   RationalInverseOptions options_;
-  CentreReference centre_;
-  bool has_linear_ = false;
-  Eigen::Matrix2d centre_inverse_jacobian_ = Eigen::Matrix2d::Identity();
-  double escape_ = 0.0;
 };
 
 }  // namespace
+
+NewtonInverse::NewtonInverse(RationalMap forward, FrameSize source_px, double residual_tolerance_px)
+    : forward_(std::move(forward)), residual_tolerance_px_(residual_tolerance_px) {
+  const auto centre = centreReference(forward_, source_px);
+  if (!centre) throw std::invalid_argument("the camera's position map is undefined at the source centre");
+  centre_ = *centre;
+  const Eigen::FullPivLU<Eigen::Matrix2d> lu(centre_.jacobian);
+  has_linear_ = lu.isInvertible();
+  if (has_linear_) centre_inverse_jacobian_ = lu.inverse();
+  // Iterates that wander this far from the frame have left the sheet of the map we render.
+  escape_ = 10.0 * std::hypot(source_px.width, source_px.height);
+}
+
+bool NewtonInverse::solveFromCentre(const Eigen::Vector2d& t, Eigen::Vector2d& out,
+                                    int max_iterations) const {
+  if (!has_linear_) return false;
+  return solve(t, centre_.source + centre_inverse_jacobian_ * (t - centre_.target), out,
+               max_iterations);
+}
+
+bool NewtonInverse::solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start,
+                          Eigen::Vector2d& out, int max_iterations) const {
+  if (!start.allFinite()) return false;
+  Eigen::Vector2d s = start, f;
+  Eigen::Matrix2d j;
+  unsigned signs = 0;
+  if (!forward_.evaluate(s, f, &j, &signs)) return false;
+  Eigen::Vector2d r = f - t;
+  double rn = r.norm();
+  // Quadratic convergence takes a residual of 1e-3 px to far below this in one more step.
+  const double converged = 1e-4 * residual_tolerance_px_;
+  for (int it = 0; it < max_iterations && rn > converged; ++it) {
+    const double det = j.determinant();
+    if (!(std::abs(det) > 0.0)) return false;
+    const Eigen::Vector2d step =
+        -Eigen::Vector2d(j(1, 1) * r.x() - j(0, 1) * r.y(), -j(1, 0) * r.x() + j(0, 0) * r.y()) /
+        det;
+    if (!step.allFinite()) return false;
+    // Backtrack until the residual drops: keeps the iterate off the pole curve, where a full
+    // step can jump to another branch of the rational map.
+    double lambda = 1.0;
+    bool improved = false;
+    for (int k = 0; k < 12 && !improved; ++k, lambda *= 0.5) {
+      const Eigen::Vector2d trial = s + lambda * step;
+      Eigen::Vector2d tf;
+      Eigen::Matrix2d tj;
+      unsigned ts = 0;
+      if (!forward_.evaluate(trial, tf, &tj, &ts)) continue;
+      const double trn = (tf - t).norm();
+      if (trn < rn) {
+        s = trial;
+        f = tf;
+        j = tj;
+        signs = ts;
+        r = tf - t;
+        rn = trn;
+        improved = true;
+      }
+    }
+    if (!improved) break;  // stalled: at rounding level or at a local minimum; judged below
+    if ((s - centre_.source).norm() > escape_) return false;
+  }
+  if (!(rn <= residual_tolerance_px_)) return false;
+  if (signs != centre_.denominator_signs) return false;               // beyond a pole curve
+  if ((j.determinant() > 0.0) != centre_.det_positive) return false;  // folded over
+  out = s;
+  return true;
+}
 
 std::optional<CentreReference> centreReference(const RationalMap& forward, FrameSize source_px) {
   const Eigen::Vector2d centre(source_px.width / 2.0, source_px.height / 2.0);

@@ -38,15 +38,6 @@ struct RationalInverseOptions {
   int max_iterations = 30;
 };
 
-// The general kernel: the inverse of a rational map is not rational (DESIGN §3), so each pixel
-// is solved by damped Newton on forward(s) = t with the analytic Jacobian (rational_map.h).
-// Starts, in order: `seed` (an approximate inverse camera, output px → source px, evaluated
-// incrementally along the row; may be null), the previous pixel's solution on the row, and the
-// forward map linearised at the source frame centre.
-std::unique_ptr<InverseMap> makeRationalInverse(RationalMap forward, std::optional<RationalMap> seed,
-                                                FrameSize source_px,
-                                                const RationalInverseOptions& options);
-
 // The reference the pole and fold tests compare with: the forward map at the source frame
 // centre (or the nearest point around it where the map is defined). Empty when the map is
 // undefined all around the centre.
@@ -58,5 +49,44 @@ struct CentreReference {
   bool det_positive = true;
 };
 std::optional<CentreReference> centreReference(const RationalMap& forward, FrameSize source_px);
+
+// Damped Newton on forward(s) = t with the analytic Jacobian (rational_map.h); a solution must
+// lie on the source centre's side of every pole curve and in the centre's fold (DESIGN §3).
+// Shared by the row inverse below and the fused kernel (coordinates.h), which calls it only
+// for the pixels its seed check rejects.
+class NewtonInverse {
+ public:
+  // Throws std::invalid_argument when the map is undefined all around the source centre.
+  NewtonInverse(RationalMap forward, FrameSize source_px, double residual_tolerance_px);
+
+  // From `start`; false when it fails, misses t by more than the residual tolerance, or lands
+  // beyond a pole curve or across the fold.
+  bool solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out,
+             int max_iterations) const;
+  // From the forward map linearised at the source centre (the start of last resort).
+  bool solveFromCentre(const Eigen::Vector2d& t, Eigen::Vector2d& out, int max_iterations) const;
+
+  const RationalMap& forward() const { return forward_; }
+  const CentreReference& centre() const { return centre_; }
+  double residualTolerance() const { return residual_tolerance_px_; }
+
+ private:
+  RationalMap forward_;
+  CentreReference centre_;
+  double residual_tolerance_px_;
+  bool has_linear_ = false;
+  Eigen::Matrix2d centre_inverse_jacobian_ = Eigen::Matrix2d::Identity();
+  double escape_ = 0.0;
+};
+
+// The general kernel: the inverse of a rational map is not rational (DESIGN §3), so each pixel
+// is solved by damped Newton on forward(s) = t with the analytic Jacobian (rational_map.h).
+// Starts, in order: `seed` (an approximate inverse camera, output px → source px, evaluated
+// incrementally along the row; may be null), the previous pixel's solution on the row, and the
+// forward map linearised at the source frame centre.
+std::unique_ptr<InverseMap> makeRationalInverse(RationalMap forward, std::optional<RationalMap> seed,
+                                                FrameSize source_px,
+                                                const RationalInverseOptions& options);
+
 
 }  // namespace artcam

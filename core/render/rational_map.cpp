@@ -62,9 +62,9 @@ bool RationalMap::evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& targe
   return true;
 }
 
-RowQuadratics::RowQuadratics(const std::vector<Eigen::Matrix3d>& q, int y) {
+RowQuadratics::RowQuadratics(const std::vector<Eigen::Matrix3d>& q, int y, int x0) {
   const double v = y + 0.5;
-  const double u = 0.5;
+  const double u = x0 + 0.5;
   for (int i = 0; i < 3; ++i) {
     const Eigen::Matrix3d& m = q[i];
     // n(u) = m00 u² + 2 m01 u v + 2 m02 u + m11 v² + 2 m12 v + m22 for symmetric m.

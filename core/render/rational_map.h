@@ -46,7 +46,10 @@ class RationalMap {
 // 6000-pixel row: fine for seeds that Newton refines, not for final positions.
 class RowQuadratics {
  public:
-  RowQuadratics(const std::vector<Eigen::Matrix3d>& q, int y);
+  // Starts at output pixel x0 of row y: the fused kernel re-anchors every span this way, so the
+  // drift stays that of one span (span² · ε) instead of a whole row's.
+  RowQuadratics(const std::vector<Eigen::Matrix3d>& q, int y, int x0 = 0);
+  double numerator(int i) const { return value_[i]; }
   // The stage's output at the current pixel; false (and no write) where n_3 = 0 or non-finite.
   bool current(Eigen::Vector2d& out) const;
   void advance();

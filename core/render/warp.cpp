@@ -1,17 +1,21 @@
-// The gather warp (DESIGN §3): pick the cheapest exact kernel once per camera from the
-// structure analysis, then fill bands of output rows in parallel: inverse map a row, sample it.
+// The fused gather warp (DESIGN §3, issue 5): pick the cheapest exact kernel once per camera
+// from the structure analysis, then fill bands of output rows in parallel, one span of
+// kSpanPixels at a time: source positions (coordinates.h) straight into the sampler
+// (span_sampler.h), so no per-pixel map ever reaches memory.
 #include "core/render/warp.h"
 
 #include "core/model/frames.h"
 #include "core/model/structure.h"
-#include "core/render/inverse.h"
-#include "core/render/inverse_seed.h"
+#include "core/render/coordinates.h"
 #include "core/render/parallel.h"
-#include "core/render/sampling.h"
+#include "core/render/span_sampler.h"
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -65,10 +69,65 @@ void checkCamera(const Camera& camera, const CameraStructure& structure) {
         "per-pixel attribute transform is not implemented yet");
 }
 
+// Rows of a whole-pixel translation (identity included): sampling at pixel centres would
+// reproduce the source exactly for every filter (weights 1 and 0, coverage 1), so copy.
+long long copyRow(const ConstImageView& src, const ImageView& out, int y, std::array<int, 2> offset) {
+  const int sy = y + offset[1];
+  const int pixel_in = src.pixelBytes(), pixel_out = out.pixelBytes();
+  unsigned char* row = static_cast<unsigned char*>(out.row(y));
+  if (sy < 0 || sy >= src.height) {
+    std::memset(row, 0, static_cast<size_t>(out.width) * static_cast<size_t>(pixel_out));
+    return out.width;
+  }
+  const unsigned char* in = static_cast<const unsigned char*>(src.row(sy));
+  const int x_begin = std::clamp(-offset[0], 0, out.width);
+  const int x_end = std::clamp(src.width - offset[0], x_begin, out.width);
+  std::memset(row, 0, static_cast<size_t>(x_begin) * static_cast<size_t>(pixel_out));
+  std::memset(row + static_cast<std::ptrdiff_t>(x_end) * pixel_out, 0,
+              static_cast<size_t>(out.width - x_end) * static_cast<size_t>(pixel_out));
+  long long transparent = out.width - (x_end - x_begin);
+  const unsigned char* first = in + static_cast<std::ptrdiff_t>(x_begin + offset[0]) * pixel_in;
+  unsigned char* dst = row + static_cast<std::ptrdiff_t>(x_begin) * pixel_out;
+  const int n = x_end - x_begin;
+  if (pixel_in == pixel_out) {
+    std::memcpy(dst, first, static_cast<size_t>(n) * static_cast<size_t>(pixel_in));
+  } else {
+    // Appended alpha: full coverage inside.
+    const int size = pixelTypeSize(src.type);
+    for (int x = 0; x < n; ++x) {
+      std::memcpy(dst + x * pixel_out, first + x * pixel_in, static_cast<size_t>(pixel_in));
+      unsigned char* alpha = dst + x * pixel_out + pixel_in;
+      if (src.type == PixelType::UInt8) *alpha = 255;
+      else if (src.type == PixelType::UInt16) { const std::uint16_t v = 65535; std::memcpy(alpha, &v, 2); }
+      else { const float v = 1.0f; std::memcpy(alpha, &v, static_cast<size_t>(size)); }
+    }
+  }
+  if (src.alpha_channel >= 0) {
+    // A transparent source pixel stays transparent: count it like the sampling kernels do.
+    const int size = pixelTypeSize(src.type);
+    for (int x = 0; x < n; ++x) {
+      const unsigned char* p = dst + x * pixel_out + src.alpha_channel * size;
+      bool zero = false;
+      if (src.type == PixelType::UInt8) zero = *p == 0;
+      else if (src.type == PixelType::UInt16) { std::uint16_t v; std::memcpy(&v, p, 2); zero = v == 0; }
+      else { float v; std::memcpy(&v, p, 4); zero = !(v > 0.0f); }
+      transparent += zero;
+    }
+  }
+  return transparent;
+}
+
+// The supersampling factor for a span: the footprint's longest side in source pixels.
+int supersampleFactor(const Eigen::Matrix2d& j, int max_factor) {
+  const double side = std::max(j.col(0).norm(), j.col(1).norm());
+  if (!(side > 1.0)) return 1;
+  return static_cast<int>(std::min<double>(max_factor, std::ceil(side - 1e-9)));
+}
+
 }  // namespace
 
-ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options,
-                 WarpSummary* summary) {
+void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
+               const WarpOptions& options, WarpSummary* summary) {
   const auto start = std::chrono::steady_clock::now();
   WarpSummary local;
   WarpSummary& report = summary ? *summary : local;
@@ -77,100 +136,107 @@ ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& 
   camera.validate();
   if (!(options.residual_tolerance_px > 0.0) || !std::isfinite(options.residual_tolerance_px))
     throw std::invalid_argument("warp residual tolerance must be a positive number of pixels");
+  if (!(options.seed_tolerance_px > 0.0) || !std::isfinite(options.seed_tolerance_px))
+    throw std::invalid_argument("warp seed tolerance must be a positive number of pixels");
   if (options.threads < 0) throw std::invalid_argument("warp thread count must not be negative");
-  const Sampler sampler(source, options.filter);  // validates the source image
+  const SpanSampler sampler(source, out, options.filter);  // validates both images
   const CameraStructure structure = analyseStructure(camera);
   checkCamera(camera, structure);
 
   const FrameSize source_px{source.width, source.height};
-  const FrameSize out_px = outputSize(camera, options);
-  ImageF out(out_px.width, out_px.height, sampler.outputChannels(), sampler.outputAlpha());
+  const FrameSize out_px{out.width, out.height};
   const auto finishTiming = [&] {
     report.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   };
   if (structure.degenerate) {
+    for (int y = 0; y < out.height; ++y)
+      std::memset(out.row(y), 0, static_cast<size_t>(out.width) * static_cast<size_t>(out.pixelBytes()));
     report.kernel = "degenerate";
     report.transparent_pixels = static_cast<long long>(out_px.width) * out_px.height;
     report.note = "the camera's position denominator is zero everywhere";
     finishTiming();
-    return out;
+    return;
   }
 
-  const bool exact = !options.force_rational && structure.geometry != GeometryClass::Rational;
-  const bool copy = exact && structure.geometry == GeometryClass::Identity && out_px == source_px;
-  std::unique_ptr<InverseMap> inverse;
-  if (copy) {
-    report.kernel = "identity";
-  } else if (exact) {
-    // An identity between frames of different pixel sizes is an axis-aligned scaling.
-    report.kernel = structure.geometry == GeometryClass::Identity
-                        ? "affine"
-                        : std::string(geometryClassName(structure.geometry));
-    // The homography is stored normalised (frames.h); in pixels it is P_out · H · N_source.
-    const Eigen::Matrix3d h = structure.homography;
-    inverse = makeHomographyInverse(
-        pixelFromNormalizedMatrix(out_px) * h * normalizedFromPixelMatrix(source_px), source_px);
-  } else {
-    report.kernel = "rational";
-    RationalMap forward(camera, source_px, out_px);
-    std::optional<RationalMap> seed;
-    if (options.fit_inverse_seed) {
-      Result<RationalMap> fitted = fitInverseSeed(forward, source_px, out_px);
-      if (fitted) seed = std::move(*fitted);
-      else report.note = "inverse seed not used: " + fitted.status.message;
-    }
-    RationalInverseOptions ro;
-    ro.residual_tolerance_px = options.residual_tolerance_px;
-    inverse = makeRationalInverse(std::move(forward), std::move(seed), source_px, ro);
-  }
+  CoordinateOptions co;
+  co.residual_tolerance_px = options.residual_tolerance_px;
+  co.seed_tolerance_px = options.seed_tolerance_px;
+  co.fit_inverse_seed = options.fit_inverse_seed;
+  co.force_rational = options.force_rational;
+  const KernelChoice choice = makeCoordinateKernel(camera, structure, source_px, out_px, co, options.threads);
+  report.kernel = choice.name;
+  report.note = choice.note;
+  const CoordinateKernel& kernel = *choice.kernel;
+  const std::optional<std::array<int, 2>> offset = kernel.wholePixelOffset();
+  if (offset && report.kernel != "identity") report.kernel = "translation-copy";
+  const int max_ss = std::max(1, options.max_supersample);
 
-  std::atomic<long long> transparent{0};
-  const int oc = out.channels, alpha = out.alpha_channel;
+  std::atomic<long long> transparent{0}, newton{0};
   ParallelOptions po;
   po.threads = options.threads;
   po.progress = options.progress;
   const bool finished = parallelForRows(out_px.height, po, [&](int y0, int y1) {
-    long long band_transparent = 0;
-    std::vector<Eigen::Vector2d> src(static_cast<size_t>(out_px.width));
-    std::vector<unsigned char> valid(static_cast<size_t>(out_px.width));
+    long long band_transparent = 0, band_newton = 0;
+    float sx[kSpanPixels], sy[kSpanPixels];
+    unsigned char valid[kSpanPixels];
     for (int y = y0; y < y1; ++y) {
-      float* row = out.pixel(0, y);
-      if (copy) {
-        // Sampling at pixel centres would reproduce the source exactly; copying is cheaper.
-        const float* in = source.pixel(0, y);
-        if (oc == source.channels) {
-          std::memcpy(row, in, sizeof(float) * static_cast<size_t>(out_px.width) * static_cast<size_t>(oc));
-        } else {
-          for (int x = 0; x < out_px.width; ++x) {
-            float* px = row + static_cast<size_t>(x) * static_cast<size_t>(oc);
-            std::memcpy(px, in + static_cast<size_t>(x) * static_cast<size_t>(source.channels),
-                        sizeof(float) * static_cast<size_t>(source.channels));
-            px[alpha] = 1.0f;
+      if (offset) {
+        band_transparent += copyRow(source, out, y, *offset);
+        continue;
+      }
+      RowState row_state;
+      for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
+        const int n = std::min(kSpanPixels, out_px.width - x0);
+        band_newton += kernel.span(y, x0, n, sx, sy, valid, row_state);
+        int ss = 1;
+        float jac[4] = {1, 0, 0, 1};
+        if (options.antialias) {
+          // The footprint varies slowly: one Jacobian per span, at a pixel with a preimage.
+          for (int i = n / 2, tries = 0; tries < n; ++tries, i = (i + 1) % n) {
+            if (!valid[i]) continue;
+            Eigen::Matrix2d j;
+            if (kernel.sourceJacobian(Eigen::Vector2d(x0 + i + 0.5, y + 0.5),
+                                      Eigen::Vector2d(sx[i], sy[i]), j)) {
+              ss = supersampleFactor(j, max_ss);
+              jac[0] = static_cast<float>(j(0, 0));
+              jac[1] = static_cast<float>(j(0, 1));
+              jac[2] = static_cast<float>(j(1, 0));
+              jac[3] = static_cast<float>(j(1, 1));
+            }
+            break;
           }
         }
-      } else {
-        inverse->row(y, out_px.width, src.data(), valid.data());
-        for (int x = 0; x < out_px.width; ++x) {
-          float* px = row + static_cast<size_t>(x) * static_cast<size_t>(oc);
-          if (valid[static_cast<size_t>(x)])
-            sampler.sample(src[static_cast<size_t>(x)].x(), src[static_cast<size_t>(x)].y(), px);
-          else
-            sampler.clear(px);
-        }
+        band_transparent += sampler.run(y, x0, n, sx, sy, valid, ss, jac);
       }
-      for (int x = 0; x < out_px.width; ++x)
-        if (row[static_cast<size_t>(x) * static_cast<size_t>(oc) + static_cast<size_t>(alpha)] <= 0.0f)
-          ++band_transparent;
     }
     transparent += band_transparent;
+    newton += band_newton;
   });
   report.transparent_pixels = transparent.load();
+  report.newton_pixels = newton.load();
   finishTiming();
-  if (!finished) {
-    report.cancelled = true;
-    return ImageF{};
-  }
+  report.cancelled = !finished;
+}
+
+ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options,
+                 WarpSummary* summary) {
+  if (source.empty() || source.channels > 4 ||
+      source.data.size() != static_cast<size_t>(source.width) * static_cast<size_t>(source.height) *
+                                 static_cast<size_t>(source.channels))
+    throw std::invalid_argument("the source image is empty, has more than 4 channels, or its "
+                                "data does not match its size");
+  if (source.alpha_channel >= source.channels)
+    throw std::invalid_argument("the source image's alpha channel index is out of range");
+  camera.validate();
+  const FrameSize out_px = outputSize(camera, options);
+  const int channels = source.alpha_channel >= 0 ? source.channels : source.channels + 1;
+  const int alpha = source.alpha_channel >= 0 ? source.alpha_channel : source.channels;
+  ImageF out(out_px.width, out_px.height, channels, alpha);
+  WarpSummary local;
+  WarpSummary& report = summary ? *summary : local;
+  warpImage(viewOf(source), camera, viewOf(out), options, &report);
+  if (report.cancelled) return ImageF{};
   return out;
 }
 

@@ -12,6 +12,7 @@
 
 #include "core/model/camera.h"
 #include "core/model/image.h"
+#include "core/render/image_view.h"
 
 #include <functional>
 #include <optional>
@@ -40,12 +41,21 @@ struct WarpOptions {
   // Seed Newton with an inverse camera fitted to the forward map (DESIGN §3). Off: seeds come
   // from the neighbouring pixel and the map linearised at the frame centre only.
   bool fit_inverse_seed = true;
+  // The rational kernel's seed check (coordinates.h): a seed within this of its Newton step
+  // (source pixels) is taken after that one step; only the others run the full Newton.
+  double seed_tolerance_px = 1.0 / 256.0;
+  // Anti-aliasing where the map minifies: each output pixel averages n × n taps over its
+  // footprint, n = ⌈longest side of the footprint in source pixels⌉ (per span of pixels, from
+  // the Jacobian), at most max_supersample. Off: one tap per pixel (the exact semantics above).
+  bool antialias = false;
+  int max_supersample = 4;
 };
 
 struct WarpSummary {
   bool cancelled = false;
   std::string kernel;          // "identity", "affine", "homography", "rational", …
   long long transparent_pixels = 0;
+  long long newton_pixels = 0;  // rational kernel: pixels whose seed check failed (full Newton)
   double render_ms = 0.0;
   // Anything the caller may want to show, e.g. why the inverse seed could not be fitted.
   std::string note;
@@ -66,5 +76,13 @@ struct WarpSummary {
 // The progress callback runs on the calling thread, never on a worker.
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options = {},
                  WarpSummary* summary = nullptr);
+
+// The same warp on typed, strided views (image_view.h): 8-bit, 16-bit or float, 1–4 channels,
+// read in place. `out` gives the output size (options.width/height are ignored) and must have
+// the source's pixel type and channels, or one more (alpha, last) when the source has none;
+// without alpha the output is composited over black. On cancel, `out` holds a partial render
+// and summary->cancelled is set; the caller discards it.
+void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
+               const WarpOptions& options = {}, WarpSummary* summary = nullptr);
 
 }  // namespace artcam

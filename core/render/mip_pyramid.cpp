@@ -1,0 +1,88 @@
+#include "core/render/mip_pyramid.h"
+
+#include "core/model/structure.h"
+#include "core/render/coordinates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace artcam {
+namespace {
+
+ImageF halve(const ImageF& in) {
+  const int w = (in.width + 1) / 2, h = (in.height + 1) / 2, c = in.channels;
+  ImageF out(w, h, c, in.alpha_channel);
+  for (int y = 0; y < h; ++y) {
+    const int y0 = 2 * y, y1 = std::min(2 * y + 1, in.height - 1);
+    for (int x = 0; x < w; ++x) {
+      const int x0 = 2 * x, x1 = std::min(2 * x + 1, in.width - 1);
+      const float* a = in.pixel(x0, y0);
+      const float* b = in.pixel(x1, y0);
+      const float* d = in.pixel(x0, y1);
+      const float* e = in.pixel(x1, y1);
+      float* o = out.pixel(x, y);
+      for (int k = 0; k < c; ++k) o[k] = 0.25f * (a[k] + b[k] + d[k] + e[k]);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+MipPyramid::MipPyramid(ImageF base, int min_size) {
+  if (base.empty()) throw std::invalid_argument("a mip pyramid needs a non-empty image");
+  levels_.push_back(std::move(base));
+  while (std::max(levels_.back().width, levels_.back().height) / 2 >= std::max(1, min_size))
+    levels_.push_back(halve(levels_.back()));
+}
+
+int MipPyramid::levelFor(double footprint) const {
+  if (!(footprint > 1.0)) return 0;
+  const int k = static_cast<int>(std::floor(std::log2(footprint) + 1e-9));
+  return std::clamp(k, 0, levels() - 1);
+}
+
+ImageF warpPreview(const MipPyramid& pyramid, const Camera& camera, const WarpOptions& options,
+                   WarpSummary* summary) {
+  const ImageF& base = pyramid.level(0);
+  camera.validate();
+  // The output size the warp will use, to measure the footprint at the target centre.
+  FrameSize out_px = camera.targetSize();
+  if (options.width > 0 && options.height > 0) out_px = {options.width, options.height};
+  else if (options.width > 0 || options.height > 0) {
+    const double aspect = static_cast<double>(out_px.height) / out_px.width;
+    out_px = options.width > 0
+                 ? FrameSize{options.width, std::max(1, static_cast<int>(std::lround(options.width * aspect)))}
+                 : FrameSize{std::max(1, static_cast<int>(std::lround(options.height / aspect))), options.height};
+  }
+  int level = 0;
+  const FrameSize source_px{base.width, base.height};
+  const CameraStructure structure = analyseStructure(camera);
+  if (out_px.isImage() && !structure.degenerate && !structure.geometry_depends_on_attributes) {
+    const auto reference = makeReferenceInverse(camera, structure, source_px, out_px);
+    // Three points a pixel apart at the target centre give the footprint's two sides. The
+    // reference inverse solves whole rows from x = 0, so read cx + 2 pixels of two rows.
+    const int cx = out_px.width / 2, cy = out_px.height / 2;
+    std::vector<Eigen::Vector2d> top(static_cast<size_t>(cx + 2)), below(top.size());
+    std::vector<unsigned char> top_ok(top.size()), below_ok(top.size());
+    reference->row(cy, cx + 2, top.data(), top_ok.data());
+    reference->row(std::min(cy + 1, out_px.height - 1), cx + 2, below.data(), below_ok.data());
+    const size_t c = static_cast<size_t>(cx);
+    const Eigen::Vector2d s[3] = {top[c], top[c + 1], below[c]};
+    const bool ok[3] = {top_ok[c] != 0, top_ok[c + 1] != 0, below_ok[c] != 0};
+    if (ok[0] && ok[1] && ok[2]) {
+      const double footprint = std::min((s[1] - s[0]).norm(), (s[2] - s[0]).norm());
+      level = pyramid.levelFor(footprint);
+    }
+  }
+  WarpSummary local;
+  WarpSummary& report = summary ? *summary : local;
+  ImageF out = warpImage(pyramid.level(level), camera, options, &report);
+  report.note = "mip level " + std::to_string(level) + (report.note.empty() ? "" : "; " + report.note);
+  return out;
+}
+
+}  // namespace artcam

@@ -1,0 +1,40 @@
+// A mip pyramid of a source photo for previews (issue 5, "preview path"): built once per photo,
+// so a screen-sized preview of a 24-megapixel photo samples a level near its own resolution
+// instead of aliasing through (or supersampling) the full-size image.
+//
+// Conventions: level 0 is the photo; level k + 1 averages 2×2 blocks of level k (premultiplied
+// colour, so averaging is correct with alpha), its size ⌈w/2⌉ × ⌈h/2⌉ with the last row or
+// column repeated when odd. Cameras live in normalised frames (frames.h), so any level can be
+// warped by the same camera; an odd size shifts a level by at most half of one of its pixels.
+#pragma once
+
+#include "core/model/camera.h"
+#include "core/model/image.h"
+#include "core/render/warp.h"
+
+#include <vector>
+
+namespace artcam {
+
+class MipPyramid {
+ public:
+  // Levels down to `min_size` pixels on the longer side.
+  explicit MipPyramid(ImageF base, int min_size = 64);
+
+  int levels() const { return static_cast<int>(levels_.size()); }
+  const ImageF& level(int k) const { return levels_[static_cast<size_t>(k)]; }
+  // The coarsest level whose pixels are no larger than `footprint` level-0 pixels: the level
+  // to sample when one output pixel covers `footprint` source pixels.
+  int levelFor(double footprint) const;
+
+ private:
+  std::vector<ImageF> levels_;
+};
+
+// Warps through the level that matches the map's scale at the target frame centre (the
+// footprint of one output pixel there, in source pixels). Same contract as warpImage; the
+// summary's note names the level used.
+ImageF warpPreview(const MipPyramid& pyramid, const Camera& camera, const WarpOptions& options = {},
+                   WarpSummary* summary = nullptr);
+
+}  // namespace artcam

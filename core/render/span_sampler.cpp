@@ -1,0 +1,215 @@
+#include "core/render/span_sampler.h"
+
+#include "core/render/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+namespace artcam {
+namespace {
+
+using Context = SpanSampler::Context;
+
+template <class T>
+const T* pixelAt(const Context& k, int x, int y, int channels) {
+  return static_cast<const T*>(static_cast<const void*>(k.src + y * k.src_row)) + x * channels;
+}
+
+// Each tap returns the coverage and adds weight · value to sum[0 … C). Interior paths skip the
+// bounds tests; the border paths keep sampling.h's exact semantics.
+template <class T, int C>
+float nearestTap(const Context& k, float fx, float fy, float* sum) {
+  if (!(fx >= -0.5f && fx < k.width - 0.5f && fy >= -0.5f && fy < k.height - 0.5f)) return 0.0f;
+  const int x = std::min(static_cast<int>(fx + 0.5f), k.width - 1);
+  const int y = std::min(static_cast<int>(fy + 0.5f), k.height - 1);
+  const T* p = pixelAt<T>(k, x, y, C);
+  for (int c = 0; c < C; ++c) sum[c] += static_cast<float>(p[c]);
+  return 1.0f;
+}
+
+template <class T, int C>
+float bilinearTap(const Context& k, float fx, float fy, float* sum) {
+  if (!(fx > -1.0f && fx < k.width && fy > -1.0f && fy < k.height)) return 0.0f;
+  const float flx = std::floor(fx), fly = std::floor(fy);
+  const int x0 = static_cast<int>(flx), y0 = static_cast<int>(fly);
+  const float ax = fx - flx, ay = fy - fly;
+  const float wx[2] = {1.0f - ax, ax}, wy[2] = {1.0f - ay, ay};
+  if (x0 >= 0 && y0 >= 0 && x0 + 1 < k.width && y0 + 1 < k.height) {
+    const T* r0 = pixelAt<T>(k, x0, y0, C);
+    const T* r1 = pixelAt<T>(k, x0, y0 + 1, C);
+    for (int c = 0; c < C; ++c) {
+      const float top = wx[0] * static_cast<float>(r0[c]) + wx[1] * static_cast<float>(r0[c + C]);
+      const float bottom = wx[0] * static_cast<float>(r1[c]) + wx[1] * static_cast<float>(r1[c + C]);
+      sum[c] += wy[0] * top + wy[1] * bottom;
+    }
+    return 1.0f;
+  }
+  float coverage = 0.0f;
+  for (int j = 0; j < 2; ++j) {
+    const int y = y0 + j;
+    if (y < 0 || y >= k.height) continue;
+    for (int i = 0; i < 2; ++i) {
+      const int x = x0 + i;
+      if (x < 0 || x >= k.width) continue;
+      const float w = wx[i] * wy[j];
+      const T* p = pixelAt<T>(k, x, y, C);
+      for (int c = 0; c < C; ++c) sum[c] += w * static_cast<float>(p[c]);
+      coverage += w;
+    }
+  }
+  return coverage;
+}
+
+template <class T, int C>
+float bicubicTap(const Context& k, float fx, float fy, float* sum) {
+  if (!(fx > -2.0f && fx < k.width + 1.0f && fy > -2.0f && fy < k.height + 1.0f)) return 0.0f;
+  const float flx = std::floor(fx), fly = std::floor(fy);
+  const int x0 = static_cast<int>(flx) - 1, y0 = static_cast<int>(fly) - 1;
+  double wxd[4], wyd[4];
+  cubicWeights(fx - flx, wxd);
+  cubicWeights(fy - fly, wyd);
+  float wx[4], wy[4];
+  for (int i = 0; i < 4; ++i) {
+    wx[i] = static_cast<float>(wxd[i]);
+    wy[i] = static_cast<float>(wyd[i]);
+  }
+  const bool interior = x0 >= 0 && y0 >= 0 && x0 + 3 < k.width && y0 + 3 < k.height;
+  float coverage = 0.0f;
+  for (int j = 0; j < 4; ++j) {
+    const int y = y0 + j;
+    if (y < 0 || y >= k.height) continue;
+    float row[C] = {};
+    float row_cover = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+      const int x = x0 + i;
+      if (!interior && (x < 0 || x >= k.width)) continue;
+      const T* p = pixelAt<T>(k, x, y, C);
+      for (int c = 0; c < C; ++c) row[c] += wx[i] * static_cast<float>(p[c]);
+      row_cover += wx[i];
+    }
+    for (int c = 0; c < C; ++c) sum[c] += wy[j] * row[c];
+    coverage += wy[j] * row_cover;
+  }
+  // The weights sum to 1 in the interior; say so exactly rather than 1 ± rounding.
+  return interior ? 1.0f : coverage;
+}
+
+template <class T>
+T store(float v, float full) {
+  if constexpr (std::is_floating_point_v<T>) {
+    (void)full;
+    return v;
+  } else {
+    return static_cast<T>(std::clamp(v + 0.5f, 0.0f, full));
+  }
+}
+
+template <class T, int C, Filter F>
+long long sampleSpan(const Context& k, unsigned char* out_bytes, int n, const float* sx,
+                     const float* sy, const unsigned char* valid, int supersample,
+                     const float* jac) {
+  T* out = static_cast<T*>(static_cast<void*>(out_bytes));
+  const int oc = k.out_channels;
+  long long transparent = 0;
+  const float inv_count = 1.0f / static_cast<float>(supersample * supersample);
+  for (int i = 0; i < n; ++i, out += oc) {
+    if (!valid[i]) {
+      std::fill(out, out + oc, T(0));
+      ++transparent;
+      continue;
+    }
+    float sum[C] = {};
+    float coverage = 0.0f;
+    const auto tap = [&](float fx, float fy) {
+      if constexpr (F == Filter::Nearest) coverage += nearestTap<T, C>(k, fx, fy, sum);
+      else if constexpr (F == Filter::Bilinear) coverage += bilinearTap<T, C>(k, fx, fy, sum);
+      else coverage += bicubicTap<T, C>(k, fx, fy, sum);
+    };
+    const float fx = sx[i] - 0.5f, fy = sy[i] - 0.5f;
+    if (supersample <= 1) {
+      tap(fx, fy);
+    } else {
+      for (int b = 0; b < supersample; ++b) {
+        const float dy = (b + 0.5f) / supersample - 0.5f;
+        for (int a = 0; a < supersample; ++a) {
+          const float dx = (a + 0.5f) / supersample - 0.5f;
+          tap(fx + jac[0] * dx + jac[1] * dy, fy + jac[2] * dx + jac[3] * dy);
+        }
+      }
+      for (int c = 0; c < C; ++c) sum[c] *= inv_count;
+      coverage *= inv_count;
+    }
+    for (int c = 0; c < C; ++c) out[c] = store<T>(sum[c], k.full);
+    float alpha = coverage;
+    if (k.append_alpha) {
+      alpha = std::clamp(coverage, 0.0f, 1.0f) * k.full;
+      out[k.out_alpha] = store<T>(alpha, k.full);
+    } else if (k.src_alpha >= 0) {
+      alpha = std::clamp(sum[k.src_alpha], 0.0f, k.full);
+      out[k.src_alpha] = store<T>(alpha, k.full);
+    }
+    if (alpha <= 0.0f) ++transparent;
+  }
+  return transparent;
+}
+
+template <class T, Filter F>
+SpanSampler::SpanFn pickChannels(int channels) {
+  switch (channels) {
+    case 1: return sampleSpan<T, 1, F>;
+    case 2: return sampleSpan<T, 2, F>;
+    case 3: return sampleSpan<T, 3, F>;
+    default: return sampleSpan<T, 4, F>;
+  }
+}
+
+template <class T>
+SpanSampler::SpanFn pickFilter(Filter filter, int channels) {
+  switch (filter) {
+    case Filter::Nearest: return pickChannels<T, Filter::Nearest>(channels);
+    case Filter::Bilinear: return pickChannels<T, Filter::Bilinear>(channels);
+    case Filter::Bicubic: break;
+  }
+  return pickChannels<T, Filter::Bicubic>(channels);
+}
+
+}  // namespace
+
+SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter) : dst_(dst) {
+  if (src.empty() || src.channels < 1 || src.channels > 4)
+    throw std::invalid_argument("the source image is empty or has more than 4 channels");
+  if (src.alpha_channel >= src.channels)
+    throw std::invalid_argument("the source image's alpha channel index is out of range");
+  if (dst.empty() || dst.type != src.type)
+    throw std::invalid_argument("the output image is empty or its pixel type differs from the source's");
+  const bool append = src.alpha_channel < 0 && dst.channels == src.channels + 1;
+  if (!append && dst.channels != src.channels)
+    throw std::invalid_argument("the output must have the source's channels, or one more for alpha");
+  if (append && dst.alpha_channel != src.channels)
+    throw std::invalid_argument("an appended alpha channel must be the output's last channel");
+  context_.src = static_cast<const unsigned char*>(src.data);
+  context_.src_row = src.row_bytes;
+  context_.width = src.width;
+  context_.height = src.height;
+  context_.src_alpha = src.alpha_channel;
+  context_.out_channels = dst.channels;
+  context_.append_alpha = append;
+  context_.out_alpha = append ? src.channels : src.alpha_channel;
+  context_.full = pixelTypeFullScale(src.type);
+  switch (src.type) {
+    case PixelType::UInt8: fn_ = pickFilter<std::uint8_t>(filter, src.channels); break;
+    case PixelType::UInt16: fn_ = pickFilter<std::uint16_t>(filter, src.channels); break;
+    case PixelType::Float: fn_ = pickFilter<float>(filter, src.channels); break;
+  }
+}
+
+long long SpanSampler::run(int y, int x0, int n, const float* sx, const float* sy,
+                           const unsigned char* valid, int supersample, const float* jacobian) const {
+  unsigned char* out = static_cast<unsigned char*>(dst_.row(y)) +
+                       static_cast<std::ptrdiff_t>(x0) * dst_.pixelBytes();
+  return fn_(context_, out, n, sx, sy, valid, supersample, jacobian);
+}
+
+}  // namespace artcam

@@ -1,0 +1,53 @@
+// The sampling half of the fused warp (issue 5): reconstruct a span of output pixels from their
+// source positions, reading 8-bit, 16-bit or float pixels in place (image_view.h).
+//
+// Semantics are those of sampling.h, for every pixel type: pixel centres at i + 0.5, taps
+// outside the source are 0 in every channel (OpenImageIO's "black"), colours premultiplied so
+// border taps fade correctly; an output alpha channel appended to a source without one holds
+// the coverage (sum of the weights of taps inside); an existing alpha is clamped to [0, full];
+// colours are clamped only when stored as integers (rounded to nearest). An output without an
+// alpha channel is the premultiplied colour, i.e. composited over black.
+//
+// Anti-aliasing (DESIGN §3, "supersampling where the map minifies"): with a supersampling
+// factor n > 1, each output pixel averages n × n filter taps spread over its footprint in the
+// source, s + J · (δx, δy) for δ on an n × n grid in [−½, ½]², J = d source / d target.
+#pragma once
+
+#include "core/render/image_view.h"
+#include "core/render/warp.h"
+
+namespace artcam {
+
+class SpanSampler {
+ public:
+  // dst must have src's type and either src's channels or src's channels + 1 (appended alpha,
+  // last) when src has no alpha. Throws std::invalid_argument otherwise.
+  SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter);
+
+  // Writes output pixels x0 … x0 + n − 1 of row y. `jacobian` (row-major 2×2, d source / d
+  // target) is read only when supersample > 1. Returns the count of transparent pixels
+  // written (alpha, or coverage when there is no alpha, ≤ 0).
+  long long run(int y, int x0, int n, const float* sx, const float* sy, const unsigned char* valid,
+                int supersample = 1, const float* jacobian = nullptr) const;
+
+  struct Context {
+    const unsigned char* src = nullptr;
+    std::ptrdiff_t src_row = 0;
+    int width = 0, height = 0;
+    int src_alpha = -1;     // alpha index in the source, or -1
+    int out_channels = 0;
+    int out_alpha = -1;     // alpha index in the output, or -1
+    bool append_alpha = false;
+    float full = 1.0f;      // the value of alpha 1
+  };
+  using SpanFn = long long (*)(const Context&, unsigned char* out, int n, const float* sx,
+                               const float* sy, const unsigned char* valid, int supersample,
+                               const float* jacobian);
+
+ private:
+  Context context_;
+  ImageView dst_;
+  SpanFn fn_ = nullptr;
+};
+
+}  // namespace artcam
