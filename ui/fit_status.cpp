@@ -6,6 +6,7 @@
 
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QPointF>
 #include <QProgressBar>
 
 namespace artcam::ui {
@@ -14,6 +15,7 @@ FitStatus::FitStatus(Document* document, PreviewController* preview, QWidget* pa
     : QWidget(parent),
       document_(document),
       preview_(preview),
+      cursor_(new QLabel(this)),
       model_(new QLabel(this)),
       residual_(new QLabel(this)),
       render_(new QLabel(this)),
@@ -25,6 +27,7 @@ FitStatus::FitStatus(Document* document, PreviewController* preview, QWidget* pa
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(progress_);
+  layout->addWidget(cursor_);
   layout->addWidget(model_);
   layout->addWidget(residual_);
   layout->addWidget(render_);
@@ -41,6 +44,13 @@ QString FitStatus::renderText() const { return render_->text(); }
 void FitStatus::setLoadProgress(int percent) {
   progress_->setVisible(percent >= 0);
   if (percent >= 0) progress_->setValue(percent);
+}
+
+void FitStatus::setCursorPosition(const QPointF& p) {
+  const FrameSize f = document_->frame();
+  const bool inside = p.x() >= 0 && p.y() >= 0 && p.x() < f.width && p.y() < f.height;
+  cursor_->setText(inside ? tr("%1, %2 px").arg(p.x(), 0, 'f', 1).arg(p.y(), 0, 'f', 1)
+                          : QString());
 }
 
 void FitStatus::updateFit() {

@@ -5,6 +5,7 @@
 #include <QWidget>
 
 class QLabel;
+class QPointF;
 class QProgressBar;
 
 namespace artcam::ui {
@@ -24,6 +25,7 @@ class FitStatus : public QWidget {
 
  public slots:
   void setLoadProgress(int percent);  // -1 hides the bar
+  void setCursorPosition(const QPointF& image_point);
 
  private:
   void updateFit();
@@ -31,6 +33,7 @@ class FitStatus : public QWidget {
 
   Document* document_;
   PreviewController* preview_;
+  QLabel* cursor_ = nullptr;
   QLabel* model_;
   QLabel* residual_;
   QLabel* render_;

@@ -64,6 +64,7 @@ MainWindow::MainWindow(QWidget* parent)
   connect(session_, &Session::statusMessage, this,
           [this](const QString& m) { statusBar()->showMessage(m, 8000); });
   connect(session_, &Session::loadProgress, fit_status_, &FitStatus::setLoadProgress);
+  connect(canvas_, &Canvas::cursorMoved, fit_status_, &FitStatus::setCursorPosition);
   connect(session_, &Session::titleChanged, this, &MainWindow::updateTitle);
   connect(session_, &Session::recentFilesChanged, this, &MainWindow::rebuildRecentMenu);
   connect(preview_, &PreviewController::renderFailed, this, [this](const QString& m) {

@@ -10,6 +10,15 @@
 
 namespace artcam::ui {
 
+WarpOptions RenderWorker::passOptions(int width, int height) {
+  WarpOptions options;
+  options.width = width;
+  options.height = height;
+  // The preview shares the cores with the GUI; leave it one.
+  options.threads = std::max(1, QThread::idealThreadCount() - 1);
+  return options;
+}
+
 RenderWorker::RenderWorker(QObject* parent) : QThread(parent) {}
 
 RenderWorker::~RenderWorker() { shutdown(); }
@@ -52,11 +61,9 @@ void RenderWorker::run() {
       const bool coarse_worth_it = std::min(job.width, job.height) >= 8 * kCoarseFactor;
       for (int pass = coarse_worth_it ? 0 : 1; pass < 2 && keepGoing(); ++pass) {
         const bool final_pass = pass == 1;
-        WarpOptions options;
-        options.width = final_pass ? job.width : std::max(1, job.width / kCoarseFactor);
-        options.height = final_pass ? job.height : std::max(1, job.height / kCoarseFactor);
-        // The preview shares the cores with the GUI; leave it one.
-        options.threads = std::max(1, QThread::idealThreadCount() - 1);
+        WarpOptions options = final_pass ? passOptions(job.width, job.height)
+                                         : passOptions(std::max(1, job.width / kCoarseFactor),
+                                                       std::max(1, job.height / kCoarseFactor));
         options.progress = [this](double) { return keepGoing(); };
         WarpSummary summary;
         const ImageF out = warpImage(*job.source, job.camera, options, &summary);

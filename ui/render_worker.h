@@ -7,6 +7,7 @@
 
 #include "core/model/camera.h"
 #include "core/model/image.h"
+#include "core/render/warp.h"
 
 #include <QImage>
 #include <QMutex>
@@ -33,6 +34,10 @@ class RenderWorker : public QThread {
 
  public:
   static constexpr int kCoarseFactor = 4;
+
+  // The warp options of a preview pass (no progress hook): one place, so a direct render with
+  // them reproduces the worker's image exactly.
+  static WarpOptions passOptions(int width, int height);
 
   explicit RenderWorker(QObject* parent = nullptr);
   ~RenderWorker() override;  // aborts any render and joins the thread

@@ -36,9 +36,8 @@ bool waitForNewest(const PreviewController& c, int timeout_ms = 60000) {
 
 QImage directRender(const Document& d) {
   const PhotoPtr& photo = d.photo();
-  WarpOptions options;
-  options.width = photo->preview.width;
-  options.height = photo->preview.height;
+  const WarpOptions options =
+      RenderWorker::passOptions(photo->preview.width, photo->preview.height);
   return qimageFromLinear(warpImage(photo->preview, d.camera(), options));
 }
 

@@ -95,8 +95,12 @@ void PairTool::mouseMove(QMouseEvent* event) {
     case Gesture::Dragging:
       dragTo(cursor_widget_);
       break;
-    case Gesture::RubberBand:
     case Gesture::None:
+      // Tell the user what a press would do here: grab a point or place one.
+      canvas_->setCursor(!pending_source_ && hitTest(cursor_widget_) ? Qt::SizeAllCursor
+                                                                     : Qt::CrossCursor);
+      break;
+    case Gesture::RubberBand:
       break;
   }
   canvas_->update();
