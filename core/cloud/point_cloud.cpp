@@ -1,8 +1,9 @@
-// Cloud statistics. The spacing estimate uses a sorted uniform grid (cell keys sorted once),
-// which is deterministic and needs no per-cell allocations even for millions of points.
+// Cloud statistics. The spacing estimate uses a uniform grid filled by counting sort, which is
+// deterministic, linear and needs no per-cell allocations even for millions of points.
 #include "core/cloud/point_cloud.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -25,18 +26,6 @@ CloudBounds cloudBounds(const PointCloud& cloud) {
   return b;
 }
 
-namespace {
-
-using Key = std::uint64_t;
-constexpr int kBits = 21;  // 2^21 cells per axis at most
-
-Key cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
-  return (static_cast<Key>(x) << (2 * kBits)) | (static_cast<Key>(y) << kBits) |
-         static_cast<Key>(z);
-}
-
-}  // namespace
-
 double estimatePointSpacing(const PointCloud& cloud, int samples) {
   const CloudBounds bounds = cloudBounds(cloud);
   if (bounds.empty || samples <= 0) return 0.0;
@@ -52,22 +41,35 @@ double estimatePointSpacing(const PointCloud& cloud, int samples) {
   const double largest = extent.maxCoeff();
   if (largest <= 0.0) return 0.0;
   const double cell = largest / std::max(1.0, std::cbrt(static_cast<double>(finite.size())));
-  const std::int64_t limit = (std::int64_t{1} << kBits) - 1;
+  // A dense grid in compressed rows (counting sort by cell): O(n), no per-cell allocation. The
+  // cell is a little larger than the spacing of a volume-filling cloud, and so larger than the
+  // spacing of surface or line clouds too: most nearest neighbours lie in the 27 cells around.
+  std::array<std::int64_t, 3> dims{};
+  for (int k = 0; k < 3; ++k) dims[k] = static_cast<std::int64_t>(std::floor(extent[k] / cell)) + 1;
   const auto cellOf = [&](const Eigen::Vector3d& p) {
-    Eigen::Matrix<std::int64_t, 3, 1> c;
+    std::array<std::int64_t, 3> c{};
     for (int k = 0; k < 3; ++k)
       c[k] = std::clamp<std::int64_t>(
-          static_cast<std::int64_t>(std::floor((p[k] - bounds.min[k]) / cell)), 0, limit);
+          static_cast<std::int64_t>(std::floor((p[k] - bounds.min[k]) / cell)), 0, dims[k] - 1);
     return c;
   };
-
-  std::vector<std::pair<Key, std::uint32_t>> grid;
-  grid.reserve(finite.size());
-  for (const size_t i : finite) {
-    const auto c = cellOf(cloud.positions[i]);
-    grid.emplace_back(cellKey(c[0], c[1], c[2]), static_cast<std::uint32_t>(i));
+  const auto flat = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return static_cast<size_t>((x * dims[1] + y) * dims[2] + z);
+  };
+  std::vector<std::uint32_t> start(static_cast<size_t>(dims[0] * dims[1] * dims[2]) + 1, 0);
+  std::vector<std::uint32_t> cell_of(finite.size());
+  for (size_t f = 0; f < finite.size(); ++f) {
+    const auto c = cellOf(cloud.positions[finite[f]]);
+    cell_of[f] = static_cast<std::uint32_t>(flat(c[0], c[1], c[2]));
+    ++start[cell_of[f] + 1];
   }
-  std::sort(grid.begin(), grid.end());
+  for (size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+  std::vector<std::uint32_t> members(finite.size());
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t f = 0; f < finite.size(); ++f)
+      members[fill[cell_of[f]]++] = static_cast<std::uint32_t>(finite[f]);
+  }
 
   const size_t step = std::max<size_t>(1, finite.size() / static_cast<size_t>(samples));
   std::vector<double> nearest;
@@ -76,16 +78,15 @@ double estimatePointSpacing(const PointCloud& cloud, int samples) {
     const auto c = cellOf(q);
     double best = std::numeric_limits<double>::infinity();
     for (int ring = 1; ring <= 4; ++ring) {
-      for (std::int64_t dx = -ring; dx <= ring; ++dx)
-        for (std::int64_t dy = -ring; dy <= ring; ++dy)
-          for (std::int64_t dz = -ring; dz <= ring; ++dz) {
-            const std::int64_t x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-            if (x < 0 || y < 0 || z < 0 || x > limit || y > limit || z > limit) continue;
-            const Key key = cellKey(x, y, z);
-            auto it =
-                std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, std::uint32_t{0}));
-            for (; it != grid.end() && it->first == key; ++it) {
-              const double d = (cloud.positions[it->second] - q).norm();
+      for (std::int64_t x = std::max<std::int64_t>(0, c[0] - ring);
+           x <= std::min(dims[0] - 1, c[0] + ring); ++x)
+        for (std::int64_t y = std::max<std::int64_t>(0, c[1] - ring);
+             y <= std::min(dims[1] - 1, c[1] + ring); ++y)
+          for (std::int64_t z = std::max<std::int64_t>(0, c[2] - ring);
+               z <= std::min(dims[2] - 1, c[2] + ring); ++z) {
+            const size_t id = flat(x, y, z);
+            for (std::uint32_t m = start[id]; m < start[id + 1]; ++m) {
+              const double d = (cloud.positions[members[m]] - q).norm();
               if (d > 0.0) best = std::min(best, d);  // duplicates are not neighbours
             }
           }

@@ -1,0 +1,68 @@
+#include "core/cloud/cloud_camera.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace artcam {
+
+CompiledCamera::CompiledCamera(const Camera& camera) : layout_(camera.layout()) {
+  const int n = layout_.dimension;
+  if (n > kMaxDimension)
+    throw std::invalid_argument("camera has " + std::to_string(n) + " elements; at most " +
+                                std::to_string(kMaxDimension) + " can be compiled");
+  for (const Stage& stage : camera.stages()) {
+    std::vector<Output> outputs;
+    for (int i = 0; i < n; ++i) {
+      const Eigen::MatrixXd& q = stage.q[i];
+      Output out{i, {}};
+      for (int a = 0; a < n; ++a)
+        for (int b = a; b < n; ++b) {
+          // x Q xᵀ counts an off-diagonal pair twice (DESIGN §1): merge it into one term.
+          const double c = a == b ? q(a, a) : q(a, b) + q(b, a);
+          if (c != 0.0) out.terms.push_back({a, b, c});
+        }
+      if (!out.terms.empty()) outputs.push_back(std::move(out));
+    }
+    stages_.push_back(std::move(outputs));
+  }
+}
+
+void CompiledCamera::evaluateStage(size_t stage, const Vector& x, Vector& z) const {
+  z.fill(0.0);
+  for (const Output& out : stages_[stage]) {
+    double sum = 0.0;
+    for (const Term& t : out.terms) sum += t.q * x[t.a] * x[t.b];  // eq 3
+    z[out.index] = sum;
+  }
+}
+
+void CompiledCamera::divide(const Vector& z, Vector& y) const {
+  y = z;
+  for (size_t b = 0; b < layout_.blocks.size(); ++b) {
+    const int off = layout_.offsets[b];
+    const int h = layout_.homogeneousIndex(static_cast<int>(b));
+    const double w = z[h];
+    for (int k = off; k < h; ++k) y[k] = z[k] / w;  // eq 5
+    y[h] = layout_.blocks[b].kind == BlockKind::Colour ? std::clamp(w, 0.0, 1.0) : 1.0;
+  }
+}
+
+void CompiledCamera::rehomogenise(const Vector& z, Vector& x) const {
+  divide(z, x);
+  for (size_t b = 0; b < layout_.blocks.size(); ++b) {
+    if (layout_.blocks[b].kind != BlockKind::Colour) continue;
+    const int h = layout_.homogeneousIndex(static_cast<int>(b));
+    for (int k = layout_.offsets[b]; k < h; ++k) x[k] *= x[h];
+  }
+}
+
+void CompiledCamera::evaluateHomogeneous(const Vector& x, Vector& z) const {
+  evaluateStage(0, x, z);
+  Vector next;
+  for (size_t s = 1; s < stages_.size(); ++s) {
+    rehomogenise(z, next);
+    evaluateStage(s, next, z);
+  }
+}
+
+}  // namespace artcam

@@ -1,0 +1,54 @@
+// A camera compiled for evaluating millions of points: eq 3 as a list of non-zero terms
+// z_i += q·x_a·x_b per stage (symmetric pairs merged), on fixed-size stack arrays, then eq 5
+// (every block divided by its homogeneous element) exactly as Camera::divideBlocks and
+// Camera::rehomogenise do. Camera::evaluate allocates per call; this does not.
+#pragma once
+
+#include "core/model/camera.h"
+
+#include <array>
+#include <vector>
+
+namespace artcam {
+
+class CompiledCamera {
+ public:
+  static constexpr int kMaxDimension = 12;
+  using Vector = std::array<double, kMaxDimension>;
+
+  CompiledCamera() = default;
+  // Throws std::invalid_argument for cameras wider than kMaxDimension.
+  explicit CompiledCamera(const Camera& camera);
+
+  const BlockLayout& layout() const { return layout_; }
+  int dimension() const { return layout_.dimension; }
+
+  // The chain's final z, undivided (Camera::evaluateHomogeneous).
+  void evaluateHomogeneous(const Vector& x, Vector& z) const;
+  // Every block divided by its homogeneous element (Camera::divideBlocks).
+  void divide(const Vector& z, Vector& y) const;
+  void evaluate(const Vector& x, Vector& y) const {
+    Vector z;
+    evaluateHomogeneous(x, z);
+    divide(z, y);
+  }
+
+ private:
+  struct Term {
+    int a, b;
+    double q;
+  };
+  // The terms of one output, contiguous, so each output sums in a register (accumulating into
+  // z[output] in memory would chain every term on a store-to-load dependency).
+  struct Output {
+    int index;
+    std::vector<Term> terms;
+  };
+  void evaluateStage(size_t stage, const Vector& x, Vector& z) const;
+  void rehomogenise(const Vector& z, Vector& x) const;
+
+  BlockLayout layout_;
+  std::vector<std::vector<Output>> stages_;
+};
+
+}  // namespace artcam
