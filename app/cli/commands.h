@@ -26,12 +26,16 @@ int warpCommand(const std::vector<std::string>& args);
 int infoCommand(const std::vector<std::string>& args);
 int benchCommand(const std::vector<std::string>& args);
 int benchFitCommand(const std::vector<std::string>& args);  // artcam bench fit
+int renderCommand(const std::vector<std::string>& args);
+int presetCommand(const std::vector<std::string>& args);
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
 extern const char* const kWarpUsage;
 extern const char* const kInfoUsage;
 extern const char* const kBenchUsage;
+extern const char* const kRenderUsage;
+extern const char* const kPresetUsage;
 
 int run(int argc, char** argv);
 

@@ -14,6 +14,8 @@ const Command kCommands[] = {
     {"warp", "warp an image through a camera", kWarpUsage, warpCommand},
     {"info", "describe a camera file", kInfoUsage, infoCommand},
     {"bench", "time the render kernels (CSV, plot)", kBenchUsage, benchCommand},
+    {"render", "render a point cloud through 3D and view cameras", kRenderUsage, renderCommand},
+    {"preset", "write a preset camera or the sample cloud", kPresetUsage, presetCommand},
 };
 
 void printHelp() {
