@@ -14,7 +14,10 @@ CompiledCamera::CompiledCamera(const Camera& camera) : layout_(camera.layout()) 
     std::vector<Output> outputs;
     for (int i = 0; i < n; ++i) {
       const Eigen::MatrixXd& q = stage.q[i];
-      Output out{i, {}};
+      Output out{i, false, {}};
+      const int position = layout_.find(BlockKind::Position);
+      out.position = position >= 0 && i >= layout_.offsets[position] &&
+                     i < layout_.offsets[position] + layout_.blocks[position].size;
       for (int a = 0; a < n; ++a)
         for (int b = a; b < n; ++b) {
           // x Q xᵀ counts an off-diagonal pair twice (DESIGN §1): merge it into one term.
@@ -25,11 +28,21 @@ CompiledCamera::CompiledCamera(const Camera& camera) : layout_(camera.layout()) 
     }
     stages_.push_back(std::move(outputs));
   }
+  const Camera id = Camera::identity(layout_.blocks, camera.sourceSize(), camera.targetSize());
+  identity_ = true;
+  for (const Stage& stage : camera.stages())
+    for (int i = 0; i < n; ++i) {
+      const Eigen::MatrixXd& q = stage.q[i];
+      if ((0.5 * (q + q.transpose()) - id.stages()[0].q[i]).cwiseAbs().maxCoeff() != 0.0)
+        identity_ = false;
+    }
 }
 
-void CompiledCamera::evaluateStage(size_t stage, const Vector& x, Vector& z) const {
+void CompiledCamera::evaluateStage(size_t stage, const Vector& x, Vector& z,
+                                   bool position_only) const {
   z.fill(0.0);
   for (const Output& out : stages_[stage]) {
+    if (position_only && !out.position) continue;
     double sum = 0.0;
     for (const Term& t : out.terms) sum += t.q * x[t.a] * x[t.b];  // eq 3
     z[out.index] = sum;
@@ -56,12 +69,13 @@ void CompiledCamera::rehomogenise(const Vector& z, Vector& x) const {
   }
 }
 
-void CompiledCamera::evaluateHomogeneous(const Vector& x, Vector& z) const {
-  evaluateStage(0, x, z);
+void CompiledCamera::evaluateHomogeneous(const Vector& x, Vector& z, bool position_only) const {
+  const size_t last = stages_.size() - 1;
+  evaluateStage(0, x, z, position_only && last == 0);
   Vector next;
-  for (size_t s = 1; s < stages_.size(); ++s) {
+  for (size_t s = 1; s <= last; ++s) {
     rehomogenise(z, next);
-    evaluateStage(s, next, z);
+    evaluateStage(s, next, z, position_only && s == last);
   }
 }
 

@@ -23,15 +23,19 @@ class CompiledCamera {
   const BlockLayout& layout() const { return layout_; }
   int dimension() const { return layout_.dimension; }
 
-  // The chain's final z, undivided (Camera::evaluateHomogeneous).
-  void evaluateHomogeneous(const Vector& x, Vector& z) const;
+  // The chain's final z, undivided (Camera::evaluateHomogeneous). With `position_only`, the
+  // last stage computes the position block alone (the others are left 0): enough where only
+  // geometry is wanted, e.g. the finite-difference steps that size splats.
+  void evaluateHomogeneous(const Vector& x, Vector& z, bool position_only = false) const;
   // Every block divided by its homogeneous element (Camera::divideBlocks).
   void divide(const Vector& z, Vector& y) const;
-  void evaluate(const Vector& x, Vector& y) const {
+  void evaluate(const Vector& x, Vector& y, bool position_only = false) const {
     Vector z;
-    evaluateHomogeneous(x, z);
+    evaluateHomogeneous(x, z, position_only);
     divide(z, y);
   }
+  // Every stage is the identity map (Camera::identity): evaluating it can be skipped.
+  bool isIdentity() const { return identity_; }
 
  private:
   struct Term {
@@ -42,13 +46,15 @@ class CompiledCamera {
   // z[output] in memory would chain every term on a store-to-load dependency).
   struct Output {
     int index;
+    bool position;  // in the position block
     std::vector<Term> terms;
   };
-  void evaluateStage(size_t stage, const Vector& x, Vector& z) const;
+  void evaluateStage(size_t stage, const Vector& x, Vector& z, bool position_only) const;
   void rehomogenise(const Vector& z, Vector& x) const;
 
   BlockLayout layout_;
   std::vector<std::vector<Output>> stages_;
+  bool identity_ = false;
 };
 
 }  // namespace artcam

@@ -34,6 +34,7 @@ class Chain {
   explicit Chain(const std::vector<const Camera*>& cameras) {
     for (const Camera* c : cameras) {
       CompiledStage s{CompiledCamera(*c)};
+      if (s.camera.isIdentity() && c != cameras.back()) continue;  // nothing to do
       const BlockLayout& l = s.camera.layout();
       const int p = l.find(BlockKind::Position);
       if (p < 0 || l.blocks[p].size != 4)
@@ -45,6 +46,9 @@ class Chain {
       if (const int d_block = l.find(BlockKind::Depth); d_block >= 0) s.depth = l.offsets[d_block];
       stages_.push_back(std::move(s));
     }
+    reads_colour_after_.assign(stages_.size(), false);
+    for (size_t k = stages_.size(); k-- > 1;)
+      reads_colour_after_[k - 1] = reads_colour_after_[k] || stages_[k].colour >= 0;
   }
   bool readsColour() const {
     return std::any_of(stages_.begin(), stages_.end(),
@@ -52,19 +56,23 @@ class Chain {
   }
 
   // Maps p (and its premultiplied colour, updated in place); false where it does not map.
-  bool map(const Eigen::Vector3d& p, Eigen::Vector4f& colour, Eigen::Vector3d& out) const {
+  // With `geometry_only` colour outputs are computed only where a later camera reads them.
+  bool map(const Eigen::Vector3d& p, Eigen::Vector4f& colour, Eigen::Vector3d& out,
+           bool geometry_only = false) const {
     Eigen::Vector3d point = p;
-    for (const CompiledStage& s : stages_) {
+    for (size_t st = 0; st < stages_.size(); ++st) {
+      const CompiledStage& s = stages_[st];
+      const bool skip_colour = geometry_only && !reads_colour_after_[st];
       CompiledCamera::Vector x{}, y;
       for (int k = 0; k < 3; ++k) x[s.position + k] = point[k];
       x[s.position + 3] = 1.0;
       if (s.colour >= 0)
         for (int k = 0; k < 4; ++k) x[s.colour + k] = colour[k];
       if (s.depth >= 0) x[s.depth + 1] = 1.0;
-      s.camera.evaluate(x, y);
-      for (int k = 0; k < 3; ++k) point[k] = y[s.position + k];
+      s.camera.evaluate(x, y, skip_colour);
+      for (int i = 0; i < 3; ++i) point[i] = y[s.position + i];
       if (!point.allFinite()) return false;
-      if (s.colour >= 0) {
+      if (s.colour >= 0 && !skip_colour) {
         const double a = y[s.colour + 3];  // eq 5: rgb divided by alpha, alpha clamped
         for (int k = 0; k < 3; ++k)
           colour[k] = a > 0 ? static_cast<float>(y[s.colour + k] * a) : 0.0f;
@@ -77,6 +85,7 @@ class Chain {
 
  private:
   std::vector<CompiledStage> stages_;
+  std::vector<bool> reads_colour_after_;  // some later stage reads colour
 };
 
 std::vector<const Camera*> pointers(const std::vector<Camera>& effects, const Camera* view) {
@@ -122,7 +131,7 @@ std::vector<Splat> project(const PointCloud& cloud, const Chain& chain, double s
         q[k] += spacing;
         Eigen::Vector4f cq = base;
         Eigen::Vector3d oq;
-        if (chain.map(q, cq, oq))
+        if (chain.map(q, cq, oq, true))
           step = std::max(step, (oq.head<2>() - o3.head<2>()).squaredNorm());
       }
       step = s * std::sqrt(step);

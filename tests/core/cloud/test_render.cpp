@@ -71,6 +71,28 @@ class TestRender : public QObject {
     }
   }
 
+  void positionOnlyAndIdentityShortcutsChangeNothing() {
+    // The renderer skips identity cameras and, in its splat-size steps, colour outputs nobody
+    // reads: both must leave the image bit-identical.
+    const PointCloud cube = cubeOfCubes({6});
+    CloudRenderOptions o;
+    o.width = o.height = 96;
+    const Camera view =
+        pinholeCamera(framingPinhole(cube, defaultViewPose(cloudBounds(cube)), 96, 96));
+    const Camera id =
+        Camera::identity({Block{BlockKind::Position, 4}, Block{BlockKind::Colour, 4}}, {}, {});
+    QVERIFY(CompiledCamera(id).isIdentity());
+    QVERIFY(!CompiledCamera(colourScaleEffect({})).isIdentity());
+    QVERIFY(renderCloud(cube, {id}, view, o).data == renderCloud(cube, {}, view, o).data);
+    const CompiledCamera cs(colourScaleEffect({}));
+    CompiledCamera::Vector x{}, full, geometry;
+    for (int k = 0; k < 8; ++k) x[k] = 0.1 * (k + 1);
+    x[3] = 1;
+    cs.evaluate(x, full);
+    cs.evaluate(x, geometry, true);
+    for (int k = 0; k < 3; ++k) QCOMPARE(geometry[k], full[k]);
+  }
+
   void denseCloudRendersWithoutHolesOnTransparent() {
     // 300² points over [-1, 1]² at depth 4 with f = 2: the plane covers the central half of a
     // 200×200 image, about 0.33 px between points, so splats are at their 0.5 px minimum…
