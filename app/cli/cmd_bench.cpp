@@ -31,7 +31,7 @@ const char* const kBenchUsage =
     "         time against error of every fitting method (raw DLT, conditioned DLT, + refine,\n"
     "         + robust, auto) over match counts and noise levels; CSV on stdout\n"
     "       artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
-    "                           [--peer DIR]\n\n"
+    "                           [--peer DIR] [--only KERNEL,…]\n\n"
     "Times the fused warp on a WxH RGB8 image made in code (default 6000x4000): each kernel\n"
     "(identity, translation-copy, affine, homography, rational, and a minifying homography\n"
     "with anti-aliasing) with each filter, on each thread count of LIST (default 1,2), as the\n"
@@ -40,6 +40,7 @@ const char* const kBenchUsage =
     "where the error is the distance of the kernel's source positions from an exact\n"
     "double-precision inverse on a sample of rows. --peer DIR runs DIR/cvwarp (the OpenCV\n"
     "maps + remap peer of ../shared/peerbench) on the same image and adds its rows.\n"
+    "--only runs the named kernels alone.\n"
     "--plot writes a PNG of speed (x, log) against error (y, log), one colour per kernel.\n";
 
 namespace {
@@ -284,7 +285,8 @@ int benchCommand(const std::vector<std::string>& argv) {
                          {"--reps", "", true},
                          {"--threads", "", true},
                          {"--plot", "", true},
-                         {"--peer", "", true}});
+                         {"--peer", "", true},
+                         {"--only", "", true}});
   args.expectPositional(1, "what to benchmark (render)");
   if (args.positional()[0] != "render") throw UsageError("bench what? \"render\" or \"fit\"");
   const FrameSize size = args.has("--size") ? parseSize(*args.value("--size"), "--size")
@@ -311,7 +313,9 @@ int benchCommand(const std::vector<std::string>& argv) {
 
   std::printf("source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share\n");
   std::vector<Row> rows;
+  const std::string only = args.valueOr("--only", "");
   for (const Case& c : makeCases(size)) {
+    if (!only.empty() && ("," + only + ",").find("," + c.name + ",") == std::string::npos) continue;
     const PositionError err = measureError(c.camera, size);
     if (err.validity_mismatch)
       std::fprintf(stderr, "bench: %s: %lld sampled pixels differ from the reference in having a "

@@ -1,7 +1,5 @@
 #include "core/render/span_sampler.h"
 
-#include "core/render/sampling.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -13,14 +11,23 @@ namespace {
 using Context = SpanSampler::Context;
 
 template <class T>
-const T* pixelAt(const Context& k, int x, int y, int channels) {
+[[gnu::always_inline]] inline const T* pixelAt(const Context& k, int x, int y, int channels) {
   return static_cast<const T*>(static_cast<const void*>(k.src + y * k.src_row)) + x * channels;
+}
+
+// sampling.h's Keys weights (a = −0.5) in float: the taps are float anyway.
+inline void cubicWeightsF(float t, float w[4]) {
+  const float t2 = t * t, t3 = t2 * t;
+  w[0] = -0.5f * t3 + t2 - 0.5f * t;
+  w[1] = 1.5f * t3 - 2.5f * t2 + 1.0f;
+  w[2] = -1.5f * t3 + 2.0f * t2 + 0.5f * t;
+  w[3] = 0.5f * t3 - 0.5f * t2;
 }
 
 // Each tap returns the coverage and adds weight · value to sum[0 … C). Interior paths skip the
 // bounds tests; the border paths keep sampling.h's exact semantics.
 template <class T, int C>
-float nearestTap(const Context& k, float fx, float fy, float* sum) {
+[[gnu::always_inline]] inline float nearestTap(const Context& k, float fx, float fy, float* sum) {
   if (!(fx >= -0.5f && fx < k.width - 0.5f && fy >= -0.5f && fy < k.height - 0.5f)) return 0.0f;
   const int x = std::min(static_cast<int>(fx + 0.5f), k.width - 1);
   const int y = std::min(static_cast<int>(fy + 0.5f), k.height - 1);
@@ -30,10 +37,11 @@ float nearestTap(const Context& k, float fx, float fy, float* sum) {
 }
 
 template <class T, int C>
-float bilinearTap(const Context& k, float fx, float fy, float* sum) {
+[[gnu::always_inline]] inline float bilinearTap(const Context& k, float fx, float fy, float* sum) {
   if (!(fx > -1.0f && fx < k.width && fy > -1.0f && fy < k.height)) return 0.0f;
-  const float flx = std::floor(fx), fly = std::floor(fy);
-  const int x0 = static_cast<int>(flx), y0 = static_cast<int>(fly);
+  // floor() without a libm call on the SSE2 baseline: truncation of a positive number.
+  const int x0 = static_cast<int>(fx + 1.0f) - 1, y0 = static_cast<int>(fy + 1.0f) - 1;
+  const float flx = static_cast<float>(x0), fly = static_cast<float>(y0);
   const float ax = fx - flx, ay = fy - fly;
   const float wx[2] = {1.0f - ax, ax}, wy[2] = {1.0f - ay, ay};
   if (x0 >= 0 && y0 >= 0 && x0 + 1 < k.width && y0 + 1 < k.height) {
@@ -63,19 +71,23 @@ float bilinearTap(const Context& k, float fx, float fy, float* sum) {
 }
 
 template <class T, int C>
-float bicubicTap(const Context& k, float fx, float fy, float* sum) {
+[[gnu::always_inline]] inline float bicubicTap(const Context& k, float fx, float fy, float* sum) {
   if (!(fx > -2.0f && fx < k.width + 1.0f && fy > -2.0f && fy < k.height + 1.0f)) return 0.0f;
-  const float flx = std::floor(fx), fly = std::floor(fy);
-  const int x0 = static_cast<int>(flx) - 1, y0 = static_cast<int>(fly) - 1;
-  double wxd[4], wyd[4];
-  cubicWeights(fx - flx, wxd);
-  cubicWeights(fy - fly, wyd);
+  const int ix = static_cast<int>(fx + 2.0f) - 2, iy = static_cast<int>(fy + 2.0f) - 2;
+  const int x0 = ix - 1, y0 = iy - 1;
   float wx[4], wy[4];
-  for (int i = 0; i < 4; ++i) {
-    wx[i] = static_cast<float>(wxd[i]);
-    wy[i] = static_cast<float>(wyd[i]);
-  }
+  cubicWeightsF(fx - static_cast<float>(ix), wx);
+  cubicWeightsF(fy - static_cast<float>(iy), wy);
   const bool interior = x0 >= 0 && y0 >= 0 && x0 + 3 < k.width && y0 + 3 < k.height;
+  if (interior) {
+    for (int j = 0; j < 4; ++j) {
+      const T* p = pixelAt<T>(k, x0, y0 + j, C);
+      for (int c = 0; c < C; ++c)
+        sum[c] += wy[j] * (wx[0] * static_cast<float>(p[c]) + wx[1] * static_cast<float>(p[c + C]) +
+                           wx[2] * static_cast<float>(p[c + 2 * C]) + wx[3] * static_cast<float>(p[c + 3 * C]));
+    }
+    return 1.0f;
+  }
   float coverage = 0.0f;
   for (int j = 0; j < 4; ++j) {
     const int y = y0 + j;
@@ -84,7 +96,7 @@ float bicubicTap(const Context& k, float fx, float fy, float* sum) {
     float row_cover = 0.0f;
     for (int i = 0; i < 4; ++i) {
       const int x = x0 + i;
-      if (!interior && (x < 0 || x >= k.width)) continue;
+      if (x < 0 || x >= k.width) continue;
       const T* p = pixelAt<T>(k, x, y, C);
       for (int c = 0; c < C; ++c) row[c] += wx[i] * static_cast<float>(p[c]);
       row_cover += wx[i];
@@ -92,12 +104,11 @@ float bicubicTap(const Context& k, float fx, float fy, float* sum) {
     for (int c = 0; c < C; ++c) sum[c] += wy[j] * row[c];
     coverage += wy[j] * row_cover;
   }
-  // The weights sum to 1 in the interior; say so exactly rather than 1 ± rounding.
-  return interior ? 1.0f : coverage;
+  return coverage;
 }
 
 template <class T>
-T store(float v, float full) {
+[[gnu::always_inline]] inline T store(float v, float full) {
   if constexpr (std::is_floating_point_v<T>) {
     (void)full;
     return v;
@@ -113,6 +124,29 @@ long long sampleSpan(const Context& k, unsigned char* out_bytes, int n, const fl
   T* out = static_cast<T*>(static_cast<void*>(out_bytes));
   const int oc = k.out_channels;
   long long transparent = 0;
+  const auto tapAt = [&k](float fx, float fy, float* sum) __attribute__((always_inline)) {
+    if constexpr (F == Filter::Nearest) return nearestTap<T, C>(k, fx, fy, sum);
+    else if constexpr (F == Filter::Bilinear) return bilinearTap<T, C>(k, fx, fy, sum);
+    else return bicubicTap<T, C>(k, fx, fy, sum);
+  };
+  if (supersample <= 1 && oc == C) {
+    // The common case (one tap, output channels = source channels): no alpha bookkeeping
+    // beyond the source's own, nothing the compiler cannot keep in registers.
+    const float full = k.full;
+    const int src_alpha = k.src_alpha;
+    for (int i = 0; i < n; ++i, out += C) {
+      float sum[C] = {};
+      const float coverage = valid[i] ? tapAt(sx[i] - 0.5f, sy[i] - 0.5f, sum) : 0.0f;
+      for (int c = 0; c < C; ++c) out[c] = store<T>(sum[c], full);
+      float alpha = coverage;
+      if (src_alpha >= 0) {
+        alpha = std::clamp(sum[src_alpha], 0.0f, full);
+        out[src_alpha] = store<T>(alpha, full);
+      }
+      transparent += alpha <= 0.0f;
+    }
+    return transparent;
+  }
   const float inv_count = 1.0f / static_cast<float>(supersample * supersample);
   for (int i = 0; i < n; ++i, out += oc) {
     if (!valid[i]) {
@@ -122,11 +156,7 @@ long long sampleSpan(const Context& k, unsigned char* out_bytes, int n, const fl
     }
     float sum[C] = {};
     float coverage = 0.0f;
-    const auto tap = [&](float fx, float fy) {
-      if constexpr (F == Filter::Nearest) coverage += nearestTap<T, C>(k, fx, fy, sum);
-      else if constexpr (F == Filter::Bilinear) coverage += bilinearTap<T, C>(k, fx, fy, sum);
-      else coverage += bicubicTap<T, C>(k, fx, fy, sum);
-    };
+    const auto tap = [&](float fx, float fy) __attribute__((always_inline)) { coverage += tapAt(fx, fy, sum); };
     const float fx = sx[i] - 0.5f, fy = sy[i] - 0.5f;
     if (supersample <= 1) {
       tap(fx, fy);
