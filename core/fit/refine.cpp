@@ -99,7 +99,13 @@ Camera refineReprojection(const Camera& start, const std::vector<Eigen::VectorXd
     for (int tries = 0; tries < 12 && !accepted; ++tries) {
       Normal damped = jtj;
       damped.diagonal() += lambda * (jtj.diagonal().array() + 1e-12).matrix();
-      const Params step = damped.ldlt().solve(-jtr);
+      // Damping makes the matrix positive definite; Cholesky is exact and deterministic there.
+      const Eigen::LLT<Normal> cholesky(damped);
+      if (cholesky.info() != Eigen::Success) {
+        lambda *= 8.0;
+        continue;
+      }
+      const Params step = cholesky.solve(-jtr);
       const Params candidate = (p + step).normalized();
       const double next = cost(candidate, chis, dst);
       const bool pole_ok =
