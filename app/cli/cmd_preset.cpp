@@ -14,6 +14,7 @@
 #include "core/io/ply.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -25,7 +26,7 @@ namespace {
 // Parsed parameters of one preset: every value a list of numbers.
 class Params {
  public:
-  Params(std::map<std::string, std::vector<double>> values) : values_(std::move(values)) {}
+  explicit Params(std::map<std::string, std::vector<double>> values) : values_(std::move(values)) {}
   double number(const std::string& name) const { return get(name, 1)[0]; }
   Eigen::Vector3d vec3(const std::string& name) const {
     const auto& v = get(name, 3);
@@ -150,7 +151,7 @@ const Preset kPresets[] = {
      "focal=1.9 slit-u-depth=1.2 slit-v-depth=-1.2 eye=2.744,2.058,-3.430 at=0,0,0 up=0,1,0",
      xslit},
     {"glc", "3D→image: general linear camera, generator rays s,t,u,v (view camera)",
-     "focal=1.6 ray1=-0.3,0.2,-0.4,-0.2 ray2=0.3,0.2,0.4,-0.25 ray3=0,-0.3,0.05,0.4 "
+     "focal=1.2 ray1=-0.3,-0.3,-0.5,-0.3 ray2=0.3,-0.3,0.4,-0.45 ray3=0,0.35,0.1,0.5 "
      "eye=2.744,2.058,-3.430 at=0,0,0 up=0,1,0",
      glc},
     {"rational-lens",

@@ -7,6 +7,8 @@
 #include "core/io/image_io.h"
 #include "core/io/ply.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
