@@ -231,13 +231,23 @@ ImageF renderCloud(const PointCloud& cloud, const std::vector<Camera>& effects, 
   const size_t pixels = static_cast<size_t>(options.width) * static_cast<size_t>(options.height);
   const std::vector<int> layers =
       options.layers == RenderLayers::Rgb ? std::vector<int>{0, 1, 2} : std::vector<int>{-1};
-  for (const int layer : layers) {
-    std::vector<Splat> splats = project(cloud, chain, s.point_spacing, layer, options, s.cancelled);
+  for (size_t pass_index = 0; pass_index < layers.size(); ++pass_index) {
+    const int layer = layers[pass_index];
+    // Progress over all passes: pass k covers [k/n, (k+1)/n].
+    CloudRenderOptions pass_options = options;
+    if (options.progress) {
+      const double n = static_cast<double>(layers.size());
+      pass_options.progress = [&options, pass_index, n](double f) {
+        return options.progress((static_cast<double>(pass_index) + f) / n);
+      };
+    }
+    std::vector<Splat> splats =
+        project(cloud, chain, s.point_spacing, layer, pass_options, s.cancelled);
     if (s.cancelled) break;
     ImageF pass(options.width, options.height, 4, 3);
     std::vector<float> zbuffer(pixels, -std::numeric_limits<float>::infinity());
     s.points += splats.size();
-    const size_t drawn = splat(splats, options, pass, zbuffer, s.cancelled);
+    const size_t drawn = splat(splats, pass_options, pass, zbuffer, s.cancelled);
     s.drawn += drawn;
     for (const Splat& sp : splats) s.dropped += sp.radius <= 0;
     if (layer < 0) {

@@ -204,6 +204,31 @@ class TestRender : public QObject {
     }
   }
 
+  void progressIsReportedAndCancelHonoured() {
+    const PointCloud c = plane(200, 1.0, 4.0, {1, 1, 1, 1});
+    CloudRenderOptions o;
+    o.width = o.height = 64;
+    double last = -1;
+    bool monotone = true;
+    o.progress = [&](double f) {
+      monotone = monotone && f >= last;
+      last = f;
+      return true;
+    };
+    CloudRenderSummary s;
+    for (const RenderLayers layers : {RenderLayers::Whole, RenderLayers::Rgb}) {
+      o.layers = layers;
+      last = -1;
+      renderCloud(c, {}, frontPinhole(), o, &s);
+      QVERIFY(monotone);
+      QCOMPARE(last, 1.0);
+      QVERIFY(!s.cancelled);
+    }
+    o.progress = [](double) { return false; };
+    renderCloud(c, {}, frontPinhole(), o, &s);
+    QVERIFY(s.cancelled);
+  }
+
   void renderSpeedForAMillionPoints() {
     const PointCloud cloud = cubeOfCubes({79});  // 27·6·79² = 1 010 394 points
     QVERIFY(cloud.size() > 1000000);
