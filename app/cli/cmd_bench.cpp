@@ -33,8 +33,8 @@ const char* const kBenchUsage =
     "       artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
     "                           [--peer DIR] [--only KERNEL,…]\n\n"
     "Times the fused warp on a WxH RGB8 image made in code (default 6000x4000): each kernel\n"
-    "(identity, translation-copy, affine, homography, rational, and a minifying homography\n"
-    "with anti-aliasing) with each filter, on each thread count of LIST (default 1,2), as the\n"
+    "(identity, translation-copy, affine, homography, rational, rational-scalar without the\n"
+    "SIMD clone, and a minifying homography with anti-aliasing) with each filter, on each thread count of LIST (default 1,2), as the\n"
     "median of N renders (default 5). Prints CSV on stdout:\n"
     "  source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share\n"
     "where the error is the distance of the kernel's source positions from an exact\n"
@@ -49,6 +49,7 @@ struct Case {
   std::string name;
   Camera camera;
   bool antialias = false;
+  bool scalar_only = false;  // the portable code where a SIMD clone exists
 };
 
 // A photo-like RGB8 image: smooth gradients, edges and hash noise, made in code.
@@ -99,6 +100,7 @@ std::vector<Case> makeCases(FrameSize size) {
     q[static_cast<size_t>(k)] << p[k][0], p[k][1] / 2, p[k][2] / 2, p[k][1] / 2, p[k][3],
         p[k][4] / 2, p[k][2] / 2, p[k][4] / 2, p[k][5];
   cases.push_back({"rational", Camera::rtcam(q, size, size), false});
+  cases.push_back({"rational-scalar", Camera::rtcam(q, size, size), false, true});
   Eigen::Matrix3d m = id;
   m(0, 0) = m(1, 1) = 2.5;  // the target shows the source at 1/2.5 scale
   m(2, 0) = 0.1;
@@ -257,7 +259,8 @@ void drawPlot(const std::vector<Row>& rows, const std::string& path) {
   const std::map<std::string, std::array<float, 3>> colours = {
       {"identity", {0.1f, 0.1f, 0.1f}},       {"translation-copy", {0.5f, 0.5f, 0.5f}},
       {"affine", {0.1f, 0.6f, 0.1f}},         {"homography", {0.1f, 0.3f, 0.9f}},
-      {"rational", {0.9f, 0.5f, 0.0f}},       {"homography-minify", {0.6f, 0.1f, 0.7f}}};
+      {"rational", {0.9f, 0.5f, 0.0f}},       {"homography-minify", {0.6f, 0.1f, 0.7f}},
+      {"rational-scalar", {0.6f, 0.4f, 0.1f}}};
   for (const Row& r : rows) {
     auto it = colours.find(r.kernel);
     std::array<float, 3> c = it == colours.end() ? std::array<float, 3>{0, 0, 0} : it->second;
@@ -321,12 +324,13 @@ int benchCommand(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "bench: %s: %lld sampled pixels differ from the reference in having a "
                    "preimage\n", c.name.c_str(), err.validity_mismatch);
     for (Filter f : {Filter::Nearest, Filter::Bilinear, Filter::Bicubic}) {
-      if (c.antialias && f != Filter::Bilinear) continue;
+      if ((c.antialias || c.scalar_only) && f != Filter::Bilinear) continue;
       for (int threads : thread_counts) {
         WarpOptions o;
         o.filter = f;
         o.threads = threads;
         o.antialias = c.antialias;
+        o.scalar_only = c.scalar_only;
         std::vector<double> times;
         WarpSummary s;
         warpImage(src, c.camera, dst, o, &s);  // warm-up

@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -106,12 +107,63 @@ struct Quadratic {
   double dv(double u, double v) const { return b * u + 2 * d * v + e; }
 };
 
+// What the seed check needs of the one-stage forward map and of the centre (inverse.h).
+struct CheckInputs {
+  Quadratic f0, f1, f2;
+  bool den_negative;  // the centre's denominator is negative
+  bool det_positive;  // the centre's Jacobian determinant is positive
+  double tolerance;
+};
+
+// The seed check (RationalKernel::check) for a whole span of starts in plain doubles without
+// branches, so it vectorises: q = start − δ, passed = 1 where the check accepts. SIMD by
+// runtime dispatch (issue 5): GCC clones the function for AVX2 and the x86-64 baseline and
+// picks one when the program loads (ifunc); no -march flag anywhere, and the baseline clone
+// is the scalar fallback machines without AVX2 run; CoordinateOptions::scalar_only forces it
+// so the tests compare the two (no FMA in either, so they agree bit for bit).
+[[gnu::always_inline]] inline void checkSpanBody(
+    const CheckInputs& in, double tx0, double ty, const double* __restrict bx,
+    const double* __restrict by, double* __restrict qx, double* __restrict qy,
+    std::int64_t* __restrict passed) {
+  const Quadratic f0 = in.f0, f1 = in.f1, f2 = in.f2;
+  for (int i = 0; i < kSpanPixels; ++i) {
+    const double u = bx[i], v = by[i];
+    const double den = f2.value(u, v), inv = 1.0 / den;
+    const double fx = f0.value(u, v) * inv, fy = f1.value(u, v) * inv;
+    const double du = f2.du(u, v), dv = f2.dv(u, v);
+    const double j00 = (f0.du(u, v) - fx * du) * inv, j01 = (f0.dv(u, v) - fx * dv) * inv;
+    const double j10 = (f1.du(u, v) - fy * du) * inv, j11 = (f1.dv(u, v) - fy * dv) * inv;
+    const double det = j00 * j11 - j01 * j10, inv_det = 1.0 / det;
+    const double rx = fx - (tx0 + i), ry = fy - ty;
+    const double stepx = (j11 * rx - j01 * ry) * inv_det, stepy = (j00 * ry - j10 * rx) * inv_det;
+    qx[i] = u - stepx;
+    qy[i] = v - stepy;
+    // The comparisons are false for NaN (a start on the pole, a singular Jacobian): rejected.
+    // Comparisons combined with & rather than && so the loop body has no branch.
+    const bool side = (den < 0.0) == in.den_negative;
+    const bool fold = (det > 0.0) == in.det_positive;
+    passed[i] = side & fold & (std::abs(stepx) <= in.tolerance) & (std::abs(stepy) <= in.tolerance);
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void checkSpanDispatched(
+    const CheckInputs& in, double tx0, double ty, const double* bx, const double* by, double* qx,
+    double* qy, std::int64_t* passed) {
+  checkSpanBody(in, tx0, ty, bx, by, qx, qy, passed);
+}
+
+void checkSpanScalar(const CheckInputs& in, double tx0, double ty, const double* bx,
+                     const double* by, double* qx, double* qy, std::int64_t* passed) {
+  checkSpanBody(in, tx0, ty, bx, by, qx, qy, passed);
+}
+
 class RationalKernel final : public CoordinateKernel {
  public:
   RationalKernel(RationalMap forward, std::optional<RationalMap> seed, FrameSize source_px,
                  FrameSize target_px, const CoordinateOptions& options, int threads)
       : newton_(std::move(forward), source_px, options.residual_tolerance_px),
-        seed_tolerance_(options.seed_tolerance_px) {
+        seed_tolerance_(options.seed_tolerance_px),
+        scalar_only_(options.scalar_only) {
     if (seed && seed->stageCount() == 1) seed_q_ = seed->stage(0);
     if (newton_.forward().stageCount() == 1)
       for (const Eigen::Matrix3d& q : newton_.forward().stage(0)) forward_q_.emplace_back(q);
@@ -144,11 +196,20 @@ class RationalKernel final : public CoordinateKernel {
     double bx[kSpanPixels], by[kSpanPixels], qx[kSpanPixels], qy[kSpanPixels];
     unsigned char have[kSpanPixels], passed[kSpanPixels];
     if (!seed_q_.empty()) {
-      RowQuadratics seed_row(seed_q_, y, x0);
-      for (int i = 0; i < n; ++i, seed_row.advance()) {
-        const double den = seed_row.numerator(2);
-        bx[i] = seed_row.numerator(0) / den;
-        by[i] = seed_row.numerator(1) / den;
+      // Forward differences (DESIGN §3) in locals the compiler keeps in registers.
+      const RowQuadratics seed_row(seed_q_, y, x0);
+      double n0 = seed_row.numerator(0), n1 = seed_row.numerator(1), n2 = seed_row.numerator(2);
+      double d0 = seed_row.delta(0), d1 = seed_row.delta(1), d2 = seed_row.delta(2);
+      const double s0 = seed_row.second(0), s1 = seed_row.second(1), s2 = seed_row.second(2);
+      for (int i = 0; i < n; ++i) {
+        bx[i] = n0 / n2;
+        by[i] = n1 / n2;
+        n0 += d0;
+        n1 += d1;
+        n2 += d2;
+        d0 += s0;
+        d1 += s1;
+        d2 += s2;
       }
     } else {
       for (int i = 0; i < n; ++i) {
@@ -162,8 +223,13 @@ class RationalKernel final : public CoordinateKernel {
       have[i] = std::isfinite(bx[i]) && std::isfinite(by[i]);
     }
     if (forward_q_.size() == 3) {
-      checkSpan(x0, ty, n, bx, by, qx, qy, passed);
-      for (int i = 0; i < n; ++i) passed[i] &= have[i];
+      for (int i = n; i < kSpanPixels; ++i) bx[i] = by[i] = 0.0;  // the kernel runs all lanes
+      std::int64_t accepted[kSpanPixels];
+      const CheckInputs in{forward_q_[0], forward_q_[1], forward_q_[2],
+                           (newton_.centre().denominator_signs & 1u) != 0,
+                           newton_.centre().det_positive, seed_tolerance_};
+      (scalar_only_ ? checkSpanScalar : checkSpanDispatched)(in, x0 + 0.5, ty, bx, by, qx, qy, accepted);
+      for (int i = 0; i < n; ++i) passed[i] = have[i] && accepted[i] != 0;
     } else {
       for (int i = 0; i < n; ++i) {
         Eigen::Vector2d q;
@@ -174,40 +240,61 @@ class RationalKernel final : public CoordinateKernel {
     }
 
     // Pass 2, in order along the row: the pixels the seed missed try the extrapolation of
-    // their solved neighbours, then Newton.
-    int newton_count = 0;
+    // their solved neighbours, then Newton. The row state is brought up to date only where a
+    // pixel needs it and at the end (solutions live in qx, qy meanwhile).
+    const RowState before = state;
+    const auto solution = [&](int j) {
+      if (j >= 0) return Eigen::Vector2d(qx[j], qy[j]);
+      return j == -1 ? before.previous : j == -2 ? before.before_previous : before.third;
+    };
+    int run = before.run, last_base = -1, newton_count = 0;
     for (int i = 0; i < n; ++i) {
+      if (passed[i]) {
+        sx[i] = static_cast<float>(qx[i]);
+        sy[i] = static_cast<float>(qy[i]);
+        valid[i] = 1;
+        last_base = i;
+        ++run;
+        continue;
+      }
       const Eigen::Vector2d t(x0 + i + 0.5, ty);
       const Eigen::Vector2d base(bx[i], by[i]);
-      Eigen::Vector2d s(qx[i], qy[i]);
-      bool ok = passed[i] != 0, from_base = ok;
+      const Eigen::Vector2d previous = solution(i - 1), before_previous = solution(i - 2);
+      const Eigen::Vector2d seed_offset =
+          last_base >= 0 ? Eigen::Vector2d(qx[last_base] - bx[last_base], qy[last_base] - by[last_base])
+                         : before.seed_offset;
+      Eigen::Vector2d s;
+      bool ok = false, from_base = false;
       // Quadratic extrapolation of the last three solutions misses by the map's third
       // derivative (~1e-5 px); linear by its second, which strong lenses make ~1e-2 px.
-      if (!ok && state.run >= 3) ok = check(t, 3.0 * (state.previous - state.before_previous) + state.third, s);
-      if (!ok && state.run == 2) ok = check(t, 2.0 * state.previous - state.before_previous, s);
-      if (!ok && have[i] && state.run >= 1) ok = from_base = check(t, base + state.seed_offset, s);
+      if (run >= 3) ok = check(t, 3.0 * (previous - before_previous) + solution(i - 3), s);
+      if (!ok && run == 2) ok = check(t, 2.0 * previous - before_previous, s);
+      if (!ok && have[i] && run >= 1) ok = from_base = check(t, base + seed_offset, s);
       if (!ok) {
         ++newton_count;
-        if (state.run >= 2)
-          ok = newton_.solve(t, 2.0 * state.previous - state.before_previous, s, kQuickIterations);
+        if (run >= 2) ok = newton_.solve(t, 2.0 * previous - before_previous, s, kQuickIterations);
         if (!ok && have[i]) ok = from_base = newton_.solve(t, base, s, kQuickIterations);
-        if (!ok && state.run >= 1) ok = newton_.solve(t, state.previous, s, kQuickIterations);
+        if (!ok && run >= 1) ok = newton_.solve(t, previous, s, kQuickIterations);
         if (!ok) ok = newton_.solveFromCentre(t, s, kMaxIterations);
       }
       valid[i] = ok ? 1 : 0;
       if (ok) {
         sx[i] = static_cast<float>(s.x());
         sy[i] = static_cast<float>(s.y());
-        if (from_base) state.seed_offset = s - base;
-        state.third = state.before_previous;
-        state.before_previous = state.previous;
-        state.previous = s;
-        ++state.run;
+        qx[i] = s.x();
+        qy[i] = s.y();
+        if (from_base) last_base = i;
+        ++run;
       } else {
         sx[i] = sy[i] = 0.0f;
-        state.run = 0;
+        run = 0;
       }
     }
+    state.previous = solution(n - 1);
+    state.before_previous = solution(n - 2);
+    state.third = solution(n - 3);
+    if (last_base >= 0) state.seed_offset = Eigen::Vector2d(qx[last_base] - bx[last_base], qy[last_base] - by[last_base]);
+    state.run = run;
     return newton_count;
   }
 
@@ -245,32 +332,6 @@ class RationalKernel final : public CoordinateKernel {
     f = Eigen::Vector2d(fx, fy);
     signs = den < 0.0 ? 1u : 0u;
     return std::isfinite(fx) && std::isfinite(fy);
-  }
-
-  // check() for a whole span of starts (bx, by) with the one-stage forward map in plain
-  // doubles and no branches: q = start − δ, passed = the same acceptance as check().
-  void checkSpan(int x0, double ty, int n, const double* bx, const double* by, double* qx,
-                 double* qy, unsigned char* passed) const {
-    const Quadratic f0 = forward_q_[0], f1 = forward_q_[1], f2 = forward_q_[2];
-    const bool den_negative = newton_.centre().denominator_signs & 1u;
-    const bool det_positive = newton_.centre().det_positive;
-    const double tol = seed_tolerance_;
-    for (int i = 0; i < n; ++i) {
-      const double u = bx[i], v = by[i];
-      const double den = f2.value(u, v), inv = 1.0 / den;
-      const double fx = f0.value(u, v) * inv, fy = f1.value(u, v) * inv;
-      const double du = f2.du(u, v), dv = f2.dv(u, v);
-      const double j00 = (f0.du(u, v) - fx * du) * inv, j01 = (f0.dv(u, v) - fx * dv) * inv;
-      const double j10 = (f1.du(u, v) - fy * du) * inv, j11 = (f1.dv(u, v) - fy * dv) * inv;
-      const double det = j00 * j11 - j01 * j10;
-      const double rx = fx - (x0 + i + 0.5), ry = fy - ty;
-      const double stepx = (j11 * rx - j01 * ry) / det, stepy = (-j10 * rx + j00 * ry) / det;
-      qx[i] = u - stepx;
-      qy[i] = v - stepy;
-      // The negated comparisons also reject NaN (a start on the pole, a singular Jacobian).
-      passed[i] = ((den < 0.0) == den_negative) & ((det > 0.0) == det_positive) &
-                  (std::abs(stepx) <= tol) & (std::abs(stepy) <= tol);
-    }
   }
 
   // The seed check: one forward evaluation, the Newton step it implies, and the pole and fold
@@ -344,6 +405,7 @@ class RationalKernel final : public CoordinateKernel {
   std::vector<Eigen::Matrix3d> seed_q_;
   std::vector<Quadratic> forward_q_;
   double seed_tolerance_;
+  bool scalar_only_;
   int grid_w_ = 0, grid_h_ = 0;
   std::vector<Eigen::Vector2d> nodes_;
   std::vector<unsigned char> node_valid_;

@@ -47,6 +47,8 @@ struct CoordinateOptions {
   double seed_tolerance_px = 1.0 / 256.0;
   bool fit_inverse_seed = true;
   bool force_rational = false;  // run the rational kernel on projective cameras (tests, bench)
+  // Run the portable scalar code where a SIMD clone exists (tests and the benchmark compare).
+  bool scalar_only = false;
 };
 
 // What the rational kernel carries along a row from span to span: the last solutions, whose

@@ -50,6 +50,8 @@ class RowQuadratics {
   // drift stays that of one span (span² · ε) instead of a whole row's.
   RowQuadratics(const std::vector<Eigen::Matrix3d>& q, int y, int x0 = 0);
   double numerator(int i) const { return value_[i]; }
+  double delta(int i) const { return delta_[i]; }
+  double second(int i) const { return second_[i]; }
   // The stage's output at the current pixel; false (and no write) where n_3 = 0 or non-finite.
   bool current(Eigen::Vector2d& out) const;
   void advance();

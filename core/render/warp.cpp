@@ -166,6 +166,7 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   co.seed_tolerance_px = options.seed_tolerance_px;
   co.fit_inverse_seed = options.fit_inverse_seed;
   co.force_rational = options.force_rational;
+  co.scalar_only = options.scalar_only;
   const KernelChoice choice = makeCoordinateKernel(camera, structure, source_px, out_px, co, options.threads);
   report.kernel = choice.name;
   report.note = choice.note;

@@ -49,6 +49,8 @@ struct WarpOptions {
   // the Jacobian), at most max_supersample. Off: one tap per pixel (the exact semantics above).
   bool antialias = false;
   int max_supersample = 4;
+  // Use the portable scalar code even where a SIMD clone was dispatched (tests, benchmark).
+  bool scalar_only = false;
 };
 
 struct WarpSummary {
