@@ -171,7 +171,9 @@ CameraStructure analyseStructure(const Camera& camera, const StructureOptions& o
     for (const Stage& stage : camera.stages()) {
       std::vector<Eigen::MatrixXd> pp;
       for (int i = off; i < off + k; ++i) pp.push_back(stage.q[i].block(off, off, k, k));
-      if (pp.back().cwiseAbs().maxCoeff() == 0.0) out.degenerate = true;
+      // Degenerate only when the denominator is zero in every block: eq 8/9 cameras divide by
+      // p3·c4, which lives in the position–colour coupling, not in pp.
+      if (stage.q[off + k - 1].cwiseAbs().maxCoeff() == 0.0) out.degenerate = true;
       if (!all_homographies) continue;
       const auto h = factorHomography(pp, 1e-10);
       if (!h) {

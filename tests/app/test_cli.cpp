@@ -8,6 +8,7 @@
 
 #include <QDir>
 #include <QFile>
+#include <QFileInfo>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
@@ -189,6 +190,26 @@ class TestCli : public QObject {
     QVERIFY(r.exit_code != 0);
     QVERIFY2(r.err.contains("out.unknownext"), qPrintable(r.err));
     QCOMPARE(QDir(dir_.path()).entryList({"*out*"}, QDir::Files | QDir::Hidden).size(), 0);
+  }
+
+  // Object space: a preset camera applied to the bundled cloud, to an image and to a cloud.
+  void presetAndRenderTheSampleCloud() {
+    Run r = artcamCli({"preset", "twist", "-o", path("twist.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"render", QString::fromStdString(test::resourcePath("cube.ply")), path("twist.artcam"),
+                   "-o", path("twist.png"), "--size", "128x96"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY(QFile::exists(path("twist.png")));
+    r = artcamCli({"render", QString::fromStdString(test::resourcePath("cube.ply")), path("twist.artcam"),
+                   "-o", path("twisted.ply")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY(QFileInfo(path("twisted.ply")).size() > 1000);
+    writeFile(path("bad.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n");
+    r = artcamCli({"render", path("bad.ply"), path("twist.artcam"), "-o", path("bad.png")});
+    QVERIFY(r.exit_code != 0);
+    QVERIFY2(r.err.contains("bad.ply"), qPrintable(r.err));
+    QVERIFY(!QFile::exists(path("bad.png")));
+    QVERIFY(artcamCli({"preset", "no-such-preset", "-o", path("x.artcam")}).exit_code != 0);
   }
 
   void usageErrorsExitWithTwo() {

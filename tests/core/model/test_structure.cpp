@@ -70,6 +70,17 @@ class TestStructure : public QObject {
     QVERIFY(!s.geometry_depends_on_attributes);
   }
 
+  // Eq 8/9 divides by p3·c4, which lives in the position–colour coupling: not degenerate.
+  void couplingDenominatorIsNotDegenerate() {
+    Camera cam = Camera::identity({Block{BlockKind::Position, 3}, Block{BlockKind::Colour, 4}},
+                                  {8, 8}, {8, 8});
+    cam.stages()[0].q[2].setZero();
+    cam.stages()[0].q[2](2, 6) = cam.stages()[0].q[2](6, 2) = 0.5;
+    const CameraStructure s = analyseStructure(cam);
+    QVERIFY(!s.degenerate);
+    QVERIFY(s.geometry_depends_on_attributes);
+  }
+
   void zeroDenominatorIsDegenerate() {
     Camera cam = Camera::identity({Block{BlockKind::Position, 3}}, {8, 8}, {8, 8});
     cam.stages()[0].q[2].setZero();
