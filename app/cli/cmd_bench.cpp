@@ -262,6 +262,7 @@ void drawPlot(const std::vector<Row>& rows, const std::string& path) {
       {"rational", {0.9f, 0.5f, 0.0f}},       {"homography-minify", {0.6f, 0.1f, 0.7f}},
       {"rational-scalar", {0.6f, 0.4f, 0.1f}}};
   for (const Row& r : rows) {
+    if (r.max_err < 0) continue;  // no error figure (OpenCV nearest): nothing to place
     auto it = colours.find(r.kernel);
     std::array<float, 3> c = it == colours.end() ? std::array<float, 3>{0, 0, 0} : it->second;
     const bool peer = r.source != "artcam";

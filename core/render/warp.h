@@ -1,10 +1,12 @@
-// Gather warp of an image through a position camera (DESIGN §3).
+// Gather warp of an image through a position camera (DESIGN §3), fused (issue 5).
 //
 // For each output pixel centre (x + 0.5, y + 0.5) the source point is found through the
 // inverse map: exact for identity/translation/affine/homography cameras (from the structure
-// analysis), otherwise seeded by a fitted inverse camera and refined per pixel by Newton with
-// a residual check. Pixels with no preimage (outside the source, folded, beyond the pole
-// curve x Q_n xᵀ = 0) are transparent: all channels 0 and alpha 0. Never NaN.
+// analysis), otherwise seeded by a fitted inverse camera, checked by one forward evaluation
+// and refined by Newton only where the seed misses (coordinates.h). Positions are made span
+// by span and sampled at once (span_sampler.h): no per-pixel map is stored. Pixels with no
+// preimage (outside the source, folded, beyond the pole curve x Q_n xᵀ = 0) are transparent:
+// all channels 0 and alpha 0. Never NaN. Whole-pixel translations (identity included) copy.
 //
 // Frames: the camera's tensors are normalised, so the source image may be any resolution of
 // the photo the camera was made on, and the output any resolution of its target frame.
