@@ -31,7 +31,7 @@ const char* const kBenchUsage =
     "         time against error of every fitting method (raw DLT, conditioned DLT, + refine,\n"
     "         + robust, auto) over match counts and noise levels; CSV on stdout\n"
     "       artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
-    "                           [--peer DIR] [--only KERNEL,…]\n\n"
+    "                           [--peer DIR] [--only KERNEL,…] [--no-e2e]\n\n"
     "Times the fused warp on a WxH RGB8 image made in code (default 6000x4000): each kernel\n"
     "(identity, translation-copy, affine, homography, rational, rational-scalar without the\n"
     "SIMD clone, and a minifying homography with anti-aliasing) with each filter, on each thread count of LIST (default 1,2), as the\n"
@@ -40,7 +40,8 @@ const char* const kBenchUsage =
     "where the error is the distance of the kernel's source positions from an exact\n"
     "double-precision inverse on a sample of rows. --peer DIR runs DIR/cvwarp (the OpenCV\n"
     "maps + remap peer of ../shared/peerbench) on the same image and adds its rows.\n"
-    "--only runs the named kernels alone.\n"
+    "--only runs the named kernels alone. Last, unless --no-e2e, `artcam warp`'s path on a\n"
+    "JPEG of the image (decode, float render, encode) is timed by part, on stderr.\n"
     "--plot writes a PNG of speed (x, log) against error (y, log), one colour per kernel.\n";
 
 namespace {
@@ -276,6 +277,38 @@ void drawPlot(const std::vector<Row>& rows, const std::string& path) {
   if (const Status s = writeImage(path, img); !s) throw CommandError(s.message);
 }
 
+// What `artcam warp` does with a JPEG, timed by part: decode (OpenImageIO, sRGB → linear
+// float), the render alone, encode. One run each; the shares say where an export's time goes.
+void endToEndJpeg(const std::vector<std::uint8_t>& pixels, FrameSize size, const Camera& camera) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  const std::string in = (dir / "artcam-bench-in.jpg").string(), out = (dir / "artcam-bench-out.jpg").string();
+  {
+    ImageF img(size.width, size.height, 3);
+    for (size_t i = 0; i < pixels.size(); ++i) img.data[i] = std::pow(pixels[i] / 255.0f, 2.2f);
+    if (const Status s = writeImage(in, img); !s) throw CommandError(s.message);
+  }
+  using Clock = std::chrono::steady_clock;
+  const auto ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const auto t0 = Clock::now();
+  const auto loaded = readImage(in);
+  if (!loaded) throw CommandError(loaded.status.message);
+  const auto t1 = Clock::now();
+  WarpSummary summary;
+  const ImageF warped = warpImage(loaded->image, camera, {}, &summary);
+  const auto t2 = Clock::now();
+  if (const Status s = writeImage(out, warped, &loaded->info); !s) throw CommandError(s.message);
+  const auto t3 = Clock::now();
+  const double total = ms(t0, t3);
+  std::fprintf(stderr,
+               "e2e_jpeg (artcam warp path, float): decode_ms=%.1f render_ms=%.1f encode_ms=%.1f "
+               "total_ms=%.1f render_share=%.2f\n",
+               ms(t0, t1), ms(t1, t2), ms(t2, t3), total, ms(t1, t2) / total);
+  std::filesystem::remove(in);
+  std::filesystem::remove(out);
+}
+
 double medianOf(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -290,7 +323,8 @@ int benchCommand(const std::vector<std::string>& argv) {
                          {"--threads", "", true},
                          {"--plot", "", true},
                          {"--peer", "", true},
-                         {"--only", "", true}});
+                         {"--only", "", true},
+                         {"--no-e2e", "", false}});
   args.expectPositional(1, "what to benchmark (render)");
   if (args.positional()[0] != "render") throw UsageError("bench what? \"render\" or \"fit\"");
   const FrameSize size = args.has("--size") ? parseSize(*args.value("--size"), "--size")
@@ -359,6 +393,7 @@ int benchCommand(const std::vector<std::string>& argv) {
       printRow(r);
       rows.push_back(r);
     }
+  if (!args.has("--no-e2e")) endToEndJpeg(pixels, size, makeCases(size)[4].camera);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   std::fprintf(stderr, "peak_rss_mib=%.1f (image in + out: %.1f MiB)\n", usage.ru_maxrss / 1024.0,
