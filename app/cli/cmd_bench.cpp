@@ -8,6 +8,7 @@
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
+#include "core/render/mip_pyramid.h"
 #include "core/render/warp.h"
 
 #include <sys/resource.h>
@@ -277,6 +278,11 @@ void drawPlot(const std::vector<Row>& rows, const std::string& path) {
   if (const Status s = writeImage(path, img); !s) throw CommandError(s.message);
 }
 
+double medianOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
 // What `artcam warp` does with a JPEG, timed by part: decode (OpenImageIO, sRGB → linear
 // float), the render alone, encode. One run each; the shares say where an export's time goes.
 void endToEndJpeg(const std::vector<std::uint8_t>& pixels, FrameSize size, const Camera& camera) {
@@ -305,14 +311,26 @@ void endToEndJpeg(const std::vector<std::uint8_t>& pixels, FrameSize size, const
                "e2e_jpeg (artcam warp path, float): decode_ms=%.1f render_ms=%.1f encode_ms=%.1f "
                "total_ms=%.1f render_share=%.2f\n",
                ms(t0, t1), ms(t1, t2), ms(t2, t3), total, ms(t1, t2) / total);
+  // The preview path: a mip pyramid built once per photo, then a screen-sized render of the
+  // same camera from the level that matches (mip_pyramid.h), all threads.
+  const auto p0 = Clock::now();
+  const MipPyramid pyramid(loaded->image);
+  const auto p1 = Clock::now();
+  std::vector<double> times;
+  WarpSummary preview_summary;
+  for (int r = 0; r < 5; ++r) {
+    WarpOptions o;
+    o.width = 1920;
+    const auto a = Clock::now();
+    const ImageF preview = warpPreview(pyramid, camera, o, &preview_summary);
+    times.push_back(ms(a, Clock::now()));
+  }
+  std::fprintf(stderr, "preview 1920 px wide of the %dx%d photo: pyramid_ms=%.1f (once) preview_ms=%.1f (median of 5, %s)\n",
+               size.width, size.height, ms(p0, p1), medianOf(times), preview_summary.note.c_str());
   std::filesystem::remove(in);
   std::filesystem::remove(out);
 }
 
-double medianOf(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 
