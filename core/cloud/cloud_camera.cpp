@@ -51,13 +51,7 @@ void CompiledCamera::evaluateStage(size_t stage, const Vector& x, Vector& z,
 
 void CompiledCamera::divide(const Vector& z, Vector& y) const {
   y = z;
-  for (size_t b = 0; b < layout_.blocks.size(); ++b) {
-    const int off = layout_.offsets[b];
-    const int h = layout_.homogeneousIndex(static_cast<int>(b));
-    const double w = z[h];
-    for (int k = off; k < h; ++k) y[k] = z[k] / w;  // eq 5
-    y[h] = layout_.blocks[b].kind == BlockKind::Colour ? std::clamp(w, 0.0, 1.0) : 1.0;
-  }
+  divideBlocks(layout_, z.data(), y.data());
 }
 
 void CompiledCamera::rehomogenise(const Vector& z, Vector& x) const {

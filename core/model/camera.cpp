@@ -144,15 +144,19 @@ Eigen::VectorXd Camera::evaluateHomogeneous(const Eigen::VectorXd& x) const {
   return z;
 }
 
-Eigen::VectorXd Camera::divideBlocks(const Eigen::VectorXd& z) const {
-  Eigen::VectorXd y = z;
-  for (size_t b = 0; b < layout_.blocks.size(); ++b) {
-    const int off = layout_.offsets[b];
-    const int h = layout_.homogeneousIndex(static_cast<int>(b));
+void divideBlocks(const BlockLayout& layout, const double* z, double* y) {
+  for (size_t b = 0; b < layout.blocks.size(); ++b) {
+    const int off = layout.offsets[b];
+    const int h = layout.homogeneousIndex(static_cast<int>(b));
     const double w = z[h];
     for (int k = off; k < h; ++k) y[k] = z[k] / w;  // eq 5
-    y[h] = layout_.blocks[b].kind == BlockKind::Colour ? std::clamp(w, 0.0, 1.0) : 1.0;
+    y[h] = layout.blocks[b].kind == BlockKind::Colour ? std::clamp(w, 0.0, 1.0) : 1.0;
   }
+}
+
+Eigen::VectorXd Camera::divideBlocks(const Eigen::VectorXd& z) const {
+  Eigen::VectorXd y(z.size());
+  artcam::divideBlocks(layout_, z.data(), y.data());
   return y;
 }
 

@@ -109,6 +109,11 @@ class Camera {
   FrameSize target_size_;
 };
 
+// eq 5 on raw arrays of layout.dimension elements, for hot loops that avoid Eigen's dynamic
+// vectors: every block divided by its homogeneous element, which becomes 1 or the clamped
+// alpha. `y` may be `z`.
+void divideBlocks(const BlockLayout& layout, const double* z, double* y);
+
 // 2D position mapping of a position-only image camera, in the normalised frame or in pixels.
 // Empty where the denominator vanishes or the result is not finite.
 std::optional<Eigen::Vector2d> targetFromSourceNormalized(const Camera& camera,
