@@ -183,9 +183,11 @@ class TestFused : public QObject {
     QTest::addColumn<bool>("append_alpha");
     for (int type : {0, 1, 2})
       for (int c = 1; c <= 4; ++c)
-        for (bool append : {false, true})
+        for (bool append : {false, true}) {
+          if (append && c == 4) continue;  // a source with alpha keeps its own: nothing to append
           QTest::newRow(qPrintable(QString("type %1, %2 channels%3").arg(type).arg(c).arg(append ? ", +alpha" : "")))
               << type << c << append;
+        }
   }
 
   void pixelFormatsAgreeWithFloat() {
@@ -198,7 +200,6 @@ class TestFused : public QObject {
     // Source values already on the type's scale, so the float path is the exact answer.
     const ImageF unit = test::syntheticImage(size.width, size.height, channels);
     const int alpha = channels == 4 ? 3 : -1;
-    if (append_alpha && alpha >= 0) QSKIP("a source with alpha keeps its own");
     // The reference treats alpha as a plain channel (no clamp to the float scale's 1).
     ImageF scaled(size.width, size.height, channels, -1);
     std::vector<std::uint8_t> u8(unit.data.size());
