@@ -210,7 +210,11 @@ std::vector<Row> runPeer(const std::string& dir, const std::vector<std::uint8_t>
       const auto it = ms.find({n, thr});
       return it == ms.end() ? -1.0 : it->second;
     };
-    const double maps = get("maps: auto-vectorised loop (-O3 -march=native)");
+    // The peer labels its fastest map loop with its own build flags; match the stable prefix.
+    const auto maps_it = std::find_if(ms.begin(), ms.end(), [&](const auto& kv) {
+      return kv.first.second == thr && kv.first.first.rfind("maps: auto-vectorised loop", 0) == 0;
+    });
+    const double maps = maps_it == ms.end() ? -1.0 : maps_it->second;
     const struct { const char* filter; double remap; } peers[] = {
         {"nearest", get("remap INTER_NEAREST, float maps")},
         {"bilinear", get("remap INTER_LINEAR, float maps")},

@@ -22,6 +22,10 @@ Sampler::Sampler(const ImageF& source, Filter filter)
       out_channels_(source.alpha_channel >= 0 ? source.channels : source.channels + 1),
       out_alpha_(source.alpha_channel >= 0 ? source.alpha_channel : source.channels),
       append_alpha_(source.alpha_channel < 0) {
+  checkSourceImage(source);
+}
+
+void checkSourceImage(const ImageF& source) {
   if (source.empty() || source.channels > 4 ||
       source.data.size() != static_cast<size_t>(source.width) * static_cast<size_t>(source.height) *
                                  static_cast<size_t>(source.channels))

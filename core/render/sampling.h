@@ -19,6 +19,9 @@
 
 namespace artcam {
 
+// Throws std::invalid_argument unless `source` is a well-formed 1–4 channel image.
+void checkSourceImage(const ImageF& source);
+
 class Sampler {
  public:
   Sampler(const ImageF& source, Filter filter);

@@ -8,6 +8,7 @@
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
 #include "core/render/parallel.h"
+#include "core/render/sampling.h"
 #include "core/render/span_sampler.h"
 
 #include <algorithm>
@@ -234,13 +235,7 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
 
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options,
                  WarpSummary* summary) {
-  if (source.empty() || source.channels > 4 ||
-      source.data.size() != static_cast<size_t>(source.width) * static_cast<size_t>(source.height) *
-                                 static_cast<size_t>(source.channels))
-    throw std::invalid_argument("the source image is empty, has more than 4 channels, or its "
-                                "data does not match its size");
-  if (source.alpha_channel >= source.channels)
-    throw std::invalid_argument("the source image's alpha channel index is out of range");
+  checkSourceImage(source);
   camera.validate();
   const FrameSize out_px = outputSize(camera, options);
   const int channels = source.alpha_channel >= 0 ? source.channels : source.channels + 1;
