@@ -19,6 +19,8 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "tests/core/render/photo_fixture.h"
+
 #include <QtTest/QtTest>
 
 #include <cmath>
@@ -26,21 +28,6 @@
 using namespace artcam;
 
 namespace {
-
-float linearFromSrgb(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-// The photo as linear float RGB, read with OpenImageIO directly (independent of core/io).
-ImageF readLinear(const std::string& path) {
-  OIIO::ImageBuf buf(path);
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {};
-  const OIIO::ImageSpec& spec = buf.spec();
-  ImageF image(spec.width, spec.height, spec.nchannels);
-  buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.data.data());
-  for (float& v : image.data) v = linearFromSrgb(v);
-  return image;
-}
 
 OIIO::ImageBuf toBuf(const ImageF& image) {
   OIIO::ImageBuf buf(OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT));
@@ -108,7 +95,7 @@ class TestWarpOiio : public QObject {
 
  private slots:
   void homographyMatchesOpenImageIO() {
-    const ImageF photo = readLinear(test::resourcePath("coffee.png"));
+    const ImageF photo = test::readLinearPhoto(test::resourcePath("coffee.png"));
     QVERIFY(!photo.empty());
     const FrameSize size{photo.width, photo.height};
     const Eigen::Matrix3d h_px = magnifyingHomography(photo.width, photo.height);
@@ -162,7 +149,7 @@ class TestWarpOiio : public QObject {
 
   // Keys a = −0.5 is OIIO's "catmull-rom" filter (width 4): the bicubic path agrees too.
   void bicubicMatchesCatmullRom() {
-    const ImageF photo = readLinear(test::resourcePath("coffee.png"));
+    const ImageF photo = test::readLinearPhoto(test::resourcePath("coffee.png"));
     QVERIFY(!photo.empty());
     const FrameSize size{photo.width, photo.height};
     const Eigen::Matrix3d h_px = magnifyingHomography(photo.width, photo.height);

@@ -9,6 +9,8 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "tests/core/render/photo_fixture.h"
+
 #include <QtTest/QtTest>
 
 #include <Eigen/LU>
@@ -20,19 +22,6 @@
 using namespace artcam;
 
 namespace {
-
-float linearFromSrgb(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-ImageF readLinear(const std::string& path) {
-  OIIO::ImageBuf buf(path);
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {};
-  ImageF image(buf.spec().width, buf.spec().height, buf.spec().nchannels);
-  buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.data.data());
-  for (float& v : image.data) v = linearFromSrgb(v);
-  return image;
-}
 
 struct Forward {
   Eigen::Vector2d target;
@@ -136,7 +125,7 @@ class TestWarpReference : public QObject {
 
   void rationalWarpMatchesIndependentEvaluation() {
     QFETCH(bool, fitted_seed);
-    const ImageF photo = readLinear(test::resourcePath("coffee.png"));
+    const ImageF photo = test::readLinearPhoto(test::resourcePath("coffee.png"));
     QVERIFY(!photo.empty());
     QCOMPARE(photo.channels, 3);
     const FrameSize size{photo.width, photo.height};
