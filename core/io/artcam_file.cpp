@@ -247,6 +247,34 @@ ArtcamDocument documentAt(const Json& root) {
   return document;
 }
 
+ArtcamExtras extrasAt(const Json& root, const Camera& main) {
+  ArtcamExtras extras;
+  if (root.contains("layers")) {
+    const Json& layers = arrayAt(root["layers"], "/layers", "layers");
+    for (size_t l = 0; l < layers.size(); ++l) {
+      const std::string path = "/layers/" + std::to_string(l);
+      objectAt(layers[l], path);
+      const Json& stages_json = arrayAt(field(layers[l], path, "stages"), path + "/stages", "stages");
+      if (stages_json.empty()) refuse(path + "/stages", "expected at least one stage");
+      std::vector<Stage> stages;
+      for (size_t s = 0; s < stages_json.size(); ++s)
+        stages.push_back(stageAt(stages_json[s], path + "/stages/" + std::to_string(s), main.dimension()));
+      try {
+        extras.layers.emplace_back(main.blocks(), std::move(stages), main.sourceSize(), main.targetSize());
+      } catch (const std::invalid_argument& e) {
+        throw Refusal{path + ": invalid camera: " + e.what()};
+      }
+    }
+  }
+  if (root.contains("depth_output")) {
+    extras.depth_output = stringAt(root["depth_output"], "/depth_output");
+    if (extras.depth_output != "depth" && extras.depth_output != "blur-variance")
+      refuse("/depth_output", "expected \"depth\" or \"blur-variance\", found \"" +
+                                  extras.depth_output + "\"");
+  }
+  return extras;
+}
+
 // ---- writing ----
 
 // Builds the JSON and remembers the first non-finite number (JSON cannot hold it; nlohmann
@@ -268,6 +296,40 @@ struct Builder {
     return numbers(v.data(), static_cast<size_t>(v.size()), path);
   }
 
+  Json stagesOf(const Camera& camera, const std::string& prefix) {
+    Json stages = Json::array();
+    for (size_t s = 0; s < camera.stages().size(); ++s) {
+      Json tensors = Json::array();
+      const auto& q = camera.stages()[s].q;
+      for (size_t i = 0; i < q.size(); ++i) {
+        const std::string path =
+            prefix + "/stages/" + std::to_string(s) + "/tensors/" + std::to_string(i);
+        Json rows = Json::array();
+        for (Eigen::Index r = 0; r < q[i].rows(); ++r) {
+          const Eigen::VectorXd row = q[i].row(r).transpose();
+          rows.push_back(vector(row, path + "/" + std::to_string(r)));
+        }
+        tensors.push_back(std::move(rows));
+      }
+      stages.push_back({{"tensors", std::move(tensors)}});
+    }
+    return stages;
+  }
+
+  void extras(const Camera& main, const ArtcamExtras& e, Json& root) {
+    if (!e.layers.empty()) {
+      Json layers = Json::array();
+      for (size_t l = 0; l < e.layers.size(); ++l) {
+        if (e.layers[l].blocks() != main.blocks())
+          throw std::invalid_argument("layer " + std::to_string(l + 1) +
+                                      " has other blocks than the main camera");
+        layers.push_back({{"stages", stagesOf(e.layers[l], "/layers/" + std::to_string(l))}});
+      }
+      root["layers"] = std::move(layers);
+    }
+    if (e.depth_output != "depth") root["depth_output"] = e.depth_output;
+  }
+
   Json document(const ArtcamDocument& d) {
     const Camera& camera = d.camera;
     Json root;
@@ -279,22 +341,7 @@ struct Builder {
     root["blocks"] = blocks;
     root["frames"] = {{"source", {camera.sourceSize().width, camera.sourceSize().height}},
                       {"target", {camera.targetSize().width, camera.targetSize().height}}};
-    Json stages = Json::array();
-    for (size_t s = 0; s < camera.stages().size(); ++s) {
-      Json tensors = Json::array();
-      const auto& q = camera.stages()[s].q;
-      for (size_t i = 0; i < q.size(); ++i) {
-        const std::string path = "/stages/" + std::to_string(s) + "/tensors/" + std::to_string(i);
-        Json rows = Json::array();
-        for (Eigen::Index r = 0; r < q[i].rows(); ++r) {
-          const Eigen::VectorXd row = q[i].row(r).transpose();
-          rows.push_back(vector(row, path + "/" + std::to_string(r)));
-        }
-        tensors.push_back(std::move(rows));
-      }
-      stages.push_back({{"tensors", std::move(tensors)}});
-    }
-    root["stages"] = std::move(stages);
+    root["stages"] = stagesOf(camera, "");
     if (!d.matches.empty()) {
       Json matches = Json::array();
       for (size_t m = 0; m < d.matches.size(); ++m) {
@@ -418,6 +465,35 @@ Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string&
   }
 }
 
+std::vector<Camera> ArtcamEffectFile::allLayers() const {
+  std::vector<Camera> all{document.camera};
+  all.insert(all.end(), extras.layers.begin(), extras.layers.end());
+  return all;
+}
+
+Result<ArtcamEffectFile> parseArtcamEffectJson(std::string_view text, const std::string& name) {
+  Result<ArtcamDocument> doc = parseArtcamJson(text, name);
+  if (!doc) return Result<ArtcamEffectFile>::failure(doc.status.message);
+  try {
+    // The text parsed once already; parse again for the optional fields.
+    const Json root = Json::parse(text.begin(), text.end());
+    ArtcamExtras extras = extrasAt(root, doc->camera);
+    return Result<ArtcamEffectFile>::success({std::move(*doc), std::move(extras)});
+  } catch (const Refusal& refusal) {
+    return Result<ArtcamEffectFile>::failure(name + ": " + refusal.message);
+  }
+}
+
+Result<ArtcamEffectFile> readArtcamEffectFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return Result<ArtcamEffectFile>::failure(path + ": cannot read: no such file or not readable");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return Result<ArtcamEffectFile>::failure(path + ": cannot read: I/O error");
+  return parseArtcamEffectJson(text.str(), path);
+}
+
 Result<ArtcamDocument> readArtcamFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -437,6 +513,29 @@ std::string toArtcamJson(const ArtcamDocument& document) {
   std::string out;
   emit(root, 0, out);
   return out + "\n";
+}
+
+std::string toArtcamJson(const ArtcamDocument& document, const ArtcamExtras& extras) {
+  Builder builder;
+  Json root = builder.document(document);
+  builder.extras(document.camera, extras, root);
+  if (!builder.bad_path.empty())
+    throw std::invalid_argument("cannot write .artcam: " + builder.bad_path +
+                                " is not a finite number");
+  std::string out;
+  emit(root, 0, out);
+  return out + "\n";
+}
+
+Status writeArtcamFile(const std::string& path, const ArtcamDocument& document,
+                       const ArtcamExtras& extras) {
+  try {
+    document.camera.validate();
+    for (const Camera& layer : extras.layers) layer.validate();
+    return writeTextAtomically(path, toArtcamJson(document, extras));
+  } catch (const std::invalid_argument& e) {
+    return Status::failure(path + ": cannot write: " + e.what());
+  }
 }
 
 Status writeArtcamFile(const std::string& path, const ArtcamDocument& document) {

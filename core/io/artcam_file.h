@@ -50,4 +50,28 @@ std::string toArtcamJson(const ArtcamDocument& document);
 // Atomic: written beside the target, flushed, then renamed over it.
 Status writeArtcamFile(const std::string& path, const ArtcamDocument& document);
 
+// Attributed cameras (issue 6), optional fields of version 1 that older readers ignore:
+//   "layers": [ { "stages": [ … ] }, … ]   more cameras with the main camera's blocks and frames;
+//                                          the picture is the sum of every layer's colour
+//                                          (render/attributed.h renderLayers; the paper's Fig 4)
+//   "depth_output": "depth" | "blur-variance"
+//                                          what the depth output means: a depth, or the blur
+//                                          variance of depth of field (effects/depth_of_field.h)
+// Kept apart from ArtcamDocument so the existing aggregate stays as it is.
+struct ArtcamExtras {
+  std::vector<Camera> layers;  // beyond document.camera
+  std::string depth_output = "depth";
+};
+struct ArtcamEffectFile {
+  ArtcamDocument document;
+  ArtcamExtras extras;
+  // document.camera followed by the extra layers.
+  std::vector<Camera> allLayers() const;
+};
+Result<ArtcamEffectFile> parseArtcamEffectJson(std::string_view text, const std::string& name);
+Result<ArtcamEffectFile> readArtcamEffectFile(const std::string& path);
+std::string toArtcamJson(const ArtcamDocument& document, const ArtcamExtras& extras);
+Status writeArtcamFile(const std::string& path, const ArtcamDocument& document,
+                       const ArtcamExtras& extras);
+
 }  // namespace artcam

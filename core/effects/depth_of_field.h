@@ -1,0 +1,52 @@
+// Depth of field (the paper's §3, DESIGN §3): a spatially varying Gaussian whose sigma is a
+// camera stage of depth.
+//
+// The camera, over [position 3 | colour 4 | depth 2], keeps position and colour and maps depth
+// to the blur VARIANCE in normalised units² (frames.h: the larger image side spans 2), a
+// rational quadratic in d as one stage must be:
+//   σ²(d) = (d Q_d dᵀ) / (d Q_h dᵀ) = k²·(d − f)² / d²,
+// i.e. σ = k·|d − f|/d: zero at the focus depth f, k at infinity, k·(f/d − 1) in front — the
+// thin lens's circle of confusion, proportional to |1/f − 1/d|. In output pixels
+// σ_px = √σ² · max(w, h)/2.
+//
+// Halo rule (both blurs): a sample y contributes to output pixel x only if σ_y ≥ halo_ratio·σ_x.
+// A sharp foreground (σ ≈ 0) in front of a blurred background therefore does not smear into
+// it (the background's blur must not see what stands in front of it), while a blurred
+// foreground still spreads over its surroundings. halo_ratio = 0 is the plain varying blur.
+//
+// exactBlur: per output pixel, the Gaussian of its own σ, truncated at 3σ, normalised by the
+// weights of the samples it uses (inside the image, passing the halo rule): O(σ²) per pixel.
+// stackBlur (fast): blurs at levels σ_0 = 0 < σ_1 < … (ratio `level_ratio`), each separable
+// and masked by the halo rule at that level; each pixel blends its two bracketing levels with
+// the weight that matches its variance: t = (σ² − σ_L²)/(σ_{L+1}² − σ_L²).
+#pragma once
+
+#include "core/model/camera.h"
+#include "core/model/image.h"
+
+#include <functional>
+
+namespace artcam {
+
+struct DepthOfFieldParams {
+  double focus = 2.0;  // depth in focus, f (same unit as the depth image)
+  double blur = 0.01;  // k: σ at infinite depth, normalised units (× max(w, h)/2 pixels)
+};
+Camera depthOfFieldCamera(const DepthOfFieldParams& p, FrameSize source, FrameSize target);
+
+// σ in output pixels from the camera's depth output (the variance, attributed.h's depth image).
+ImageF sigmaPixelsFromVariance(const ImageF& variance, double max_sigma_px = 64.0);
+
+struct BlurOptions {
+  double halo_ratio = 0.5;
+  double level_ratio = 1.41421356237;  // stackBlur: σ_{L+1}/σ_L
+  double min_sigma = 0.3;              // below this a pixel is left sharp (both blurs)
+  int threads = 0;
+  std::function<bool(double)> progress;  // return false to cancel (empty result)
+};
+
+// `rgba`: premultiplied RGBA (4 channels); `sigma_px`: 1 channel of the same size.
+ImageF exactBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& options = {});
+ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& options = {});
+
+}  // namespace artcam

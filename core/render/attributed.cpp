@@ -1,0 +1,374 @@
+// Attributed rendering (attributed.h): the colour-only and gather paths, the path choice and
+// layers; the splat path is splat.cpp.
+#include "core/render/attributed.h"
+
+#include "core/model/frames.h"
+#include "core/render/coordinates.h"
+#include "core/render/parallel.h"
+#include "core/render/sampling.h"
+#include "core/render/splat.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace artcam {
+
+std::string_view attributedPathName(AttributedPath path) {
+  switch (path) {
+    case AttributedPath::Geometry: return "geometry";
+    case AttributedPath::ColourOnly: return "colour-only";
+    case AttributedPath::Gather: return "gather";
+    case AttributedPath::Splat: return "splat";
+  }
+  return "unknown";
+}
+
+AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera) {
+  const BlockLayout& layout = camera.layout();
+  const int p = layout.find(BlockKind::Position);
+  if (p < 0 || layout.blocks[p].size != 3)
+    throw std::invalid_argument("attributed rendering needs a camera with a 2D image position block");
+  position_ = layout.offsets[p];
+  if (const int c = layout.find(BlockKind::Colour); c >= 0) colour_ = layout.offsets[c];
+  if (const int d = layout.find(BlockKind::Depth); d >= 0) depth_ = layout.offsets[d];
+}
+
+void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, double depth,
+                                  Output& out) const {
+  CompiledCamera::Vector x{}, z{};
+  x[position_] = u_n;
+  x[position_ + 1] = v_n;
+  x[position_ + 2] = 1.0;
+  if (colour_ >= 0)
+    for (int k = 0; k < 4; ++k) x[colour_ + k] = rgba[k];
+  if (depth_ >= 0) {
+    x[depth_] = depth;
+    x[depth_ + 1] = 1.0;
+  }
+  compiled_.evaluateHomogeneous(x, z);  // eq 3 (through every stage)
+
+  // eq 5, block by block.
+  const double w = z[position_ + 2];
+  out.position_weight = w;
+  out.position[0] = z[position_] / w;
+  out.position[1] = z[position_ + 1] / w;
+  out.position_valid = w != 0.0 && std::isfinite(out.position[0]) && std::isfinite(out.position[1]);
+
+  out.attributes_valid = true;
+  if (colour_ >= 0) {
+    const double a = z[colour_ + 3];
+    // The colour's homogeneous weight is the output alpha (DESIGN §1); rgb = z_c / z_a is
+    // premultiplied again by the clamped alpha.
+    const double alpha = std::min(a, 1.0);
+    bool ok = a > 0.0 && std::isfinite(a);
+    for (int k = 0; k < 3 && ok; ++k) {
+      const double c = z[colour_ + k] / a * alpha;
+      ok = std::isfinite(c);
+      out.rgba[k] = static_cast<float>(c);
+    }
+    out.rgba[3] = static_cast<float>(alpha);
+    if (!ok) std::fill(out.rgba, out.rgba + 4, 0.0f);
+    out.attributes_valid = ok;
+  } else {
+    std::copy(rgba, rgba + 4, out.rgba);
+  }
+  if (depth_ >= 0) {
+    const double d = z[depth_] / z[depth_ + 1];
+    out.depth = std::isfinite(d) ? static_cast<float>(d) : 0.0f;
+  }
+}
+
+double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double sy) {
+  // The depth image may have another size than the source: read it at the same place.
+  const double fx = sx * depth.width / source_px.width - 0.5;
+  const double fy = sy * depth.height / source_px.height - 0.5;
+  if (!std::isfinite(fx) || !std::isfinite(fy)) return 0.0;
+  const double x0 = std::floor(fx), y0 = std::floor(fy);
+  const double tx = fx - x0, ty = fy - y0;
+  double value = 0.0, weight = 0.0;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const double xi = x0 + i, yj = y0 + j;
+      if (xi < 0 || yj < 0 || xi >= depth.width || yj >= depth.height) continue;
+      const double w = (i ? tx : 1 - tx) * (j ? ty : 1 - ty);
+      const float* p = depth.pixel(static_cast<int>(xi), static_cast<int>(yj));
+      // 2 channels: (coverage·d, coverage), the homogeneous depth block (depth_raster.h).
+      const double cover = depth.channels >= 2 ? p[1] : 1.0;
+      value += w * p[0];
+      weight += w * cover;
+    }
+  return weight > 1e-12 ? value / weight : 0.0;
+}
+
+ImageF rgbaFromImage(const ImageF& source) {
+  checkSourceImage(source);
+  ImageF out(source.width, source.height, 4, 3);
+  const size_t n = static_cast<size_t>(source.width) * static_cast<size_t>(source.height);
+  const int c = source.channels;
+  const int colour_channels = source.alpha_channel >= 0 ? c - 1 : c;
+  for (size_t i = 0; i < n; ++i) {
+    const float* in = source.data.data() + i * static_cast<size_t>(c);
+    float* o = out.data.data() + i * 4;
+    float colour[3];
+    int k = 0;
+    for (int ch = 0; ch < c && k < 3; ++ch)
+      if (ch != source.alpha_channel) colour[k++] = in[ch];
+    if (colour_channels == 1) colour[1] = colour[2] = colour[0];
+    else if (colour_channels == 2) colour[2] = 0.0f;
+    o[0] = colour[0];
+    o[1] = colour[1];
+    o[2] = colour[2];
+    o[3] = source.alpha_channel >= 0 ? in[source.alpha_channel] : 1.0f;
+  }
+  return out;
+}
+
+Camera positionPart(const Camera& camera) {
+  const BlockLayout& layout = camera.layout();
+  const int p = layout.find(BlockKind::Position);
+  if (p < 0) throw std::invalid_argument("the camera has no position block");
+  const int off = layout.offsets[p], k = layout.blocks[p].size;
+  std::vector<Stage> stages;
+  for (const Stage& stage : camera.stages()) {
+    Stage s;
+    for (int i = off; i < off + k; ++i) s.q.push_back(stage.q[i].block(off, off, k, k));
+    stages.push_back(std::move(s));
+  }
+  return Camera({layout.blocks[p]}, std::move(stages), camera.sourceSize(), camera.targetSize());
+}
+
+AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure& structure,
+                                    FrameSize source_px, FrameSize out_px) {
+  (void)camera;
+  if (structure.geometry_depends_on_attributes) return AttributedPath::Splat;
+  if (!structure.attributes_change) return AttributedPath::Geometry;
+  if (structure.geometry == GeometryClass::Identity && source_px == out_px)
+    return AttributedPath::ColourOnly;
+  return AttributedPath::Gather;
+}
+
+namespace {
+
+FrameSize outputSize(const Camera& camera, const AttributedOptions& options) {
+  if (options.width < 0 || options.height < 0)
+    throw std::invalid_argument("output size must not be negative");
+  const FrameSize target = camera.targetSize();
+  if (options.width > 0 && options.height > 0) return {options.width, options.height};
+  if (options.width == 0 && options.height == 0) return target;
+  const double aspect = static_cast<double>(target.height) / target.width;
+  if (options.width > 0)
+    return {options.width, std::max(1, static_cast<int>(std::lround(options.width * aspect)))};
+  return {std::max(1, static_cast<int>(std::lround(options.height / aspect))), options.height};
+}
+
+void writeOutput(const AttributeEvaluator::Output& o, float* colour, float* depth) {
+  if (!o.attributes_valid || !(o.rgba[3] > 0.0f)) {
+    std::fill(colour, colour + 4, 0.0f);
+    if (depth) *depth = 0.0f;
+    return;
+  }
+  std::copy(o.rgba, o.rgba + 4, colour);
+  if (depth) *depth = o.depth;
+}
+
+long long countTransparent(const ImageF& rgba) {
+  long long n = 0;
+  for (size_t i = 3; i < rgba.data.size(); i += 4) n += !(rgba.data[i] > 0.0f);
+  return n;
+}
+
+ParallelOptions parallelOptions(const AttributedOptions& options) {
+  ParallelOptions po;
+  po.threads = options.threads;
+  po.progress = options.progress;
+  return po;
+}
+
+// Geometry identity, same size: each pixel's own colour and depth through the camera.
+bool colourOnly(const ImageF& rgba, const ImageF* depth, const AttributeEvaluator& eval,
+                const AttributedOptions& options, AttributedImage& out) {
+  const FrameSize px{rgba.width, rgba.height};
+  return parallelForRows(rgba.height, parallelOptions(options), [&](int y0, int y1) {
+    AttributeEvaluator::Output o;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < rgba.width; ++x) {
+        const Eigen::Vector2d n = normalizedFromPixel(px, {x + 0.5, y + 0.5});
+        const double d = depth ? sampleDepth(*depth, px, x + 0.5, y + 0.5) : 0.0;
+        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d, o);
+        writeOutput(o, out.colour.pixel(x, y), out.depth.empty() ? nullptr : out.depth.pixel(x, y));
+      }
+  });
+}
+
+// Positions from position alone: the gather kernels find the source point, the camera then
+// maps [source point | sampled colour | sampled depth].
+bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
+            const AttributeEvaluator& eval, const AttributedOptions& options,
+            AttributedImage& out, AttributedSummary& report) {
+  const Camera geometry = positionPart(camera);
+  const CameraStructure structure = analyseStructure(geometry);
+  const FrameSize source_px{rgba.width, rgba.height};
+  const FrameSize out_px{out.colour.width, out.colour.height};
+  if (structure.degenerate) {
+    report.kernel = "degenerate";
+    report.note = "the camera's position denominator is zero everywhere";
+    return true;  // the output is already transparent
+  }
+  CoordinateOptions co;
+  co.residual_tolerance_px = options.residual_tolerance_px;
+  const KernelChoice choice =
+      makeCoordinateKernel(geometry, structure, source_px, out_px, co, options.threads);
+  report.kernel = choice.name;
+  report.note = choice.note;
+  const Sampler sampler(rgba, options.filter);
+  ParallelOptions po = parallelOptions(options);
+  po.band_rows = 16;
+  return parallelForRows(out_px.height, po, [&](int y0, int y1) {
+    float sx[kSpanPixels], sy[kSpanPixels];
+    unsigned char valid[kSpanPixels];
+    AttributeEvaluator::Output o;
+    for (int y = y0; y < y1; ++y) {
+      RowState state;
+      for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
+        const int n = std::min(kSpanPixels, out_px.width - x0);
+        choice.kernel->span(y, x0, n, sx, sy, valid, state);
+        for (int i = 0; i < n; ++i) {
+          float* colour = out.colour.pixel(x0 + i, y);
+          float* d_out = out.depth.empty() ? nullptr : out.depth.pixel(x0 + i, y);
+          if (!valid[i]) continue;  // stays transparent
+          float sample[4];
+          sampler.sample(sx[i], sy[i], sample);
+          if (!(sample[3] > 0.0f)) continue;
+          const Eigen::Vector2d s = normalizedFromPixel(source_px, {sx[i], sy[i]});
+          const double d = depth ? sampleDepth(*depth, source_px, sx[i], sy[i]) : 0.0;
+          eval.evaluate(s.x(), s.y(), sample, d, o);
+          writeOutput(o, colour, d_out);
+        }
+      }
+    }
+  });
+}
+
+}  // namespace
+
+AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, const Camera& camera,
+                                 const AttributedOptions& options, AttributedSummary* summary) {
+  const auto start = std::chrono::steady_clock::now();
+  AttributedSummary local;
+  AttributedSummary& report = summary ? *summary : local;
+  report = AttributedSummary{};
+  camera.validate();
+  checkSourceImage(source);
+  const FrameSize out_px = outputSize(camera, options);
+  const FrameSize source_px{source.width, source.height};
+  const CameraStructure structure = analyseStructure(camera);
+  AttributedPath path = chooseAttributedPath(camera, structure, source_px, out_px);
+  if (!options.force_path.empty()) {
+    if (options.force_path == "splat") path = AttributedPath::Splat;
+    else if (options.force_path == "gather" && !structure.geometry_depends_on_attributes)
+      path = AttributedPath::Gather;
+    else
+      throw std::invalid_argument("cannot force path \"" + options.force_path + "\" here");
+  }
+  report.path = path;
+  const AttributeEvaluator eval(camera);
+  if (eval.readsDepth() && path != AttributedPath::Geometry) {
+    if (!depth || depth->empty())
+      throw std::invalid_argument("this camera reads depth (it has a depth block): give a depth "
+                                  "image (artcam warp --depth FILE)");
+    if (depth->channels > 2) throw std::invalid_argument("the depth image must have 1 or 2 channels");
+  }
+  const ImageF rgba = rgbaFromImage(source);
+
+  AttributedImage out;
+  bool finished = true;
+  if (path == AttributedPath::Geometry) {
+    WarpOptions wo;
+    wo.filter = options.filter;
+    wo.width = out_px.width;
+    wo.height = out_px.height;
+    wo.threads = options.threads;
+    wo.progress = options.progress;
+    wo.residual_tolerance_px = options.residual_tolerance_px;
+    WarpSummary ws;
+    out.colour = warpImage(rgba, camera, wo, &ws);
+    report.kernel = ws.kernel;
+    report.note = ws.note;
+    finished = !ws.cancelled;
+  } else if (path == AttributedPath::Splat) {
+    SplatOptions so;
+    so.supersample = options.splat_supersample;
+    so.threads = options.threads;
+    so.progress = options.progress;
+    SplatSummary ss;
+    out = splatImage(rgba, depth, camera, out_px, so, &ss);
+    report.kernel = "splat";
+    if (ss.dropped_triangles > 0)
+      report.note = std::to_string(ss.dropped_triangles) + " triangles dropped (pole or invalid)";
+    finished = !ss.cancelled;
+  } else {
+    out.colour = ImageF(out_px.width, out_px.height, 4, 3);
+    if (eval.readsDepth()) out.depth = ImageF(out_px.width, out_px.height, 1);
+    if (path == AttributedPath::ColourOnly) {
+      report.kernel = "colour-only";
+      finished = colourOnly(rgba, depth, eval, options, out);
+    } else {
+      finished = gather(rgba, depth, camera, eval, options, out, report);
+    }
+  }
+  report.render_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (!finished) {
+    report.cancelled = true;
+    return {};
+  }
+  report.transparent_pixels = countTransparent(out.colour);
+  return out;
+}
+
+AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
+                             const std::vector<Camera>& layers, const AttributedOptions& options,
+                             AttributedSummary* summary) {
+  if (layers.empty()) throw std::invalid_argument("a layered camera needs at least one layer");
+  AttributedSummary local;
+  AttributedSummary& report = summary ? *summary : local;
+  AttributedImage total;
+  double ms = 0.0;
+  std::string kernels;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    AttributedOptions lo = options;
+    if (options.progress) {
+      const double n = static_cast<double>(layers.size());
+      lo.progress = [&, l, n](double f) { return options.progress((static_cast<double>(l) + f) / n); };
+    }
+    AttributedImage layer = renderAttributed(source, depth, layers[l], lo, &report);
+    if (report.cancelled) return {};
+    ms += report.render_ms;
+    kernels += (l ? "+" : "") + report.kernel;
+    if (l == 0) {
+      total = std::move(layer);
+      continue;
+    }
+    if (layer.colour.width != total.colour.width || layer.colour.height != total.colour.height)
+      throw std::invalid_argument("layer " + std::to_string(l) + " renders to another size");
+    const size_t n = static_cast<size_t>(total.colour.width) * static_cast<size_t>(total.colour.height);
+    for (size_t i = 0; i < n; ++i) {
+      float* t = total.colour.data.data() + 4 * i;
+      const float* s = layer.colour.data.data() + 4 * i;
+      for (int k = 0; k < 3; ++k) t[k] += s[k];
+      if (s[3] > t[3]) {
+        t[3] = s[3];
+        if (!total.depth.empty() && !layer.depth.empty()) total.depth.data[i] = layer.depth.data[i];
+      }
+    }
+  }
+  report.kernel = kernels;
+  report.render_ms = ms;
+  report.transparent_pixels = countTransparent(total.colour);
+  return total;
+}
+
+}  // namespace artcam

@@ -1,0 +1,136 @@
+// Rendering ARTcams that change colour or depth (DESIGN §3, issue 6): the three strategies of
+// the design's table, chosen from the structure analysis (structure.h), plus layered cameras.
+//
+// Conventions:
+// - Images are ImageF (image.h): linear light, premultiplied alpha, pixel centres at i + 0.5.
+// - The input point of pixel p is x = [position | colour | depth] (eq 4): position is the
+//   source pixel centre in the source's NORMALISED frame (frames.h), colour the premultiplied
+//   RGBA sample (alpha is the homogeneous weight; a source without alpha has alpha 1, a grey
+//   source is replicated to RGB), depth (d, 1) from the depth image.
+// - Outputs follow eq 5: colour = z_c / z_a with output alpha clamp(z_a, 0, 1), written
+//   premultiplied; depth = z_d / z_dh. A pixel whose colour weight is not positive, or whose
+//   outputs are not finite, is transparent (all channels 0): never NaN.
+//
+// Paths (AttributedPath):
+// - ColourOnly: the geometry is the identity and the output has the source's size: every pixel
+//   keeps its place and the colour/depth block is evaluated on its own value; no resampling.
+// - Gather: positions depend on position only (pp), colour/depth may change (cc, pc, cp parts
+//   that feed the attribute outputs): the output pixel's source point comes from the existing
+//   gather kernels (coordinates.h) run on the camera's position-only part, the source is
+//   sampled there (sampling.h) and the whole camera is evaluated at [source point | sample].
+// - Splat: positions depend on colour or depth (pc/cp coupling into the position outputs, e.g.
+//   the paper's eq 8/9): splat.h.
+// - Geometry: a camera without attribute changes goes to warpImage unchanged (the colour then
+//   passes through; its alpha is the filter's coverage).
+//
+// Layers: the paper's Fig 4 makes chromatic aberration from three cameras, one per colour layer.
+// A layered render sums the layers' premultiplied colours (each layer selects its channel with
+// its cc part) and takes the largest alpha: the layers are parts of one picture, not stacked
+// sheets, so "over" would be wrong.
+#pragma once
+
+#include "core/cloud/cloud_camera.h"
+#include "core/model/camera.h"
+#include "core/model/image.h"
+#include "core/model/structure.h"
+#include "core/render/warp.h"
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace artcam {
+
+enum class AttributedPath { Geometry, ColourOnly, Gather, Splat };
+std::string_view attributedPathName(AttributedPath path);
+
+struct AttributedOptions {
+  Filter filter = Filter::Bilinear;  // gather sampling
+  int width = 0;                     // output size; 0×0: the camera's target frame
+  int height = 0;
+  int threads = 0;  // 0: all cores
+  // Called between bands with the fraction done; return false to cancel (the result is then
+  // empty and summary->cancelled is set).
+  std::function<bool(double)> progress;
+  double residual_tolerance_px = 1e-3;  // gather: Newton acceptance (warp.h)
+  // Splat: sub-samples per output pixel side (splat.h); more costs S² but smooths minified
+  // regions (no moiré).
+  int splat_supersample = 3;
+  // Force a path (tests and the benchmark compare splat and gather); empty: from the structure.
+  std::string force_path;
+};
+
+struct AttributedSummary {
+  bool cancelled = false;
+  AttributedPath path = AttributedPath::Geometry;
+  std::string kernel;  // the gather kernel's name, or "splat"
+  long long transparent_pixels = 0;
+  double render_ms = 0.0;
+  std::string note;
+};
+
+struct AttributedImage {
+  ImageF colour;  // RGBA premultiplied, alpha channel 3
+  ImageF depth;   // 1 channel, the camera's depth output (0 where transparent); empty if the
+                  // camera has no depth block
+};
+
+// Which path renders `camera` from a source of `source_px` to an output of `out_px`.
+AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure& structure,
+                                    FrameSize source_px, FrameSize out_px);
+
+// `depth` (may be null) gives the depth block's input: 1 channel (d), or 2 channels
+// (coverage·d, coverage) with alpha_channel 1 as core/depth/depth_raster.h makes; any size
+// (sampled at the source point scaled to its size). Throws std::invalid_argument naming the
+// cause for a broken contract: an invalid camera, a camera without a 2D position block, a
+// camera that reads depth but no depth image, a bad source.
+AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, const Camera& camera,
+                                 const AttributedOptions& options = {},
+                                 AttributedSummary* summary = nullptr);
+
+// Every layer rendered as above and combined (sum of colours, largest alpha, depth of the
+// layer with the largest alpha). All layers must share the output size.
+AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
+                             const std::vector<Camera>& layers,
+                             const AttributedOptions& options = {},
+                             AttributedSummary* summary = nullptr);
+
+// One camera compiled for per-pixel evaluation (CompiledCamera: no allocation per call), with
+// the block bookkeeping every path shares.
+class AttributeEvaluator {
+ public:
+  explicit AttributeEvaluator(const Camera& camera);
+
+  bool readsDepth() const { return depth_ >= 0; }
+  bool hasColour() const { return colour_ >= 0; }
+
+  struct Output {
+    double position[2] = {0, 0};  // target, normalised frame (eq 5)
+    double position_weight = 0;   // q_h before division: its sign tells the pole side
+    float rgba[4] = {0, 0, 0, 0}; // premultiplied, alpha = clamp(z_a, 0, 1)
+    float depth = 0;
+    bool position_valid = false;  // finite position with q_h != 0
+    bool attributes_valid = false;  // finite colour/depth with positive colour weight
+  };
+  // x = [(u_n, v_n, 1) | rgba (premultiplied) | (d, 1)] through the camera. Without a colour
+  // block the input colour passes through.
+  void evaluate(double u_n, double v_n, const float* rgba, double depth, Output& out) const;
+
+ private:
+  CompiledCamera compiled_;
+  int position_ = -1, colour_ = -1, depth_ = -1;  // element offsets, -1: no such block
+};
+
+// The depth image read at source pixel point (sx, sy) given in pixels of a source of size
+// `source_px` (bilinear, as the sampler reads colour); NaN-free: 0 where nothing covers.
+double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double sy);
+
+// The source as 4-channel premultiplied RGBA float (alpha channel 3).
+ImageF rgbaFromImage(const ImageF& source);
+
+// The camera's position-only part: the pp blocks of the position tensors of every stage.
+// Exact for cameras whose position outputs read position only.
+Camera positionPart(const Camera& camera);
+
+}  // namespace artcam
