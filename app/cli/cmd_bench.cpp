@@ -340,6 +340,7 @@ void endToEndJpeg(const std::vector<std::uint8_t>& pixels, FrameSize size, const
 
 int benchCommand(const std::vector<std::string>& argv) {
   if (!argv.empty() && argv[0] == "fit") return benchFitCommand({argv.begin() + 1, argv.end()});
+  if (!argv.empty() && argv[0] == "effects") return benchEffectsCommand({argv.begin() + 1, argv.end()});
   const Args args(argv, {{"--size", "", true},
                          {"--reps", "", true},
                          {"--threads", "", true},

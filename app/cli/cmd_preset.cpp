@@ -10,9 +10,14 @@
 #include "core/cameras/glc.h"
 #include "core/cameras/projective_cameras.h"
 #include "core/cloud/sample_clouds.h"
+#include "core/effects/aerial.h"
+#include "core/effects/chromatic.h"
+#include "core/effects/depth_of_field.h"
+#include "core/effects/image_warps.h"
 #include "core/io/artcam_file.h"
 #include "core/io/ply.h"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -169,6 +174,61 @@ const Preset kPresets[] = {
      "red=0.06 green=0 blue=-0.06 centre=0,0,0", chromaticAberration},
 };
 
+// Image-space (2D) cameras over [position 3 (| colour 4) (| depth 2)], stored in the normalised
+// frame of a size×size image; layered ones (chromatic aberration, the paper's Fig 4) and depth
+// of field use the .artcam extras (artcam_file.h). Names that a 3D preset already has get "-2d".
+FrameSize frameOf(const Params& p) {
+  const std::vector<double>& v = p.list("size");
+  if (v.size() != 2 || !(v[0] >= 1) || !(v[1] >= 1) || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]))
+    throw UsageError("--size expects W,H in whole pixels");
+  return {static_cast<int>(v[0]), static_cast<int>(v[1])};
+}
+std::array<double, 3> rgb(const Params& p, const char* r, const char* g, const char* b) {
+  return {p.number(r), p.number(g), p.number(b)};
+}
+struct ImageCamera {
+  std::vector<Camera> layers;
+  std::string depth_output = "depth";
+};
+ImageCamera radial2d(const Params& p) { return {{radialLensCamera(p.number("k"), frameOf(p))}}; }
+ImageCamera twist2d(const Params& p) { return {{twistCamera(p.number("rate"), frameOf(p))}}; }
+ImageCamera inversePerspective2d(const Params& p) {
+  return {{inversePerspectiveCamera(p.number("gain"), frameOf(p))}};
+}
+ImageCamera rgbShift2d(const Params& p) {
+  return {rgbShiftLayers({rgb(p, "red", "green", "blue"), rgb(p, "red-dx", "green-dx", "blue-dx"),
+                          rgb(p, "red-dy", "green-dy", "blue-dy")},
+                         frameOf(p), frameOf(p))};
+}
+ImageCamera colourShift2d(const Params& p) {
+  return {colourShiftLayers({rgb(p, "s-red", "s-green", "s-blue")}, frameOf(p), frameOf(p))};
+}
+ImageCamera aerial2d(const Params& p) {
+  return {{aerialPerspectiveCamera({p.vec3("haze"), p.number("strength"), p.number("near"), p.number("far")},
+                                   frameOf(p), frameOf(p))}};
+}
+ImageCamera depthOfField2d(const Params& p) {
+  return {{depthOfFieldCamera({p.number("focus"), p.number("blur")}, frameOf(p), frameOf(p))}, "blur-variance"};
+}
+
+struct ImagePreset {
+  const char* name;
+  const char* summary;
+  const char* params;
+  ImageCamera (*build)(const Params&);
+};
+
+const ImagePreset kImagePresets[] = {
+    {"barrel", "2D: radial lens u' = u/(1 - k r^2), k < 0 barrel", "k=-0.15 size=600,400", radial2d},
+    {"pincushion-2d", "2D: radial lens u' = u/(1 - k r^2), k > 0 pincushion", "k=0.15 size=600,400", radial2d},
+    {"twist-2d", "2D: each row turns by atan(rate·v): v' = v + rate·u·v", "rate=0.3 size=600,400", twist2d},
+    {"inverse-perspective-2d", "2D: far (upper) rows magnify: p' = p/(1 + gain·v)", "gain=0.35 size=600,400", inversePerspective2d},
+    {"chromatic-aberration-2d", "2D (Fig 4 middle): three RTcams scale/shift R, G, B", "red=0.006 green=0 blue=-0.006 red-dx=0 green-dx=0 blue-dx=0 red-dy=0 green-dy=0 blue-dy=0 size=600,400", rgbShift2d},
+    {"colour-shift", "2D (Fig 4 right, eq 8/9): each layer moves by its colour, p(1 + s_k c_k)", "s-red=0.05 s-green=0 s-blue=-0.03 size=600,400", colourShift2d},
+    {"aerial-perspective", "2D (§3): contrast falls with log depth towards haze (needs --depth)", "haze=0.62,0.72,0.86 strength=0.7 near=1 far=100 size=600,400", aerial2d},
+    {"depth-of-field", "2D (§3): Gaussian blur, sigma = blur·|d - focus|/d (needs --depth)", "focus=2 blur=0.01 size=600,400", depthOfField2d},
+};
+
 struct CloudPreset {
   const char* name;
   const char* summary;
@@ -209,6 +269,7 @@ std::string listing() {
     if (*params) s += std::string("  ") + std::string(23, ' ') + params + "\n";
   };
   for (const Preset& p : kPresets) add(p.name, p.summary, p.params);
+  for (const ImagePreset& p : kImagePresets) add(p.name, p.summary, p.params);
   for (const CloudPreset& p : kCloudPresets) add(p.name, p.summary, p.params);
   return s;
 }
@@ -245,6 +306,9 @@ const char* const kPresetUsage =
     "image side spans [-1, 1], v down); use them with artcam render --view. 3D cameras (identity,\n"
     "twist, pincushion, inverse-perspective, colour-scale, chromatic-aberration) move points and\n"
     "colours before the view. cube-of-cubes writes the sample cloud of the paper's Fig 1.\n"
+    "Image cameras (barrel, pincushion-2d, twist-2d, inverse-perspective-2d,\n"
+    "chromatic-aberration-2d, colour-shift, aerial-perspective, depth-of-field) apply to photos\n"
+    "with artcam warp (the last two need --depth FILE); --size W,H is the photo's size.\n"
     "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
     "its parameters and defaults.\n";
 
@@ -270,6 +334,23 @@ int presetCommand(const std::vector<std::string>& argv) {
                 summary.c_str());
     if (name == "chromatic-aberration")
       std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
+    return 0;
+  }
+  for (const ImagePreset& p : kImagePresets) {
+    if (name != p.name) continue;
+    const Params params = parseParams(p.params, argv, output, summary);
+    ImageCamera made;
+    try {
+      made = p.build(params);
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("preset ") + p.name + ": " + e.what());
+    }
+    ArtcamDocument doc{made.layers.front(), {}, std::nullopt};
+    ArtcamExtras extras;
+    extras.layers.assign(made.layers.begin() + 1, made.layers.end());
+    extras.depth_output = made.depth_output;
+    if (const Status s = writeArtcamFile(output, doc, extras); !s) throw CommandError(s.message);
+    std::printf("wrote %s (%s: %s)\n", output.c_str(), p.name, summary.c_str());
     return 0;
   }
   for (const CloudPreset& p : kCloudPresets) {

@@ -26,6 +26,7 @@ int warpCommand(const std::vector<std::string>& args);
 int infoCommand(const std::vector<std::string>& args);
 int benchCommand(const std::vector<std::string>& args);
 int benchFitCommand(const std::vector<std::string>& args);  // artcam bench fit
+int benchEffectsCommand(const std::vector<std::string>& args);  // artcam bench effects
 int renderCommand(const std::vector<std::string>& args);
 int presetCommand(const std::vector<std::string>& args);
 
@@ -34,6 +35,7 @@ extern const char* const kMapUsage;
 extern const char* const kWarpUsage;
 extern const char* const kInfoUsage;
 extern const char* const kBenchUsage;
+extern const char* const kBenchEffectsUsage;
 extern const char* const kRenderUsage;
 extern const char* const kPresetUsage;
 
