@@ -152,11 +152,16 @@ std::vector<float> level(const ImageF& rgba, const ImageF& sigma, double s, cons
   const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
   std::vector<float> masked(n * 5);
   const float threshold = static_cast<float>(o.halo_ratio * s);
-  for (size_t i = 0; i < n; ++i) {
-    const float m = sigma.data[i] >= threshold ? 1.0f : 0.0f;
-    for (int c = 0; c < 4; ++c) masked[i * 5 + static_cast<size_t>(c)] = m * rgba.data[i * 4 + static_cast<size_t>(c)];
-    masked[i * 5 + 4] = m;
-  }
+  ParallelOptions po;
+  po.threads = o.threads;
+  po.band_rows = 64;
+  parallelForRows(h, po, [&](int y0, int y1) {
+    for (size_t i = static_cast<size_t>(y0) * static_cast<size_t>(w); i < static_cast<size_t>(y1) * static_cast<size_t>(w); ++i) {
+      const float m = sigma.data[i] >= threshold ? 1.0f : 0.0f;
+      for (int c = 0; c < 4; ++c) masked[i * 5 + static_cast<size_t>(c)] = m * rgba.data[i * 4 + static_cast<size_t>(c)];
+      masked[i * 5 + 4] = m;
+    }
+  });
   // Large σ: blur a box-shrunk copy (f ≤ σ/2) and read it back bilinearly; the box and the
   // tent add variance (f² − 1)/12 and f²/6, taken off the blur so the total matches σ².
   int f = 1;
@@ -171,7 +176,8 @@ std::vector<float> level(const ImageF& rgba, const ImageF& sigma, double s, cons
     blurred = blur5(small, sw, sh, std::sqrt(std::max(s * s - extra, 0.25)) / f, o.threads);
   }
   std::vector<float> out(n * 4);
-  for (int y = 0; y < h; ++y)
+  parallelForRows(h, po, [&](int y0, int y1) {
+  for (int y = y0; y < y1; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
       float v[5];
@@ -182,6 +188,7 @@ std::vector<float> level(const ImageF& rgba, const ImageF& sigma, double s, cons
       else
         for (int c = 0; c < 4; ++c) out[i * 4 + static_cast<size_t>(c)] = rgba.data[i * 4 + static_cast<size_t>(c)];
     }
+  });
   return out;
 }
 
@@ -223,8 +230,7 @@ ImageF exactBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
 ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& options) {
   checkInputs(rgba, sigma_px);
   if (!(options.level_ratio > 1.0)) throw std::invalid_argument("stack level ratio must exceed 1");
-  const int w = rgba.width, h = rgba.height;
-  const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+  const int w = rgba.width;
   ImageF out = rgba;  // sharp pixels stay as they are
   float max_sigma = 0.0f;
   for (float s : sigma_px.data) max_sigma = std::max(max_sigma, s);
@@ -232,10 +238,14 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
   // Level 0 is the sharp image (σ = 0); then σ_1 = min_sigma, σ_{L+1} = ratio·σ_L.
   std::vector<float> previous = rgba.data;
   double previous_sigma = 0.0;
-  for (double s = options.min_sigma;; s *= options.level_ratio) {
+  for (double s = std::max(options.min_sigma, options.first_level);; s *= options.level_ratio) {
     const std::vector<float> current = level(rgba, sigma_px, s, options);
     const double lo2 = previous_sigma * previous_sigma, hi2 = s * s;
-    for (size_t i = 0; i < n; ++i) {
+    ParallelOptions po;
+    po.threads = options.threads;
+    po.band_rows = 64;
+    parallelForRows(rgba.height, po, [&](int y0, int y1) {
+    for (size_t i = static_cast<size_t>(y0) * static_cast<size_t>(w); i < static_cast<size_t>(y1) * static_cast<size_t>(w); ++i) {
       const double si = sigma_px.data[i];
       if (!(si >= options.min_sigma) || si < previous_sigma || si >= s) {
         if (!(si >= s && s >= max_sigma)) continue;  // the last level takes what is left
@@ -246,6 +256,7 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
         out.data[i * 4 + static_cast<size_t>(c)] = static_cast<float>(
             (1 - t) * previous[i * 4 + static_cast<size_t>(c)] + t * current[i * 4 + static_cast<size_t>(c)]);
     }
+    });
     if (options.progress && !options.progress(std::min(1.0, s / max_sigma))) return {};
     if (s >= max_sigma) break;
     previous = current;

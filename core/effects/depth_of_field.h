@@ -16,7 +16,7 @@
 //
 // exactBlur: per output pixel, the Gaussian of its own σ, truncated at 3σ, normalised by the
 // weights of the samples it uses (inside the image, passing the halo rule): O(σ²) per pixel.
-// stackBlur (fast): blurs at levels σ_0 = 0 < σ_1 < … (ratio `level_ratio`), each separable
+// stackBlur (fast): blurs at levels σ_0 = 0 < σ_1 = first_level < … (ratio `level_ratio`), each separable
 // and masked by the halo rule at that level; each pixel blends its two bracketing levels with
 // the weight that matches its variance: t = (σ² − σ_L²)/(σ_{L+1}² − σ_L²).
 #pragma once
@@ -41,6 +41,7 @@ struct BlurOptions {
   double halo_ratio = 0.5;
   double level_ratio = 1.41421356237;  // stackBlur: σ_{L+1}/σ_L
   double min_sigma = 0.3;              // below this a pixel is left sharp (both blurs)
+  double first_level = 0.5;            // stackBlur: σ_1; below it pixels blend with the sharp image
   int threads = 0;
   std::function<bool(double)> progress;  // return false to cancel (empty result)
 };
