@@ -10,7 +10,7 @@
 namespace artcam {
 namespace {
 
-Eigen::Index dimensionOf(const Points& src) { return src.empty() ? 2 : src.front().size(); }
+Eigen::Index dimensionOf(const Points& src) { return src.rows() == 0 ? 2 : src.rows(); }
 
 // Singular values ascending, padded with zeros to `unknowns` (a short matrix has more nulls).
 Eigen::VectorXd ascendingPadded(const Eigen::VectorXd& descending, Eigen::Index unknowns) {
@@ -50,32 +50,57 @@ DltSolution linearLeastSquares(const Eigen::MatrixXd& a, const Eigen::MatrixXd& 
 
 }  // namespace
 
-// The 2D quadratic DLT through its 18×18 normal matrix, accumulated from 6×6 blocks: with
-// rows [χ, 0, -Xχ] and [0, χ, -Yχ], DᵀD = [[A, 0, -B], [0, A, -C], [-B, -C, E]] where A = Σχχᵀ,
-// B = ΣXχχᵀ, C = ΣYχχᵀ, E = Σ(X² + Y²)χχᵀ. O(m) with a small constant instead of an SVD of a
-// 2m×18 matrix; conditioning keeps the squared condition number harmless at the noise levels
-// of real data. Used for many matches only: small exact problems keep the SVD.
-DltSolution solveQuadraticNormal2d(const Points& src, const Points& dst) {
-  using M6 = Eigen::Matrix<double, 6, 6>;
-  M6 a = M6::Zero(), b = M6::Zero(), c = M6::Zero(), e = M6::Zero();
-  Eigen::Matrix<double, 6, 1> chi;
-  for (size_t k = 0; k < src.size(); ++k) {
-    const double u = src[k][0], v = src[k][1], x = dst[k][0], y = dst[k][1];
-    chi << u * u, 2 * u * v, 2 * u, v * v, 2 * v, 1.0;
-    const M6 outer = chi * chi.transpose();
-    a += outer;
-    b += x * outer;
-    c += y * outer;
-    e += (x * x + y * y) * outer;
+// Exponents (i, j) of u^i v^j in each entry of χ = (u², 2uv, 2u, v², 2v, 1) and its factor.
+constexpr int kChiU[6] = {2, 1, 1, 0, 0, 0};
+constexpr int kChiV[6] = {0, 1, 0, 2, 1, 0};
+constexpr double kChiFactor[6] = {1, 2, 2, 1, 2, 1};
+// Index of u^i v^j (i + j ≤ 4) in the 15 monomial sums.
+constexpr int monomialIndex(int i, int j) { return (i + j) * (i + j + 1) / 2 + j; }
+
+QuadraticMoments2d quadraticMoments2d(const Points& src, const Points& dst) {
+  // Σ w·u^i v^j for the weights w = 1, X, Y, X² + Y² (moment[w][monomial]).
+  double sums[4][15] = {};
+  const Eigen::Index m = src.cols();
+  const double* s = src.data();
+  const double* t = dst.data();
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const double u = s[2 * k], v = s[2 * k + 1], x = t[2 * k], y = t[2 * k + 1];
+    double mono[15];
+    mono[0] = 1.0;
+    for (int degree = 1; degree <= 4; ++degree) {
+      const int row = degree * (degree + 1) / 2, prev = (degree - 1) * degree / 2;
+      for (int j = 0; j < degree; ++j) mono[row + j] = mono[prev + j] * u;  // u^(d-j) v^j
+      mono[row + degree] = mono[prev + degree - 1] * v;                    // v^d
+    }
+    const double w[4] = {1.0, x, y, x * x + y * y};
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 15; ++i) sums[a][i] += w[a] * mono[i];
   }
+  QuadraticMoments2d out;
+  Eigen::Matrix<double, 6, 6>* targets[4] = {&out.a, &out.b, &out.c, &out.e};
+  for (int j = 0; j < 6; ++j)
+    for (int l = 0; l < 6; ++l) {
+      const int idx = monomialIndex(kChiU[j] + kChiU[l], kChiV[j] + kChiV[l]);
+      const double factor = kChiFactor[j] * kChiFactor[l];
+      for (int a = 0; a < 4; ++a) (*targets[a])(j, l) = factor * sums[a][idx];
+      out.monomials(j, l) = sums[0][idx];
+    }
+  return out;
+}
+
+// The 2D quadratic DLT through its 18×18 normal matrix (see QuadraticMoments2d). O(m) with a
+// small constant instead of an SVD of a 2m×18 matrix; conditioning keeps the squared condition
+// number harmless at the noise levels of real data. Used for many matches only: small exact
+// problems keep the SVD.
+DltSolution solveQuadraticMoments2d(const QuadraticMoments2d& mo) {
   Eigen::Matrix<double, 18, 18> normal = Eigen::Matrix<double, 18, 18>::Zero();
-  normal.block<6, 6>(0, 0) = a;
-  normal.block<6, 6>(6, 6) = a;
-  normal.block<6, 6>(0, 12) = -b;
-  normal.block<6, 6>(12, 0) = -b;
-  normal.block<6, 6>(6, 12) = -c;
-  normal.block<6, 6>(12, 6) = -c;
-  normal.block<6, 6>(12, 12) = e;
+  normal.block<6, 6>(0, 0) = mo.a;
+  normal.block<6, 6>(6, 6) = mo.a;
+  normal.block<6, 6>(0, 12) = -mo.b;
+  normal.block<6, 6>(12, 0) = -mo.b;
+  normal.block<6, 6>(6, 12) = -mo.c;
+  normal.block<6, 6>(12, 6) = -mo.c;
+  normal.block<6, 6>(12, 12) = mo.e;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 18, 18>> eig(normal);
   DltSolution s;
   s.singular_values = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
@@ -97,21 +122,22 @@ DltSolution solveQuadraticNormal2d(const Points& src, const Points& dst) {
 }
 
 DltSolution solveQuadraticDlt(const Points& src, const Points& dst) {
-  if (dimensionOf(src) == 2 && src.size() > kNormalEquationsFrom) return solveQuadraticNormal2d(src, dst);
+  if (dimensionOf(src) == 2 && static_cast<size_t>(src.cols()) > kNormalEquationsFrom)
+    return solveQuadraticMoments2d(quadraticMoments2d(src, dst));
   const Eigen::Index n = dimensionOf(src) + 1;
   const Eigen::Index terms = n * (n + 1) / 2;
-  const Eigen::Index m = static_cast<Eigen::Index>(src.size());
+  const Eigen::Index m = src.cols();
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m * (n - 1), n * terms);
   Eigen::VectorXd x(n), chi(terms);
   for (Eigen::Index k = 0; k < m; ++k) {
-    x << src[k], 1.0;
+    x << src.col(k), 1.0;
     Eigen::Index c = 0;
     for (Eigen::Index j = 0; j < n; ++j)
       for (Eigen::Index l = j; l < n; ++l) chi[c++] = (j == l ? 1.0 : 2.0) * x[j] * x[l];
     for (Eigen::Index i = 0; i < n - 1; ++i) {
       const Eigen::Index row = k * (n - 1) + i;
       d.row(row).segment(i * terms, terms) = chi.transpose();
-      d.row(row).segment((n - 1) * terms, terms) = -dst[k][i] * chi.transpose();
+      d.row(row).segment((n - 1) * terms, terms) = -dst(i, k) * chi.transpose();
     }
   }
   Eigen::VectorXd r;
@@ -128,15 +154,15 @@ DltSolution solveQuadraticDlt(const Points& src, const Points& dst) {
 
 DltSolution solveProjectiveDlt(const Points& src, const Points& dst) {
   const Eigen::Index n = dimensionOf(src) + 1;
-  const Eigen::Index m = static_cast<Eigen::Index>(src.size());
+  const Eigen::Index m = src.cols();
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m * (n - 1), n * n);
   Eigen::RowVectorXd x(n);
   for (Eigen::Index k = 0; k < m; ++k) {
-    x << src[k].transpose(), 1.0;
+    x << src.col(k).transpose(), 1.0;
     for (Eigen::Index i = 0; i < n - 1; ++i) {
       const Eigen::Index row = k * (n - 1) + i;
       d.row(row).segment(i * n, n) = x;
-      d.row(row).segment((n - 1) * n, n) = -dst[k][i] * x;
+      d.row(row).segment((n - 1) * n, n) = -dst(i, k) * x;
     }
   }
   Eigen::VectorXd h;
@@ -149,12 +175,11 @@ DltSolution solveProjectiveDlt(const Points& src, const Points& dst) {
 
 DltSolution solveAffine(const Points& src, const Points& dst) {
   const Eigen::Index dim = dimensionOf(src);
-  const Eigen::Index m = static_cast<Eigen::Index>(src.size());
-  Eigen::MatrixXd a(m, dim + 1), b(m, dim), x;
-  for (Eigen::Index k = 0; k < m; ++k) {
-    a.row(k) << src[k].transpose(), 1.0;
-    b.row(k) = dst[k].transpose();
-  }
+  const Eigen::Index m = src.cols();
+  Eigen::MatrixXd a(m, dim + 1), x;
+  a.leftCols(dim) = src.transpose();
+  a.col(dim).setOnes();
+  const Eigen::MatrixXd b = dst.transpose();
   DltSolution s = linearLeastSquares(a, b, x);
   s.h = Eigen::MatrixXd::Identity(dim + 1, dim + 1);
   s.h.topRows(dim) = x.transpose();
@@ -163,14 +188,14 @@ DltSolution solveAffine(const Points& src, const Points& dst) {
 
 DltSolution solveSimilarity(const Points& src, const Points& dst) {
   if (dimensionOf(src) != 2) throw std::invalid_argument("the similarity solver is 2D only");
-  const Eigen::Index m = static_cast<Eigen::Index>(src.size());
+  const Eigen::Index m = src.cols();
   Eigen::MatrixXd a(2 * m, 4), b(2 * m, 1), x;
   for (Eigen::Index k = 0; k < m; ++k) {
-    const double u = src[k][0], v = src[k][1];
+    const double u = src(0, k), v = src(1, k);
     a.row(2 * k) << u, -v, 1.0, 0.0;
     a.row(2 * k + 1) << v, u, 0.0, 1.0;
-    b(2 * k, 0) = dst[k][0];
-    b(2 * k + 1, 0) = dst[k][1];
+    b(2 * k, 0) = dst(0, k);
+    b(2 * k + 1, 0) = dst(1, k);
   }
   DltSolution s = linearLeastSquares(a, b, x);
   s.h = Eigen::MatrixXd(3, 3);
@@ -183,11 +208,11 @@ DltSolution solveSimilarity(const Points& src, const Points& dst) {
 DltSolution solveTranslation(const Points& src, const Points& dst) {
   const Eigen::Index dim = dimensionOf(src);
   Eigen::VectorXd t = Eigen::VectorXd::Zero(dim);
-  for (size_t k = 0; k < src.size(); ++k) t += dst[k] - src[k];
-  t /= static_cast<double>(std::max<size_t>(src.size(), 1));
+  for (Eigen::Index k = 0; k < src.cols(); ++k) t += dst.col(k) - src.col(k);
+  t /= static_cast<double>(std::max<Eigen::Index>(src.cols(), 1));
   DltSolution s;
   s.linear = true;
-  s.singular_values = Eigen::VectorXd::Constant(1, std::sqrt(static_cast<double>(src.size())));
+  s.singular_values = Eigen::VectorXd::Constant(1, std::sqrt(static_cast<double>(src.cols())));
   s.h = Eigen::MatrixXd::Identity(dim + 1, dim + 1);
   s.h.col(dim).head(dim) = t;
   return s;

@@ -9,13 +9,13 @@
 // tensor is the SVD null vector of that design matrix.
 #pragma once
 
+#include "core/fit/normalize.h"
+
 #include <Eigen/Core>
 
 #include <vector>
 
 namespace artcam {
-
-using Points = std::vector<Eigen::VectorXd>;
 
 struct DltSolution {
   std::vector<Eigen::MatrixXd> q;  // quadratic: the n tensors
@@ -32,6 +32,18 @@ inline constexpr double kNullTolerance = 1e-9;
 inline constexpr size_t kNormalEquationsFrom = 40;
 
 DltSolution solveQuadraticDlt(const Points& src, const Points& dst);
+
+// The 2D quadratic DLT's normal matrix DᵀD = [[A, 0, -B], [0, A, -C], [-B, -C, E]] is made of
+// the 6×6 moments A = Σχχᵀ, B = ΣXχχᵀ, C = ΣYχχᵀ, E = Σ(X² + Y²)χχᵀ. Every entry of χχᵀ is a
+// monomial u^i v^j (i + j ≤ 4) times a power of two, so one pass sums 15 monomials × 4 weights
+// per match instead of four 6×6 outer products.
+struct QuadraticMoments2d {
+  Eigen::Matrix<double, 6, 6> a, b, c, e;
+  // Σ mono monoᵀ for mono = (u², uv, u, v², v, 1) (χ without the doubling): the conic test.
+  Eigen::Matrix<double, 6, 6> monomials;
+};
+QuadraticMoments2d quadraticMoments2d(const Points& src, const Points& dst);
+DltSolution solveQuadraticMoments2d(const QuadraticMoments2d& moments);
 DltSolution solveProjectiveDlt(const Points& src, const Points& dst);  // homography
 DltSolution solveAffine(const Points& src, const Points& dst);
 DltSolution solveSimilarity(const Points& src, const Points& dst);     // 2D only

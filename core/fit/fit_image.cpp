@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace artcam {
@@ -36,14 +37,17 @@ struct Problem {
   Eigen::Vector2d frame_lo = Eigen::Vector2d(-1, -1);
   Eigen::Vector2d frame_hi = Eigen::Vector2d(1, 1);
 
+  int size() const { return static_cast<int>(src.cols()); }
   Problem subset(const std::vector<int>& keep) const {
-    Problem p = *this;
-    p.src.clear();
-    p.dst.clear();
-    for (int k : keep) {
-      p.src.push_back(src[k]);
-      p.dst.push_back(dst[k]);
-    }
+    Problem p;
+    p.dimension = dimension;
+    p.src = src(Eigen::all, keep);
+    p.dst = dst(Eigen::all, keep);
+    p.target_units_per_stored_unit = target_units_per_stored_unit;
+    p.make_camera = make_camera;
+    p.ladder = ladder;
+    p.frame_lo = frame_lo;
+    p.frame_hi = frame_hi;
     return p;
   }
 };
@@ -93,7 +97,7 @@ std::optional<Eigen::VectorXd> mapStored(const Camera& camera, const Eigen::Vect
 
 ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
   ModelFit out;
-  const int m = static_cast<int>(pb.src.size());
+  const int m = pb.size();
   const int need = minimumMatches(model, pb.dimension);
   const std::string name(modelClassName(model));
   if (m < need) {
@@ -102,7 +106,7 @@ ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
                                  moreMatches(m, need) + ")");
     return out;
   }
-  const int distinct = countDistinct(pb.src);
+  const int distinct = countDistinct(pb.src, need);
   if (distinct < need) {
     out.status = Status::failure("only " + std::to_string(distinct) +
                                  " distinct source points among " + std::to_string(m) +
@@ -127,7 +131,15 @@ ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
   const Points src = applyTransform(ts, pb.src);
   const Points dst = applyTransform(td, pb.dst);
 
-  if (model == ModelClass::Quadratic && quadricDegeneracy(src) < 1e-7) {
+  // Many 2D matches: one pass of moments serves both the conic test and the solve.
+  std::optional<QuadraticMoments2d> moments;
+  if (model == ModelClass::Quadratic && pb.dimension == 2 &&
+      static_cast<size_t>(m) > kNormalEquationsFrom)
+    moments = quadraticMoments2d(src, dst);
+  const auto conicDegeneracy = [&] {
+    return moments ? quadricDegeneracyFromMoments(moments->monomials) : quadricDegeneracy(src);
+  };
+  if (model == ModelClass::Quadratic && conicDegeneracy() < 1e-7) {
     out.status = Status::failure(
         "all " + std::to_string(m) + " source points lie on one " +
         (pb.dimension == 2 ? "conic (such as a circle or two lines)" : "quadric surface") +
@@ -143,7 +155,9 @@ ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
     case ModelClass::Affine: s = solveAffine(src, dst); break;
     case ModelClass::Homography: s = solveProjectiveDlt(src, dst); break;
     case ModelClass::Quadratic:
-    case ModelClass::Auto: s = solveQuadraticDlt(src, dst); break;
+    case ModelClass::Auto:
+      s = moments ? solveQuadraticMoments2d(*moments) : solveQuadraticDlt(src, dst);
+      break;
   }
   out.singular_values = s.singular_values;
   if (s.null_dimension > 1 && model == ModelClass::Quadratic) {
@@ -247,24 +261,24 @@ ModelFit fitModel(ModelClass model, const Problem& pb, const FitOptions& options
 
 std::vector<double> residuals(const Camera& camera, const Problem& pb) {
   std::vector<double> out;
-  out.reserve(pb.src.size());
+  out.reserve(pb.size());
   if (pb.dimension == 2 && camera.stages().size() == 1 && camera.dimension() == 3) {
     // Fixed-size evaluation: this runs over every match of every candidate and fold.
     const Eigen::Matrix3d q0 = camera.stages()[0].q[0], q1 = camera.stages()[0].q[1],
                           q2 = camera.stages()[0].q[2];
-    for (size_t k = 0; k < pb.src.size(); ++k) {
-      const Eigen::Vector3d x(pb.src[k][0], pb.src[k][1], 1.0);
+    for (int k = 0; k < pb.size(); ++k) {
+      const Eigen::Vector3d x(pb.src(0, k), pb.src(1, k), 1.0);
       const double w = x.dot(q2 * x);
       const Eigen::Vector2d y(x.dot(q0 * x) / w, x.dot(q1 * x) / w);
-      const double e = (y - Eigen::Vector2d(pb.dst[k][0], pb.dst[k][1])).norm();
+      const double e = (y - Eigen::Vector2d(pb.dst(0, k), pb.dst(1, k))).norm();
       out.push_back(std::isfinite(e) ? e * pb.target_units_per_stored_unit
                                      : std::numeric_limits<double>::infinity());
     }
     return out;
   }
-  for (size_t k = 0; k < pb.src.size(); ++k) {
-    const auto y = mapStored(camera, pb.src[k]);
-    out.push_back(y ? (*y - pb.dst[k]).norm() * pb.target_units_per_stored_unit
+  for (int k = 0; k < pb.size(); ++k) {
+    const auto y = mapStored(camera, pb.src.col(k));
+    out.push_back(y ? (*y - pb.dst.col(k)).norm() * pb.target_units_per_stored_unit
                     : std::numeric_limits<double>::infinity());
   }
   return out;
@@ -283,7 +297,7 @@ double rmsStored(const Camera& camera, const Problem& pb) {
 
 // K-fold held-out RMS error in target units; NaN when the folds leave too few matches.
 double heldOutError(ModelClass model, const Problem& pb, const FitOptions& options) {
-  const int m = static_cast<int>(pb.src.size());
+  const int m = pb.size();
   const int folds = m > 5000 ? 3 : std::min(m, 10);
   if (folds < 2 || m - (m + folds - 1) / folds < minimumMatches(model, pb.dimension))
     return std::numeric_limits<double>::quiet_NaN();
@@ -316,7 +330,7 @@ ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chose
     ModelFit f = fitModel(model, pb, options);
     if (!f.status) {
       if (first_failure.status) first_failure = f;
-      if (static_cast<int>(pb.src.size()) >= minimumMatches(model, pb.dimension))
+      if (pb.size() >= minimumMatches(model, pb.dimension))
         rejected += std::string(rejected.empty() ? "" : "; ") + std::string(modelClassName(model)) +
                     ": " + f.status.message;
       continue;
@@ -366,7 +380,7 @@ FitSummary solve(const Problem& pb, const FitOptions& options) {
                                  " model is not available in " + std::to_string(pb.dimension) + "D");
   } else {
     fit = fitModel(options.model, pb, options);
-    if (fit.status && options.diagnostics && pb.src.size() <= 2000)
+    if (fit.status && options.diagnostics && pb.size() <= 2000)
       held_out = heldOutError(options.model, pb, options);
   }
   if (!fit.status) {
@@ -375,7 +389,7 @@ FitSummary solve(const Problem& pb, const FitOptions& options) {
   }
   summary.camera = fit.camera;
   summary.record.model = std::string(modelClassName(chosen));
-  summary.record.matches = static_cast<int>(pb.src.size());
+  summary.record.matches = pb.size();
   summary.record.residuals_px = residuals(fit.camera, pb);
   summary.record.rms_px = rms(summary.record.residuals_px);
   summary.record.max_px = *std::max_element(summary.record.residuals_px.begin(),
@@ -511,9 +525,11 @@ FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize sour
   }
   Problem pb;
   pb.dimension = 2;
-  for (const PointMatch* match : used) {
-    pb.src.push_back(normalizedFromPixel(source_size, match->source.head<2>()));
-    pb.dst.push_back(normalizedFromPixel(target_size, match->target.head<2>()));
+  pb.src.resize(2, static_cast<Eigen::Index>(used.size()));
+  pb.dst.resize(2, static_cast<Eigen::Index>(used.size()));
+  for (Eigen::Index k = 0; k < pb.src.cols(); ++k) {
+    pb.src.col(k) = normalizedFromPixel(source_size, used[k]->source.head<2>());
+    pb.dst.col(k) = normalizedFromPixel(target_size, used[k]->target.head<2>());
   }
   pb.target_units_per_stored_unit = std::max(target_size.width, target_size.height) / 2.0;
   pb.frame_lo = normalizedFromPixel(source_size, {0.0, 0.0});
@@ -536,9 +552,11 @@ FitSummary fitObjectCamera(const std::vector<PointMatch>& matches, const FitOpti
   }
   Problem pb;
   pb.dimension = 3;
-  for (const PointMatch* match : used) {
-    pb.src.push_back(match->source);
-    pb.dst.push_back(match->target);
+  pb.src.resize(3, static_cast<Eigen::Index>(used.size()));
+  pb.dst.resize(3, static_cast<Eigen::Index>(used.size()));
+  for (Eigen::Index k = 0; k < pb.src.cols(); ++k) {
+    pb.src.col(k) = used[k]->source;
+    pb.dst.col(k) = used[k]->target;
   }
   pb.make_camera = [](const std::vector<Eigen::MatrixXd>& q) {
     return Camera({Block{BlockKind::Position, 4}}, {Stage{q}}, {}, {});

@@ -4,17 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace artcam {
 
 Eigen::MatrixXd conditioningTransform(const Points& points) {
-  const Eigen::Index d = points.empty() ? 2 : points.front().size();
+  const Eigen::Index d = points.rows() == 0 ? 2 : points.rows();
+  const Eigen::Index m = points.cols();
   Eigen::VectorXd centroid = Eigen::VectorXd::Zero(d);
-  for (const Eigen::VectorXd& p : points) centroid += p;
-  centroid /= static_cast<double>(std::max<size_t>(points.size(), 1));
+  for (Eigen::Index k = 0; k < m; ++k) centroid += points.col(k);
+  centroid /= static_cast<double>(std::max<Eigen::Index>(m, 1));
+  // Two passes (centroid, then spread about it): a one-pass Σx² - m·x̄² cancels catastrophically
+  // for points offset by 1e6.
   double sum_sq = 0.0;
-  for (const Eigen::VectorXd& p : points) sum_sq += (p - centroid).squaredNorm();
-  const double rms = std::sqrt(sum_sq / static_cast<double>(std::max<size_t>(points.size(), 1)));
+  for (Eigen::Index k = 0; k < m; ++k) sum_sq += (points.col(k) - centroid).squaredNorm();
+  const double rms = std::sqrt(sum_sq / static_cast<double>(std::max<Eigen::Index>(m, 1)));
   const double s = rms > 0.0 ? std::sqrt(static_cast<double>(d)) / rms : 1.0;
   Eigen::MatrixXd t = Eigen::MatrixXd::Identity(d + 1, d + 1);
   t.topLeftCorner(d, d) *= s;
@@ -23,55 +27,58 @@ Eigen::MatrixXd conditioningTransform(const Points& points) {
 }
 
 Points applyTransform(const Eigen::MatrixXd& t, const Points& points) {
-  Points out;
-  out.reserve(points.size());
-  for (const Eigen::VectorXd& p : points) {
-    const Eigen::Index d = p.size();
-    const Eigen::VectorXd q = t.leftCols(d) * p + t.col(d);
-    out.push_back(q.head(d) / q[d]);
-  }
+  const Eigen::Index d = points.rows();
+  Points out = t.topLeftCorner(d, d) * points;
+  out.colwise() += t.col(d).head(d);
   return out;
 }
 
-int countDistinct(Points points) {
-  std::sort(points.begin(), points.end(), [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-    return std::lexicographical_compare(a.data(), a.data() + a.size(), b.data(), b.data() + b.size());
-  });
-  return static_cast<int>(std::unique(points.begin(), points.end()) - points.begin());
+int countDistinct(const Points& points, int enough) {
+  std::vector<Eigen::Index> seen;
+  for (Eigen::Index k = 0; k < points.cols() && static_cast<int>(seen.size()) < enough; ++k) {
+    const bool repeat = std::any_of(seen.begin(), seen.end(),
+                                    [&](Eigen::Index j) { return points.col(j) == points.col(k); });
+    if (!repeat) seen.push_back(k);
+  }
+  return static_cast<int>(seen.size());
 }
 
 double spreadRatio(const Points& points) {
-  if (points.size() < 2) return 0.0;
-  const Eigen::Index d = points.front().size();
-  Eigen::VectorXd centroid = Eigen::VectorXd::Zero(d);
-  for (const Eigen::VectorXd& p : points) centroid += p;
-  centroid /= static_cast<double>(points.size());
+  if (points.cols() < 2) return 0.0;
+  const Eigen::Index d = points.rows();
+  const Eigen::VectorXd centroid = points.rowwise().mean();
   // Singular values of the centred points are the square roots of the scatter matrix's
   // eigenvalues; at √eps relative resolution, enough for the 1e-7 threshold callers use.
-  Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(d, d);
-  for (const Eigen::VectorXd& p : points) scatter += (p - centroid) * (p - centroid).transpose();
+  const Points centred = points.colwise() - centroid;
+  const Eigen::MatrixXd scatter = centred * centred.transpose();
   const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scatter).eigenvalues();
   return ev[d - 1] > 0.0 ? std::sqrt(std::max(ev[0], 0.0) / ev[d - 1]) : 0.0;
 }
 
+double quadricDegeneracyFromMoments(const Eigen::MatrixXd& moments) {
+  const Eigen::Index terms = moments.rows();
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(moments, Eigen::EigenvaluesOnly).eigenvalues();
+  return ev[terms - 1] > 0.0 ? std::sqrt(std::max(ev[0], 0.0) / ev[terms - 1]) : 0.0;
+}
+
 double quadricDegeneracy(const Points& conditioned_points) {
-  if (conditioned_points.empty()) return 0.0;
-  const Eigen::Index n = conditioned_points.front().size() + 1;
+  if (conditioned_points.cols() == 0) return 0.0;
+  const Eigen::Index n = conditioned_points.rows() + 1;
   const Eigen::Index terms = n * (n + 1) / 2;
-  if (static_cast<Eigen::Index>(conditioned_points.size()) < terms) return 0.0;
+  if (conditioned_points.cols() < terms) return 0.0;
   // Through the monomials' normal matrix (O(m)); √eps resolution suits the 1e-7 threshold.
-  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(terms, terms);
-  Eigen::VectorXd x(n), mono(terms);
-  for (const Eigen::VectorXd& p : conditioned_points) {
-    x << p, 1.0;
+  Eigen::MatrixXd mono(terms, conditioned_points.cols());
+  Eigen::VectorXd x(n);
+  for (Eigen::Index k = 0; k < conditioned_points.cols(); ++k) {
+    x << conditioned_points.col(k), 1.0;
     Eigen::Index c = 0;
     for (Eigen::Index j = 0; j < n; ++j)
-      for (Eigen::Index k = j; k < n; ++k) mono[c++] = x[j] * x[k];
-    normal.selfadjointView<Eigen::Lower>().rankUpdate(mono);
+      for (Eigen::Index l = j; l < n; ++l) mono(c++, k) = x[j] * x[l];
   }
-  const Eigen::VectorXd ev =
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(normal, Eigen::EigenvaluesOnly).eigenvalues();
-  return ev[terms - 1] > 0.0 ? std::sqrt(std::max(ev[0], 0.0) / ev[terms - 1]) : 0.0;
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(terms, terms);
+  normal.selfadjointView<Eigen::Lower>().rankUpdate(mono);
+  return quadricDegeneracyFromMoments(normal);
 }
 
 }  // namespace artcam

@@ -8,6 +8,7 @@
 // a pole in the frame is rejected like one that raises the cost).
 #pragma once
 
+#include "core/fit/normalize.h"
 #include "core/model/camera.h"
 
 #include <Eigen/Core>
@@ -33,9 +34,8 @@ struct RefineSummary {
   std::string stop_reason;
 };
 
-// src/dst: matched points in the normalised source and target frames.
-Camera refineReprojection(const Camera& start, const std::vector<Eigen::VectorXd>& src,
-                          const std::vector<Eigen::VectorXd>& dst, const RefineOptions& options,
-                          RefineSummary* summary = nullptr);
+// src/dst: matched points (2 × m) in the normalised source and target frames.
+Camera refineReprojection(const Camera& start, const Points& src, const Points& dst,
+                          const RefineOptions& options, RefineSummary* summary = nullptr);
 
 }  // namespace artcam
