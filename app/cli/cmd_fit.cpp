@@ -1,6 +1,8 @@
 // artcam fit: matches CSV → .artcam (paper §4, DESIGN §2).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "core/colour/colour_map.h"
+#include "core/fit/fit_colour.h"
 #include "core/fit/fit_image.h"
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
@@ -15,7 +17,10 @@ const char* const kFitUsage =
     "usage: artcam fit MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
     "                  [--model auto|translation|similarity|affine|homography|quadratic] [--json]\n"
     "                  [--no-refine] [--robust [--threshold PX]] [--allow-poles]\n"
-    "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n\n"
+    "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
+    "       artcam fit --block colour SAMPLES.csv -o CAM.artcam --size WxH [--srgb]\n"
+    "                  [--model auto|linear|affine|root-polynomial|quadratic]\n"
+    "                  [--robust [--threshold DE]] [--json]\n\n"
     "Fits a camera to point matches. MATCHES.csv has the header src_x,src_y,dst_x,dst_y\n"
     "(pixels, centres at i + 0.5). --size is the source image size; --target-size the target's\n"
     "(default: the same). --model auto (default) picks the simplest model whose held-out error\n"
@@ -30,7 +35,97 @@ const char* const kFitUsage =
     "--allow-poles. --robust samples minimal sets (MSAC with local optimisation) and fits the\n"
     "matches within --threshold px (default 3); the inlier indices are printed and stored.\n"
     "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
-    "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n";
+    "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n"
+    "--block colour fits the colour block to colour samples: SAMPLES.csv has the header\n"
+    "src_r,src_g,src_b,dst_r,dst_g,dst_b, LINEAR-light RGB (sRGB primaries, D65, 1 = white);\n"
+    "--srgb reads sRGB-encoded values (0..1) instead. auto compares linear 3x3, affine,\n"
+    "root-polynomial (degree 2) and the rational quadratic by held-out CIEDE2000 dE and keeps\n"
+    "the simplest adequate one; root-polynomial is not a quadratic form, so when it wins the\n"
+    "camera holds the best representable model (and --model root-polynomial is refused).\n"
+    "Prints dE00 per sample, mean, median and max. --size is the size of the photos the camera\n"
+    "will recolour (its geometry is the identity); --threshold is in dE00 (default 3).\n";
+
+namespace {
+
+int fitColourCommand(const Args& args, const std::string& output) {
+  if (args.has("--dim") || args.has("--no-refine") || args.has("--allow-poles") ||
+      args.has("--target-size"))
+    throw UsageError("--dim, --no-refine, --allow-poles and --target-size do not apply to --block colour");
+  const auto size_text = args.value("--size");
+  if (!size_text)
+    throw UsageError("missing --size WxH (the size of the photos the colour camera will recolour)");
+  const FrameSize frame = parseSize(*size_text, "--size");
+  ColourFitOptions options;
+  const std::string model_name = args.valueOr("--model", "auto");
+  const auto model = colourModelFromName(model_name);
+  if (!model) throw UsageError("unknown colour --model \"" + model_name + "\"");
+  if (*model == ColourModel::RootPolynomial)
+    throw UsageError("a root-polynomial colour map is not a quadratic form, so no ARTcam can hold "
+                     "it; use --model auto to compare it with the models that can be stored");
+  options.model = *model;
+  options.robust = args.has("--robust");
+  if (args.has("--threshold")) {
+    if (!options.robust) throw UsageError("--threshold goes with --robust");
+    try {
+      options.robust_threshold_de = std::stod(*args.value("--threshold"));
+    } catch (const std::exception&) {
+      throw UsageError("--threshold expects a CIEDE2000 difference");
+    }
+    if (!(options.robust_threshold_de > 0)) throw UsageError("--threshold must be positive");
+  }
+  const std::string& csv = args.positional()[0];
+  const auto samples =
+      readColourSamplesCsv(csv, args.has("--srgb") ? ColourEncoding::Srgb : ColourEncoding::Linear);
+  if (!samples) throw CommandError(samples.status.message);
+  const ColourFitSummary fit = fitColourSamples(*samples, options);
+  if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
+
+  ArtcamDocument doc{colourCamera(fit.map, frame), *samples, fit.record()};
+  if (const Status s = writeArtcamFile(output, doc); !s) throw CommandError(s.message);
+
+  if (args.has("--json")) {
+    nlohmann::json j = {{"block", "colour"},
+                        {"model", std::string(colourModelName(fit.map.model))},
+                        {"selected", std::string(colourModelName(fit.selected))},
+                        {"samples", fit.delta_e.size()},
+                        {"delta_e", fit.delta_e},
+                        {"mean_de", fit.mean_de},
+                        {"median_de", fit.median_de},
+                        {"max_de", fit.max_de},
+                        {"rms_rgb", fit.rms_rgb},
+                        {"reason", fit.reason},
+                        {"output", output}};
+    if (fit.held_out_de >= 0) j["held_out_de"] = fit.held_out_de;
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const ColourCandidate& c : fit.candidates) {
+      nlohmann::json jc = {{"model", std::string(colourModelName(c.model))}, {"fitted", c.fitted}};
+      if (c.fitted) jc["mean_de"] = c.mean_de;
+      if (c.held_out_de >= 0) jc["held_out_de"] = c.held_out_de;
+      if (!c.fitted) jc["failure"] = c.failure;
+      candidates.push_back(jc);
+    }
+    j["candidates"] = candidates;
+    if (options.robust) j["inliers"] = fit.inliers;
+    std::printf("%s\n", j.dump().c_str());
+    return 0;
+  }
+  std::printf("%s\n", fit.report().c_str());
+  if (!fit.reason.empty()) std::printf("%s\n", fit.reason.c_str());
+  if (fit.held_out_de >= 0) std::printf("held-out mean dE00 %.4g (cross-validated)\n", fit.held_out_de);
+  std::printf("dE00 per sample (enabled, in file order):");
+  for (size_t k = 0; k < fit.delta_e.size(); ++k)
+    std::printf("%s %zu:%.3g", k % 10 ? "" : "\n ", k + 1, fit.delta_e[k]);
+  std::printf("\n");
+  if (options.robust) {
+    std::printf("inliers (%zu):", fit.inliers.size());
+    for (int k : fit.inliers) std::printf(" %d", k + 1);
+    std::printf("\n");
+  }
+  std::printf("wrote %s\n", output.c_str());
+  return 0;
+}
+
+}  // namespace
 
 int fitCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
@@ -42,10 +137,16 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--robust", "", false},
                          {"--threshold", "", true},
                          {"--allow-poles", "", false},
-                         {"--json", "", false}});
+                         {"--json", "", false},
+                         {"--block", "", true},
+                         {"--srgb", "", false}});
   args.expectPositional(1, "MATCHES.csv");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
+  const std::string block = args.valueOr("--block", "position");
+  if (block == "colour" || block == "color") return fitColourCommand(args, *output);
+  if (block != "position") throw UsageError("--block expects position or colour");
+  if (args.has("--srgb")) throw UsageError("--srgb goes with --block colour");
   const std::string dim = args.valueOr("--dim", "2");
   if (dim != "2" && dim != "3") throw UsageError("--dim expects 2 or 3");
   const int dimension = dim == "3" ? 3 : 2;

@@ -4,6 +4,7 @@
 #include "core/io/matches_csv.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/transfer.h"
 
 #include <algorithm>
 #include <charconv>
@@ -116,20 +117,13 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
-}  // namespace
-
-Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension) {
+// Pairs of `names.size() / 2` numbers per side under the header `names` (+ optional enabled).
+Result<std::vector<PointMatch>> readPairsCsv(const std::string& path,
+                                             const std::vector<std::string>& names) {
   using R = Result<std::vector<PointMatch>>;
-  if (dimension != 2 && dimension != 3)
-    return R::failure(path + ": matches must have 2 or 3 coordinates per side, not " +
-                      std::to_string(dimension));
   const std::optional<std::string> text = readText(path);
   if (!text) return R::failure(path + ": cannot read: no such file or not readable");
-
-  std::vector<std::string> names =
-      dimension == 2
-          ? std::vector<std::string>{"src_x", "src_y", "dst_x", "dst_y"}
-          : std::vector<std::string>{"src_x", "src_y", "src_z", "dst_x", "dst_y", "dst_z"};
+  const int dimension = static_cast<int>(names.size() / 2);
   const size_t numbers = names.size();
   const std::vector<Line> lines = contentLines(*text);
   if (lines.empty()) return R::failure(path + ": empty, expected the header " + joined(names));
@@ -178,6 +172,31 @@ Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dime
     matches.push_back(std::move(match));
   }
   return R::success(std::move(matches));
+}
+
+}  // namespace
+
+Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension) {
+  using R = Result<std::vector<PointMatch>>;
+  if (dimension != 2 && dimension != 3)
+    return R::failure(path + ": matches must have 2 or 3 coordinates per side, not " +
+                      std::to_string(dimension));
+  return readPairsCsv(path, dimension == 2 ? std::vector<std::string>{"src_x", "src_y", "dst_x", "dst_y"}
+                                           : std::vector<std::string>{"src_x", "src_y", "src_z",
+                                                                      "dst_x", "dst_y", "dst_z"});
+}
+
+Result<std::vector<PointMatch>> readColourSamplesCsv(const std::string& path,
+                                                     ColourEncoding encoding) {
+  auto samples =
+      readPairsCsv(path, {"src_r", "src_g", "src_b", "dst_r", "dst_g", "dst_b"});
+  if (samples && encoding == ColourEncoding::Srgb) {
+    const Transfer srgb = Transfer::srgb();
+    for (PointMatch& sample : *samples)
+      for (Eigen::VectorXd* side : {&sample.source, &sample.target})
+        for (Eigen::Index k = 0; k < 3; ++k) (*side)[k] = srgb.decode((*side)[k]);
+  }
+  return samples;
 }
 
 Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path) {

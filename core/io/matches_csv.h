@@ -1,6 +1,13 @@
 // CSV inputs of the CLI (DESIGN §5): match lists with the header `src_x,src_y,dst_x,dst_y`
-// (pixels; 3D: src_x,src_y,src_z,dst_x,dst_y,dst_z), and point lists `x,y` (a header line is
-// allowed). Errors name the file, the line and the cause ("matches.csv:7: expected 4 numbers,
+// (pixels; 3D: src_x,src_y,src_z,dst_x,dst_y,dst_z), colour samples with the header
+// `src_r,src_g,src_b,dst_r,dst_g,dst_b`, and point lists `x,y` (a header line is allowed).
+//
+// Colour samples: one pair of RGB colours per row, the source colour (a patch in the photo to
+// recolour) and the colour it should become. Values are LINEAR-LIGHT RGB with sRGB (Rec. 709)
+// primaries and D65 white, 1 = diffuse white (the engine's working space, DESIGN §1): values
+// above 1 or below 0 are kept. ColourEncoding::Srgb reads values that are sRGB-ENCODED
+// (0…1, e.g. 8-bit codes divided by 255) and decodes them to linear light on read. Opaque:
+// there is no alpha column. Errors name the file, the line and the cause ("matches.csv:7: expected 4 numbers,
 // found 3").
 //
 // Strict on purpose (a typo must not become a 0): numbers are the whole field, parsed with
@@ -22,6 +29,11 @@ namespace artcam {
 
 // dimension 2 or 3: coordinates per side.
 Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension = 2);
+// Colour samples as 3D matches (source = src_r,src_g,src_b; target = dst_r,dst_g,dst_b), in
+// linear light whatever the file's encoding; the optional `enabled` column as for matches.
+enum class ColourEncoding { Linear, Srgb };
+Result<std::vector<PointMatch>> readColourSamplesCsv(const std::string& path,
+                                                     ColourEncoding encoding = ColourEncoding::Linear);
 Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path);
 // Writes the header and rows with %.17g numbers (locale-free, round-trip exact; atomic).
 Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches);

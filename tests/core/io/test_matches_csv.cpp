@@ -6,6 +6,7 @@
 #include <QtTest/QtTest>
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 
@@ -131,6 +132,47 @@ class TestMatchesCsv : public QObject {
     const auto late_header = readPointsCsv(write("s.csv", "1,2\nx,y\n"));
     QVERIFY(!late_header.ok() &&
             late_header.status.message.find(":2: column 1 (x): not a number") != std::string::npos);
+  }
+
+  void readsColourSamplesLinearAndSrgbEncoded() {
+    const std::string text =
+        "src_r,src_g,src_b,dst_r,dst_g,dst_b\n"
+        "0.5,0.25,0,1,0.04045,0.2\n"
+        "1.5,-0.1,0.3,0.1,0.2,0.3\n";
+    const std::string path = write("colours.csv", text);
+    const auto linear = readColourSamplesCsv(path);
+    QVERIFY2(linear.ok(), linear.status.message.c_str());
+    QCOMPARE(linear->size(), size_t(2));
+    QVERIFY((*linear)[0].source == Eigen::Vector3d(0.5, 0.25, 0));
+    QVERIFY((*linear)[1].source == Eigen::Vector3d(1.5, -0.1, 0.3));  // linear: kept as written
+    QVERIFY((*linear)[0].target == Eigen::Vector3d(1, 0.04045, 0.2));
+    // sRGB-encoded: IEC 61966-2-1 decoding, evaluated here from the standard's formula.
+    const auto decoded = readColourSamplesCsv(path, ColourEncoding::Srgb);
+    QVERIFY2(decoded.ok(), decoded.status.message.c_str());
+    const auto srgb = [](double v) {
+      const double a = std::abs(v);
+      const double d = a <= 0.04045 ? a / 12.92 : std::pow((a + 0.055) / 1.055, 2.4);
+      return v < 0 ? -d : d;
+    };
+    for (size_t k = 0; k < 2; ++k)
+      for (int i = 0; i < 3; ++i) {
+        QVERIFY(std::abs((*decoded)[k].source[i] - srgb((*linear)[k].source[i])) < 1e-15);
+        QVERIFY(std::abs((*decoded)[k].target[i] - srgb((*linear)[k].target[i])) < 1e-15);
+      }
+    QCOMPARE((*decoded)[0].target[0], 1.0);
+    QVERIFY(std::abs((*decoded)[0].target[1] - 0.04045 / 12.92) < 1e-18);
+  }
+
+  void colourSampleRefusalsNameLineAndCause() {
+    const std::string path = write("c.csv", "src_x,src_y,dst_x,dst_y\n1,2,3,4\n");
+    QCOMPARE(QString::fromStdString(readColourSamplesCsv(path).status.message)
+                 .replace(QString::fromStdString(path), "c.csv"),
+             QString("c.csv:1: expected the header src_r,src_g,src_b,dst_r,dst_g,dst_b, found "
+                     "\"src_x,src_y,dst_x,dst_y\""));
+    const std::string bad = write("c2.csv", "src_r,src_g,src_b,dst_r,dst_g,dst_b\n0.1,0.2,0.3,0.4,x,0.6\n");
+    QCOMPARE(QString::fromStdString(readColourSamplesCsv(bad).status.message)
+                 .replace(QString::fromStdString(bad), "c2.csv"),
+             QString("c2.csv:2: column 5 (dst_g): not a number: \"x\""));
   }
 };
 
