@@ -17,7 +17,7 @@ Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& op
   OIIO::ImageBuf buf(path);
   if (!buf.init_spec(path, 0, 0))
     return Result<ImageF>::failure(path + ": cannot open as an image: " + buf.geterror());
-  const OIIO::ImageSpec& spec = buf.spec();
+  const OIIO::ImageSpec spec = buf.spec();  // a copy: reading as float changes buf.spec()
   if (spec.nchannels < 1 || spec.width < 1 || spec.height < 1)
     return Result<ImageF>::failure(path + ": the depth image is empty");
   // Read the stored values without any colour conversion: raw counts or raw floats.
