@@ -57,24 +57,36 @@ constexpr double kChiFactor[6] = {1, 2, 2, 1, 2, 1};
 // Index of u^i v^j (i + j ≤ 4) in the 15 monomial sums.
 constexpr int monomialIndex(int i, int j) { return (i + j) * (i + j + 1) / 2 + j; }
 
-QuadraticMoments2d quadraticMoments2d(const Points& src, const Points& dst) {
-  // Σ w·u^i v^j for the weights w = 1, X, Y, X² + Y² (moment[w][monomial]).
-  double sums[4][15] = {};
+QuadraticMoments2d quadraticMoments2d(const Points& src, const Points& dst,
+                                      const Eigen::Matrix3d& src_transform,
+                                      const Eigen::Matrix3d& dst_transform) {
+  // Σ w·u^i v^j for the weights w = 1, X, Y, X² + Y²: a chunk of matches at a time, the
+  // monomials (15 × chunk) times the weights (chunk × 4) as one small matrix product, which
+  // keeps the 60 running sums out of the per-match loop.
+  constexpr Eigen::Index kChunk = 128;
+  Eigen::Matrix<double, 15, kChunk> mono;
+  Eigen::Matrix<double, kChunk, 4> weights;
+  Eigen::Matrix<double, 15, 4> sums = Eigen::Matrix<double, 15, 4>::Zero();
+  const Eigen::Matrix2d sa = src_transform.topLeftCorner<2, 2>(), da = dst_transform.topLeftCorner<2, 2>();
+  const Eigen::Vector2d sb = src_transform.topRightCorner<2, 1>(), db = dst_transform.topRightCorner<2, 1>();
   const Eigen::Index m = src.cols();
-  const double* s = src.data();
-  const double* t = dst.data();
-  for (Eigen::Index k = 0; k < m; ++k) {
-    const double u = s[2 * k], v = s[2 * k + 1], x = t[2 * k], y = t[2 * k + 1];
-    double mono[15];
-    mono[0] = 1.0;
-    for (int degree = 1; degree <= 4; ++degree) {
-      const int row = degree * (degree + 1) / 2, prev = (degree - 1) * degree / 2;
-      for (int j = 0; j < degree; ++j) mono[row + j] = mono[prev + j] * u;  // u^(d-j) v^j
-      mono[row + degree] = mono[prev + degree - 1] * v;                    // v^d
+  for (Eigen::Index begin = 0; begin < m; begin += kChunk) {
+    const Eigen::Index n = std::min(kChunk, m - begin);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      // Conditioned on the fly (normalize.h): no conditioned copies of 10⁵ points.
+      const Eigen::Vector2d p = sa * src.col(begin + j) + sb;
+      const Eigen::Vector2d q = da * dst.col(begin + j) + db;
+      const double u = p.x(), v = p.y(), x = q.x(), y = q.y();
+      double* c = mono.col(j).data();
+      c[0] = 1.0;
+      for (int degree = 1; degree <= 4; ++degree) {
+        const int row = degree * (degree + 1) / 2, prev = (degree - 1) * degree / 2;
+        for (int l = 0; l < degree; ++l) c[row + l] = c[prev + l] * u;  // u^(d-l) v^l
+        c[row + degree] = c[prev + degree - 1] * v;                    // v^d
+      }
+      weights.row(j) << 1.0, x, y, x * x + y * y;
     }
-    const double w[4] = {1.0, x, y, x * x + y * y};
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 15; ++i) sums[a][i] += w[a] * mono[i];
+    sums.noalias() += mono.leftCols(n) * weights.topRows(n);
   }
   QuadraticMoments2d out;
   Eigen::Matrix<double, 6, 6>* targets[4] = {&out.a, &out.b, &out.c, &out.e};
@@ -82,8 +94,8 @@ QuadraticMoments2d quadraticMoments2d(const Points& src, const Points& dst) {
     for (int l = 0; l < 6; ++l) {
       const int idx = monomialIndex(kChiU[j] + kChiU[l], kChiV[j] + kChiV[l]);
       const double factor = kChiFactor[j] * kChiFactor[l];
-      for (int a = 0; a < 4; ++a) (*targets[a])(j, l) = factor * sums[a][idx];
-      out.monomials(j, l) = sums[0][idx];
+      for (int a = 0; a < 4; ++a) (*targets[a])(j, l) = factor * sums(idx, a);
+      out.monomials(j, l) = sums(idx, 0);
     }
   return out;
 }

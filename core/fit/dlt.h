@@ -42,7 +42,11 @@ struct QuadraticMoments2d {
   // Σ mono monoᵀ for mono = (u², uv, u, v², v, 1) (χ without the doubling): the conic test.
   Eigen::Matrix<double, 6, 6> monomials;
 };
-QuadraticMoments2d quadraticMoments2d(const Points& src, const Points& dst);
+// The transforms (3×3 column form, e.g. the conditioning of normalize.h) are applied to the
+// points on the fly.
+QuadraticMoments2d quadraticMoments2d(const Points& src, const Points& dst,
+                                      const Eigen::Matrix3d& src_transform = Eigen::Matrix3d::Identity(),
+                                      const Eigen::Matrix3d& dst_transform = Eigen::Matrix3d::Identity());
 DltSolution solveQuadraticMoments2d(const QuadraticMoments2d& moments);
 DltSolution solveProjectiveDlt(const Points& src, const Points& dst);  // homography
 DltSolution solveAffine(const Points& src, const Points& dst);

@@ -268,7 +268,7 @@ ColourFitSummary fitOrSelect(const Samples& s, const ColourFitOptions& options) 
   why << "auto chose " << colourModelName(stored->model) << "; held-out mean dE00:";
   for (const ColourCandidate& c : summary.candidates)
     why << " " << colourModelName(c.model) << " "
-        << (!c.fitted ? std::string("not determined")
+        << (!c.fitted ? std::string("refused")
                       : c.held_out_de < 0 ? std::string("n/a") : fmt(c.held_out_de));
   if (winner && winner->model != stored->model)
     why << "; root-polynomial did best but is not a quadratic form (its sqrt(rg) terms), so the "

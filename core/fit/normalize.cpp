@@ -11,13 +11,11 @@ namespace artcam {
 Eigen::MatrixXd conditioningTransform(const Points& points) {
   const Eigen::Index d = points.rows() == 0 ? 2 : points.rows();
   const Eigen::Index m = points.cols();
-  Eigen::VectorXd centroid = Eigen::VectorXd::Zero(d);
-  for (Eigen::Index k = 0; k < m; ++k) centroid += points.col(k);
-  centroid /= static_cast<double>(std::max<Eigen::Index>(m, 1));
+  const Eigen::VectorXd centroid =
+      m > 0 ? Eigen::VectorXd(points.rowwise().mean()) : Eigen::VectorXd::Zero(d);
   // Two passes (centroid, then spread about it): a one-pass Σx² - m·x̄² cancels catastrophically
   // for points offset by 1e6.
-  double sum_sq = 0.0;
-  for (Eigen::Index k = 0; k < m; ++k) sum_sq += (points.col(k) - centroid).squaredNorm();
+  const double sum_sq = m > 0 ? (points.colwise() - centroid).squaredNorm() : 0.0;
   const double rms = std::sqrt(sum_sq / static_cast<double>(std::max<Eigen::Index>(m, 1)));
   const double s = rms > 0.0 ? std::sqrt(static_cast<double>(d)) / rms : 1.0;
   Eigen::MatrixXd t = Eigen::MatrixXd::Identity(d + 1, d + 1);

@@ -172,6 +172,7 @@ Camera refineReprojection(const Camera& start, const Points& src, const Points& 
       const bool pole_ok =
           !options.keep_pole_free || !start_pole_free ||
           checkDenominator(tensor(candidate, 2), options.frame_lo, options.frame_hi).pole_free;
+      if (next < current && !pole_ok) ++s.pole_rejections;
       if (next < current && pole_ok && candidate.allFinite()) {
         const double gain = (current - next) / std::max(current, 1e-300);
         p = candidate;

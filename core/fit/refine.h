@@ -31,6 +31,9 @@ struct RefineSummary {
   double initial_rms = 0.0;  // normalised target units
   double final_rms = 0.0;
   int iterations = 0;
+  // Steps that lowered the cost but were refused because they put a pole in the frame: the
+  // result may sit against the pole constraint rather than at a minimum.
+  int pole_rejections = 0;
   std::string stop_reason;
 };
 
