@@ -4,6 +4,7 @@
 #include "ui/commands.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
+#include "ui/panels/effects_panel.h"
 #include "ui/panels/pairs_panel.h"
 #include "ui/panels/tensor_panel.h"
 #include "ui/preview_controller.h"
@@ -55,6 +56,10 @@ MainWindow::MainWindow(QWidget* parent)
   tensor_dock->setObjectName("tensorDock");
   tensor_dock->setWidget(new TensorPanel(document_, this));
   tabifyDockWidget(pairs_dock, tensor_dock);
+  auto* effects_dock = new QDockWidget(tr("Effects"), this);
+  effects_dock->setObjectName("effectsDock");
+  effects_dock->setWidget(new EffectsPanel(document_, this));
+  tabifyDockWidget(tensor_dock, effects_dock);
   pairs_dock->raise();
 
   // The preview is the point of the session: give it room beside the canvas.

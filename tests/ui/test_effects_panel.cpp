@@ -1,0 +1,68 @@
+// The effects panel: every parameter change renders off the GUI thread, the newest request
+// wins, and what it shows equals a direct render of the same effect on the same thumbnail.
+#include "core/effects/effect_presets.h"
+#include "tests/ui/ui_fixtures.h"
+#include "ui/document.h"
+#include "ui/image_convert.h"
+#include "ui/panels/effects_panel.h"
+
+#include <QSignalSpy>
+#include <QtTest/QtTest>
+
+#include <cmath>
+
+using namespace artcam;
+using namespace artcam::ui;
+
+namespace {
+
+bool waitForGeneration(EffectsPanel& panel, quint64 generation) {
+  QSignalSpy spy(&panel, &EffectsPanel::previewReady);
+  for (int i = 0; i < 200 && panel.previewGeneration() < generation; ++i) spy.wait(100);
+  return panel.previewGeneration() == generation;
+}
+
+}  // namespace
+
+class TestEffectsPanel : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void showsTheNewestSettings() {
+    Document doc;
+    doc.reset(test::syntheticPhoto());
+    EffectsPanel panel(&doc);
+    panel.setEffect("colour-shift");
+    // Rapid edits: only the last one may be shown.
+    for (int i = 1; i <= 20; ++i) QVERIFY(panel.setParameter("s-red", 0.01 * i));
+    QVERIFY(panel.setParameter("s-blue", -0.1));
+    QVERIFY(!panel.setParameter("no-such", 1.0));
+    const quint64 last = panel.requestedGeneration();
+    QVERIFY(waitForGeneration(panel, last));
+    QVERIFY2(panel.status().contains("splat"), qPrintable(panel.status()));
+
+    const ImageF thumb = boxDownscale(doc.photo()->preview, 384);
+    const FrameSize frame{thumb.width, thumb.height};
+    const EffectSetup setup = buildEffect("colour-shift", panel.parameters(), frame);
+    const QImage expected = qimageFromLinear(renderEffect(thumb, nullptr, setup).colour);
+    QCOMPARE(panel.preview().size(), expected.size());
+    QVERIFY(panel.preview() == expected);
+  }
+
+  void depthEffectsUseTheStandInAndSayWhy() {
+    Document doc;
+    doc.reset(test::syntheticPhoto());
+    EffectsPanel panel(&doc);
+    panel.setEffect("aerial-perspective");
+    QVERIFY(waitForGeneration(panel, panel.requestedGeneration()));
+    QVERIFY2(panel.status().contains("ramp"), qPrintable(panel.status()));
+    // A badly set range is reported, not thrown across the event loop.
+    QVERIFY(panel.setParameter("near", 50.0));
+    QVERIFY(panel.setParameter("far", 10.0));
+    QVERIFY(waitForGeneration(panel, panel.requestedGeneration()));
+    QVERIFY2(panel.status().contains("cannot render"), qPrintable(panel.status()));
+  }
+};
+
+QTEST_MAIN(TestEffectsPanel)
+#include "test_effects_panel.moc"

@@ -1,0 +1,83 @@
+// The effects panel (issue 6 item 9): pick one of the image effects (core/effects/
+// effect_presets.h), set its parameters, and see it live on the photo's preview copy.
+//
+// Rendering runs off the GUI thread (STYLE: never block the GUI on a render): every change
+// stamps a new generation, a trailing 80 ms timer coalesces slider drags, and a worker thread
+// renders the newest request; an older one is cancelled between bands (its progress hook sees
+// a newer generation) and its result dropped. Results come back by queued call as a QImage.
+//
+// Depth: the image given to setDepth (1 channel, or the 2-channel form of core/depth/
+// depth_raster.h, any size) — e.g. the studio's painted planes rasterised; otherwise a stand-in
+// ramp, far at the top (1 … 100 log-spaced), which the status line says. The panel does not change the document: effects that change colour are not yet
+// something the main preview can render (render_worker is geometry-only).
+#pragma once
+
+#include "core/effects/effect_presets.h"
+
+#include <QImage>
+#include <QWidget>
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+
+class QComboBox;
+class QFormLayout;
+class QLabel;
+class QDoubleSpinBox;
+class QTimer;
+
+namespace artcam::ui {
+
+class Document;
+
+class EffectsPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit EffectsPanel(Document* document, QWidget* parent = nullptr);
+  ~EffectsPanel() override;
+
+  QString effect() const;
+  void setEffect(const QString& name);
+  // Sets a parameter's spin box (as if typed); false for an unknown name.
+  bool setParameter(const QString& name, double value);
+  std::map<std::string, double> parameters() const;
+  // The depth the effects read; null: the stand-in ramp.
+  void setDepth(std::shared_ptr<const ImageF> depth);
+
+  // The last rendered preview and the generation it belongs to.
+  const QImage& preview() const { return preview_; }
+  quint64 previewGeneration() const { return shown_generation_; }
+  quint64 requestedGeneration() const { return generation_.load(); }
+  QString status() const;
+
+ signals:
+  void previewReady(quint64 generation);
+
+ private:
+  void rebuildParameters();
+  void schedule();
+  void startRender();
+  void deliver(quint64 generation, QImage image, QString message);
+  void joinWorker();
+
+  Document* document_;
+  QComboBox* effect_box_;
+  QFormLayout* form_;
+  QLabel* image_label_;
+  QLabel* status_label_;
+  QTimer* throttle_;
+  std::map<std::string, QDoubleSpinBox*> spins_;
+  QImage preview_;
+  std::shared_ptr<const ImageF> depth_;
+  std::atomic<quint64> generation_{0};
+  quint64 shown_generation_ = 0;
+  std::thread worker_;
+  // Lets a finished worker's queued delivery find out the panel is gone.
+  std::shared_ptr<std::atomic<bool>> alive_ = std::make_shared<std::atomic<bool>>(true);
+};
+
+}  // namespace artcam::ui
