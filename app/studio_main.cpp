@@ -24,6 +24,9 @@ int main(int argc, char** argv) {
   artcam::ui::MainWindow window;
   window.show();
   const QStringList files = parser.positionalArguments();
-  if (!files.isEmpty()) window.session()->openPath(files.front());
+  if (!files.isEmpty())
+    window.session()->openPath(files.front());  // a project's own recovery is offered there
+  else
+    window.session()->offerRecovery();  // work left by a session that did not close cleanly
   return QApplication::exec();
 }

@@ -1,9 +1,11 @@
 #include "ui/canvas.h"
 
+#include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/tools/tool.h"
 
 #include <QKeyEvent>
+#include <QLinearGradient>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPainterPath>
@@ -42,6 +44,9 @@ Canvas::Canvas(Document* document, QWidget* parent) : QWidget(parent), document_
   setAttribute(Qt::WA_OpaquePaintEvent);
   connect(document_, &Document::photoChanged, this, &Canvas::onPhotoChanged);
   connect(document_, &Document::pairsChanged, this, qOverload<>(&QWidget::update));
+  connect(document_->depth(), &DepthModel::depthChanged, this, qOverload<>(&QWidget::update));
+  connect(document_->depth(), &DepthModel::activeLayerChanged, this,
+          qOverload<>(&QWidget::update));
   connect(document_, &Document::selectionChanged, this, qOverload<>(&QWidget::update));
 }
 
@@ -50,6 +55,12 @@ Canvas::~Canvas() = default;
 void Canvas::setTool(std::unique_ptr<Tool> tool) {
   if (tool_) tool_->cancel();
   tool_ = std::move(tool);
+  update();
+}
+
+void Canvas::setDepthOverlay(DepthOverlay* overlay) {
+  depth_overlay_ = overlay;
+  if (overlay) connect(overlay, &DepthOverlay::changed, this, qOverload<>(&QWidget::update));
   update();
 }
 
@@ -117,9 +128,31 @@ void Canvas::paintEvent(QPaintEvent*) {
   // Smooth when minifying; nearest when magnifying so pixels are visible for precise clicks.
   painter.setRenderHint(QPainter::SmoothPixmapTransform, view_.scale() < 1.0);
   painter.drawImage(target, photo->display);
+  paintDepth(painter, target);
   painter.setRenderHint(QPainter::Antialiasing, true);
   paintPairs(painter);
   if (tool_) tool_->paint(painter);
+}
+
+void Canvas::paintDepth(QPainter& painter, const QRectF& image_rect) {
+  if (!depth_overlay_ || !depth_overlay_->isVisible() || depth_overlay_->image().isNull()) return;
+  painter.save();
+  painter.setOpacity(depth_overlay_->opacity());
+  painter.setRenderHint(QPainter::SmoothPixmapTransform, true);
+  painter.drawImage(image_rect, depth_overlay_->image());
+  painter.restore();
+  // Legend: the ramp from far (left) to near (right) with the depth range.
+  const QRectF bar(12, height() - 34, 180, 12);
+  QLinearGradient g(bar.topLeft(), bar.topRight());
+  for (int k = 0; k <= 8; ++k) g.setColorAt(k / 8.0, DepthOverlay::ramp(k / 8.0));
+  painter.fillRect(bar.adjusted(-6, -18, 6, 6), QColor(0, 0, 0, 150));
+  painter.fillRect(bar, g);
+  painter.setPen(Qt::white);
+  const double zmin = depth_overlay_->minDepth(), zmax = depth_overlay_->maxDepth();
+  painter.drawText(QRectF(bar.left(), bar.top() - 16, bar.width(), 14), Qt::AlignLeft,
+                   tr("far %1").arg(zmax, 0, 'g', 4));
+  painter.drawText(QRectF(bar.left(), bar.top() - 16, bar.width(), 14), Qt::AlignRight,
+                   tr("near %1").arg(zmin, 0, 'g', 4));
 }
 
 void Canvas::paintPairs(QPainter& painter) {

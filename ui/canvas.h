@@ -16,6 +16,7 @@
 
 namespace artcam::ui {
 
+class DepthOverlay;
 class Document;
 class Tool;
 
@@ -30,6 +31,8 @@ class Canvas : public QWidget {
   const ViewTransform& view() const { return view_; }
   void setTool(std::unique_ptr<Tool> tool);
   Tool* tool() const { return tool_.get(); }
+  // Draws the depth overlay (when visible) over the photo, with its legend.
+  void setDepthOverlay(DepthOverlay* overlay);
 
   // Residual (px) drawn fully red; below it the arrow blends from green.
   static constexpr double kRedResidualPx = 4.0;
@@ -61,11 +64,13 @@ class Canvas : public QWidget {
  private:
   void onPhotoChanged();
   void paintPairs(QPainter& painter);
+  void paintDepth(QPainter& painter, const QRectF& image_rect);
   void userMovedView();
 
   Document* document_;
   ViewTransform view_;
   std::unique_ptr<Tool> tool_;
+  DepthOverlay* depth_overlay_ = nullptr;
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
   bool panning_ = false;

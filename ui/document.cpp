@@ -29,6 +29,7 @@ void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
   manual_camera_ = std::move(manual_camera);
   selection_.clear();
   refit();
+  depth_.reset(frame());
   undo_stack_.setClean();
   emit photoChanged();
   emit pairCountChanged();

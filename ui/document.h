@@ -9,6 +9,7 @@
 
 #include "core/fit/fit_image.h"
 #include "core/model/camera.h"
+#include "ui/depth_model.h"
 #include "ui/photo.h"
 
 #include <QObject>
@@ -40,6 +41,9 @@ class Document : public QObject {
   explicit Document(QObject* parent = nullptr);
 
   QUndoStack* undoStack() { return &undo_stack_; }
+  // Depth planes and map (depth_model.h); reset() empties it for the new photo.
+  DepthModel* depth() { return &depth_; }
+  const DepthModel* depth() const { return &depth_; }
 
   // --- photo (not undoable: a new photo starts a new session) ---
   const PhotoPtr& photo() const { return photo_; }
@@ -90,6 +94,7 @@ class Document : public QObject {
   void refit();
 
   QUndoStack undo_stack_;
+  DepthModel depth_;
   PhotoPtr photo_;
   std::vector<Pair> pairs_;
   ModelClass model_ = ModelClass::Auto;

@@ -2,14 +2,18 @@
 
 #include "ui/canvas.h"
 #include "ui/commands.h"
+#include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
+#include "ui/panels/depth_panel.h"
 #include "ui/panels/effects_panel.h"
 #include "ui/panels/pairs_panel.h"
 #include "ui/panels/tensor_panel.h"
 #include "ui/preview_controller.h"
 #include "ui/preview_view.h"
 #include "ui/session.h"
+#include "ui/tools/depth_tool.h"
+#include "ui/tools/depth_tool_settings.h"
 #include "ui/tools/pair_tool.h"
 
 #include <QAction>
@@ -29,6 +33,8 @@
 #include <QToolBar>
 #include <QUrl>
 
+#include <optional>
+
 namespace artcam::ui {
 
 MainWindow::MainWindow(QWidget* parent)
@@ -39,8 +45,12 @@ MainWindow::MainWindow(QWidget* parent)
       preview_view_(new PreviewView(document_, preview_, this)),
       pairs_panel_(new PairsPanel(document_, this)),
       fit_status_(new FitStatus(document_, preview_, this)),
-      session_(new Session(document_, this, this)) {
+      session_(new Session(document_, this, this)),
+      depth_settings_(new DepthToolSettings(this)),
+      depth_overlay_(new DepthOverlay(document_, this)),
+      depth_panel_(new DepthPanel(document_, depth_settings_, depth_overlay_, this)) {
   canvas_->setTool(std::make_unique<PairTool>(canvas_, document_));
+  canvas_->setDepthOverlay(depth_overlay_);
   setCentralWidget(canvas_);
   setAcceptDrops(true);
 
@@ -56,11 +66,18 @@ MainWindow::MainWindow(QWidget* parent)
   tensor_dock->setObjectName("tensorDock");
   tensor_dock->setWidget(new TensorPanel(document_, this));
   tabifyDockWidget(pairs_dock, tensor_dock);
+  auto* depth_dock = new QDockWidget(tr("Depth"), this);
+  depth_dock->setObjectName("depthDock");
+  depth_dock->setWidget(depth_panel_);
+  tabifyDockWidget(tensor_dock, depth_dock);
   auto* effects_dock = new QDockWidget(tr("Effects"), this);
   effects_dock->setObjectName("effectsDock");
   effects_dock->setWidget(new EffectsPanel(document_, this));
-  tabifyDockWidget(tensor_dock, effects_dock);
+  tabifyDockWidget(depth_dock, effects_dock);
   pairs_dock->raise();
+  connect(depth_panel_, &DepthPanel::loadDepthMapRequested, this, [this] {
+    session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
+  });
 
   // The preview is the point of the session: give it room beside the canvas.
   resizeDocks({preview_dock}, {560}, Qt::Horizontal);
@@ -115,6 +132,10 @@ void MainWindow::createMenus() {
   QAction* export_image = file->addAction(tr("&Export Warped Image…"), QKeySequence(tr("Ctrl+E")),
                                           session_, &Session::exportImageDialog);
   file->addSeparator();
+  file->addAction(tr("Load &Depth Map…"), this, [this] {
+    session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
+  })->setToolTip(tr("A float EXR/TIFF or 16-bit PNG depth map under the painted planes"));
+  file->addSeparator();
   file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
   bar->addAction(open);
   bar->addAction(save);
@@ -151,6 +172,18 @@ void MainWindow::createMenus() {
   view->addSeparator();
   for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 
+  QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  createToolActions(tools, bar);
+  view->addSeparator();
+  QAction* overlay = view->addAction(tr("Show &Depth Overlay"));
+  overlay->setCheckable(true);
+  overlay->setChecked(depth_overlay_->isVisible());
+  overlay->setShortcut(QKeySequence(tr("Shift+D")));
+  overlay->setToolTip(tr("Colour the photo by depth (red near, blue far) with a legend"));
+  connect(overlay, &QAction::toggled, depth_overlay_, &DepthOverlay::setVisible);
+  connect(depth_overlay_, &DepthOverlay::changed, overlay,
+          [this, overlay] { overlay->setChecked(depth_overlay_->isVisible()); });
+
   QMenu* model = menuBar()->addMenu(tr("&Model"));
   auto* group = new QActionGroup(this);
   const std::pair<ModelClass, QString> models[] = {
@@ -186,8 +219,56 @@ void MainWindow::createMenus() {
         this, tr("About ARTcam Studio"),
         tr("<b>ARTcam Studio</b><p>Warp photographs through one rational tensor camera: "
            "click a source point, then where it should go. Middle drag or Space+drag pans, "
-           "the wheel zooms, Del deletes selected pairs, Esc drops a half-made pair.</p>"));
+           "the wheel zooms, Del deletes selected pairs, Esc drops a half-made pair.</p>"
+           "<p>Depth: paint a region (B brush, E eraser, G polygon), then click three points "
+           "in it (D) and type their depths in the Depth panel; Shift+D shows the overlay.</p>"));
   });
+}
+
+void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
+  auto* group = new QActionGroup(this);
+  struct Entry {
+    QString label;
+    QString key;
+    QString tip;
+    std::optional<DepthToolMode> mode;  // none: the pair tool
+  };
+  const Entry entries[] = {
+      {tr("&Pairs"), "P", tr("Click a source point, then its target (P)"), std::nullopt},
+      {tr("Depth &Brush"), "B", tr("Paint the selected depth plane's region (B; [ ] size)"),
+       DepthToolMode::Brush},
+      {tr("Depth &Eraser"), "E", tr("Erase from the selected depth plane's region (E)"),
+       DepthToolMode::Eraser},
+      {tr("Depth Pol&ygon"), "G",
+       tr("Click corners; Enter or the first corner closes (Alt: erase) (G)"),
+       DepthToolMode::Polygon},
+      {tr("Depth P&oints"), "D",
+       tr("Click three points of the region and give each its depth (D)"), DepthToolMode::Points},
+  };
+  for (const Entry& e : entries) {
+    QAction* a = menu->addAction(e.label);
+    a->setCheckable(true);
+    a->setShortcut(QKeySequence(e.key));
+    a->setToolTip(e.tip);
+    a->setChecked(!e.mode);
+    group->addAction(a);
+    bar->addAction(a);
+    const std::optional<DepthToolMode> mode = e.mode;
+    connect(a, &QAction::triggered, this, [this, mode] {
+      if (mode)
+        canvas_->setTool(std::make_unique<DepthTool>(canvas_, document_, depth_settings_, *mode));
+      else
+        canvas_->setTool(std::make_unique<PairTool>(canvas_, document_));
+    });
+  }
+  menu->addSeparator();
+  menu->addAction(tr("Smaller Brush"), QKeySequence(tr("[")), this,
+                  [this] { depth_settings_->setRadius(depth_settings_->radius() / 1.25); });
+  menu->addAction(tr("Larger Brush"), QKeySequence(tr("]")), this,
+                  [this] { depth_settings_->setRadius(depth_settings_->radius() * 1.25); });
+  menu->addAction(tr("&New Depth Plane"), QKeySequence(tr("Ctrl+Shift+N")), depth_panel_,
+                  &DepthPanel::addLayer)
+      ->setToolTip(tr("A new empty depth region"));
 }
 
 void MainWindow::rebuildRecentMenu() {
@@ -206,8 +287,10 @@ void MainWindow::updateTitle() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  if (session_->maybeSave())
+  if (session_->maybeSave()) {
+    session_->closedCleanly();
     event->accept();
+  }
   else
     event->ignore();
 }

@@ -10,6 +10,9 @@ class QMenu;
 namespace artcam::ui {
 
 class Canvas;
+class DepthOverlay;
+class DepthPanel;
+class DepthToolSettings;
 class Document;
 class FitStatus;
 class PairsPanel;
@@ -31,6 +34,9 @@ class MainWindow : public QMainWindow {
   PreviewView* previewView() const { return preview_view_; }
   PairsPanel* pairsPanel() const { return pairs_panel_; }
   FitStatus* fitStatus() const { return fit_status_; }
+  DepthPanel* depthPanel() const { return depth_panel_; }
+  DepthOverlay* depthOverlay() const { return depth_overlay_; }
+  DepthToolSettings* depthToolSettings() const { return depth_settings_; }
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -39,6 +45,7 @@ class MainWindow : public QMainWindow {
 
  private:
   void createMenus();
+  void createToolActions(QMenu* menu, class QToolBar* bar);
   void rebuildRecentMenu();
   void updateTitle();
 
@@ -49,6 +56,9 @@ class MainWindow : public QMainWindow {
   PairsPanel* pairs_panel_;
   FitStatus* fit_status_;
   Session* session_;
+  DepthToolSettings* depth_settings_;
+  DepthOverlay* depth_overlay_;
+  DepthPanel* depth_panel_;
   QMenu* recent_menu_ = nullptr;
 };
 

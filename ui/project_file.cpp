@@ -27,15 +27,101 @@ std::optional<Eigen::Vector2d> readPoint(const QJsonValue& v) {
 
 std::string str(const QString& s) { return s.toStdString(); }
 
+QString pathForFile(const QString& path, const QString& project_path) {
+  const QDir base = QFileInfo(project_path).absoluteDir();
+  const QString relative = base.relativeFilePath(path);
+  return relative.startsWith("..") ? path : relative;
+}
+
+QString pathFromFile(const QString& path, const QString& project_path) {
+  return QFileInfo(path).isAbsolute() ? path
+                                      : QFileInfo(project_path).absoluteDir().absoluteFilePath(path);
+}
+
+QJsonObject depthToJson(const Project& project, const QString& project_path) {
+  QJsonObject depth;
+  QJsonArray layers;
+  for (const DepthPlaneLayer& l : project.depth_layers) {
+    QJsonObject o;
+    o["name"] = l.name;
+    o["size"] = QJsonArray{l.mask.width(), l.mask.height()};
+    const std::vector<uint8_t> runs = encodeMaskRuns(l.mask);
+    o["mask"] = QString::fromLatin1(
+        QByteArray(reinterpret_cast<const char*>(runs.data()), static_cast<qsizetype>(runs.size()))
+            .toBase64());
+    QJsonArray anchors;
+    for (const DepthAnchor& a : l.anchors)
+      anchors.append(QJsonObject{{"pixel", point(a.pixel)}, {"depth", a.depth}});
+    o["anchors"] = anchors;
+    layers.append(o);
+  }
+  depth["layers"] = layers;
+  if (project.depth_map)
+    depth["map"] = QJsonObject{{"path", pathForFile(project.depth_map->path, project_path)},
+                               {"scale", project.depth_map->options.scale},
+                               {"inverse", project.depth_map->options.inverse}};
+  return depth;
+}
+
+// Reads the optional "depth" object; `name` prefixes messages with the file name.
+Status parseDepth(const QJsonObject& depth, const std::string& name, const QString& project_path,
+                  Project& p) {
+  const QJsonArray layers = depth["layers"].toArray();
+  for (qsizetype i = 0; i < layers.size(); ++i) {
+    const QJsonObject o = layers[i].toObject();
+    const std::string where = name + ": /depth/layers/" + std::to_string(i);
+    DepthPlaneLayer l;
+    l.name = o["name"].toString();
+    const QJsonArray size = o["size"].toArray();
+    if (size.size() != 2 || !size[0].isDouble() || !size[1].isDouble())
+      return Status::failure(where + "/size: expected [width, height]");
+    const QByteArray raw = QByteArray::fromBase64(o["mask"].toString().toLatin1(),
+                                                  QByteArray::AbortOnBase64DecodingErrors);
+    if (raw.isEmpty() && !o["mask"].toString().isEmpty())
+      return Status::failure(where + "/mask: not base64");
+    const std::vector<uint8_t> runs(raw.begin(), raw.end());
+    Result<RegionMask> mask =
+        decodeMaskRuns(runs, size[0].toInt(), size[1].toInt(), where + "/mask");
+    if (!mask) return mask.status;
+    l.mask = std::move(*mask.value);
+    const QJsonArray anchors = o["anchors"].toArray();
+    if (anchors.size() > DepthModel::kAnchorCount)
+      return Status::failure(where + "/anchors: at most 3 depth points");
+    for (qsizetype k = 0; k < anchors.size(); ++k) {
+      const QJsonObject a = anchors[k].toObject();
+      const auto pixel = readPoint(a["pixel"]);
+      const double z = a["depth"].toDouble(-1.0);
+      const std::string at = where + "/anchors/" + std::to_string(k);
+      if (!pixel) return Status::failure(at + "/pixel: expected [x, y]");
+      if (!(z > 0.0) || !std::isfinite(z))
+        return Status::failure(at + "/depth: expected a number greater than 0");
+      l.anchors.push_back({*pixel, z});
+    }
+    p.depth_layers.push_back(std::move(l));
+  }
+  if (depth.contains("map")) {
+    const QJsonObject m = depth["map"].toObject();
+    DepthMapRef ref;
+    const QString path = m["path"].toString();
+    if (path.isEmpty()) return Status::failure(name + ": /depth/map/path: missing");
+    ref.path = pathFromFile(path, project_path);
+    ref.options.scale = m["scale"].toDouble(1.0);
+    if (!(ref.options.scale > 0.0) || !std::isfinite(ref.options.scale))
+      return Status::failure(name + ": /depth/map/scale: expected a number greater than 0");
+    ref.options.inverse = m["inverse"].toBool(false);
+    p.depth_map = ref;
+  }
+  return Status::success();
+}
+
 }  // namespace
 
 QByteArray projectToJson(const Project& project, const QString& project_path) {
   QJsonObject root;
   root["format"] = "artcam-studio-project";
-  root["version"] = kProjectFormatVersion;
-  const QDir base = QFileInfo(project_path).absoluteDir();
-  const QString relative = base.relativeFilePath(project.photo_path);
-  root["photo"] = relative.startsWith("..") ? project.photo_path : relative;
+  const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
+  root["version"] = has_depth ? kProjectFormatVersion : kProjectVersionWithoutDepth;
+  root["photo"] = pathForFile(project.photo_path, project_path);
   root["model"] = QString::fromUtf8(modelClassName(project.model).data(),
                                     static_cast<qsizetype>(modelClassName(project.model).size()));
   QJsonArray pairs;
@@ -59,6 +145,7 @@ QByteArray projectToJson(const Project& project, const QString& project_path) {
   view["preview_mode"] = project.view.preview_mode;
   view["opacity"] = project.view.opacity;
   root["view"] = view;
+  if (has_depth) root["depth"] = depthToJson(project, project_path);
   // QJson writes doubles with enough digits to read back exactly (shortest round-trip form).
   return QJsonDocument(root).toJson(QJsonDocument::Indented);
 }
@@ -82,9 +169,7 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
   Project p;
   const QString photo = root["photo"].toString();
   if (photo.isEmpty()) return Result<Project>::failure(name + ": /photo: missing photo path");
-  p.photo_path = QFileInfo(photo).isAbsolute()
-                     ? photo
-                     : QFileInfo(project_path).absoluteDir().absoluteFilePath(photo);
+  p.photo_path = pathFromFile(photo, project_path);
   const auto model = modelClassFromName(str(root["model"].toString("auto")));
   if (!model)
     return Result<Project>::failure(name + ": /model: unknown model \"" +
@@ -112,6 +197,13 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
   if (centre) p.view.centre = QPointF(centre->x(), centre->y());
   p.view.preview_mode = view["preview_mode"].toInt(0);
   p.view.opacity = view["opacity"].toDouble(0.5);
+  if (root.contains("depth")) {
+    if (!root["depth"].isObject())
+      return Result<Project>::failure(name + ": /depth: expected an object");
+    if (const Status depth_status = parseDepth(root["depth"].toObject(), name, project_path, p);
+        !depth_status)
+      return Result<Project>::failure(depth_status.message);
+  }
   return Result<Project>::success(std::move(p));
 }
 

@@ -7,7 +7,16 @@
 //     "model": "auto",
 //     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],
 //     "camera": { ….artcam document… },          // optional: camera set by hand
-//     "view": { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5 } }
+//     "view": { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5 },
+//     "depth": {                                    // optional: depth planes and map (v2)
+//       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
+//                    "anchors": [ {"pixel": [x, y], "depth": z}, … ] }, … ],
+//       "map": {"path": "depth.exr", "scale": 1, "inverse": false} } }
+//
+// Versions: a project with depth data is written as version 2, one without as version 1, so an
+// older studio (which reads up to 1) refuses a project whose depth it would silently drop, and
+// still opens every project it can represent fully. This reader takes 1 and 2. Masks are
+// run-length bytes (core/depth/region_mask.h) in base64.
 #pragma once
 
 #include "core/fit/fit_image.h"
@@ -22,7 +31,8 @@
 
 namespace artcam::ui {
 
-inline constexpr int kProjectFormatVersion = 1;
+inline constexpr int kProjectFormatVersion = 2;      // the newest this code reads and writes
+inline constexpr int kProjectVersionWithoutDepth = 1;  // written when there is no depth data
 inline constexpr char kProjectExtension[] = "artcamproj";
 
 struct ViewState {
@@ -32,12 +42,20 @@ struct ViewState {
   double opacity = 0.5;
 };
 
+// The depth map file a project refers to (loaded by the session, off the GUI thread).
+struct DepthMapRef {
+  QString path;  // absolute once read
+  DepthMapOptions options;
+};
+
 struct Project {
   QString photo_path;  // absolute once read
   std::vector<Pair> pairs;
   ModelClass model = ModelClass::Auto;
   std::optional<Camera> manual_camera;
   ViewState view;
+  std::vector<DepthPlaneLayer> depth_layers;
+  std::optional<DepthMapRef> depth_map;
 };
 
 // The photo path is written relative to the project's folder when it lies beneath it.

@@ -1,7 +1,10 @@
 #include "ui/session.h"
 
 #include "core/io/artcam_file.h"
+#include "core/depth/depth_map_file.h"
+#include "ui/autosave.h"
 #include "ui/commands.h"
+#include "ui/depth_commands.h"
 #include "ui/document.h"
 #include "ui/export_job.h"
 #include "ui/image_loader.h"
@@ -12,6 +15,9 @@
 #include <QMessageBox>
 #include <QProgressDialog>
 #include <QSettings>
+#include <QThread>
+
+#include <cmath>
 
 namespace artcam::ui {
 namespace {
@@ -31,8 +37,23 @@ QString projectFilter() {
 }  // namespace
 
 Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
-    : QObject(parent), document_(document), dialog_parent_(dialog_parent) {
+    : QObject(parent),
+      document_(document),
+      dialog_parent_(dialog_parent),
+      autosave_(new Autosave(
+          [this]() -> std::optional<Project> {
+            if (!document_->isModified()) return std::nullopt;
+            return currentProject();
+          },
+          this)) {
   connect(document_->undoStack(), &QUndoStack::cleanChanged, this, &Session::titleChanged);
+  connect(autosave_, &Autosave::saved, this, [this](bool ok, const QString& message) {
+    if (!ok) emit statusMessage(tr("Autosave failed: %1").arg(message));
+  });
+  autosave_->setPrompt([this](const RecoveryOffer& offer) {
+    return interactive_ && Autosave::dialogPrompt(dialog_parent_)(offer);
+  });
+  autosave_->start();
 }
 
 Session::~Session() {
@@ -78,11 +99,17 @@ void Session::openPath(const QString& path) {
 void Session::openPhoto(const QString& path) {
   if (!maybeSave()) return;
   project_path_.clear();
+  autosave_->setProjectPath(QString());
   startLoading(path, std::nullopt);
 }
 
 void Session::openProject(const QString& path) {
   if (!maybeSave()) return;
+  if (const auto offer = autosave_->findRecovery(QFileInfo(path).absoluteFilePath());
+      offer && autosave_->ask(*offer)) {
+    recover(*offer);
+    return;
+  }
   Result<Project> project = readProject(path);
   if (!project) {
     showError(tr("Open project"), QString::fromStdString(project.status.message));
@@ -93,7 +120,41 @@ void Session::openProject(const QString& path) {
   startLoading(photo_path, std::move(*project.value));
 }
 
-void Session::startLoading(const QString& photo_path, std::optional<Project> project) {
+bool Session::offerRecovery() {
+  const std::vector<RecoveryOffer> offers = autosave_->pendingRecoveries();
+  if (offers.empty() || !autosave_->ask(offers.front())) return false;
+  recover(offers.front());
+  return true;
+}
+
+void Session::recover(const RecoveryOffer& offer) {
+  Result<Project> project = Autosave::readRecovery(offer.recovery_path);
+  if (!project) {
+    showError(tr("Recover work"), QString::fromStdString(project.status.message));
+    return;
+  }
+  pending_project_path_ = offer.project_path;
+  const QString photo_path = project->photo_path;
+  startLoading(photo_path, std::move(*project.value), /*recovered=*/true);
+}
+
+void Session::closedCleanly() { autosave_->removeRecovery(project_path_); }
+
+std::optional<Project> Session::currentProject() const {
+  if (!document_->photo()) return std::nullopt;
+  Project p;
+  p.photo_path = QFileInfo(document_->photo()->path).absoluteFilePath();
+  p.pairs = document_->pairs();
+  p.model = document_->model();
+  p.manual_camera = document_->manualCamera();
+  if (view_state_) p.view = view_state_();
+  p.depth_layers = document_->depth()->layers();
+  if (const auto& map = document_->depth()->map()) p.depth_map = DepthMapRef{map->path, map->options};
+  return p;
+}
+
+void Session::startLoading(const QString& photo_path, std::optional<Project> project,
+                           bool recovered) {
   if (loader_) {
     // A newer open replaces the one in flight; its result is never applied.
     disconnect(loader_, nullptr, this, nullptr);
@@ -101,24 +162,37 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
     connect(loader_, &QThread::finished, loader_, &QObject::deleteLater);
   }
   pending_project_ = std::move(project);
+  pending_recovered_ = recovered;
   auto* loader = new ImageLoader(photo_path, this);
   loader_ = loader;
   connect(loader, &ImageLoader::progressChanged, this, &Session::loadProgress);
   connect(loader, &ImageLoader::loaded, this, [this, loader](const PhotoPtr& photo) {
     if (loader != loader_) return;
+    ++photo_serial_;
     if (pending_project_) {
       Project p = std::move(*pending_project_);
       pending_project_.reset();
       std::optional<Camera> manual = p.manual_camera;
       if (manual) manual->setFrames(photo->size(), photo->size());
       document_->reset(photo, std::move(p.pairs), p.model, std::move(manual));
+      document_->depth()->reset(photo->size(), std::move(p.depth_layers));
+      if (p.depth_map) {
+        // Loaded like any depth map, but as part of opening: not an undoable edit.
+        readDepthMapAsync(p.depth_map->path, p.depth_map->options, /*undoable=*/false);
+      }
       project_path_ = pending_project_path_;
-      addRecent(project_path_);
+      if (pending_recovered_) {
+        document_->undoStack()->resetClean();  // recovered work is not saved yet
+      } else {
+        addRecent(project_path_);
+      }
       emit viewStateLoaded(p.view);
     } else {
       document_->reset(photo);
       addRecent(photo->path);
     }
+    pending_recovered_ = false;
+    autosave_->setProjectPath(project_path_);
     emit titleChanged();
     emit statusMessage(tr("Loaded %1 (%2×%3)")
                            .arg(QFileInfo(photo->path).fileName())
@@ -140,22 +214,20 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
 }
 
 bool Session::saveProjectTo(const QString& path) {
-  if (!document_->photo()) {
+  const std::optional<Project> p = currentProject();
+  if (!p) {
     showError(tr("Save project"), tr("Nothing to save: open a photo first."));
     return false;
   }
-  Project p;
-  p.photo_path = QFileInfo(document_->photo()->path).absoluteFilePath();
-  p.pairs = document_->pairs();
-  p.model = document_->model();
-  p.manual_camera = document_->manualCamera();
-  if (view_state_) p.view = view_state_();
-  const Status status = writeProject(path, p);
+  const Status status = writeProject(path, *p);
   if (!status) {
     showError(tr("Save project"), QString::fromStdString(status.message));
     return false;
   }
+  autosave_->removeRecovery(project_path_);  // the old name's (or the untitled) recovery
   project_path_ = QFileInfo(path).absoluteFilePath();
+  autosave_->removeRecovery(project_path_);
+  autosave_->setProjectPath(project_path_);
   document_->undoStack()->setClean();
   addRecent(project_path_);
   emit titleChanged();
@@ -258,6 +330,77 @@ void Session::exportImage(const QString& path) {
 
 void Session::cancelExport() {
   if (export_job_) export_job_->cancel();
+}
+
+void Session::loadDepthMap(const QString& path, const DepthMapOptions& options) {
+  if (!document_->photo()) {
+    showError(tr("Load depth map"), tr("Open a photo before loading its depth map."));
+    return;
+  }
+  const QString abs = QFileInfo(path).absoluteFilePath();
+  emit statusMessage(tr("Loading depth map %1…").arg(QFileInfo(abs).fileName()));
+  readDepthMapAsync(abs, options, /*undoable=*/true);
+}
+
+void Session::readDepthMapAsync(const QString& path, const DepthMapOptions& options,
+                                bool undoable) {
+  const quint64 serial = photo_serial_;
+  auto result = std::make_shared<Result<ImageF>>();
+  QThread* reader = QThread::create(
+      [path, options, result] { *result = readDepthMap(path.toStdString(), options); });
+  connect(reader, &QThread::finished, this, [this, reader, result, path, options, serial, undoable] {
+    reader->deleteLater();
+    if (serial != photo_serial_) return;  // another photo opened meanwhile
+    if (!*result) {
+      const QString message = QString::fromStdString(result->status.message);
+      showError(tr("Load depth map"), message);
+      emit depthMapLoaded(false, message);
+      return;
+    }
+    applyDepthMap(path, options, std::make_shared<const ImageF>(std::move(*result->value)),
+                  undoable);
+  });
+  reader->start();
+}
+
+void Session::applyDepthMap(const QString& path, const DepthMapOptions& options,
+                            std::shared_ptr<const ImageF> map, bool undoable) {
+  const FrameSize f = document_->frame();
+  // Sampled nearest at the photo's scale, so any size works; a different aspect would put depth
+  // on the wrong pixels.
+  const double photo_aspect = static_cast<double>(f.width) / f.height;
+  const double map_aspect = static_cast<double>(map->width) / map->height;
+  if (std::abs(map_aspect / photo_aspect - 1.0) > 0.01) {
+    const QString message = tr("%1: the depth map is %2×%3 but the photo is %4×%5 (aspects differ)")
+                                .arg(path)
+                                .arg(map->width)
+                                .arg(map->height)
+                                .arg(f.width)
+                                .arg(f.height);
+    showError(tr("Load depth map"), message);
+    emit depthMapLoaded(false, message);
+    return;
+  }
+  DepthMapSource source{path, options, std::move(map)};
+  if (undoable)
+    document_->undoStack()->push(new SetDepthMapCommand(document_->depth(), std::move(source)));
+  else
+    document_->depth()->setMap(std::move(source));
+  const QString message = tr("Loaded depth map %1").arg(QFileInfo(path).fileName());
+  emit statusMessage(message);
+  emit depthMapLoaded(true, message);
+}
+
+void Session::loadDepthMapDialog(double scale, bool inverse) {
+  if (!document_->photo()) return;
+  const QString path = QFileDialog::getOpenFileName(
+      dialog_parent_, tr("Load depth map"), QFileInfo(document_->photo()->path).absolutePath(),
+      tr("Depth maps (*.exr *.tif *.tiff *.png *.pgm *.pfm);;All files (*)"));
+  if (path.isEmpty()) return;
+  DepthMapOptions options;
+  options.scale = scale;
+  options.inverse = inverse;
+  loadDepthMap(path, options);
 }
 
 void Session::openDialog() {

@@ -14,13 +14,16 @@
 #include <QStringList>
 
 #include <functional>
+#include <memory>
 #include <optional>
 
 class QWidget;
 
 namespace artcam::ui {
 
+class Autosave;
 class Document;
+struct RecoveryOffer;
 
 class Session : public QObject {
   Q_OBJECT
@@ -42,6 +45,9 @@ class Session : public QObject {
   QString displayName() const;
   bool isLoading() const { return loader_ != nullptr; }
   QStringList recentFiles() const;
+  Autosave* autosave() const { return autosave_; }
+  // The state a save would write (no view state when no provider is set).
+  std::optional<Project> currentProject() const;
 
  public slots:
   // Decides by extension: project, .artcam (import) or photo.
@@ -54,6 +60,15 @@ class Session : public QObject {
   void exportImage(const QString& path);
   // Stops a running export at its next tile (the progress dialog's Cancel does the same).
   void cancelExport();
+  // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.
+  void loadDepthMap(const QString& path, const artcam::DepthMapOptions& options);
+  // At start-up: offers the newest recovery left by a session that did not close cleanly.
+  // Returns whether one was accepted (it is then loading).
+  bool offerRecovery();
+  // Loads a recovery file: the state it holds, under its project's path, marked modified.
+  void recover(const artcam::ui::RecoveryOffer& offer);
+  // After a clean close: nothing to recover.
+  void closedCleanly();
 
   // Dialog-driven versions for the menus.
   void openDialog();
@@ -62,6 +77,7 @@ class Session : public QObject {
   void importArtcamDialog();
   void exportArtcamDialog();
   void exportImageDialog();
+  void loadDepthMapDialog(double scale, bool inverse);
   // Asks to save unsaved changes; false when the user cancelled.
   bool maybeSave();
 
@@ -73,9 +89,14 @@ class Session : public QObject {
   void recentFilesChanged();
   void viewStateLoaded(const artcam::ui::ViewState& view);
   void exportFinished(bool ok, const QString& message);
+  void depthMapLoaded(bool ok, const QString& message);
 
  private:
-  void startLoading(const QString& photo_path, std::optional<Project> project);
+  void startLoading(const QString& photo_path, std::optional<Project> project,
+                    bool recovered = false);
+  void readDepthMapAsync(const QString& path, const DepthMapOptions& options, bool undoable);
+  void applyDepthMap(const QString& path, const DepthMapOptions& options,
+                     std::shared_ptr<const ImageF> map, bool undoable);
   void showError(const QString& title, const QString& message);
   void addRecent(const QString& path);
 
@@ -88,6 +109,9 @@ class Session : public QObject {
   std::optional<Project> pending_project_;
   QString pending_project_path_;
   QPointer<ExportJob> export_job_;
+  Autosave* autosave_;
+  bool pending_recovered_ = false;
+  quint64 photo_serial_ = 0;  // bumps per loaded photo; stale depth map loads are dropped
 };
 
 }  // namespace artcam::ui

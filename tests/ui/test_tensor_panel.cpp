@@ -3,6 +3,7 @@
 #include "tests/ui/ui_fixtures.h"
 #include "ui/document.h"
 #include "ui/panels/tensor_panel.h"
+#include "ui/preview_controller.h"
 
 #include <QTableWidget>
 #include <QtTest/QtTest>
@@ -37,6 +38,25 @@ class TestTensorPanel : public QObject {
     doc.undoStack()->undo();
     QVERIFY(!doc.manualCamera());
     QCOMPARE(doc.camera().stages()[0].q, fitted.stages()[0].q);
+  }
+
+  void editingAnEntryUpdatesThePreview() {
+    Document doc;
+    PreviewController preview(&doc);
+    doc.reset(test::syntheticPhoto(), test::ninePairs(), ModelClass::Quadratic);
+    TensorPanel panel(&doc);
+    QVERIFY(test::waitForNewestPreview(preview));
+    const QImage before = preview.image();
+    const quint64 generation = preview.imageGeneration();
+    // Q_1(0, 0) scales u: typing 1.2 times the fitted value visibly stretches the picture.
+    QTableWidget* q1 = panel.tables()[0];
+    const double value = doc.camera().stages()[0].q[0](0, 0);
+    q1->item(0, 0)->setText(QString::number(value * 1.2, 'g', 17));
+    QCOMPARE(doc.camera().stages()[0].q[0](0, 0), value * 1.2);
+    QVERIFY(test::waitForNewestPreview(preview));
+    QVERIFY(preview.imageGeneration() > generation);
+    QVERIFY(preview.image() != before);
+    QCOMPARE(preview.image(), test::directPreviewRender(doc));
   }
 
   void presets() {

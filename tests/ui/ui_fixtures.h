@@ -1,10 +1,15 @@
 // Fixtures for the UI tests, made in code: a synthetic photo, pair sets, event helpers.
 #pragma once
 
+#include "core/render/warp.h"
 #include "ui/canvas.h"
 #include "ui/document.h"
+#include "ui/image_convert.h"
 #include "ui/photo.h"
+#include "ui/preview_controller.h"
+#include "ui/render_worker.h"
 
+#include <QElapsedTimer>
 #include <QMouseEvent>
 #include <QPointF>
 #include <QtTest/QtTest>
@@ -65,6 +70,31 @@ inline void drag(QWidget* w, const QPoint& from, const QPoint& to, int steps = 8
     sendMouse(w, QEvent::MouseMove, p, Qt::NoButton, Qt::LeftButton);
   }
   sendMouse(w, QEvent::MouseButtonRelease, to, Qt::LeftButton, Qt::NoButton);
+}
+
+// Waits until the controller shows the final pass of its newest request.
+inline bool waitForNewestPreview(const PreviewController& c, int timeout_ms = 60000) {
+  QElapsedTimer t;
+  t.start();
+  while (t.elapsed() < timeout_ms) {
+    if (c.imageIsFinal() && c.imageGeneration() == c.requestedGeneration() && !c.image().isNull())
+      return true;
+    QTest::qWait(5);
+  }
+  return false;
+}
+
+// The preview a direct render of the document's current camera gives (the worker's options).
+inline QImage directPreviewRender(const Document& d) {
+  const PhotoPtr& photo = d.photo();
+  const WarpOptions options =
+      RenderWorker::passOptions(photo->preview.width, photo->preview.height);
+  return qimageFromLinear(warpImage(photo->preview, d.camera(), options));
+}
+
+inline void click(QWidget* w, const QPoint& pos, Qt::KeyboardModifiers mods = Qt::NoModifier) {
+  sendMouse(w, QEvent::MouseButtonPress, pos, Qt::LeftButton, Qt::LeftButton, mods);
+  sendMouse(w, QEvent::MouseButtonRelease, pos, Qt::LeftButton, Qt::NoButton, mods);
 }
 
 }  // namespace artcam::ui::test

@@ -1,0 +1,155 @@
+#include "ui/autosave.h"
+
+#include <QCryptographicHash>
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QLocale>
+#include <QMessageBox>
+#include <QSaveFile>
+#include <QStandardPaths>
+#include <QThread>
+
+#include <algorithm>
+#include <memory>
+
+namespace artcam::ui {
+namespace {
+
+const char kRecoveryOf[] = "recovery_of";
+
+// Written on the worker thread: QSaveFile writes aside and renames (atomic).
+QString writeFile(const QString& path, const QByteArray& bytes) {
+  QDir().mkpath(QFileInfo(path).absolutePath());
+  QSaveFile file(path);
+  if (!file.open(QIODevice::WriteOnly))
+    return QStringLiteral("%1: cannot write: %2").arg(path, file.errorString());
+  if (file.write(bytes) != bytes.size()) {
+    file.cancelWriting();
+    return QStringLiteral("%1: write failed: %2").arg(path, file.errorString());
+  }
+  if (!file.commit()) return QStringLiteral("%1: could not save: %2").arg(path, file.errorString());
+  return {};
+}
+
+QString recoveryOf(const QString& recovery_path) {
+  QFile file(recovery_path);
+  if (!file.open(QIODevice::ReadOnly)) return {};
+  return QJsonDocument::fromJson(file.readAll()).object()[kRecoveryOf].toString();
+}
+
+}  // namespace
+
+Autosave::Autosave(Snapshot snapshot, QObject* parent)
+    : QObject(parent),
+      snapshot_(std::move(snapshot)),
+      dir_(QStandardPaths::writableLocation(QStandardPaths::AppLocalDataLocation) + "/recovery") {
+  timer_.setInterval(kDefaultIntervalMs);
+  connect(&timer_, &QTimer::timeout, this, &Autosave::saveNow);
+}
+
+Autosave::Prompt Autosave::dialogPrompt(QWidget* parent) {
+  return [parent](const RecoveryOffer& offer) {
+    const QString what = offer.project_path.isEmpty()
+                             ? tr("an unsaved session")
+                             : QFileInfo(offer.project_path).fileName();
+    return QMessageBox::question(
+               parent, tr("Recover work"),
+               tr("ARTcam Studio did not close cleanly. A recovery copy of %1 from %2 is newer "
+                  "than the saved project. Recover it?")
+                   .arg(what, QLocale().toString(offer.saved_at, QLocale::ShortFormat)),
+               QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes) == QMessageBox::Yes;
+  };
+}
+
+Autosave::~Autosave() {
+  if (writer_) {
+    writer_->wait();
+    delete writer_;
+  }
+}
+
+void Autosave::setProjectPath(const QString& path) {
+  const QString abs = path.isEmpty() ? QString() : QFileInfo(path).absoluteFilePath();
+  if (abs == project_path_) return;
+  // The untitled session became a project (or another project opened): its old recovery is
+  // superseded by the next autosave under the new name.
+  project_path_ = abs;
+}
+
+QString Autosave::recoveryPathFor(const QString& project_path) const {
+  if (project_path.isEmpty()) return QDir(dir_).filePath(QStringLiteral("untitled.artcamproj"));
+  const QString abs = QFileInfo(project_path).absoluteFilePath();
+  const QString hash = QString::fromLatin1(
+      QCryptographicHash::hash(abs.toUtf8(), QCryptographicHash::Sha1).toHex().left(12));
+  return QDir(dir_).filePath(QFileInfo(abs).completeBaseName() + "-" + hash + "." +
+                             kProjectExtension);
+}
+
+std::optional<RecoveryOffer> Autosave::findRecovery(const QString& project_path) const {
+  const QFileInfo recovery(recoveryPathFor(project_path));
+  if (!recovery.isFile()) return std::nullopt;
+  if (!project_path.isEmpty()) {
+    const QFileInfo project(project_path);
+    if (project.isFile() && project.lastModified() >= recovery.lastModified()) return std::nullopt;
+  }
+  return RecoveryOffer{recovery.absoluteFilePath(),
+                       project_path.isEmpty() ? QString() : QFileInfo(project_path).absoluteFilePath(),
+                       recovery.lastModified()};
+}
+
+std::vector<RecoveryOffer> Autosave::pendingRecoveries() const {
+  std::vector<RecoveryOffer> offers;
+  const QFileInfoList files =
+      QDir(dir_).entryInfoList({QStringLiteral("*.") + kProjectExtension}, QDir::Files);
+  for (const QFileInfo& f : files) {
+    const QString of = recoveryOf(f.absoluteFilePath());
+    // Only files that are this project's recovery by name (not stray copies).
+    if (recoveryPathFor(of) != f.absoluteFilePath()) continue;
+    if (auto offer = findRecovery(of)) offers.push_back(*offer);
+  }
+  std::sort(offers.begin(), offers.end(),
+            [](const RecoveryOffer& a, const RecoveryOffer& b) { return a.saved_at > b.saved_at; });
+  return offers;
+}
+
+Result<Project> Autosave::readRecovery(const QString& recovery_path) {
+  return readProject(recovery_path);
+}
+
+void Autosave::saveNow() {
+  if (writer_) {
+    again_ = true;  // one more after the write in flight, with the newest state
+    return;
+  }
+  const std::optional<Project> project = snapshot_();
+  if (!project) return;
+  const QString path = recoveryPathFor(project_path_);
+  // Serialised here (the document lives on this thread); written on the worker.
+  QJsonObject root = QJsonDocument::fromJson(projectToJson(*project, path)).object();
+  root[kRecoveryOf] = project_path_;
+  const QByteArray bytes = QJsonDocument(root).toJson(QJsonDocument::Compact);
+  auto result = std::make_shared<QString>();
+  writer_ = QThread::create([path, bytes, result] { *result = writeFile(path, bytes); });
+  connect(writer_, &QThread::finished, this, [this, result] {
+    writer_->deleteLater();
+    writer_ = nullptr;
+    emit saved(result->isEmpty(), *result);
+    if (again_) {
+      again_ = false;
+      saveNow();
+    }
+  });
+  writer_->start(QThread::LowPriority);
+}
+
+void Autosave::removeRecovery(const QString& project_path) {
+  if (writer_) writer_->wait();  // a write in flight must not re-create the file afterwards
+  again_ = false;
+  QFile::remove(recoveryPathFor(project_path));
+  QFile::remove(recoveryPathFor(QString()));
+}
+
+}  // namespace artcam::ui

@@ -1,0 +1,92 @@
+// Autosave and crash recovery (issue 3 item 7). Every `interval` the modified document is
+// written as a project to a RECOVERY file (atomically, on a worker thread: the GUI thread never
+// blocks on file I/O); a clean save or close removes it. A recovery file left behind means the
+// studio did not close cleanly: on the next start (or when its project is opened) the user is
+// offered to recover it when it is newer than the saved project (or the project was never
+// saved). The prompt is injectable so tests run without modal dialogs.
+//
+// Recovery files live in one folder (default: <AppLocalDataLocation>/recovery), one per project:
+// "<project base name>-<12 hex of SHA-1 of its absolute path>.artcamproj", or "untitled.artcamproj"
+// for a session not yet saved. Each is an ordinary project file (paths absolute) plus
+// "recovery_of": the project it stands for ("" when untitled).
+#pragma once
+
+#include "ui/project_file.h"
+
+#include <QDateTime>
+#include <QObject>
+#include <QString>
+#include <QTimer>
+
+class QWidget;
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace artcam::ui {
+
+struct RecoveryOffer {
+  QString recovery_path;  // the recovery file
+  QString project_path;   // the project it stands for; empty: never saved
+  QDateTime saved_at;     // the recovery file's modification time
+};
+
+class Autosave : public QObject {
+  Q_OBJECT
+
+ public:
+  static constexpr int kDefaultIntervalMs = 60 * 1000;
+
+  // `snapshot` returns the current state as a project, or nothing when there is nothing to
+  // keep (no photo, or no unsaved change).
+  using Snapshot = std::function<std::optional<Project>()>;
+  // Returns true to recover. None set: never (the Session installs dialogPrompt when it is
+  // interactive).
+  using Prompt = std::function<bool(const RecoveryOffer&)>;
+  static Prompt dialogPrompt(QWidget* parent);
+
+  explicit Autosave(Snapshot snapshot, QObject* parent = nullptr);
+  ~Autosave() override;  // waits for a write in flight
+
+  void setRecoveryDir(const QString& dir) { dir_ = dir; }
+  const QString& recoveryDir() const { return dir_; }
+  void setInterval(int ms) { timer_.setInterval(ms); }
+  void setPrompt(Prompt prompt) { prompt_ = std::move(prompt); }
+  // The project whose recovery file autosaves write to ("" while untitled).
+  void setProjectPath(const QString& path);
+  QString recoveryPathFor(const QString& project_path) const;
+
+  // The recovery for `project_path` when it is newer than the project (or it was never saved).
+  std::optional<RecoveryOffer> findRecovery(const QString& project_path) const;
+  // All such recoveries in the folder, newest first (at start-up).
+  std::vector<RecoveryOffer> pendingRecoveries() const;
+  bool ask(const RecoveryOffer& offer) const { return prompt_ && prompt_(offer); }
+
+  // Reads a recovery file as a project (recovery_of is not part of Project).
+  static Result<Project> readRecovery(const QString& recovery_path);
+
+ public slots:
+  void start() { timer_.start(); }
+  void stop() { timer_.stop(); }
+  // Writes a recovery file now if the snapshot has something (the timer calls this).
+  void saveNow();
+  // After a clean save or close: the recovery of `project_path` (and of the untitled session)
+  // is no longer needed.
+  void removeRecovery(const QString& project_path);
+
+ signals:
+  // From the GUI thread after each write: ok, and the message naming the cause when not.
+  void saved(bool ok, const QString& message);
+
+ private:
+  Snapshot snapshot_;
+  Prompt prompt_;
+  QString dir_;
+  QString project_path_;
+  QTimer timer_;
+  QThread* writer_ = nullptr;  // a write in flight
+  bool again_ = false;         // a save was asked for while one was in flight
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,267 @@
+#include "ui/tools/depth_tool.h"
+
+#include "ui/canvas.h"
+#include "ui/depth_commands.h"
+#include "ui/document.h"
+
+#include <QCoreApplication>
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QPainterPath>
+
+#include <cmath>
+#include <limits>
+
+namespace artcam::ui {
+namespace {
+
+QString tr(const char* text) { return QCoreApplication::translate("DepthTool", text); }
+QPointF toQt(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
+
+}  // namespace
+
+DepthTool::DepthTool(Canvas* canvas, Document* document, DepthToolSettings* settings,
+                     DepthToolMode mode)
+    : Tool(canvas, document), settings_(settings), mode_(mode) {}
+
+DepthModel* DepthTool::depth() const { return document_->depth(); }
+
+Eigen::Vector2d DepthTool::imagePoint(const QPointF& widget) const {
+  const QPointF p = canvas_->view().imageFromWidget(widget);
+  return {p.x(), p.y()};
+}
+
+int DepthTool::ensureLayer() {
+  if (depth()->activeLayer() >= 0) return depth()->activeLayer();
+  document_->undoStack()->push(new AddDepthLayerCommand(depth(), depth()->makeLayer()));
+  return depth()->activeLayer();
+}
+
+BrushOptions DepthTool::brush() const {
+  return {settings_->radius(), settings_->hardness(), mode_ == DepthToolMode::Eraser};
+}
+
+void DepthTool::mousePress(QMouseEvent* event) {
+  if (event->button() != Qt::LeftButton) return;
+  cursor_widget_ = event->position();
+  const Eigen::Vector2d p = imagePoint(event->position());
+  switch (mode_) {
+    case DepthToolMode::Brush:
+    case DepthToolMode::Eraser: {
+      // The new layer and the first stroke are one undo step.
+      stroke_made_layer_ = depth()->activeLayer() < 0;
+      if (stroke_made_layer_) document_->undoStack()->beginMacro(tr("Paint depth region"));
+      stroke_layer_ = ensureLayer();
+      RegionMask* mask = depth()->maskForStroke(stroke_layer_);
+      stroke_before_ = *mask;
+      stroke_rect_ = mask->stamp(p, brush());
+      stroke_last_ = p;
+      depth()->maskEdited(stroke_layer_, stroke_rect_);
+      break;
+    }
+    case DepthToolMode::Polygon:
+      if (polygon_.size() >= 3 &&
+          QLineF(canvas_->view().widgetFromImage(toQt(polygon_.front())), event->position())
+                  .length() <= kHitRadius) {
+        closePolygon(event->modifiers().testFlag(Qt::AltModifier));
+      } else {
+        polygon_.push_back(p);
+      }
+      break;
+    case DepthToolMode::Points:
+      pressPoints(event->position());
+      break;
+  }
+  canvas_->update();
+}
+
+void DepthTool::pressPoints(const QPointF& widget) {
+  const Eigen::Vector2d p = imagePoint(widget);
+  const int layer = ensureLayer();
+  if (const auto hit = hitAnchor(widget)) {
+    drag_anchor_ = *hit;
+    drag_before_ = depth()->layer(layer).anchors;
+    return;
+  }
+  std::vector<DepthAnchor> anchors = depth()->layer(layer).anchors;
+  if (static_cast<int>(anchors.size()) < DepthModel::kAnchorCount) {
+    anchors.push_back({p, settings_->nextDepth()});
+  } else {
+    size_t nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < anchors.size(); ++i)
+      if (const double d = (anchors[i].pixel - p).norm(); d < best) {
+        best = d;
+        nearest = i;
+      }
+    anchors[nearest] = {p, settings_->nextDepth()};
+  }
+  document_->undoStack()->push(
+      new SetDepthAnchorsCommand(depth(), layer, std::move(anchors), tr("Place depth point")));
+}
+
+std::optional<int> DepthTool::hitAnchor(const QPointF& widget) const {
+  const int layer = depth()->activeLayer();
+  if (layer < 0) return std::nullopt;
+  const auto& anchors = depth()->layer(layer).anchors;
+  std::optional<int> best;
+  double best_d = kHitRadius;
+  for (size_t i = 0; i < anchors.size(); ++i) {
+    const double d =
+        QLineF(canvas_->view().widgetFromImage(toQt(anchors[i].pixel)), widget).length();
+    if (d <= best_d) {
+      best_d = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+void DepthTool::mouseMove(QMouseEvent* event) {
+  cursor_widget_ = event->position();
+  cursor_inside_ = true;
+  const Eigen::Vector2d p = imagePoint(event->position());
+  if (stroke_layer_ >= 0 && event->buttons().testFlag(Qt::LeftButton)) {
+    RegionMask* mask = depth()->maskForStroke(stroke_layer_);
+    const PixelRect r = mask->segment(stroke_last_, p, brush());
+    stroke_last_ = p;
+    stroke_rect_ = stroke_rect_.united(r);
+    depth()->maskEdited(stroke_layer_, r);
+  } else if (drag_anchor_ >= 0 && event->buttons().testFlag(Qt::LeftButton)) {
+    // Live while dragging; the undo step is pushed on release with the press-time values.
+    std::vector<DepthAnchor> anchors = depth()->layer(depth()->activeLayer()).anchors;
+    if (drag_anchor_ < static_cast<int>(anchors.size())) {
+      anchors[static_cast<size_t>(drag_anchor_)].pixel = p;
+      depth()->setAnchors(depth()->activeLayer(), std::move(anchors));
+    }
+  }
+  canvas_->update();
+}
+
+void DepthTool::mouseRelease(QMouseEvent* event) {
+  if (event->button() != Qt::LeftButton) return;
+  if (stroke_layer_ >= 0) finishStroke();
+  if (drag_anchor_ >= 0) {
+    const int layer = depth()->activeLayer();
+    std::vector<DepthAnchor> after = depth()->layer(layer).anchors;
+    if (after != drag_before_) {
+      depth()->setAnchors(layer, drag_before_);  // the command's redo applies `after`
+      document_->undoStack()->push(
+          new SetDepthAnchorsCommand(depth(), layer, std::move(after), tr("Move depth point")));
+    }
+    drag_anchor_ = -1;
+  }
+  canvas_->update();
+}
+
+void DepthTool::finishStroke() {
+  const int layer = stroke_layer_;
+  stroke_layer_ = -1;
+  const RegionMask* mask = depth()->maskForStroke(layer);
+  if (mask && !stroke_rect_.empty()) {
+    document_->undoStack()->push(new PaintDepthMaskCommand(
+        depth(), layer, stroke_rect_, stroke_before_.copyRect(stroke_rect_),
+        mask->copyRect(stroke_rect_),
+        mode_ == DepthToolMode::Eraser ? tr("Erase depth region") : tr("Paint depth region")));
+  }
+  if (stroke_made_layer_) document_->undoStack()->endMacro();
+  stroke_made_layer_ = false;
+  stroke_before_ = RegionMask();
+  stroke_rect_ = {};
+}
+
+void DepthTool::closePolygon(bool erase) {
+  std::vector<Eigen::Vector2d> vertices = std::move(polygon_);
+  polygon_.clear();
+  if (vertices.size() < 3) return;
+  QUndoStack* stack = document_->undoStack();
+  stack->beginMacro(erase ? tr("Erase depth polygon") : tr("Fill depth polygon"));
+  const int layer = ensureLayer();
+  RegionMask* mask = depth()->maskForStroke(layer);
+  RegionMask after = *mask;
+  const PixelRect rect = after.fillPolygon(vertices, erase);
+  if (!rect.empty())
+    stack->push(new PaintDepthMaskCommand(depth(), layer, rect, mask->copyRect(rect),
+                                          after.copyRect(rect),
+                                          erase ? tr("Erase depth polygon")
+                                                : tr("Fill depth polygon")));
+  stack->endMacro();
+}
+
+bool DepthTool::keyPress(QKeyEvent* event) {
+  if (mode_ != DepthToolMode::Polygon || polygon_.empty()) return false;
+  switch (event->key()) {
+    case Qt::Key_Return:
+    case Qt::Key_Enter:
+      closePolygon(event->modifiers().testFlag(Qt::AltModifier));
+      break;
+    case Qt::Key_Backspace:
+      polygon_.pop_back();
+      break;
+    case Qt::Key_Escape:
+      polygon_.clear();
+      break;
+    default:
+      return false;
+  }
+  canvas_->update();
+  return true;
+}
+
+void DepthTool::paint(QPainter& painter) {
+  const ViewTransform& view = canvas_->view();
+  // Depth points of the active layer: numbered diamonds.
+  if (const int layer = depth()->activeLayer(); layer >= 0) {
+    const auto& anchors = depth()->layer(layer).anchors;
+    for (size_t i = 0; i < anchors.size(); ++i) {
+      const QPointF c = view.widgetFromImage(toQt(anchors[i].pixel));
+      QPainterPath diamond;
+      diamond.moveTo(c + QPointF(0, -7));
+      diamond.lineTo(c + QPointF(7, 0));
+      diamond.lineTo(c + QPointF(0, 7));
+      diamond.lineTo(c + QPointF(-7, 0));
+      diamond.closeSubpath();
+      painter.setPen(QPen(Qt::black, 1.5));
+      painter.setBrush(QColor(255, 255, 255, 220));
+      painter.drawPath(diamond);
+      painter.setPen(Qt::white);
+      painter.drawText(c + QPointF(9, -9),
+                       QStringLiteral("%1: %2").arg(i + 1).arg(anchors[i].depth, 0, 'g', 4));
+    }
+  }
+  painter.setBrush(Qt::NoBrush);
+  if (mode_ == DepthToolMode::Polygon && !polygon_.empty()) {
+    QPolygonF poly;
+    for (const Eigen::Vector2d& v : polygon_) poly << view.widgetFromImage(toQt(v));
+    poly << cursor_widget_;
+    painter.setPen(QPen(QColor(255, 200, 60), 1.5, Qt::DashLine));
+    painter.drawPolyline(poly);
+    painter.setPen(QPen(QColor(255, 200, 60), 1.5));
+    painter.drawEllipse(poly.front(), kHitRadius * 0.6, kHitRadius * 0.6);
+  }
+  if ((mode_ == DepthToolMode::Brush || mode_ == DepthToolMode::Eraser) && cursor_inside_) {
+    // The brush outline at its true size, and its hard core.
+    const double r = settings_->radius() * view.scale();
+    painter.setPen(QPen(Qt::black, 2.0));
+    painter.drawEllipse(cursor_widget_, r, r);
+    painter.setPen(QPen(mode_ == DepthToolMode::Eraser ? QColor(255, 120, 120) : Qt::white, 1.0));
+    painter.drawEllipse(cursor_widget_, r, r);
+    const double core = r * settings_->hardness();
+    if (core > 2.0) {
+      painter.setPen(QPen(Qt::white, 1.0, Qt::DotLine));
+      painter.drawEllipse(cursor_widget_, core, core);
+    }
+  }
+}
+
+void DepthTool::cancel() {
+  if (stroke_layer_ >= 0) finishStroke();  // keep what was painted, as one step
+  polygon_.clear();
+  if (drag_anchor_ >= 0) {
+    depth()->setAnchors(depth()->activeLayer(), drag_before_);
+    drag_anchor_ = -1;
+  }
+}
+
+}  // namespace artcam::ui

@@ -1,0 +1,72 @@
+// The depth tool (issue 3 item 6), in one of four modes on the active depth layer:
+// - Brush / Eraser: press and drag paints (erases) the layer's mask with the settings' radius
+//   and hardness; the stroke paints live and becomes ONE undo command on release.
+// - Polygon: each click adds a vertex; Enter or a click on the first vertex closes and fills it
+//   (Alt held on closing erases instead), Backspace drops the last vertex, Esc drops them all.
+// - Points: a click places the next of the layer's three depth points with the settings' next
+//   depth; with three placed, a click replaces the nearest one; dragging a point moves it
+//   (one undo step per drag). Depth values are edited in the depth panel.
+// Painting with no layer creates one first (same undo macro as the first stroke).
+#pragma once
+
+#include "core/depth/inverse_depth_plane.h"
+#include "core/depth/region_mask.h"
+#include "ui/tools/depth_tool_settings.h"
+#include "ui/tools/tool.h"
+
+#include <QPointF>
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <vector>
+
+namespace artcam::ui {
+
+class DepthModel;
+
+class DepthTool : public Tool {
+ public:
+  static constexpr double kHitRadius = 9.0;  // widget pixels: grabs a depth point or vertex
+
+  DepthTool(Canvas* canvas, Document* document, DepthToolSettings* settings, DepthToolMode mode);
+
+  DepthToolMode mode() const { return mode_; }
+  int polygonVertexCount() const { return static_cast<int>(polygon_.size()); }
+  bool isStroking() const { return stroke_layer_ >= 0; }
+
+  void mousePress(QMouseEvent* event) override;
+  void mouseMove(QMouseEvent* event) override;
+  void mouseRelease(QMouseEvent* event) override;
+  bool keyPress(QKeyEvent* event) override;
+  void paint(QPainter& painter) override;
+  void cancel() override;
+
+ private:
+  Eigen::Vector2d imagePoint(const QPointF& widget) const;
+  DepthModel* depth() const;
+  int ensureLayer();  // the active layer, made if there is none
+  BrushOptions brush() const;
+  void finishStroke();
+  void closePolygon(bool erase);
+  void pressPoints(const QPointF& widget);
+  std::optional<int> hitAnchor(const QPointF& widget) const;
+
+  DepthToolSettings* settings_;
+  DepthToolMode mode_;
+  QPointF cursor_widget_;
+  bool cursor_inside_ = false;
+  // Brush stroke in progress.
+  int stroke_layer_ = -1;
+  RegionMask stroke_before_;
+  PixelRect stroke_rect_;
+  Eigen::Vector2d stroke_last_{0, 0};
+  bool stroke_made_layer_ = false;
+  // Polygon in progress (photo pixels).
+  std::vector<Eigen::Vector2d> polygon_;
+  // Depth point drag.
+  int drag_anchor_ = -1;
+  std::vector<DepthAnchor> drag_before_;
+};
+
+}  // namespace artcam::ui
