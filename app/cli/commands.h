@@ -29,6 +29,8 @@ int benchFitCommand(const std::vector<std::string>& args);  // artcam bench fit
 int benchEffectsCommand(const std::vector<std::string>& args);  // artcam bench effects
 int renderCommand(const std::vector<std::string>& args);
 int presetCommand(const std::vector<std::string>& args);
+int composeCommand(const std::vector<std::string>& args);
+int insertCommand(const std::vector<std::string>& args);
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
@@ -38,6 +40,8 @@ extern const char* const kBenchUsage;
 extern const char* const kBenchEffectsUsage;
 extern const char* const kRenderUsage;
 extern const char* const kPresetUsage;
+extern const char* const kComposeUsage;
+extern const char* const kInsertUsage;
 
 int run(int argc, char** argv);
 

@@ -16,6 +16,8 @@ const Command kCommands[] = {
     {"bench", "time the render kernels (CSV, plot)", kBenchUsage, benchCommand},
     {"render", "render a point cloud through 3D and view cameras", kRenderUsage, renderCommand},
     {"preset", "write a preset camera or the sample cloud", kPresetUsage, presetCommand},
+    {"compose", "one camera from a sequence of cameras", kComposeUsage, composeCommand},
+    {"insert", "render a graphic into a reflection or refraction", kInsertUsage, insertCommand},
 };
 
 void printHelp() {
@@ -24,7 +26,7 @@ void printHelp() {
       "Tensor cameras (every output coordinate a ratio of quadratic forms of the input).\n\n"
       "usage: artcam <command> [options]   (artcam <command> --help for details)\n\n"
       "commands:\n");
-  for (const Command& c : kCommands) std::printf("  %-6s %s\n", c.name, c.summary);
+  for (const Command& c : kCommands) std::printf("  %-8s %s\n", c.name, c.summary);
   std::printf(
       "\nPixels: centres at i + 0.5, (0, 0) the top-left corner, y down. Cameras are stored\n"
       "in normalised frames, so a camera made on a preview applies to the full-size photo.\n"

@@ -1,0 +1,31 @@
+// Piecewise cameras in .artcam files (DESIGN §5: "stages or patches of tensors").
+//
+//   { …an ordinary .artcam document: the single camera fitted to all the matches…,
+//     "patches": [ { "rect": [x0, y0, x1, y1],            // source pixels
+//                    "model": "quadratic", "matches": n, "rms_px": …, "max_px": …,
+//                    "camera": { …an embedded .artcam document… } }, … ] }
+//
+// Decision: the top level stays a complete version-1 document holding the single-camera fit,
+// so every reader of plain .artcam files (older builds, `artcam info`, the studio's import)
+// still opens the file and gets the best single camera; "patches" is an addition within
+// version 1, which readers that do not know it ignore.
+#pragma once
+
+#include "core/io/artcam_file.h"
+#include "core/model/status.h"
+#include "core/piecewise/piecewise_camera.h"
+
+#include <optional>
+#include <string>
+
+namespace artcam {
+
+struct PiecewiseDocument {
+  ArtcamDocument whole;                   // the single camera (and matches, fit record)
+  std::optional<PiecewiseCamera> pieces;  // empty: a plain .artcam file
+};
+
+Result<PiecewiseDocument> readPiecewiseFile(const std::string& path);
+Status writePiecewiseFile(const std::string& path, const PiecewiseDocument& document);
+
+}  // namespace artcam

@@ -1,0 +1,71 @@
+// Piecewise cameras (DESIGN §1 "piecewise"; the paper's §5: refraction through a glass needed
+// 6 + 16 patches). One camera per rectangular patch of the SOURCE image, all stored in the
+// same normalised frames (the whole source and target sizes), so a patch is just a camera and
+// the rectangle of source pixels it answers for.
+//
+// Patches tile the part of the source the matches cover; they do not overlap except on their
+// shared edges. Neighbours are fitted on shared boundary matches so they agree at the seams
+// (piecewise_fit.h measures how well: seam_gap_px); the renderer removes what is left by
+// averaging the neighbours' predictions at shared mesh vertices (piecewise_render.h).
+#pragma once
+
+#include "core/model/camera.h"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+// Source pixels [x0, x1] × [y0, y1].
+struct PatchRect {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+  bool contains(const Eigen::Vector2d& p, double margin = 0.0) const {
+    return p.x() >= x0 - margin && p.x() <= x1 + margin && p.y() >= y0 - margin &&
+           p.y() <= y1 + margin;
+  }
+  double width() const { return x1 - x0; }
+  double height() const { return y1 - y0; }
+  Eigen::Vector2d centre() const { return {0.5 * (x0 + x1), 0.5 * (y0 + y1)}; }
+};
+
+struct CameraPatch {
+  PatchRect rect;
+  // Where the patch has data: the convex hull of its own matches (source pixels), counter-
+  // clockwise. A patch's camera is trusted only near it: a quadtree cell's corners often lie
+  // where no match constrains the fit, and a rational map extrapolated there can run off
+  // anywhere. Empty: the whole rectangle.
+  std::vector<Eigen::Vector2d> support;
+  Camera camera;           // position-only image camera over the whole frames
+  std::string model;       // the fitted model class ("quadratic", "homography", …)
+  int matches = 0;         // matches inside the rectangle (its own, not the shared margin)
+  double rms_px = 0.0;     // residuals of those matches, target pixels
+  double max_px = 0.0;
+  bool within_tolerance = true;  // max_px ≤ the fit's threshold
+};
+
+struct PiecewiseCamera {
+  FrameSize source_size;
+  FrameSize target_size;
+  std::vector<CameraPatch> patches;
+  // How far beyond a patch's support hull it still answers (source pixels): about one match
+  // spacing, so the hulls of neighbouring patches meet.
+  double support_margin_px = 0.0;
+
+  // Index of the patch whose rectangle holds the source pixel (the first one on a shared
+  // edge), or -1 outside every patch.
+  int patchAt(const Eigen::Vector2d& source_px) const;
+  // The point lies in patch i's support hull grown by support_margin_px.
+  bool supports(int patch, const Eigen::Vector2d& source_px) const;
+  // The mapped pixel through the patch that holds it; empty outside the patches' supports or
+  // at a pole.
+  std::optional<Eigen::Vector2d> targetPixelFromSourcePixel(const Eigen::Vector2d& source_px) const;
+};
+
+// Convex hull (Andrew's monotone chain), counter-clockwise, no repeated end point.
+std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> points);
+
+}  // namespace artcam

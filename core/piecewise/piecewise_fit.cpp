@@ -1,0 +1,288 @@
+// Quadtree fitting of piecewise cameras; see piecewise_fit.h.
+#include "core/piecewise/piecewise_fit.h"
+
+#include "core/fit/poles.h"
+#include "core/model/frames.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+
+namespace artcam {
+namespace {
+
+struct Cell {
+  PatchRect rect;
+  int depth = 0;
+};
+
+struct PatchFit {
+  Camera camera;
+  std::string model;
+};
+
+std::vector<int> matchesIn(const std::vector<PointMatch>& matches, const PatchRect& rect,
+                           double margin) {
+  std::vector<int> out;
+  for (size_t i = 0; i < matches.size(); ++i)
+    if (rect.contains(matches[i].source.head<2>(), margin)) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+// The matches a cell is fitted on: those within the shared margin, the margin grown (up to
+// the cell's own size) until there are enough to fit, so small cells on sparse data can still
+// split instead of stopping above the threshold.
+std::vector<int> sharedMatchesOf(const std::vector<PointMatch>& matches, const PatchRect& rect,
+                                 const PiecewiseOptions& o) {
+  const double size = std::max(rect.width(), rect.height());
+  double margin = o.shared_margin * size;
+  std::vector<int> ids = matchesIn(matches, rect, margin);
+  while (static_cast<int>(ids.size()) < o.min_matches && margin < size) {
+    margin = std::min(size, margin * 1.5 + 1e-9 * size);
+    ids = matchesIn(matches, rect, margin);
+  }
+  return ids;
+}
+
+std::vector<PointMatch> subset(const std::vector<PointMatch>& matches, const std::vector<int>& ids) {
+  std::vector<PointMatch> out;
+  out.reserve(ids.size());
+  for (int i : ids) out.push_back(matches[static_cast<size_t>(i)]);
+  return out;
+}
+
+// The denominator keeps one sign over the patch's rectangle (poles.h, exact).
+bool poleFreeOver(const Camera& camera, const PatchRect& rect) {
+  const Eigen::Vector2d a = normalizedFromPixel(camera.sourceSize(), {rect.x0, rect.y0});
+  const Eigen::Vector2d b = normalizedFromPixel(camera.sourceSize(), {rect.x1, rect.y1});
+  const Eigen::Matrix3d q_n = camera.stages()[0].q[2];
+  return checkDenominator(q_n, a.cwiseMin(b), a.cwiseMax(b)).pole_free;
+}
+
+// The richest requested model whose denominator stays away from the rectangle; falls back
+// down the ladder to the homography and affine map, which cannot hide a pole inside a patch
+// as easily (and the affine cannot at all).
+std::optional<PatchFit> fitPatch(const std::vector<PointMatch>& shared, const PatchRect& rect,
+                                 FrameSize source, FrameSize target, const PiecewiseOptions& o) {
+  std::vector<ModelClass> ladder{o.model};
+  for (ModelClass m : {ModelClass::Homography, ModelClass::Affine})
+    if (m != o.model) ladder.push_back(m);
+  for (ModelClass model : ladder) {
+    if (static_cast<int>(shared.size()) < minimumMatches(model)) continue;
+    FitOptions fo;
+    fo.model = model;
+    fo.refine = o.refine;
+    fo.require_pole_free = false;  // checked over the patch below, not the whole frame
+    fo.diagnostics = false;
+    const FitSummary fit = fitImageCamera(shared, source, target, fo);
+    if (!fit.status || !poleFreeOver(fit.camera, rect)) continue;
+    return PatchFit{fit.camera, fit.record.model};
+  }
+  return std::nullopt;
+}
+
+double residual(const Camera& camera, const PointMatch& m) {
+  const auto y = targetPixelFromSourcePixel(camera, m.source.head<2>());
+  return y ? (*y - m.target.head<2>()).norm() : std::numeric_limits<double>::infinity();
+}
+
+// Four quadrants, or two halves across the longer side when quadrants would starve.
+std::vector<PatchRect> splits(const PatchRect& r, bool quadrants) {
+  const Eigen::Vector2d c = r.centre();
+  if (quadrants)
+    return {{r.x0, r.y0, c.x(), c.y()}, {c.x(), r.y0, r.x1, c.y()},
+            {r.x0, c.y(), c.x(), r.y1}, {c.x(), c.y(), r.x1, r.y1}};
+  if (r.width() >= r.height()) return {{r.x0, r.y0, c.x(), r.y1}, {c.x(), r.y0, r.x1, r.y1}};
+  return {{r.x0, r.y0, r.x1, c.y()}, {r.x0, c.y(), r.x1, r.y1}};
+}
+
+// Median distance from a match to its nearest neighbour (source pixels), on up to 400 of them:
+// how far apart the user's grid points are, so how far a patch's hull may be grown.
+double matchSpacing(const std::vector<PointMatch>& matches) {
+  const size_t n = matches.size();
+  const size_t stride = std::max<size_t>(1, n / 400);
+  std::vector<double> nearest;
+  for (size_t i = 0; i < n; i += stride) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < n; ++j)
+      if (j != i) {
+        const double d = (matches[i].source.head<2>() - matches[j].source.head<2>()).norm();
+        if (d > 0.0) best = std::min(best, d);
+      }
+    if (std::isfinite(best)) nearest.push_back(best);
+  }
+  if (nearest.empty()) return 0.0;
+  std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+  return nearest[nearest.size() / 2];
+}
+
+}  // namespace
+
+std::string PiecewiseSummary::report() const {
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "piecewise: %zu patches, %d matches, RMS %.4g px, max %.4g px, seam gap %.3g px%s\n"
+                "single camera on the same matches: %s",
+                camera.patches.size(), matches, rms_px, max_px, seam_gap_px,
+                converged ? "" : " (some patches could not reach the threshold)",
+                single_rms_px < 0 ? "no fit"
+                                  : (std::to_string(single_rms_px) + " px RMS, " +
+                                     std::to_string(single_max_px) + " px max").c_str());
+  return line;
+}
+
+double measureSeamGap(const PiecewiseCamera& camera, int samples_per_edge) {
+  double worst = 0.0;
+  const auto& p = camera.patches;
+  for (size_t a = 0; a < p.size(); ++a)
+    for (size_t b = a + 1; b < p.size(); ++b) {
+      const PatchRect& r = p[a].rect;
+      const PatchRect& s = p[b].rect;
+      // The shared segment of two touching rectangles (vertical or horizontal edge).
+      Eigen::Vector2d from, to;
+      const double lo_y = std::max(r.y0, s.y0), hi_y = std::min(r.y1, s.y1);
+      const double lo_x = std::max(r.x0, s.x0), hi_x = std::min(r.x1, s.x1);
+      if ((r.x1 == s.x0 || s.x1 == r.x0) && hi_y > lo_y) {
+        const double x = r.x1 == s.x0 ? r.x1 : r.x0;
+        from = {x, lo_y};
+        to = {x, hi_y};
+      } else if ((r.y1 == s.y0 || s.y1 == r.y0) && hi_x > lo_x) {
+        const double y = r.y1 == s.y0 ? r.y1 : r.y0;
+        from = {lo_x, y};
+        to = {hi_x, y};
+      } else {
+        continue;
+      }
+      for (int k = 0; k < samples_per_edge; ++k) {
+        const Eigen::Vector2d q = from + (to - from) * (k / double(samples_per_edge - 1));
+        if (!camera.supports(static_cast<int>(a), q) || !camera.supports(static_cast<int>(b), q))
+          continue;
+        const auto ya = targetPixelFromSourcePixel(p[a].camera, q);
+        const auto yb = targetPixelFromSourcePixel(p[b].camera, q);
+        if (ya && yb) worst = std::max(worst, (*ya - *yb).norm());
+      }
+    }
+  return worst;
+}
+
+PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameSize source_size,
+                              FrameSize target_size, const PiecewiseOptions& options) {
+  PiecewiseSummary out;
+  out.camera.source_size = source_size;
+  out.camera.target_size = target_size;
+  std::vector<PointMatch> matches;
+  for (const PointMatch& m : all_matches) {
+    if (!m.enabled) continue;
+    if (m.source.size() != 2 || m.target.size() != 2)
+      return out.status = Status::failure("piecewise fitting needs 2D image matches"), out;
+    if (!m.source.allFinite() || !m.target.allFinite())
+      return out.status = Status::failure("a match has a non-finite coordinate"), out;
+    matches.push_back(m);
+  }
+  out.matches = static_cast<int>(matches.size());
+  if (out.matches < options.min_matches)
+    return out.status = Status::failure(
+               "a piecewise fit needs at least " + std::to_string(options.min_matches) +
+               " matches; have " + std::to_string(out.matches)),
+           out;
+
+  {  // The single-camera floor, for comparison.
+    FitOptions fo;
+    fo.model = ModelClass::Quadratic;
+    fo.diagnostics = false;
+    fo.require_pole_free = false;
+    const FitSummary single = fitImageCamera(matches, source_size, target_size, fo);
+    if (single.status) {
+      out.single_rms_px = single.record.rms_px;
+      out.single_max_px = single.record.max_px;
+    }
+  }
+
+  PatchRect root{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                 std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  for (const PointMatch& m : matches) {
+    root.x0 = std::min(root.x0, m.source[0]);
+    root.y0 = std::min(root.y0, m.source[1]);
+    root.x1 = std::max(root.x1, m.source[0]);
+    root.y1 = std::max(root.y1, m.source[1]);
+  }
+
+  out.camera.support_margin_px = matchSpacing(matches);
+  std::vector<Cell> todo{{root, 0}};
+  while (!todo.empty()) {
+    const Cell cell = todo.back();
+    todo.pop_back();
+    const std::vector<int> own = matchesIn(matches, cell.rect, 0.0);
+    if (own.empty()) continue;  // no data: nothing to answer for here
+    const std::vector<PointMatch> shared = subset(matches, sharedMatchesOf(matches, cell.rect, options));
+    const auto fit = fitPatch(shared, cell.rect, source_size, target_size, options);
+
+    double worst = std::numeric_limits<double>::infinity(), sum2 = 0.0;
+    if (fit) {
+      worst = 0.0;
+      for (int i : own) {
+        const double r = residual(fit->camera, matches[static_cast<size_t>(i)]);
+        worst = std::max(worst, r);
+        sum2 += r * r;
+      }
+    }
+    const bool good = fit && worst <= options.max_error_px;
+    if (!good && cell.depth < options.max_depth) {
+      // Split when every child that holds data can still be fitted on its shared matches.
+      for (bool quadrants : {true, false}) {
+        bool feasible = true;
+        int children_with_data = 0;
+        const std::vector<PatchRect> kids = splits(cell.rect, quadrants);
+        for (const PatchRect& k : kids) {
+          if (matchesIn(matches, k, 0.0).empty()) continue;
+          ++children_with_data;
+          if (static_cast<int>(sharedMatchesOf(matches, k, options).size()) < options.min_matches)
+            feasible = false;
+        }
+        if (feasible && children_with_data > 0) {
+          for (const PatchRect& k : kids) todo.push_back({k, cell.depth + 1});
+          goto next_cell;
+        }
+      }
+    }
+    if (!fit)
+      return out.status = Status::failure(
+                 "no pole-free camera fits the patch [" + std::to_string(cell.rect.x0) + ", " +
+                 std::to_string(cell.rect.y0) + "]–[" + std::to_string(cell.rect.x1) + ", " +
+                 std::to_string(cell.rect.y1) + "] and it cannot be split further (" +
+                 std::to_string(shared.size()) + " matches); add matches there"),
+             out;
+    {
+      CameraPatch patch;
+      patch.rect = cell.rect;
+      patch.camera = fit->camera;
+      patch.model = fit->model;
+      patch.matches = static_cast<int>(own.size());
+      patch.max_px = worst;
+      patch.rms_px = std::sqrt(sum2 / static_cast<double>(own.size()));
+      patch.within_tolerance = good;
+      std::vector<Eigen::Vector2d> own_points;
+      for (int i : own) own_points.push_back(matches[static_cast<size_t>(i)].source.head<2>());
+      patch.support = convexHull(std::move(own_points));
+      out.converged = out.converged && good;
+      out.camera.patches.push_back(std::move(patch));
+    }
+  next_cell:;
+  }
+
+  double sum2 = 0.0;
+  for (const PointMatch& m : matches) {
+    const auto y = out.camera.targetPixelFromSourcePixel(m.source.head<2>());
+    const double r = y ? (*y - m.target.head<2>()).norm() : std::numeric_limits<double>::infinity();
+    out.max_px = std::max(out.max_px, r);
+    sum2 += r * r;
+  }
+  out.rms_px = std::sqrt(sum2 / static_cast<double>(matches.size()));
+  out.seam_gap_px = measureSeamGap(out.camera);
+  out.status = Status::success();
+  return out;
+}
+
+}  // namespace artcam
