@@ -3,6 +3,7 @@
 #include "core/colour/colour_difference.h"
 #include "core/fit/fit_image.h"
 #include "core/fit/normalize.h"
+#include "core/fit/robust.h"
 
 #include <Eigen/SVD>
 
@@ -339,10 +340,8 @@ Status findColourInliers(const Samples& s, const ColourFitOptions& options, std:
       sc = std::move(next);
     }
     best = std::move(sc);
-    const double p_good = std::pow(static_cast<double>(best.inliers.size()) / m, k);
-    needed = p_good >= 1.0   ? 0.0
-             : p_good <= 0.0 ? static_cast<double>(options.robust_max_iterations)
-                             : std::log(1.0 - options.robust_confidence) / std::log(1.0 - p_good);
+    needed = ransacIterations(options.robust_confidence, static_cast<double>(best.inliers.size()) / m,
+                              k, options.robust_max_iterations);
   }
   iterations = it;
   if (static_cast<int>(best.inliers.size()) < k)

@@ -36,6 +36,14 @@ std::vector<PointMatch> pick(const std::vector<PointMatch>& matches, const std::
 
 }  // namespace
 
+double ransacIterations(double confidence, double inlier_share, int sample_size, int max_iterations) {
+  const double p_good = std::pow(inlier_share, sample_size);
+  if (p_good >= 1.0) return 0.0;
+  const double log_miss = std::log1p(-p_good);  // < 0 unless p_good underflows to 0
+  if (!(log_miss < 0.0)) return max_iterations;
+  return std::min<double>(max_iterations, std::log(1.0 - confidence) / log_miss);
+}
+
 RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize source_size,
                          FrameSize target_size, ModelClass model, const RobustOptions& options) {
   RobustResult result;
@@ -80,12 +88,8 @@ RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize sourc
       s = std::move(t);
     }
     best = std::move(s);
-    const double w = static_cast<double>(best.inliers.size()) / m;
-    const double p_good = std::pow(w, sample_size);
-    needed = p_good >= 1.0 ? 0.0
-             : p_good <= 0.0
-                 ? static_cast<double>(options.max_iterations)
-                 : std::log(1.0 - options.confidence) / std::log(1.0 - p_good);
+    needed = ransacIterations(options.confidence, static_cast<double>(best.inliers.size()) / m,
+                              sample_size, options.max_iterations);
   }
   result.iterations = it;
   if (static_cast<int>(best.inliers.size()) < sample_size) {

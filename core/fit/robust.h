@@ -26,6 +26,12 @@ struct RobustResult {
   int iterations = 0;
 };
 
+// Iterations that draw at least one all-inlier minimal set with probability `confidence`:
+// log(1 - confidence) / log(1 - w^k). Computed with log1p: for a small inlier share w^k falls
+// below 1e-16, 1 - w^k rounds to 1 and the plain formula gives -inf, which once stopped the
+// search after a single draw. Capped at max_iterations.
+double ransacIterations(double confidence, double inlier_share, int sample_size, int max_iterations);
+
 // `model` is the class sampled (Auto samples the quadratic). Matches must all be enabled.
 RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize source_size,
                          FrameSize target_size, ModelClass model, const RobustOptions& options);

@@ -1,11 +1,13 @@
 // Robust fitting: 10 % and 30 % gross outliers among 200 noisy matches.
 #include "core/fit/fit_image.h"
+#include "core/fit/robust.h"
 #include "core/model/frames.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 using namespace artcam;
@@ -73,6 +75,17 @@ class TestRobust : public QObject {
     QVERIFY(wrong <= 2);  // an outlier can land near its true position by chance
     QVERIFY(static_cast<int>(s.record.inliers.size()) >= 200 - static_cast<int>(outliers.size()) - 5);
     QCOMPARE(s.record.residuals_px.size(), size_t(200));
+  }
+
+  // The adaptive iteration count, against the closed form log(1 - p) / log(1 - w^k).
+  void iterationCountFollowsTheInlierShare() {
+    QVERIFY(std::abs(ransacIterations(0.99, 0.5, 4, 1000000) - std::log(0.01) / std::log(1.0 - 1.0 / 16)) < 1e-9);
+    QCOMPARE(ransacIterations(0.999, 1.0, 9, 10000), 0.0);
+    QCOMPARE(ransacIterations(0.999, 0.0, 9, 10000), 10000.0);
+    // A first sample with 9 inliers of 1999: w^9 ≈ 1e-21, so 1 - w^9 rounds to 1; the count
+    // must be the cap, not -inf (which once ended the search after one draw).
+    QCOMPARE(ransacIterations(0.999, 9.0 / 1999.0, 9, 10000), 10000.0);
+    QVERIFY(ransacIterations(0.999, 0.8, 9, 10000) > 40.0);
   }
 };
 
