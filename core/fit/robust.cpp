@@ -1,5 +1,7 @@
 #include "core/fit/robust.h"
 
+#include "core/model/frames.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,15 +16,41 @@ struct Scored {
   std::vector<int> inliers;
 };
 
-Scored score(const Camera& camera, const std::vector<PointMatch>& matches, double threshold) {
+// The matches in the normalised frames, once: scoring runs over every match for every sample,
+// and the generic per-point camera evaluation (dynamic vectors) dominated the search.
+struct NormalisedMatches {
+  std::vector<Eigen::Vector3d> src;  // (u, v, 1)
+  std::vector<Eigen::Vector2d> dst;
+  double target_pixels_per_unit = 1.0;
+};
+
+NormalisedMatches normalise(const std::vector<PointMatch>& matches, FrameSize source_size,
+                            FrameSize target_size) {
+  NormalisedMatches n;
+  n.target_pixels_per_unit = std::max(target_size.width, target_size.height) / 2.0;
+  for (const PointMatch& m : matches) {
+    const Eigen::Vector2d s = normalizedFromPixel(source_size, m.source.head<2>());
+    n.src.emplace_back(s.x(), s.y(), 1.0);
+    n.dst.push_back(normalizedFromPixel(target_size, m.target.head<2>()));
+  }
+  return n;
+}
+
+Scored score(const Camera& camera, const NormalisedMatches& matches, double threshold) {
   Scored s;
   s.cost = 0.0;
   const double t2 = threshold * threshold;
-  const std::vector<double> e = reprojectionResiduals(camera, matches);
-  for (size_t k = 0; k < e.size(); ++k) {
-    const double e2 = std::isfinite(e[k]) ? e[k] * e[k] : t2;
-    s.cost += std::min(e2, t2);  // MSAC: inliers by their error, outliers by a constant
-    if (e2 < t2) s.inliers.push_back(static_cast<int>(k));
+  const Eigen::Matrix3d q0 = camera.stages()[0].q[0], q1 = camera.stages()[0].q[1],
+                        q2 = camera.stages()[0].q[2];
+  const double scale2 = matches.target_pixels_per_unit * matches.target_pixels_per_unit;
+  for (size_t k = 0; k < matches.src.size(); ++k) {
+    const Eigen::Vector3d& x = matches.src[k];
+    const double w = x.dot(q2 * x);
+    const Eigen::Vector2d y(x.dot(q0 * x) / w, x.dot(q1 * x) / w);
+    const double e2 = (y - matches.dst[k]).squaredNorm() * scale2;  // target pixels²
+    const double capped = std::isfinite(e2) ? std::min(e2, t2) : t2;
+    s.cost += capped;  // MSAC: inliers by their error, outliers by a constant
+    if (std::isfinite(e2) && e2 < t2) s.inliers.push_back(static_cast<int>(k));
   }
   return s;
 }
@@ -62,6 +90,7 @@ RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize sourc
   exact.require_pole_free = false;
   exact.diagnostics = false;
 
+  const NormalisedMatches normalised = normalise(matches, source_size, target_size);
   std::mt19937_64 rng(options.seed);
   std::vector<int> all(m);
   std::iota(all.begin(), all.end(), 0);
@@ -76,14 +105,14 @@ RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize sourc
         pick(matches, std::vector<int>(all.begin(), all.begin() + sample_size)), source_size,
         target_size, exact);
     if (!fit.status) continue;
-    Scored s = score(fit.camera, matches, options.threshold_px);
+    Scored s = score(fit.camera, normalised, options.threshold_px);
     if (s.cost >= best.cost) continue;
     // Local optimisation: re-fit on the inliers while that keeps lowering the cost.
     for (int lo = 0; lo < 4 && static_cast<int>(s.inliers.size()) > sample_size; ++lo) {
       const FitSummary refit =
           fitImageCamera(pick(matches, s.inliers), source_size, target_size, exact);
       if (!refit.status) break;
-      Scored t = score(refit.camera, matches, options.threshold_px);
+      Scored t = score(refit.camera, normalised, options.threshold_px);
       if (t.cost >= s.cost) break;
       s = std::move(t);
     }
