@@ -32,7 +32,9 @@ struct FitOptions {
   bool condition = true;
   // Auto: a richer model must lower the held-out error by this factor to be chosen.
   double auto_improvement = 0.9;
-  // Levenberg–Marquardt on the reprojection error after the DLT (quadratic models; refine.h).
+  // Levenberg–Marquardt on the reprojection error after the DLT (quadratic models; refine.h),
+  // then a few seeded restarts near the result in case LM stopped in a local minimum (kept only
+  // when better on all matches and pole-free; fit_image.cpp, restartNearby).
   bool refine = true;
   // Image cameras: refuse a camera whose denominator vanishes inside the source frame; for
   // the quadratic, first retry from the lifted homography and affine fits (poles.h).
