@@ -4,7 +4,10 @@
 #include "ui/document.h"
 #include "ui/tools/tool.h"
 
+#include <QGestureEvent>
 #include <QKeyEvent>
+#include <QNativeGestureEvent>
+#include <QPinchGesture>
 #include <QLinearGradient>
 #include <QMouseEvent>
 #include <QPainter>
@@ -42,6 +45,7 @@ Canvas::Canvas(Document* document, QWidget* parent) : QWidget(parent), document_
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(200, 150);
   setAttribute(Qt::WA_OpaquePaintEvent);
+  grabGesture(Qt::PinchGesture);
   connect(document_, &Document::photoChanged, this, &Canvas::onPhotoChanged);
   connect(document_, &Document::pairsChanged, this, qOverload<>(&QWidget::update));
   connect(document_->depth(), &DepthModel::depthChanged, this, qOverload<>(&QWidget::update));
@@ -103,6 +107,45 @@ void Canvas::setView(double scale, const QPointF& image_centre) {
   userMovedView();
 }
 
+void Canvas::setLoupeEnabled(bool enabled) {
+  loupe_enabled_ = enabled;
+  update();
+}
+
+LoupeGeometry Canvas::loupe() const {
+  if (!loupe_enabled_ || !cursor_inside_ || !tool_ || !tool_->wantsLoupe() || !document_->photo())
+    return {};
+  return Loupe::geometry(size(), cursor_widget_, view_.imageFromWidget(cursor_widget_),
+                         view_.scale());
+}
+
+void Canvas::pinchBy(double factor, const QPointF& widget_centre) {
+  if (!(factor > 0.0) || !std::isfinite(factor)) return;
+  view_.zoomAt(factor, widget_centre);
+  userMovedView();
+}
+
+bool Canvas::event(QEvent* event) {
+  if (event->type() == QEvent::NativeGesture) {
+    // Touchpad pinch (macOS, libinput on Wayland/X11): value() is the scale change this step.
+    auto* g = static_cast<QNativeGestureEvent*>(event);
+    if (g->gestureType() == Qt::ZoomNativeGesture) {
+      pinchBy(1.0 + g->value(), g->position());
+      return true;
+    }
+  } else if (event->type() == QEvent::Gesture) {
+    // Touch-screen pinch: scaleFactor() is the change since the last event.
+    auto* ge = static_cast<QGestureEvent*>(event);
+    if (auto* pinch = static_cast<QPinchGesture*>(ge->gesture(Qt::PinchGesture))) {
+      if (pinch->changeFlags() & QPinchGesture::ScaleFactorChanged)
+        pinchBy(pinch->scaleFactor(), mapFromGlobal(pinch->centerPoint()));
+      ge->accept(pinch);
+      return true;
+    }
+  }
+  return QWidget::event(event);
+}
+
 void Canvas::userMovedView() {
   follow_fit_ = false;
   update();
@@ -132,6 +175,8 @@ void Canvas::paintEvent(QPaintEvent*) {
   painter.setRenderHint(QPainter::Antialiasing, true);
   paintPairs(painter);
   if (tool_) tool_->paint(painter);
+  if (const LoupeGeometry g = loupe(); g.isValid())
+    Loupe::paint(painter, g, photo->display, QSize(f.width, f.height));
 }
 
 void Canvas::paintDepth(QPainter& painter, const QRectF& image_rect) {
@@ -196,7 +241,10 @@ void Canvas::mousePressEvent(QMouseEvent* event) {
     setCursor(Qt::ClosedHandCursor);
     return;
   }
+  cursor_widget_ = event->position();
+  cursor_inside_ = true;
   if (tool_ && document_->photo()) tool_->mousePress(event);
+  if (tool_ && tool_->wantsLoupe()) update();
 }
 
 void Canvas::mouseMoveEvent(QMouseEvent* event) {
@@ -207,8 +255,11 @@ void Canvas::mouseMoveEvent(QMouseEvent* event) {
     userMovedView();
     return;
   }
+  cursor_widget_ = event->position();
+  cursor_inside_ = true;
   emit cursorMoved(view_.imageFromWidget(event->position()));
   if (tool_ && document_->photo()) tool_->mouseMove(event);
+  if (tool_ && tool_->wantsLoupe()) update();  // the loupe follows the cursor
 }
 
 void Canvas::mouseReleaseEvent(QMouseEvent* event) {
@@ -249,6 +300,7 @@ void Canvas::keyReleaseEvent(QKeyEvent* event) {
 }
 
 void Canvas::leaveEvent(QEvent* event) {
+  cursor_inside_ = false;
   update();
   QWidget::leaveEvent(event);
 }

@@ -2,11 +2,14 @@
 // residual green → red), owns the view transform (zoom, pan) and forwards every other pointer
 // and key event to the active tool.
 //
-// Pan: middle drag, or space + left drag. Zoom: wheel (about the cursor), zoomToFit (Ctrl+0),
-// zoomActual (Ctrl+1), zoomIn/zoomOut (Ctrl+= / Ctrl+-). Until the user zooms or pans, the
-// view refits on resize.
+// Pan: middle drag, or space + left drag. Zoom: wheel (about the cursor), pinch (native zoom
+// gestures of touchpads, QPinchGesture on touch screens, both about the gesture's centre),
+// zoomToFit (Ctrl+0), zoomActual (Ctrl+1), zoomIn/zoomOut (Ctrl+= / Ctrl+-). Until the user
+// zooms or pans, the view refits on resize. While the tool places or drags a point the loupe
+// (loupe.h) magnifies the photo around the cursor.
 #pragma once
 
+#include "ui/loupe.h"
 #include "ui/view_transform.h"
 
 #include <QPoint>
@@ -38,6 +41,10 @@ class Canvas : public QWidget {
   static constexpr double kRedResidualPx = 4.0;
   static QColor residualColour(double residual_px);
 
+  bool isLoupeEnabled() const { return loupe_enabled_; }
+  // The loupe as it is drawn now (invalid when hidden).
+  LoupeGeometry loupe() const;
+
  public slots:
   void zoomToFit();
   void zoomActual();
@@ -45,12 +52,14 @@ class Canvas : public QWidget {
   void zoomOut();
   // Restores a saved view (scale and image point at the centre).
   void setView(double scale, const QPointF& image_centre);
+  void setLoupeEnabled(bool enabled);
 
  signals:
   void viewChanged();
   void cursorMoved(const QPointF& image_point);
 
  protected:
+  bool event(QEvent* event) override;
   void paintEvent(QPaintEvent* event) override;
   void resizeEvent(QResizeEvent* event) override;
   void mousePressEvent(QMouseEvent* event) override;
@@ -66,6 +75,7 @@ class Canvas : public QWidget {
   void paintPairs(QPainter& painter);
   void paintDepth(QPainter& painter, const QRectF& image_rect);
   void userMovedView();
+  void pinchBy(double factor, const QPointF& widget_centre);
 
   Document* document_;
   ViewTransform view_;
@@ -73,6 +83,9 @@ class Canvas : public QWidget {
   DepthOverlay* depth_overlay_ = nullptr;
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
+  bool loupe_enabled_ = true;
+  bool cursor_inside_ = false;
+  QPointF cursor_widget_;
   bool panning_ = false;
   QPoint pan_last_;
 };

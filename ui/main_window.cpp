@@ -175,6 +175,12 @@ void MainWindow::createMenus() {
   QMenu* tools = menuBar()->addMenu(tr("&Tools"));
   createToolActions(tools, bar);
   view->addSeparator();
+  QAction* loupe = view->addAction(tr("&Loupe While Placing Points"));
+  loupe->setCheckable(true);
+  loupe->setChecked(canvas_->isLoupeEnabled());
+  loupe->setShortcut(QKeySequence(tr("L")));
+  loupe->setToolTip(tr("Magnify the photo around the cursor while placing or dragging points"));
+  connect(loupe, &QAction::toggled, canvas_, &Canvas::setLoupeEnabled);
   QAction* overlay = view->addAction(tr("Show &Depth Overlay"));
   overlay->setCheckable(true);
   overlay->setChecked(depth_overlay_->isVisible());

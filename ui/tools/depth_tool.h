@@ -41,6 +41,10 @@ class DepthTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  // Depth points and polygon corners are placed precisely.
+  bool wantsLoupe() const override {
+    return mode_ == DepthToolMode::Points || mode_ == DepthToolMode::Polygon;
+  }
 
  private:
   Eigen::Vector2d imagePoint(const QPointF& widget) const;

@@ -29,6 +29,11 @@ class PairTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  // Placing a target, pressing to place or drag, or dragging.
+  bool wantsLoupe() const override {
+    return pending_source_.has_value() || gesture_ == Gesture::PressedEmpty ||
+           gesture_ == Gesture::PressedPoint || gesture_ == Gesture::Dragging;
+  }
 
   bool hasPendingSource() const { return pending_source_.has_value(); }
 

@@ -28,6 +28,8 @@ class Tool {
   virtual void paint(QPainter& painter) = 0;
   // Drop any half-made gesture (tool switch, new photo).
   virtual void cancel() = 0;
+  // Whether a point is being placed or dragged now: the canvas then shows its loupe.
+  virtual bool wantsLoupe() const { return false; }
 
  protected:
   Canvas* canvas_;
