@@ -212,11 +212,11 @@ ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
 
 double rmsStored(const Camera& camera, const Problem& pb);
 
-void restartNearby(ModelFit& best, double& best_rms, const Problem& pb);
+void restartNearby(ModelFit& best, double& best_rms, const Problem& pb, int restarts);
 
 // Refines a quadratic start by LM (never worse, never trading pole-free for a pole), then
 // restarts nearby in case LM stopped in a local minimum.
-void refineFit(ModelFit& fit, const Problem& pb) {
+void refineFit(ModelFit& fit, const Problem& pb, int restarts) {
   RefineOptions ro;
   ro.frame_lo = pb.frame_lo;
   ro.frame_hi = pb.frame_hi;
@@ -224,7 +224,7 @@ void refineFit(ModelFit& fit, const Problem& pb) {
   fit.camera = refineReprojection(fit.camera, pb.src, pb.dst, ro, &rs);
   fit.algebraic_rms = rs.initial_rms;
   double rms = rs.final_rms;
-  restartNearby(fit, rms, pb);
+  if (restarts > 0) restartNearby(fit, rms, pb, restarts);
 }
 
 // LM from the algebraic solution can stop in a local minimum: on the mustache lens at 3.97 px
@@ -234,8 +234,7 @@ void refineFit(ModelFit& fit, const Problem& pb) {
 // of at most 256 matches, which is cheap; the best of those that beats the refined camera on
 // the subsample by more than 0.1 % is refined on all matches and kept if it is better there,
 // and pole-free.
-void restartNearby(ModelFit& best, double& best_rms, const Problem& pb) {
-  constexpr int kRestarts = 8;
+void restartNearby(ModelFit& best, double& best_rms, const Problem& pb, int restarts) {
   constexpr double kScale = 0.05;  // of the largest tensor entry
   constexpr int kSubsample = 256;
   std::vector<int> keep;
@@ -254,7 +253,7 @@ void restartNearby(ModelFit& best, double& best_rms, const Problem& pb) {
   for (const Eigen::MatrixXd& q : centre.stages()[0].q) largest = std::max(largest, q.cwiseAbs().maxCoeff());
   double best_sub = rmsStored(centre, sub) * (1.0 - 1e-3);
   std::optional<Camera> candidate;
-  for (int t = 0; t < kRestarts; ++t) {
+  for (int t = 0; t < restarts; ++t) {
     Camera start = centre;
     for (Eigen::MatrixXd& q : start.stages()[0].q) {
       Eigen::Matrix3d noise;
@@ -289,7 +288,7 @@ ModelFit fitModel(ModelClass model, const Problem& pb, const FitOptions& options
   ModelFit fit = fitAlgebraic(model, pb, options.condition);
   if (!fit.status || pb.dimension != 2) return fit;
   const bool quadratic = model == ModelClass::Quadratic && fit.note.empty();
-  if (quadratic && options.refine) refineFit(fit, pb);
+  if (quadratic && options.refine) refineFit(fit, pb, options.restarts);
   fit.poles = checkDenominator(Eigen::Matrix3d(fit.camera.stages()[0].q[2]), pb.frame_lo, pb.frame_hi);
   if (fit.poles.pole_free || !options.require_pole_free) return fit;
 
@@ -312,7 +311,7 @@ ModelFit fitModel(ModelClass model, const Problem& pb, const FitOptions& options
     if (!f.status) continue;
     if (!checkDenominator(Eigen::Matrix3d(f.camera.stages()[0].q[2]), pb.frame_lo, pb.frame_hi).pole_free)
       continue;
-    if (options.refine) refineFit(f, pb);
+    if (options.refine) refineFit(f, pb, options.restarts);
     f.poles = checkDenominator(Eigen::Matrix3d(f.camera.stages()[0].q[2]), pb.frame_lo, pb.frame_hi);
     const double r = rmsStored(f.camera, pb);
     if (f.poles.pole_free && r < best_rms) {
@@ -368,11 +367,13 @@ double heldOutError(ModelClass model, const Problem& pb, const FitOptions& optio
   const int folds = m > 5000 ? 3 : std::min(m, 10);
   if (folds < 2 || m - (m + folds - 1) / folds < minimumMatches(model, pb.dimension))
     return std::numeric_limits<double>::quiet_NaN();
+  FitOptions fold_options = options;
+  fold_options.restarts = 0;
   double sum = 0.0;
   for (int f = 0; f < folds; ++f) {
     std::vector<int> train, held;
     for (int k = 0; k < m; ++k) (k % folds == f ? held : train).push_back(k);
-    const ModelFit fit = fitModel(model, pb.subset(train), options);
+    const ModelFit fit = fitModel(model, pb.subset(train), fold_options);
     if (!fit.status) return std::numeric_limits<double>::quiet_NaN();
     for (double e : residuals(fit.camera, pb.subset(held))) sum += e * e;
   }

@@ -36,6 +36,9 @@ struct FitOptions {
   // then a few seeded restarts near the result in case LM stopped in a local minimum (kept only
   // when better on all matches and pole-free; fit_image.cpp, restartNearby).
   bool refine = true;
+  // Nearby restarts after LM (with refine; 0: none). Held-out folds never restart: the
+  // cross-validation compares model classes, the restarts polish the camera returned.
+  int restarts = 8;
   // Image cameras: refuse a camera whose denominator vanishes inside the source frame; for
   // the quadratic, first retry from the lifted homography and affine fits (poles.h).
   bool require_pole_free = true;
