@@ -5,13 +5,16 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "core/io/image_io.h"
+#include "core/io/stored_image.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
 #include "core/render/mip_pyramid.h"
+#include "core/render/pixel_buffer.h"
 #include "core/render/warp.h"
 
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,6 +26,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace artcam::cli {
@@ -37,12 +41,15 @@ const char* const kBenchUsage =
     "(identity, translation-copy, affine, homography, rational, rational-scalar without the\n"
     "SIMD clone, and a minifying homography with anti-aliasing) with each filter, on each thread count of LIST (default 1,2), as the\n"
     "median of N renders (default 5). Prints CSV on stdout:\n"
-    "  source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share\n"
-    "where the error is the distance of the kernel's source positions from an exact\n"
+    "  source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share,certified_share,cpu_ms\n"
+    "where cpu_ms is the process CPU time of the median render (all threads; on a loaded shared\n"
+    "machine it stays near the unloaded wall time × threads while ms grows), and the error is the distance of the kernel's source positions from an exact\n"
     "double-precision inverse on a sample of rows. --peer DIR runs DIR/cvwarp (the OpenCV\n"
     "maps + remap peer of ../shared/peerbench) on the same image and adds its rows.\n"
-    "--only runs the named kernels alone. Last, unless --no-e2e, `artcam warp`'s path on a\n"
-    "JPEG of the image (decode, float render, encode) is timed by part, on stderr.\n"
+    "--only runs the named kernels alone. A memcpy row (source \"memcpy\") gives the copy\n"
+    "ceiling. Last, unless --no-e2e, `artcam warp`'s path on a JPEG of the image (decode into\n"
+    "8-bit, render, encode) is timed by part, and the 1920-px preview from the mip pyramid,\n"
+    "on stderr.\n"
     "--plot writes a PNG of speed (x, log) against error (y, log), one colour per kernel.\n";
 
 namespace {
@@ -55,8 +62,8 @@ struct Case {
 };
 
 // A photo-like RGB8 image: smooth gradients, edges and hash noise, made in code.
-std::vector<std::uint8_t> makeImage(int w, int h) {
-  std::vector<std::uint8_t> img(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
+PixelBuffer makeImage(int w, int h) {
+  PixelBuffer img(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       std::uint32_t n = static_cast<std::uint32_t>(x) * 73856093u ^ static_cast<std::uint32_t>(y) * 19349663u;
@@ -151,19 +158,19 @@ PositionError measureError(const Camera& camera, FrameSize size) {
 struct Row {
   std::string source, kernel, filter;
   int threads = 1;
-  double ms = 0, mpix = 0, max_err = -1, rms_err = -1, newton_share = 0;
+  double ms = 0, mpix = 0, max_err = -1, rms_err = -1, newton_share = 0, certified_share = 0, cpu_ms = -1;
 };
 
 void printRow(const Row& r) {
   const auto num = [](double v) { return v < 0 ? std::string() : std::to_string(v); };
-  std::printf("%s,%s,%s,%d,%.2f,%.1f,%s,%s,%.4f\n", r.source.c_str(), r.kernel.c_str(),
+  std::printf("%s,%s,%s,%d,%.2f,%.1f,%s,%s,%.4f,%.4f,%s\n", r.source.c_str(), r.kernel.c_str(),
               r.filter.c_str(), r.threads, r.ms, r.mpix, num(r.max_err).c_str(),
-              num(r.rms_err).c_str(), r.newton_share);
+              num(r.rms_err).c_str(), r.newton_share, r.certified_share, num(r.cpu_ms).c_str());
   std::fflush(stdout);
 }
 
 // OpenCV peer rows from peerbench's cvwarp (its report format: name, threads, ms, Mpix/s).
-std::vector<Row> runPeer(const std::string& dir, const std::vector<std::uint8_t>& img, FrameSize size,
+std::vector<Row> runPeer(const std::string& dir, const PixelBuffer& img, FrameSize size,
                          int reps) {
   std::vector<Row> rows;
   const std::string exe = dir + "/cvwarp";
@@ -282,39 +289,51 @@ void drawPlot(const std::vector<Row>& rows, const std::string& path) {
   if (const Status s = writeImage(path, img); !s) throw CommandError(s.message);
 }
 
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
 double medianOf(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
 }
 
-// What `artcam warp` does with a JPEG, timed by part: decode (OpenImageIO, sRGB → linear
-// float), the render alone, encode. One run each; the shares say where an export's time goes.
-void endToEndJpeg(const std::vector<std::uint8_t>& pixels, FrameSize size, const Camera& camera) {
+// What `artcam warp` does with a JPEG, timed by part: decode into the file's 8-bit samples
+// (stored_image.h), the render alone, encode. One run each; the shares say where an export's
+// time goes. Then the float path's decode (linear light) that the preview pyramid starts from.
+void endToEndJpeg(const PixelBuffer& pixels, FrameSize size, const Camera& camera) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path();
   const std::string in = (dir / "artcam-bench-in.jpg").string(), out = (dir / "artcam-bench-out.jpg").string();
   {
-    ImageF img(size.width, size.height, 3);
-    for (size_t i = 0; i < pixels.size(); ++i) img.data[i] = std::pow(pixels[i] / 255.0f, 2.2f);
-    if (const Status s = writeImage(in, img); !s) throw CommandError(s.message);
+    const ConstImageView view = packedView<const void>(pixels.data(), size.width, size.height, 3, PixelType::UInt8);
+    if (const Status s = writeStoredImage(in, view); !s) throw CommandError(s.message);
   }
   using Clock = std::chrono::steady_clock;
   const auto ms = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
   };
-  const auto t0 = Clock::now();
+  {
+    const auto t0 = Clock::now();
+    auto stored = readStoredImage(in);
+    if (!stored) throw CommandError(stored.status.message);
+    const auto t1 = Clock::now();
+    StoredImage warped = makeStoredImage(size.width, size.height, 3, -1, PixelType::UInt8);
+    WarpSummary summary;
+    warpImage(std::as_const(*stored).view(), camera, warped.view(), {}, &summary);
+    const auto t2 = Clock::now();
+    if (const Status s = writeStoredImage(out, std::as_const(warped).view(), &stored->info); !s)
+      throw CommandError(s.message);
+    const auto t3 = Clock::now();
+    const double total = ms(t0, t3);
+    std::fprintf(stderr,
+                 "e2e_jpeg (artcam warp path, 8-bit): decode_ms=%.1f render_ms=%.1f (alloc+render %.1f) "
+                 "encode_ms=%.1f total_ms=%.1f render_share=%.2f\n",
+                 ms(t0, t1), summary.render_ms, ms(t1, t2), ms(t2, t3), total, ms(t1, t2) / total);
+  }
   const auto loaded = readImage(in);
   if (!loaded) throw CommandError(loaded.status.message);
-  const auto t1 = Clock::now();
-  WarpSummary summary;
-  const ImageF warped = warpImage(loaded->image, camera, {}, &summary);
-  const auto t2 = Clock::now();
-  if (const Status s = writeImage(out, warped, &loaded->info); !s) throw CommandError(s.message);
-  const auto t3 = Clock::now();
-  const double total = ms(t0, t3);
-  std::fprintf(stderr,
-               "e2e_jpeg (artcam warp path, float): decode_ms=%.1f render_ms=%.1f encode_ms=%.1f "
-               "total_ms=%.1f render_share=%.2f\n",
-               ms(t0, t1), ms(t1, t2), ms(t2, t3), total, ms(t1, t2) / total);
   // The preview path: a mip pyramid built once per photo, then a screen-sized render of the
   // same camera from the level that matches (mip_pyramid.h), all threads.
   const auto p0 = Clock::now();
@@ -366,13 +385,31 @@ int benchCommand(const std::vector<std::string>& argv) {
     throw UsageError("--reps and --threads expect whole numbers (--threads 1,2)");
   }
 
-  const std::vector<std::uint8_t> pixels = makeImage(size.width, size.height);
+  // Whole images live on huge pages where the kernel allows (pixel_buffer.h), as in `artcam warp`.
+  const PixelBuffer pixels = makeImage(size.width, size.height);
   const ConstImageView src = packedView<const void>(pixels.data(), size.width, size.height, 3, PixelType::UInt8);
-  std::vector<std::uint8_t> out_pixels(pixels.size());
+  PixelBuffer out_pixels(pixels.size());
   const ImageView dst = packedView<void>(out_pixels.data(), size.width, size.height, 3, PixelType::UInt8);
   const double mpix = size.width * static_cast<double>(size.height) / 1e6;
 
-  std::printf("source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share\n");
+  std::printf("source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share,certified_share,cpu_ms\n");
+  {
+    // The memory ceiling: one image read, one written (the identity kernel's job), 1 thread.
+    std::vector<double> times;
+    for (int r = 0; r < reps + 1; ++r) {
+      const auto a = std::chrono::steady_clock::now();
+      std::memcpy(out_pixels.data(), pixels.data(), pixels.size());
+      times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count());
+    }
+    times.erase(times.begin());  // first touch of the output pages
+    Row row;
+    row.source = "memcpy";
+    row.kernel = "copy";
+    row.filter = "none";
+    row.ms = medianOf(times);
+    row.mpix = mpix / (row.ms / 1000.0);
+    printRow(row);
+  }
   std::vector<Row> rows;
   const std::string only = args.valueOr("--only", "");
   for (const Case& c : makeCases(size)) {
@@ -389,11 +426,13 @@ int benchCommand(const std::vector<std::string>& argv) {
         o.threads = threads;
         o.antialias = c.antialias;
         o.scalar_only = c.scalar_only;
-        std::vector<double> times;
+        std::vector<double> times, cpu;
         WarpSummary s;
         warpImage(src, c.camera, dst, o, &s);  // warm-up
         for (int r = 0; r < reps; ++r) {
+          const double c0 = processCpuMs();
           warpImage(src, c.camera, dst, o, &s);
+          cpu.push_back(processCpuMs() - c0);
           times.push_back(s.render_ms);
         }
         Row row;
@@ -402,10 +441,12 @@ int benchCommand(const std::vector<std::string>& argv) {
         row.filter = std::string(filterName(f)) + (c.antialias ? "+aa" : "");
         row.threads = threads;
         row.ms = medianOf(times);
+        row.cpu_ms = medianOf(cpu);
         row.mpix = mpix / (row.ms / 1000.0);
         row.max_err = err.max;
         row.rms_err = err.rms;
         row.newton_share = s.newton_pixels / (mpix * 1e6);
+        row.certified_share = s.certified_share;
         printRow(row);
         rows.push_back(row);
       }

@@ -3,6 +3,7 @@
 #include "app/cli/commands.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
+#include "core/io/stored_image.h"
 #include "core/render/warp.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
+#include <utility>
 
 namespace artcam::cli {
 
@@ -21,7 +23,11 @@ const char* const kWarpUsage =
     "source frame (a camera made on a preview applies to the full photo), or --size.\n"
     "Pixels with no preimage are transparent (an alpha channel is added where the format has\n"
     "one; else they are black).\n"
-    "OUT keeps IN's pixel type and metadata. OUT is written atomically; it may not be IN\n"
+    "OUT keeps IN's pixel type and metadata. Where OUT's format stores IN's kind of sample\n"
+    "(8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and writes the stored\n"
+    "values in place (no float copy: peak memory about input + output), interpolating them in\n"
+    "the file's own encoding as OpenCV's remap does; otherwise it renders in linear float.\n"
+    "OUT is written atomically; it may not be IN\n"
     "unless --force is given. --stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr\n"
     "(the render alone, without file I/O).\n";
 
@@ -61,27 +67,51 @@ int warpCommand(const std::vector<std::string>& argv) {
 
   const auto doc = readArtcamFile(args.positional()[1]);
   if (!doc) throw CommandError(doc.status.message);
-  const auto image = readImage(input);
-  if (!image) throw CommandError(image.status.message);
-
-  if (options.width == 0 && options.height == 0 && doc->camera.sourceSize().isImage()) {
-    // The camera may have been made on a preview: scale its target frame by the ratio between
-    // this photo and the source frame it was made for (normalised frames make that exact).
-    const double scale =
-        static_cast<double>(image->image.width) / doc->camera.sourceSize().width;
-    options.width = std::max(1, static_cast<int>(std::lround(doc->camera.targetSize().width * scale)));
-    options.height = std::max(1, static_cast<int>(std::lround(doc->camera.targetSize().height * scale)));
-  }
+  const Camera& camera = doc->camera;
+  // Output size: the camera may have been made on a preview, so its target frame scales by
+  // the ratio between this photo and the source frame it was made for (normalised frames make
+  // that exact).
+  const auto sizeFor = [&](int input_width) {
+    if (options.width != 0 || options.height != 0 || !camera.sourceSize().isImage()) return;
+    const double scale = static_cast<double>(input_width) / camera.sourceSize().width;
+    options.width = std::max(1, static_cast<int>(std::lround(camera.targetSize().width * scale)));
+    options.height = std::max(1, static_cast<int>(std::lround(camera.targetSize().height * scale)));
+  };
   WarpSummary summary;
-  const ImageF warped = warpImage(image->image, doc->camera, options, &summary);
-  if (const Status s = writeImage(*output, warped, &image->info); !s) throw CommandError(s.message);
+  int out_width = 0, out_height = 0;
+  // The stored-type path (issue 5: peak memory ≤ input + output + a small constant).
+  auto stored = readStoredImage(input);
+  if (!stored) throw CommandError(stored.status.message);
+  if (storedWriteKeepsEncoding(*output, stored->type)) {
+    sizeFor(stored->width);
+    const FrameSize out_size = warpOutputSize(camera, options);
+    const bool add_alpha = stored->alpha_channel < 0 && formatStoresAlpha(*output);
+    StoredImage warped = makeStoredImage(
+        out_size.width, out_size.height, stored->channels + (add_alpha ? 1 : 0),
+        add_alpha ? stored->channels : stored->alpha_channel, stored->type);
+    warpImage(std::as_const(*stored).view(), camera, warped.view(), options, &summary);
+    if (const Status s = writeStoredImage(*output, std::as_const(warped).view(), &stored->info); !s)
+      throw CommandError(s.message);
+    out_width = warped.width;
+    out_height = warped.height;
+  } else {
+    // Re-encoding between integer and float files goes through linear light (image_io.h).
+    stored = {};
+    const auto image = readImage(input);
+    if (!image) throw CommandError(image.status.message);
+    sizeFor(image->image.width);
+    const ImageF warped = warpImage(image->image, camera, options, &summary);
+    if (const Status s = writeImage(*output, warped, &image->info); !s) throw CommandError(s.message);
+    out_width = warped.width;
+    out_height = warped.height;
+  }
   if (args.has("--stats")) {
-    const double mpix = static_cast<double>(warped.width) * warped.height / 1e6;
+    const double mpix = static_cast<double>(out_width) * out_height / 1e6;
     std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", summary.render_ms,
                  summary.render_ms > 0 ? mpix / (summary.render_ms / 1000.0) : 0.0);
   }
   std::printf("wrote %s (%dx%d, kernel %s, %lld transparent pixels)\n", output->c_str(),
-              warped.width, warped.height, summary.kernel.c_str(), summary.transparent_pixels);
+              out_width, out_height, summary.kernel.c_str(), summary.transparent_pixels);
   return 0;
 }
 

@@ -6,7 +6,10 @@
 
 #include <Eigen/LU>
 
+#include <immintrin.h>
+
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -14,9 +17,73 @@
 namespace artcam {
 namespace {
 
+// One span of the inverse homography, all kSpanPixels lanes and no branches so it vectorises
+// (the AVX2 clone runs four doubles at once): s = (h0 + i · column) / w, i · step rather than
+// a running sum so nothing drifts. `sign` is +1 when the centre's w is positive.
+struct ProjectiveRow {
+  double x, y, w, dx, dy, dw, sign;
+};
+
+[[gnu::always_inline]] inline void projectiveSpanBody(const ProjectiveRow& r, float* __restrict sx,
+                                                      float* __restrict sy,
+                                                      std::int32_t* __restrict ok) {
+  for (int i = 0; i < kSpanPixels; ++i) {
+    const double t = i;
+    const double w = r.w + t * r.dw;
+    const double inv = 1.0 / w;
+    const double u = (r.x + t * r.dx) * inv, v = (r.y + t * r.dy) * inv;
+    // Beyond the horizon, or so close to it that the point overflows float: no preimage.
+    const bool good = (w * r.sign > 0.0) & (std::abs(u) < 1e30) & (std::abs(v) < 1e30);
+    sx[i] = good ? static_cast<float>(u) : 0.0f;
+    sy[i] = good ? static_cast<float>(v) : 0.0f;
+    ok[i] = good;
+  }
+}
+
+// GCC's -O2 does not vectorise the loop above (its cheap cost model), so the AVX2 version is
+// written out: the same operations in the same order, no FMA, hence bit-identical results.
+__attribute__((target("avx2"))) void projectiveSpanAvx2(const ProjectiveRow& r, float* sx, float* sy,
+                                                        std::int32_t* ok) {
+  const __m256d x = _mm256_set1_pd(r.x), y = _mm256_set1_pd(r.y), w0 = _mm256_set1_pd(r.w);
+  const __m256d dx = _mm256_set1_pd(r.dx), dy = _mm256_set1_pd(r.dy), dw = _mm256_set1_pd(r.dw);
+  const __m256d sign = _mm256_set1_pd(r.sign), one = _mm256_set1_pd(1.0), big = _mm256_set1_pd(1e30);
+  const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffll));
+  const __m256d four = _mm256_set1_pd(4.0);
+  __m256d t = _mm256_setr_pd(0.0, 1.0, 2.0, 3.0);
+  for (int i = 0; i < kSpanPixels; i += 4, t = _mm256_add_pd(t, four)) {
+    const __m256d w = _mm256_add_pd(w0, _mm256_mul_pd(t, dw));
+    const __m256d inv = _mm256_div_pd(one, w);
+    const __m256d u = _mm256_mul_pd(_mm256_add_pd(x, _mm256_mul_pd(t, dx)), inv);
+    const __m256d v = _mm256_mul_pd(_mm256_add_pd(y, _mm256_mul_pd(t, dy)), inv);
+    const __m256d good = _mm256_and_pd(
+        _mm256_cmp_pd(_mm256_mul_pd(w, sign), _mm256_setzero_pd(), _CMP_GT_OQ),
+        _mm256_and_pd(_mm256_cmp_pd(_mm256_and_pd(u, abs_mask), big, _CMP_LT_OQ),
+                      _mm256_cmp_pd(_mm256_and_pd(v, abs_mask), big, _CMP_LT_OQ)));
+    _mm_storeu_ps(sx + i, _mm256_cvtpd_ps(_mm256_and_pd(u, good)));
+    _mm_storeu_ps(sy + i, _mm256_cvtpd_ps(_mm256_and_pd(v, good)));
+    const int bits = _mm256_movemask_pd(good);
+    for (int k = 0; k < 4; ++k) ok[i + k] = (bits >> k) & 1;
+  }
+}
+
+bool cpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+void projectiveSpanDispatched(const ProjectiveRow& r, float* sx, float* sy, std::int32_t* ok) {
+  if (cpuHasAvx2()) projectiveSpanAvx2(r, sx, sy, ok);
+  else projectiveSpanBody(r, sx, sy, ok);
+}
+
+void projectiveSpanScalar(const ProjectiveRow& r, float* sx, float* sy, std::int32_t* ok) {
+  projectiveSpanBody(r, sx, sy, ok);
+}
+
 class ProjectiveKernel final : public CoordinateKernel {
  public:
-  ProjectiveKernel(const Eigen::Matrix3d& target_from_source, FrameSize source_px) {
+  ProjectiveKernel(const Eigen::Matrix3d& target_from_source, FrameSize source_px, bool scalar_only)
+      : scalar_only_(scalar_only) {
     const Eigen::Matrix3d& h = target_from_source;
     // An affine map keeps w constant; invert it in closed form so the last row stays exactly
     // (0, 0, 1) and the span loop can skip the division.
@@ -58,16 +125,14 @@ class ProjectiveKernel final : public CoordinateKernel {
       }
       return 0;
     }
+    const ProjectiveRow r{h0.x(), h0.y(), h0.z(), dx, dy, dw, centre_positive_ ? 1.0 : -1.0};
+    float fx[kSpanPixels], fy[kSpanPixels];
+    std::int32_t ok[kSpanPixels];
+    (scalar_only_ ? projectiveSpanScalar : projectiveSpanDispatched)(r, fx, fy, ok);
     for (int i = 0; i < n; ++i) {
-      const double w = h0.z() + i * dw;
-      const bool side = centre_positive_ ? w > 0.0 : w < 0.0;
-      const double inv = 1.0 / w;
-      const double u = (h0.x() + i * dx) * inv, v = (h0.y() + i * dy) * inv;
-      // Beyond the horizon, or so close to it that the point overflows float: no preimage.
-      const bool ok = side && std::abs(u) < 1e30 && std::abs(v) < 1e30;
-      sx[i] = ok ? static_cast<float>(u) : 0.0f;
-      sy[i] = ok ? static_cast<float>(v) : 0.0f;
-      valid[i] = ok ? 1 : 0;
+      sx[i] = fx[i];
+      sy[i] = fy[i];
+      valid[i] = static_cast<unsigned char>(ok[i] != 0);
     }
     return 0;
   }
@@ -92,6 +157,7 @@ class ProjectiveKernel final : public CoordinateKernel {
   }
 
  private:
+  bool scalar_only_ = false;
   Eigen::Matrix3d m_;  // source_from_target, column form, pixels
   bool affine_ = false;
   bool centre_positive_ = true;
@@ -157,17 +223,70 @@ void checkSpanScalar(const CheckInputs& in, double tx0, double ty, const double*
   checkSpanBody(in, tx0, ty, bx, by, qx, qy, passed);
 }
 
+// A certified span (RationalKernel::cellFast): seed by its closed-form quadratics along the row,
+// one division per pixel, plus the grid correction; all kSpanPixels lanes, no branches, so it
+// vectorises. n_k(i) = c_k + i (b_k + i a_k) is the seed's form n_k at pixel x0 + i (eq 3).
+struct SeedRow {
+  double a[3], b[3], c[3];
+};
+
+[[gnu::always_inline]] inline void seedSpanBody(const SeedRow& r, const double* __restrict corr_x,
+                                                const double* __restrict corr_y,
+                                                float* __restrict sx, float* __restrict sy) {
+  for (int i = 0; i < kSpanPixels; ++i) {
+    const double t = i;
+    const double n0 = r.c[0] + t * (r.b[0] + t * r.a[0]);
+    const double n1 = r.c[1] + t * (r.b[1] + t * r.a[1]);
+    const double n2 = r.c[2] + t * (r.b[2] + t * r.a[2]);
+    const double inv = 1.0 / n2;
+    sx[i] = static_cast<float>(n0 * inv + corr_x[i]);
+    sy[i] = static_cast<float>(n1 * inv + corr_y[i]);
+  }
+}
+
+// The AVX2 version of the loop above, written out like projectiveSpanAvx2 (bit-identical).
+__attribute__((target("avx2"))) void seedSpanAvx2(const SeedRow& r, const double* corr_x,
+                                                  const double* corr_y, float* sx, float* sy) {
+  __m256d a[3], b[3], c[3];
+  for (int k = 0; k < 3; ++k) {
+    a[k] = _mm256_set1_pd(r.a[k]);
+    b[k] = _mm256_set1_pd(r.b[k]);
+    c[k] = _mm256_set1_pd(r.c[k]);
+  }
+  const __m256d one = _mm256_set1_pd(1.0), four = _mm256_set1_pd(4.0);
+  __m256d t = _mm256_setr_pd(0.0, 1.0, 2.0, 3.0);
+  for (int i = 0; i < kSpanPixels; i += 4, t = _mm256_add_pd(t, four)) {
+    __m256d n[3];
+    for (int k = 0; k < 3; ++k)
+      n[k] = _mm256_add_pd(c[k], _mm256_mul_pd(t, _mm256_add_pd(b[k], _mm256_mul_pd(t, a[k]))));
+    const __m256d inv = _mm256_div_pd(one, n[2]);
+    _mm_storeu_ps(sx + i, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[0], inv), _mm256_loadu_pd(corr_x + i))));
+    _mm_storeu_ps(sy + i, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[1], inv), _mm256_loadu_pd(corr_y + i))));
+  }
+}
+
+void seedSpanDispatched(const SeedRow& r, const double* corr_x, const double* corr_y, float* sx, float* sy) {
+  if (cpuHasAvx2()) seedSpanAvx2(r, corr_x, corr_y, sx, sy);
+  else seedSpanBody(r, corr_x, corr_y, sx, sy);
+}
+
+void seedSpanScalar(const SeedRow& r, const double* corr_x, const double* corr_y, float* sx, float* sy) {
+  seedSpanBody(r, corr_x, corr_y, sx, sy);
+}
+
 class RationalKernel final : public CoordinateKernel {
  public:
   RationalKernel(RationalMap forward, std::optional<RationalMap> seed, FrameSize source_px,
                  FrameSize target_px, const CoordinateOptions& options, int threads)
       : newton_(std::move(forward), source_px, options.residual_tolerance_px),
         seed_tolerance_(options.seed_tolerance_px),
+        certify_tolerance_(options.certify_tolerance_px),
         scalar_only_(options.scalar_only) {
     if (seed && seed->stageCount() == 1) seed_q_ = seed->stage(0);
     if (newton_.forward().stageCount() == 1)
       for (const Eigen::Matrix3d& q : newton_.forward().stage(0)) forward_q_.emplace_back(q);
     buildCorrectionGrid(target_px, threads);
+    certifyCells(threads);
   }
 
   int span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
@@ -191,6 +310,7 @@ class RationalKernel final : public CoordinateKernel {
         corr_y[i] = left.y() + slope.y() * (x0 + i + 0.5);
       }
     }
+    if (spanCertified(x0, n, gj)) return fastSpan(y, x0, n, corr_x, corr_y, sx, sy, valid, state);
     // Pass 1, every pixel independent (plain arrays the compiler may vectorise): the seed by
     // forward differences, the grid correction, and the one-evaluation check.
     double bx[kSpanPixels], by[kSpanPixels], qx[kSpanPixels], qy[kSpanPixels];
@@ -391,6 +511,110 @@ class RationalKernel final : public CoordinateKernel {
     });
   }
 
+  // Cells where seed + bilinear correction is trusted without the per-pixel check. The error
+  // of bilinear interpolation in a cell of side G is about G²/8 (|d_uu| + |d_vv|) for the
+  // interpolated function d = exact − seed; two independent estimates of it must both stay
+  // within certify_tolerance_: the second differences of d over the neighbouring nodes, and
+  // the actual miss at the cell centre (where a quadratic's interpolation error peaks) against
+  // an exact Newton solution there. Cells touching a node without a preimage never qualify,
+  // nor do cells where the centre's solution fails (poles, folds: inverse.h's tests).
+  void certifyCells(int threads) {
+    const int cw = grid_w_ - 1, ch = grid_h_ - 1;
+    cell_fast_.assign(static_cast<size_t>(cw) * static_cast<size_t>(ch), 0);
+    if (seed_q_.empty() || !(certify_tolerance_ > 0.0)) return;
+    const auto valid_at = [&](int i, int j) {
+      return i >= 0 && j >= 0 && i < grid_w_ && j < grid_h_ &&
+             node_valid_[static_cast<size_t>(j) * static_cast<size_t>(grid_w_) + static_cast<size_t>(i)] != 0;
+    };
+    // |second difference| of d at node (i, j) along one axis; one-sided at the grid's edge.
+    const auto second = [&](int i, int j, int di, int dj) {
+      int ci = i, cj = j;
+      if (!valid_at(i - di, j - dj)) ci += di, cj += dj;
+      else if (!valid_at(i + di, j + dj)) ci -= di, cj -= dj;
+      if (!valid_at(ci - di, cj - dj) || !valid_at(ci, cj) || !valid_at(ci + di, cj + dj))
+        return std::numeric_limits<double>::infinity();
+      const Eigen::Vector2d d2 = node(ci - di, cj - dj) - 2.0 * node(ci, cj) + node(ci + di, cj + dj);
+      return d2.cwiseAbs().maxCoeff();
+    };
+    ParallelOptions po;
+    po.threads = threads;
+    po.band_rows = 4;
+    parallelForRows(ch, po, [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j)
+        for (int i = 0; i < cw; ++i) {
+          if (!cellValid(i, j)) continue;
+          double curvature = 0.0;
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a)
+              curvature = std::max(curvature, second(i + a, j + b, 1, 0) + second(i + a, j + b, 0, 1));
+          if (!(curvature / 8.0 <= certify_tolerance_)) continue;
+          const Eigen::Vector2d t((i + 0.5) * kGrid, (j + 0.5) * kGrid);
+          bool seeded = false;
+          const Eigen::Vector2d base = seedAt(t, seeded);
+          if (!seeded) continue;
+          const Eigen::Vector2d predicted =
+              base + 0.25 * (node(i, j) + node(i + 1, j) + node(i, j + 1) + node(i + 1, j + 1));
+          Eigen::Vector2d exact;
+          if (!newton_.solve(t, predicted, exact, kMaxIterations)) continue;
+          if (!((exact - predicted).cwiseAbs().maxCoeff() <= certify_tolerance_)) continue;
+          cell_fast_[static_cast<size_t>(j) * static_cast<size_t>(cw) + static_cast<size_t>(i)] = 1;
+        }
+    });
+  }
+
+  double certifiedShare() const override {
+    if (cell_fast_.empty()) return 0.0;
+    long long fast = 0;
+    for (unsigned char c : cell_fast_) fast += c;
+    return static_cast<double>(fast) / static_cast<double>(cell_fast_.size());
+  }
+
+  bool spanCertified(int x0, int n, int gj) const {
+    if (cell_fast_.empty()) return false;
+    const int cw = grid_w_ - 1;
+    for (int gi = x0 / kGrid; gi <= (x0 + n - 1) / kGrid; ++gi)
+      if (gi >= cw || !cell_fast_[static_cast<size_t>(gj) * static_cast<size_t>(cw) + static_cast<size_t>(gi)])
+        return false;
+    return true;
+  }
+
+  int fastSpan(int y, int x0, int n, const double* corr_x, const double* corr_y, float* sx,
+               float* sy, unsigned char* valid, RowState& state) const {
+    // The seed's quadratic forms along row y, in the pixel offset i from x0 (rational_map.h).
+    const double v = y + 0.5, u0 = x0 + 0.5;
+    SeedRow r;
+    for (int k = 0; k < 3; ++k) {
+      const Quadratic q(seed_q_[static_cast<size_t>(k)]);
+      r.c[k] = q.value(u0, v);
+      r.b[k] = q.du(u0, v);
+      r.a[k] = q.a;
+    }
+    double cx[kSpanPixels], cy[kSpanPixels];
+    for (int i = 0; i < kSpanPixels; ++i) {
+      cx[i] = i < n ? corr_x[i] : 0.0;
+      cy[i] = i < n ? corr_y[i] : 0.0;
+    }
+    float fx[kSpanPixels], fy[kSpanPixels];
+    (scalar_only_ ? seedSpanScalar : seedSpanDispatched)(r, cx, cy, fx, fy);
+    for (int i = 0; i < n; ++i) {
+      sx[i] = fx[i];
+      sy[i] = fy[i];
+      valid[i] = 1;
+    }
+    // The row state as if these pixels had been solved (their solutions are these positions).
+    const auto at = [&](int j) {
+      return j >= 0 ? Eigen::Vector2d(fx[j], fy[j])
+                    : j == -1 ? state.previous : j == -2 ? state.before_previous : state.third;
+    };
+    const Eigen::Vector2d p1 = at(n - 1), p2 = at(n - 2), p3 = at(n - 3);
+    state.previous = p1;
+    state.before_previous = p2;
+    state.third = p3;
+    state.seed_offset = Eigen::Vector2d::Zero();
+    state.run += n;
+    return 0;
+  }
+
   const Eigen::Vector2d& node(int i, int j) const {
     return nodes_[static_cast<size_t>(j) * static_cast<size_t>(grid_w_) + static_cast<size_t>(i)];
   }
@@ -405,10 +629,12 @@ class RationalKernel final : public CoordinateKernel {
   std::vector<Eigen::Matrix3d> seed_q_;
   std::vector<Quadratic> forward_q_;
   double seed_tolerance_;
+  double certify_tolerance_;
   bool scalar_only_;
   int grid_w_ = 0, grid_h_ = 0;
   std::vector<Eigen::Vector2d> nodes_;
   std::vector<unsigned char> node_valid_;
+  std::vector<unsigned char> cell_fast_;  // (grid_w_ − 1) × (grid_h_ − 1) cells, certifyCells
 };
 
 Eigen::Matrix3d pixelHomography(const CameraStructure& structure, FrameSize source_px,
@@ -431,7 +657,7 @@ KernelChoice makeCoordinateKernel(const Camera& camera, const CameraStructure& s
                       ? (same_size ? "identity" : "affine")
                       : std::string(geometryClassName(structure.geometry));
     choice.kernel = std::make_unique<ProjectiveKernel>(
-        pixelHomography(structure, source_px, target_px), source_px);
+        pixelHomography(structure, source_px, target_px), source_px, options.scalar_only);
     return choice;
   }
   choice.name = "rational";

@@ -45,6 +45,10 @@ struct CoordinateOptions {
   // The seed check: a seed whose Newton step is at most this long (source pixels) is accepted
   // after that one step; longer ones run the full Newton.
   double seed_tolerance_px = 1.0 / 256.0;
+  // The rational kernel's certified cells (source pixels): where the grid's own estimates of
+  // the seed + correction error stay within this, pixels take seed + correction unchecked
+  // (no forward evaluation, one division). 0 turns certification off (every pixel checked).
+  double certify_tolerance_px = 1.0 / 512.0;
   bool fit_inverse_seed = true;
   bool force_rational = false;  // run the rational kernel on projective cameras (tests, bench)
   // Run the portable scalar code where a SIMD clone exists (tests and the benchmark compare).
@@ -73,6 +77,9 @@ class CoordinateKernel {
   // map is singular there.
   virtual bool sourceJacobian(const Eigen::Vector2d& t, const Eigen::Vector2d& s,
                               Eigen::Matrix2d& j) const = 0;
+  // The share of the output the rational kernel certified (coordinates.h, certifyCells): its
+  // pixels skip the per-pixel check. 0 for the exact projective kernels.
+  virtual double certifiedShare() const { return 0.0; }
   // source = target + offset for a translation by whole pixels (then the warp copies rows).
   virtual std::optional<std::array<int, 2>> wholePixelOffset() const { return std::nullopt; }
 };

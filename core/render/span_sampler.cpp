@@ -1,5 +1,7 @@
 #include "core/render/span_sampler.h"
 
+#include "core/render/span_sampler_avx2.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -240,6 +242,33 @@ long long sampleSpan(const Context& k, unsigned char* out_bytes, int n, const fl
   return transparent;
 }
 
+#ifdef ARTCAM_HAVE_AVX2_SAMPLER
+// The AVX2 clone of the 8-bit one-tap paths (span_sampler_avx2.h); everything else, and every
+// group of eight that touches a border, runs the scalar code above.
+template <int C, Filter F>
+long long sampleSpanU8Simd(const Context& k, unsigned char* out_bytes, int n, const float* sx,
+                           const float* sy, const unsigned char* valid, int supersample,
+                           const float* jac) {
+  if (supersample > 1 || k.out_channels != C)
+    return sampleSpan<std::uint8_t, C, F>(k, out_bytes, n, sx, sy, valid, supersample, jac);
+  std::uint8_t* out = out_bytes;
+  if constexpr (F == Filter::Bilinear) return avx2::bilinearU8<C>(k, out, n, sx, sy, valid, &sampleSpanU8<C, F>);
+  else return avx2::nearestU8<C>(k, out, n, sx, sy, valid, &sampleSpanU8<C, F>);
+}
+
+// AVX2 when the CPU has it and the source's byte offsets fit the gathers' 32-bit indices.
+SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter) {
+  if (src.type != PixelType::UInt8 || (src.channels != 3 && src.channels != 4)) return nullptr;
+  if (filter == Filter::Bicubic || !__builtin_cpu_supports("avx2")) return nullptr;
+  if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
+  if (filter == Filter::Bilinear)
+    return src.channels == 3 ? sampleSpanU8Simd<3, Filter::Bilinear> : sampleSpanU8Simd<4, Filter::Bilinear>;
+  return src.channels == 3 ? sampleSpanU8Simd<3, Filter::Nearest> : sampleSpanU8Simd<4, Filter::Nearest>;
+}
+#else
+SpanSampler::SpanFn pickSimd(const ConstImageView&, Filter) { return nullptr; }
+#endif
+
 template <class T, Filter F>
 SpanSampler::SpanFn pickChannels(int channels) {
   switch (channels) {
@@ -262,7 +291,9 @@ SpanSampler::SpanFn pickFilter(Filter filter, int channels) {
 
 }  // namespace
 
-SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter) : dst_(dst) {
+SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter,
+                         bool allow_simd)
+    : dst_(dst) {
   if (src.empty() || src.channels < 1 || src.channels > 4)
     throw std::invalid_argument("the source image is empty or has more than 4 channels");
   if (src.alpha_channel >= src.channels)
@@ -274,6 +305,7 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
     throw std::invalid_argument("the output must have the source's channels, or one more for alpha");
   if (append && dst.alpha_channel != src.channels)
     throw std::invalid_argument("an appended alpha channel must be the output's last channel");
+  pixel_bytes_ = src.pixelBytes();
   context_.src = static_cast<const unsigned char*>(src.data);
   context_.src_row = src.row_bytes;
   context_.width = src.width;
@@ -288,6 +320,29 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
     case PixelType::UInt16: fn_ = pickFilter<std::uint16_t>(filter, src.channels); break;
     case PixelType::Float: fn_ = pickFilter<float>(filter, src.channels); break;
   }
+  if (allow_simd)
+    if (const SpanFn simd = pickSimd(src, filter)) {
+      fn_ = simd;
+      simd_ = true;
+    }
+}
+
+void SpanSampler::prefetch(int n, const float* sx, const float* sy, const float* px,
+                           const float* py, float rows_ahead) const {
+  const Context& k = context_;
+  const std::ptrdiff_t pixel = dst_.channels > 0 ? static_cast<std::ptrdiff_t>(pixel_bytes_) : 0;
+  const float w = static_cast<float>(k.width), h = static_cast<float>(k.height) - 1.0f;
+  const auto one = [&](int i) {
+    const float x = sx[i] + rows_ahead * (sx[i] - px[i]);
+    const float y = sy[i] + rows_ahead * (sy[i] - py[i]) - 0.5f;
+    if (!(x >= 0.0f && y >= 0.0f && x < w && y < h)) return;  // also NaN
+    const unsigned char* p = k.src + static_cast<std::ptrdiff_t>(y) * k.src_row +
+                             static_cast<std::ptrdiff_t>(x) * pixel;
+    __builtin_prefetch(p);
+    __builtin_prefetch(p + k.src_row);
+  };
+  for (int i = 0; i < n; i += 8) one(i);
+  if (n > 0) one(n - 1);
 }
 
 long long SpanSampler::run(int y, int x0, int n, const float* sx, const float* sy,

@@ -21,14 +21,23 @@ namespace artcam {
 class SpanSampler {
  public:
   // dst must have src's type and either src's channels or src's channels + 1 (appended alpha,
-  // last) when src has no alpha. Throws std::invalid_argument otherwise.
-  SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter);
+  // last) when src has no alpha. Throws std::invalid_argument otherwise. `allow_simd`: take the
+  // AVX2 clone of the 8-bit one-tap paths where the CPU has it (runtime dispatch, bit-identical
+  // to the scalar code: span_sampler_avx2.h); false keeps the portable scalar code.
+  SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter, bool allow_simd = true);
+  bool usesSimd() const { return simd_; }
 
   // Writes output pixels x0 … x0 + n − 1 of row y. `jacobian` (row-major 2×2, d source / d
   // target) is read only when supersample > 1. Returns the count of transparent pixels
   // written (alpha, or coverage when there is no alpha, ≤ 0).
   long long run(int y, int x0, int n, const float* sx, const float* sy, const unsigned char* valid,
                 int supersample = 1, const float* jacobian = nullptr) const;
+
+  // Prefetches the source lines that output pixels will read `rows_ahead` rows further down,
+  // extrapolated from this row's positions (sx, sy) and the row above's (px, py). A hint only:
+  // addresses outside the source are skipped, nothing is read.
+  void prefetch(int n, const float* sx, const float* sy, const float* px, const float* py,
+                float rows_ahead) const;
 
   struct Context {
     const unsigned char* src = nullptr;
@@ -48,6 +57,8 @@ class SpanSampler {
   Context context_;
   ImageView dst_;
   SpanFn fn_ = nullptr;
+  bool simd_ = false;
+  int pixel_bytes_ = 0;
 };
 
 }  // namespace artcam

@@ -46,6 +46,9 @@ struct WarpOptions {
   // The rational kernel's seed check (coordinates.h): a seed within this of its Newton step
   // (source pixels) is taken after that one step; only the others run the full Newton.
   double seed_tolerance_px = 1.0 / 256.0;
+  // The rational kernel's certified cells (coordinates.h): where the correction grid's error
+  // estimates stay within this (source pixels), pixels skip the per-pixel check. 0: off.
+  double certify_tolerance_px = 1.0 / 512.0;
   // Anti-aliasing where the map minifies: each output pixel averages n × n taps over its
   // footprint, n = ⌈longest side of the footprint in source pixels⌉ (per span of pixels, from
   // the Jacobian), at most max_supersample. Off: one tap per pixel (the exact semantics above).
@@ -60,10 +63,15 @@ struct WarpSummary {
   std::string kernel;          // "identity", "affine", "homography", "rational", …
   long long transparent_pixels = 0;
   long long newton_pixels = 0;  // rational kernel: pixels whose seed check failed (full Newton)
+  double certified_share = 0.0;  // rational kernel: share of certified cells (no per-pixel check)
   double render_ms = 0.0;
   // Anything the caller may want to show, e.g. why the inverse seed could not be fitted.
   std::string note;
 };
+
+// The output size options.width × options.height asks for: 0×0 means the camera's target
+// frame, and one of the two 0 follows the target frame's aspect ratio. Throws for negatives.
+FrameSize warpOutputSize(const Camera& camera, const WarpOptions& options);
 
 // The output has the source's channels, plus an alpha channel if the source had none.
 // Size: options.width × options.height; 0×0 means the camera's target frame, and one of the

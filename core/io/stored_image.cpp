@@ -1,0 +1,310 @@
+// Stored-type image read/write through OpenImageIO 2.4 (stored_image.h). Like image_io.cpp,
+// files are opened with "oiio:UnassociatedAlpha" = 1 so OIIO hands over the stored values and
+// we premultiply ourselves; writes go through a band of rows so no whole-image copy is made.
+#include "core/io/stored_image.h"
+
+#include "core/io/atomic_file.h"
+#include "core/io/io_text.h"
+#include "core/io/transfer.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <set>
+
+namespace artcam {
+
+namespace {
+
+using io_text::oneLine;
+
+OIIO::TypeDesc oiioType(PixelType t) {
+  switch (t) {
+    case PixelType::UInt8: return OIIO::TypeDesc::UINT8;
+    case PixelType::UInt16: return OIIO::TypeDesc::UINT16;
+    case PixelType::Float: break;
+  }
+  return OIIO::TypeDesc::FLOAT;
+}
+
+// What the file stores, as the engine's pixel types (half is read as float).
+PixelType storedType(OIIO::TypeDesc t, std::string& name) {
+  switch (t.basetype) {
+    case OIIO::TypeDesc::UINT8:
+    case OIIO::TypeDesc::INT8: name = "uint8"; return PixelType::UInt8;
+    case OIIO::TypeDesc::UINT16:
+    case OIIO::TypeDesc::INT16: name = "uint16"; return PixelType::UInt16;
+    case OIIO::TypeDesc::HALF: name = "half"; return PixelType::Float;
+    default: name = "float"; return PixelType::Float;
+  }
+}
+
+// Formats that store only 8-bit integers / only float (image_write.cpp's fitPixelType).
+bool integerOnlyFormat(const std::string& f) {
+  static const std::set<std::string> k{"jpeg", "bmp", "targa", "gif", "webp", "ico", "heif", "png", "pnm"};
+  return k.count(f) > 0;
+}
+bool floatOnlyFormat(const std::string& f) { return f == "openexr" || f == "hdr"; }
+
+// The same rule as image_write.cpp: metadata that still describes the written file.
+bool keepAttribute(const std::string& name, bool same_format) {
+  const std::string n = io_text::lower(name);
+  if (n == "compression" || n == "compressionquality") return same_format;
+  if (n.rfind("thumbnail_", 0) == 0 || n == "planarconfig") return false;
+  if (n == "exif:pixelxdimension" || n == "exif:pixelydimension") return false;
+  const size_t colon = n.find(':');
+  if (colon == std::string::npos) return true;
+  static const std::set<std::string> kPortable{"exif", "gps", "iptc", "xmp", "photoshop"};
+  return kPortable.count(n.substr(0, colon)) > 0;
+}
+
+template <class T>
+void premultiplyRows(StoredImage& image) {
+  const float full = pixelTypeFullScale(image.type);
+  T* p = static_cast<T*>(static_cast<void*>(image.bytes.data()));
+  const size_t count = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  const int c_n = image.channels, a_i = image.alpha_channel;
+  for (size_t k = 0; k < count; ++k, p += c_n) {
+    const float a = static_cast<float>(p[a_i]) / full;
+    for (int c = 0; c < c_n; ++c) {
+      if (c == a_i) continue;
+      if constexpr (std::is_floating_point_v<T>) p[c] = p[c] * a;
+      else p[c] = static_cast<T>(std::lround(static_cast<float>(p[c]) * a));
+    }
+  }
+}
+
+// One row of the view → the written layout: alpha dropped (composited over black) or colour
+// divided by alpha (straight-alpha formats).
+template <class T>
+void unpremultiplyRow(const T* in, T* out, int width, int in_channels, int alpha, bool keep_alpha,
+                      float full) {
+  for (int x = 0; x < width; ++x, in += in_channels) {
+    const float a = alpha >= 0 ? static_cast<float>(in[alpha]) : full;
+    for (int c = 0; c < in_channels; ++c) {
+      if (c == alpha) {
+        if (keep_alpha) *out++ = in[c];
+        continue;
+      }
+      if (!keep_alpha || a >= full) {
+        *out++ = in[c];
+      } else if (!(a > 0.0f)) {
+        *out++ = T(0);
+      } else {
+        const float v = static_cast<float>(in[c]) * full / a;
+        if constexpr (std::is_floating_point_v<T>) *out++ = v;
+        else *out++ = static_cast<T>(std::min(full, std::floor(v + 0.5f)));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+StoredImage makeStoredImage(int width, int height, int channels, int alpha_channel, PixelType type) {
+  StoredImage image;
+  image.width = width;
+  image.height = height;
+  image.channels = channels;
+  image.alpha_channel = alpha_channel;
+  image.type = type;
+  image.bytes = PixelBuffer(static_cast<size_t>(width) * static_cast<size_t>(height) *
+                            static_cast<size_t>(channels) * static_cast<size_t>(pixelTypeSize(type)));
+  return image;
+}
+
+Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options) {
+  using R = Result<StoredImage>;
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    return R::failure(path + ": cannot read: " +
+                      (std::filesystem::exists(path, error) ? "not a file" : "no such file"));
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) return R::failure(path + ": cannot read: " + oneLine(OIIO::geterror()));
+  const OIIO::ImageSpec spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    return R::failure(path + ": cannot read: the image is empty");
+  if (spec.depth > 1) return R::failure(path + ": cannot read: volume images are not supported");
+  const int channels = std::min(spec.nchannels, 4);
+  const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+
+  std::string pixel_type;
+  const PixelType type = storedType(spec.format, pixel_type);
+  const Transfer transfer =
+      Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
+          .value_or(type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
+  const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
+
+  StoredImage image;
+  // A giant header must not turn into a giant allocation by surprise: size_t arithmetic, and a
+  // clear message when the allocation fails.
+  try {
+    image = makeStoredImage(spec.width, spec.height, channels, alpha, type);
+  } catch (const std::bad_alloc&) {
+    return R::failure(path + ": cannot read: not enough memory for " + std::to_string(spec.width) +
+                      "x" + std::to_string(spec.height) + " pixels");
+  }
+  struct Context {
+    const std::function<bool(double)>* progress;
+    bool cancelled = false;
+  } context{options.progress ? &options.progress : nullptr};
+  const OIIO::ProgressCallback callback =
+      options.progress ? +[](void* opaque, float done) {
+        auto* c = static_cast<Context*>(opaque);
+        if (!(*c->progress)(static_cast<double>(done))) c->cancelled = true;
+        return c->cancelled;
+      } : nullptr;
+  const bool ok = in->read_image(0, 0, 0, channels, oiioType(type), image.bytes.data(),
+                                 OIIO::AutoStride, OIIO::AutoStride, OIIO::AutoStride, callback,
+                                 &context);
+  if (context.cancelled) return R::failure(path + ": cannot read: cancelled");
+  if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));
+  in->close();
+  if (alpha >= 0 && !associated) {
+    switch (type) {
+      case PixelType::UInt8: premultiplyRows<std::uint8_t>(image); break;
+      case PixelType::UInt16: premultiplyRows<std::uint16_t>(image); break;
+      case PixelType::Float: premultiplyRows<float>(image); break;
+    }
+  }
+  image.info.path = path;
+  image.info.format_name = in->format_name();
+  image.info.pixel_type = pixel_type;
+  image.info.srgb = transfer.kind == Transfer::Kind::Srgb;
+  image.info.colour_space = transfer.colourSpaceName();
+  image.info.spec = std::make_shared<const OIIO::ImageSpec>(spec);
+  if (options.progress) options.progress(1.0);
+  return R::success(std::move(image));
+}
+
+bool storedWriteKeepsEncoding(const std::string& path, PixelType type) {
+  auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
+  if (!out) {
+    OIIO::geterror();
+    return false;
+  }
+  const std::string format = out->format_name();
+  return type == PixelType::Float ? !integerOnlyFormat(format) : !floatOnlyFormat(format);
+}
+
+bool formatStoresAlpha(const std::string& path) {
+  auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
+  if (!out) {
+    OIIO::geterror();
+    return false;
+  }
+  return out->supports("alpha") != 0;
+}
+
+Status writeStoredImage(const std::string& path, const ConstImageView& image, const ImageInfo* like,
+                        const WriteImageOptions& options) {
+  const std::string fail = path + ": cannot write: ";
+  if (image.empty() || image.channels < 1 || image.channels > 4 || image.alpha_channel >= image.channels)
+    return Status::failure(fail + "the image is empty or malformed");
+  auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
+  if (!out) {
+    OIIO::geterror();
+    const std::string extension = std::filesystem::path(path).extension().string();
+    return Status::failure(path + (extension.empty()
+                                       ? ": no file extension to choose an image format from"
+                                       : ": no image format for extension \"" + extension + "\""));
+  }
+  const std::string format = out->format_name();
+  if (!storedWriteKeepsEncoding(path, image.type))
+    return Status::failure(fail + "the " + format + " format cannot store these " +
+                           (image.type == PixelType::Float ? "float" : "integer") +
+                           " samples without re-encoding them");
+  constexpr int kJpegMaxSide = 65500;  // libjpeg's limit; OIIO 2.4 would exit() past it
+  if (format == "jpeg" && (image.width > kJpegMaxSide || image.height > kJpegMaxSide))
+    return Status::failure(fail + "JPEG stores at most 65500 pixels per side");
+
+  const bool keep_alpha = image.alpha_channel >= 0 && out->supports("alpha");
+  const bool associated = format == "openexr";
+  const int channels = image.channels - (image.alpha_channel >= 0 && !keep_alpha ? 1 : 0);
+  const int alpha = keep_alpha ? image.alpha_channel : -1;
+  OIIO::TypeDesc file_type = oiioType(image.type);
+  if (image.type == PixelType::UInt16 && format != "png" && format != "pnm" && integerOnlyFormat(format))
+    file_type = OIIO::TypeDesc::UINT8;
+  if (image.type == PixelType::Float && like && like->pixel_type == "half") file_type = OIIO::TypeDesc::HALF;
+
+  OIIO::ImageSpec spec(image.width, image.height, channels, file_type);
+  const auto* like_spec = like ? static_cast<const OIIO::ImageSpec*>(like->spec.get()) : nullptr;
+  if (like_spec) {
+    for (const OIIO::ParamValue& p : like_spec->extra_attribs)
+      if (keepAttribute(p.name().string(), like->format_name == format)) spec.extra_attribs.push_back(p);
+    if (like_spec->nchannels == channels && like_spec->alpha_channel == alpha)
+      spec.channelnames = like_spec->channelnames;
+  }
+  if (!like_spec || like_spec->nchannels != channels || like_spec->alpha_channel != alpha) {
+    spec.channelnames.clear();
+    const int colours = channels - (alpha >= 0 ? 1 : 0);
+    const char* rgb[] = {"R", "G", "B"};
+    for (int c = 0, k = 0; c < channels; ++c)
+      spec.channelnames.emplace_back(c == alpha ? "A" : colours == 1 ? "Y" : rgb[std::min(k++, 2)]);
+  }
+  spec.alpha_channel = alpha;
+  const std::string colour_space =
+      like ? like->colour_space : image.type == PixelType::Float ? "Linear" : "sRGB";
+  spec.attribute("oiio:ColorSpace", colour_space);
+  if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
+  if (format == "jpeg") {
+    const int quality = std::clamp(options.jpeg_quality, 1, 100);
+    spec.attribute("CompressionQuality", quality);
+    spec.attribute("Compression", "jpeg:" + std::to_string(quality));
+  }
+
+  // Straight through when the layout is already the file's; else bands of rows converted.
+  const bool direct = channels == image.channels && (alpha < 0 || associated);
+  const int sample = pixelTypeSize(image.type);
+  return writeAtomically(path, [&](const std::string& temp) {
+    auto failure = [&](const std::string& message) {
+      return Status::failure(fail + io_text::replaceAll(oneLine(message), temp, path));
+    };
+    if (!out->open(temp, spec)) return failure(out->geterror());
+    bool ok = true;
+    if (direct) {
+      ok = out->write_image(oiioType(image.type), image.data, OIIO::AutoStride, image.row_bytes);
+    } else {
+      constexpr int kBand = 64;
+      const size_t row_bytes = static_cast<size_t>(image.width) * static_cast<size_t>(channels) *
+                               static_cast<size_t>(sample);
+      std::vector<std::uint8_t> band(row_bytes * kBand);
+      const float full = pixelTypeFullScale(image.type);
+      for (int y0 = 0; ok && y0 < image.height; y0 += kBand) {
+        const int y1 = std::min(image.height, y0 + kBand);
+        for (int y = y0; y < y1; ++y) {
+          void* dst = band.data() + static_cast<size_t>(y - y0) * row_bytes;
+          switch (image.type) {
+            case PixelType::UInt8:
+              unpremultiplyRow(static_cast<const std::uint8_t*>(image.row(y)), static_cast<std::uint8_t*>(dst),
+                               image.width, image.channels, image.alpha_channel, keep_alpha, full);
+              break;
+            case PixelType::UInt16:
+              unpremultiplyRow(static_cast<const std::uint16_t*>(image.row(y)), static_cast<std::uint16_t*>(dst),
+                               image.width, image.channels, image.alpha_channel, keep_alpha, full);
+              break;
+            case PixelType::Float:
+              unpremultiplyRow(static_cast<const float*>(image.row(y)), static_cast<float*>(dst),
+                               image.width, image.channels, image.alpha_channel, keep_alpha, full);
+              break;
+          }
+        }
+        ok = out->write_scanlines(y0, y1, 0, oiioType(image.type), band.data());
+      }
+    }
+    if (!ok) {
+      const std::string message = out->geterror();
+      out->close();
+      return failure(message);
+    }
+    if (!out->close()) return failure(out->geterror());
+    return Status::success();
+  });
+}
+
+}  // namespace artcam
