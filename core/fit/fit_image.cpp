@@ -480,6 +480,7 @@ FitSummary solve(const Problem& pb, const FitOptions& options) {
 // Checks the enabled matches and collects them; an empty message means all is well.
 std::string collect(const std::vector<PointMatch>& matches, int dimension,
                     std::vector<const PointMatch*>& used) {
+  used.reserve(matches.size());
   for (size_t k = 0; k < matches.size(); ++k) {
     const PointMatch& match = matches[k];
     if (!match.enabled) continue;
@@ -595,9 +596,19 @@ FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize sour
   pb.dimension = 2;
   pb.src.resize(2, static_cast<Eigen::Index>(used.size()));
   pb.dst.resize(2, static_cast<Eigen::Index>(used.size()));
+  // normalizedFromPixel (frames.h), u_n = (u - w/2) / s with s = max(w, h) / 2, inlined with
+  // the reciprocal (equal to round-off): this loop touches every match.
+  const double src_inv = 2.0 / std::max(source_size.width, source_size.height);
+  const double dst_inv = 2.0 / std::max(target_size.width, target_size.height);
+  const double scx = source_size.width / 2.0, scy = source_size.height / 2.0;
+  const double dcx = target_size.width / 2.0, dcy = target_size.height / 2.0;
   for (Eigen::Index k = 0; k < pb.src.cols(); ++k) {
-    pb.src.col(k) = normalizedFromPixel(source_size, used[k]->source.head<2>());
-    pb.dst.col(k) = normalizedFromPixel(target_size, used[k]->target.head<2>());
+    const Eigen::VectorXd& s = used[k]->source;
+    const Eigen::VectorXd& t = used[k]->target;
+    pb.src(0, k) = (s[0] - scx) * src_inv;
+    pb.src(1, k) = (s[1] - scy) * src_inv;
+    pb.dst(0, k) = (t[0] - dcx) * dst_inv;
+    pb.dst(1, k) = (t[1] - dcy) * dst_inv;
   }
   pb.target_units_per_stored_unit = std::max(target_size.width, target_size.height) / 2.0;
   pb.frame_lo = normalizedFromPixel(source_size, {0.0, 0.0});

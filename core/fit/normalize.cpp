@@ -47,8 +47,13 @@ double spreadRatio(const Points& points) {
   const Eigen::VectorXd centroid = points.rowwise().mean();
   // Singular values of the centred points are the square roots of the scatter matrix's
   // eigenvalues; at √eps relative resolution, enough for the 1e-7 threshold callers use.
-  const Points centred = points.colwise() - centroid;
-  const Eigen::MatrixXd scatter = centred * centred.transpose();
+  // Centred a chunk at a time: a centred copy of 10⁵ points cost more than the product.
+  constexpr Eigen::Index kChunk = 256;
+  Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(d, d);
+  for (Eigen::Index b = 0; b < points.cols(); b += kChunk) {
+    const Points centred = points.middleCols(b, std::min(kChunk, points.cols() - b)).colwise() - centroid;
+    scatter.noalias() += centred * centred.transpose();
+  }
   const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scatter).eigenvalues();
   return ev[d - 1] > 0.0 ? std::sqrt(std::max(ev[0], 0.0) / ev[d - 1]) : 0.0;
 }
