@@ -19,7 +19,7 @@ const char* const kFitUsage =
     "                  [--no-refine] [--robust [--threshold PX]] [--allow-poles]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
     "       artcam fit --block colour SAMPLES.csv -o CAM.artcam --size WxH [--srgb]\n"
-    "                  [--model auto|linear|affine|root-polynomial|quadratic]\n"
+    "                  [--model auto|linear|affine|quadratic]\n"
     "                  [--robust [--threshold DE]] [--json]\n\n"
     "Fits a camera to point matches. MATCHES.csv has the header src_x,src_y,dst_x,dst_y\n"
     "(pixels, centres at i + 0.5). --size is the source image size; --target-size the target's\n"
