@@ -31,6 +31,7 @@ int renderCommand(const std::vector<std::string>& args);
 int presetCommand(const std::vector<std::string>& args);
 int composeCommand(const std::vector<std::string>& args);
 int insertCommand(const std::vector<std::string>& args);
+int sampleCommand(const std::vector<std::string>& args);
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
@@ -42,6 +43,7 @@ extern const char* const kRenderUsage;
 extern const char* const kPresetUsage;
 extern const char* const kComposeUsage;
 extern const char* const kInsertUsage;
+extern const char* const kSampleUsage;
 
 int run(int argc, char** argv);
 

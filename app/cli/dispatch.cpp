@@ -18,6 +18,7 @@ const Command kCommands[] = {
     {"preset", "write a preset camera or the sample cloud", kPresetUsage, presetCommand},
     {"compose", "one camera from a sequence of cameras", kComposeUsage, composeCommand},
     {"insert", "render a graphic into a reflection or refraction", kInsertUsage, insertCommand},
+    {"sample", "ray trace a sample photo and grid matches for insert", kSampleUsage, sampleCommand},
 };
 
 void printHelp() {

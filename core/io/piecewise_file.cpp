@@ -38,6 +38,11 @@ Result<PiecewiseDocument> readPiecewiseFile(const std::string& path) {
     return fail(path + ": /patches: expected a non-empty list of patches");
 
   PiecewiseCamera pieces;
+  if (root.contains("support_margin_px")) {
+    if (!finiteNumber(root["support_margin_px"]) || root["support_margin_px"].get<double>() < 0.0)
+      return fail(path + ": /support_margin_px: expected a number ≥ 0");
+    pieces.support_margin_px = root["support_margin_px"].get<double>();
+  }
   pieces.source_size = whole->camera.sourceSize();
   pieces.target_size = whole->camera.targetSize();
   for (size_t i = 0; i < patches.size(); ++i) {
@@ -62,6 +67,16 @@ Result<PiecewiseDocument> readPiecewiseFile(const std::string& path) {
         camera->camera.targetSize() != pieces.target_size)
       return fail(where + "/camera: blocks and frames must match the top-level camera's");
     patch.camera = camera->camera;
+    if (p.contains("support")) {
+      const Json& hull = p["support"];
+      if (!hull.is_array()) return fail(where + "/support: expected a list of [x, y] points");
+      for (size_t k = 0; k < hull.size(); ++k) {
+        const Json& v = hull[k];
+        if (!v.is_array() || v.size() != 2 || !finiteNumber(v[0]) || !finiteNumber(v[1]))
+          return fail(where + "/support/" + std::to_string(k) + ": expected [x, y]");
+        patch.support.emplace_back(v[0].get<double>(), v[1].get<double>());
+      }
+    }
     patch.model = p.value("model", std::string());
     patch.matches = p.contains("matches") && p["matches"].is_number_integer() ? p["matches"].get<int>() : 0;
     if (p.contains("rms_px") && finiteNumber(p["rms_px"])) patch.rms_px = p["rms_px"].get<double>();
@@ -86,9 +101,13 @@ Status writePiecewiseFile(const std::string& path, const PiecewiseDocument& docu
         j["matches"] = p.matches;
         j["rms_px"] = std::isfinite(p.rms_px) ? p.rms_px : -1.0;
         j["max_px"] = std::isfinite(p.max_px) ? p.max_px : -1.0;
+        Json hull = Json::array();
+        for (const Eigen::Vector2d& v : p.support) hull.push_back({v.x(), v.y()});
+        j["support"] = std::move(hull);
         j["camera"] = Json::parse(toArtcamJson(ArtcamDocument{p.camera, {}, std::nullopt}));
         patches.push_back(std::move(j));
       }
+      root["support_margin_px"] = document.pieces->support_margin_px;
       root["patches"] = std::move(patches);
     }
     text = root.dump(1) + "\n";

@@ -1,7 +1,9 @@
 // Piecewise cameras in .artcam files (DESIGN §5: "stages or patches of tensors").
 //
 //   { …an ordinary .artcam document: the single camera fitted to all the matches…,
+//     "support_margin_px": m,                               // how far beyond a hull
 //     "patches": [ { "rect": [x0, y0, x1, y1],            // source pixels
+//                    "support": [[x, y], …],               // hull of its matches (optional)
 //                    "model": "quadratic", "matches": n, "rms_px": …, "max_px": …,
 //                    "camera": { …an embedded .artcam document… } }, … ] }
 //

@@ -51,8 +51,8 @@ struct PiecewiseCamera {
   FrameSize source_size;
   FrameSize target_size;
   std::vector<CameraPatch> patches;
-  // How far beyond a patch's support hull it still answers (source pixels): about one match
-  // spacing, so the hulls of neighbouring patches meet.
+  // How far beyond a patch's support hull it still answers (source pixels): about one and a
+  // half match spacings, so the hulls of neighbouring patches meet.
   double support_margin_px = 0.0;
 
   // Index of the patch whose rectangle holds the source pixel (the first one on a shared

@@ -209,12 +209,15 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
     root.y1 = std::max(root.y1, m.source[1]);
   }
 
-  out.camera.support_margin_px = matchSpacing(matches);
+  // 1.5 spacings: a grid cell's diagonal (√2) plus room for a corner the user did not click.
+  out.camera.support_margin_px = 1.5 * matchSpacing(matches);
   std::vector<Cell> todo{{root, 0}};
   while (!todo.empty()) {
     const Cell cell = todo.back();
     todo.pop_back();
-    const std::vector<int> own = matchesIn(matches, cell.rect, 0.0);
+    // Matches on an edge belong to both sides (the split point is computed, so allow round-off).
+    const double edge_tolerance = 1e-9 * std::max(cell.rect.width(), cell.rect.height());
+    const std::vector<int> own = matchesIn(matches, cell.rect, edge_tolerance);
     if (own.empty()) continue;  // no data: nothing to answer for here
     const std::vector<PointMatch> shared = subset(matches, sharedMatchesOf(matches, cell.rect, options));
     const auto fit = fitPatch(shared, cell.rect, source_size, target_size, options);

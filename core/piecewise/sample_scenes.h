@@ -1,0 +1,183 @@
+// Scenes made in code for environment matting (issue 8; the paper's Figs 7 and 8): pinhole
+// photos of a mirrored sphere resting on a floor that carries a graphic, and of a glass of
+// water in front of a backdrop carrying it, ray traced exactly. For a photo pixel the tracer
+// returns the graphic pixel seen in the reflection or refraction: exact matches (graphic →
+// photo) and the exact image of an inserted graphic for the tests, and the bundled sample
+// photos and grid matches (`artcam sample`).
+#pragma once
+
+#include "core/model/fit_record.h"
+#include "core/model/image.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+// Where a photo ray ends: on the graphic's plane (its coordinates in graphic pixels, possibly
+// outside the graphic) directly or through the object, or in the sky.
+struct TracedRay {
+  bool on_plane = false;
+  bool through_object = false;
+  bool in_region = true;  // inside the region a user would mark (where the map does not fold)
+  Eigen::Vector2d plane_px = Eigen::Vector2d::Zero();
+};
+
+struct MirrorSphereScene {
+  int photo_width = 320, photo_height = 240;
+  double focal_px = 600.0;
+  Eigen::Vector3d eye{0.0, 2.2, 5.5};
+  Eigen::Vector3d look_at{0.0, 0.9, 0.0};
+  Eigen::Vector3d sphere_centre{0.0, 1.0, 0.0};
+  double sphere_radius = 1.0;
+  // The graphic lies on the floor y = 0 over x, z ∈ [-half, half], graphic_size pixels wide.
+  double floor_half = 2.0;
+  double floor_centre_z = 0.0;  // the graphic's centre on the floor is (0, 0, floor_centre_z)
+  int graphic_size = 512;
+
+  Eigen::Vector2d floorPx(const Eigen::Vector3d& floor) const {
+    return {(floor.x() + floor_half) / (2.0 * floor_half) * graphic_size,
+            (floor.z() - floor_centre_z + floor_half) / (2.0 * floor_half) * graphic_size};
+  }
+
+  // The ray through photo pixel p (pixel centres at i + 0.5).
+  TracedRay trace(const Eigen::Vector2d& p) const {
+    const Eigen::Vector3d forward = (look_at - eye).normalized();
+    const Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitY()).normalized();
+    const Eigen::Vector3d up = right.cross(forward);
+    const Eigen::Vector3d d = (forward + (p.x() - 0.5 * photo_width) / focal_px * right -
+                               (p.y() - 0.5 * photo_height) / focal_px * up)
+                                  .normalized();
+    TracedRay out;
+    // Ray–sphere: |eye + t d - c|² = r².
+    const Eigen::Vector3d oc = eye - sphere_centre;
+    const double b = oc.dot(d);
+    const double disc = b * b - (oc.squaredNorm() - sphere_radius * sphere_radius);
+    const double t = disc > 0.0 ? -b - std::sqrt(disc) : -1.0;
+    if (t > 0.0) {
+      out.through_object = true;
+      const Eigen::Vector3d hit = eye + t * d;
+      const Eigen::Vector3d n = (hit - sphere_centre).normalized();
+      const Eigen::Vector3d r = d - 2.0 * d.dot(n) * n;
+      if (r.y() >= -1e-9) return out;  // reflected upwards: sky, not floor
+      out.on_plane = true;
+      out.plane_px = floorPx(hit + (-hit.y() / r.y()) * r);
+      return out;
+    }
+    if (d.y() < 0.0) {
+      out.on_plane = true;
+      out.plane_px = floorPx(eye + (-eye.y() / d.y()) * d);
+    }
+    return out;
+  }
+
+  // Graphic pixel (u, v) reflected at photo pixel p; empty when the ray misses the sphere or
+  // its reflection misses the graphic.
+  std::optional<Eigen::Vector2d> graphicFromPhoto(const Eigen::Vector2d& p) const {
+    const TracedRay r = trace(p);
+    if (!r.through_object || !r.on_plane) return std::nullopt;
+    const Eigen::Vector2d& g = r.plane_px;
+    if (g.x() < 0.0 || g.y() < 0.0 || g.x() > graphic_size || g.y() > graphic_size) return std::nullopt;
+    return g;
+  }
+};
+
+// A glass of water (a vertical cylinder of water, the glass wall ignored) in front of a
+// vertical backdrop carrying the graphic; the photo sees the backdrop refracted twice
+// (Snell's law at entry and exit), flipped and magnified, as in the paper's Fig 8.
+struct WaterGlassScene {
+  int photo_width = 320, photo_height = 240;
+  double focal_px = 300.0;
+  Eigen::Vector3d eye{0.0, 0.0, 6.0};  // looking down -z
+  double radius = 1.2;                 // axis: the y axis
+  double water_index = 1.333;
+  double backdrop_z = -1.6;
+  double backdrop_half = 1.5;  // the graphic covers x, y ∈ [-half, half] on the backdrop
+  // The marked refracting region: rays entering the water within this fraction of the radius
+  // from the axis. Nearer the silhouette the map folds over (grazing rays), as it does in a
+  // real glass; a user marks the region inside it.
+  double region_fraction = 0.5;
+  int graphic_size = 512;
+
+  std::optional<Eigen::Vector3d> refract(const Eigen::Vector3d& d, Eigen::Vector3d n, double eta) const {
+    double cosi = -n.dot(d);
+    if (cosi < 0.0) {  // leaving: flip the normal
+      n = -n;
+      cosi = -cosi;
+    }
+    const double k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+    if (k < 0.0) return std::nullopt;  // total internal reflection
+    return (eta * d + (eta * cosi - std::sqrt(k)) * n).normalized();
+  }
+
+  // Ray–cylinder (x² + z² = r²): the far (exit) or near (entry) root along o + t d.
+  std::optional<double> cylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, bool far) const {
+    const double a = d.x() * d.x() + d.z() * d.z();
+    const double b = o.x() * d.x() + o.z() * d.z();
+    const double c = o.x() * o.x() + o.z() * o.z() - radius * radius;
+    const double disc = b * b - a * c;
+    if (a <= 0.0 || disc <= 0.0) return std::nullopt;
+    const double t = far ? (-b + std::sqrt(disc)) / a : (-b - std::sqrt(disc)) / a;
+    if (t <= 1e-12) return std::nullopt;
+    return t;
+  }
+
+  Eigen::Vector2d backdropPx(const Eigen::Vector3d& hit) const {
+    return {(hit.x() + backdrop_half) / (2.0 * backdrop_half) * graphic_size,
+            (backdrop_half - hit.y()) / (2.0 * backdrop_half) * graphic_size};
+  }
+
+  // The ray through photo pixel p.
+  TracedRay trace(const Eigen::Vector2d& p) const {
+    Eigen::Vector3d d((p.x() - 0.5 * photo_width) / focal_px, -(p.y() - 0.5 * photo_height) / focal_px, -1.0);
+    d.normalize();
+    TracedRay out;
+    const auto t_in = cylinder(eye, d, false);
+    if (!t_in) {  // the backdrop, seen directly
+      out.on_plane = true;
+      out.plane_px = backdropPx(eye + ((backdrop_z - eye.z()) / d.z()) * d);
+      return out;
+    }
+    out.through_object = true;
+    const Eigen::Vector3d a = eye + *t_in * d;
+    out.in_region = std::abs(a.x()) <= region_fraction * radius;
+    const auto d_water = refract(d, Eigen::Vector3d(a.x(), 0.0, a.z()).normalized(), 1.0 / water_index);
+    if (!d_water) return out;
+    const auto t_out = cylinder(a, *d_water, true);
+    if (!t_out) return out;
+    const Eigen::Vector3d b = a + *t_out * *d_water;
+    const auto d_air = refract(*d_water, Eigen::Vector3d(b.x(), 0.0, b.z()).normalized(), water_index);
+    if (!d_air || d_air->z() >= 0.0) return out;
+    out.on_plane = true;
+    out.plane_px = backdropPx(b + ((backdrop_z - b.z()) / d_air->z()) * *d_air);
+    return out;
+  }
+
+  std::optional<Eigen::Vector2d> graphicFromPhoto(const Eigen::Vector2d& p) const {
+    const TracedRay r = trace(p);
+    if (!r.through_object || !r.on_plane || !r.in_region) return std::nullopt;
+    const Eigen::Vector2d& g = r.plane_px;
+    if (g.x() < 0.0 || g.y() < 0.0 || g.x() > graphic_size || g.y() > graphic_size) return std::nullopt;
+    return g;
+  }
+};
+
+// The bundled samples (`artcam sample`): a photo of the scene whose graphic plane carries a
+// calibration checkerboard of `squares` × `squares` (linear float RGB, 3×3 supersampled),
+// and the grid's corners seen through the object as matches (graphic pixels → photo pixels),
+// each found by Newton's method on the tracer to 1e-6 graphic px.
+struct SampleScene {
+  ImageF photo;
+  std::vector<PointMatch> grid_matches;
+};
+SampleScene makeMirrorSphereSample(const MirrorSphereScene& scene, int squares);
+SampleScene makeWaterGlassSample(const WaterGlassScene& scene, int squares);
+
+// A graphic to insert: a colourful emblem with premultiplied alpha (a ring and a star).
+ImageF makeEmblemGraphic(int size);
+
+}  // namespace artcam

@@ -1,0 +1,119 @@
+// `artcam sample` and `artcam insert`, run as processes: the ray-traced sample's grid matches
+// fit, the graphic lands inside the reflection and nowhere else, a saved piecewise camera
+// gives the same result, and bad input leaves no output behind.
+#include "core/io/image_io.h"
+#include "core/io/piecewise_file.h"
+#include "core/piecewise/sample_scenes.h"
+
+#include <QtTest/QtTest>
+
+#include <QFile>
+#include <QProcess>
+#include <QTemporaryDir>
+
+using namespace artcam;
+
+namespace {
+
+struct Run {
+  int exit_code = -1;
+  QString out;
+  QString err;
+};
+
+Run artcamCli(const QStringList& args) {
+  QProcess p;
+  p.start(QStringLiteral(ARTCAM_CLI_PATH), args);
+  p.waitForFinished(120000);
+  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
+          QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
+}
+
+ImageF load(const QString& path) {
+  const auto r = readImage(path.toStdString());
+  return r ? r->image : ImageF();
+}
+
+}  // namespace
+
+class TestCliInsert : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void insertsIntoTheReflectionOnly() {
+    QTemporaryDir dir;
+    Run r = artcamCli({"sample", "mirror-sphere", "-o", dir.path(), "--size", "320x240"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"insert", dir.filePath("mirror-sphere.png"), dir.filePath("emblem.png"),
+                   "--matches", dir.filePath("mirror-sphere-grid.csv"), "--max-error", "0.3",
+                   "--save-camera", dir.filePath("sphere.artcam"), "-o", dir.filePath("out.png")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY(r.out.contains("patches"));
+
+    const ImageF before = load(dir.filePath("mirror-sphere.png"));
+    const ImageF after = load(dir.filePath("out.png"));
+    QCOMPARE(after.width, 320);
+    QCOMPARE(after.height, 240);
+    // The scene as the sample command made it (same parameters), traced here.
+    MirrorSphereScene scene;
+    scene.photo_width = 320;
+    scene.photo_height = 240;
+    scene.focal_px = 0.9 * 320;
+    scene.floor_centre_z = 1.6;
+    int changed_inside = 0, changed_outside = 0;
+    for (int y = 0; y < 240; ++y)
+      for (int x = 0; x < 320; ++x) {
+        double diff = 0;
+        for (int c = 0; c < 3; ++c) diff = std::max(diff, double(std::abs(after.pixel(x, y)[c] - before.pixel(x, y)[c])));
+        if (diff < 0.02) continue;
+        // Inside: this pixel or a neighbour sees the board through the sphere.
+        bool near = false;
+        for (int dy = -1; dy <= 1 && !near; ++dy)
+          for (int dx = -1; dx <= 1 && !near; ++dx)
+            near = scene.graphicFromPhoto({x + dx + 0.5, y + dy + 0.5}).has_value();
+        (near ? changed_inside : changed_outside) += 1;
+      }
+    QVERIFY2(changed_inside > 300, qPrintable(QString::number(changed_inside)));
+    QCOMPARE(changed_outside, 0);
+
+    // The saved piecewise camera reproduces the same image.
+    const auto saved = readPiecewiseFile(dir.filePath("sphere.artcam").toStdString());
+    QVERIFY2(saved.ok(), saved.status.message.c_str());
+    QVERIFY(saved->pieces && saved->pieces->patches.size() > 1);
+    r = artcamCli({"insert", dir.filePath("mirror-sphere.png"), dir.filePath("emblem.png"),
+                   "--camera", dir.filePath("sphere.artcam"), "-o", dir.filePath("again.png")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    const ImageF again = load(dir.filePath("again.png"));
+    QCOMPARE(again.data, after.data);
+  }
+
+  void badInputLeavesNothingBehind() {
+    QTemporaryDir dir;
+    QVERIFY(artcamCli({"sample", "water-glass", "-o", dir.path(), "--size", "160x120"}).exit_code == 0);
+    QFile csv(dir.filePath("few.csv"));
+    QVERIFY(csv.open(QIODevice::WriteOnly));
+    csv.write("src_x,src_y,dst_x,dst_y\n1,2,3,4\n5,6,7,8\n");
+    csv.close();
+    Run r = artcamCli({"insert", dir.filePath("water-glass.png"), dir.filePath("emblem.png"),
+                       "--matches", dir.filePath("few.csv"), "-o", dir.filePath("out.png")});
+    QCOMPARE(r.exit_code, 1);
+    QVERIFY(r.err.contains("few.csv"));
+    QVERIFY(r.err.contains("at least"));
+    QVERIFY(!QFile::exists(dir.filePath("out.png")));
+
+    r = artcamCli({"insert", dir.filePath("water-glass.png"), dir.filePath("emblem.png"),
+                   "--matches", dir.filePath("water-glass-grid.csv"), "-o",
+                   dir.filePath("water-glass.png")});
+    QCOMPARE(r.exit_code, 1);
+    QVERIFY(r.err.contains("refusing to overwrite"));
+
+    r = artcamCli({"insert", dir.filePath("water-glass.png"), dir.filePath("emblem.png"), "-o",
+                   dir.filePath("out.png")});
+    QCOMPARE(r.exit_code, 2);
+    r = artcamCli({"sample", "teapot", "-o", dir.path()});
+    QCOMPARE(r.exit_code, 2);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliInsert)
+#include "test_cli_insert.moc"
