@@ -186,6 +186,31 @@ class TestPiecewise : public QObject {
     QVERIFY2(c.psnr_db > 35.0, qPrintable(QString::number(c.psnr_db)));
   }
 
+  void fitsAFisheyeBeyondOneQuadratic() {
+    // Equidistant fisheye: a rectilinear pixel at radius r from the centre lands at
+    // f·atan(r / f) (a 140° diagonal field on 640×480): stronger than one rational quadratic.
+    const double f = 200.0;
+    std::vector<PointMatch> matches;
+    for (double y = 4; y < 480; y += 16)
+      for (double x = 4; x < 640; x += 16) {
+        const Eigen::Vector2d d(x - 320.0, y - 240.0);
+        const double r = d.norm();
+        const double scale = r > 0 ? f * std::atan(r / f) / r : 1.0;
+        PointMatch m;
+        m.source = Eigen::Vector2d(x, y);
+        m.target = Eigen::Vector2d(320.0, 240.0) + scale * d;
+        matches.push_back(m);
+      }
+    PiecewiseOptions options;
+    options.max_error_px = 0.1;
+    const PiecewiseSummary fit = fitPiecewise(matches, {640, 480}, {640, 480}, options);
+    QVERIFY2(fit.status.ok, fit.status.message.c_str());
+    std::printf("fisheye: %s\n", fit.report().c_str());
+    QVERIFY(fit.converged);
+    QVERIFY(fit.max_px <= options.max_error_px);
+    QVERIFY(fit.single_max_px > 10 * options.max_error_px);
+  }
+
   void compositeOverKeepsThePhotoWhereTheGraphicIsAbsent() {
     ImageF photo(4, 1, 3);
     for (float& v : photo.data) v = 0.25f;
