@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 
 using namespace artcam;
@@ -224,6 +225,37 @@ class TestFitColour : public QObject {
     QVERIFY2(message(bad, ColourModel::Auto).find("sample 5 has a non-finite value") != std::string::npos,
              message(bad, ColourModel::Auto).c_str());
     QVERIFY(message({}, ColourModel::Auto).find("no enabled colour samples") != std::string::npos);
+  }
+
+  // The exact extremes of a quadratic over a box (27 stationary-point solves) bracket and
+  // match dense sampling: sampling can only find values inside the exact range, and gets
+  // close to both ends.
+  void quadraticRangeAgreesWithDenseSampling() {
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::Matrix4d q;
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) q(r, c) = test::uniform(-1, 1);
+      const Eigen::Vector3d lo(test::uniform(-1, 0), test::uniform(-1, 0), test::uniform(-1, 0));
+      const Eigen::Vector3d hi = lo + Eigen::Vector3d(test::uniform(0.5, 2), test::uniform(0.5, 2),
+                                                      test::uniform(0.5, 2));
+      const QuadraticRange exact = quadraticRangeOverBox(q, lo, hi);
+      double least = std::numeric_limits<double>::infinity(), greatest = -least;
+      const int n = 40;
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j)
+          for (int k = 0; k <= n; ++k) {
+            const Eigen::Vector3d x = lo + (hi - lo).cwiseProduct(Eigen::Vector3d(i, j, k) / n);
+            const Eigen::Vector4d c(x.x(), x.y(), x.z(), 1.0);
+            const double v = c.dot(q * c);
+            least = std::min(least, v);
+            greatest = std::max(greatest, v);
+          }
+      const double span = std::max(1.0, exact.greatest - exact.least);
+      QVERIFY(exact.least <= least + 1e-12 && exact.greatest >= greatest - 1e-12);
+      QVERIFY2(least - exact.least < 2e-3 * span && exact.greatest - greatest < 2e-3 * span,
+               qPrintable(QString("exact [%1, %2], sampled [%3, %4]")
+                              .arg(exact.least).arg(exact.greatest).arg(least).arg(greatest)));
+    }
   }
 
   void perSampleDeltaEIsReported() {
