@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -73,17 +74,29 @@ std::vector<float> gaussianKernel(double sigma, int& radius) {
   return g;
 }
 
-// Separable Gaussian of a 5-channel image (premultiplied rgba·mask, mask), zero outside.
-std::vector<float> blur5(const std::vector<float>& in, int w, int h, double sigma, int threads) {
+// A 5-channel image (premultiplied rgba·mask, mask) without zero-filling it first.
+struct Buffer5 {
+  std::unique_ptr<float[]> data;
+  int w = 0, h = 0;
+  Buffer5(int width, int height)
+      : data(new float[static_cast<size_t>(width) * static_cast<size_t>(height) * 5]), w(width), h(height) {}
+  float* row(int y) const { return data.get() + static_cast<size_t>(y) * static_cast<size_t>(w) * 5; }
+};
+
+// Separable Gaussian of a 5-channel image, zero outside. The vertical pass runs over strips of
+// columns so the 2r + 1 rows it reads stay in cache.
+Buffer5 blur5(const Buffer5& in, double sigma, int threads) {
+  const int w = in.w, h = in.h;
   int r = 0;
   const std::vector<float> g = gaussianKernel(sigma, r);
-  std::vector<float> tmp(in.size()), out(in.size());
+  Buffer5 tmp(w, h), out(w, h);
   ParallelOptions po;
   po.threads = threads;
+  po.band_rows = 32;
   parallelForRows(h, po, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
-      const float* src = in.data() + static_cast<size_t>(y) * static_cast<size_t>(w) * 5;
-      float* dst = tmp.data() + static_cast<size_t>(y) * static_cast<size_t>(w) * 5;
+      const float* src = in.row(y);
+      float* dst = tmp.row(y);
       for (int x = 0; x < w; ++x) {
         float acc[5] = {0, 0, 0, 0, 0};
         const int k0 = std::max(-r, -x), k1 = std::min(r, w - 1 - x);
@@ -96,49 +109,66 @@ std::vector<float> blur5(const std::vector<float>& in, int w, int h, double sigm
       }
     }
   });
+  constexpr size_t kStrip = 1280;  // floats: 256 pixels of 5 channels
+  const size_t row = static_cast<size_t>(w) * 5;
   parallelForRows(h, po, [&](int y0, int y1) {
-    const size_t row = static_cast<size_t>(w) * 5;
-    for (int y = y0; y < y1; ++y) {
-      float* dst = out.data() + static_cast<size_t>(y) * row;
-      std::fill(dst, dst + row, 0.0f);
-      const int k0 = std::max(-r, -y), k1 = std::min(r, h - 1 - y);
-      for (int k = k0; k <= k1; ++k) {
-        const float gk = g[static_cast<size_t>(k + r)];
-        const float* src = tmp.data() + static_cast<size_t>(y + k) * row;
-        for (size_t i = 0; i < row; ++i) dst[i] += gk * src[i];
+    for (size_t c0 = 0; c0 < row; c0 += kStrip) {
+      const size_t c1 = std::min(row, c0 + kStrip);
+      for (int y = y0; y < y1; ++y) {
+        float* dst = out.row(y);
+        std::fill(dst + c0, dst + c1, 0.0f);
+        const int k0 = std::max(-r, -y), k1 = std::min(r, h - 1 - y);
+        for (int k = k0; k <= k1; ++k) {
+          const float gk = g[static_cast<size_t>(k + r)];
+          const float* src = tmp.row(y + k);
+          for (size_t i = c0; i < c1; ++i) dst[i] += gk * src[i];
+        }
       }
     }
   });
   return out;
 }
 
-// f×f box average (the last block may be partial: averaged over what it holds).
-std::vector<float> shrink5(const std::vector<float>& in, int w, int h, int f, int& sw, int& sh) {
-  sw = (w + f - 1) / f;
-  sh = (h + f - 1) / f;
-  std::vector<float> out(static_cast<size_t>(sw) * static_cast<size_t>(sh) * 5, 0.0f);
-  std::vector<float> count(static_cast<size_t>(sw) * static_cast<size_t>(sh), 0.0f);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t o = static_cast<size_t>(y / f) * static_cast<size_t>(sw) + static_cast<size_t>(x / f);
-      const float* p = in.data() + (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 5;
-      for (int c = 0; c < 5; ++c) out[o * 5 + static_cast<size_t>(c)] += p[c];
-      count[o] += 1.0f;
+// The halo-masked input of a level, f×f box-averaged (f = 1: as is; the last block may be
+// partial: averaged over what it holds).
+Buffer5 maskedShrunk(const ImageF& rgba, const ImageF& sigma, float threshold, int f, int threads) {
+  const int w = rgba.width, h = rgba.height;
+  Buffer5 out((w + f - 1) / f, (h + f - 1) / f);
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = 8;
+  parallelForRows(out.h, po, [&](int y0, int y1) {
+    for (int sy = y0; sy < y1; ++sy) {
+      float* dst = out.row(sy);
+      std::fill(dst, dst + static_cast<size_t>(out.w) * 5, 0.0f);
+      std::vector<float> count(static_cast<size_t>(out.w), 0.0f);
+      for (int y = sy * f; y < std::min(h, sy * f + f); ++y)
+        for (int x = 0; x < w; ++x) {
+          const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+          const float m = sigma.data[i] >= threshold ? 1.0f : 0.0f;
+          float* o = dst + static_cast<size_t>(x / f) * 5;
+          for (int c = 0; c < 4; ++c) o[c] += m * rgba.data[i * 4 + static_cast<size_t>(c)];
+          o[4] += m;
+          count[static_cast<size_t>(x / f)] += 1.0f;
+        }
+      if (f > 1)
+        for (int sx = 0; sx < out.w; ++sx)
+          for (int c = 0; c < 5; ++c) dst[static_cast<size_t>(sx) * 5 + static_cast<size_t>(c)] /= count[static_cast<size_t>(sx)];
     }
-  for (size_t o = 0; o < count.size(); ++o)
-    for (int c = 0; c < 5; ++c) out[o * 5 + static_cast<size_t>(c)] /= count[o];
+  });
   return out;
 }
 
 // Bilinear read of a shrunk 5-channel image at full-resolution pixel (x, y).
-void readShrunk(const std::vector<float>& s, int sw, int sh, int f, int x, int y, float* out) {
+void readShrunk(const Buffer5& b, int f, int x, int y, float* out) {
+  const int sw = b.w, sh = b.h;
   const double fx = (x + 0.5) / f - 0.5, fy = (y + 0.5) / f - 0.5;
   const double cx = std::clamp(fx, 0.0, sw - 1.0), cy = std::clamp(fy, 0.0, sh - 1.0);
   const int x0 = static_cast<int>(cx), y0 = static_cast<int>(cy);
   const int x1 = std::min(x0 + 1, sw - 1), y1 = std::min(y0 + 1, sh - 1);
   const float tx = static_cast<float>(cx - x0), ty = static_cast<float>(cy - y0);
   const auto at = [&](int xx, int yy, int c) {
-    return s[(static_cast<size_t>(yy) * static_cast<size_t>(sw) + static_cast<size_t>(xx)) * 5 + static_cast<size_t>(c)];
+    return b.row(yy)[static_cast<size_t>(xx) * 5 + static_cast<size_t>(c)];
   };
   for (int c = 0; c < 5; ++c)
     out[c] = (1 - ty) * ((1 - tx) * at(x0, y0, c) + tx * at(x1, y0, c)) +
@@ -150,44 +180,28 @@ void readShrunk(const std::vector<float>& s, int sw, int sh, int f, int x, int y
 std::vector<float> level(const ImageF& rgba, const ImageF& sigma, double s, const BlurOptions& o) {
   const int w = rgba.width, h = rgba.height;
   const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
-  std::vector<float> masked(n * 5);
   const float threshold = static_cast<float>(o.halo_ratio * s);
-  ParallelOptions po;
-  po.threads = o.threads;
-  po.band_rows = 64;
-  parallelForRows(h, po, [&](int y0, int y1) {
-    for (size_t i = static_cast<size_t>(y0) * static_cast<size_t>(w); i < static_cast<size_t>(y1) * static_cast<size_t>(w); ++i) {
-      const float m = sigma.data[i] >= threshold ? 1.0f : 0.0f;
-      for (int c = 0; c < 4; ++c) masked[i * 5 + static_cast<size_t>(c)] = m * rgba.data[i * 4 + static_cast<size_t>(c)];
-      masked[i * 5 + 4] = m;
-    }
-  });
   // Large σ: blur a box-shrunk copy (f ≤ σ/2) and read it back bilinearly; the box and the
   // tent add variance (f² − 1)/12 and f²/6, taken off the blur so the total matches σ².
   int f = 1;
   while (s / (2 * f) >= 2.0) f *= 2;
-  std::vector<float> blurred;
-  int sw = w, sh = h;
-  if (f == 1) {
-    blurred = blur5(masked, w, h, s, o.threads);
-  } else {
-    const std::vector<float> small = shrink5(masked, w, h, f, sw, sh);
-    const double extra = (f * f - 1.0) / 12.0 + f * f / 6.0;
-    blurred = blur5(small, sw, sh, std::sqrt(std::max(s * s - extra, 0.25)) / f, o.threads);
-  }
+  const double extra = f > 1 ? (f * f - 1.0) / 12.0 + f * f / 6.0 : 0.0;
+  const Buffer5 blurred = blur5(maskedShrunk(rgba, sigma, threshold, f, o.threads),
+                                std::sqrt(std::max(s * s - extra, 0.25)) / f, o.threads);
   std::vector<float> out(n * 4);
+  ParallelOptions po;
+  po.threads = o.threads;
+  po.band_rows = 64;
   parallelForRows(h, po, [&](int y0, int y1) {
-  for (int y = y0; y < y1; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-      float v[5];
-      if (f == 1) std::copy(blurred.begin() + static_cast<std::ptrdiff_t>(i * 5), blurred.begin() + static_cast<std::ptrdiff_t>(i * 5 + 5), v);
-      else readShrunk(blurred, sw, sh, f, x, y, v);
-      if (v[4] > 1e-6f)
-        for (int c = 0; c < 4; ++c) out[i * 4 + static_cast<size_t>(c)] = v[c] / v[4];
-      else
-        for (int c = 0; c < 4; ++c) out[i * 4 + static_cast<size_t>(c)] = rgba.data[i * 4 + static_cast<size_t>(c)];
-    }
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+        float v[5];
+        if (f == 1) std::copy(blurred.row(y) + static_cast<size_t>(x) * 5, blurred.row(y) + static_cast<size_t>(x) * 5 + 5, v);
+        else readShrunk(blurred, f, x, y, v);
+        const float* fallback = rgba.data.data() + i * 4;
+        for (int c = 0; c < 4; ++c) out[i * 4 + static_cast<size_t>(c)] = v[4] > 1e-6f ? v[c] / v[4] : fallback[c];
+      }
   });
   return out;
 }
