@@ -1,6 +1,7 @@
 #include "ui/main_window.h"
 
 #include "ui/canvas.h"
+#include "ui/cloud_view.h"
 #include "ui/commands.h"
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
@@ -48,7 +49,8 @@ MainWindow::MainWindow(QWidget* parent)
       session_(new Session(document_, this, this)),
       depth_settings_(new DepthToolSettings(this)),
       depth_overlay_(new DepthOverlay(document_, this)),
-      depth_panel_(new DepthPanel(document_, depth_settings_, depth_overlay_, this)) {
+      depth_panel_(new DepthPanel(document_, depth_settings_, depth_overlay_, this)),
+      cloud_view_(new CloudView(document_, this)) {
   canvas_->setTool(std::make_unique<PairTool>(canvas_, document_));
   canvas_->setDepthOverlay(depth_overlay_);
   setCentralWidget(canvas_);
@@ -58,6 +60,19 @@ MainWindow::MainWindow(QWidget* parent)
   preview_dock->setObjectName("previewDock");
   preview_dock->setWidget(preview_view_);
   addDockWidget(Qt::RightDockWidgetArea, preview_dock);
+  auto* cloud_dock = new QDockWidget(tr("3D View"), this);
+  cloud_dock->setObjectName("cloudDock");
+  cloud_dock->setWidget(cloud_view_);
+  tabifyDockWidget(preview_dock, cloud_dock);
+  preview_dock->raise();
+  connect(session_, &Session::cloudLoaded, this, [this, cloud_dock](const LoadedCloud& cloud) {
+    cloud_view_->setCloud(cloud);
+    cloud_dock->show();
+    cloud_dock->raise();
+  });
+  connect(cloud_view_, &CloudView::renderFailed, this, [this](const QString& m) {
+    statusBar()->showMessage(tr("3D view failed: %1").arg(m), 8000);
+  });
   auto* pairs_dock = new QDockWidget(tr("Pairs"), this);
   pairs_dock->setObjectName("pairsDock");
   pairs_dock->setWidget(pairs_panel_);
@@ -120,6 +135,9 @@ void MainWindow::createMenus() {
   QToolBar* bar = addToolBar(tr("Main"));
   bar->setObjectName("mainToolBar");
   QAction* open = file->addAction(tr("&Open…"), QKeySequence::Open, session_, &Session::openDialog);
+  file->addAction(tr("Open &Point Cloud…"), QKeySequence(tr("Ctrl+Shift+O")), session_,
+                  &Session::openCloudDialog)
+      ->setToolTip(tr("A .ply cloud for the 3D view (orbit by drag, zoom by wheel)"));
   recent_menu_ = file->addMenu(tr("Open &Recent"));
   rebuildRecentMenu();
   file->addSeparator();
@@ -181,6 +199,9 @@ void MainWindow::createMenus() {
   loupe->setShortcut(QKeySequence(tr("L")));
   loupe->setToolTip(tr("Magnify the photo around the cursor while placing or dragging points"));
   connect(loupe, &QAction::toggled, canvas_, &Canvas::setLoupeEnabled);
+  view->addAction(tr("&Reset 3D View"), QKeySequence(tr("Ctrl+Shift+R")), cloud_view_,
+                  &CloudView::resetView)
+      ->setToolTip(tr("Back to the default orbit of the point cloud"));
   QAction* overlay = view->addAction(tr("Show &Depth Overlay"));
   overlay->setCheckable(true);
   overlay->setChecked(depth_overlay_->isVisible());

@@ -10,6 +10,7 @@ class QMenu;
 namespace artcam::ui {
 
 class Canvas;
+class CloudView;
 class DepthOverlay;
 class DepthPanel;
 class DepthToolSettings;
@@ -35,6 +36,7 @@ class MainWindow : public QMainWindow {
   PairsPanel* pairsPanel() const { return pairs_panel_; }
   FitStatus* fitStatus() const { return fit_status_; }
   DepthPanel* depthPanel() const { return depth_panel_; }
+  CloudView* cloudView() const { return cloud_view_; }
   DepthOverlay* depthOverlay() const { return depth_overlay_; }
   DepthToolSettings* depthToolSettings() const { return depth_settings_; }
 
@@ -59,6 +61,7 @@ class MainWindow : public QMainWindow {
   DepthToolSettings* depth_settings_;
   DepthOverlay* depth_overlay_;
   DepthPanel* depth_panel_;
+  CloudView* cloud_view_;
   QMenu* recent_menu_ = nullptr;
 };
 

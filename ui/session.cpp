@@ -90,6 +90,8 @@ void Session::openPath(const QString& path) {
   const QString suffix = QFileInfo(path).suffix().toLower();
   if (suffix == kProjectExtension)
     openProject(path);
+  else if (suffix == "ply")
+    openCloud(path);
   else if (suffix == "artcam")
     importArtcam(path);
   else
@@ -389,6 +391,30 @@ void Session::applyDepthMap(const QString& path, const DepthMapOptions& options,
   const QString message = tr("Loaded depth map %1").arg(QFileInfo(path).fileName());
   emit statusMessage(message);
   emit depthMapLoaded(true, message);
+}
+
+void Session::openCloud(const QString& path) {
+  auto result = std::make_shared<Result<LoadedCloud>>();
+  QThread* reader = QThread::create([path, result] { *result = CloudView::load(path); });
+  connect(reader, &QThread::finished, this, [this, reader, result] {
+    reader->deleteLater();
+    if (!*result) {
+      showError(tr("Open point cloud"), QString::fromStdString(result->status.message));
+      return;
+    }
+    emit statusMessage(tr("Loaded %1 (%2 points)")
+                           .arg(QFileInfo(result->value->path).fileName())
+                           .arg(result->value->cloud->size()));
+    emit cloudLoaded(*result->value);
+  });
+  emit statusMessage(tr("Loading %1…").arg(QFileInfo(path).fileName()));
+  reader->start();
+}
+
+void Session::openCloudDialog() {
+  const QString path = QFileDialog::getOpenFileName(dialog_parent_, tr("Open point cloud"),
+                                                    QString(), tr("Point clouds (*.ply)"));
+  if (!path.isEmpty()) openCloud(path);
 }
 
 void Session::loadDepthMapDialog(double scale, bool inverse) {

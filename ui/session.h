@@ -4,6 +4,7 @@
 // as dialogs naming the file and the cause. MainWindow only wires actions to these slots.
 #pragma once
 
+#include "ui/cloud_view.h"
 #include "ui/export_job.h"
 #include "ui/image_loader.h"
 #include "ui/project_file.h"
@@ -62,6 +63,8 @@ class Session : public QObject {
   void cancelExport();
   // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.
   void loadDepthMap(const QString& path, const artcam::DepthMapOptions& options);
+  // Reads a point cloud (.ply) on a worker thread for the 3D view; cloudLoaded on success.
+  void openCloud(const QString& path);
   // At start-up: offers the newest recovery left by a session that did not close cleanly.
   // Returns whether one was accepted (it is then loading).
   bool offerRecovery();
@@ -78,6 +81,7 @@ class Session : public QObject {
   void exportArtcamDialog();
   void exportImageDialog();
   void loadDepthMapDialog(double scale, bool inverse);
+  void openCloudDialog();
   // Asks to save unsaved changes; false when the user cancelled.
   bool maybeSave();
 
@@ -90,6 +94,7 @@ class Session : public QObject {
   void viewStateLoaded(const artcam::ui::ViewState& view);
   void exportFinished(bool ok, const QString& message);
   void depthMapLoaded(bool ok, const QString& message);
+  void cloudLoaded(const artcam::ui::LoadedCloud& cloud);
 
  private:
   void startLoading(const QString& photo_path, std::optional<Project> project,
