@@ -133,9 +133,54 @@ DltSolution solveQuadraticMoments2d(const QuadraticMoments2d& mo) {
   return s;
 }
 
+// The 3D quadratic DLT through its 40×40 normal matrix: with the rows [χ in slot i, -y_i χ in
+// slot 4] of each match, DᵀD has A = Σχχᵀ in slots (i, i), -B_i = -Σ y_i χχᵀ in (i, 4) and
+// E = Σ|y|²χχᵀ in (4, 4); each is one product of the 10 × m monomials with its weighted copy.
+DltSolution solveQuadraticNormal3d(const Points& src, const Points& dst) {
+  constexpr int kTerms = 10, kUnknowns = 40;
+  const Eigen::Index m = src.cols();
+  Eigen::Matrix<double, kTerms, Eigen::Dynamic> chi(kTerms, m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const double x[4] = {src(0, k), src(1, k), src(2, k), 1.0};
+    int c = 0;
+    for (int j = 0; j < 4; ++j)
+      for (int l = j; l < 4; ++l) chi(c++, k) = (j == l ? 1.0 : 2.0) * x[j] * x[l];
+  }
+  Eigen::Matrix<double, kUnknowns, kUnknowns> normal = Eigen::Matrix<double, kUnknowns, kUnknowns>::Zero();
+  const Eigen::Matrix<double, kTerms, kTerms> a = chi * chi.transpose();
+  for (int i = 0; i < 3; ++i) {
+    normal.block<kTerms, kTerms>(kTerms * i, kTerms * i) = a;
+    const Eigen::Matrix<double, kTerms, kTerms> b = chi * dst.row(i).asDiagonal() * chi.transpose();
+    normal.block<kTerms, kTerms>(kTerms * i, 30) = -b;
+    normal.block<kTerms, kTerms>(30, kTerms * i) = -b;
+  }
+  const Eigen::RowVectorXd y2 = dst.colwise().squaredNorm();
+  normal.block<kTerms, kTerms>(30, 30) = chi * y2.asDiagonal() * chi.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, kUnknowns, kUnknowns>> eig(normal);
+  DltSolution s;
+  s.singular_values = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
+  // As in 2D: eigenvalues of DᵀD resolve singular values to √eps of the largest.
+  const double largest = s.singular_values[kUnknowns - 1];
+  s.null_dimension = 0;
+  for (int i = 0; i < kUnknowns; ++i)
+    if (s.singular_values[i] <= 1e-7 * largest) ++s.null_dimension;
+  s.null_dimension = std::max(s.null_dimension, 1);
+  const Eigen::Matrix<double, kUnknowns, 1> r = eig.eigenvectors().col(0);
+  for (int i = 0; i < 4; ++i) {
+    Eigen::MatrixXd q(4, 4);
+    int c = kTerms * i;
+    for (int j = 0; j < 4; ++j)
+      for (int l = j; l < 4; ++l) q(j, l) = q(l, j) = r[c++];
+    s.q.push_back(std::move(q));
+  }
+  return s;
+}
+
 DltSolution solveQuadraticDlt(const Points& src, const Points& dst) {
   if (dimensionOf(src) == 2 && static_cast<size_t>(src.cols()) > kNormalEquationsFrom)
     return solveQuadraticMoments2d(quadraticMoments2d(src, dst));
+  if (dimensionOf(src) == 3 && static_cast<size_t>(src.cols()) > kNormalEquationsFrom3d)
+    return solveQuadraticNormal3d(src, dst);
   const Eigen::Index n = dimensionOf(src) + 1;
   const Eigen::Index terms = n * (n + 1) / 2;
   const Eigen::Index m = src.cols();
