@@ -8,9 +8,11 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -223,55 +225,56 @@ void checkSpanScalar(const CheckInputs& in, double tx0, double ty, const double*
   checkSpanBody(in, tx0, ty, bx, by, qx, qy, passed);
 }
 
-// A certified span (RationalKernel::cellFast): seed by its closed-form quadratics along the row,
-// one division per pixel, plus the grid correction; all kSpanPixels lanes, no branches, so it
-// vectorises. n_k(i) = c_k + i (b_k + i a_k) is the seed's form n_k at pixel x0 + i (eq 3).
+// A certified cell's pixels (RationalKernel::fastSpan): the seed by its closed-form quadratics
+// along the row, n_k(i) = c_k + i (b_k + i a_k) at pixel x0 + i (eq 3), one division per pixel,
+// plus the grid correction, linear along the cell: corr(i) = l + i · slope. kGridPixels lanes
+// from pixel `first`, no branches, so it vectorises.
 struct SeedRow {
   double a[3], b[3], c[3];
+  double lx, ly, slope_x, slope_y;
 };
+constexpr int kGridPixels = kSpanPixels / 2;  // RationalKernel::kGrid
 
-[[gnu::always_inline]] inline void seedSpanBody(const SeedRow& r, const double* __restrict corr_x,
-                                                const double* __restrict corr_y,
-                                                float* __restrict sx, float* __restrict sy) {
-  for (int i = 0; i < kSpanPixels; ++i) {
-    const double t = i;
+[[gnu::always_inline]] inline void seedCellBody(const SeedRow& r, int first, float* __restrict sx,
+                                                float* __restrict sy) {
+  for (int j = 0; j < kGridPixels; ++j) {
+    const double t = first + j;
     const double n0 = r.c[0] + t * (r.b[0] + t * r.a[0]);
     const double n1 = r.c[1] + t * (r.b[1] + t * r.a[1]);
     const double n2 = r.c[2] + t * (r.b[2] + t * r.a[2]);
     const double inv = 1.0 / n2;
-    sx[i] = static_cast<float>(n0 * inv + corr_x[i]);
-    sy[i] = static_cast<float>(n1 * inv + corr_y[i]);
+    sx[j] = static_cast<float>(n0 * inv + (r.lx + t * r.slope_x));
+    sy[j] = static_cast<float>(n1 * inv + (r.ly + t * r.slope_y));
   }
 }
 
-// The AVX2 version of the loop above, written out like projectiveSpanAvx2 (bit-identical).
-__attribute__((target("avx2"))) void seedSpanAvx2(const SeedRow& r, const double* corr_x,
-                                                  const double* corr_y, float* sx, float* sy) {
+// The AVX2 version of the loop above, written out (GCC's -O2 does not vectorise it): the same
+// operations in the same order, no FMA, so it is bit-identical to the scalar fallback.
+__attribute__((target("avx2"))) void seedCellAvx2(const SeedRow& r, int first, float* sx, float* sy) {
   __m256d a[3], b[3], c[3];
   for (int k = 0; k < 3; ++k) {
     a[k] = _mm256_set1_pd(r.a[k]);
     b[k] = _mm256_set1_pd(r.b[k]);
     c[k] = _mm256_set1_pd(r.c[k]);
   }
+  const __m256d lx = _mm256_set1_pd(r.lx), ly = _mm256_set1_pd(r.ly);
+  const __m256d kx = _mm256_set1_pd(r.slope_x), ky = _mm256_set1_pd(r.slope_y);
   const __m256d one = _mm256_set1_pd(1.0), four = _mm256_set1_pd(4.0);
-  __m256d t = _mm256_setr_pd(0.0, 1.0, 2.0, 3.0);
-  for (int i = 0; i < kSpanPixels; i += 4, t = _mm256_add_pd(t, four)) {
+  __m256d t = _mm256_add_pd(_mm256_set1_pd(first), _mm256_setr_pd(0.0, 1.0, 2.0, 3.0));
+  for (int j = 0; j < kGridPixels; j += 4, t = _mm256_add_pd(t, four)) {
     __m256d n[3];
     for (int k = 0; k < 3; ++k)
       n[k] = _mm256_add_pd(c[k], _mm256_mul_pd(t, _mm256_add_pd(b[k], _mm256_mul_pd(t, a[k]))));
     const __m256d inv = _mm256_div_pd(one, n[2]);
-    _mm_storeu_ps(sx + i, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[0], inv), _mm256_loadu_pd(corr_x + i))));
-    _mm_storeu_ps(sy + i, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[1], inv), _mm256_loadu_pd(corr_y + i))));
+    const __m256d cx = _mm256_add_pd(lx, _mm256_mul_pd(t, kx)), cy = _mm256_add_pd(ly, _mm256_mul_pd(t, ky));
+    _mm_storeu_ps(sx + j, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[0], inv), cx)));
+    _mm_storeu_ps(sy + j, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[1], inv), cy)));
   }
 }
 
-void seedSpanDispatched(const SeedRow& r, const double* corr_x, const double* corr_y, float* sx, float* sy) {
-  if (cpuHasAvx2()) seedSpanAvx2(r, corr_x, corr_y, sx, sy);
-  else seedSpanBody(r, corr_x, corr_y, sx, sy);
-}
-
-void seedSpanScalar(const SeedRow& r, const double* corr_x, const double* corr_y, float* sx, float* sy) {
-  seedSpanBody(r, corr_x, corr_y, sx, sy);
+void seedCell(const SeedRow& r, int first, float* sx, float* sy, bool scalar_only) {
+  if (!scalar_only && cpuHasAvx2()) seedCellAvx2(r, first, sx, sy);
+  else seedCellBody(r, first, sx, sy);
 }
 
 class RationalKernel final : public CoordinateKernel {
@@ -295,6 +298,7 @@ class RationalKernel final : public CoordinateKernel {
     // The grid correction: bilinear in y once per cell, then linear in x along the cell.
     const int gj = std::min(static_cast<int>(ty / kGrid), grid_h_ - 2);
     const double fy = ty / kGrid - gj;
+    if (spanCertified(x0, n, gj)) return fastSpan(y, x0, n, gj, fy, sx, sy, valid, state);
     double corr_x[kSpanPixels], corr_y[kSpanPixels];
     for (int c0 = 0; c0 < n; c0 += kGrid) {
       const int gi = (x0 + c0) / kGrid, c1 = std::min(n, c0 + kGrid);
@@ -310,7 +314,6 @@ class RationalKernel final : public CoordinateKernel {
         corr_y[i] = left.y() + slope.y() * (x0 + i + 0.5);
       }
     }
-    if (spanCertified(x0, n, gj)) return fastSpan(y, x0, n, corr_x, corr_y, sx, sy, valid, state);
     // Pass 1, every pixel independent (plain arrays the compiler may vectorise): the seed by
     // forward differences, the grid correction, and the one-evaluation check.
     double bx[kSpanPixels], by[kSpanPixels], qx[kSpanPixels], qy[kSpanPixels];
@@ -578,8 +581,10 @@ class RationalKernel final : public CoordinateKernel {
     return true;
   }
 
-  int fastSpan(int y, int x0, int n, const double* corr_x, const double* corr_y, float* sx,
-               float* sy, unsigned char* valid, RowState& state) const {
+  // A span whose cells are all certified: seed + correction per cell, unchecked. Writes whole
+  // cells (up to kSpanPixels entries of sx, sy, valid, past n at the row's end).
+  int fastSpan(int y, int x0, int n, int gj, double fy, float* sx, float* sy, unsigned char* valid,
+               RowState& state) const {
     // The seed's quadratic forms along row y, in the pixel offset i from x0 (rational_map.h).
     const double v = y + 0.5, u0 = x0 + 0.5;
     SeedRow r;
@@ -589,21 +594,24 @@ class RationalKernel final : public CoordinateKernel {
       r.b[k] = q.du(u0, v);
       r.a[k] = q.a;
     }
-    double cx[kSpanPixels], cy[kSpanPixels];
-    for (int i = 0; i < kSpanPixels; ++i) {
-      cx[i] = i < n ? corr_x[i] : 0.0;
-      cy[i] = i < n ? corr_y[i] : 0.0;
+    for (int c0 = 0; c0 < n; c0 += kGrid) {
+      // The correction, bilinear in the cell: linear along the row, from the nodes (gi, gj).
+      const int gi = (x0 + c0) / kGrid;
+      const Eigen::Vector2d left = (1 - fy) * node(gi, gj) + fy * node(gi, gj + 1);
+      const Eigen::Vector2d right = (1 - fy) * node(gi + 1, gj) + fy * node(gi + 1, gj + 1);
+      const Eigen::Vector2d slope = (right - left) / kGrid;
+      // corr(i) = left + slope · (u − gi · kGrid) at u = x0 + i + 0.5.
+      const Eigen::Vector2d at_x0 = left + slope * (u0 - gi * kGrid);
+      r.lx = at_x0.x();
+      r.ly = at_x0.y();
+      r.slope_x = slope.x();
+      r.slope_y = slope.y();
+      seedCell(r, c0, sx + c0, sy + c0, scalar_only_);
     }
-    float fx[kSpanPixels], fy[kSpanPixels];
-    (scalar_only_ ? seedSpanScalar : seedSpanDispatched)(r, cx, cy, fx, fy);
-    for (int i = 0; i < n; ++i) {
-      sx[i] = fx[i];
-      sy[i] = fy[i];
-      valid[i] = 1;
-    }
+    std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
     // The row state as if these pixels had been solved (their solutions are these positions).
     const auto at = [&](int j) {
-      return j >= 0 ? Eigen::Vector2d(fx[j], fy[j])
+      return j >= 0 ? Eigen::Vector2d(sx[j], sy[j])
                     : j == -1 ? state.previous : j == -2 ? state.before_previous : state.third;
     };
     const Eigen::Vector2d p1 = at(n - 1), p2 = at(n - 2), p3 = at(n - 3);

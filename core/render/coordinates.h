@@ -70,7 +70,8 @@ class CoordinateKernel {
   virtual ~CoordinateKernel() = default;
   // Source positions of output pixel centres (x0 + i + 0.5, y + 0.5), i in [0, n), with
   // n ≤ kSpanPixels and x0 a multiple of kSpanPixels. valid[i] = 0: no preimage (sx, sy then
-  // unspecified). Returns how many pixels needed the full Newton. Thread-safe.
+  // unspecified). sx, sy and valid must have room for kSpanPixels entries (entries past n may
+  // be written). Returns how many pixels needed the full Newton. Thread-safe.
   virtual int span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
                    RowState& state) const = 0;
   // d source / d target (column form) at output point t whose preimage is s; false where the
