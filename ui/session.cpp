@@ -177,7 +177,23 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
       std::optional<Camera> manual = p.manual_camera;
       if (manual) manual->setFrames(photo->size(), photo->size());
       document_->reset(photo, std::move(p.pairs), p.model, std::move(manual));
+      // Masks are the photo's size; a photo that changed size since the save cannot take them.
+      QStringList dropped;
+      for (size_t i = 0; i < p.depth_layers.size(); ++i) {
+        const RegionMask& m = p.depth_layers[i].mask;
+        if (m.width() != photo->size().width || m.height() != photo->size().height)
+          dropped << tr("%1: /depth/layers/%2: the mask is %3×%4 but the photo is %5×%6")
+                         .arg(QFileInfo(pending_project_path_).fileName())
+                         .arg(i)
+                         .arg(m.width())
+                         .arg(m.height())
+                         .arg(photo->size().width)
+                         .arg(photo->size().height);
+      }
       document_->depth()->reset(photo->size(), std::move(p.depth_layers));
+      if (!dropped.isEmpty())
+        showError(tr("Open project"),
+                  tr("Depth planes left out (the photo changed size):\n%1").arg(dropped.join('\n')));
       if (p.depth_map) {
         // Loaded like any depth map, but as part of opening: not an undoable edit.
         readDepthMapAsync(p.depth_map->path, p.depth_map->options, /*undoable=*/false);

@@ -335,6 +335,28 @@ class TestDepthPlanes : public QObject {
     const ImageF a = doc.depth()->rasterise(), b = doc2.depth()->rasterise();
     QVERIFY(a.data == b.data);
   }
+
+  void layersOfAnotherSizeAreReportedNotSilentlyDropped() {
+    const QString photo = dir_.filePath("photo-for-size.png");
+    QVERIFY(writeImage(photo.toStdString(), test::syntheticPhoto()->full.image).ok);
+    Project p;
+    p.photo_path = photo;
+    p.depth_layers = {DepthPlaneLayer{"Old", RegionMask(100, 80), {}}};
+    const QString project = dir_.filePath("resized.artcamproj");
+    QVERIFY(writeProject(project, p).ok);
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    QSignalSpy errors(&session, &Session::errorOccurred);
+    session.openProject(project);
+    QTRY_VERIFY_WITH_TIMEOUT(doc.photo() != nullptr, 20000);
+    QCOMPARE(errors.size(), 1);
+    const QString message = errors.front().front().toString();
+    QVERIFY2(message.contains("resized.artcamproj: /depth/layers/0") && message.contains("100×80") &&
+                 message.contains("320×240"),
+             qPrintable(message));
+    QCOMPARE(doc.depth()->layerCount(), 0);
+  }
 };
 
 QTEST_MAIN(TestDepthPlanes)

@@ -159,7 +159,10 @@ void DepthTool::finishStroke() {
   const int layer = stroke_layer_;
   stroke_layer_ = -1;
   const RegionMask* mask = depth()->maskForStroke(layer);
-  if (mask && !stroke_rect_.empty()) {
+  // The layer must still be the one the stroke began on (same frame): a new photo mid-stroke
+  // leaves nothing to record.
+  if (mask && !stroke_rect_.empty() && mask->width() == stroke_before_.width() &&
+      mask->height() == stroke_before_.height()) {
     document_->undoStack()->push(new PaintDepthMaskCommand(
         depth(), layer, stroke_rect_, stroke_before_.copyRect(stroke_rect_),
         mask->copyRect(stroke_rect_),
