@@ -1,0 +1,104 @@
+#include "ui/matting/board_view.h"
+
+#include "ui/matting/insertion_model.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+
+#include <algorithm>
+
+namespace artcam::ui {
+
+BoardView::BoardView(InsertionModel* model, QWidget* parent) : QWidget(parent), model_(model) {
+  setFocusPolicy(Qt::ClickFocus);
+  setMinimumSize(120, 120);
+  setToolTip(tr("The canonical board: click a corner to choose which corner the next photo "
+                "click matches (arrow keys move it)"));
+  connect(model_, &InsertionModel::stateChanged, this, qOverload<>(&QWidget::update));
+  connect(model_, &InsertionModel::selectionChanged, this, qOverload<>(&QWidget::update));
+}
+
+int BoardView::heightForWidth(int w) const {
+  const FrameSize b = model_->state().board_size;
+  return b.width > 0 ? w * b.height / b.width : w;
+}
+
+QRectF BoardView::boardRect() const {
+  const FrameSize b = model_->state().board_size;
+  const double margin = 6.0;
+  const double avail_w = std::max(1.0, width() - 2 * margin);
+  const double avail_h = std::max(1.0, height() - 2 * margin);
+  const double s = std::min(avail_w / std::max(1, b.width), avail_h / std::max(1, b.height));
+  const double w = b.width * s, h = b.height * s;
+  return {(width() - w) / 2, (height() - h) / 2, w, h};
+}
+
+QPointF BoardView::widgetFromBoard(const QPointF& board) const {
+  const QRectF r = boardRect();
+  const FrameSize b = model_->state().board_size;
+  return {r.left() + board.x() / std::max(1, b.width) * r.width(),
+          r.top() + board.y() / std::max(1, b.height) * r.height()};
+}
+
+QPointF BoardView::boardFromWidget(const QPointF& widget) const {
+  const QRectF r = boardRect();
+  const FrameSize b = model_->state().board_size;
+  return {(widget.x() - r.left()) / std::max(1.0, r.width()) * b.width,
+          (widget.y() - r.top()) / std::max(1.0, r.height()) * b.height};
+}
+
+void BoardView::paintEvent(QPaintEvent*) {
+  QPainter p(this);
+  const QRectF r = boardRect();
+  const int n = std::max(1, model_->state().squares);
+  p.fillRect(rect(), palette().window());
+  p.fillRect(r, QColor(235, 235, 235));
+  const double cw = r.width() / n, ch = r.height() / n;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      if ((i + j) % 2 == 0) p.fillRect(QRectF(r.left() + i * cw, r.top() + j * ch, cw, ch), QColor(60, 60, 60));
+  p.setRenderHint(QPainter::Antialiasing, true);
+  const double dot = std::clamp(std::min(cw, ch) * 0.22, 1.5, 4.0);
+  for (int c = 0; c < model_->cornerCount(); ++c) {
+    const Eigen::Vector2d b = model_->cornerPosition(c);
+    const QPointF w = widgetFromBoard(QPointF(b.x(), b.y()));
+    const bool matched = model_->matchOfCorner(c) >= 0;
+    p.setPen(QPen(QColor(255, 0, 200), 1.0));
+    p.setBrush(matched ? QBrush(QColor(255, 0, 200)) : Qt::NoBrush);
+    p.drawEllipse(w, dot, dot);
+  }
+  if (model_->cornerCount() > 0) {
+    const Eigen::Vector2d b = model_->cornerPosition(model_->selectedCorner());
+    p.setPen(QPen(QColor(255, 220, 0), 2.0));
+    p.setBrush(Qt::NoBrush);
+    p.drawEllipse(widgetFromBoard(QPointF(b.x(), b.y())), dot + 3, dot + 3);
+  }
+}
+
+void BoardView::mousePressEvent(QMouseEvent* event) {
+  if (event->button() != Qt::LeftButton) return;
+  const QPointF b = boardFromWidget(event->position());
+  const FrameSize size = model_->state().board_size;
+  const double tolerance = 0.5 * std::max(size.width, size.height) / std::max(1, model_->state().squares);
+  const int corner = model_->cornerAt({b.x(), b.y()}, tolerance);
+  if (corner >= 0) {
+    model_->setSelectedCorner(corner);
+    model_->setSelectedMatch(model_->matchOfCorner(corner));
+  }
+}
+
+void BoardView::keyPressEvent(QKeyEvent* event) {
+  const int n = model_->cornersPerRow();
+  int c = model_->selectedCorner();
+  switch (event->key()) {
+    case Qt::Key_Left: c -= 1; break;
+    case Qt::Key_Right: c += 1; break;
+    case Qt::Key_Up: c -= n; break;
+    case Qt::Key_Down: c += n; break;
+    default: QWidget::keyPressEvent(event); return;
+  }
+  if (c >= 0 && c < model_->cornerCount()) model_->setSelectedCorner(c);
+}
+
+}  // namespace artcam::ui

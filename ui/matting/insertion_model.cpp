@@ -1,0 +1,94 @@
+#include "ui/matting/insertion_model.h"
+
+#include "ui/document.h"
+#include "ui/matting/insertion_commands.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace artcam::ui {
+
+InsertionModel::InsertionModel(Document* document, QObject* parent)
+    : QObject(parent), document_(document) {
+  connect(document_, &Document::photoChanged, this, [this] {
+    // Matches and region are photo pixels of the old photo; board, threshold and graphic stay.
+    InsertionState next = state_;
+    next.matches.clear();
+    next.region.clear();
+    selected_match_ = -1;
+    setState(std::move(next));
+  });
+}
+
+void InsertionModel::setState(InsertionState state) {
+  state_ = std::move(state);
+  if (selected_match_ >= static_cast<int>(state_.matches.size())) selected_match_ = -1;
+  if (selected_corner_ >= cornerCount()) selected_corner_ = 0;
+  emit stateChanged();
+}
+
+void InsertionModel::edit(const InsertionState& next, const QString& text) {
+  if (next == state_) return;
+  document_->undoStack()->push(new SetInsertionStateCommand(this, state_, next, text));
+}
+
+std::vector<PointMatch> InsertionModel::pointMatches() const {
+  std::vector<PointMatch> out;
+  out.reserve(state_.matches.size());
+  for (const GridMatch& m : state_.matches) {
+    PointMatch p;
+    p.source = m.board;
+    p.target = m.photo;
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+Eigen::Vector2d InsertionModel::cornerPosition(int corner) const {
+  const int n = cornersPerRow();
+  if (n <= 0) return Eigen::Vector2d::Zero();
+  const int i = corner % n + 1, j = corner / n + 1;
+  return {static_cast<double>(i) * state_.board_size.width / state_.squares,
+          static_cast<double>(j) * state_.board_size.height / state_.squares};
+}
+
+int InsertionModel::cornerAt(const Eigen::Vector2d& board_px, double tolerance_px) const {
+  const int n = cornersPerRow();
+  if (n <= 0) return -1;
+  const double sx = static_cast<double>(state_.board_size.width) / state_.squares;
+  const double sy = static_cast<double>(state_.board_size.height) / state_.squares;
+  const int i = static_cast<int>(std::lround(board_px.x() / sx));
+  const int j = static_cast<int>(std::lround(board_px.y() / sy));
+  if (i < 1 || j < 1 || i > n || j > n) return -1;
+  const int corner = (j - 1) * n + (i - 1);
+  return (cornerPosition(corner) - board_px).norm() <= tolerance_px ? corner : -1;
+}
+
+int InsertionModel::matchOfCorner(int corner) const {
+  const Eigen::Vector2d c = cornerPosition(corner);
+  for (size_t k = 0; k < state_.matches.size(); ++k)
+    if ((state_.matches[k].board - c).norm() < 1e-6) return static_cast<int>(k);
+  return -1;
+}
+
+void InsertionModel::setSelectedCorner(int corner) {
+  corner = std::clamp(corner, 0, std::max(0, cornerCount() - 1));
+  if (corner == selected_corner_) return;
+  selected_corner_ = corner;
+  emit selectionChanged();
+}
+
+void InsertionModel::setSelectedMatch(int match) {
+  if (match >= static_cast<int>(state_.matches.size())) match = -1;
+  if (match == selected_match_) return;
+  selected_match_ = match;
+  emit selectionChanged();
+}
+
+void InsertionModel::setErrorMapVisible(bool visible) {
+  if (visible == error_map_visible_) return;
+  error_map_visible_ = visible;
+  emit errorMapVisibilityChanged(visible);
+}
+
+}  // namespace artcam::ui

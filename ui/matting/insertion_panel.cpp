@@ -1,0 +1,316 @@
+#include "ui/matting/insertion_panel.h"
+
+#include "core/io/image_io.h"
+#include "core/io/matches_csv.h"
+#include "ui/matting/board_view.h"
+#include "ui/matting/insertion_model.h"
+#include "ui/matting/insertion_preview.h"
+
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QMessageBox>
+#include <QPlainTextEdit>
+#include <QPushButton>
+#include <QSignalBlocker>
+#include <QSpinBox>
+#include <QThread>
+#include <QVBoxLayout>
+
+#include <exception>
+#include <memory>
+#include <optional>
+
+namespace artcam::ui {
+
+namespace {
+
+// Runs `work` on a short-lived thread owned by `owner` (which waits for it when destroyed)
+// and hands its value to `done` on the owner's thread. Exceptions become failed Results.
+template <class T, class Work, class Done>
+void runOffThread(QObject* owner, Work work, Done done) {
+  auto result = std::make_shared<std::optional<Result<T>>>();
+  QThread* thread = QThread::create([result, work = std::move(work)]() mutable {
+    try {
+      *result = work();
+    } catch (const std::exception& e) {
+      *result = Result<T>::failure(e.what());
+    } catch (...) {
+      *result = Result<T>::failure("unknown error");
+    }
+  });
+  thread->setParent(owner);
+  QObject::connect(thread, &QThread::finished, owner,
+                   [thread, result, done = std::move(done)]() mutable {
+                     done(std::move(**result));
+                     thread->deleteLater();
+                   });
+  thread->start();
+}
+
+QPushButton* button(const QString& text, const QString& tip, QWidget* parent) {
+  auto* b = new QPushButton(text, parent);
+  b->setToolTip(tip);
+  return b;
+}
+
+}  // namespace
+
+InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview, QWidget* parent)
+    : QWidget(parent),
+      model_(model),
+      preview_(preview),
+      graphic_label_(new QLabel(tr("none"), this)),
+      board_width_(new QSpinBox(this)),
+      board_height_(new QSpinBox(this)),
+      squares_(new QSpinBox(this)),
+      max_error_(new QDoubleSpinBox(this)),
+      error_map_(new QCheckBox(tr("Show per-patch error map"), this)),
+      matches_label_(new QLabel(this)),
+      board_view_(new BoardView(model, this)),
+      status_(new QLabel(this)),
+      report_(new QPlainTextEdit(this)),
+      tool_area_(new QVBoxLayout) {
+  auto* layout = new QVBoxLayout(this);
+
+  auto* graphic_row = new QHBoxLayout;
+  QPushButton* load_graphic = button(tr("Graphic…"), tr("The image to insert (alpha is kept), "
+                                                        "drawn over the board's canonical view"),
+                                     this);
+  graphic_row->addWidget(load_graphic);
+  graphic_row->addWidget(graphic_label_, 1);
+  layout->addLayout(graphic_row);
+
+  auto* form = new QFormLayout;
+  auto* size_row = new QHBoxLayout;
+  for (QSpinBox* s : {board_width_, board_height_}) {
+    s->setRange(16, 16384);
+    s->setKeyboardTracking(false);
+    s->setSuffix(tr(" px"));
+    size_row->addWidget(s);
+  }
+  board_width_->setToolTip(tr("Width of the board's canonical view (source pixels of the grid matches)"));
+  board_height_->setToolTip(tr("Height of the board's canonical view"));
+  form->addRow(tr("Board"), size_row);
+  squares_->setRange(2, 200);
+  squares_->setKeyboardTracking(false);
+  squares_->setToolTip(tr("Squares along each side of the checkerboard"));
+  form->addRow(tr("Squares"), squares_);
+  max_error_->setRange(0.01, 50.0);
+  max_error_->setSingleStep(0.05);
+  max_error_->setDecimals(2);
+  max_error_->setSuffix(tr(" px"));
+  max_error_->setKeyboardTracking(false);
+  max_error_->setToolTip(tr("Patches are split until each one's max error is below this"));
+  form->addRow(tr("Max error"), max_error_);
+  layout->addLayout(form);
+
+  auto* csv_row = new QHBoxLayout;
+  QPushButton* import_csv = button(tr("Import Grid…"),
+                                   tr("Grid matches from CSV (src_x,src_y,dst_x,dst_y: board "
+                                      "pixels → photo pixels), e.g. from `artcam sample`"),
+                                   this);
+  QPushButton* export_csv = button(tr("Export Grid…"), tr("Save the grid matches as CSV"), this);
+  csv_row->addWidget(import_csv);
+  csv_row->addWidget(export_csv);
+  layout->addLayout(csv_row);
+  layout->addLayout(tool_area_);
+
+  auto* edit_row = new QHBoxLayout;
+  QPushButton* delete_match =
+      button(tr("Delete Match"), tr("Remove the selected grid match (Del in the grid tool)"), this);
+  QPushButton* clear_region =
+      button(tr("Clear Region"), tr("Remove the marked region (the composite is then unlimited)"), this);
+  edit_row->addWidget(delete_match);
+  edit_row->addWidget(clear_region);
+  layout->addLayout(edit_row);
+  layout->addWidget(matches_label_);
+  layout->addWidget(board_view_, 1);
+  error_map_->setToolTip(tr("Outline each patch in the photo, green at 0 px to red at the max error (Shift+M)"));
+  error_map_->setChecked(model_->errorMapVisible());
+  layout->addWidget(error_map_);
+  status_->setWordWrap(true);
+  layout->addWidget(status_);
+  report_->setReadOnly(true);
+  report_->setMaximumBlockCount(200);
+  report_->setToolTip(tr("The piecewise fit: patches, RMS/max error, seam gap, single-camera floor"));
+  layout->addWidget(report_, 1);
+
+  connect(load_graphic, &QPushButton::clicked, this, &InsertionPanel::loadGraphicDialog);
+  connect(import_csv, &QPushButton::clicked, this, &InsertionPanel::importGridCsvDialog);
+  connect(export_csv, &QPushButton::clicked, this, &InsertionPanel::exportGridCsvDialog);
+  connect(delete_match, &QPushButton::clicked, this, &InsertionPanel::deleteSelectedMatch);
+  connect(clear_region, &QPushButton::clicked, this, &InsertionPanel::clearRegion);
+  connect(board_width_, &QSpinBox::valueChanged, this,
+          [this](int w) { setBoardSize(w, board_height_->value()); });
+  connect(board_height_, &QSpinBox::valueChanged, this,
+          [this](int h) { setBoardSize(board_width_->value(), h); });
+  connect(squares_, &QSpinBox::valueChanged, this, &InsertionPanel::setSquares);
+  connect(max_error_, &QDoubleSpinBox::valueChanged, this, &InsertionPanel::setMaxError);
+  connect(error_map_, &QCheckBox::toggled, model_, &InsertionModel::setErrorMapVisible);
+  connect(model_, &InsertionModel::errorMapVisibilityChanged, error_map_, &QCheckBox::setChecked);
+  connect(model_, &InsertionModel::stateChanged, this, &InsertionPanel::syncFromModel);
+  connect(preview_, &InsertionPreview::fitChanged, this, &InsertionPanel::showFit);
+  connect(preview_, &InsertionPreview::compositeChanged, this, &InsertionPanel::showFit);
+  connect(preview_, &InsertionPreview::failed, this,
+          [this](const QString& m) { status_->setText(tr("Insertion failed: %1").arg(m)); });
+  syncFromModel();
+  showFit();
+}
+
+InsertionPanel::~InsertionPanel() {
+  for (QThread* t : findChildren<QThread*>(Qt::FindDirectChildrenOnly)) t->wait();
+}
+
+QString InsertionPanel::reportText() const { return report_->toPlainText(); }
+QString InsertionPanel::statusText() const { return status_->text(); }
+
+void InsertionPanel::syncFromModel() {
+  const InsertionState& s = model_->state();
+  {
+    const QSignalBlocker b1(board_width_), b2(board_height_), b3(squares_), b4(max_error_);
+    board_width_->setValue(s.board_size.width);
+    board_height_->setValue(s.board_size.height);
+    squares_->setValue(s.squares);
+    max_error_->setValue(s.max_error_px);
+  }
+  graphic_label_->setText(s.graphic ? QFileInfo(s.graphic_path).fileName() : tr("none"));
+  graphic_label_->setToolTip(s.graphic_path);
+  matches_label_->setText(tr("%n grid match(es)", nullptr, static_cast<int>(s.matches.size())) +
+                          (s.region.size() >= 3 ? tr(", region of %1 corners").arg(s.region.size())
+                                                : tr(", no region")));
+  board_view_->updateGeometry();
+}
+
+void InsertionPanel::showFit() {
+  const InsertionFit& fit = preview_->fit();
+  QString status;
+  if (!fit.ok)
+    status = fit.message;
+  else
+    status = tr("%1 patches, RMS %2 px, max %3 px%4 (fit %5 ms)")
+                 .arg(fit.patches)
+                 .arg(fit.rms_px, 0, 'f', 3)
+                 .arg(fit.max_px, 0, 'f', 3)
+                 .arg(fit.converged ? QString() : tr(" — some patches above the max error"))
+                 .arg(fit.fit_ms, 0, 'f', 0);
+  if (!preview_->isCurrent()) status = tr("Fitting… ") + status;
+  status_->setText(status);
+  report_->setPlainText(fit.ok ? fit.report : QString());
+}
+
+void InsertionPanel::reportError(const QString& title, const QString& message) {
+  if (interactive_) QMessageBox::warning(this, title, message);
+}
+
+void InsertionPanel::loadGraphic(const QString& path) {
+  status_->setText(tr("Loading %1…").arg(QFileInfo(path).fileName()));
+  runOffThread<LoadedImage>(
+      this, [p = path.toStdString()] { return readImage(p); },
+      [this, path](Result<LoadedImage> r) {
+        if (!r) {
+          const QString m = QString::fromStdString(r.status.message);
+          reportError(tr("Could not load the graphic"), m);
+          emit graphicLoaded(false, m);
+          return;
+        }
+        InsertionState next = model_->state();
+        next.graphic = std::make_shared<const ImageF>(std::move(r->image));
+        next.graphic_path = path;
+        model_->edit(next, tr("Load Graphic"));
+        emit graphicLoaded(true, QString());
+      });
+}
+
+void InsertionPanel::importGridCsv(const QString& path) {
+  runOffThread<std::vector<PointMatch>>(
+      this, [p = path.toStdString()] { return readMatchesCsv(p, 2); },
+      [this, path](Result<std::vector<PointMatch>> r) {
+        if (!r) {
+          const QString m = QString::fromStdString(r.status.message);
+          reportError(tr("Could not import the grid matches"), m);
+          emit gridImported(false, m);
+          return;
+        }
+        InsertionState next = model_->state();
+        next.matches.clear();
+        for (const PointMatch& m : *r)
+          if (m.enabled) next.matches.push_back({m.source.head<2>(), m.target.head<2>()});
+        model_->edit(next, tr("Import Grid Matches"));
+        emit gridImported(true, tr("%1: %2 matches").arg(QFileInfo(path).fileName()).arg(next.matches.size()));
+      });
+}
+
+void InsertionPanel::exportGridCsv(const QString& path) {
+  runOffThread<bool>(
+      this,
+      [p = path.toStdString(), matches = model_->pointMatches()] {
+        const Status s = writeMatchesCsv(p, matches);
+        return s ? Result<bool>::success(true) : Result<bool>::failure(s.message);
+      },
+      [this](Result<bool> r) {
+        const QString m = QString::fromStdString(r.status.message);
+        if (!r) reportError(tr("Could not export the grid matches"), m);
+        emit gridExported(r.ok(), m);
+      });
+}
+
+void InsertionPanel::setMaxError(double px) {
+  InsertionState next = model_->state();
+  next.max_error_px = px;
+  model_->edit(next, tr("Max Error %1 px").arg(px));
+}
+
+void InsertionPanel::setBoardSize(int width, int height) {
+  InsertionState next = model_->state();
+  next.board_size = {width, height};
+  model_->edit(next, tr("Board Size %1×%2").arg(width).arg(height));
+}
+
+void InsertionPanel::setSquares(int squares) {
+  InsertionState next = model_->state();
+  next.squares = squares;
+  model_->edit(next, tr("Board Squares %1").arg(squares));
+}
+
+void InsertionPanel::clearRegion() {
+  InsertionState next = model_->state();
+  next.region.clear();
+  model_->edit(next, tr("Clear Region"));
+}
+
+void InsertionPanel::deleteSelectedMatch() {
+  const int k = model_->selectedMatch();
+  if (k < 0) return;
+  InsertionState next = model_->state();
+  next.matches.erase(next.matches.begin() + k);
+  model_->setSelectedMatch(-1);
+  model_->edit(next, tr("Delete Grid Match"));
+}
+
+void InsertionPanel::loadGraphicDialog() {
+  const QString path = QFileDialog::getOpenFileName(
+      this, tr("Graphic to Insert"), QString(),
+      tr("Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.bmp *.webp);;All files (*)"));
+  if (!path.isEmpty()) loadGraphic(path);
+}
+
+void InsertionPanel::importGridCsvDialog() {
+  const QString path = QFileDialog::getOpenFileName(this, tr("Import Grid Matches"), QString(),
+                                                    tr("CSV (*.csv);;All files (*)"));
+  if (!path.isEmpty()) importGridCsv(path);
+}
+
+void InsertionPanel::exportGridCsvDialog() {
+  QString path = QFileDialog::getSaveFileName(this, tr("Export Grid Matches"), QString(),
+                                              tr("CSV (*.csv)"));
+  if (path.isEmpty()) return;
+  if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".csv");
+  exportGridCsv(path);
+}
+
+}  // namespace artcam::ui

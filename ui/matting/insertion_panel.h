@@ -1,0 +1,79 @@
+// The Insertion dock panel (issue 8 item 4): the graphic to insert (loaded off the GUI
+// thread), the board's canonical size and squares, grid matches imported from / exported to
+// CSV (`src_x,src_y,dst_x,dst_y`: board pixels → photo pixels, as `artcam sample` writes
+// them), the fit's max error, the error-map toggle, the board view that picks the corner the
+// next photo click matches, and the fit report. The fit itself refits in a worker after every
+// edit (InsertionPreview). Every edit is one undo step on the document's stack; file errors
+// are dialogs naming the file and the cause (or only signals, when not interactive).
+#pragma once
+
+#include <QString>
+#include <QWidget>
+
+class QCheckBox;
+class QDoubleSpinBox;
+class QLabel;
+class QPlainTextEdit;
+class QSpinBox;
+class QVBoxLayout;
+
+namespace artcam::ui {
+
+class BoardView;
+class InsertionModel;
+class InsertionPreview;
+
+class InsertionPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  InsertionPanel(InsertionModel* model, InsertionPreview* preview, QWidget* parent = nullptr);
+  ~InsertionPanel() override;  // waits for file reads in flight
+
+  void setInteractive(bool interactive) { interactive_ = interactive; }
+  BoardView* boardView() const { return board_view_; }
+  QString reportText() const;
+  QString statusText() const;
+  // Where the tool buttons go (the studio adds its tool actions here).
+  QVBoxLayout* toolArea() const { return tool_area_; }
+
+ public slots:
+  void loadGraphic(const QString& path);
+  void importGridCsv(const QString& path);
+  void exportGridCsv(const QString& path);
+  void setMaxError(double px);
+  void setBoardSize(int width, int height);
+  void setSquares(int squares);
+  void clearRegion();
+  void deleteSelectedMatch();
+  void loadGraphicDialog();
+  void importGridCsvDialog();
+  void exportGridCsvDialog();
+
+ signals:
+  void graphicLoaded(bool ok, const QString& message);
+  void gridImported(bool ok, const QString& message);
+  void gridExported(bool ok, const QString& message);
+
+ private:
+  void syncFromModel();
+  void showFit();
+  void reportError(const QString& title, const QString& message);
+
+  InsertionModel* model_;
+  InsertionPreview* preview_;
+  bool interactive_ = true;
+  QLabel* graphic_label_;
+  QSpinBox* board_width_;
+  QSpinBox* board_height_;
+  QSpinBox* squares_;
+  QDoubleSpinBox* max_error_;
+  QCheckBox* error_map_;
+  QLabel* matches_label_;
+  BoardView* board_view_;
+  QLabel* status_;
+  QPlainTextEdit* report_;
+  QVBoxLayout* tool_area_;
+};
+
+}  // namespace artcam::ui

@@ -1,0 +1,84 @@
+#include "ui/matting/insertion_preview.h"
+
+#include "ui/document.h"
+#include "ui/matting/insertion_model.h"
+
+namespace artcam::ui {
+
+InsertionPreview::InsertionPreview(InsertionModel* model, QObject* parent)
+    : QObject(parent), model_(model), worker_(new InsertionWorker(this)) {
+  connect(worker_, &InsertionWorker::fitted, this, &InsertionPreview::onFitted,
+          Qt::QueuedConnection);
+  connect(worker_, &InsertionWorker::rendered, this, &InsertionPreview::onRendered,
+          Qt::QueuedConnection);
+  connect(worker_, &InsertionWorker::failed, this,
+          [this](const QString& m, quint64 g) {
+            if (g == requested_) emit failed(m);
+          },
+          Qt::QueuedConnection);
+  connect(model_, &InsertionModel::stateChanged, this, &InsertionPreview::refresh);
+  connect(model_->document(), &Document::photoChanged, this, &InsertionPreview::refresh);
+}
+
+InsertionPreview::~InsertionPreview() { shutdown(); }
+
+void InsertionPreview::shutdown() {
+  stopped_ = true;
+  worker_->shutdown();
+}
+
+bool InsertionPreview::isCurrent() const {
+  return fit_generation_ == requested_ &&
+         (!requested_renders_ || !fit_.ok || composite_generation_ == requested_);
+}
+
+void InsertionPreview::refresh() {
+  if (stopped_) return;
+  const InsertionState& s = model_->state();
+  InsertionRequest r;
+  r.generation = ++requested_;
+  r.matches = model_->pointMatches();
+  r.board_size = s.board_size;
+  r.options.max_error_px = s.max_error_px;
+  r.graphic = s.graphic;
+  r.region = s.region;
+  if (const PhotoPtr& photo = model_->document()->photo()) {
+    r.photo_size = photo->size();
+    r.photo = std::shared_ptr<const ImageF>(photo, &photo->full.image);
+  }
+  requested_renders_ = r.photo && r.graphic;
+  if (r.matches.empty() || !r.photo) {
+    // Nothing to fit: say so at once rather than asking the worker.
+    fit_ = InsertionFit{};
+    fit_.message = r.photo ? tr("No grid matches yet: import a grid CSV or click corners.")
+                           : tr("Open a photo first.");
+    fit_generation_ = requested_;
+    composite_ = QImage();
+    composite_generation_ = requested_;
+    emit fitChanged();
+    emit compositeChanged();
+    return;
+  }
+  worker_->request(std::move(r));
+}
+
+void InsertionPreview::onFitted(const InsertionFit& fit, quint64 generation) {
+  if (generation < fit_generation_) return;
+  fit_ = fit;
+  fit_generation_ = generation;
+  if (generation == requested_ && (!requested_renders_ || !fit.ok)) {
+    composite_ = QImage();
+    composite_generation_ = generation;
+    emit compositeChanged();
+  }
+  emit fitChanged();
+}
+
+void InsertionPreview::onRendered(const QImage& image, quint64 generation) {
+  if (generation < composite_generation_) return;
+  composite_ = image;
+  composite_generation_ = generation;
+  emit compositeChanged();
+}
+
+}  // namespace artcam::ui

@@ -1,0 +1,107 @@
+// The Insertion worker (the RenderWorker pattern: one thread, one pending request slot where
+// the newest request wins, std::atomic restart/abort flags, results by queued signals stamped
+// with the request's generation). A request carries the grid matches, the graphic, the photo
+// and the region; the worker fits the piecewise camera (core/piecewise/piecewise_fit.h),
+// emits the fit, then renders the graphic through it and composites it over the photo
+// (core/piecewise/piecewise_render.h), limited to the region, and emits the preview.
+//
+// The fit and the render have no cancel hook: a newer request makes the worker drop the
+// current one between the fit and the render, and the last fit is reused when only the
+// graphic, the photo or the region changed. Every exception stops at run() (a `failed` signal).
+#pragma once
+
+#include "core/model/fit_record.h"
+#include "core/model/image.h"
+#include "core/piecewise/piecewise_camera.h"
+#include "core/piecewise/piecewise_fit.h"
+
+#include <QImage>
+#include <QMetaType>
+#include <QMutex>
+#include <QPolygonF>
+#include <QString>
+#include <QThread>
+#include <QVector>
+#include <QWaitCondition>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace artcam::ui {
+
+struct InsertionRequest {
+  quint64 generation = 0;
+  std::vector<PointMatch> matches;  // board pixels → photo pixels
+  FrameSize board_size;
+  FrameSize photo_size;
+  PiecewiseOptions options;
+  std::shared_ptr<const ImageF> photo;    // linear, full resolution (the target frame)
+  std::shared_ptr<const ImageF> graphic;  // linear premultiplied; null: fit only
+  std::vector<Eigen::Vector2d> region;    // photo pixels; < 3 points: no limit
+};
+
+// What the panel and the error map show of a fit.
+struct InsertionFit {
+  bool ok = false;
+  QString message;  // why there is no camera, when !ok
+  QString report;   // PiecewiseSummary::report()
+  int matches = 0;
+  int patches = 0;
+  double rms_px = 0.0, max_px = 0.0, seam_gap_px = 0.0;
+  double single_rms_px = -1.0, single_max_px = -1.0;
+  bool converged = false;
+  double fit_ms = 0.0;
+  std::shared_ptr<const PiecewiseCamera> camera;
+  // Per patch: its support hull mapped through its own camera (photo pixels) and its max error.
+  QVector<QPolygonF> patch_outlines;
+  QVector<double> patch_max_px;
+};
+
+class InsertionWorker : public QThread {
+  Q_OBJECT
+
+ public:
+  explicit InsertionWorker(QObject* parent = nullptr);
+  ~InsertionWorker() override;  // aborts and joins (waits for a fit in flight)
+
+  // GUI thread. Replaces the pending request.
+  void request(InsertionRequest request);
+  // Stops the thread (idempotent); called by the destructor.
+  void shutdown();
+
+  // The preview a request gives for a camera: the graphic rendered through it, limited to the
+  // region, composited over the photo (a copy). Public so tests can compare with core calls.
+  static ImageF composite(const ImageF& photo, const ImageF& graphic,
+                          const PiecewiseCamera& camera,
+                          const std::vector<Eigen::Vector2d>& region);
+  // Multiplies every channel of a premultiplied image by the polygon's coverage (pixel centres
+  // inside, even-odd rule).
+  static void limitToPolygon(ImageF& image, const std::vector<Eigen::Vector2d>& polygon);
+  static InsertionFit describe(const PiecewiseSummary& summary);
+
+ signals:
+  void fitted(const artcam::ui::InsertionFit& fit, quint64 generation);
+  void rendered(const QImage& composite, quint64 generation);
+  void failed(const QString& message, quint64 generation);
+
+ protected:
+  void run() override;
+
+ private:
+  bool keepGoing() const { return !restart_.load() && !abort_.load(); }
+
+  QMutex mutex_;
+  QWaitCondition condition_;
+  std::optional<InsertionRequest> pending_;  // guarded by mutex_
+  std::atomic<bool> restart_{false};
+  std::atomic<bool> abort_{false};
+  // Worker thread only: the inputs of the last fit and its result.
+  std::optional<InsertionRequest> last_fit_inputs_;
+  InsertionFit last_fit_;
+};
+
+}  // namespace artcam::ui
+
+Q_DECLARE_METATYPE(artcam::ui::InsertionFit)

@@ -1,0 +1,102 @@
+#include "ui/tools/grid_tool.h"
+
+#include "ui/canvas.h"
+#include "ui/document.h"
+#include "ui/matting/insertion_model.h"
+#include "ui/matting/insertion_overlay.h"
+#include "ui/matting/insertion_preview.h"
+
+#include <QCoreApplication>
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+
+#include <cmath>
+
+namespace artcam::ui {
+
+GridTool::GridTool(Canvas* canvas, Document* document, InsertionModel* model,
+                   InsertionPreview* preview, CornerSnapper snapper)
+    : Tool(canvas, document), model_(model), preview_(preview), snapper_(std::move(snapper)) {}
+
+int GridTool::hitTest(const QPointF& widget) const {
+  const auto& matches = model_->state().matches;
+  int best = -1;
+  double best_d = kHitRadius;
+  for (size_t k = 0; k < matches.size(); ++k) {
+    const QPointF w = canvas_->view().widgetFromImage(QPointF(matches[k].photo.x(), matches[k].photo.y()));
+    const double d = std::hypot(w.x() - widget.x(), w.y() - widget.y());
+    if (d <= best_d) {
+      best_d = d;
+      best = static_cast<int>(k);
+    }
+  }
+  return best;
+}
+
+Eigen::Vector2d GridTool::placeAt(const Eigen::Vector2d& photo_px, bool snap) {
+  Eigen::Vector2d p = photo_px;
+  const PhotoPtr& photo = document_->photo();
+  if (snap && snapper_ && photo)
+    if (const auto snapped = snapper_(photo->full.image, photo_px)) p = *snapped;
+  if (model_->cornerCount() <= 0) return p;
+  const int corner = model_->selectedCorner();
+  InsertionState next = model_->state();
+  const GridMatch match{model_->cornerPosition(corner), p};
+  int index = model_->matchOfCorner(corner);
+  if (index >= 0) {
+    next.matches[static_cast<size_t>(index)] = match;
+  } else {
+    next.matches.push_back(match);
+    index = static_cast<int>(next.matches.size()) - 1;
+  }
+  model_->edit(next, QCoreApplication::translate("GridTool", "Place Grid Corner"));
+  model_->setSelectedMatch(index);
+  // Advance along the row (row-major, so the row's end continues on the next row).
+  if (corner + 1 < model_->cornerCount()) model_->setSelectedCorner(corner + 1);
+  return p;
+}
+
+void GridTool::mousePress(QMouseEvent* event) {
+  if (event->button() != Qt::LeftButton || !document_->photo()) return;
+  const int hit = hitTest(event->position());
+  if (hit >= 0) {
+    model_->setSelectedMatch(hit);
+    const int corner = model_->cornerAt(model_->state().matches[static_cast<size_t>(hit)].board, 1e-6);
+    if (corner >= 0) model_->setSelectedCorner(corner);
+  } else {
+    const QPointF image = canvas_->view().imageFromWidget(event->position());
+    placeAt({image.x(), image.y()}, !(event->modifiers() & Qt::ShiftModifier));
+  }
+  canvas_->update();
+}
+
+void GridTool::mouseMove(QMouseEvent*) {}
+void GridTool::mouseRelease(QMouseEvent*) {}
+
+bool GridTool::keyPress(QKeyEvent* event) {
+  if (event->key() == Qt::Key_Delete || event->key() == Qt::Key_Backspace) {
+    const int k = model_->selectedMatch();
+    if (k < 0) return false;
+    InsertionState next = model_->state();
+    next.matches.erase(next.matches.begin() + k);
+    model_->setSelectedMatch(-1);
+    model_->edit(next, QCoreApplication::translate("GridTool", "Delete Grid Match"));
+    canvas_->update();
+    return true;
+  }
+  if (event->key() == Qt::Key_Escape) {
+    model_->setSelectedMatch(-1);
+    canvas_->update();
+    return true;
+  }
+  return false;
+}
+
+void GridTool::paint(QPainter& painter) {
+  InsertionOverlay::paint(painter, canvas_->view(), *model_, *preview_);
+}
+
+void GridTool::cancel() { model_->setSelectedMatch(-1); }
+
+}  // namespace artcam::ui

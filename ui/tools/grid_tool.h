@@ -1,0 +1,54 @@
+// The grid tool of Insertion mode: a click in the photo places the match of the board corner
+// selected in the board view (ui/matting/board_view.h). The click is snapped to the nearest
+// checkerboard X-corner (core/piecewise/corner_snap.h; Shift-click: no snap), becomes one undo
+// step, and the board's selection advances along the row. A click on an existing match
+// selects it (and its corner); Del / Backspace remove the selected match; Esc clears the
+// selection. Paints the Insertion overlay (composite, error map, region, matches).
+#pragma once
+
+#include "core/model/image.h"
+#include "ui/tools/tool.h"
+
+#include <Eigen/Core>
+
+#include <QPointF>
+
+#include <functional>
+#include <optional>
+
+namespace artcam::ui {
+
+class InsertionModel;
+class InsertionPreview;
+
+// Sub-pixel corner near a click (photo pixels), or empty when there is none.
+using CornerSnapper =
+    std::function<std::optional<Eigen::Vector2d>(const ImageF& photo, const Eigen::Vector2d& click)>;
+
+class GridTool : public Tool {
+ public:
+  static constexpr double kHitRadius = 5.0;  // widget pixels that select an existing match
+
+  GridTool(Canvas* canvas, Document* document, InsertionModel* model, InsertionPreview* preview,
+           CornerSnapper snapper);
+
+  void mousePress(QMouseEvent* event) override;
+  void mouseMove(QMouseEvent* event) override;
+  void mouseRelease(QMouseEvent* event) override;
+  bool keyPress(QKeyEvent* event) override;
+  void paint(QPainter& painter) override;
+  void cancel() override;
+
+  // Places the selected corner's match at a photo point (snapped unless `snap` is false);
+  // returns the point used. What a click does, callable without events.
+  Eigen::Vector2d placeAt(const Eigen::Vector2d& photo_px, bool snap);
+
+ private:
+  int hitTest(const QPointF& widget) const;
+
+  InsertionModel* model_;
+  InsertionPreview* preview_;
+  CornerSnapper snapper_;
+};
+
+}  // namespace artcam::ui
