@@ -7,6 +7,7 @@
 #include "core/colour/colour_map.h"
 #include "core/fit/fit_colour.h"
 #include "core/model/structure.h"
+#include "core/render/attributed.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>
@@ -182,6 +183,44 @@ class TestFitColour : public QObject {
         QVERIFY2((y.head<3>() - truth(c)).norm() < 1e-7, colourModelName(model).data());
         QCOMPARE(y[3], 1.0);  // opaque stays opaque
       }
+    }
+  }
+
+  // End to end: the camera written for a fitted map recolours an image through the renderer's
+  // colour-only path (no resampling), each pixel to the true map's colour (float precision),
+  // opaque pixels staying opaque.
+  void renderedImageFollowsTheTrueMap() {
+    for (ColourModel model : {ColourModel::Affine, ColourModel::Quadratic}) {
+      const Transform truth = model == ColourModel::Quadratic ? Transform(rationalTruth)
+                                                              : Transform(affineTruth);
+      const ColourFitSummary s = fit(samplesThrough(truth, 40), model);
+      QVERIFY2(s.status.ok, s.status.message.c_str());
+      const int w = 24, h = 16;
+      ImageF photo(w, h, 3);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          float* p = photo.pixel(x, y);
+          p[0] = static_cast<float>(x) / (w - 1);
+          p[1] = static_cast<float>(y) / (h - 1);
+          p[2] = static_cast<float>((x + y) % 7) / 6.0f;
+        }
+      AttributedSummary summary;
+      const AttributedImage out =
+          renderAttributed(photo, nullptr, colourCamera(s.map, FrameSize{w, h}), {}, &summary);
+      QCOMPARE(summary.path, AttributedPath::ColourOnly);
+      QCOMPARE(out.colour.width, w);
+      QCOMPARE(out.colour.height, h);
+      double worst = 0.0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const float* in = photo.pixel(x, y);
+          const float* o = out.colour.pixel(x, y);
+          const Eigen::Vector3d expected = truth(Eigen::Vector3d(in[0], in[1], in[2]));
+          QCOMPARE(o[3], 1.0f);
+          for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(o[c] - expected[c]));
+        }
+      QVERIFY2(worst < 1e-5, qPrintable(QString("%1: worst channel error %2")
+                                            .arg(colourModelName(model).data()).arg(worst)));
     }
   }
 
