@@ -123,13 +123,16 @@ template <class T>
 // copies the bytes, bilinear uses weights of 1/1024 (a position quantum of 1/2048 px, sixteen
 // times finer than OpenCV's 1/32) in 32-bit fixed point; the result is within one code value
 // of the float path. Border pixels take the float taps and their exact semantics.
-template <int C, Filter F>
+// A: alpha appended to a source without one (RGB → RGBA previews): 255 inside, the coverage
+// at the borders, as sampleSpan's general path.
+template <int C, Filter F, bool A = false>
 long long sampleSpanU8(const Context& k, std::uint8_t* out, int n, const float* sx, const float* sy,
                        const unsigned char* valid) {
   long long transparent = 0;
   const int w = k.width, h = k.height;
   const int src_alpha = k.src_alpha;
-  for (int i = 0; i < n; ++i, out += C) {
+  for (int i = 0; i < n; ++i, out += C + (A ? 1 : 0)) {
+    if constexpr (A) out[C] = 255;
     const float fx = sx[i] - 0.5f, fy = sy[i] - 0.5f;
     if constexpr (F == Filter::Nearest) {
       if (valid[i] && fx >= 0.0f && fy >= 0.0f && fx < w - 1.0f && fy < h - 1.0f) {
@@ -162,7 +165,10 @@ long long sampleSpanU8(const Context& k, std::uint8_t* out, int n, const float* 
     }
     for (int c = 0; c < C; ++c) out[c] = store<std::uint8_t>(sum[c], k.full);
     float alpha = coverage;
-    if (src_alpha >= 0) {
+    if constexpr (A) {
+      alpha = std::clamp(coverage, 0.0f, 1.0f) * k.full;
+      out[C] = store<std::uint8_t>(alpha, k.full);
+    } else if (src_alpha >= 0) {
       alpha = std::clamp(sum[src_alpha], 0.0f, k.full);
       out[src_alpha] = store<std::uint8_t>(alpha, k.full);
     }
@@ -185,6 +191,7 @@ long long sampleSpan(const Context& k, unsigned char* out_bytes, int n, const fl
   };
   if constexpr (std::is_same_v<T, std::uint8_t> && F != Filter::Bicubic) {
     if (supersample <= 1 && oc == C) return sampleSpanU8<C, F>(k, out, n, sx, sy, valid);
+    if (supersample <= 1 && k.append_alpha && oc == C + 1) return sampleSpanU8<C, F, true>(k, out, n, sx, sy, valid);
   }
   if (supersample <= 1 && oc == C) {
     // The common case (one tap, output channels = source channels): no alpha bookkeeping
@@ -249,9 +256,17 @@ template <int C, Filter F>
 long long sampleSpanU8Simd(const Context& k, unsigned char* out_bytes, int n, const float* sx,
                            const float* sy, const unsigned char* valid, int supersample,
                            const float* jac) {
-  if (supersample > 1 || k.out_channels != C)
-    return sampleSpan<std::uint8_t, C, F>(k, out_bytes, n, sx, sy, valid, supersample, jac);
+  if (supersample > 1) return sampleSpan<std::uint8_t, C, F>(k, out_bytes, n, sx, sy, valid, supersample, jac);
   std::uint8_t* out = out_bytes;
+  if constexpr (C == 3) {
+    if (k.append_alpha) {
+      // RGB → RGBA (previews): alpha 255 inside, the coverage at the borders.
+      if constexpr (F == Filter::Bilinear)
+        return avx2::bilinearU8<3, true>(k, out, n, sx, sy, valid, &sampleSpanU8<3, F, true>);
+      else return avx2::nearestU8<3, true>(k, out, n, sx, sy, valid, &sampleSpanU8<3, F, true>);
+    }
+  }
+  if (k.out_channels != C) return sampleSpan<std::uint8_t, C, F>(k, out_bytes, n, sx, sy, valid, supersample, jac);
   if constexpr (F == Filter::Bilinear) return avx2::bilinearU8<C>(k, out, n, sx, sy, valid, &sampleSpanU8<C, F>);
   else return avx2::nearestU8<C>(k, out, n, sx, sy, valid, &sampleSpanU8<C, F>);
 }

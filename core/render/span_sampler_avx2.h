@@ -48,11 +48,13 @@ __attribute__((target("avx2"))) inline bool allInterior(__m256 fx, __m256 fy, __
 // each row come in with one 8-byte load (gathers measured slower here than plain loads), are
 // shuffled into (left, right) pairs per channel and weighted by one multiply-add:
 // top = p00 (1024 − ax) + p01 ax, the scalar path's integers exactly.
-template <int C>
+template <int C, bool kAppendAlpha = false>
 __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context& k, std::uint8_t* out,
                                                      int n, const float* sx, const float* sy,
                                                      const unsigned char* valid, ScalarSpanU8 scalar) {
   static_assert(C == 3 || C == 4);
+  static_assert(!kAppendAlpha || C == 3);  // RGB in, RGBA out: alpha = coverage, 1 inside
+  constexpr int kOut = kAppendAlpha ? 4 : C;
   const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(1024.0f);
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
   // RGB: each 8-byte load reads two bytes past the right tap, so the lower row must not be
@@ -72,7 +74,7 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
     const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx + i), half);
     const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy + i), half);
     if (!allInterior(fx, fy, xmax, ymax, valid + i)) {
-      transparent += scalar(k, out + i * C, 8, sx + i, sy + i, valid + i);
+      transparent += scalar(k, out + i * kOut, 8, sx + i, sy + i, valid + i);
       continue;
     }
     const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale), half));
@@ -88,8 +90,8 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
     _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(wx)),
                        _mm256_or_si256(_mm256_sub_epi32(full_weight, ax), _mm256_slli_epi32(ax, 16)));
     _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(wy)), ay);
-    std::uint8_t* o = out + i * C;
-    for (int j = 0; j < 8; ++j, o += C) {
+    std::uint8_t* o = out + i * kOut;
+    for (int j = 0; j < 8; ++j, o += kOut) {
       const std::uint8_t* p = k.src + off[j];
       std::uint64_t top_bytes, bottom_bytes;
       std::memcpy(&top_bytes, p, 8);
@@ -103,24 +105,27 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
           round);
       const __m128i v = _mm_srli_epi32(sum, 20);
       const __m128i bytes = _mm_packus_epi16(_mm_packus_epi32(v, v), v);
-      const std::uint32_t word = static_cast<std::uint32_t>(_mm_cvtsi128_si32(bytes));
+      std::uint32_t word = static_cast<std::uint32_t>(_mm_cvtsi128_si32(bytes));
+      if constexpr (kAppendAlpha) word |= 0xFF000000u;
       // RGB: a 4-byte store whose spare byte the next pixel overwrites; the group's last
       // pixel stores exactly three (the byte after it may belong to another thread's row).
-      std::memcpy(o, &word, C == 4 || j < 7 ? 4 : 3);
+      std::memcpy(o, &word, kOut == 4 || j < 7 ? 4 : 3);
       if (k.src_alpha >= 0) transparent += ((word >> (8 * k.src_alpha)) & 0xFFu) == 0;
     }
   }
-  if (i < n) transparent += scalar(k, out + i * C, n - i, sx + i, sy + i, valid + i);
+  if (i < n) transparent += scalar(k, out + i * kOut, n - i, sx + i, sy + i, valid + i);
   return transparent;
 }
 
 // Nearest, C = 3 or 4: offsets for eight pixels at once, then one 4-byte load and store each.
 // RGB's 4-byte load reads one byte past the pixel, so the tap must not be on the last row.
-template <int C>
+template <int C, bool kAppendAlpha = false>
 __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& k, std::uint8_t* out,
                                                     int n, const float* sx, const float* sy,
                                                     const unsigned char* valid, ScalarSpanU8 scalar) {
   static_assert(C == 3 || C == 4);
+  static_assert(!kAppendAlpha || C == 3);  // RGB in, RGBA out: alpha = coverage, 1 inside
+  constexpr int kOut = kAppendAlpha ? 4 : C;
   const __m256 half = _mm256_set1_ps(0.5f);
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
   const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - (C == 3 ? 1.5f : 1.0f));
@@ -132,7 +137,7 @@ __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& 
     const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx + i), half);
     const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy + i), half);
     if (!allInterior(fx, fy, xmax, ymax, valid + i)) {
-      transparent += scalar(k, out + i * C, 8, sx + i, sy + i, valid + i);
+      transparent += scalar(k, out + i * kOut, 8, sx + i, sy + i, valid + i);
       continue;
     }
     const __m256i x = _mm256_cvttps_epi32(_mm256_add_ps(fx, half));
@@ -140,15 +145,16 @@ __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& 
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x, 2) : _mm256_add_epi32(x, _mm256_slli_epi32(x, 1));
     _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(off)),
                        _mm256_add_epi32(_mm256_mullo_epi32(y, row), xoff));
-    std::uint8_t* o = out + i * C;
-    for (int j = 0; j < 8; ++j, o += C) {
+    std::uint8_t* o = out + i * kOut;
+    for (int j = 0; j < 8; ++j, o += kOut) {
       std::uint32_t word;
       std::memcpy(&word, k.src + off[j], 4);
-      std::memcpy(o, &word, C == 4 || j < 7 ? 4 : 3);
+      if constexpr (kAppendAlpha) word |= 0xFF000000u;
+      std::memcpy(o, &word, kOut == 4 || j < 7 ? 4 : 3);
       if (k.src_alpha >= 0) transparent += ((word >> (8 * k.src_alpha)) & 0xFFu) == 0;
     }
   }
-  if (i < n) transparent += scalar(k, out + i * C, n - i, sx + i, sy + i, valid + i);
+  if (i < n) transparent += scalar(k, out + i * kOut, n - i, sx + i, sy + i, valid + i);
   return transparent;
 }
 

@@ -143,8 +143,8 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
     throw std::invalid_argument("warp residual tolerance must be a positive number of pixels");
   if (!(options.seed_tolerance_px > 0.0) || !std::isfinite(options.seed_tolerance_px))
     throw std::invalid_argument("warp seed tolerance must be a positive number of pixels");
-  if (!(options.certify_tolerance_px >= 0.0) || !(options.certify_tolerance_px <= options.seed_tolerance_px))
-    throw std::invalid_argument("warp certify tolerance must be between 0 and the seed tolerance (pixels)");
+  if (!(options.certify_tolerance_px >= 0.0) || !std::isfinite(options.certify_tolerance_px))
+    throw std::invalid_argument("warp certify tolerance must be a number of pixels ≥ 0");
   if (options.threads < 0) throw std::invalid_argument("warp thread count must not be negative");
   const SpanSampler sampler(source, out, options.filter, !options.scalar_only);  // validates both images
   const CameraStructure structure = analyseStructure(camera);

@@ -27,6 +27,10 @@ enum class Filter { Nearest, Bilinear, Bicubic };
 std::string_view filterName(Filter filter);
 std::optional<Filter> filterFromName(std::string_view name);
 
+// What an interactive preview accepts as position error (source pixels of the level it
+// samples): invisible at screen size, and it lets strong lenses skip the per-pixel check.
+constexpr double kPreviewCertifyTolerancePx = 1.0 / 16.0;
+
 struct WarpOptions {
   Filter filter = Filter::Bilinear;
   int width = 0;   // output size; 0×0: the camera's target frame size
@@ -47,7 +51,9 @@ struct WarpOptions {
   // (source pixels) is taken after that one step; only the others run the full Newton.
   double seed_tolerance_px = 1.0 / 256.0;
   // The rational kernel's certified cells (coordinates.h): where the correction grid's error
-  // estimates stay within this (source pixels), pixels skip the per-pixel check. 0: off.
+  // estimates stay within this (source pixels), pixels skip the per-pixel check. 0: off. The
+  // default keeps every pixel within 1/256 px of the exact inverse (issue 5); a preview may
+  // trade accuracy for speed with a larger value (kPreviewCertifyTolerancePx).
   double certify_tolerance_px = 1.0 / 512.0;
   // Anti-aliasing where the map minifies: each output pixel averages n × n taps over its
   // footprint, n = ⌈longest side of the footprint in source pixels⌉ (per span of pixels, from

@@ -92,8 +92,9 @@ class TestFastPaths : public QObject {
     QTest::addColumn<int>("filter");
     for (int f : {0, 1})
       for (int c : {3, 4})
-        for (int a : {-1, c - 1}) {
-          if (c == 3 && a >= 0) continue;  // RGB with alpha is not a layout we store
+        for (int a : {-1, c - 1, c}) {
+          if (c == 3 && a == 2) continue;  // RGB with alpha is not a layout we store
+          if (c == 4 && a == 4) continue;  // a = c: alpha appended to RGB (previews)
           QTest::newRow(qPrintable(QString("%1 %2ch alpha %3").arg(f ? "bilinear" : "nearest").arg(c).arg(a)))
               << c << a << f;
         }
@@ -105,12 +106,14 @@ class TestFastPaths : public QObject {
     QFETCH(int, filter);
     const Filter f = filter ? Filter::Bilinear : Filter::Nearest;
     const int w = 53, h = 29;  // odd sizes: the last row and column are borders
-    const std::vector<std::uint8_t> img = noiseImage(w, h, channels, alpha);
-    const ConstImageView src = packedView<const void>(img.data(), w, h, channels, PixelType::UInt8, alpha);
+    const bool append = alpha == channels;  // alpha appended to the output only
+    const int src_alpha = append ? -1 : alpha, out_channels = channels + (append ? 1 : 0);
+    const std::vector<std::uint8_t> img = noiseImage(w, h, channels, src_alpha);
+    const ConstImageView src = packedView<const void>(img.data(), w, h, channels, PixelType::UInt8, src_alpha);
     const int n = 61;  // not a multiple of 8: a scalar tail
-    std::vector<std::uint8_t> a(static_cast<size_t>(n) * channels), b(a.size());
-    const ImageView out_a = packedView<void>(a.data(), n, 1, channels, PixelType::UInt8, alpha);
-    const ImageView out_b = packedView<void>(b.data(), n, 1, channels, PixelType::UInt8, alpha);
+    std::vector<std::uint8_t> a(static_cast<size_t>(n) * out_channels), b(a.size());
+    const ImageView out_a = packedView<void>(a.data(), n, 1, out_channels, PixelType::UInt8, alpha);
+    const ImageView out_b = packedView<void>(b.data(), n, 1, out_channels, PixelType::UInt8, alpha);
     const SpanSampler simd(src, out_a, f, true), scalar(src, out_b, f, false);
     QVERIFY(!scalar.usesSimd());
     qInfo("AVX2 sampler in use: %s", simd.usesSimd() ? "yes" : "no (this CPU has no AVX2)");
