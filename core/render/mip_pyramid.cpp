@@ -2,9 +2,14 @@
 
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
+#include "core/render/inverse.h"
+#include "core/render/rational_map.h"
+
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -30,7 +35,74 @@ ImageF halve(const ImageF& in) {
   return out;
 }
 
+// One 2×2 box level of 8-bit samples, rounded to nearest; the last row/column repeats.
+ConstImageView halveBytes(const ConstImageView& in, PixelBuffer& storage) {
+  const int w = (in.width + 1) / 2, h = (in.height + 1) / 2, c = in.channels;
+  storage = PixelBuffer(static_cast<size_t>(w) * static_cast<size_t>(h) * static_cast<size_t>(c));
+  const ConstImageView out = packedView<const void>(storage.data(), w, h, c, PixelType::UInt8, in.alpha_channel);
+  for (int y = 0; y < h; ++y) {
+    const auto* r0 = static_cast<const std::uint8_t*>(in.row(2 * y));
+    const auto* r1 = static_cast<const std::uint8_t*>(in.row(std::min(2 * y + 1, in.height - 1)));
+    std::uint8_t* o = storage.data() + static_cast<size_t>(y) * static_cast<size_t>(w) * static_cast<size_t>(c);
+    for (int x = 0; x < w; ++x) {
+      const int x0 = 2 * x * c, x1 = std::min(2 * x + 1, in.width - 1) * c;
+      for (int k = 0; k < c; ++k)
+        o[x * c + k] = static_cast<std::uint8_t>((r0[x0 + k] + r0[x1 + k] + r1[x0 + k] + r1[x1 + k] + 2) >> 2);
+    }
+  }
+  return out;
+}
+
+// The footprint of one output pixel at the target centre, in source pixels: the shorter side
+// of J⁻¹ there (J = d target / d source at the preimage, eq 2), from one Newton solve.
+double centreFootprint(const Camera& camera, FrameSize source_px, FrameSize out_px) {
+  try {
+    const RationalMap forward(camera, source_px, out_px);
+    const NewtonInverse inverse(forward, source_px, 1e-3);
+    Eigen::Vector2d s;
+    if (!inverse.solveFromCentre(Eigen::Vector2d(out_px.width / 2.0, out_px.height / 2.0), s, 30)) return 1.0;
+    Eigen::Vector2d t;
+    Eigen::Matrix2d j;
+    if (!forward.evaluate(s, t, &j) || !(std::abs(j.determinant()) > 0.0)) return 1.0;
+    const Eigen::Matrix2d inv = j.inverse();
+    return std::min(inv.col(0).norm(), inv.col(1).norm());
+  } catch (const std::invalid_argument&) {
+    return 1.0;  // warpImage reports what is wrong with the camera
+  }
+}
+
 }  // namespace
+
+StoredMipPyramid::StoredMipPyramid(const ConstImageView& base, int min_size) {
+  if (base.empty() || base.type != PixelType::UInt8)
+    throw std::invalid_argument("an 8-bit mip pyramid needs a non-empty 8-bit image");
+  views_.push_back(base);
+  owned_.reserve(32);
+  while (std::max(views_.back().width, views_.back().height) / 2 >= std::max(1, min_size)) {
+    owned_.emplace_back();
+    views_.push_back(halveBytes(views_.back(), owned_.back()));
+  }
+}
+
+int StoredMipPyramid::levelFor(double footprint) const {
+  if (!(footprint > 1.0)) return 0;
+  const int k = static_cast<int>(std::floor(std::log2(footprint) + 1e-9));
+  return std::clamp(k, 0, levels() - 1);
+}
+
+void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const ImageView& out,
+                 const WarpOptions& options, WarpSummary* summary) {
+  camera.validate();
+  const ConstImageView& base = pyramid.level(0);
+  const double footprint = centreFootprint(camera, {base.width, base.height}, {out.width, out.height});
+  const int level = pyramid.levelFor(footprint);
+  WarpOptions o = options;
+  o.certify_tolerance_px = std::max(o.certify_tolerance_px, kPreviewCertifyTolerancePx);
+  WarpSummary local;
+  WarpSummary& report = summary ? *summary : local;
+  warpImage(pyramid.level(level), camera, out, o, &report);
+  report.note = "mip level " + std::to_string(level) + (report.note.empty() ? "" : "; " + report.note);
+}
 
 MipPyramid::MipPyramid(ImageF base, int min_size) {
   if (base.empty()) throw std::invalid_argument("a mip pyramid needs a non-empty image");

@@ -10,6 +10,8 @@
 
 #include "core/model/camera.h"
 #include "core/model/image.h"
+#include "core/render/image_view.h"
+#include "core/render/pixel_buffer.h"
 #include "core/render/warp.h"
 
 #include <vector>
@@ -30,6 +32,31 @@ class MipPyramid {
  private:
   std::vector<ImageF> levels_;
 };
+
+// The 8-bit twin for interactive previews (issue 5, edit-to-preview): levels of the stored
+// (display-encoded) samples of an RGB or RGBA photo, each a 2×2 box average rounded to nearest
+// (premultiplied alpha averages correctly; averaging encoded values instead of linear light is
+// a preview's approximation). Level 0 is the caller's image, viewed, not copied: it must
+// outlive the pyramid. Levels down to `min_size` pixels on the longer side.
+class StoredMipPyramid {
+ public:
+  explicit StoredMipPyramid(const ConstImageView& base, int min_size = 64);
+
+  int levels() const { return static_cast<int>(views_.size()); }
+  const ConstImageView& level(int k) const { return views_[static_cast<size_t>(k)]; }
+  int levelFor(double footprint) const;
+
+ private:
+  std::vector<PixelBuffer> owned_;  // levels 1 …
+  std::vector<ConstImageView> views_;
+};
+
+// A screen-sized preview into `out` (the pyramid's pixel type and channels, or RGB → RGBA):
+// the level matching the map's scale at the target centre (one Newton solve there), and the
+// rational kernel's certified cells trusted to kPreviewCertifyTolerancePx. Same contract as
+// warpImage on views; the summary's note names the level.
+void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const ImageView& out,
+                 const WarpOptions& options = {}, WarpSummary* summary = nullptr);
 
 // Warps through the level that matches the map's scale at the target frame centre (the
 // footprint of one output pixel there, in source pixels). Same contract as warpImage; the

@@ -9,6 +9,7 @@
 #include "core/io/stored_image.h"
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
+#include "core/render/mip_pyramid.h"
 #include "core/render/span_sampler.h"
 #include "core/render/warp.h"
 #include "tests/core/render/render_fixtures.h"
@@ -192,6 +193,47 @@ class TestFastPaths : public QObject {
     qInfo("certified share %.3f, worst %.2e px", share, worst);
     QVERIFY2(worst <= 1.0 / 256.0, qPrintable(QString("worst %1 px").arg(worst)));
     if (has_pole) QVERIFY2(share < 1.0, qPrintable(QString("share %1").arg(share)));
+  }
+
+  // The 8-bit preview pyramid: each level the rounded 2×2 box average of the one above
+  // (recomputed here), and a preview at a quarter of the photo's size samples level 2, whose
+  // pixels an identity camera reproduces exactly, with alpha 255 appended.
+  void storedPyramidAndPreview() {
+    const int w = 204, h = 152;  // level 2 is 51×38: odd, so level 3 repeats its last column
+    const std::vector<std::uint8_t> img = noiseImage(w, h, 3, -1);
+    const ConstImageView base = packedView<const void>(img.data(), w, h, 3, PixelType::UInt8);
+    const StoredMipPyramid pyramid(base, 16);
+    QCOMPARE(pyramid.levels(), 4);  // 204, 102, 51, 26 (26 / 2 < 16 stops)
+    for (int k = 1; k < pyramid.levels(); ++k) {
+      const ConstImageView& up = pyramid.level(k - 1);
+      const ConstImageView& lv = pyramid.level(k);
+      QCOMPARE(lv.width, (up.width + 1) / 2);
+      QCOMPARE(lv.height, (up.height + 1) / 2);
+      for (int y = 0; y < lv.height; ++y)
+        for (int x = 0; x < lv.width; ++x)
+          for (int c = 0; c < 3; ++c) {
+            const auto at = [&](int xx, int yy) {
+              xx = std::min(xx, up.width - 1);
+              yy = std::min(yy, up.height - 1);
+              return static_cast<const std::uint8_t*>(up.row(yy))[xx * 3 + c];
+            };
+            const int want = (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1) + 2) / 4;
+            QCOMPARE(int(static_cast<const std::uint8_t*>(lv.row(y))[x * 3 + c]), want);
+          }
+    }
+    const ConstImageView& l2 = pyramid.level(2);
+    std::vector<std::uint8_t> out(static_cast<size_t>(l2.width) * l2.height * 4);
+    WarpSummary s;
+    warpPreview(pyramid, Camera::identity({Block{BlockKind::Position, 3}}, {w, h}, {w, h}),
+                packedView<void>(out.data(), l2.width, l2.height, 4, PixelType::UInt8, 3), {}, &s);
+    QVERIFY2(s.note.rfind("mip level 2", 0) == 0, s.note.c_str());
+    for (int y = 0; y < l2.height; ++y)
+      for (int x = 0; x < l2.width; ++x) {
+        const std::uint8_t* want = static_cast<const std::uint8_t*>(l2.row(y)) + x * 3;
+        const std::uint8_t* got = out.data() + (static_cast<size_t>(y) * l2.width + x) * 4;
+        QVERIFY2(got[0] == want[0] && got[1] == want[1] && got[2] == want[2] && got[3] == 255,
+                 qPrintable(QString("pixel %1,%2").arg(x).arg(y)));
+      }
   }
 
   // Stored-type I/O: an RGBA PNG comes back premultiplied in the stored domain and writes back
