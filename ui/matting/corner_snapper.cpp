@@ -1,21 +1,20 @@
-// The studio's corner snap: core's checkerboard X-corner finder with its default options.
+// The studio's corner snap: core's checkerboard X-corner finder, searching as far as a click
+// can be off (kSnapRadiusWidgetPx on screen, so zooming in narrows it to the corner the user
+// means where reflected squares are only a few photo pixels wide).
+#include "core/piecewise/corner_snap.h"
 #include "ui/matting/insertion_studio.h"
 
-#if __has_include("core/piecewise/corner_snap.h")
-#include "core/piecewise/corner_snap.h"
-#define ARTCAM_HAS_CORNER_SNAP 1
-#endif
+#include <algorithm>
 
 namespace artcam::ui {
 
 CornerSnapper defaultCornerSnapper() {
-#ifdef ARTCAM_HAS_CORNER_SNAP
-  return [](const ImageF& photo, const Eigen::Vector2d& click) {
-    return snapToGridCorner(photo, click);
+  return [](const ImageF& photo, const Eigen::Vector2d& click, double search_radius_px) {
+    CornerSnapOptions options;
+    options.search_radius_px = std::clamp(search_radius_px, 1.0, 8.0);
+    options.window_radius_px = std::clamp(1.2 * options.search_radius_px, 2.5, 5.0);
+    return snapToGridCorner(photo, click, options);
   };
-#else
-  return {};
-#endif
 }
 
 }  // namespace artcam::ui

@@ -34,11 +34,11 @@ int GridTool::hitTest(const QPointF& widget) const {
   return best;
 }
 
-Eigen::Vector2d GridTool::placeAt(const Eigen::Vector2d& photo_px, bool snap) {
+Eigen::Vector2d GridTool::placeAt(const Eigen::Vector2d& photo_px, double search_radius_px) {
   Eigen::Vector2d p = photo_px;
   const PhotoPtr& photo = document_->photo();
-  if (snap && snapper_ && photo)
-    if (const auto snapped = snapper_(photo->full.image, photo_px)) p = *snapped;
+  if (search_radius_px > 0.0 && snapper_ && photo)
+    if (const auto snapped = snapper_(photo->full.image, photo_px, search_radius_px)) p = *snapped;
   if (model_->cornerCount() <= 0) return p;
   const int corner = model_->selectedCorner();
   InsertionState next = model_->state();
@@ -66,7 +66,8 @@ void GridTool::mousePress(QMouseEvent* event) {
     if (corner >= 0) model_->setSelectedCorner(corner);
   } else {
     const QPointF image = canvas_->view().imageFromWidget(event->position());
-    placeAt({image.x(), image.y()}, !(event->modifiers() & Qt::ShiftModifier));
+    const bool snap = !(event->modifiers() & Qt::ShiftModifier);
+    placeAt({image.x(), image.y()}, snap ? kSnapRadiusWidgetPx / canvas_->view().scale() : 0.0);
   }
   canvas_->update();
 }

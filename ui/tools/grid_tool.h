@@ -21,13 +21,17 @@ namespace artcam::ui {
 class InsertionModel;
 class InsertionPreview;
 
-// Sub-pixel corner near a click (photo pixels), or empty when there is none.
-using CornerSnapper =
-    std::function<std::optional<Eigen::Vector2d>(const ImageF& photo, const Eigen::Vector2d& click)>;
+// Sub-pixel corner within search_radius_px of a click (photo pixels), or empty when there is
+// none.
+using CornerSnapper = std::function<std::optional<Eigen::Vector2d>(
+    const ImageF& photo, const Eigen::Vector2d& click, double search_radius_px)>;
 
 class GridTool : public Tool {
  public:
   static constexpr double kHitRadius = 5.0;  // widget pixels that select an existing match
+  // How far (widget pixels) a click may be from the corner it means: the snap's search radius
+  // is this over the zoom, so zooming in picks one of densely packed reflected corners.
+  static constexpr double kSnapRadiusWidgetPx = 5.0;
 
   GridTool(Canvas* canvas, Document* document, InsertionModel* model, InsertionPreview* preview,
            CornerSnapper snapper);
@@ -39,9 +43,9 @@ class GridTool : public Tool {
   void paint(QPainter& painter) override;
   void cancel() override;
 
-  // Places the selected corner's match at a photo point (snapped unless `snap` is false);
-  // returns the point used. What a click does, callable without events.
-  Eigen::Vector2d placeAt(const Eigen::Vector2d& photo_px, bool snap);
+  // Places the selected corner's match at a photo point (snapped within search_radius_px
+  // unless it is 0); returns the point used. What a click does, callable without events.
+  Eigen::Vector2d placeAt(const Eigen::Vector2d& photo_px, double search_radius_px);
 
  private:
   int hitTest(const QPointF& widget) const;
