@@ -6,6 +6,7 @@
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
+#include "ui/matting/insertion_studio.h"
 #include "ui/panels/depth_panel.h"
 #include "ui/panels/effects_panel.h"
 #include "ui/panels/pairs_panel.h"
@@ -124,6 +125,7 @@ MainWindow::MainWindow(QWidget* parent)
   });
 
   createMenus();
+  new InsertionStudio(this, canvas_, document_);  // Insertion dock, menu and tools
   updateTitle();
   resize(1400, 900);
 }
