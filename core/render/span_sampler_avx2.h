@@ -63,9 +63,13 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
   const __m256i xlim = _mm256_set1_epi32(k.width - 2), ylim = _mm256_set1_epi32(k.height - 2);
   const __m256i row = _mm256_set1_epi32(static_cast<int>(k.src_row));
   const __m256i full_weight = _mm256_set1_epi32(1024);
+  // Per 128-bit lane: bytes 0–7 the top row's 8-byte load, 8–15 the bottom row's; out: the
+  // top row's (left, right) pairs per channel in bytes 0–7, the bottom row's in 8–15, so that
+  // unpacklo/unpackhi with zero widen them to 16-bit pairs for the multiply-add.
   const __m128i pairs = C == 4 ? _mm_setr_epi8(0, 4, 1, 5, 2, 6, 3, 7, 8, 12, 9, 13, 10, 14, 11, 15)
                                : _mm_setr_epi8(0, 3, 1, 4, 2, 5, -1, -1, 8, 11, 9, 12, 10, 13, -1, -1);
-  const __m128i round = _mm_set1_epi32(1 << 19);
+  const __m256i pairs2 = _mm256_broadcastsi128_si256(pairs);
+  const __m256i round2 = _mm256_set1_epi32(1 << 19);
   const std::ptrdiff_t row_bytes = k.src_row;
   long long transparent = 0;
   alignas(32) std::int32_t off[8], wx[8], wy[8];
@@ -90,27 +94,47 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
     _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(wx)),
                        _mm256_or_si256(_mm256_sub_epi32(full_weight, ax), _mm256_slli_epi32(ax, 16)));
     _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(wy)), ay);
+    // Two pixels per 256-bit register, one per 128-bit lane: [p_j row 0 | p_j row 1] and
+    // [p_j+1 row 0 | p_j+1 row 1] as 8-byte loads, shuffled into (left, right) pairs per
+    // channel, widened, weighted, combined vertically, packed.
+    const __m256i wx8 = _mm256_load_si256(static_cast<const __m256i*>(static_cast<const void*>(wx)));
+    const __m256i wy8 = _mm256_load_si256(static_cast<const __m256i*>(static_cast<const void*>(wy)));
     std::uint8_t* o = out + i * kOut;
-    for (int j = 0; j < 8; ++j, o += kOut) {
-      const std::uint8_t* p = k.src + off[j];
-      std::uint64_t top_bytes, bottom_bytes;
-      std::memcpy(&top_bytes, p, 8);
-      std::memcpy(&bottom_bytes, p + row_bytes, 8);
-      const __m128i taps = _mm_shuffle_epi8(
-          _mm_set_epi64x(static_cast<long long>(bottom_bytes), static_cast<long long>(top_bytes)), pairs);
-      const __m256i rows = _mm256_madd_epi16(_mm256_cvtepu8_epi16(taps), _mm256_set1_epi32(wx[j]));
-      const __m128i top = _mm256_castsi256_si128(rows), bottom = _mm256_extracti128_si256(rows, 1);
-      const __m128i sum = _mm_add_epi32(
-          _mm_add_epi32(_mm_slli_epi32(top, 10), _mm_mullo_epi32(_mm_sub_epi32(bottom, top), _mm_set1_epi32(wy[j]))),
-          round);
-      const __m128i v = _mm_srli_epi32(sum, 20);
-      const __m128i bytes = _mm_packus_epi16(_mm_packus_epi32(v, v), v);
-      std::uint32_t word = static_cast<std::uint32_t>(_mm_cvtsi128_si32(bytes));
-      if constexpr (kAppendAlpha) word |= 0xFF000000u;
-      // RGB: a 4-byte store whose spare byte the next pixel overwrites; the group's last
-      // pixel stores exactly three (the byte after it may belong to another thread's row).
-      std::memcpy(o, &word, kOut == 4 || j < 7 ? 4 : 3);
-      if (k.src_alpha >= 0) transparent += ((word >> (8 * k.src_alpha)) & 0xFFu) == 0;
+    for (int j = 0; j < 8; j += 2, o += 2 * kOut) {
+      const std::uint8_t* p0 = k.src + off[j];
+      const std::uint8_t* p1 = k.src + off[j + 1];
+      std::uint64_t a0, b0, a1, b1;
+      std::memcpy(&a0, p0, 8);
+      std::memcpy(&b0, p0 + row_bytes, 8);
+      std::memcpy(&a1, p1, 8);
+      std::memcpy(&b1, p1 + row_bytes, 8);
+      const __m256i taps = _mm256_shuffle_epi8(
+          _mm256_set_epi64x(static_cast<long long>(b1), static_cast<long long>(a1),
+                            static_cast<long long>(b0), static_cast<long long>(a0)),
+          pairs2);
+      const __m256i lane_pick = _mm256_setr_epi32(j, j, j, j, j + 1, j + 1, j + 1, j + 1);
+      const __m256i weight_x = _mm256_permutevar8x32_epi32(wx8, lane_pick);
+      const __m256i weight_y = _mm256_permutevar8x32_epi32(wy8, lane_pick);
+      const __m256i zero = _mm256_setzero_si256();
+      const __m256i top = _mm256_madd_epi16(_mm256_unpacklo_epi8(taps, zero), weight_x);
+      const __m256i bottom = _mm256_madd_epi16(_mm256_unpackhi_epi8(taps, zero), weight_x);
+      const __m256i sum = _mm256_add_epi32(
+          _mm256_add_epi32(_mm256_slli_epi32(top, 10), _mm256_mullo_epi32(_mm256_sub_epi32(bottom, top), weight_y)),
+          round2);
+      const __m256i v = _mm256_srli_epi32(sum, 20);
+      const __m256i bytes = _mm256_packus_epi16(_mm256_packus_epi32(v, v), zero);
+      std::uint32_t w0 = static_cast<std::uint32_t>(_mm256_cvtsi256_si32(bytes));
+      std::uint32_t w1 = static_cast<std::uint32_t>(_mm256_extract_epi32(bytes, 4));
+      if constexpr (kAppendAlpha) {
+        w0 |= 0xFF000000u;
+        w1 |= 0xFF000000u;
+      }
+      // RGB: 4-byte stores whose spare byte the next pixel overwrites; the group's last pixel
+      // stores exactly three (the byte after it may belong to another thread's row).
+      std::memcpy(o, &w0, 4);
+      std::memcpy(o + kOut, &w1, kOut == 4 || j + 1 < 7 ? 4 : 3);
+      if (k.src_alpha >= 0)
+        transparent += (((w0 >> (8 * k.src_alpha)) & 0xFFu) == 0) + (((w1 >> (8 * k.src_alpha)) & 0xFFu) == 0);
     }
   }
   if (i < n) transparent += scalar(k, out + i * kOut, n - i, sx + i, sy + i, valid + i);
