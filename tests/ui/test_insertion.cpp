@@ -14,12 +14,16 @@
 #include "ui/document.h"
 #include "ui/image_convert.h"
 #include "ui/image_loader.h"
+#include "ui/main_window.h"
 #include "ui/matting/insertion_model.h"
 #include "ui/matting/insertion_panel.h"
 #include "ui/matting/insertion_preview.h"
 #include "ui/matting/insertion_studio.h"
 #include "ui/tools/grid_tool.h"
+#include "ui/tools/region_tool.h"
 
+#include <QAction>
+#include <QDockWidget>
 #include <QKeyEvent>
 #include <QSignalSpy>
 #include <QtTest/QtTest>
@@ -259,6 +263,50 @@ class TestInsertion : public QObject {
     QCOMPARE(rig.model.state().matches.size(), size_t(1));
     QVERIFY((rig.model.state().matches.front().photo - Eigen::Vector2d(raw.x(), raw.y())).norm() < 1e-9);
     QVERIFY((rig.model.state().matches.front().photo - first_truth).norm() > 0.5);
+  }
+
+  void mainWindowHasTheInsertionMode() {
+    MainWindow window;
+    auto* dock = window.findChild<QDockWidget*>(QStringLiteral("insertionDock"));
+    QVERIFY(dock);
+    QVERIFY(qobject_cast<InsertionPanel*>(dock->widget()));
+    auto* studio = window.findChild<InsertionStudio*>();
+    QVERIFY(studio);
+    QCOMPARE(studio->gridToolAction()->shortcut(), QKeySequence(QStringLiteral("C")));
+    QVERIFY(!studio->gridToolAction()->toolTip().isEmpty());
+    studio->gridToolAction()->trigger();
+    QVERIFY(dynamic_cast<GridTool*>(window.canvas()->tool()));
+    studio->regionToolAction()->trigger();
+    QVERIFY(dynamic_cast<RegionTool*>(window.canvas()->tool()));
+    // Insertion edits are steps of the document's undo stack.
+    studio->panel()->setSquares(12);
+    QCOMPARE(studio->model()->state().squares, 12);
+    window.document()->undoStack()->undo();
+    QCOMPARE(studio->model()->state().squares, 24);
+  }
+
+  void regionToolMarksThePolygon() {
+    Rig rig;
+    QVERIFY(openPhoto(rig.doc, kPhoto));
+    Canvas canvas(&rig.doc);
+    canvas.resize(640, 480);
+    canvas.show();
+    canvas.zoomToFit();
+    auto tool = std::make_unique<RegionTool>(&canvas, &rig.doc, &rig.model, &rig.preview);
+    RegionTool* region = tool.get();
+    canvas.setTool(std::move(tool));
+    const std::vector<Eigen::Vector2d> corners = {{100, 100}, {400, 120}, {300, 380}};
+    for (const Eigen::Vector2d& c : corners)
+      artcam::ui::test::click(&canvas, artcam::ui::test::widgetPoint(canvas, c));
+    QCOMPARE(region->pending().size(), size_t(3));
+    QVERIFY(rig.model.state().region.empty());
+    QKeyEvent enter(QEvent::KeyPress, Qt::Key_Return, Qt::NoModifier);
+    QCoreApplication::sendEvent(&canvas, &enter);
+    QCOMPARE(rig.model.state().region.size(), size_t(3));
+    for (size_t i = 0; i < corners.size(); ++i)
+      QVERIFY((rig.model.state().region[i] - corners[i]).norm() < 1.0 / canvas.view().scale());
+    rig.doc.undoStack()->undo();
+    QVERIFY(rig.model.state().region.empty());
   }
 
   void closingMidFitShutsDownCleanly() {

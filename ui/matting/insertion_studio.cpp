@@ -77,6 +77,8 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
   connect(model_, &InsertionModel::errorMapVisibilityChanged, error_map, &QAction::setChecked);
   menu->addAction(tr("&Clear Region"), panel_, &InsertionPanel::clearRegion)
       ->setToolTip(tr("The composite is then not limited"));
+  menu->addSeparator();
+  menu->addAction(dock_->toggleViewAction());
 
   for (QAction* a : {grid_action_, region_action_}) {
     auto* b = new QToolButton(panel_);
