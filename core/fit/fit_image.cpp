@@ -249,6 +249,11 @@ void restartNearby(ModelFit& best, double& best_rms, const Problem& pb, int rest
   std::mt19937_64 rng(20261122);
   std::uniform_real_distribution<double> jitter(-kScale, kScale);
   const Camera centre = best.camera;
+  // The restarts may not come closer to a pole than the refined camera or RefineOptions'
+  // floor allow (refine.h, min_pole_margin).
+  const double margin_floor = std::min(
+      ro.min_pole_margin,
+      checkDenominator(Eigen::Matrix3d(centre.stages()[0].q[2]), pb.frame_lo, pb.frame_hi).margin);
   double largest = 0.0;
   for (const Eigen::MatrixXd& q : centre.stages()[0].q) largest = std::max(largest, q.cwiseAbs().maxCoeff());
   double best_sub = rmsStored(centre, sub) * (1.0 - 1e-3);
@@ -265,8 +270,9 @@ void restartNearby(ModelFit& best, double& best_rms, const Problem& pb, int rest
       continue;
     RefineSummary rs;
     Camera refined = refineReprojection(start, sub.src, sub.dst, ro, &rs);
-    if (rs.final_rms < best_sub &&
-        checkDenominator(Eigen::Matrix3d(refined.stages()[0].q[2]), pb.frame_lo, pb.frame_hi).pole_free) {
+    const PoleCheck sub_poles =
+        checkDenominator(Eigen::Matrix3d(refined.stages()[0].q[2]), pb.frame_lo, pb.frame_hi);
+    if (rs.final_rms < best_sub && sub_poles.pole_free && sub_poles.margin >= margin_floor) {
       best_sub = rs.final_rms;
       candidate = std::move(refined);
     }
@@ -276,7 +282,7 @@ void restartNearby(ModelFit& best, double& best_rms, const Problem& pb, int rest
   const PoleCheck poles =
       checkDenominator(Eigen::Matrix3d(refined.stages()[0].q[2]), pb.frame_lo, pb.frame_hi);
   const double r = rmsStored(refined, pb);
-  if (poles.pole_free && r < best_rms) {
+  if (poles.pole_free && poles.margin >= margin_floor && r < best_rms) {
     best_rms = r;
     best.camera = refined;
     best.poles = poles;

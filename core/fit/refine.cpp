@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -145,8 +146,10 @@ Camera refineReprojection(const Camera& start, const Points& src, const Points& 
 
   Params p = toParams(start).normalized();
   double current = cost(p, data);
-  const bool start_pole_free =
-      checkDenominator(tensor(p, 2), options.frame_lo, options.frame_hi).pole_free;
+  const PoleCheck start_poles = checkDenominator(tensor(p, 2), options.frame_lo, options.frame_hi);
+  const bool start_pole_free = start_poles.pole_free;
+  // Steps may not bring the pole curve closer to the frame than this (refine.h).
+  const double margin_floor = std::min(options.min_pole_margin, start_poles.margin);
   RefineSummary s;
   s.initial_rms = std::sqrt(current / n);
   double lambda = 1e-3;
@@ -169,9 +172,10 @@ Camera refineReprojection(const Camera& start, const Points& src, const Points& 
       const Params step = cholesky.solve(-jtr);
       const Params candidate = (p + step).normalized();
       const double next = cost(candidate, data);
-      const bool pole_ok =
-          !options.keep_pole_free || !start_pole_free ||
-          checkDenominator(tensor(candidate, 2), options.frame_lo, options.frame_hi).pole_free;
+      const bool pole_ok = !options.keep_pole_free || !start_pole_free || [&] {
+        const PoleCheck c = checkDenominator(tensor(candidate, 2), options.frame_lo, options.frame_hi);
+        return c.pole_free && c.margin >= margin_floor;
+      }();
       if (next < current && !pole_ok) ++s.pole_rejections;
       if (next < current && pole_ok && candidate.allFinite()) {
         const double gain = (current - next) / std::max(current, 1e-300);

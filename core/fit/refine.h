@@ -5,7 +5,8 @@
 //
 // Guarantees: the result is never worse than the start (only cost-reducing steps are taken)
 // and, when the start is pole-free over the source frame, so is the result (a step that puts
-// a pole in the frame is rejected like one that raises the cost).
+// a pole in the frame, or comes within min_pole_margin of one, is rejected like one that
+// raises the cost).
 #pragma once
 
 #include "core/fit/normalize.h"
@@ -22,6 +23,12 @@ struct RefineOptions {
   int max_iterations = 100;
   double relative_tolerance = 1e-10;  // stop when the cost falls by less than this fraction
   bool keep_pole_free = true;
+  // With keep_pole_free, a step is also refused when it brings the denominator closer to zero
+  // than this margin (min |D| / max |D| over the frame, poles.h), or than the start's margin if
+  // that is lower. Without it, 9 noisy matches (one redundant equation) let LM fit them to
+  // 0.03 px by parking the pole curve on a frame corner (margin ~1e-11): pole-free by the sign
+  // test, yet the map runs to 1e10 px there. 1e-3 keeps |D| within a factor 1000 over the frame.
+  double min_pole_margin = 1e-3;
   // The source frame in normalised coordinates (for the pole check).
   Eigen::Vector2d frame_lo = Eigen::Vector2d(-1, -1);
   Eigen::Vector2d frame_hi = Eigen::Vector2d(1, 1);

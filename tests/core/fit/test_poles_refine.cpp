@@ -118,6 +118,49 @@ class TestPolesRefine : public QObject {
     }
   }
 
+  // Nine clicked pairs with 0.5 px noise leave one redundant equation: LM could fit them to a
+  // few hundredths of a pixel by parking the pole curve on a frame corner (margin ~1e-11, the
+  // map 1e10 px off there). The pairs below are such a case (a mild lens, 6000×4000; the
+  // algebraic fit has a pole, LM from the affine fit used to end at margin 1.3e-11): the floor
+  // of RefineOptions::min_pole_margin must hold it at 1e-3. Random sets must respect it too.
+  void fewNoisyMatchesKeepAPoleMargin() {
+    const FrameSize frame{6000, 4000};
+    const double pairs[9][4] = {{5549.191509755671, 3794.4231119727087, 5786.852256316742, 3893.5116404661076},
+                                {3552.1633613144118, 1694.9896329398455, 3546.444326917186, 1696.1022465148997},
+                                {1151.9829452357562, 1778.294295492052, 1052.3024010567597, 1765.8247725486074},
+                                {148.60180493741115, 343.0963451050046, -186.1744457776414, 84.67880004183546},
+                                {3075.803546354136, 2936.836315133982, 3077.646947661041, 2943.423462768585},
+                                {4698.614136963025, 2356.4939310880195, 4717.436186211436, 2357.3886981245037},
+                                {5824.411365473743, 1451.1700739124337, 5897.540084693981, 1430.2382364651357},
+                                {3432.280687150685, 2642.1284370012722, 3437.557454108696, 2642.042201466646},
+                                {2844.398536278236, 2871.6560150111964, 2839.782417972726, 2879.3172308189605}};
+    std::vector<PointMatch> fixed;
+    for (const auto& p : pairs)
+      fixed.push_back({Eigen::Vector2d(p[0], p[1]), Eigen::Vector2d(p[2], p[3]), true});
+    FitOptions o;
+    o.model = ModelClass::Quadratic;
+    const FitSummary f = fitImageCamera(fixed, frame, frame, o);
+    QVERIFY2(f.status.ok, f.status.message.c_str());
+    QVERIFY2(f.record.pole_margin >= 1e-3 * (1 - 1e-9), qPrintable(QString::number(f.record.pole_margin)));
+    QVERIFY(f.record.rms_px < 1.0);  // still fits the clicks
+
+    Camera truth = Camera::identity({Block{BlockKind::Position, 3}}, frame, frame);
+    truth.stages()[0].q[2](0, 0) = truth.stages()[0].q[2](1, 1) = -0.08;
+    truth.stages()[0].q[2](0, 2) = truth.stages()[0].q[2](2, 0) = 0.02;
+    truth.stages()[0].q[0](0, 1) = truth.stages()[0].q[0](1, 0) = 0.03;
+    std::normal_distribution<double> noise(0.0, 0.5);
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<PointMatch> m;
+      for (int k = 0; k < 9; ++k) {
+        const Eigen::Vector2d s(test::uniform(0, 6000), test::uniform(0, 4000));
+        m.push_back({s, *targetPixelFromSourcePixel(truth, s) +
+                            Eigen::Vector2d(noise(test::rng()), noise(test::rng())), true});
+      }
+      const FitSummary s = fitImageCamera(m, frame, frame, o);
+      if (s.status) QVERIFY2(s.record.pole_margin >= 1e-3 * (1 - 1e-9), s.report().c_str());
+    }
+  }
+
   // Real lens distortions, both directions. The rational quadratic cannot represent a radial
   // polynomial exactly; the fit must be pole-free and the refined error below the algebraic.
   void realLensDistortionsFitPoleFree_data() {
