@@ -6,6 +6,7 @@
 // does not snap, Del and undo remove the match; closing mid-fit shuts down cleanly.
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
+#include "core/io/piecewise_file.h"
 #include "core/piecewise/piecewise_render.h"
 #include "core/piecewise/sample_scenes.h"
 #include "tests/support/test_support.h"
@@ -26,6 +27,7 @@
 #include <QDockWidget>
 #include <QKeyEvent>
 #include <QSignalSpy>
+#include <QTemporaryDir>
 #include <QtTest/QtTest>
 
 #include <algorithm>
@@ -177,6 +179,51 @@ class TestInsertion : public QObject {
     rig.doc.undoStack()->undo();
     QVERIFY(waitForCurrent(rig.preview));
     QVERIFY(rig.preview.composite() == expected);
+  }
+
+  void exportsTheImageAndTheCamera() {
+    Rig rig;
+    QVERIFY(rig.openSample());
+    const InsertionFit fit = rig.preview.fit();
+    QVERIFY(fit.ok);
+    QTemporaryDir dir;
+    const QString image_path = dir.filePath("inserted.png");
+    const QString camera_path = dir.filePath("sphere.artcam");
+    QSignalSpy image_done(&rig.panel, &InsertionPanel::compositeExported);
+    rig.panel.exportComposite(image_path);
+    QVERIFY(image_done.wait(60000));
+    QVERIFY2(image_done.front().at(0).toBool(), qPrintable(image_done.front().at(1).toString()));
+    QSignalSpy camera_done(&rig.panel, &InsertionPanel::cameraExported);
+    rig.panel.exportCamera(camera_path);
+    QVERIFY(camera_done.wait(60000));
+    QVERIFY2(camera_done.front().at(0).toBool(), qPrintable(camera_done.front().at(1).toString()));
+
+    // The written image is the direct composite, to 8-bit rounding.
+    const auto written = readImage(image_path.toStdString());
+    QVERIFY(written.ok());
+    const QImage expected = directComposite(*fit.camera, {}).convertToFormat(QImage::Format_RGB32);
+    const QImage got = qimageFromLinear(written->image).convertToFormat(QImage::Format_RGB32);
+    QCOMPARE(got.size(), expected.size());
+    int worst = 0;
+    for (int y = 0; y < got.height(); ++y)
+      for (int x = 0; x < got.width(); ++x) {
+        const QRgb a = got.pixel(x, y), b = expected.pixel(x, y);
+        worst = std::max({worst, std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)),
+                          std::abs(qBlue(a) - qBlue(b))});
+      }
+    QVERIFY2(worst <= 1, qPrintable(QString::number(worst)));
+
+    // The camera file reads back with the same patches, mapping the matches the same.
+    const auto doc = readPiecewiseFile(camera_path.toStdString());
+    QVERIFY2(doc.ok(), doc.status.message.c_str());
+    QVERIFY(doc->pieces);
+    QCOMPARE(doc->pieces->patches.size(), fit.camera->patches.size());
+    for (const GridMatch& m : rig.model.state().matches) {
+      const auto a = fit.camera->targetPixelFromSourcePixel(m.board);
+      const auto b = doc->pieces->targetPixelFromSourcePixel(m.board);
+      QCOMPARE(a.has_value(), b.has_value());
+      if (a) QVERIFY((*a - *b).norm() < 1e-9);
+    }
   }
 
   void gridClickSnapsToTheCorner() {

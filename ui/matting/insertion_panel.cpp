@@ -2,9 +2,12 @@
 
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
+#include "core/io/piecewise_file.h"
+#include "ui/document.h"
 #include "ui/matting/board_view.h"
 #include "ui/matting/insertion_model.h"
 #include "ui/matting/insertion_preview.h"
+#include "ui/matting/insertion_worker.h"
 
 #include <QCheckBox>
 #include <QDoubleSpinBox>
@@ -257,6 +260,72 @@ void InsertionPanel::exportGridCsv(const QString& path) {
         if (!r) reportError(tr("Could not export the grid matches"), m);
         emit gridExported(r.ok(), m);
       });
+}
+
+void InsertionPanel::exportComposite(const QString& path) {
+  const PhotoPtr photo = model_->document()->photo();
+  const InsertionFit& fit = preview_->fit();
+  const InsertionState& s = model_->state();
+  if (!photo || !fit.ok || !s.graphic) {
+    const QString m = tr("Nothing to export yet: a photo, a fitted grid and a graphic are needed.");
+    reportError(tr("Could not export the inserted image"), m);
+    emit compositeExported(false, m);
+    return;
+  }
+  status_->setText(tr("Exporting %1…").arg(QFileInfo(path).fileName()));
+  runOffThread<bool>(
+      this,
+      [p = path.toStdString(), photo, camera = fit.camera, graphic = s.graphic, region = s.region] {
+        const ImageF out = InsertionWorker::composite(photo->full.image, *graphic, *camera, region);
+        const Status st = writeImage(p, out, &photo->full.info);
+        return st ? Result<bool>::success(true) : Result<bool>::failure(st.message);
+      },
+      [this, path](Result<bool> r) {
+        const QString m = r ? tr("Wrote %1").arg(path) : QString::fromStdString(r.status.message);
+        if (!r) reportError(tr("Could not export the inserted image"), m);
+        status_->setText(m);
+        emit compositeExported(r.ok(), m);
+      });
+}
+
+void InsertionPanel::exportCamera(const QString& path) {
+  const InsertionFit& fit = preview_->fit();
+  if (!fit.ok || !fit.camera || fit.camera->patches.empty()) {
+    const QString m = tr("No fitted camera to export yet.");
+    reportError(tr("Could not export the camera"), m);
+    emit cameraExported(false, m);
+    return;
+  }
+  runOffThread<bool>(
+      this,
+      [p = path.toStdString(), camera = fit.camera, matches = model_->pointMatches()] {
+        // As `artcam insert --save-camera` writes it: the top level holds a plain camera
+        // (the first patch's) and the matches, "patches" the piecewise camera.
+        PiecewiseDocument doc{ArtcamDocument{camera->patches.front().camera, matches, std::nullopt},
+                              *camera};
+        const Status st = writePiecewiseFile(p, doc);
+        return st ? Result<bool>::success(true) : Result<bool>::failure(st.message);
+      },
+      [this, path](Result<bool> r) {
+        const QString m = r ? tr("Wrote %1").arg(path) : QString::fromStdString(r.status.message);
+        if (!r) reportError(tr("Could not export the camera"), m);
+        emit cameraExported(r.ok(), m);
+      });
+}
+
+void InsertionPanel::exportCompositeDialog() {
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Export Inserted Image"), QString(),
+      tr("Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr);;All files (*)"));
+  if (!path.isEmpty()) exportComposite(path);
+}
+
+void InsertionPanel::exportCameraDialog() {
+  QString path = QFileDialog::getSaveFileName(this, tr("Export Piecewise Camera"), QString(),
+                                              tr("ARTcam (*.artcam)"));
+  if (path.isEmpty()) return;
+  if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".artcam");
+  exportCamera(path);
 }
 
 void InsertionPanel::setMaxError(double px) {

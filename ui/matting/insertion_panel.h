@@ -41,6 +41,10 @@ class InsertionPanel : public QWidget {
   void loadGraphic(const QString& path);
   void importGridCsv(const QString& path);
   void exportGridCsv(const QString& path);
+  // The graphic inserted into the FULL-resolution photo (the photo's format and metadata),
+  // and the piecewise camera as a .artcam file; both written off the GUI thread.
+  void exportComposite(const QString& path);
+  void exportCamera(const QString& path);
   void setMaxError(double px);
   void setBoardSize(int width, int height);
   void setSquares(int squares);
@@ -49,11 +53,15 @@ class InsertionPanel : public QWidget {
   void loadGraphicDialog();
   void importGridCsvDialog();
   void exportGridCsvDialog();
+  void exportCompositeDialog();
+  void exportCameraDialog();
 
  signals:
   void graphicLoaded(bool ok, const QString& message);
   void gridImported(bool ok, const QString& message);
   void gridExported(bool ok, const QString& message);
+  void compositeExported(bool ok, const QString& message);
+  void cameraExported(bool ok, const QString& message);
 
  private:
   void syncFromModel();

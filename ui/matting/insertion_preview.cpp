@@ -44,7 +44,9 @@ void InsertionPreview::refresh() {
   r.region = s.region;
   if (const PhotoPtr& photo = model_->document()->photo()) {
     r.photo_size = photo->size();
-    r.photo = std::shared_ptr<const ImageF>(photo, &photo->full.image);
+    // The preview copy (≤ kPreviewMaxSide): the GUI shows it scaled to the photo anyway, and
+    // a full-resolution render per edit would be slow on real photos; export uses the full one.
+    r.photo = std::shared_ptr<const ImageF>(photo, &photo->preview);
   }
   requested_renders_ = r.photo && r.graphic;
   if (r.matches.empty() || !r.photo) {

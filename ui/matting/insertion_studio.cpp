@@ -68,6 +68,11 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
       ->setToolTip(tr("CSV src_x,src_y,dst_x,dst_y: board pixels → photo pixels"));
   menu->addAction(tr("&Export Grid Matches…"), panel_, &InsertionPanel::exportGridCsvDialog)
       ->setToolTip(tr("Save the grid matches as CSV"));
+  menu->addAction(tr("Export Inserted &Image…"), QKeySequence(tr("Ctrl+Shift+E")), panel_,
+                  &InsertionPanel::exportCompositeDialog)
+      ->setToolTip(tr("The graphic inserted into the full-resolution photo"));
+  menu->addAction(tr("Export Piecewise &Camera…"), panel_, &InsertionPanel::exportCameraDialog)
+      ->setToolTip(tr("The fitted patches as a .artcam file (artcam insert --camera reads it)"));
   QAction* error_map = menu->addAction(tr("Show Error &Map"));
   error_map->setCheckable(true);
   error_map->setChecked(model_->errorMapVisible());

@@ -122,11 +122,29 @@ void InsertionWorker::limitToPolygon(ImageF& image, const std::vector<Eigen::Vec
   }
 }
 
+PiecewiseCamera InsertionWorker::retarget(const PiecewiseCamera& camera, FrameSize target_size) {
+  if (camera.target_size == target_size) return camera;
+  PiecewiseCamera out = camera;
+  out.target_size = target_size;
+  for (CameraPatch& patch : out.patches) patch.camera.setFrames(out.source_size, target_size);
+  return out;
+}
+
 ImageF InsertionWorker::composite(const ImageF& photo, const ImageF& graphic,
                                   const PiecewiseCamera& camera,
                                   const std::vector<Eigen::Vector2d>& region) {
-  ImageF top = renderPiecewise(graphic, camera);
-  limitToPolygon(top, region);
+  const FrameSize size{photo.width, photo.height};
+  ImageF top = renderPiecewise(graphic, retarget(camera, size));
+  if (region.size() >= 3 && size != camera.target_size) {
+    // The region is in full-resolution photo pixels.
+    const double sx = double(size.width) / camera.target_size.width;
+    const double sy = double(size.height) / camera.target_size.height;
+    std::vector<Eigen::Vector2d> scaled;
+    for (const Eigen::Vector2d& p : region) scaled.emplace_back(p.x() * sx, p.y() * sy);
+    limitToPolygon(top, scaled);
+  } else {
+    limitToPolygon(top, region);
+  }
   ImageF out = photo;
   compositeOver(top, out);
   return out;

@@ -35,9 +35,9 @@ struct InsertionRequest {
   quint64 generation = 0;
   std::vector<PointMatch> matches;  // board pixels → photo pixels
   FrameSize board_size;
-  FrameSize photo_size;
   PiecewiseOptions options;
-  std::shared_ptr<const ImageF> photo;    // linear, full resolution (the target frame)
+  FrameSize photo_size;                   // the fit's target frame (full resolution)
+  std::shared_ptr<const ImageF> photo;    // linear; the preview copy (any size: see retarget)
   std::shared_ptr<const ImageF> graphic;  // linear premultiplied; null: fit only
   std::vector<Eigen::Vector2d> region;    // photo pixels; < 3 points: no limit
 };
@@ -71,7 +71,10 @@ class InsertionWorker : public QThread {
   // Stops the thread (idempotent); called by the destructor.
   void shutdown();
 
-  // The preview a request gives for a camera: the graphic rendered through it, limited to the
+  // The same camera onto a target frame of another size (the preview copy of the photo):
+  // cameras live in normalised frames (DESIGN §1), so only the recorded sizes change.
+  static PiecewiseCamera retarget(const PiecewiseCamera& camera, FrameSize target_size);
+  // The preview a request gives for a camera (retargeted to the photo's size): the graphic rendered through it, limited to the
   // region, composited over the photo (a copy). Public so tests can compare with core calls.
   static ImageF composite(const ImageF& photo, const ImageF& graphic,
                           const PiecewiseCamera& camera,
