@@ -20,6 +20,7 @@
 #include "ui/matting/insertion_panel.h"
 #include "ui/matting/insertion_preview.h"
 #include "ui/matting/insertion_studio.h"
+#include "ui/matting/insertion_worker.h"
 #include "ui/tools/grid_tool.h"
 #include "ui/tools/region_tool.h"
 
@@ -179,6 +180,42 @@ class TestInsertion : public QObject {
     rig.doc.undoStack()->undo();
     QVERIFY(waitForCurrent(rig.preview));
     QVERIFY(rig.preview.composite() == expected);
+  }
+
+  void largePhotosPreviewOnTheirPreviewCopy() {
+    // A 2048×1536 traced photo: its preview copy is 1024×768 (box 2×2), and the live composite
+    // is made there with the camera retargeted to that frame.
+    MirrorSphereScene scene;
+    scene.photo_width = 2048;
+    scene.photo_height = 1536;
+    scene.focal_px = 0.9 * 2048;
+    scene.floor_centre_z = 1.6;
+    SampleScene sample = makeMirrorSphereSample(scene, 24);
+    LoadedImage loaded;
+    loaded.image = std::move(sample.photo);
+    Rig rig;
+    rig.doc.reset(makePhoto(QStringLiteral("sphere-2048.png"), std::move(loaded)));
+    QCOMPARE(rig.doc.photo()->preview.width, 1024);
+    InsertionState next = rig.model.state();
+    for (const PointMatch& m : sample.grid_matches)
+      next.matches.push_back({m.source.head<2>(), m.target.head<2>()});
+    next.graphic = std::make_shared<const ImageF>(makeEmblemGraphic(512));
+    rig.model.edit(next, "sample");
+    QVERIFY(waitForCurrent(rig.preview));
+    const InsertionFit fit = rig.preview.fit();
+    QVERIFY2(fit.ok && fit.max_px < 0.5, qPrintable(fit.report));
+    QCOMPARE(rig.preview.composite().size(), QSize(1024, 768));
+    // The retargeted camera sends every match to half its full-resolution target.
+    const PiecewiseCamera half = InsertionWorker::retarget(*fit.camera, {1024, 768});
+    for (const PointMatch& m : sample.grid_matches) {
+      const auto a = fit.camera->targetPixelFromSourcePixel(m.source.head<2>());
+      const auto b = half.targetPixelFromSourcePixel(m.source.head<2>());
+      QCOMPARE(a.has_value(), b.has_value());
+      if (a) QVERIFY((*a * 0.5 - *b).norm() < 1e-9);
+    }
+    ImageF bottom = rig.doc.photo()->preview;
+    compositeOver(renderPiecewise(*next.graphic, half), bottom);
+    QVERIFY(rig.preview.composite() == qimageFromLinear(bottom));
   }
 
   void exportsTheImageAndTheCamera() {
