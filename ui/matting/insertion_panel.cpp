@@ -157,6 +157,7 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   connect(error_map_, &QCheckBox::toggled, model_, &InsertionModel::setErrorMapVisible);
   connect(model_, &InsertionModel::errorMapVisibilityChanged, error_map_, &QCheckBox::setChecked);
   connect(model_, &InsertionModel::stateChanged, this, &InsertionPanel::syncFromModel);
+  connect(preview_, &InsertionPreview::requested, this, &InsertionPanel::showFit);
   connect(preview_, &InsertionPreview::fitChanged, this, &InsertionPanel::showFit);
   connect(preview_, &InsertionPreview::compositeChanged, this, &InsertionPanel::showFit);
   connect(preview_, &InsertionPreview::failed, this,

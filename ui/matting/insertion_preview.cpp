@@ -13,6 +13,15 @@ InsertionPreview::InsertionPreview(InsertionModel* model, QObject* parent)
           Qt::QueuedConnection);
   connect(worker_, &InsertionWorker::failed, this,
           [this](const QString& m, quint64 g) {
+            if (g < fit_generation_) return;
+            // The request is answered (with no camera), so the panel stops saying "Fitting…".
+            fit_ = InsertionFit{};
+            fit_.message = m;
+            fit_generation_ = g;
+            composite_ = QImage();
+            composite_generation_ = g;
+            emit fitChanged();
+            emit compositeChanged();
             if (g == requested_) emit failed(m);
           },
           Qt::QueuedConnection);
@@ -62,6 +71,7 @@ void InsertionPreview::refresh() {
     return;
   }
   worker_->request(std::move(r));
+  emit requested();
 }
 
 void InsertionPreview::onFitted(const InsertionFit& fit, quint64 generation) {

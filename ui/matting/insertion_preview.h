@@ -36,6 +36,7 @@ class InsertionPreview : public QObject {
   void refresh();
 
  signals:
+  void requested();  // a new fit/preview is on its way (isCurrent() is false until it arrives)
   void fitChanged();
   void compositeChanged();
   void failed(const QString& message);
