@@ -128,6 +128,7 @@ class TestInsertion : public QObject {
     QCOMPARE(rig.model.state().max_error_px, 0.5);
     const InsertionFit& fit = rig.preview.fit();
     QVERIFY2(fit.ok, qPrintable(fit.message));
+    qInfo("%d patches, max %.3f px, fit %.0f ms in the worker", fit.patches, fit.max_px, fit.fit_ms);
     QVERIFY2(fit.patches > 1, qPrintable(fit.report));
     QVERIFY2(fit.max_px < 0.5, qPrintable(fit.report));
     QCOMPARE(fit.patch_outlines.size(), fit.patches);
