@@ -1,6 +1,7 @@
 // artcam warp: image → image through a position camera (gather warp, DESIGN §3).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/warp_attributed.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
@@ -17,7 +18,8 @@ namespace artcam::cli {
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--threads N] [--stats] [--force]\n\n"
+    "                   [--threads N] [--stats] [--force]\n"
+    "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
     "The output has the camera's target frame size scaled by IN's size over the camera's\n"
     "source frame (a camera made on a preview applies to the full photo), or --size.\n"
@@ -29,7 +31,11 @@ const char* const kWarpUsage =
     "the file's own encoding as OpenCV's remap does; otherwise it renders in linear float.\n"
     "OUT is written atomically; it may not be IN\n"
     "unless --force is given. --stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr\n"
-    "(the render alone, without file I/O).\n";
+    "(the render alone, without file I/O).\n"
+    "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
+    "field go to the attributed renderer; those that read depth need --depth FILE: float\n"
+    "EXR/TIFF as stored, integer files times --depth-scale S, or disparity made depth as\n"
+    "BF / disparity with --disparity BF.\n";
 
 int warpCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
@@ -37,7 +43,10 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--filter", "", true},
                          {"--threads", "", true},
                          {"--stats", "", false},
-                         {"--force", "", false}});
+                         {"--force", "", false},
+                         {"--depth", "", true},
+                         {"--depth-scale", "", true},
+                         {"--disparity", "", true}});
   args.expectPositional(2, "IN and CAM.artcam");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
@@ -77,6 +86,22 @@ int warpCommand(const std::vector<std::string>& argv) {
     options.width = std::max(1, static_cast<int>(std::lround(camera.targetSize().width * scale)));
     options.height = std::max(1, static_cast<int>(std::lround(camera.targetSize().height * scale)));
   };
+  // Colour/depth cameras, layers and depth of field go to the attributed renderer (issue 6).
+  const auto effect = readArtcamEffectFile(args.positional()[1]);
+  if (!effect) throw CommandError(effect.status.message);
+  if (needsAttributedWarp(*effect)) {
+    const auto image = readImage(input);
+    if (!image) throw CommandError(image.status.message);
+    sizeFor(image->image.width);
+    AttributedWarpRequest request{*output, args.value("--depth"), 1.0, 0.0, options, args.has("--stats")};
+    try {
+      request.depth_scale = std::stod(args.valueOr("--depth-scale", "1"));
+      request.baseline_focal = std::stod(args.valueOr("--disparity", "0"));
+    } catch (const std::exception&) {
+      throw UsageError("--depth-scale and --disparity expect numbers");
+    }
+    return warpAttributed(*effect, *image, request);
+  }
   WarpSummary summary;
   int out_width = 0, out_height = 0;
   // The stored-type path (issue 5: peak memory ≤ input + output + a small constant).

@@ -253,7 +253,7 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
   std::vector<float> previous = rgba.data;
   double previous_sigma = 0.0;
   for (double s = std::max(options.min_sigma, options.first_level);; s *= options.level_ratio) {
-    const std::vector<float> current = level(rgba, sigma_px, s, options);
+    std::vector<float> current = level(rgba, sigma_px, s, options);
     const double lo2 = previous_sigma * previous_sigma, hi2 = s * s;
     ParallelOptions po;
     po.threads = options.threads;
@@ -273,7 +273,7 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
     });
     if (options.progress && !options.progress(std::min(1.0, s / max_sigma))) return {};
     if (s >= max_sigma) break;
-    previous = current;
+    previous = std::move(current);
     previous_sigma = s;
   }
   return out;

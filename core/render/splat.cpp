@@ -39,28 +39,22 @@ inline bool topLeft(double ax, double ay, double bx, double by) {
   return (ay == by && bx < ax) || by > ay;
 }
 
-void rasterise(const Vertex& a, const Vertex& b, const Vertex& c, int s, Accumulator& acc,
-               long long& dropped) {
-  if (!a.side || a.side != b.side || a.side != c.side) {
-    ++dropped;
-    return;
-  }
-  // Sample (i, j) sits at output point ((i + 0.5)/S, (j + 0.5)/S): in sample units X = P·S − 0.5.
-  const Vertex* v[3] = {&a, &b, &c};
+// One triangle onto the sample grid of G samples per output pixel side, sample (i, j) at output
+// point ((i + 0.5)/G, (j + 0.5)/G), each sample adding `weight`.
+void rasteriseOnGrid(const Vertex* v[3], int g, int weight, Accumulator& acc) {
   double px[3], py[3];
   for (int k = 0; k < 3; ++k) {
-    px[k] = v[k]->x * s - 0.5;
-    py[k] = v[k]->y * s - 0.5;
+    px[k] = v[k]->x * g - 0.5;  // sample units: sample (i, j) sits at (i, j)
+    py[k] = v[k]->y * g - 0.5;
   }
   double area = edge(px[0], py[0], px[1], py[1], px[2], py[2]);
-  if (!(std::abs(area) > 1e-12)) return;  // degenerate (or NaN): covers nothing
   if (area < 0) {  // a folded triangle still covers: orient it counter-clockwise
     std::swap(px[1], px[2]);
     std::swap(py[1], py[2]);
     std::swap(v[1], v[2]);
     area = -area;
   }
-  const int w = acc.width * s, h = acc.height * s;
+  const int w = acc.width * g, h = acc.height * g;
   const int i0 = std::max(0, static_cast<int>(std::ceil(std::min({px[0], px[1], px[2]}))));
   const int i1 = std::min(w - 1, static_cast<int>(std::floor(std::max({px[0], px[1], px[2]}))));
   const int j0 = std::max(0, static_cast<int>(std::ceil(std::min({py[0], py[1], py[2]}))));
@@ -69,6 +63,7 @@ void rasterise(const Vertex& a, const Vertex& b, const Vertex& c, int s, Accumul
   const bool tl[3] = {topLeft(px[1], py[1], px[2], py[2]), topLeft(px[2], py[2], px[0], py[0]),
                       topLeft(px[0], py[0], px[1], py[1])};
   const double inv = 1.0 / area;
+  const float fw = static_cast<float>(weight);
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
       const double e[3] = {edge(px[1], py[1], px[2], py[2], i, j),
@@ -77,16 +72,34 @@ void rasterise(const Vertex& a, const Vertex& b, const Vertex& c, int s, Accumul
       bool inside = true;
       for (int k = 0; k < 3; ++k) inside = inside && (e[k] > 0 || (e[k] == 0 && tl[k]));
       if (!inside) continue;
-      const size_t pixel = static_cast<size_t>(j / s) * static_cast<size_t>(acc.width) +
-                           static_cast<size_t>(i / s);
+      const size_t pixel = static_cast<size_t>(j / g) * static_cast<size_t>(acc.width) +
+                           static_cast<size_t>(i / g);
       float* sum = acc.sum.data() + 5 * pixel;
       // Barycentric weights: e[k] is the area opposite vertex k.
       const double b0 = e[0] * inv, b1 = e[1] * inv, b2 = 1.0 - b0 - b1;
       for (int k = 0; k < 4; ++k)
-        sum[k] += static_cast<float>(b0 * v[0]->rgba[k] + b1 * v[1]->rgba[k] + b2 * v[2]->rgba[k]);
-      sum[4] += static_cast<float>(b0 * v[0]->depth + b1 * v[1]->depth + b2 * v[2]->depth);
-      ++acc.count[pixel];
+        sum[k] += fw * static_cast<float>(b0 * v[0]->rgba[k] + b1 * v[1]->rgba[k] + b2 * v[2]->rgba[k]);
+      sum[4] += fw * static_cast<float>(b0 * v[0]->depth + b1 * v[1]->depth + b2 * v[2]->depth);
+      acc.count[pixel] += weight;
     }
+}
+
+void rasterise(const Vertex& a, const Vertex& b, const Vertex& c, int s, Accumulator& acc,
+               long long& dropped) {
+  if (!a.side || a.side != b.side || a.side != c.side) {
+    ++dropped;
+    return;
+  }
+  const Vertex* v[3] = {&a, &b, &c};
+  const double area_px = 0.5 * std::abs(edge(a.x, a.y, b.x, b.y, c.x, c.y));
+  if (!(area_px > 1e-12)) return;  // degenerate (or NaN): covers nothing
+  // A triangle of at least a quarter output pixel (its quad ≥ 0.5 px²: magnified, about 1:1 or
+  // mildly minified)
+  // is point-sampled at pixel centres with the weight of S² sub-samples: the piecewise-linear
+  // interpolant read exactly there, with no extra box blur (an identity map returns the
+  // source). Smaller ones are minified: S×S sub-samples average them (no moiré).
+  if (area_px >= 0.25) rasteriseOnGrid(v, 1, s * s, acc);
+  else rasteriseOnGrid(v, s, 1, acc);
 }
 
 }  // namespace

@@ -3,20 +3,22 @@
 //
 // Reconstruction: the source pixel centres, mapped forward one by one with their own colour
 // and depth (eq 3, 5), are the vertices of a triangle mesh (two triangles per 2×2 block of
-// neighbouring centres). Each triangle is rasterised into S×S sub-samples per output pixel
-// with its vertices' output attributes interpolated linearly (barycentric). So:
+// neighbouring centres). Each triangle is rasterised with its vertices' output attributes
+// interpolated linearly (barycentric): a triangle of at least ¼ output pixel is read at
+// pixel centres (weight S²), a smaller one at S×S sub-samples per output pixel (weight 1). So:
 // - no cracks: neighbouring triangles share edges whatever the map does to them, so a smooth
 //   magnifying map leaves no holes (the mesh is the map's piecewise-linear interpolant);
 // - no moiré where the map minifies: every triangle covering a sub-sample contributes, and
 //   the S×S sub-samples are averaged (a box prefilter over the output pixel);
+// - no extra blur where it does not: an identity map returns the source exactly;
 // - the same reconstruction as the gather's bilinear filter for geometry-only cameras (linear
 //   on triangles vs bilinear on quads), so the two agree where both apply.
 // A ring of vertices one pixel outside the source carries transparent colour (placed by the
 // nearest source pixel's colour, so colour-driven positions stay defined), which gives the
 // same fading border as the gather's "outside is transparent" convention (sampling.h).
 //
-// Normalisation and alpha: per output pixel, with C the sum of the interpolated premultiplied
-// colours over the covering (sub-sample, triangle) pairs and n their number, the pixel is
+// Normalisation and alpha: per output pixel, with C the weighted sum of the interpolated
+// premultiplied colours over the covering (sample, triangle) pairs and n their weight, the pixel is
 // C / max(n, S²): a pixel half covered gets half the alpha (alpha from coverage); folds, where
 // several layers of the mesh land on one sub-sample, average instead of adding up.
 //

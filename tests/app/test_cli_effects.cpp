@@ -1,0 +1,136 @@
+// The effect presets through the public CLI (artcam preset … ; artcam warp … --depth FILE), run
+// as processes on the bundled photo. Expectations are the effects' neutral settings, which must
+// give back the photo (to 8-bit rounding): zero colour shift, aerial perspective at the near
+// depth, depth of field at the focus depth; and refusals naming their cause.
+#include "tests/support/test_support.h"
+
+#include <OpenImageIO/imagebuf.h>
+
+#include <QtTest/QtTest>
+
+#include <QProcess>
+#include <QTemporaryDir>
+
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+namespace {
+
+struct Run {
+  int exit_code = -1;
+  QString out;
+  QString err;
+};
+
+Run artcamCli(const QStringList& args) {
+  QProcess p;
+  p.start(QStringLiteral(ARTCAM_CLI_PATH), args);
+  p.waitForFinished(300000);
+  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
+          QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
+}
+
+// Largest difference in 8-bit levels between two images' RGB, over pixels `margin` from the edge.
+int maxLevelDifference(const QString& a, const QString& b, int margin) {
+  OIIO::ImageBuf x(a.toStdString()), y(b.toStdString());
+  if (!x.read(0, 0, true, OIIO::TypeDesc::FLOAT) || !y.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return 999;
+  if (x.spec().width != y.spec().width || x.spec().height != y.spec().height) return 998;
+  int worst = 0;
+  for (int j = margin; j < x.spec().height - margin; ++j)
+    for (int i = margin; i < x.spec().width - margin; ++i)
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, static_cast<int>(std::lround(255.0 * std::abs(x.getchannel(i, j, 0, c) - y.getchannel(i, j, 0, c)))));
+  return worst;
+}
+
+// Largest difference in LINEAR light (sRGB decoded) between two 8-bit images' RGB.
+double maxLinearDifference(const QString& a, const QString& b) {
+  OIIO::ImageBuf x(a.toStdString()), y(b.toStdString());
+  if (!x.read(0, 0, true, OIIO::TypeDesc::FLOAT) || !y.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return 999;
+  const auto linear = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+  double worst = 0;
+  for (int j = 0; j < x.spec().height; ++j)
+    for (int i = 0; i < x.spec().width; ++i)
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, std::abs(linear(x.getchannel(i, j, 0, c)) - linear(y.getchannel(i, j, 0, c))));
+  return worst;
+}
+
+bool writeConstantDepth(const QString& path, int w, int h, float value) {
+  OIIO::ImageSpec spec(w, h, 1, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageBuf buf(spec);
+  std::vector<float> v(static_cast<size_t>(w) * static_cast<size_t>(h), value);
+  buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, v.data());
+  return buf.write(path.toStdString());
+}
+
+}  // namespace
+
+class TestCliEffects : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void neutralSettingsGiveThePhotoBack() {
+    QTemporaryDir dir;
+    const QString photo = QString::fromStdString(artcam::test::resourcePath("coffee.png"));
+    const QString cam = dir.filePath("cs.artcam"), out = dir.filePath("cs.png");
+    Run r = artcamCli({"preset", "colour-shift", "--s-red", "0", "--s-blue", "0", "-o", cam});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"warp", photo, cam, "-o", out});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("splat"), qPrintable(r.out));
+    QVERIFY(maxLevelDifference(photo, out, 2) <= 1);
+
+    const QString depth = dir.filePath("near.exr");
+    QVERIFY(writeConstantDepth(depth, 600, 400, 1.0f));
+    r = artcamCli({"preset", "aerial-perspective", "-o", dir.filePath("ap.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"warp", photo, dir.filePath("ap.artcam"), "-o", dir.filePath("ap.png"), "--depth", depth});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    // At the near depth l = 0 up to the log fit's error (≤ 0.0065 over [1, 100], times the
+    // strength 0.7), plus 8-bit rounding (≤ 0.0045 in linear light near white).
+    const double ap = maxLinearDifference(photo, dir.filePath("ap.png"));
+    QVERIFY2(ap <= 0.7 * 0.0065 + 0.0046, qPrintable(QString("linear difference %1").arg(ap)));
+
+    const QString focus = dir.filePath("focus.exr");
+    QVERIFY(writeConstantDepth(focus, 300, 200, 2.0f));  // half size: read at the same place
+    r = artcamCli({"preset", "depth-of-field", "--focus", "2", "-o", dir.filePath("dof.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"warp", photo, dir.filePath("dof.artcam"), "-o", dir.filePath("dof.png"), "--depth", focus});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY(maxLevelDifference(photo, dir.filePath("dof.png"), 0) <= 1);
+  }
+
+  void depthEffectsWithoutDepthAreRefused() {
+    QTemporaryDir dir;
+    const QString photo = QString::fromStdString(artcam::test::resourcePath("coffee.png"));
+    Run r = artcamCli({"preset", "aerial-perspective", "-o", dir.filePath("ap.artcam")});
+    QCOMPARE(r.exit_code, 0);
+    r = artcamCli({"warp", photo, dir.filePath("ap.artcam"), "-o", dir.filePath("ap.png")});
+    QCOMPARE(r.exit_code, 1);
+    QVERIFY2(r.err.contains("--depth"), qPrintable(r.err));
+    QVERIFY(!QFile::exists(dir.filePath("ap.png")));
+    r = artcamCli({"preset", "barrel", "--k", "0.9", "-o", dir.filePath("b.artcam")});
+    QCOMPARE(r.exit_code, 1);
+    QVERIFY2(r.err.contains("pole"), qPrintable(r.err));
+  }
+
+  void chromaticAberrationWritesThreeLayers() {
+    QTemporaryDir dir;
+    const QString photo = QString::fromStdString(artcam::test::resourcePath("coffee.png"));
+    Run r = artcamCli({"preset", "chromatic-aberration-2d", "--red", "0.01", "-o", dir.filePath("ca.artcam")});
+    QCOMPARE(r.exit_code, 0);
+    QFile f(dir.filePath("ca.artcam"));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QVERIFY(f.readAll().contains("\"layers\""));
+    r = artcamCli({"warp", photo, dir.filePath("ca.artcam"), "-o", dir.filePath("ca.png")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("gather"), qPrintable(r.out));
+    // Red moved, green did not: the two differ from the photo by different amounts.
+    QVERIFY(maxLevelDifference(photo, dir.filePath("ca.png"), 8) > 3);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliEffects)
+#include "test_cli_effects.moc"
