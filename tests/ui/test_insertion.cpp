@@ -348,6 +348,16 @@ class TestInsertion : public QObject {
     QCOMPARE(rig.model.state().matches.size(), size_t(1));
     QVERIFY((rig.model.state().matches.front().photo - Eigen::Vector2d(raw.x(), raw.y())).norm() < 1e-9);
     QVERIFY((rig.model.state().matches.front().photo - first_truth).norm() > 0.5);
+
+    // Dragging the match drops it on the corner near the release point, snapped; undo.
+    const Eigen::Vector2d unsnapped = rig.model.state().matches.front().photo;
+    artcam::ui::test::drag(&canvas, artcam::ui::test::widgetPoint(canvas, unsnapped),
+                           artcam::ui::test::widgetPoint(canvas, first_truth + Eigen::Vector2d(-0.8, 0.6)));
+    QCOMPARE(rig.model.state().matches.size(), size_t(1));
+    const double dropped = (rig.model.state().matches.front().photo - first_truth).norm();
+    QVERIFY2(dropped < 0.3, qPrintable(QString::number(dropped)));
+    rig.doc.undoStack()->undo();
+    QVERIFY(rig.model.state().matches.front().photo == unsnapped);
   }
 
   void mainWindowHasTheInsertionMode() {

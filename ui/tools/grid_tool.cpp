@@ -10,6 +10,7 @@
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QPainter>
+#include <QPen>
 
 #include <cmath>
 
@@ -57,23 +58,51 @@ Eigen::Vector2d GridTool::placeAt(const Eigen::Vector2d& photo_px, double search
   return p;
 }
 
+double GridTool::searchRadius(Qt::KeyboardModifiers modifiers) const {
+  return (modifiers & Qt::ShiftModifier) ? 0.0 : kSnapRadiusWidgetPx / canvas_->view().scale();
+}
+
 void GridTool::mousePress(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton || !document_->photo()) return;
   const int hit = hitTest(event->position());
+  pressed_match_ = hit;
+  dragging_ = false;
+  press_widget_ = drag_widget_ = event->position();
   if (hit >= 0) {
     model_->setSelectedMatch(hit);
     const int corner = model_->cornerAt(model_->state().matches[static_cast<size_t>(hit)].board, 1e-6);
     if (corner >= 0) model_->setSelectedCorner(corner);
   } else {
     const QPointF image = canvas_->view().imageFromWidget(event->position());
-    const bool snap = !(event->modifiers() & Qt::ShiftModifier);
-    placeAt({image.x(), image.y()}, snap ? kSnapRadiusWidgetPx / canvas_->view().scale() : 0.0);
+    placeAt({image.x(), image.y()}, searchRadius(event->modifiers()));
   }
   canvas_->update();
 }
 
-void GridTool::mouseMove(QMouseEvent*) {}
-void GridTool::mouseRelease(QMouseEvent*) {}
+void GridTool::mouseMove(QMouseEvent* event) {
+  if (pressed_match_ < 0 || !(event->buttons() & Qt::LeftButton)) return;
+  drag_widget_ = event->position();
+  const QPointF d = drag_widget_ - press_widget_;
+  if (!dragging_ && std::hypot(d.x(), d.y()) >= 3.0) dragging_ = true;
+  if (dragging_) canvas_->update();
+}
+
+void GridTool::mouseRelease(QMouseEvent* event) {
+  const int k = pressed_match_;
+  const bool moved = dragging_;
+  pressed_match_ = -1;
+  dragging_ = false;
+  if (!moved || k < 0 || k >= static_cast<int>(model_->state().matches.size())) return;
+  const QPointF image = canvas_->view().imageFromWidget(event->position());
+  Eigen::Vector2d p(image.x(), image.y());
+  const double radius = searchRadius(event->modifiers());
+  if (radius > 0.0 && snapper_ && document_->photo())
+    if (const auto snapped = snapper_(document_->photo()->full.image, p, radius)) p = *snapped;
+  InsertionState next = model_->state();
+  next.matches[static_cast<size_t>(k)].photo = p;
+  model_->edit(next, QCoreApplication::translate("GridTool", "Move Grid Match"));
+  canvas_->update();
+}
 
 bool GridTool::keyPress(QKeyEvent* event) {
   if (event->key() == Qt::Key_Delete || event->key() == Qt::Key_Backspace) {
@@ -96,8 +125,19 @@ bool GridTool::keyPress(QKeyEvent* event) {
 
 void GridTool::paint(QPainter& painter) {
   InsertionOverlay::paint(painter, canvas_->view(), *model_, *preview_);
+  if (!dragging_) return;
+  painter.save();
+  painter.setRenderHint(QPainter::Antialiasing, true);
+  painter.setPen(QPen(QColor(255, 255, 0), 1.5));
+  painter.setBrush(Qt::NoBrush);
+  painter.drawEllipse(drag_widget_, 6.0, 6.0);
+  painter.restore();
 }
 
-void GridTool::cancel() { model_->setSelectedMatch(-1); }
+void GridTool::cancel() {
+  pressed_match_ = -1;
+  dragging_ = false;
+  model_->setSelectedMatch(-1);
+}
 
 }  // namespace artcam::ui

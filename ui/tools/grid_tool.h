@@ -42,6 +42,7 @@ class GridTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  bool wantsLoupe() const override { return dragging_; }
 
   // Places the selected corner's match at a photo point (snapped within search_radius_px
   // unless it is 0); returns the point used. What a click does, callable without events.
@@ -49,10 +50,15 @@ class GridTool : public Tool {
 
  private:
   int hitTest(const QPointF& widget) const;
+  double searchRadius(Qt::KeyboardModifiers modifiers) const;
 
   InsertionModel* model_;
   InsertionPreview* preview_;
   CornerSnapper snapper_;
+  int pressed_match_ = -1;  // the match under the press, while the button is down
+  bool dragging_ = false;
+  QPointF press_widget_;
+  QPointF drag_widget_;
 };
 
 }  // namespace artcam::ui
