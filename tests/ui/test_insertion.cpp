@@ -17,6 +17,7 @@
 #include "ui/image_loader.h"
 #include "ui/main_window.h"
 #include "ui/matting/insertion_model.h"
+#include "ui/matting/insertion_overlay.h"
 #include "ui/matting/insertion_panel.h"
 #include "ui/matting/insertion_preview.h"
 #include "ui/matting/insertion_studio.h"
@@ -153,6 +154,46 @@ class TestInsertion : public QObject {
     QVERIFY(waitForCurrent(rig.preview));
     QVERIFY(!rig.preview.fit().ok);
     QVERIFY(rig.preview.composite().isNull());
+  }
+
+  void errorMapOutlinesThePatches() {
+    Rig rig;
+    QVERIFY(rig.openSample());
+    const InsertionFit& fit = rig.preview.fit();
+    QVERIFY(fit.ok);
+    // Every traced corner lies in the mapped support of the patch that holds it (hulls are of
+    // the patch's own matches; the outline is densified, so allow half a pixel).
+    const auto csv = readMatchesCsv(kGrid.toStdString());
+    QVERIFY(csv.ok());
+    int inside = 0;
+    for (const PointMatch& m : *csv) {
+      const int patch = fit.camera->patchAt(m.source.head<2>());
+      if (patch < 0) continue;
+      const QPolygonF& outline = fit.patch_outlines[patch];
+      QVERIFY(outline.size() >= 3);
+      const QPointF t(m.target.x(), m.target.y());
+      bool near = outline.containsPoint(t, Qt::OddEvenFill);
+      for (int i = 0; !near && i < outline.size(); ++i) {
+        const QPointF a = outline[i], b = outline[(i + 1) % outline.size()];
+        const QPointF ab = b - a;
+        const double len2 = QPointF::dotProduct(ab, ab);
+        const double u = len2 > 0 ? std::clamp(QPointF::dotProduct(t - a, ab) / len2, 0.0, 1.0) : 0.0;
+        const QPointF q = a + u * ab - t;
+        near = std::hypot(q.x(), q.y()) < 0.5;
+      }
+      QVERIFY2(near, qPrintable(QString("(%1, %2) outside patch %3").arg(t.x()).arg(t.y()).arg(patch)));
+      ++inside;
+    }
+    QVERIFY(inside > static_cast<int>(csv->size()) / 2);
+    // Colours: green at 0, red at and beyond the threshold.
+    QCOMPARE(InsertionOverlay::errorColour(0.0, 0.5), QColor(0, 200, 0));
+    QCOMPARE(InsertionOverlay::errorColour(0.5, 0.5), QColor(255, 0, 0));
+    QCOMPARE(InsertionOverlay::errorColour(3.0, 0.5), QColor(255, 0, 0));
+    // The toggle is view state: no undo step.
+    const int steps = rig.doc.undoStack()->count();
+    rig.model.setErrorMapVisible(false);
+    QVERIFY(!rig.model.errorMapVisible());
+    QCOMPARE(rig.doc.undoStack()->count(), steps);
   }
 
   void previewEqualsCoreRender() {
