@@ -17,6 +17,8 @@ const char* const kFitUsage =
     "usage: artcam fit MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
     "                  [--model auto|translation|similarity|affine|homography|quadratic] [--json]\n"
     "                  [--no-refine] [--robust [--threshold PX]] [--allow-poles]\n"
+    "       artcam fit --piecewise MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
+    "                  [--max-error PX] [--model quadratic|homography|affine]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
     "       artcam fit --block colour SAMPLES.csv -o CAM.artcam --size WxH [--srgb]\n"
     "                  [--model auto|linear|affine|quadratic]\n"
@@ -34,6 +36,11 @@ const char* const kFitUsage =
     "frame (a pole) is refused, after retrying from the homography and affine fits, unless\n"
     "--allow-poles. --robust samples minimal sets (MSAC with local optimisation) and fits the\n"
     "matches within --threshold px (default 3); the inlier indices are printed and stored.\n"
+    "--piecewise splits the region the matches cover into patches (a quadtree) and fits one\n"
+    "camera per patch (default quadratic) until every patch's max residual is under --max-error\n"
+    "(default 0.5 px); neighbours share the matches near their edges so they agree at the\n"
+    "seams. Prints per-patch errors, the seam gap and the single-camera floor. The file holds\n"
+    "the single camera at its top level and the patches beside it (artcam insert reads them).\n"
     "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
     "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n"
     "--block colour fits the colour block to colour samples: SAMPLES.csv has the header\n"
@@ -44,6 +51,9 @@ const char* const kFitUsage =
     "camera holds the best representable model (and --model root-polynomial is refused).\n"
     "Prints dE00 per sample, mean, median and max. --size is the size of the photos the camera\n"
     "will recolour (its geometry is the identity); --threshold is in dE00 (default 3).\n";
+
+int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize source,
+                        FrameSize target);  // cmd_fit_piecewise.cpp
 
 namespace {
 
@@ -139,7 +149,9 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--allow-poles", "", false},
                          {"--json", "", false},
                          {"--block", "", true},
-                         {"--srgb", "", false}});
+                         {"--srgb", "", false},
+                         {"--piecewise", "", false},
+                         {"--max-error", "", true}});
   args.expectPositional(1, "MATCHES.csv");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
@@ -158,6 +170,11 @@ int fitCommand(const std::vector<std::string>& argv) {
     target = args.has("--target-size") ? parseSize(*args.value("--target-size"), "--target-size")
                                        : source;
   }
+  if (args.has("--piecewise")) {
+    if (dimension != 2) throw UsageError("--piecewise fits image cameras (--dim 2)");
+    return fitPiecewiseCommand(args, *output, source, target);
+  }
+  if (args.has("--max-error")) throw UsageError("--max-error goes with --piecewise");
   FitOptions options;
   const std::string model_name = args.valueOr("--model", "auto");
   const auto model = modelClassFromName(model_name);

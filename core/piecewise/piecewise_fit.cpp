@@ -76,6 +76,9 @@ std::optional<PatchFit> fitPatch(const std::vector<PointMatch>& shared, const Pa
     fo.refine = o.refine;
     fo.require_pole_free = false;  // checked over the patch below, not the whole frame
     fo.diagnostics = false;
+    // A patch is small and nearly quadratic: LM converges from the DLT, and the quadtree
+    // splits wherever it does not, so the polishing restarts would only multiply the cost.
+    fo.restarts = 0;
     const FitSummary fit = fitImageCamera(shared, source, target, fo);
     if (!fit.status || !poleFreeOver(fit.camera, rect)) continue;
     return PatchFit{fit.camera, fit.record.model};
@@ -193,6 +196,7 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
     fo.model = ModelClass::Quadratic;
     fo.diagnostics = false;
     fo.require_pole_free = false;
+    fo.restarts = 0;
     const FitSummary single = fitImageCamera(matches, source_size, target_size, fo);
     if (single.status) {
       out.single_rms_px = single.record.rms_px;

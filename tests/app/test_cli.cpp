@@ -2,6 +2,7 @@
 #include "core/fit/fit_image.h"
 #include "core/io/artcam_file.h"
 #include "core/model/frames.h"
+#include "tests/app/cli_run.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>
@@ -11,28 +12,15 @@
 #include <QFileInfo>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QProcess>
 #include <QTemporaryDir>
 
 #include <cstdio>
 
 using namespace artcam;
+using artcam::test::artcamCli;
+using Run = artcam::test::CliRun;
 
 namespace {
-
-struct Run {
-  int exit_code = -1;
-  QString out;
-  QString err;
-};
-
-Run artcamCli(const QStringList& args) {
-  QProcess p;
-  p.start(QStringLiteral(ARTCAM_CLI_PATH), args);
-  p.waitForFinished(120000);
-  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-          QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
-}
 
 const FrameSize kFrame{600, 400};
 

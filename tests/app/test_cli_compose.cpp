@@ -2,31 +2,19 @@
 // that maps pixels as the two files do one after the other (read back and evaluated here).
 #include "core/io/artcam_file.h"
 #include "core/model/frames.h"
+#include "tests/app/cli_run.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>
 
 #include <QFile>
-#include <QProcess>
 #include <QTemporaryDir>
 
 using namespace artcam;
+using artcam::test::artcamCli;
+using Run = artcam::test::CliRun;
 
 namespace {
-
-struct Run {
-  int exit_code = -1;
-  QString out;
-  QString err;
-};
-
-Run artcamCli(const QStringList& args) {
-  QProcess p;
-  p.start(QStringLiteral(ARTCAM_CLI_PATH), args);
-  p.waitForFinished(120000);
-  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-          QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
-}
 
 void writeCamera(const QString& path, const Camera& camera) {
   const Status s = writeArtcamFile(path.toStdString(), ArtcamDocument{camera, {}, std::nullopt});

@@ -5,29 +5,18 @@
 #include "core/io/piecewise_file.h"
 #include "core/piecewise/sample_scenes.h"
 
+#include "tests/app/cli_run.h"
+
 #include <QtTest/QtTest>
 
 #include <QFile>
-#include <QProcess>
 #include <QTemporaryDir>
 
 using namespace artcam;
+using artcam::test::artcamCli;
+using Run = artcam::test::CliRun;
 
 namespace {
-
-struct Run {
-  int exit_code = -1;
-  QString out;
-  QString err;
-};
-
-Run artcamCli(const QStringList& args) {
-  QProcess p;
-  p.start(QStringLiteral(ARTCAM_CLI_PATH), args);
-  p.waitForFinished(120000);
-  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-          QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
-}
 
 ImageF load(const QString& path) {
   const auto r = readImage(path.toStdString());
@@ -85,6 +74,28 @@ class TestCliInsert : public QObject {
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     const ImageF again = load(dir.filePath("again.png"));
     QCOMPARE(again.data, after.data);
+  }
+
+  void fitPiecewiseMeetsItsThreshold() {
+    QTemporaryDir dir;
+    QVERIFY(artcamCli({"sample", "water-glass", "-o", dir.path()}).exit_code == 0);
+    const Run r = artcamCli({"fit", "--piecewise", dir.filePath("water-glass-grid.csv"), "--size",
+                             "512x512", "--target-size", "640x480", "--max-error", "0.2", "-o",
+                             dir.filePath("glass.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY(r.out.contains("patch 0"));
+    const auto doc = readPiecewiseFile(dir.filePath("glass.artcam").toStdString());
+    QVERIFY2(doc.ok(), doc.status.message.c_str());
+    QVERIFY(doc->pieces.has_value());
+    // Every grid match, read back from the file the sample wrote, within the threshold.
+    QVERIFY(!doc->whole.matches.empty());
+    for (const PointMatch& m : doc->whole.matches) {
+      const auto y = doc->pieces->targetPixelFromSourcePixel(m.source);
+      QVERIFY(y);
+      QVERIFY2((*y - m.target).norm() <= 0.2 + 1e-9, qPrintable(QString::number((*y - m.target).norm())));
+    }
+    QCOMPARE(artcamCli({"fit", "--max-error", "0.2", dir.filePath("water-glass-grid.csv"), "--size",
+                        "512x512", "-o", dir.filePath("x.artcam")}).exit_code, 2);
   }
 
   void badInputLeavesNothingBehind() {
