@@ -111,7 +111,7 @@ std::vector<double> parseList(const std::string& text, const std::string& option
 
 const char* const kBenchEffectsUsage =
     "usage: artcam bench effects [--size WxH] [--crop N] [--sigmas LIST] [--reps N]\n"
-    "                            [--threads N] [--image FILE] [--ratio R]\n"
+    "                            [--threads N] [--image FILE] [--ratio R] [--shrink-from S]\n"
     "Depth of field, fast stack (levels σ·R, default √2) vs exact: PSNR (dB) and time (ms) on an\n"
     "N×N crop of the photo at its own resolution for each\n"
     "maximum blur σ (pixels), and the stack's time on the whole WxH image; then splat vs\n"
@@ -121,7 +121,7 @@ const char* const kBenchEffectsUsage =
 int benchEffectsCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--size", "", true}, {"--crop", "", true}, {"--sigmas", "", true},
                          {"--reps", "", true}, {"--threads", "", true}, {"--image", "", true},
-                         {"--ratio", "", true}});
+                         {"--ratio", "", true}, {"--shrink-from", "", true}});
   const FrameSize size = parseSize(args.valueOr("--size", "6000x4000"), "--size");
   const int crop_side = std::stoi(args.valueOr("--crop", "384"));
   const int reps = std::max(1, std::stoi(args.valueOr("--reps", "3")));
@@ -130,6 +130,7 @@ int benchEffectsCommand(const std::vector<std::string>& argv) {
   BlurOptions blur;
   blur.threads = args.has("--threads") ? std::stoi(*args.value("--threads")) : 0;
   if (args.has("--ratio")) blur.level_ratio = std::stod(*args.value("--ratio"));
+  if (args.has("--shrink-from")) blur.shrink_from_sigma = std::stod(*args.value("--shrink-from"));
 
   const auto photo = readImage(path);
   if (!photo) throw CommandError(photo.status.message);

@@ -184,7 +184,7 @@ std::vector<float> level(const ImageF& rgba, const ImageF& sigma, double s, cons
   // Large σ: blur a box-shrunk copy (f ≤ σ/2) and read it back bilinearly; the box and the
   // tent add variance (f² − 1)/12 and f²/6, taken off the blur so the total matches σ².
   int f = 1;
-  while (s / (2 * f) >= 2.0) f *= 2;
+  while (s / (2 * f) >= o.shrink_from_sigma / 2.0) f *= 2;
   const double extra = f > 1 ? (f * f - 1.0) / 12.0 + f * f / 6.0 : 0.0;
   const Buffer5 blurred = blur5(maskedShrunk(rgba, sigma, threshold, f, o.threads),
                                 std::sqrt(std::max(s * s - extra, 0.25)) / f, o.threads);

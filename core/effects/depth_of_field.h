@@ -42,6 +42,8 @@ struct BlurOptions {
   double level_ratio = 1.41421356237;  // stackBlur: σ_{L+1}/σ_L
   double min_sigma = 0.3;              // below this a pixel is left sharp (both blurs)
   double first_level = 0.5;            // stackBlur: σ_1; below it pixels blend with the sharp image
+  // stackBlur: levels of σ ≥ this blur a 2× (4×, …) box-shrunk copy, keeping σ ≥ this/2 there.
+  double shrink_from_sigma = 2.0;
   int threads = 0;
   std::function<bool(double)> progress;  // return false to cancel (empty result)
 };
