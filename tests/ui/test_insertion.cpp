@@ -222,6 +222,27 @@ class TestInsertion : public QObject {
     rig.doc.undoStack()->undo();
     QVERIFY(waitForCurrent(rig.preview));
     QVERIFY(rig.preview.composite() == expected);
+
+    // Placed at (128, 128), 256 board px wide: the 512 px emblem is pasted, pixel for pixel,
+    // at (256, 256) of a transparent 1024×1024 board (2 pixels per board pixel).
+    GraphicPlacement placement;
+    placement.origin = {128.0, 128.0};
+    placement.width = 256.0;
+    rig.panel.setPlacement(placement);
+    QVERIFY(waitForCurrent(rig.preview));
+    auto emblem = readImage(kEmblem.toStdString());
+    auto photo2 = readImage(kPhoto.toStdString());
+    QVERIFY(emblem.ok() && photo2.ok());
+    QCOMPARE(emblem->image.channels, 4);
+    ImageF placed(1024, 1024, 4, 3);
+    for (int y = 0; y < 512; ++y)
+      for (int x = 0; x < 512; ++x)
+        for (int c = 0; c < 4; ++c) placed.pixel(x + 256, y + 256)[c] = emblem->image.pixel(x, y)[c];
+    compositeOver(renderPiecewise(placed, *fit.camera), photo2->image);
+    QVERIFY(rig.preview.composite() == qimageFromLinear(photo2->image));
+    QVERIFY(rig.preview.composite() != expected);
+    rig.doc.undoStack()->undo();
+    QVERIFY(rig.model.state().placement.fillsBoard());
   }
 
   void largePhotosPreviewOnTheirPreviewCopy() {

@@ -68,6 +68,16 @@ void BoardView::paintEvent(QPaintEvent*) {
     p.setBrush(matched ? QBrush(QColor(255, 0, 200)) : Qt::NoBrush);
     p.drawEllipse(w, dot, dot);
   }
+  const InsertionState& s = model_->state();
+  if (s.graphic && !s.placement.fillsBoard() && s.graphic->width > 0) {
+    const double h = s.placement.width * s.graphic->height / s.graphic->width;
+    const QPointF a = widgetFromBoard(QPointF(s.placement.origin.x(), s.placement.origin.y()));
+    const QPointF b = widgetFromBoard(
+        QPointF(s.placement.origin.x() + s.placement.width, s.placement.origin.y() + h));
+    p.setPen(QPen(QColor(0, 200, 255), 2.0, Qt::DashLine));
+    p.setBrush(Qt::NoBrush);
+    p.drawRect(QRectF(a, b));
+  }
   if (model_->cornerCount() > 0) {
     const Eigen::Vector2d b = model_->cornerPosition(model_->selectedCorner());
     p.setPen(QPen(QColor(255, 220, 0), 2.0));

@@ -13,6 +13,7 @@
 #include "core/model/camera.h"
 #include "core/model/fit_record.h"
 #include "core/model/image.h"
+#include "ui/matting/graphic_placement.h"
 
 #include <QObject>
 #include <QString>
@@ -41,11 +42,12 @@ struct InsertionState {
   double max_error_px = 0.5;
   std::shared_ptr<const ImageF> graphic;  // linear premultiplied; null: none
   QString graphic_path;
+  GraphicPlacement placement;  // default: the graphic fills the board
 
   bool operator==(const InsertionState& o) const {
     return matches == o.matches && region == o.region && board_size == o.board_size &&
            squares == o.squares && max_error_px == o.max_error_px && graphic == o.graphic &&
-           graphic_path == o.graphic_path;
+           graphic_path == o.graphic_path && placement == o.placement;
   }
 };
 

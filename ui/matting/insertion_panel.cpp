@@ -24,6 +24,7 @@
 #include <QThread>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -72,6 +73,9 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
       board_height_(new QSpinBox(this)),
       squares_(new QSpinBox(this)),
       max_error_(new QDoubleSpinBox(this)),
+      place_x_(new QDoubleSpinBox(this)),
+      place_y_(new QDoubleSpinBox(this)),
+      place_width_(new QDoubleSpinBox(this)),
       error_map_(new QCheckBox(tr("Show per-patch error map"), this)),
       matches_label_(new QLabel(this)),
       board_view_(new BoardView(model, this)),
@@ -110,6 +114,20 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   max_error_->setKeyboardTracking(false);
   max_error_->setToolTip(tr("Patches are split until each one's max error is below this"));
   form->addRow(tr("Max error"), max_error_);
+  auto* place_row = new QHBoxLayout;
+  for (QDoubleSpinBox* s : {place_x_, place_y_, place_width_}) {
+    s->setRange(-16384.0, 16384.0);
+    s->setDecimals(1);
+    s->setKeyboardTracking(false);
+    place_row->addWidget(s);
+  }
+  place_width_->setRange(0.0, 16384.0);
+  place_width_->setSpecialValueText(tr("fill"));
+  place_x_->setToolTip(tr("Left edge of the graphic on the board (board pixels)"));
+  place_y_->setToolTip(tr("Top edge of the graphic on the board (board pixels)"));
+  place_width_->setToolTip(tr("Width of the graphic on the board (board pixels, its aspect kept); "
+                              "\"fill\": stretched over the whole board"));
+  form->addRow(tr("Graphic at"), place_row);
   layout->addLayout(form);
 
   auto* csv_row = new QHBoxLayout;
@@ -154,6 +172,13 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
           [this](int h) { setBoardSize(board_width_->value(), h); });
   connect(squares_, &QSpinBox::valueChanged, this, &InsertionPanel::setSquares);
   connect(max_error_, &QDoubleSpinBox::valueChanged, this, &InsertionPanel::setMaxError);
+  for (QDoubleSpinBox* s : {place_x_, place_y_, place_width_})
+    connect(s, &QDoubleSpinBox::valueChanged, this, [this] {
+      GraphicPlacement p;
+      p.origin = {place_x_->value(), place_y_->value()};
+      p.width = place_width_->value();
+      setPlacement(p);
+    });
   connect(error_map_, &QCheckBox::toggled, model_, &InsertionModel::setErrorMapVisible);
   connect(model_, &InsertionModel::errorMapVisibilityChanged, error_map_, &QCheckBox::setChecked);
   connect(model_, &InsertionModel::stateChanged, this, &InsertionPanel::syncFromModel);
@@ -176,7 +201,11 @@ QString InsertionPanel::statusText() const { return status_->text(); }
 void InsertionPanel::syncFromModel() {
   const InsertionState& s = model_->state();
   {
-    const QSignalBlocker b1(board_width_), b2(board_height_), b3(squares_), b4(max_error_);
+    const QSignalBlocker b1(board_width_), b2(board_height_), b3(squares_), b4(max_error_),
+        b5(place_x_), b6(place_y_), b7(place_width_);
+    place_x_->setValue(s.placement.origin.x());
+    place_y_->setValue(s.placement.origin.y());
+    place_width_->setValue(std::max(0.0, s.placement.width));
     board_width_->setValue(s.board_size.width);
     board_height_->setValue(s.board_size.height);
     squares_->setValue(s.squares);
@@ -276,8 +305,10 @@ void InsertionPanel::exportComposite(const QString& path) {
   status_->setText(tr("Exporting %1…").arg(QFileInfo(path).fileName()));
   runOffThread<bool>(
       this,
-      [p = path.toStdString(), photo, camera = fit.camera, graphic = s.graphic, region = s.region] {
-        const ImageF out = InsertionWorker::composite(photo->full.image, *graphic, *camera, region);
+      [p = path.toStdString(), photo, camera = fit.camera, graphic = s.graphic, region = s.region,
+       placement = s.placement] {
+        const ImageF out =
+            InsertionWorker::composite(photo->full.image, *graphic, *camera, region, placement);
         const Status st = writeImage(p, out, &photo->full.info);
         return st ? Result<bool>::success(true) : Result<bool>::failure(st.message);
       },
@@ -345,6 +376,12 @@ void InsertionPanel::setSquares(int squares) {
   InsertionState next = model_->state();
   next.squares = squares;
   model_->edit(next, tr("Board Squares %1").arg(squares));
+}
+
+void InsertionPanel::setPlacement(const GraphicPlacement& placement) {
+  InsertionState next = model_->state();
+  next.placement = placement;
+  model_->edit(next, tr("Place Graphic"));
 }
 
 void InsertionPanel::clearRegion() {

@@ -7,6 +7,8 @@
 // are dialogs naming the file and the cause (or only signals, when not interactive).
 #pragma once
 
+#include "ui/matting/graphic_placement.h"
+
 #include <QString>
 #include <QWidget>
 
@@ -48,6 +50,7 @@ class InsertionPanel : public QWidget {
   void setMaxError(double px);
   void setBoardSize(int width, int height);
   void setSquares(int squares);
+  void setPlacement(const artcam::ui::GraphicPlacement& placement);
   void clearRegion();
   void deleteSelectedMatch();
   void loadGraphicDialog();
@@ -76,6 +79,9 @@ class InsertionPanel : public QWidget {
   QSpinBox* board_height_;
   QSpinBox* squares_;
   QDoubleSpinBox* max_error_;
+  QDoubleSpinBox* place_x_;
+  QDoubleSpinBox* place_y_;
+  QDoubleSpinBox* place_width_;
   QCheckBox* error_map_;
   QLabel* matches_label_;
   BoardView* board_view_;

@@ -51,6 +51,7 @@ void InsertionPreview::refresh() {
   r.options.max_error_px = s.max_error_px;
   r.graphic = s.graphic;
   r.region = s.region;
+  r.placement = s.placement;
   if (const PhotoPtr& photo = model_->document()->photo()) {
     r.photo_size = photo->size();
     // The preview copy (≤ kPreviewMaxSide): the GUI shows it scaled to the photo anyway, and

@@ -132,9 +132,13 @@ PiecewiseCamera InsertionWorker::retarget(const PiecewiseCamera& camera, FrameSi
 
 ImageF InsertionWorker::composite(const ImageF& photo, const ImageF& graphic,
                                   const PiecewiseCamera& camera,
-                                  const std::vector<Eigen::Vector2d>& region) {
+                                  const std::vector<Eigen::Vector2d>& region,
+                                  const GraphicPlacement& placement) {
   const FrameSize size{photo.width, photo.height};
-  ImageF top = renderPiecewise(graphic, retarget(camera, size));
+  ImageF top = placement.fillsBoard()
+                   ? renderPiecewise(graphic, retarget(camera, size))
+                   : renderPiecewise(placeGraphic(graphic, camera.source_size, placement),
+                                     retarget(camera, size));
   if (region.size() >= 3 && size != camera.target_size) {
     // The region is in full-resolution photo pixels.
     const double sx = double(size.width) / camera.target_size.width;
@@ -182,7 +186,8 @@ void InsertionWorker::run() {
       if (!last_fit_.ok || !job.photo || !job.graphic || job.photo->empty() ||
           job.graphic->empty())
         continue;
-      const ImageF out = composite(*job.photo, *job.graphic, *last_fit_.camera, job.region);
+      const ImageF out =
+          composite(*job.photo, *job.graphic, *last_fit_.camera, job.region, job.placement);
       if (!keepGoing()) continue;
       const QImage image = qimageFromLinear(out);
       if (!keepGoing()) continue;

@@ -14,6 +14,7 @@
 #include "core/model/image.h"
 #include "core/piecewise/piecewise_camera.h"
 #include "core/piecewise/piecewise_fit.h"
+#include "ui/matting/graphic_placement.h"
 
 #include <QImage>
 #include <QMetaType>
@@ -40,6 +41,7 @@ struct InsertionRequest {
   std::shared_ptr<const ImageF> photo;    // linear; the preview copy (any size: see retarget)
   std::shared_ptr<const ImageF> graphic;  // linear premultiplied; null: fit only
   std::vector<Eigen::Vector2d> region;    // photo pixels; < 3 points: no limit
+  GraphicPlacement placement;
 };
 
 // What the panel and the error map show of a fit.
@@ -78,7 +80,8 @@ class InsertionWorker : public QThread {
   // region, composited over the photo (a copy). Public so tests can compare with core calls.
   static ImageF composite(const ImageF& photo, const ImageF& graphic,
                           const PiecewiseCamera& camera,
-                          const std::vector<Eigen::Vector2d>& region);
+                          const std::vector<Eigen::Vector2d>& region,
+                       const GraphicPlacement& placement = {});
   // Multiplies every channel of a premultiplied image by the polygon's coverage (pixel centres
   // inside, even-odd rule).
   static void limitToPolygon(ImageF& image, const std::vector<Eigen::Vector2d>& polygon);
