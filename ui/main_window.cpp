@@ -152,7 +152,7 @@ void MainWindow::createMenus() {
   QAction* export_image = file->addAction(tr("&Export Warped Image…"), QKeySequence(tr("Ctrl+E")),
                                           session_, &Session::exportImageDialog);
   file->addSeparator();
-  file->addAction(tr("Load &Depth Map…"), this, [this] {
+  file->addAction(tr("Load &Depth Map…"), QKeySequence(tr("Ctrl+Shift+L")), this, [this] {
     session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
   })->setToolTip(tr("A float EXR/TIFF or 16-bit PNG depth map under the painted planes"));
   file->addSeparator();

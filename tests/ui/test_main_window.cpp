@@ -10,6 +10,9 @@
 #include "ui/main_window.h"
 #include "ui/preview_controller.h"
 #include "ui/session.h"
+#include "ui/tools/depth_tool.h"
+#include "ui/tools/depth_tool_settings.h"
+#include "ui/tools/pair_tool.h"
 
 #include <QAction>
 #include <QDragEnterEvent>
@@ -83,6 +86,33 @@ class TestMainWindow : public QObject {
     QDropEvent drop(QPointF(at), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
     QCoreApplication::sendEvent(&window, &drop);
     QTRY_VERIFY_WITH_TIMEOUT(window.document()->photo() != nullptr, 30000);
+  }
+
+  void shortcutsAreUniqueAndSwitchTools() {
+    // Qt silently ignores a shortcut two actions share: every one must be unique.
+    MainWindow window;
+    QMap<QString, QString> owner;
+    for (QAction* a : window.findChildren<QAction*>())
+      for (const QKeySequence& k : a->shortcuts()) {
+        const QString key = k.toString();
+        QVERIFY2(!owner.contains(key) || owner[key] == a->text(),
+                 qPrintable(QString("%1: %2 and %3").arg(key, owner[key], a->text())));
+        owner[key] = a->text();
+      }
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.canvas()->setFocus();
+    QTest::keyClick(&window, Qt::Key_B);
+    auto* brush = dynamic_cast<DepthTool*>(window.canvas()->tool());
+    QVERIFY(brush && brush->mode() == DepthToolMode::Brush);
+    QTest::keyClick(&window, Qt::Key_D);
+    auto* points = dynamic_cast<DepthTool*>(window.canvas()->tool());
+    QVERIFY(points && points->mode() == DepthToolMode::Points);
+    QTest::keyClick(&window, Qt::Key_P);
+    QVERIFY(dynamic_cast<PairTool*>(window.canvas()->tool()));
+    const double r = window.depthToolSettings()->radius();
+    QTest::keyClick(&window, Qt::Key_BracketRight);
+    QCOMPARE(window.depthToolSettings()->radius(), r * 1.25);
   }
 };
 

@@ -15,6 +15,7 @@
 #include <QLabel>
 #include <QListWidget>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QSlider>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -135,6 +136,8 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   connect(next_depth_, &QDoubleSpinBox::valueChanged, settings_,
           &DepthToolSettings::setNextDepth);
   connect(settings_, &DepthToolSettings::changed, this, [this] {
+    // Shown, not fed back: the boxes round (one decimal) and must not round the settings.
+    const QSignalBlocker b1(radius_), b2(hardness_), b3(next_depth_);
     radius_->setValue(settings_->radius());
     hardness_->setValue(static_cast<int>(std::lround(settings_->hardness() * 100)));
     next_depth_->setValue(settings_->nextDepth());
