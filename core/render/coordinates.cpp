@@ -6,7 +6,9 @@
 
 #include <Eigen/LU>
 
+#if defined(__x86_64__)
 #include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -42,6 +44,7 @@ struct ProjectiveRow {
   }
 }
 
+#if defined(__x86_64__)
 // GCC's -O2 does not vectorise the loop above (its cheap cost model), so the AVX2 version is
 // written out: the same operations in the same order, no FMA, hence bit-identical results.
 __attribute__((target("avx2"))) void projectiveSpanAvx2(const ProjectiveRow& r, float* sx, float* sy,
@@ -68,14 +71,22 @@ __attribute__((target("avx2"))) void projectiveSpanAvx2(const ProjectiveRow& r, 
   }
 }
 
+#endif
+
 bool cpuHasAvx2() {
+#if defined(__x86_64__)
   static const bool has = __builtin_cpu_supports("avx2");
   return has;
+#else
+  return false;
+#endif
 }
 
 void projectiveSpanDispatched(const ProjectiveRow& r, float* sx, float* sy, std::int32_t* ok) {
-  if (cpuHasAvx2()) projectiveSpanAvx2(r, sx, sy, ok);
-  else projectiveSpanBody(r, sx, sy, ok);
+#if defined(__x86_64__)
+  if (cpuHasAvx2()) return projectiveSpanAvx2(r, sx, sy, ok);
+#endif
+  projectiveSpanBody(r, sx, sy, ok);
 }
 
 void projectiveSpanScalar(const ProjectiveRow& r, float* sx, float* sy, std::int32_t* ok) {
@@ -248,6 +259,7 @@ constexpr int kGridPixels = kSpanPixels / 2;  // RationalKernel::kGrid
   }
 }
 
+#if defined(__x86_64__)
 // The AVX2 version of the loop above, written out (GCC's -O2 does not vectorise it): the same
 // operations in the same order, no FMA, so it is bit-identical to the scalar fallback.
 __attribute__((target("avx2"))) void seedCellAvx2(const SeedRow& r, int first, float* sx, float* sy) {
@@ -272,9 +284,13 @@ __attribute__((target("avx2"))) void seedCellAvx2(const SeedRow& r, int first, f
   }
 }
 
+#endif
+
 void seedCell(const SeedRow& r, int first, float* sx, float* sy, bool scalar_only) {
-  if (!scalar_only && cpuHasAvx2()) seedCellAvx2(r, first, sx, sy);
-  else seedCellBody(r, first, sx, sy);
+#if defined(__x86_64__)
+  if (!scalar_only && cpuHasAvx2()) return seedCellAvx2(r, first, sx, sy);
+#endif
+  seedCellBody(r, first, sx, sy);
 }
 
 class RationalKernel final : public CoordinateKernel {
