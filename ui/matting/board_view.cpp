@@ -12,7 +12,7 @@ namespace artcam::ui {
 
 BoardView::BoardView(InsertionModel* model, QWidget* parent) : QWidget(parent), model_(model) {
   setFocusPolicy(Qt::ClickFocus);
-  setMinimumSize(120, 120);
+  setMinimumSize(180, 180);
   setToolTip(tr("The canonical board: click a corner to choose which corner the next photo "
                 "click matches (arrow keys move it)"));
   connect(model_, &InsertionModel::stateChanged, this, qOverload<>(&QWidget::update));
@@ -59,15 +59,13 @@ void BoardView::paintEvent(QPaintEvent*) {
     for (int i = 0; i < n; ++i)
       if ((i + j) % 2 == 0) p.fillRect(QRectF(r.left() + i * cw, r.top() + j * ch, cw, ch), QColor(60, 60, 60));
   p.setRenderHint(QPainter::Antialiasing, true);
-  const double dot = std::clamp(std::min(cw, ch) * 0.22, 1.5, 4.0);
-  for (int c = 0; c < model_->cornerCount(); ++c) {
-    const Eigen::Vector2d b = model_->cornerPosition(c);
-    const QPointF w = widgetFromBoard(QPointF(b.x(), b.y()));
-    const bool matched = model_->matchOfCorner(c) >= 0;
-    p.setPen(QPen(QColor(255, 0, 200), 1.0));
-    p.setBrush(matched ? QBrush(QColor(255, 0, 200)) : Qt::NoBrush);
-    p.drawEllipse(w, dot, dot);
-  }
+  // Matched corners get a small filled dot; unmatched ones stay bare (the board's own
+  // corners show them), so a dense board stays readable.
+  const double dot = std::clamp(std::min(cw, ch) * 0.18, 0.8, 4.0);
+  p.setPen(Qt::NoPen);
+  p.setBrush(QColor(255, 0, 200));
+  for (const GridMatch& m : model_->state().matches)
+    p.drawEllipse(widgetFromBoard(QPointF(m.board.x(), m.board.y())), dot, dot);
   const InsertionState& s = model_->state();
   if (s.graphic && !s.placement.fillsBoard() && s.graphic->width > 0) {
     const double h = s.placement.width * s.graphic->height / s.graphic->width;
