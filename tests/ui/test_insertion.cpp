@@ -40,8 +40,10 @@ using namespace artcam::ui;
 
 namespace {
 
-const QString kPhoto = QString::fromStdString(artcam::test::resourcePath("insertion/mirror-sphere.png"));
-const QString kGrid = QString::fromStdString(artcam::test::resourcePath("insertion/mirror-sphere-grid.csv"));
+const QString kPhoto =
+    QString::fromStdString(artcam::test::resourcePath("insertion/mirror-sphere.png"));
+const QString kGrid =
+    QString::fromStdString(artcam::test::resourcePath("insertion/mirror-sphere-grid.csv"));
 const QString kEmblem = QString::fromStdString(artcam::test::resourcePath("insertion/emblem.png"));
 
 // Opens the photo as the studio does (ImageLoader off the GUI thread, then Document::reset).
@@ -129,7 +131,8 @@ class TestInsertion : public QObject {
     QCOMPARE(rig.model.state().max_error_px, 0.5);
     const InsertionFit& fit = rig.preview.fit();
     QVERIFY2(fit.ok, qPrintable(fit.message));
-    qInfo("%d patches, max %.3f px, fit %.0f ms in the worker", fit.patches, fit.max_px, fit.fit_ms);
+    qInfo("%d patches, max %.3f px, fit %.0f ms in the worker", fit.patches, fit.max_px,
+          fit.fit_ms);
     QVERIFY2(fit.patches > 1, qPrintable(fit.report));
     QVERIFY2(fit.max_px < 0.5, qPrintable(fit.report));
     QCOMPARE(fit.patch_outlines.size(), fit.patches);
@@ -177,11 +180,13 @@ class TestInsertion : public QObject {
         const QPointF a = outline[i], b = outline[(i + 1) % outline.size()];
         const QPointF ab = b - a;
         const double len2 = QPointF::dotProduct(ab, ab);
-        const double u = len2 > 0 ? std::clamp(QPointF::dotProduct(t - a, ab) / len2, 0.0, 1.0) : 0.0;
+        const double u =
+            len2 > 0 ? std::clamp(QPointF::dotProduct(t - a, ab) / len2, 0.0, 1.0) : 0.0;
         const QPointF q = a + u * ab - t;
         near = std::hypot(q.x(), q.y()) < 0.5;
       }
-      QVERIFY2(near, qPrintable(QString("(%1, %2) outside patch %3").arg(t.x()).arg(t.y()).arg(patch)));
+      QVERIFY2(near,
+               qPrintable(QString("(%1, %2) outside patch %3").arg(t.x()).arg(t.y()).arg(patch)));
       ++inside;
     }
     QVERIFY(inside > static_cast<int>(csv->size()) / 2);
@@ -237,7 +242,8 @@ class TestInsertion : public QObject {
     ImageF placed(1024, 1024, 4, 3);
     for (int y = 0; y < 512; ++y)
       for (int x = 0; x < 512; ++x)
-        for (int c = 0; c < 4; ++c) placed.pixel(x + 256, y + 256)[c] = emblem->image.pixel(x, y)[c];
+        for (int c = 0; c < 4; ++c)
+          placed.pixel(x + 256, y + 256)[c] = emblem->image.pixel(x, y)[c];
     compositeOver(renderPiecewise(placed, *fit.camera), photo2->image);
     QVERIFY(rig.preview.composite() == qimageFromLinear(photo2->image));
     QVERIFY(rig.preview.composite() != expected);
@@ -363,7 +369,8 @@ class TestInsertion : public QObject {
       rig.model.setSelectedCorner(board_corner);
       canvas.setView(2.0, QPointF(truth.x(), truth.y()));
       const size_t before = rig.model.state().matches.size();
-      artcam::ui::test::click(&canvas, artcam::ui::test::widgetPoint(canvas, truth + Eigen::Vector2d(0.9, -0.7)));
+      artcam::ui::test::click(
+          &canvas, artcam::ui::test::widgetPoint(canvas, truth + Eigen::Vector2d(0.9, -0.7)));
       QCOMPARE(rig.model.state().matches.size(), before + 1);
       const GridMatch placed = rig.model.state().matches.back();
       QVERIFY((placed.board - m.source.head<2>()).norm() < 1e-9);
@@ -380,7 +387,8 @@ class TestInsertion : public QObject {
     std::vector<double> sorted = errors;
     std::sort(sorted.begin(), sorted.end());
     const double median = sorted[sorted.size() / 2];
-    qInfo("%zu clicks snapped: median %.4f px, worst %.4f px", sorted.size(), median, sorted.back());
+    qInfo("%zu clicks snapped: median %.4f px, worst %.4f px", sorted.size(), median,
+          sorted.back());
     QVERIFY2(median < 0.1, qPrintable(QString::number(median)));
     QVERIFY2(sorted.back() < 0.3, qPrintable(QString::number(sorted.back())));
 
@@ -404,17 +412,20 @@ class TestInsertion : public QObject {
     // Shift-click: no snap, the clicked image point itself.
     rig.model.setSelectedCorner(first_corner);
     canvas.setView(2.0, QPointF(first_truth.x(), first_truth.y()));
-    const QPoint w = artcam::ui::test::widgetPoint(canvas, first_truth + Eigen::Vector2d(0.9, -0.7));
+    const QPoint w =
+        artcam::ui::test::widgetPoint(canvas, first_truth + Eigen::Vector2d(0.9, -0.7));
     artcam::ui::test::click(&canvas, w, Qt::ShiftModifier);
     const QPointF raw = canvas.view().imageFromWidget(QPointF(w));
     QCOMPARE(rig.model.state().matches.size(), size_t(1));
-    QVERIFY((rig.model.state().matches.front().photo - Eigen::Vector2d(raw.x(), raw.y())).norm() < 1e-9);
+    QVERIFY((rig.model.state().matches.front().photo - Eigen::Vector2d(raw.x(), raw.y())).norm() <
+            1e-9);
     QVERIFY((rig.model.state().matches.front().photo - first_truth).norm() > 0.5);
 
     // Dragging the match drops it on the corner near the release point, snapped; undo.
     const Eigen::Vector2d unsnapped = rig.model.state().matches.front().photo;
-    artcam::ui::test::drag(&canvas, artcam::ui::test::widgetPoint(canvas, unsnapped),
-                           artcam::ui::test::widgetPoint(canvas, first_truth + Eigen::Vector2d(-0.8, 0.6)));
+    artcam::ui::test::drag(
+        &canvas, artcam::ui::test::widgetPoint(canvas, unsnapped),
+        artcam::ui::test::widgetPoint(canvas, first_truth + Eigen::Vector2d(-0.8, 0.6)));
     QCOMPARE(rig.model.state().matches.size(), size_t(1));
     const double dropped = (rig.model.state().matches.front().photo - first_truth).norm();
     QVERIFY2(dropped < 0.3, qPrintable(QString::number(dropped)));

@@ -13,8 +13,9 @@ namespace artcam::ui {
 BoardView::BoardView(InsertionModel* model, QWidget* parent) : QWidget(parent), model_(model) {
   setFocusPolicy(Qt::ClickFocus);
   setMinimumSize(180, 180);
-  setToolTip(tr("The canonical board: click a corner to choose which corner the next photo "
-                "click matches (arrow keys move it)"));
+  setToolTip(
+      tr("The canonical board: click a corner to choose which corner the next photo "
+         "click matches (arrow keys move it)"));
   connect(model_, &InsertionModel::stateChanged, this, qOverload<>(&QWidget::update));
   connect(model_, &InsertionModel::selectionChanged, this, qOverload<>(&QWidget::update));
 }
@@ -57,7 +58,8 @@ void BoardView::paintEvent(QPaintEvent*) {
   const double cw = r.width() / n, ch = r.height() / n;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)
-      if ((i + j) % 2 == 0) p.fillRect(QRectF(r.left() + i * cw, r.top() + j * ch, cw, ch), QColor(60, 60, 60));
+      if ((i + j) % 2 == 0)
+        p.fillRect(QRectF(r.left() + i * cw, r.top() + j * ch, cw, ch), QColor(60, 60, 60));
   p.setRenderHint(QPainter::Antialiasing, true);
   // Matched corners get a small filled dot; unmatched ones stay bare (the board's own
   // corners show them), so a dense board stays readable.
@@ -88,7 +90,8 @@ void BoardView::mousePressEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton) return;
   const QPointF b = boardFromWidget(event->position());
   const FrameSize size = model_->state().board_size;
-  const double tolerance = 0.5 * std::max(size.width, size.height) / std::max(1, model_->state().squares);
+  const double tolerance =
+      0.5 * std::max(size.width, size.height) / std::max(1, model_->state().squares);
   const int corner = model_->cornerAt({b.x(), b.y()}, tolerance);
   if (corner >= 0) {
     model_->setSelectedCorner(corner);
@@ -100,11 +103,21 @@ void BoardView::keyPressEvent(QKeyEvent* event) {
   const int n = model_->cornersPerRow();
   int c = model_->selectedCorner();
   switch (event->key()) {
-    case Qt::Key_Left: c -= 1; break;
-    case Qt::Key_Right: c += 1; break;
-    case Qt::Key_Up: c -= n; break;
-    case Qt::Key_Down: c += n; break;
-    default: QWidget::keyPressEvent(event); return;
+    case Qt::Key_Left:
+      c -= 1;
+      break;
+    case Qt::Key_Right:
+      c += 1;
+      break;
+    case Qt::Key_Up:
+      c -= n;
+      break;
+    case Qt::Key_Down:
+      c += n;
+      break;
+    default:
+      QWidget::keyPressEvent(event);
+      return;
   }
   if (c >= 0 && c < model_->cornerCount()) model_->setSelectedCorner(c);
 }

@@ -18,8 +18,10 @@ ImageF placeGraphic(const ImageF& graphic, FrameSize board, const GraphicPlaceme
   const double k = graphic.width / (placement.width * r);
   const double ox = placement.origin.x() * r, oy = placement.origin.y() * r;
   const double gh = placement.width * graphic.height / graphic.width * r;  // height, placed px
-  const int x0 = std::max(0, static_cast<int>(std::floor(ox))), x1 = std::min(w, static_cast<int>(std::ceil(ox + placement.width * r)));
-  const int y0 = std::max(0, static_cast<int>(std::floor(oy))), y1 = std::min(h, static_cast<int>(std::ceil(oy + gh)));
+  const int x0 = std::max(0, static_cast<int>(std::floor(ox))),
+            x1 = std::min(w, static_cast<int>(std::ceil(ox + placement.width * r)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(oy))),
+            y1 = std::min(h, static_cast<int>(std::ceil(oy + gh)));
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       // Graphic coordinates of this pixel's centre; outside the graphic stays transparent.
@@ -37,7 +39,8 @@ ImageF placeGraphic(const ImageF& graphic, FrameSize board, const GraphicPlaceme
       const float* c = graphic.pixel(ix, jy);
       const float* d = graphic.pixel(jx, jy);
       for (int ch = 0; ch < graphic.channels; ++ch) {
-        const double v = (1 - ty) * ((1 - tx) * a[ch] + tx * b[ch]) + ty * ((1 - tx) * c[ch] + tx * d[ch]);
+        const double v =
+            (1 - ty) * ((1 - tx) * a[ch] + tx * b[ch]) + ty * ((1 - tx) * c[ch] + tx * d[ch]);
         o[ch] = static_cast<float>(v);
       }
       if (graphic.alpha_channel < 0) o[channels - 1] = 1.0f;

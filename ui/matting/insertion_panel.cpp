@@ -85,8 +85,9 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   auto* layout = new QVBoxLayout(this);
 
   auto* graphic_row = new QHBoxLayout;
-  QPushButton* load_graphic = button(tr("Graphic…"), tr("The image to insert (alpha is kept), "
-                                                        "drawn over the board's canonical view"),
+  QPushButton* load_graphic = button(tr("Graphic…"),
+                                     tr("The image to insert (alpha is kept), "
+                                        "drawn over the board's canonical view"),
                                      this);
   graphic_row->addWidget(load_graphic);
   graphic_row->addWidget(graphic_label_, 1);
@@ -100,7 +101,8 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
     s->setSuffix(tr(" px"));
     size_row->addWidget(s);
   }
-  board_width_->setToolTip(tr("Width of the board's canonical view (source pixels of the grid matches)"));
+  board_width_->setToolTip(
+      tr("Width of the board's canonical view (source pixels of the grid matches)"));
   board_height_->setToolTip(tr("Height of the board's canonical view"));
   form->addRow(tr("Board"), size_row);
   squares_->setRange(2, 200);
@@ -125,8 +127,9 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   place_width_->setSpecialValueText(tr("fill"));
   place_x_->setToolTip(tr("Left edge of the graphic on the board (board pixels)"));
   place_y_->setToolTip(tr("Top edge of the graphic on the board (board pixels)"));
-  place_width_->setToolTip(tr("Width of the graphic on the board (board pixels, its aspect kept); "
-                              "\"fill\": stretched over the whole board"));
+  place_width_->setToolTip(
+      tr("Width of the graphic on the board (board pixels, its aspect kept); "
+         "\"fill\": stretched over the whole board"));
   form->addRow(tr("Graphic at"), place_row);
   layout->addLayout(form);
 
@@ -144,21 +147,23 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   auto* edit_row = new QHBoxLayout;
   QPushButton* delete_match =
       button(tr("Delete Match"), tr("Remove the selected grid match (Del in the grid tool)"), this);
-  QPushButton* clear_region =
-      button(tr("Clear Region"), tr("Remove the marked region (the composite is then unlimited)"), this);
+  QPushButton* clear_region = button(
+      tr("Clear Region"), tr("Remove the marked region (the composite is then unlimited)"), this);
   edit_row->addWidget(delete_match);
   edit_row->addWidget(clear_region);
   layout->addLayout(edit_row);
   layout->addWidget(matches_label_);
   layout->addWidget(board_view_, 1);
-  error_map_->setToolTip(tr("Outline each patch in the photo, green at 0 px to red at the max error (Shift+M)"));
+  error_map_->setToolTip(
+      tr("Outline each patch in the photo, green at 0 px to red at the max error (Shift+M)"));
   error_map_->setChecked(model_->errorMapVisible());
   layout->addWidget(error_map_);
   status_->setWordWrap(true);
   layout->addWidget(status_);
   report_->setReadOnly(true);
   report_->setMaximumBlockCount(200);
-  report_->setToolTip(tr("The piecewise fit: patches, RMS/max error, seam gap, single-camera floor"));
+  report_->setToolTip(
+      tr("The piecewise fit: patches, RMS/max error, seam gap, single-camera floor"));
   layout->addWidget(report_, 1);
 
   connect(load_graphic, &QPushButton::clicked, this, &InsertionPanel::loadGraphicDialog);
@@ -274,7 +279,8 @@ void InsertionPanel::importGridCsv(const QString& path) {
         for (const PointMatch& m : *r)
           if (m.enabled) next.matches.push_back({m.source.head<2>(), m.target.head<2>()});
         model_->edit(next, tr("Import Grid Matches"));
-        emit gridImported(true, tr("%1: %2 matches").arg(QFileInfo(path).fileName()).arg(next.matches.size()));
+        emit gridImported(
+            true, tr("%1: %2 matches").arg(QFileInfo(path).fileName()).arg(next.matches.size()));
       });
 }
 
@@ -413,8 +419,8 @@ void InsertionPanel::importGridCsvDialog() {
 }
 
 void InsertionPanel::exportGridCsvDialog() {
-  QString path = QFileDialog::getSaveFileName(this, tr("Export Grid Matches"), QString(),
-                                              tr("CSV (*.csv)"));
+  QString path =
+      QFileDialog::getSaveFileName(this, tr("Export Grid Matches"), QString(), tr("CSV (*.csv)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".csv");
   exportGridCsv(path);

@@ -11,20 +11,21 @@ InsertionPreview::InsertionPreview(InsertionModel* model, QObject* parent)
           Qt::QueuedConnection);
   connect(worker_, &InsertionWorker::rendered, this, &InsertionPreview::onRendered,
           Qt::QueuedConnection);
-  connect(worker_, &InsertionWorker::failed, this,
-          [this](const QString& m, quint64 g) {
-            if (g < fit_generation_) return;
-            // The request is answered (with no camera), so the panel stops saying "Fitting…".
-            fit_ = InsertionFit{};
-            fit_.message = m;
-            fit_generation_ = g;
-            composite_ = QImage();
-            composite_generation_ = g;
-            emit fitChanged();
-            emit compositeChanged();
-            if (g == requested_) emit failed(m);
-          },
-          Qt::QueuedConnection);
+  connect(
+      worker_, &InsertionWorker::failed, this,
+      [this](const QString& m, quint64 g) {
+        if (g < fit_generation_) return;
+        // The request is answered (with no camera), so the panel stops saying "Fitting…".
+        fit_ = InsertionFit{};
+        fit_.message = m;
+        fit_generation_ = g;
+        composite_ = QImage();
+        composite_generation_ = g;
+        emit fitChanged();
+        emit compositeChanged();
+        if (g == requested_) emit failed(m);
+      },
+      Qt::QueuedConnection);
   connect(model_, &InsertionModel::stateChanged, this, &InsertionPreview::refresh);
   connect(model_->document(), &Document::photoChanged, this, &InsertionPreview::refresh);
 }

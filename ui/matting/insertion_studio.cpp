@@ -43,18 +43,20 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
 
   grid_action_ = menu->addAction(tr("&Grid Tool"));
   grid_action_->setShortcut(QKeySequence(tr("C")));
-  grid_action_->setToolTip(tr("Click grid corners in the photo, matched to the corner selected in "
-                              "the board view; snaps to the corner (Shift: no snap), Del removes (C)"));
+  grid_action_->setToolTip(
+      tr("Click grid corners in the photo, matched to the corner selected in "
+         "the board view; snaps to the corner (Shift: no snap), Del removes (C)"));
   connect(grid_action_, &QAction::triggered, this, [this] {
-    canvas_->setTool(std::make_unique<GridTool>(canvas_, document_, model_, preview_,
-                                                defaultCornerSnapper()));
+    canvas_->setTool(
+        std::make_unique<GridTool>(canvas_, document_, model_, preview_, defaultCornerSnapper()));
     dock_->show();
     dock_->raise();
   });
   region_action_ = menu->addAction(tr("&Region Tool"));
   region_action_->setShortcut(QKeySequence(tr("R")));
-  region_action_->setToolTip(tr("Click a polygon around the reflecting or refracting object; "
-                                "Enter closes it; the composite stays inside it (R)"));
+  region_action_->setToolTip(
+      tr("Click a polygon around the reflecting or refracting object; "
+         "Enter closes it; the composite stays inside it (R)"));
   connect(region_action_, &QAction::triggered, this, [this] {
     canvas_->setTool(std::make_unique<RegionTool>(canvas_, document_, model_, preview_));
     dock_->show();
@@ -77,7 +79,8 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
   error_map->setCheckable(true);
   error_map->setChecked(model_->errorMapVisible());
   error_map->setShortcut(QKeySequence(tr("Shift+M")));
-  error_map->setToolTip(tr("Each patch outlined in the photo, green at 0 px to red at the max error"));
+  error_map->setToolTip(
+      tr("Each patch outlined in the photo, green at 0 px to red at the max error"));
   connect(error_map, &QAction::toggled, model_, &InsertionModel::setErrorMapVisible);
   connect(model_, &InsertionModel::errorMapVisibilityChanged, error_map, &QAction::setChecked);
   menu->addAction(tr("&Clear Region"), panel_, &InsertionPanel::clearRegion)

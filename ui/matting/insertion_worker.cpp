@@ -20,8 +20,7 @@ bool sameFitInputs(const InsertionRequest& a, const InsertionRequest& b) {
       a.options.max_error_px != b.options.max_error_px || a.matches.size() != b.matches.size())
     return false;
   for (size_t i = 0; i < a.matches.size(); ++i)
-    if (a.matches[i].source != b.matches[i].source ||
-        a.matches[i].target != b.matches[i].target ||
+    if (a.matches[i].source != b.matches[i].source || a.matches[i].target != b.matches[i].target ||
         a.matches[i].enabled != b.matches[i].enabled)
       return false;
   return true;
@@ -77,8 +76,10 @@ InsertionFit InsertionWorker::describe(const PiecewiseSummary& summary) {
     // lie where no match constrains it); outline it, densified, through the patch's camera.
     std::vector<Eigen::Vector2d> hull = patch.support;
     if (hull.size() < 3)
-      hull = {{patch.rect.x0, patch.rect.y0}, {patch.rect.x1, patch.rect.y0},
-              {patch.rect.x1, patch.rect.y1}, {patch.rect.x0, patch.rect.y1}};
+      hull = {{patch.rect.x0, patch.rect.y0},
+              {patch.rect.x1, patch.rect.y0},
+              {patch.rect.x1, patch.rect.y1},
+              {patch.rect.x0, patch.rect.y1}};
     QPolygonF outline;
     constexpr int kSteps = 8;
     for (size_t i = 0; i < hull.size(); ++i) {
@@ -183,8 +184,7 @@ void InsertionWorker::run() {
       }
       if (!keepGoing()) continue;  // a newer request: it may reuse this fit
       emit fitted(last_fit_, job.generation);
-      if (!last_fit_.ok || !job.photo || !job.graphic || job.photo->empty() ||
-          job.graphic->empty())
+      if (!last_fit_.ok || !job.photo || !job.graphic || job.photo->empty() || job.graphic->empty())
         continue;
       const ImageF out =
           composite(*job.photo, *job.graphic, *last_fit_.camera, job.region, job.placement);

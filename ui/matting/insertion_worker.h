@@ -76,12 +76,12 @@ class InsertionWorker : public QThread {
   // The same camera onto a target frame of another size (the preview copy of the photo):
   // cameras live in normalised frames (DESIGN §1), so only the recorded sizes change.
   static PiecewiseCamera retarget(const PiecewiseCamera& camera, FrameSize target_size);
-  // The preview a request gives for a camera (retargeted to the photo's size): the graphic rendered through it, limited to the
-  // region, composited over the photo (a copy). Public so tests can compare with core calls.
-  static ImageF composite(const ImageF& photo, const ImageF& graphic,
-                          const PiecewiseCamera& camera,
+  // The preview a request gives for a camera (retargeted to the photo's size): the graphic rendered
+  // through it, limited to the region, composited over the photo (a copy). Public so tests can
+  // compare with core calls.
+  static ImageF composite(const ImageF& photo, const ImageF& graphic, const PiecewiseCamera& camera,
                           const std::vector<Eigen::Vector2d>& region,
-                       const GraphicPlacement& placement = {});
+                          const GraphicPlacement& placement = {});
   // Multiplies every channel of a premultiplied image by the polygon's coverage (pixel centres
   // inside, even-odd rule).
   static void limitToPolygon(ImageF& image, const std::vector<Eigen::Vector2d>& polygon);

@@ -25,7 +25,8 @@ int GridTool::hitTest(const QPointF& widget) const {
   int best = -1;
   double best_d = kHitRadius;
   for (size_t k = 0; k < matches.size(); ++k) {
-    const QPointF w = canvas_->view().widgetFromImage(QPointF(matches[k].photo.x(), matches[k].photo.y()));
+    const QPointF w =
+        canvas_->view().widgetFromImage(QPointF(matches[k].photo.x(), matches[k].photo.y()));
     const double d = std::hypot(w.x() - widget.x(), w.y() - widget.y());
     if (d <= best_d) {
       best_d = d;
@@ -70,7 +71,8 @@ void GridTool::mousePress(QMouseEvent* event) {
   press_widget_ = drag_widget_ = event->position();
   if (hit >= 0) {
     model_->setSelectedMatch(hit);
-    const int corner = model_->cornerAt(model_->state().matches[static_cast<size_t>(hit)].board, 1e-6);
+    const int corner =
+        model_->cornerAt(model_->state().matches[static_cast<size_t>(hit)].board, 1e-6);
     if (corner >= 0) model_->setSelectedCorner(corner);
   } else {
     const QPointF image = canvas_->view().imageFromWidget(event->position());

@@ -22,7 +22,8 @@ RegionTool::RegionTool(Canvas* canvas, Document* document, InsertionModel* model
 void RegionTool::mousePress(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton || !document_->photo()) return;
   if (pending_.size() >= 3) {
-    const QPointF first = canvas_->view().widgetFromImage(QPointF(pending_[0].x(), pending_[0].y()));
+    const QPointF first =
+        canvas_->view().widgetFromImage(QPointF(pending_[0].x(), pending_[0].y()));
     if (std::hypot(first.x() - event->position().x(), first.y() - event->position().y()) <=
         kCloseRadius) {
       close();
