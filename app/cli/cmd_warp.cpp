@@ -4,10 +4,13 @@
 #include "app/cli/warp_attributed.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
+#include "core/io/piecewise_file.h"
 #include "core/io/stored_image.h"
+#include "core/piecewise/piecewise_render.h"
 #include "core/render/warp.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +18,28 @@
 #include <utility>
 
 namespace artcam::cli {
+namespace {
+
+int warpPiecewise(const PiecewiseCamera& camera, const std::string& input, const std::string& output,
+                  const WarpOptions& options, bool stats) {
+  if (options.width != 0 || options.height != 0)
+    throw UsageError("--size does not apply to piecewise cameras (they render on their target frame)");
+  const auto image = readImage(input);
+  if (!image) throw CommandError(image.status.message);
+  const auto start = std::chrono::steady_clock::now();
+  const ImageF warped = renderPiecewise(image->image, camera);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (const Status s = writeImage(output, warped, &image->info); !s) throw CommandError(s.message);
+  if (stats)
+    std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", ms,
+                 ms > 0 ? warped.width * double(warped.height) / 1e3 / ms : 0.0);
+  std::printf("wrote %s (%dx%d, piecewise mesh warp, %zu patches)\n", output.c_str(), warped.width,
+              warped.height, camera.patches.size());
+  return 0;
+}
+
+}  // namespace
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
@@ -32,6 +57,8 @@ const char* const kWarpUsage =
     "OUT is written atomically; it may not be IN\n"
     "unless --force is given. --stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr\n"
     "(the render alone, without file I/O).\n"
+    "A piecewise camera (artcam fit --piecewise) is rendered by its seamless mesh warp on its\n"
+    "target frame.\n"
     "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
     "field go to the attributed renderer; those that read depth need --depth FILE: float\n"
     "EXR/TIFF as stored, integer files times --depth-scale S, or disparity made depth as\n"
@@ -102,6 +129,9 @@ int warpCommand(const std::vector<std::string>& argv) {
     }
     return warpAttributed(*effect, *image, request);
   }
+  // Piecewise cameras (issue 8): the mesh warp, never the top-level single camera alone.
+  if (const auto pieces = readPiecewiseFile(args.positional()[1]); pieces && pieces->pieces)
+    return warpPiecewise(*pieces->pieces, input, *output, options, args.has("--stats"));
   WarpSummary summary;
   int out_width = 0, out_height = 0;
   // The stored-type path (issue 5: peak memory ≤ input + output + a small constant).

@@ -94,6 +94,14 @@ class TestCliInsert : public QObject {
       QVERIFY(y);
       QVERIFY2((*y - m.target).norm() <= 0.2 + 1e-9, qPrintable(QString::number((*y - m.target).norm())));
     }
+    // artcam warp renders the patches (mesh warp), not the top-level single camera.
+    const Run w = artcamCli({"warp", dir.filePath("emblem.png"), dir.filePath("glass.artcam"), "-o",
+                             dir.filePath("warped.png")});
+    QVERIFY2(w.exit_code == 0, qPrintable(w.err));
+    QVERIFY(w.out.contains("piecewise"));
+    const ImageF warped = load(dir.filePath("warped.png"));
+    QCOMPARE(warped.width, 640);
+    QCOMPARE(warped.height, 480);
     QCOMPARE(artcamCli({"fit", "--max-error", "0.2", dir.filePath("water-glass-grid.csv"), "--size",
                         "512x512", "-o", dir.filePath("x.artcam")}).exit_code, 2);
   }
