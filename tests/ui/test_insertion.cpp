@@ -77,10 +77,10 @@ struct Rig {
   Rig() { panel.setInteractive(false); }
 
   // Photo, grid CSV and graphic, as a user would through the panel.
-  bool openSample() {
-    if (!openPhoto(doc, kPhoto)) return false;
+  bool openSample(const QString& photo = kPhoto, const QString& csv = kGrid) {
+    if (!openPhoto(doc, photo)) return false;
     QSignalSpy grid(&panel, &InsertionPanel::gridImported);
-    panel.importGridCsv(kGrid);
+    panel.importGridCsv(csv);
     if (!grid.wait(60000) || !grid.front().at(0).toBool()) return false;
     QSignalSpy graphic(&panel, &InsertionPanel::graphicLoaded);
     panel.loadGraphic(kEmblem);
@@ -157,6 +157,25 @@ class TestInsertion : public QObject {
     QVERIFY(waitForCurrent(rig.preview));
     QVERIFY(!rig.preview.fit().ok);
     QVERIFY(rig.preview.composite().isNull());
+  }
+
+  void waterGlassSampleFits() {
+    // The refraction sample (the paper's Fig 8): the same workflow, the same guarantees.
+    Rig rig;
+    const QString photo =
+        QString::fromStdString(artcam::test::resourcePath("insertion/water-glass.png"));
+    const QString csv =
+        QString::fromStdString(artcam::test::resourcePath("insertion/water-glass-grid.csv"));
+    QVERIFY(rig.openSample(photo, csv));
+    const InsertionFit& fit = rig.preview.fit();
+    QVERIFY2(fit.ok, qPrintable(fit.message));
+    QVERIFY2(fit.patches > 1 && fit.max_px < 0.5, qPrintable(fit.report));
+    const auto matches = readMatchesCsv(csv.toStdString());
+    QVERIFY(matches.ok());
+    for (const PointMatch& m : *matches)
+      if (const auto p = fit.camera->targetPixelFromSourcePixel(m.source.head<2>()))
+        QVERIFY((*p - m.target.head<2>()).norm() < 0.5);
+    QVERIFY(!rig.preview.composite().isNull());
   }
 
   void errorMapOutlinesThePatches() {
