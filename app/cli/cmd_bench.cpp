@@ -10,7 +10,7 @@
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
 #include "core/render/mip_pyramid.h"
-#include "core/render/pixel_buffer.h"
+#include "core/model/pixel_buffer.h"
 #include "core/render/warp.h"
 
 #include <sys/resource.h>

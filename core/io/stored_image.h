@@ -16,8 +16,8 @@
 
 #include "core/io/image_io.h"
 #include "core/model/status.h"
-#include "core/render/image_view.h"
-#include "core/render/pixel_buffer.h"
+#include "core/model/image_view.h"
+#include "core/model/pixel_buffer.h"
 
 #include <cstdint>
 #include <string>

@@ -10,8 +10,8 @@
 
 #include "core/model/camera.h"
 #include "core/model/image.h"
-#include "core/render/image_view.h"
-#include "core/render/pixel_buffer.h"
+#include "core/model/image_view.h"
+#include "core/model/pixel_buffer.h"
 #include "core/render/warp.h"
 
 #include <vector>

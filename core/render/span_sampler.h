@@ -13,7 +13,7 @@
 // source, s + J · (δx, δy) for δ on an n × n grid in [−½, ½]², J = d source / d target.
 #pragma once
 
-#include "core/render/image_view.h"
+#include "core/model/image_view.h"
 #include "core/render/warp.h"
 
 namespace artcam {

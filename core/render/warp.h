@@ -14,7 +14,7 @@
 
 #include "core/model/camera.h"
 #include "core/model/image.h"
-#include "core/render/image_view.h"
+#include "core/model/image_view.h"
 
 #include <functional>
 #include <optional>
