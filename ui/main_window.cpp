@@ -125,7 +125,7 @@ MainWindow::MainWindow(QWidget* parent)
   });
 
   createMenus();
-  new InsertionStudio(this, canvas_, document_);  // Insertion dock, menu and tools
+  (new InsertionStudio(this, canvas_, document_))->attachToSession(session_);  // Insertion dock, menu and tools
   updateTitle();
   resize(1400, 900);
 }

@@ -120,7 +120,10 @@ QByteArray projectToJson(const Project& project, const QString& project_path) {
   QJsonObject root;
   root["format"] = "artcam-studio-project";
   const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
-  root["version"] = has_depth ? kProjectFormatVersion : kProjectVersionWithoutDepth;
+  // Parts need version 2 too: an older studio would drop them silently on its next save.
+  const bool needs_v2 = has_depth || !project.parts.isEmpty();
+  root["version"] = needs_v2 ? kProjectFormatVersion : kProjectVersionWithoutDepth;
+  if (!project.parts.isEmpty()) root["parts"] = project.parts;
   root["photo"] = pathForFile(project.photo_path, project_path);
   root["model"] = QString::fromUtf8(modelClassName(project.model).data(),
                                     static_cast<qsizetype>(modelClassName(project.model).size()));
@@ -197,6 +200,11 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
   if (centre) p.view.centre = QPointF(centre->x(), centre->y());
   p.view.preview_mode = view["preview_mode"].toInt(0);
   p.view.opacity = view["opacity"].toDouble(0.5);
+  if (root.contains("parts")) {
+    if (!root["parts"].isObject())
+      return Result<Project>::failure(name + ": /parts: expected an object of named parts");
+    p.parts = root["parts"].toObject();
+  }
   if (root.contains("depth")) {
     if (!root["depth"].isObject())
       return Result<Project>::failure(name + ": /depth: expected an object");

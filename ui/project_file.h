@@ -24,6 +24,7 @@
 #include "ui/document.h"
 
 #include <QPointF>
+#include <QJsonObject>
 #include <QString>
 
 #include <optional>
@@ -56,6 +57,9 @@ struct Project {
   ViewState view;
   std::vector<DepthPlaneLayer> depth_layers;
   std::optional<DepthMapRef> depth_map;
+  // Named parts the studio's modes contribute (e.g. "insertion"), kept as JSON so this file
+  // need not know them; written as "parts" only when there are some (version 2).
+  QJsonObject parts;
 };
 
 // The photo path is written relative to the project's folder when it lies beneath it.

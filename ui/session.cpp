@@ -152,6 +152,8 @@ std::optional<Project> Session::currentProject() const {
   if (view_state_) p.view = view_state_();
   p.depth_layers = document_->depth()->layers();
   if (const auto& map = document_->depth()->map()) p.depth_map = DepthMapRef{map->path, map->options};
+  for (const ProjectPart& part : parts_)
+    if (const QJsonObject o = part.save(); !o.isEmpty()) p.parts[part.name] = o;
   return p;
 }
 
@@ -204,6 +206,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
       } else {
         addRecent(project_path_);
       }
+      for (const ProjectPart& part : parts_) part.load(p.parts.value(part.name).toObject());
       emit viewStateLoaded(p.view);
     } else {
       document_->reset(photo);

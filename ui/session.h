@@ -17,6 +17,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
 class QWidget;
 
@@ -39,6 +40,15 @@ class Session : public QObject {
   void setViewStateProvider(std::function<ViewState()> provider) {
     view_state_ = std::move(provider);
   }
+  // A studio mode's own state in the project (Project::parts[name]): `save` returns it (empty:
+  // nothing to keep), `load` restores it after the photo of an opened or recovered project is
+  // in the document (an empty object when the project has none). Not undoable steps.
+  struct ProjectPart {
+    QString name;
+    std::function<QJsonObject()> save;
+    std::function<void(const QJsonObject&)> load;
+  };
+  void addProjectPart(ProjectPart part) { parts_.push_back(std::move(part)); }
   // When false, errors are only emitted (errorOccurred) rather than shown modally (tests).
   void setInteractive(bool interactive) { interactive_ = interactive; }
 
@@ -108,6 +118,7 @@ class Session : public QObject {
   Document* document_;
   QWidget* dialog_parent_;
   std::function<ViewState()> view_state_;
+  std::vector<ProjectPart> parts_;
   bool interactive_ = true;
   QString project_path_;
   QPointer<ImageLoader> loader_;

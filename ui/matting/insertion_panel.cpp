@@ -245,11 +245,15 @@ void InsertionPanel::reportError(const QString& title, const QString& message) {
   if (interactive_) QMessageBox::warning(this, title, message);
 }
 
-void InsertionPanel::loadGraphic(const QString& path) {
+void InsertionPanel::reportLoadProblem(const QString& message) {
+  reportError(tr("Insertion settings left out of the project"), message);
+}
+
+void InsertionPanel::loadGraphic(const QString& path, bool undoable) {
   status_->setText(tr("Loading %1…").arg(QFileInfo(path).fileName()));
   runOffThread<LoadedImage>(
       this, [p = path.toStdString()] { return readImage(p); },
-      [this, path](Result<LoadedImage> r) {
+      [this, path, undoable](Result<LoadedImage> r) {
         if (!r) {
           const QString m = QString::fromStdString(r.status.message);
           reportError(tr("Could not load the graphic"), m);
@@ -259,7 +263,10 @@ void InsertionPanel::loadGraphic(const QString& path) {
         InsertionState next = model_->state();
         next.graphic = std::make_shared<const ImageF>(std::move(r->image));
         next.graphic_path = path;
-        model_->edit(next, tr("Load Graphic"));
+        if (undoable)
+          model_->edit(next, tr("Load Graphic"));
+        else
+          model_->setState(std::move(next));
         emit graphicLoaded(true, QString());
       });
 }

@@ -40,7 +40,10 @@ class InsertionPanel : public QWidget {
   QVBoxLayout* toolArea() const { return tool_area_; }
 
  public slots:
-  void loadGraphic(const QString& path);
+  // undoable = false: part of opening a project (no undo step, the document stays clean).
+  void loadGraphic(const QString& path, bool undoable = true);
+  // A problem with the insertion part of an opened project: shown like the panel's errors.
+  void reportLoadProblem(const QString& message);
   void importGridCsv(const QString& path);
   void exportGridCsv(const QString& path);
   // The graphic inserted into the FULL-resolution photo (the photo's format and metadata),

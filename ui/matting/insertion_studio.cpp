@@ -5,6 +5,8 @@
 #include "ui/matting/insertion_model.h"
 #include "ui/matting/insertion_panel.h"
 #include "ui/matting/insertion_preview.h"
+#include "ui/matting/insertion_project.h"
+#include "ui/session.h"
 #include "ui/tools/region_tool.h"
 
 #include <QAction>
@@ -105,6 +107,24 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
   connect(preview_, &InsertionPreview::failed, window, [window](const QString& m) {
     window->statusBar()->showMessage(tr("Insertion failed: %1").arg(m), 8000);
   });
+}
+
+void InsertionStudio::attachToSession(Session* session) {
+  Session::ProjectPart part;
+  part.name = QStringLiteral("insertion");
+  part.save = [this] { return insertionToJson(model_->state()); };
+  part.load = [this](const QJsonObject& json) {
+    if (json.isEmpty()) return;  // the new photo already reset the mode
+    auto state = insertionFromJson(json, "project: /parts/insertion");
+    if (!state) {
+      panel_->reportLoadProblem(QString::fromStdString(state.status.message));
+      return;
+    }
+    const QString graphic = state->graphic_path;
+    model_->setState(std::move(*state));  // part of opening, not an undoable edit
+    if (!graphic.isEmpty()) panel_->loadGraphic(graphic, /*undoable=*/false);
+  };
+  session->addProjectPart(std::move(part));
 }
 
 }  // namespace artcam::ui

@@ -15,6 +15,7 @@ namespace artcam::ui {
 
 class Canvas;
 class Document;
+class Session;
 class InsertionModel;
 class InsertionPanel;
 class InsertionPreview;
@@ -27,6 +28,8 @@ class InsertionStudio : public QObject {
 
  public:
   InsertionStudio(QMainWindow* window, Canvas* canvas, Document* document);
+  // Keeps the mode's state in the session's projects (and so in autosaves and recoveries).
+  void attachToSession(Session* session);
 
   InsertionModel* model() const { return model_; }
   InsertionPreview* preview() const { return preview_; }
