@@ -3,6 +3,7 @@
 #include "ui/canvas.h"
 #include "ui/cloud_view.h"
 #include "ui/commands.h"
+#include "ui/depth_model.h"
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
@@ -35,6 +36,9 @@
 #include <QToolBar>
 #include <QUrl>
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
 #include <optional>
 
 namespace artcam::ui {
@@ -88,8 +92,24 @@ MainWindow::MainWindow(QWidget* parent)
   tabifyDockWidget(tensor_dock, depth_dock);
   auto* effects_dock = new QDockWidget(tr("Effects"), this);
   effects_dock->setObjectName("effectsDock");
-  effects_dock->setWidget(new EffectsPanel(document_, this));
+  auto* effects_panel = new EffectsPanel(document_, this);
+  effects_dock->setWidget(effects_panel);
   tabifyDockWidget(depth_dock, effects_dock);
+  // The effects read the painted depth, rasterised at the overlay's size (≤ 512 px: the panel
+  // previews on the photo's preview copy and reads depth at the same place, any size).
+  connect(document_->depth(), &DepthModel::depthChanged, effects_panel, [this, effects_panel] {
+    const DepthModel* depth = document_->depth();
+    const FrameSize frame = depth->frame();
+    if ((depth->layers().empty() && !depth->map()) || !frame.isImage()) {
+      effects_panel->setDepth(nullptr);
+      return;
+    }
+    const double scale = std::min(1.0, 512.0 / std::max(frame.width, frame.height));
+    DepthRasterOptions options;
+    options.width = std::max(1, static_cast<int>(std::lround(frame.width * scale)));
+    options.height = std::max(1, static_cast<int>(std::lround(frame.height * scale)));
+    effects_panel->setDepth(std::make_shared<const ImageF>(depth->rasterise(options)));
+  });
   pairs_dock->raise();
   connect(depth_panel_, &DepthPanel::loadDepthMapRequested, this, [this] {
     session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());

@@ -2,7 +2,10 @@
 // wins, and what it shows equals a direct render of the same effect on the same thumbnail.
 #include "core/effects/effect_presets.h"
 #include "tests/ui/ui_fixtures.h"
+#include "ui/depth_commands.h"
+#include "ui/depth_model.h"
 #include "ui/document.h"
+#include "ui/main_window.h"
 #include "ui/image_convert.h"
 #include "ui/panels/effects_panel.h"
 
@@ -61,6 +64,29 @@ class TestEffectsPanel : public QObject {
     QVERIFY(panel.setParameter("far", 10.0));
     QVERIFY(waitForGeneration(panel, panel.requestedGeneration()));
     QVERIFY2(panel.status().contains("cannot render"), qPrintable(panel.status()));
+  }
+
+  void paintedDepthReachesThePanelInTheStudio() {
+    MainWindow window;
+    window.document()->reset(test::syntheticPhoto());
+    auto* panel = window.findChild<EffectsPanel*>();
+    QVERIFY(panel);
+    panel->setEffect("aerial-perspective");
+    QVERIFY(waitForGeneration(*panel, panel->requestedGeneration()));
+    QVERIFY2(panel->status().contains("ramp"), qPrintable(panel->status()));
+    // Paint a plane: the panel now reads it instead of the stand-in ramp; undo brings it back.
+    DepthModel* depth = window.document()->depth();
+    DepthPlaneLayer layer = depth->makeLayer();
+    layer.mask.fillPolygon({{0, 0}, {320, 0}, {320, 240}, {0, 240}});
+    layer.anchors = {{{0.0, 0.0}, 2.0}, {{320.0, 0.0}, 20.0}, {{0.0, 240.0}, 2.0}};
+    window.document()->undoStack()->push(new AddDepthLayerCommand(depth, layer));
+    panel->setParameter("strength", 0.65);  // a new render after the depth arrived
+    QVERIFY(waitForGeneration(*panel, panel->requestedGeneration()));
+    QVERIFY2(!panel->status().contains("ramp"), qPrintable(panel->status()));
+    window.document()->undoStack()->undo();
+    panel->setParameter("strength", 0.6);
+    QVERIFY(waitForGeneration(*panel, panel->requestedGeneration()));
+    QVERIFY2(panel->status().contains("ramp"), qPrintable(panel->status()));
   }
 };
 
