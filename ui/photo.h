@@ -9,6 +9,7 @@
 #include "core/io/image_io.h"
 #include "core/model/camera.h"
 #include "core/model/image.h"
+#include "core/render/mip_pyramid.h"
 
 #include <QImage>
 #include <QMetaType>
@@ -18,7 +19,10 @@
 
 namespace artcam::ui {
 
-inline constexpr int kPreviewMaxSide = 1024;  // live preview source
+inline constexpr int kPreviewMaxSide = 1024;  // float preview copy (effects, insertion)
+// The live preview fits a 1080p screen: at most 1920×1080, aspect kept.
+inline constexpr int kLivePreviewMaxWidth = 1920;
+inline constexpr int kLivePreviewMaxHeight = 1080;
 inline constexpr int kDisplayMaxSide = 4096;  // canvas picture; bounds GUI memory for huge photos
 
 struct Photo {
@@ -26,11 +30,21 @@ struct Photo {
   LoadedImage full;
   ImageF preview;
   QImage display;  // 8-bit sRGB of `full`, downscaled to kDisplayMaxSide
+  // The live preview's source (issue 5 "preview path"): the display copy as premultiplied
+  // RGBA8 and its 8-bit mip pyramid (levels view pyramid_base, which must not change), built
+  // once per photo on the loader thread, so an edit re-renders a screen-sized preview from
+  // the level that matches its scale.
+  QImage pyramid_base;
+  std::shared_ptr<const StoredMipPyramid> pyramid;
 
   FrameSize size() const { return {full.image.width, full.image.height}; }
 };
 
 using PhotoPtr = std::shared_ptr<const Photo>;
+
+// The live preview's size: the photo's, shrunk (never enlarged) to fit 1920×1080, aspect kept
+// to the nearest pixel.
+FrameSize livePreviewSize(const Photo& photo);
 
 // Builds the reduced copies; runs on a worker thread (ImageLoader), never in paintEvent.
 PhotoPtr makePhoto(QString path, LoadedImage loaded);

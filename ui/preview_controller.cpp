@@ -37,9 +37,13 @@ void PreviewController::schedule() {
   }
   RenderRequest request;
   request.source = source_;
+  // The pyramid aliases the photo, which keeps the levels' base image alive.
+  if (photo->pyramid) request.pyramid = std::shared_ptr<const StoredMipPyramid>(photo, photo->pyramid.get());
   request.camera = document_->camera();
-  request.width = photo->preview.width;
-  request.height = photo->preview.height;
+  const FrameSize size = photo->pyramid ? livePreviewSize(*photo)
+                                        : FrameSize{photo->preview.width, photo->preview.height};
+  request.width = size.width;
+  request.height = size.height;
   request.generation = generation_;
   worker_.request(std::move(request));
 }

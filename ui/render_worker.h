@@ -1,12 +1,14 @@
 // The live preview renderer (STYLE, after Qt's Mandelbrot example): one thread, one pending
 // request slot where the newest request wins, std::atomic restart/abort flags polled between
-// tiles through WarpOptions::progress, a coarse pass (1/4 size) before the full preview, and
+// tiles through WarpOptions::progress, a coarse pass (1/4 size) before the full preview while
+// full passes are slow (kCoarseAboveMs), and
 // results delivered by queued signals carrying a QImage and the request's generation stamp.
 // Every exception stops at run(); it becomes a `failed` signal, never reaches the event loop.
 #pragma once
 
 #include "core/model/camera.h"
 #include "core/model/image.h"
+#include "core/render/mip_pyramid.h"
 #include "core/render/warp.h"
 
 #include <QImage>
@@ -22,6 +24,9 @@
 namespace artcam::ui {
 
 struct RenderRequest {
+  // When set, the 8-bit path: warpPreview from the photo's mip pyramid straight into an RGBA8
+  // QImage (issue 5's preview path); else the float path from `source`.
+  std::shared_ptr<const StoredMipPyramid> pyramid;
   std::shared_ptr<const ImageF> source;  // the downscaled preview source
   Camera camera;
   int width = 0;  // full-pass output size (the coarse pass is a quarter of it)
@@ -34,10 +39,16 @@ class RenderWorker : public QThread {
 
  public:
   static constexpr int kCoarseFactor = 4;
+  // The coarse pass comes first only while final passes take longer than this: each pass pays
+  // the camera's setup (inverse seed, correction grid), so for fast finals it only adds delay.
+  static constexpr double kCoarseAboveMs = 30.0;
 
   // The warp options of a preview pass (no progress hook): one place, so a direct render with
   // them reproduces the worker's image exactly.
   static WarpOptions passOptions(int width, int height);
+  // One pass of a request with those options (plus a progress hook): what the worker emits.
+  static QImage renderPass(const RenderRequest& job, const WarpOptions& options,
+                           WarpSummary* summary);
 
   explicit RenderWorker(QObject* parent = nullptr);
   ~RenderWorker() override;  // aborts any render and joins the thread
@@ -63,6 +74,7 @@ class RenderWorker : public QThread {
   std::optional<RenderRequest> pending_;  // guarded by mutex_
   std::atomic<bool> restart_{false};
   std::atomic<bool> abort_{false};
+  double last_final_ms_ = 1e300;  // worker thread only: the last final pass's render time
 };
 
 }  // namespace artcam::ui

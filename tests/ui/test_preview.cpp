@@ -34,12 +34,7 @@ bool waitForNewest(const PreviewController& c, int timeout_ms = 60000) {
   return false;
 }
 
-QImage directRender(const Document& d) {
-  const PhotoPtr& photo = d.photo();
-  const WarpOptions options =
-      RenderWorker::passOptions(photo->preview.width, photo->preview.height);
-  return qimageFromLinear(warpImage(photo->preview, d.camera(), options));
-}
+QImage directRender(const Document& d) { return artcam::ui::test::directPreviewRender(d); }
 
 }  // namespace
 
@@ -124,9 +119,11 @@ class TestPreview : public QObject {
     doc.reset(photo, test::ninePairs());
     RenderWorker worker;
     QList<QPair<bool, int>> passes;  // (final, width)
+    double final_ms = 0.0;
     connect(&worker, &RenderWorker::rendered, this,
-            [&](const QImage& image, quint64, bool final_pass, double) {
+            [&](const QImage& image, quint64, bool final_pass, double ms) {
               passes << qMakePair(final_pass, image.width());
+              if (final_pass) final_ms = ms;
             });
     RenderRequest r;
     r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
@@ -138,6 +135,14 @@ class TestPreview : public QObject {
     QTRY_COMPARE_WITH_TIMEOUT(passes.size(), 2, 30000);
     QCOMPARE(passes[0], qMakePair(false, 320 / RenderWorker::kCoarseFactor));
     QCOMPARE(passes[1], qMakePair(true, 320));
+
+    // The next request skips the coarse pass exactly when that final pass was fast.
+    passes.clear();
+    r.generation = 2;
+    worker.request(r);
+    QTRY_VERIFY_WITH_TIMEOUT(!passes.isEmpty() && passes.back().first, 30000);
+    const int expected = final_ms > RenderWorker::kCoarseAboveMs ? 2 : 1;
+    QCOMPARE(passes.size(), expected);
   }
 
   void newestRequestWins() {

@@ -84,12 +84,16 @@ inline bool waitForNewestPreview(const PreviewController& c, int timeout_ms = 60
   return false;
 }
 
-// The preview a direct render of the document's current camera gives (the worker's options).
+// The preview a direct render of the document's current camera gives: core's warpPreview from
+// the photo's 8-bit pyramid at the live preview size, with the worker's options.
 inline QImage directPreviewRender(const Document& d) {
   const PhotoPtr& photo = d.photo();
-  const WarpOptions options =
-      RenderWorker::passOptions(photo->preview.width, photo->preview.height);
-  return qimageFromLinear(warpImage(photo->preview, d.camera(), options));
+  const FrameSize size = livePreviewSize(*photo);
+  QImage out(size.width, size.height, QImage::Format_RGBA8888_Premultiplied);
+  ImageView view = packedView<void>(out.bits(), size.width, size.height, 4, PixelType::UInt8, 3);
+  view.row_bytes = out.bytesPerLine();
+  warpPreview(*photo->pyramid, d.camera(), view, RenderWorker::passOptions(size.width, size.height));
+  return out;
 }
 
 inline void click(QWidget* w, const QPoint& pos, Qt::KeyboardModifiers mods = Qt::NoModifier) {
