@@ -2,7 +2,7 @@
 //
 // Runtime dispatch only: these functions carry __attribute__((target("avx2"))), the rest of the
 // program keeps the x86-64 baseline, and span_sampler.cpp picks them when the CPU reports AVX2
-// (never -march=native). They compute EXACTLY what the scalar 8-bit interior path computes —
+// (the build never targets the host CPU as a whole). They compute EXACTLY what the scalar 8-bit interior path computes —
 // the same float→fixed-point rounding (q = int(f · 1024 + 0.5), no FMA), the same integer
 // bilinear with weights of 1/1024 and the same rounding — eight pixels at a time, so the tests
 // can demand bit-identical output from the scalar fallback. A group of eight with any pixel
