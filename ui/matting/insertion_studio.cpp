@@ -33,9 +33,10 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
       dock_(new QDockWidget(tr("Insertion"), window)) {
   dock_->setObjectName("insertionDock");
   dock_->setWidget(panel_);
-  if (auto* pairs = window->findChild<QDockWidget*>(QStringLiteral("pairsDock")))
+  if (auto* pairs = window->findChild<QDockWidget*>(QStringLiteral("pairsDock"))) {
     window->tabifyDockWidget(pairs, dock_);
-  else
+    pairs->raise();  // tabifying shows the new tab; the studio opens on its pairs
+  } else
     window->addDockWidget(Qt::RightDockWidgetArea, dock_);
 
   QMenu* menu = new QMenu(tr("&Insertion"), window);
