@@ -4,7 +4,6 @@
 #include "ui/image_convert.h"
 
 #include <QElapsedTimer>
-#include <QMutexLocker>
 
 #include <algorithm>
 #include <exception>
@@ -43,39 +42,15 @@ CloudRenderWorker::CloudRenderWorker(QObject* parent) : QThread(parent) {}
 
 CloudRenderWorker::~CloudRenderWorker() { shutdown(); }
 
-void CloudRenderWorker::request(CloudRenderRequest request) {
-  QMutexLocker locker(&mutex_);
-  pending_ = std::move(request);
-  if (!isRunning()) {
-    abort_ = false;
-    start(QThread::LowPriority);
-  } else {
-    restart_ = true;
-    condition_.wakeOne();
-  }
-}
+void CloudRenderWorker::request(CloudRenderRequest request) { slot_.put(std::move(request), *this); }
 
-void CloudRenderWorker::shutdown() {
-  {
-    QMutexLocker locker(&mutex_);
-    abort_ = true;
-    pending_.reset();
-    condition_.wakeOne();
-  }
-  wait();
-}
+void CloudRenderWorker::shutdown() { slot_.shutdown(*this); }
 
 void CloudRenderWorker::run() {
   for (;;) {
-    CloudRenderRequest job;
-    {
-      QMutexLocker locker(&mutex_);
-      while (!pending_ && !abort_) condition_.wait(&mutex_);
-      if (abort_) return;
-      job = std::move(*pending_);
-      pending_.reset();
-      restart_ = false;
-    }
+    std::optional<CloudRenderRequest> next = slot_.take();
+    if (!next) return;
+    CloudRenderRequest job = std::move(*next);
     try {
       if (!job.cloud || job.width <= 0 || job.height <= 0) continue;
       const bool coarse_worth_it = std::min(job.width, job.height) >= 8 * kCoarseFactor;

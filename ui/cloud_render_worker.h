@@ -12,14 +12,12 @@
 #include "core/cloud/cloud_render.h"
 #include "core/cloud/point_cloud.h"
 #include "core/model/camera.h"
+#include "ui/newest_request_slot.h"
 
 #include <QImage>
-#include <QMutex>
 #include <QString>
 #include <QThread>
-#include <QWaitCondition>
 
-#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -64,13 +62,9 @@ class CloudRenderWorker : public QThread {
   void run() override;
 
  private:
-  bool keepGoing() const { return !restart_.load() && !abort_.load(); }
+  bool keepGoing() const { return slot_.keepGoing(); }
 
-  QMutex mutex_;
-  QWaitCondition condition_;
-  std::optional<CloudRenderRequest> pending_;  // guarded by mutex_
-  std::atomic<bool> restart_{false};
-  std::atomic<bool> abort_{false};
+  NewestRequestSlot<CloudRenderRequest> slot_;
 };
 
 }  // namespace artcam::ui

@@ -3,7 +3,6 @@
 #include "core/render/warp.h"
 #include "ui/image_convert.h"
 
-#include <QMutexLocker>
 
 #include <algorithm>
 #include <exception>
@@ -38,39 +37,15 @@ RenderWorker::RenderWorker(QObject* parent) : QThread(parent) {}
 
 RenderWorker::~RenderWorker() { shutdown(); }
 
-void RenderWorker::request(RenderRequest request) {
-  QMutexLocker locker(&mutex_);
-  pending_ = std::move(request);
-  if (!isRunning()) {
-    abort_ = false;
-    start(QThread::LowPriority);
-  } else {
-    restart_ = true;
-    condition_.wakeOne();
-  }
-}
+void RenderWorker::request(RenderRequest request) { slot_.put(std::move(request), *this); }
 
-void RenderWorker::shutdown() {
-  {
-    QMutexLocker locker(&mutex_);
-    abort_ = true;
-    pending_.reset();
-    condition_.wakeOne();
-  }
-  wait();
-}
+void RenderWorker::shutdown() { slot_.shutdown(*this); }
 
 void RenderWorker::run() {
   for (;;) {
-    RenderRequest job;
-    {
-      QMutexLocker locker(&mutex_);
-      while (!pending_ && !abort_) condition_.wait(&mutex_);
-      if (abort_) return;
-      job = std::move(*pending_);
-      pending_.reset();
-      restart_ = false;
-    }
+    std::optional<RenderRequest> next = slot_.take();
+    if (!next) return;
+    RenderRequest job = std::move(*next);
     try {
       const bool has_source = job.pyramid || (job.source && !job.source->empty());
       if (!has_source || job.width <= 0 || job.height <= 0) continue;

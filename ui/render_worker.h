@@ -10,14 +10,12 @@
 #include "core/model/image.h"
 #include "core/render/mip_pyramid.h"
 #include "core/render/warp.h"
+#include "ui/newest_request_slot.h"
 
 #include <QImage>
-#include <QMutex>
 #include <QString>
 #include <QThread>
-#include <QWaitCondition>
 
-#include <atomic>
 #include <memory>
 #include <optional>
 
@@ -67,13 +65,9 @@ class RenderWorker : public QThread {
   void run() override;
 
  private:
-  bool keepGoing() const { return !restart_.load() && !abort_.load(); }
+  bool keepGoing() const { return slot_.keepGoing(); }
 
-  QMutex mutex_;
-  QWaitCondition condition_;
-  std::optional<RenderRequest> pending_;  // guarded by mutex_
-  std::atomic<bool> restart_{false};
-  std::atomic<bool> abort_{false};
+  NewestRequestSlot<RenderRequest> slot_;
   double last_final_ms_ = 1e300;  // worker thread only: the last final pass's render time
 };
 

@@ -4,7 +4,6 @@
 #include "core/piecewise/piecewise_render.h"
 #include "ui/image_convert.h"
 
-#include <QMutexLocker>
 
 #include <algorithm>
 #include <chrono>
@@ -34,27 +33,9 @@ InsertionWorker::InsertionWorker(QObject* parent) : QThread(parent) {
 
 InsertionWorker::~InsertionWorker() { shutdown(); }
 
-void InsertionWorker::request(InsertionRequest request) {
-  QMutexLocker locker(&mutex_);
-  pending_ = std::move(request);
-  if (!isRunning()) {
-    abort_ = false;
-    start(QThread::LowPriority);
-  } else {
-    restart_ = true;
-    condition_.wakeOne();
-  }
-}
+void InsertionWorker::request(InsertionRequest request) { slot_.put(std::move(request), *this); }
 
-void InsertionWorker::shutdown() {
-  {
-    QMutexLocker locker(&mutex_);
-    abort_ = true;
-    pending_.reset();
-    condition_.wakeOne();
-  }
-  wait();
-}
+void InsertionWorker::shutdown() { slot_.shutdown(*this); }
 
 InsertionFit InsertionWorker::describe(const PiecewiseSummary& summary) {
   InsertionFit fit;
@@ -157,15 +138,9 @@ ImageF InsertionWorker::composite(const ImageF& photo, const ImageF& graphic,
 
 void InsertionWorker::run() {
   for (;;) {
-    InsertionRequest job;
-    {
-      QMutexLocker locker(&mutex_);
-      while (!pending_ && !abort_) condition_.wait(&mutex_);
-      if (abort_) return;
-      job = std::move(*pending_);
-      pending_.reset();
-      restart_ = false;
-    }
+    std::optional<InsertionRequest> next = slot_.take();
+    if (!next) return;
+    InsertionRequest job = std::move(*next);
     try {
       if (!last_fit_inputs_ || !sameFitInputs(*last_fit_inputs_, job)) {
         const auto start = std::chrono::steady_clock::now();

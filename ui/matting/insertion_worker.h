@@ -15,17 +15,15 @@
 #include "core/piecewise/piecewise_camera.h"
 #include "core/piecewise/piecewise_fit.h"
 #include "ui/matting/graphic_placement.h"
+#include "ui/newest_request_slot.h"
 
 #include <QImage>
 #include <QMetaType>
-#include <QMutex>
 #include <QPolygonF>
 #include <QString>
 #include <QThread>
 #include <QVector>
-#include <QWaitCondition>
 
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -96,13 +94,9 @@ class InsertionWorker : public QThread {
   void run() override;
 
  private:
-  bool keepGoing() const { return !restart_.load() && !abort_.load(); }
+  bool keepGoing() const { return slot_.keepGoing(); }
 
-  QMutex mutex_;
-  QWaitCondition condition_;
-  std::optional<InsertionRequest> pending_;  // guarded by mutex_
-  std::atomic<bool> restart_{false};
-  std::atomic<bool> abort_{false};
+  NewestRequestSlot<InsertionRequest> slot_;
   // Worker thread only: the inputs of the last fit and its result.
   std::optional<InsertionRequest> last_fit_inputs_;
   InsertionFit last_fit_;

@@ -1,0 +1,67 @@
+// The request half of the studio's workers (STYLE, after Qt's Mandelbrot example), shared by the
+// preview, 3D view and insertion workers: one pending slot where the newest request wins,
+// atomic restart/abort flags the job in flight polls between tiles, and the thread started on
+// the first request and joined on shutdown. The worker's run() loops on take().
+#pragma once
+
+#include <QMutex>
+#include <QMutexLocker>
+#include <QThread>
+#include <QWaitCondition>
+
+#include <atomic>
+#include <optional>
+#include <utility>
+
+namespace artcam::ui {
+
+template <class Request>
+class NewestRequestSlot {
+ public:
+  // GUI thread: replaces the pending request; the job in flight sees keepGoing() turn false.
+  void put(Request request, QThread& thread) {
+    QMutexLocker locker(&mutex_);
+    pending_ = std::move(request);
+    if (!thread.isRunning()) {
+      abort_ = false;
+      thread.start(QThread::LowPriority);
+    } else {
+      restart_ = true;
+      condition_.wakeOne();
+    }
+  }
+
+  // GUI thread: drops the pending request, stops the job in flight and joins the thread.
+  void shutdown(QThread& thread) {
+    {
+      QMutexLocker locker(&mutex_);
+      abort_ = true;
+      pending_.reset();
+      condition_.wakeOne();
+    }
+    thread.wait();
+  }
+
+  // Worker thread: waits for the next request; empty when shutting down (run() then returns).
+  std::optional<Request> take() {
+    QMutexLocker locker(&mutex_);
+    while (!pending_ && !abort_) condition_.wait(&mutex_);
+    if (abort_) return std::nullopt;
+    std::optional<Request> job = std::move(pending_);
+    pending_.reset();
+    restart_ = false;
+    return job;
+  }
+
+  // Worker thread, between tiles: false once a newer request or a shutdown arrived.
+  bool keepGoing() const { return !restart_.load() && !abort_.load(); }
+
+ private:
+  QMutex mutex_;
+  QWaitCondition condition_;
+  std::optional<Request> pending_;  // guarded by mutex_
+  std::atomic<bool> restart_{false};
+  std::atomic<bool> abort_{false};
+};
+
+}  // namespace artcam::ui
