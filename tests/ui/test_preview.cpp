@@ -22,18 +22,7 @@ using namespace artcam::ui;
 
 namespace {
 
-// Waits until the controller shows the final pass of the newest request.
-bool waitForNewest(const PreviewController& c, int timeout_ms = 60000) {
-  QElapsedTimer t;
-  t.start();
-  while (t.elapsed() < timeout_ms) {
-    if (c.imageIsFinal() && c.imageGeneration() == c.requestedGeneration() && !c.image().isNull())
-      return true;
-    QTest::qWait(5);
-  }
-  return false;
-}
-
+bool waitForNewest(const PreviewController& c) { return artcam::ui::test::waitForNewestPreview(c); }
 QImage directRender(const Document& d) { return artcam::ui::test::directPreviewRender(d); }
 
 }  // namespace
