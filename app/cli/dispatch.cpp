@@ -52,7 +52,9 @@ int run(int argc, char** argv) {
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     for (const std::string& a : rest)
       if (a == "--help" || a == "-h") {
-        std::printf("%s", c.usage);
+        // `bench effects` has its own page; `bench` and `bench fit` share the bench page.
+        const bool effects = std::string_view(c.name) == "bench" && rest.front() == "effects";
+        std::printf("%s", effects ? kBenchEffectsUsage : c.usage);
         return 0;
       }
     try {

@@ -56,10 +56,16 @@ class TestCli : public QObject {
   void helpListsEveryCommand() {
     const Run r = artcamCli({"--help"});
     QCOMPARE(r.exit_code, 0);
-    for (const char* c : {"fit", "map", "warp", "info"}) QVERIFY(r.out.contains(QString::fromUtf8(c)));
+    for (const char* c : {"fit", "map", "warp", "info", "bench", "render", "preset", "compose",
+                          "insert", "sample"})
+      QVERIFY2(r.out.contains(QString::fromUtf8(c)), c);
     const Run sub = artcamCli({"fit", "--help"});
     QCOMPARE(sub.exit_code, 0);
     QVERIFY(sub.out.contains("--model"));
+    QVERIFY(sub.out.contains("--piecewise"));
+    const Run effects = artcamCli({"bench", "effects", "--help"});
+    QCOMPARE(effects.exit_code, 0);
+    QVERIFY2(effects.out.contains("--sigmas"), qPrintable(effects.out));
   }
 
   void fitNineExactMatchesReproducesThem() {
