@@ -121,6 +121,26 @@ double matchSpacing(const std::vector<PointMatch>& matches) {
   return nearest[nearest.size() / 2];
 }
 
+// Four quadrants, or else two halves, when every child that holds data can still be fitted on
+// its shared matches; empty when the cell cannot be split.
+std::optional<std::vector<PatchRect>> feasibleSplit(const std::vector<PointMatch>& matches,
+                                                    const PatchRect& rect,
+                                                    const PiecewiseOptions& options) {
+  for (bool quadrants : {true, false}) {
+    bool feasible = true;
+    int children_with_data = 0;
+    std::vector<PatchRect> kids = splits(rect, quadrants);
+    for (const PatchRect& k : kids) {
+      if (matchesIn(matches, k, 0.0).empty()) continue;
+      ++children_with_data;
+      if (static_cast<int>(sharedMatchesOf(matches, k, options).size()) < options.min_matches)
+        feasible = false;
+    }
+    if (feasible && children_with_data > 0) return kids;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::string PiecewiseSummary::report() const {
@@ -237,21 +257,9 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
     }
     const bool good = fit && worst <= options.max_error_px;
     if (!good && cell.depth < options.max_depth) {
-      // Split when every child that holds data can still be fitted on its shared matches.
-      for (bool quadrants : {true, false}) {
-        bool feasible = true;
-        int children_with_data = 0;
-        const std::vector<PatchRect> kids = splits(cell.rect, quadrants);
-        for (const PatchRect& k : kids) {
-          if (matchesIn(matches, k, 0.0).empty()) continue;
-          ++children_with_data;
-          if (static_cast<int>(sharedMatchesOf(matches, k, options).size()) < options.min_matches)
-            feasible = false;
-        }
-        if (feasible && children_with_data > 0) {
-          for (const PatchRect& k : kids) todo.push_back({k, cell.depth + 1});
-          goto next_cell;
-        }
+      if (const auto kids = feasibleSplit(matches, cell.rect, options)) {
+        for (const PatchRect& k : *kids) todo.push_back({k, cell.depth + 1});
+        continue;
       }
     }
     if (!fit)
@@ -261,22 +269,19 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
                  std::to_string(cell.rect.y1) + "] and it cannot be split further (" +
                  std::to_string(shared.size()) + " matches); add matches there"),
              out;
-    {
-      CameraPatch patch;
-      patch.rect = cell.rect;
-      patch.camera = fit->camera;
-      patch.model = fit->model;
-      patch.matches = static_cast<int>(own.size());
-      patch.max_px = worst;
-      patch.rms_px = std::sqrt(sum2 / static_cast<double>(own.size()));
-      patch.within_tolerance = good;
-      std::vector<Eigen::Vector2d> own_points;
-      for (int i : own) own_points.push_back(matches[static_cast<size_t>(i)].source.head<2>());
-      patch.support = convexHull(std::move(own_points));
-      out.converged = out.converged && good;
-      out.camera.patches.push_back(std::move(patch));
-    }
-  next_cell:;
+    CameraPatch patch;
+    patch.rect = cell.rect;
+    patch.camera = fit->camera;
+    patch.model = fit->model;
+    patch.matches = static_cast<int>(own.size());
+    patch.max_px = worst;
+    patch.rms_px = std::sqrt(sum2 / static_cast<double>(own.size()));
+    patch.within_tolerance = good;
+    std::vector<Eigen::Vector2d> own_points;
+    for (int i : own) own_points.push_back(matches[static_cast<size_t>(i)].source.head<2>());
+    patch.support = convexHull(std::move(own_points));
+    out.converged = out.converged && good;
+    out.camera.patches.push_back(std::move(patch));
   }
 
   double sum2 = 0.0;
