@@ -7,6 +7,7 @@
 #include "core/render/parallel.h"
 #include "core/render/sampling.h"
 #include "core/render/splat.h"
+#include "core/render/warp.h"
 
 #include <algorithm>
 #include <atomic>
@@ -152,18 +153,6 @@ AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure&
 
 namespace {
 
-FrameSize outputSize(const Camera& camera, const AttributedOptions& options) {
-  if (options.width < 0 || options.height < 0)
-    throw std::invalid_argument("output size must not be negative");
-  const FrameSize target = camera.targetSize();
-  if (options.width > 0 && options.height > 0) return {options.width, options.height};
-  if (options.width == 0 && options.height == 0) return target;
-  const double aspect = static_cast<double>(target.height) / target.width;
-  if (options.width > 0)
-    return {options.width, std::max(1, static_cast<int>(std::lround(options.width * aspect)))};
-  return {std::max(1, static_cast<int>(std::lround(options.height / aspect))), options.height};
-}
-
 void writeOutput(const AttributeEvaluator::Output& o, float* colour, float* depth) {
   if (!o.attributes_valid || !(o.rgba[3] > 0.0f)) {
     std::fill(colour, colour + 4, 0.0f);
@@ -262,7 +251,7 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
   report = AttributedSummary{};
   camera.validate();
   checkSourceImage(source);
-  const FrameSize out_px = outputSize(camera, options);
+  const FrameSize out_px = outputSizeFor(camera, options.width, options.height);
   const FrameSize source_px{source.width, source.height};
   const CameraStructure structure = analyseStructure(camera);
   AttributedPath path = chooseAttributedPath(camera, structure, source_px, out_px);

@@ -40,17 +40,19 @@ std::optional<Filter> filterFromName(std::string_view name) {
   return std::nullopt;
 }
 
-FrameSize warpOutputSize(const Camera& camera, const WarpOptions& options) {
-  if (options.width < 0 || options.height < 0)
-    throw std::invalid_argument("warp output size must not be negative");
+FrameSize outputSizeFor(const Camera& camera, int width, int height) {
+  if (width < 0 || height < 0) throw std::invalid_argument("output size must not be negative");
   const FrameSize target = camera.targetSize();
-  if (options.width > 0 && options.height > 0) return {options.width, options.height};
-  if (options.width == 0 && options.height == 0) return target;
+  if (width > 0 && height > 0) return {width, height};
+  if (width == 0 && height == 0) return target;
   // One side given: keep the target frame's aspect ratio.
   const double aspect = static_cast<double>(target.height) / target.width;
-  if (options.width > 0)
-    return {options.width, std::max(1, static_cast<int>(std::lround(options.width * aspect)))};
-  return {std::max(1, static_cast<int>(std::lround(options.height / aspect))), options.height};
+  if (width > 0) return {width, std::max(1, static_cast<int>(std::lround(width * aspect)))};
+  return {std::max(1, static_cast<int>(std::lround(height / aspect))), height};
+}
+
+FrameSize warpOutputSize(const Camera& camera, const WarpOptions& options) {
+  return outputSizeFor(camera, options.width, options.height);
 }
 
 namespace {

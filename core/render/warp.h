@@ -77,6 +77,9 @@ struct WarpSummary {
 
 // The output size options.width × options.height asks for: 0×0 means the camera's target
 // frame, and one of the two 0 follows the target frame's aspect ratio. Throws for negatives.
+// The output size for a requested width × height (0 × 0: the camera's target frame; one side 0:
+// the other from the target frame's aspect). Shared by every renderer that takes a size.
+FrameSize outputSizeFor(const Camera& camera, int width, int height);
 FrameSize warpOutputSize(const Camera& camera, const WarpOptions& options);
 
 // The output has the source's channels, plus an alpha channel if the source had none.
