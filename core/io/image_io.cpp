@@ -12,6 +12,7 @@
 #include "core/io/image_io.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/image_input.h"
 #include "core/io/io_text.h"
 #include "core/io/transfer.h"
 
@@ -108,23 +109,13 @@ void premultiply(ImageF& image) {
 
 Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options) {
   using R = Result<LoadedImage>;
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error))
-    return R::failure(path + ": cannot read: " +
-                      (std::filesystem::exists(path, error) ? "not a file" : "no such file"));
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) return R::failure(path + ": cannot read: " + oneLine(OIIO::geterror()));
+  auto opened = io_input::openImageInput(path);
+  if (!opened) return R::failure(opened.status.message);
+  const OIIO::ImageInput::unique_ptr& in = *opened;
   const OIIO::ImageSpec spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    return R::failure(path + ": cannot read: the image is empty");
-  if (spec.depth > 1) return R::failure(path + ": cannot read: volume images are not supported");
 
-  // Channels beyond the fourth (EXR depth, masks) are left behind.
-  const int channels = std::min(spec.nchannels, 4);
-  const int alpha =
-      spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+  const int channels = io_input::keptChannels(spec);
+  const int alpha = io_input::keptAlpha(spec);
   const std::string pixel_type = pixelTypeName(spec.format);
   const Transfer transfer =
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))

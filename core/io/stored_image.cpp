@@ -4,6 +4,7 @@
 #include "core/io/stored_image.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/image_input.h"
 #include "core/io/io_text.h"
 #include "core/io/transfer.h"
 
@@ -118,20 +119,12 @@ StoredImage makeStoredImage(int width, int height, int channels, int alpha_chann
 
 Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options) {
   using R = Result<StoredImage>;
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error))
-    return R::failure(path + ": cannot read: " +
-                      (std::filesystem::exists(path, error) ? "not a file" : "no such file"));
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) return R::failure(path + ": cannot read: " + oneLine(OIIO::geterror()));
+  auto opened = io_input::openImageInput(path);
+  if (!opened) return R::failure(opened.status.message);
+  const OIIO::ImageInput::unique_ptr& in = *opened;
   const OIIO::ImageSpec spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    return R::failure(path + ": cannot read: the image is empty");
-  if (spec.depth > 1) return R::failure(path + ": cannot read: volume images are not supported");
-  const int channels = std::min(spec.nchannels, 4);
-  const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+  const int channels = io_input::keptChannels(spec);
+  const int alpha = io_input::keptAlpha(spec);
 
   std::string pixel_type;
   const PixelType type = storedType(spec.format, pixel_type);

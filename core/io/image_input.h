@@ -1,0 +1,25 @@
+// Opening an image file for reading (io room only: it exposes OpenImageIO): the checks every
+// reader makes before decoding, so readImage (float) and readStoredImage (the file's own pixel
+// type) refuse the same files with the same one-line messages.
+#pragma once
+
+#include "core/model/status.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <string>
+
+namespace artcam::io_input {
+
+// A regular file OpenImageIO opens, with at least one pixel and channel and not a volume; alpha
+// is asked for unassociated (the readers premultiply themselves).
+Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path);
+
+// Channels a reader keeps (beyond the fourth — EXR depth, masks — they are left behind) and the
+// alpha channel among them, or -1.
+inline int keptChannels(const OIIO::ImageSpec& spec) { return spec.nchannels < 4 ? spec.nchannels : 4; }
+inline int keptAlpha(const OIIO::ImageSpec& spec) {
+  return spec.alpha_channel >= 0 && spec.alpha_channel < keptChannels(spec) ? spec.alpha_channel : -1;
+}
+
+}  // namespace artcam::io_input
