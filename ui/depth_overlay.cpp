@@ -67,6 +67,7 @@ void DepthOverlay::update() {
   const DepthModel* depth = document_->depth();
   const FrameSize f = depth->frame();
   image_ = QImage();
+  raster_.reset();
   min_depth_ = max_depth_ = 0.0;
   if (f.isImage() && depth->hasDepth()) {
     const double s = std::min(1.0, static_cast<double>(kMaxSide) / std::max(f.width, f.height));
@@ -75,8 +76,10 @@ void DepthOverlay::update() {
     options.height = std::max(1, static_cast<int>(std::lround(f.height * s)));
     options.threads = 1;
     DepthRasterSummary summary;
-    const ImageF raster = depth->rasterise(options, &summary);
+    auto shared = std::make_shared<const ImageF>(depth->rasterise(options, &summary));
+    const ImageF& raster = *shared;
     if (summary.covered > 0) {
+      raster_ = std::move(shared);
       min_depth_ = summary.min_depth;
       max_depth_ = summary.max_depth;
       image_ = QImage(raster.width, raster.height, QImage::Format_ARGB32_Premultiplied);

@@ -8,10 +8,14 @@
 // Krita's KisSignalCompressor) so brush strokes stay fluid and the last state always shows.
 #pragma once
 
+#include "core/model/image.h"
+
 #include <QColor>
 #include <QImage>
 #include <QObject>
 #include <QTimer>
+
+#include <memory>
 
 namespace artcam::ui {
 
@@ -29,6 +33,9 @@ class DepthOverlay : public QObject {
   bool isVisible() const { return visible_; }
   double opacity() const { return opacity_; }
   const QImage& image() const { return image_; }  // ARGB32 premultiplied; null when no depth
+  // The raster the image was coloured from (depth_raster.h's 2-channel form, ≤ kMaxSide), for
+  // other readers of the painted depth (the effects panel); null when no depth.
+  const std::shared_ptr<const ImageF>& raster() const { return raster_; }
   bool hasDepth() const { return max_depth_ > 0.0; }
   double minDepth() const { return min_depth_; }
   double maxDepth() const { return max_depth_; }
@@ -55,6 +62,7 @@ class DepthOverlay : public QObject {
   bool visible_ = true;
   double opacity_ = 0.55;
   QImage image_;
+  std::shared_ptr<const ImageF> raster_;
   double min_depth_ = 0.0;
   double max_depth_ = 0.0;
 };

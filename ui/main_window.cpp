@@ -3,7 +3,6 @@
 #include "ui/canvas.h"
 #include "ui/cloud_view.h"
 #include "ui/commands.h"
-#include "ui/depth_model.h"
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
@@ -36,9 +35,6 @@
 #include <QToolBar>
 #include <QUrl>
 
-#include <algorithm>
-#include <cmath>
-#include <memory>
 #include <optional>
 
 namespace artcam::ui {
@@ -95,20 +91,13 @@ MainWindow::MainWindow(QWidget* parent)
   auto* effects_panel = new EffectsPanel(document_, this);
   effects_dock->setWidget(effects_panel);
   tabifyDockWidget(depth_dock, effects_dock);
-  // The effects read the painted depth, rasterised at the overlay's size (≤ 512 px: the panel
-  // previews on the photo's preview copy and reads depth at the same place, any size).
-  connect(document_->depth(), &DepthModel::depthChanged, effects_panel, [this, effects_panel] {
-    const DepthModel* depth = document_->depth();
-    const FrameSize frame = depth->frame();
-    if ((depth->layers().empty() && !depth->map()) || !frame.isImage()) {
-      effects_panel->setDepth(nullptr);
-      return;
+  // The effects read the painted depth: the overlay's raster (≤ 512 px, throttled), so it is
+  // rasterised once per change; the panel previews on a thumbnail and reads depth at any size.
+  connect(depth_overlay_, &DepthOverlay::changed, effects_panel, [this, effects_panel] {
+    if (depth_overlay_->raster() != effects_depth_) {
+      effects_depth_ = depth_overlay_->raster();
+      effects_panel->setDepth(effects_depth_);
     }
-    const double scale = std::min(1.0, 512.0 / std::max(frame.width, frame.height));
-    DepthRasterOptions options;
-    options.width = std::max(1, static_cast<int>(std::lround(frame.width * scale)));
-    options.height = std::max(1, static_cast<int>(std::lround(frame.height * scale)));
-    effects_panel->setDepth(std::make_shared<const ImageF>(depth->rasterise(options)));
   });
   pairs_dock->raise();
   connect(depth_panel_, &DepthPanel::loadDepthMapRequested, this, [this] {

@@ -3,7 +3,11 @@
 // signals. Editing logic lives in the tools, commands and document; file logic in Session.
 #pragma once
 
+#include "core/model/image.h"
+
 #include <QMainWindow>
+
+#include <memory>
 
 class QMenu;
 
@@ -60,6 +64,7 @@ class MainWindow : public QMainWindow {
   Session* session_;
   DepthToolSettings* depth_settings_;
   DepthOverlay* depth_overlay_;
+  std::shared_ptr<const ImageF> effects_depth_;  // the raster last given to the effects panel
   DepthPanel* depth_panel_;
   CloudView* cloud_view_;
   QMenu* recent_menu_ = nullptr;
