@@ -1,0 +1,53 @@
+# Sanitizer and fuzzing builds (issue 9, items 2 and 4). Both instrument EVERY target of the build
+# (core, ui, app, tests), so each gets its own build directory:
+#
+#   cmake -S . -B build-asan -G Ninja -DARTCAM_SANITIZE=address,undefined
+#   cmake -S . -B build-tsan -G Ninja -DARTCAM_SANITIZE=thread
+#   CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DARTCAM_FUZZ=ON -DARTCAM_BUILD_GUI=OFF
+#
+# ARTCAM_FUZZ builds fuzz/ (libFuzzer targets, one per reader of untrusted files) with clang,
+# everything instrumented with -fsanitize=fuzzer-no-link,address,undefined. README, "Hostile
+# input, fuzzing and sanitizers", has the commands to run them.
+#
+# Decision: in these builds warnings no longer stop the build (-Wno-error). The GCC release
+# build is the warning gate; instrumented code at other optimisation levels, or clang's own
+# warning set, must not block a sanitizer run on a warning the gate does not see.
+
+set(ARTCAM_SANITIZE "" CACHE STRING
+    "Sanitizers for every target: address,undefined | thread | empty (none)")
+option(ARTCAM_FUZZ "Build the libFuzzer targets in fuzz/ (clang only; ASan+UBSan)" OFF)
+
+if(ARTCAM_SANITIZE AND ARTCAM_FUZZ)
+  message(FATAL_ERROR "ARTCAM_FUZZ already builds with address,undefined; leave ARTCAM_SANITIZE empty")
+endif()
+
+if(ARTCAM_SANITIZE)
+  if(ARTCAM_SANITIZE MATCHES "thread" AND ARTCAM_SANITIZE MATCHES "address")
+    message(FATAL_ERROR "ARTCAM_SANITIZE: thread cannot be combined with address")
+  endif()
+  if(NOT ARTCAM_SANITIZE MATCHES "^(address|undefined|thread|leak)(,(address|undefined|leak))*$")
+    message(FATAL_ERROR "ARTCAM_SANITIZE=${ARTCAM_SANITIZE}: expected address,undefined or thread")
+  endif()
+  # Stop at the first undefined behaviour instead of printing and going on, so a test fails.
+  set(_artcam_san_flags -fsanitize=${ARTCAM_SANITIZE} -fno-omit-frame-pointer)
+  if(ARTCAM_SANITIZE MATCHES "undefined")
+    list(APPEND _artcam_san_flags -fno-sanitize-recover=undefined)
+  endif()
+  add_compile_options(${_artcam_san_flags})
+  add_link_options(${_artcam_san_flags})
+  set_property(TARGET artcam_warnings APPEND PROPERTY INTERFACE_COMPILE_OPTIONS -Wno-error)
+  message(STATUS "ARTcam: sanitizers ${ARTCAM_SANITIZE} on every target")
+endif()
+
+if(ARTCAM_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "ARTCAM_FUZZ needs clang (libFuzzer): CXX=clang++-14 cmake ... in a new build dir")
+  endif()
+  set(_artcam_fuzz_flags -fsanitize=fuzzer-no-link,address,undefined
+      -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+  add_compile_options(${_artcam_fuzz_flags})
+  add_link_options(-fsanitize=address,undefined)
+  set_property(TARGET artcam_warnings APPEND PROPERTY INTERFACE_COMPILE_OPTIONS
+               -Wno-error -Wno-unknown-warning-option)
+  add_subdirectory(${PROJECT_SOURCE_DIR}/fuzz ${PROJECT_BINARY_DIR}/fuzz)
+endif()
