@@ -32,25 +32,43 @@
 namespace artcam::cli {
 
 const char* const kBenchUsage =
-    "usage: artcam bench fit [--counts LIST] [--noise LIST] [--plot OUT.png] [--seconds S]\n"
-    "         time against error of every fitting method (raw DLT, conditioned DLT, + refine,\n"
-    "         + robust, auto) over match counts and noise levels; CSV on stdout\n"
-    "       artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
-    "                           [--peer DIR] [--only KERNEL,…] [--no-e2e]\n\n"
-    "Times the fused warp on a WxH RGB8 image made in code (default 6000x4000): each kernel\n"
+    "usage: artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
+    "                           [--peer DIR] [--only KERNEL,…] [--no-e2e]\n"
+    "       artcam bench fit [--counts LIST] [--noise LIST] [--seconds S] [--methods LIST]\n"
+    "                        [--plot OUT.png] [--colour]\n"
+    "       artcam bench effects …   (artcam bench effects --help)\n\n"
+    "bench render times the fused warp on a WxH RGB8 image made in code: each kernel\n"
     "(identity, translation-copy, affine, homography, rational, rational-scalar without the\n"
-    "SIMD clone, and a minifying homography with anti-aliasing) with each filter, on each thread count of LIST (default 1,2), as the\n"
-    "median of N renders (default 5). Prints CSV on stdout:\n"
-    "  source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share,certified_share,cpu_ms\n"
-    "where cpu_ms is the process CPU time of the median render (all threads; on a loaded shared\n"
-    "machine it stays near the unloaded wall time × threads while ms grows), and the error is the distance of the kernel's source positions from an exact\n"
-    "double-precision inverse on a sample of rows. --peer DIR runs DIR/cvwarp (the OpenCV\n"
-    "maps + remap peer of ../shared/peerbench) on the same image and adds its rows.\n"
-    "--only runs the named kernels alone. A memcpy row (source \"memcpy\") gives the copy\n"
-    "ceiling. Last, unless --no-e2e, `artcam warp`'s path on a JPEG of the image (decode into\n"
-    "8-bit, render, encode) is timed by part, and the 1920-px preview from the mip pyramid,\n"
-    "on stderr.\n"
-    "--plot writes a PNG of speed (x, log) against error (y, log), one colour per kernel.\n";
+    "SIMD clone, and a minifying homography with anti-aliasing) with each filter, on each\n"
+    "thread count, as the median of N renders. Prints CSV on stdout:\n"
+    "  source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share,\n"
+    "  certified_share,cpu_ms\n"
+    "where cpu_ms is the process CPU time of the median render (all threads; on a loaded\n"
+    "shared machine it stays near the unloaded wall time × threads while ms grows), and the\n"
+    "error is the distance of the kernel's source positions from an exact double-precision\n"
+    "inverse on a sample of rows. A memcpy row (source \"memcpy\") gives the copy ceiling.\n"
+    "  --size WxH       image size (default 6000x4000)\n"
+    "  --reps N         renders per row, the median is reported (default 5)\n"
+    "  --threads LIST   comma-separated thread counts (default 1,2)\n"
+    "  --plot OUT.png   a PNG of speed (x, log) against error (y, log), one colour per kernel\n"
+    "  --peer DIR       also run DIR/cvwarp (the OpenCV maps + remap peer) on the same image\n"
+    "  --only LIST      run only the named kernels (default: all)\n"
+    "  --no-e2e         skip the last part: `artcam warp`'s path on a JPEG of the image\n"
+    "                   (decode into 8-bit, render, encode) timed by part, and the 1920-px\n"
+    "                   preview from the mip pyramid, on stderr\n\n"
+    "bench fit times every fitting method (raw DLT, conditioned DLT, + refine, + robust,\n"
+    "auto) against its error over match counts and noise levels; CSV on stdout\n"
+    "(method,matches,noise_px,median_us,median_cpu_us,reps,rms_err_px,max_err_px).\n"
+    "  --counts LIST    match counts (default 9,30,100,1000,10000,100000)\n"
+    "  --noise LIST     Gaussian noise on the targets, px (default 0,0.5,2)\n"
+    "  --seconds S      time budget per row; at least 3, at most 200 fits (default 0.3)\n"
+    "  --methods LIST   raw-dlt,dlt,refine,robust,auto (default: all five)\n"
+    "  --plot OUT.png   a PNG of time against error, one colour per method\n"
+    "  --colour         then time the colour-block fit (auto and robust auto) on 24, 100\n"
+    "                   and 1000 samples and report its mean and max dE00\n\n"
+    "Examples:\n"
+    "  artcam bench render --size 3000x2000 --threads 1,2 --plot speed.png\n"
+    "  artcam bench fit --counts 9,100 --methods dlt,auto\n";
 
 namespace {
 
@@ -371,6 +389,7 @@ int benchCommand(const std::vector<std::string>& argv) {
                          {"--plot", "", true},
                          {"--peer", "", true},
                          {"--only", "", true},
+                         {"--filter", "", true},
                          {"--no-e2e", "", false}});
   args.expectPositional(1, "what to benchmark (render)");
   if (args.positional()[0] != "render") throw UsageError("bench what? \"render\" or \"fit\"");
@@ -417,6 +436,7 @@ int benchCommand(const std::vector<std::string>& argv) {
   }
   std::vector<Row> rows;
   const std::string only = args.valueOr("--only", "");
+  const std::string filters = args.valueOr("--filter", "");
   for (const Case& c : makeCases(size)) {
     if (!only.empty() && ("," + only + ",").find("," + c.name + ",") == std::string::npos) continue;
     const PositionError err = measureError(c.camera, size);
@@ -425,6 +445,8 @@ int benchCommand(const std::vector<std::string>& argv) {
                    "preimage\n", c.name.c_str(), err.validity_mismatch);
     for (Filter f : {Filter::Nearest, Filter::Bilinear, Filter::Bicubic}) {
       if ((c.antialias || c.scalar_only) && f != Filter::Bilinear) continue;
+      if (!filters.empty() && ("," + filters + ",").find("," + std::string(filterName(f)) + ",") == std::string::npos)
+        continue;
       for (int threads : thread_counts) {
         WarpOptions o;
         o.filter = f;

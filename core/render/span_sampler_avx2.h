@@ -2,9 +2,9 @@
 //
 // Runtime dispatch only: these functions carry __attribute__((target("avx2"))), the rest of the
 // program keeps the x86-64 baseline, and span_sampler.cpp picks them when the CPU reports AVX2
-// (the build never targets the host CPU as a whole). They compute EXACTLY what the scalar 8-bit interior path computes —
-// the same float→fixed-point rounding (q = int(f · 1024 + 0.5), no FMA), the same integer
-// bilinear with weights of 1/1024 and the same rounding — eight pixels at a time, so the tests
+// (the build never targets the host CPU as a whole). They compute EXACTLY what the scalar 8-bit
+// interior path computes — the same float→fixed-point rounding (q = int(f · 256 + 0.5), no FMA),
+// the same integer bilinear with weights of 1/256 and the same rounding — eight pixels at a time, so the tests
 // can demand bit-identical output from the scalar fallback. A group of eight with any pixel
 // outside the interior (or without a preimage) goes to the scalar routine, which owns the
 // border semantics.
@@ -43,11 +43,41 @@ __attribute__((target("avx2"))) inline bool allInterior(__m256 fx, __m256 fy, __
   return _mm256_movemask_ps(in) == 0xFF;
 }
 
-// Bilinear, C = 3 or 4 interleaved 8-bit channels (alpha, if any, premultiplied like the rest).
-// Positions, weights and byte offsets for eight pixels at once; then each pixel's two taps of
-// each row come in with one 8-byte load (gathers measured slower here than plain loads), are
-// shuffled into (left, right) pairs per channel and weighted by one multiply-add:
-// top = p00 (1024 − ax) + p01 ax, the scalar path's integers exactly.
+// bilinearU8's pieces. Pixels p and p + 4: [top 8 bytes | bottom 8 bytes] in one lane each.
+__attribute__((target("avx2"), always_inline)) inline __m256i pixelPair(const std::uint8_t* src,
+                                                                        const std::int32_t* top,
+                                                                        const std::int32_t* bottom, int p) {
+  const auto rows = [&](int q) __attribute__((always_inline)) {
+    const __m128i t = _mm_loadl_epi64(static_cast<const __m128i*>(static_cast<const void*>(src + top[q])));
+    return _mm_castpd_si128(
+        _mm_loadh_pd(_mm_castsi128_pd(t), static_cast<const double*>(static_cast<const void*>(src + bottom[q]))));
+  };
+  const __m128i a = rows(p), b = rows(p + 4);
+  return _mm256_inserti128_si256(_mm256_castsi128_si256(a), b, 1);
+}
+
+// Rows, then columns: (256 − ay) top + ay bottom − 2¹⁵ per tap and channel (exact in 16 bits),
+// then (256 − ax) left + ax right + the bias, >> 16: one pixel per lane, channels in 32 bits.
+__attribute__((target("avx2"), always_inline)) inline __m256i weighPair(__m256i taps, __m256i y_weights,
+                                                                        __m256i x_weights, __m256i pairs,
+                                                                        __m256i sign, __m256i bias) {
+  const __m256i signed_taps = _mm256_xor_si256(_mm256_shuffle_epi8(taps, pairs), sign);
+  const __m256i columns = _mm256_maddubs_epi16(y_weights, signed_taps);
+  return _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(columns, x_weights), bias), 16);
+}
+
+// Bilinear, C = 3 or 4 interleaved 8-bit channels (alpha, if any, premultiplied like the rest),
+// the scalar path's integers (span_sampler.cpp) eight pixels at a time:
+// - positions → fixed point, byte offsets and weights for all eight lanes at once;
+// - per pixel, one 8-byte load from each row (taps x0 and x0 + 1 and two spare bytes) into one
+//   128-bit lane, [top | bottom]; pixels k and k + 4 share a 256-bit register, so each one's
+//   weights are an in-lane broadcast of its 32-bit lane (no lane crossing);
+// - one shuffle orders the bytes as (top, bottom) pairs per channel and tap, one
+//   _mm256_maddubs_epi16 weighs the rows: the unsigned operand is the weights (256 − ay, ay),
+//   the signed one the pixels − 128 (xor 0x80), so L − 2¹⁵ is exact in 16 bits. The weight
+//   256 (ay = 0) does not fit a byte: then both rows are the top one, weighted 128 + 128.
+// - one _mm256_madd_epi16 weighs the columns (256 − ax, ax) into 32 bits, + 2²³ + 2¹⁵, >> 16;
+// - two packs put pixels 0–3 in the low lane and 4–7 in the high one, in order.
 template <int C, bool kAppendAlpha = false>
 __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context& k, std::uint8_t* out,
                                                      int n, const float* sx, const float* sy,
@@ -55,24 +85,25 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
   static_assert(C == 3 || C == 4);
   static_assert(!kAppendAlpha || C == 3);  // RGB in, RGBA out: alpha = coverage, 1 inside
   constexpr int kOut = kAppendAlpha ? 4 : C;
-  const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(1024.0f);
+  const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(256.0f);
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
-  // RGB: each 8-byte load reads two bytes past the right tap, so the lower row must not be
-  // the image's last (the scalar routine takes those pixels).
-  const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - (C == 3 ? 2.5f : 1.0f));
-  const __m256i xlim = _mm256_set1_epi32(k.width - 2), ylim = _mm256_set1_epi32(k.height - 2);
+  // The 8-byte loads read past the right tap (RGB: two bytes), so the lower row must not be
+  // the image's last; this also keeps ay ≤ 255 (y0 needs no clamp, unlike the scalar path).
+  const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - 2.5f);
+  const __m256i xlim = _mm256_set1_epi32(k.width - 2);
   const __m256i row = _mm256_set1_epi32(static_cast<int>(k.src_row));
-  const __m256i full_weight = _mm256_set1_epi32(1024);
-  // Per 128-bit lane: bytes 0–7 the top row's 8-byte load, 8–15 the bottom row's; out: the
-  // top row's (left, right) pairs per channel in bytes 0–7, the bottom row's in 8–15, so that
-  // unpacklo/unpackhi with zero widen them to 16-bit pairs for the multiply-add.
-  const __m128i pairs = C == 4 ? _mm_setr_epi8(0, 4, 1, 5, 2, 6, 3, 7, 8, 12, 9, 13, 10, 14, 11, 15)
-                               : _mm_setr_epi8(0, 3, 1, 4, 2, 5, -1, -1, 8, 11, 9, 12, 10, 13, -1, -1);
+  const __m256i c256 = _mm256_set1_epi32(256), c128 = _mm256_set1_epi32(128 | (128 << 8));
+  const __m256i zero = _mm256_setzero_si256();
+  const __m256i sign = _mm256_set1_epi8(static_cast<char>(0x80));
+  const __m256i bias = _mm256_set1_epi32((1 << 23) + (1 << 15));
+  // [top 8 bytes | bottom 8 bytes] → (top, bottom) pairs for (c of tap 0, c of tap 1), c = R, G, B(, A).
+  const __m128i pairs = C == 4 ? _mm_setr_epi8(0, 8, 4, 12, 1, 9, 5, 13, 2, 10, 6, 14, 3, 11, 7, 15)
+                               : _mm_setr_epi8(0, 8, 3, 11, 1, 9, 4, 12, 2, 10, 5, 13, -1, -1, -1, -1);
   const __m256i pairs2 = _mm256_broadcastsi128_si256(pairs);
-  const __m256i round2 = _mm256_set1_epi32(1 << 19);
-  const std::ptrdiff_t row_bytes = k.src_row;
+  // RGBx → RGB per lane: four pixels' 16 bytes into 12.
+  const __m256i squeeze = _mm256_broadcastsi128_si256(
+      _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
   long long transparent = 0;
-  alignas(32) std::int32_t off[8], wx[8], wy[8];
   int i = 0;
   for (; i + 8 <= n; i += 8) {
     const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx + i), half);
@@ -83,58 +114,63 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
     }
     const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale), half));
     const __m256i qy = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fy, scale), half));
-    const __m256i x0 = _mm256_min_epi32(_mm256_srai_epi32(qx, 10), xlim);
-    const __m256i y0 = _mm256_min_epi32(_mm256_srai_epi32(qy, 10), ylim);
-    const __m256i ax = _mm256_sub_epi32(qx, _mm256_slli_epi32(x0, 10));
-    const __m256i ay = _mm256_sub_epi32(qy, _mm256_slli_epi32(y0, 10));
+    const __m256i x0 = _mm256_min_epi32(_mm256_srai_epi32(qx, 8), xlim);
+    const __m256i y0 = _mm256_srai_epi32(qy, 8);
+    const __m256i ax = _mm256_sub_epi32(qx, _mm256_slli_epi32(x0, 8));  // 0 … 256
+    const __m256i ay = _mm256_and_si256(qy, _mm256_set1_epi32(255));    // 0 … 255
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x0, 2) : _mm256_add_epi32(x0, _mm256_slli_epi32(x0, 1));
-    _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(off)),
-                       _mm256_add_epi32(_mm256_mullo_epi32(y0, row), xoff));
-    // (1024 − ax) in the low 16 bits, ax in the high: the multiply-add's weight pair.
-    _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(wx)),
-                       _mm256_or_si256(_mm256_sub_epi32(full_weight, ax), _mm256_slli_epi32(ax, 16)));
-    _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(wy)), ay);
-    // Two pixels per 256-bit register, one per 128-bit lane: [p_j row 0 | p_j row 1] and
-    // [p_j+1 row 0 | p_j+1 row 1] as 8-byte loads, shuffled into (left, right) pairs per
-    // channel, widened, weighted, combined vertically, packed.
-    const __m256i wx8 = _mm256_load_si256(static_cast<const __m256i*>(static_cast<const void*>(wx)));
-    const __m256i wy8 = _mm256_load_si256(static_cast<const __m256i*>(static_cast<const void*>(wy)));
+    const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y0, row), xoff);
+    const __m256i flat = _mm256_cmpeq_epi32(ay, zero);  // ay = 0: the top row twice, 128 + 128
+    const __m256i off_bottom = _mm256_add_epi32(off, _mm256_andnot_si256(flat, row));
+    // Offsets into general registers (two per 64-bit extract) rather than through memory.
+    const __m128i tl = _mm256_castsi256_si128(off), th = _mm256_extracti128_si256(off, 1);
+    const __m128i bl = _mm256_castsi256_si128(off_bottom), bh = _mm256_extracti128_si256(off_bottom, 1);
+    const std::uint64_t t01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(tl)), t23 = static_cast<std::uint64_t>(_mm_extract_epi64(tl, 1));
+    const std::uint64_t t45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(th)), t67 = static_cast<std::uint64_t>(_mm_extract_epi64(th, 1));
+    const std::uint64_t b01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(bl)), b23 = static_cast<std::uint64_t>(_mm_extract_epi64(bl, 1));
+    const std::uint64_t b45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(bh)), b67 = static_cast<std::uint64_t>(_mm_extract_epi64(bh, 1));
+    const std::int32_t top[8] = {static_cast<std::int32_t>(t01), static_cast<std::int32_t>(t01 >> 32),
+                                 static_cast<std::int32_t>(t23), static_cast<std::int32_t>(t23 >> 32),
+                                 static_cast<std::int32_t>(t45), static_cast<std::int32_t>(t45 >> 32),
+                                 static_cast<std::int32_t>(t67), static_cast<std::int32_t>(t67 >> 32)};
+    const std::int32_t bottom[8] = {static_cast<std::int32_t>(b01), static_cast<std::int32_t>(b01 >> 32),
+                                    static_cast<std::int32_t>(b23), static_cast<std::int32_t>(b23 >> 32),
+                                    static_cast<std::int32_t>(b45), static_cast<std::int32_t>(b45 >> 32),
+                                    static_cast<std::int32_t>(b67), static_cast<std::int32_t>(b67 >> 32)};
+    // Bytes (256 − ay, ay, 256 − ay, ay) per lane; words (256 − ax, ax).
+    const __m256i wy_pair = _mm256_blendv_epi8(
+        _mm256_or_si256(_mm256_sub_epi32(c256, ay), _mm256_slli_epi32(ay, 8)), c128, flat);
+    const __m256i wy = _mm256_or_si256(wy_pair, _mm256_slli_epi32(wy_pair, 16));
+    const __m256i wx = _mm256_or_si256(_mm256_sub_epi32(c256, ax), _mm256_slli_epi32(ax, 16));
+    const __m256i p0 = weighPair(pixelPair(k.src, top, bottom, 0), _mm256_shuffle_epi32(wy, 0x00),
+                                 _mm256_shuffle_epi32(wx, 0x00), pairs2, sign, bias);
+    const __m256i p1 = weighPair(pixelPair(k.src, top, bottom, 1), _mm256_shuffle_epi32(wy, 0x55),
+                                 _mm256_shuffle_epi32(wx, 0x55), pairs2, sign, bias);
+    const __m256i p2 = weighPair(pixelPair(k.src, top, bottom, 2), _mm256_shuffle_epi32(wy, 0xAA),
+                                 _mm256_shuffle_epi32(wx, 0xAA), pairs2, sign, bias);
+    const __m256i p3 = weighPair(pixelPair(k.src, top, bottom, 3), _mm256_shuffle_epi32(wy, 0xFF),
+                                 _mm256_shuffle_epi32(wx, 0xFF), pairs2, sign, bias);
+    // Low lane: pixels 0 1 2 3, high lane: 4 5 6 7, four bytes each.
+    __m256i bytes = _mm256_packus_epi16(_mm256_packus_epi32(p0, p1), _mm256_packus_epi32(p2, p3));
     std::uint8_t* o = out + i * kOut;
-    for (int j = 0; j < 8; j += 2, o += 2 * kOut) {
-      const std::uint8_t* p0 = k.src + off[j];
-      const std::uint8_t* p1 = k.src + off[j + 1];
-      std::uint64_t a0, b0, a1, b1;
-      std::memcpy(&a0, p0, 8);
-      std::memcpy(&b0, p0 + row_bytes, 8);
-      std::memcpy(&a1, p1, 8);
-      std::memcpy(&b1, p1 + row_bytes, 8);
-      const __m256i taps = _mm256_shuffle_epi8(
-          _mm256_set_epi64x(static_cast<long long>(b1), static_cast<long long>(a1),
-                            static_cast<long long>(b0), static_cast<long long>(a0)),
-          pairs2);
-      const __m256i lane_pick = _mm256_setr_epi32(j, j, j, j, j + 1, j + 1, j + 1, j + 1);
-      const __m256i weight_x = _mm256_permutevar8x32_epi32(wx8, lane_pick);
-      const __m256i weight_y = _mm256_permutevar8x32_epi32(wy8, lane_pick);
-      const __m256i zero = _mm256_setzero_si256();
-      const __m256i top = _mm256_madd_epi16(_mm256_unpacklo_epi8(taps, zero), weight_x);
-      const __m256i bottom = _mm256_madd_epi16(_mm256_unpackhi_epi8(taps, zero), weight_x);
-      const __m256i sum = _mm256_add_epi32(
-          _mm256_add_epi32(_mm256_slli_epi32(top, 10), _mm256_mullo_epi32(_mm256_sub_epi32(bottom, top), weight_y)),
-          round2);
-      const __m256i v = _mm256_srli_epi32(sum, 20);
-      const __m256i bytes = _mm256_packus_epi16(_mm256_packus_epi32(v, v), zero);
-      std::uint32_t w0 = static_cast<std::uint32_t>(_mm256_cvtsi256_si32(bytes));
-      std::uint32_t w1 = static_cast<std::uint32_t>(_mm256_extract_epi32(bytes, 4));
-      if constexpr (kAppendAlpha) {
-        w0 |= 0xFF000000u;
-        w1 |= 0xFF000000u;
+    if constexpr (C == 4 || kAppendAlpha) {
+      if constexpr (kAppendAlpha) bytes = _mm256_or_si256(bytes, _mm256_set1_epi32(static_cast<int>(0xFF000000u)));
+      _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o)), bytes);
+      if (k.src_alpha >= 0) {
+        const unsigned zero_bytes = static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(bytes, zero)));
+        transparent += __builtin_popcount(zero_bytes & (0x11111111u << k.src_alpha));
       }
-      // RGB: 4-byte stores whose spare byte the next pixel overwrites; the group's last pixel
-      // stores exactly three (the byte after it may belong to another thread's row).
-      std::memcpy(o, &w0, 4);
-      std::memcpy(o + kOut, &w1, kOut == 4 || j + 1 < 7 ? 4 : 3);
+    } else {
+      // 24 bytes: the low lane's 12 with a 16-byte store whose spare four the high lane's
+      // first store overwrites; nothing past the group is written.
+      const __m256i packed = _mm256_shuffle_epi8(bytes, squeeze);
+      const __m128i high = _mm256_extracti128_si256(packed, 1);
+      _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o)), _mm256_castsi256_si128(packed));
+      _mm_storel_epi64(static_cast<__m128i*>(static_cast<void*>(o + 12)), high);
+      const std::uint32_t last = static_cast<std::uint32_t>(_mm_extract_epi32(high, 2));
+      std::memcpy(o + 20, &last, 4);
       if (k.src_alpha >= 0)
-        transparent += (((w0 >> (8 * k.src_alpha)) & 0xFFu) == 0) + (((w1 >> (8 * k.src_alpha)) & 0xFFu) == 0);
+        for (int p = 0; p < 8; ++p) transparent += o[3 * p + k.src_alpha] == 0;
     }
   }
   if (i < n) transparent += scalar(k, out + i * kOut, n - i, sx + i, sy + i, valid + i);
