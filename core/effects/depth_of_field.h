@@ -19,6 +19,8 @@
 // stackBlur (fast): blurs at levels σ_0 = 0 < σ_1 = first_level < … (ratio `level_ratio`), each separable
 // and masked by the halo rule at that level; each pixel blends its two bracketing levels with
 // the weight that matches its variance: t = (σ² − σ_L²)/(σ_{L+1}² − σ_L²).
+// blur_stack.cpp says how it stays fast at 24 Mpix (coarse levels on shrunk copies, fine levels
+// band by band over the columns that need them, one blending pass).
 #pragma once
 
 #include "core/model/camera.h"
