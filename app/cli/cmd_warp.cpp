@@ -1,49 +1,19 @@
-// artcam warp: image → image through a position camera (gather warp, DESIGN §3).
+// artcam warp: image → image through a position camera (gather warp, DESIGN §3). The stages
+// (decode, render, encode) are warp_job.h's, shared with artcam batch.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
-#include "app/cli/warp_attributed.h"
-#include "core/io/artcam_file.h"
-#include "core/io/image_io.h"
-#include "core/io/piecewise_file.h"
-#include "core/io/stored_image.h"
-#include "core/piecewise/piecewise_render.h"
-#include "core/render/warp.h"
+#include "app/cli/interrupt.h"
+#include "app/cli/progress.h"
+#include "app/cli/warp_job.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <system_error>
-#include <utility>
+#include <string>
 
 namespace artcam::cli {
-namespace {
-
-int warpPiecewise(const PiecewiseCamera& camera, const std::string& input, const std::string& output,
-                  const WarpOptions& options, bool stats) {
-  if (options.width != 0 || options.height != 0)
-    throw UsageError("--size does not apply to piecewise cameras (they render on their target frame)");
-  const auto image = readImage(input);
-  if (!image) throw CommandError(image.status.message);
-  const auto start = std::chrono::steady_clock::now();
-  const ImageF warped = renderPiecewise(image->image, camera);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (const Status s = writeImage(output, warped, &image->info); !s) throw CommandError(s.message);
-  if (stats)
-    std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", ms,
-                 ms > 0 ? warped.width * double(warped.height) / 1e3 / ms : 0.0);
-  std::printf("wrote %s (%dx%d, piecewise mesh warp, %zu patches)\n", output.c_str(), warped.width,
-              warped.height, camera.patches.size());
-  return 0;
-}
-
-}  // namespace
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--threads N] [--stats] [--force]\n"
+    "                   [--threads N] [--stats] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
     "The output has the camera's target frame size scaled by IN's size over the camera's\n"
@@ -54,15 +24,30 @@ const char* const kWarpUsage =
     "(8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and writes the stored\n"
     "values in place (no float copy: peak memory about input + output), interpolating them in\n"
     "the file's own encoding as OpenCV's remap does; otherwise it renders in linear float.\n"
-    "OUT is written atomically; it may not be IN\n"
-    "unless --force is given. --stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr\n"
-    "(the render alone, without file I/O).\n"
+    "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130); it may\n"
+    "not be IN unless --overwrite is given. --stats prints render_ms=<ms>\n"
+    "mpix_per_s=<Mpix/s> on stderr (the render alone, without file I/O).\n"
     "A piecewise camera (artcam fit --piecewise) is rendered by its seamless mesh warp on its\n"
     "target frame.\n"
     "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
     "field go to the attributed renderer; those that read depth need --depth FILE: float\n"
     "EXR/TIFF as stored, integer files times --depth-scale S, or disparity made depth as\n"
-    "BF / disparity with --disparity BF.\n";
+    "BF / disparity with --disparity BF.\n\n"
+    "options:\n"
+    "  -o, --output OUT     the warped image (required)\n"
+    "  --size WxH           output size in pixels (default: the target frame scaled as above)\n"
+    "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
+    "  --threads N          worker threads (default 0: all cores)\n"
+    "  --stats              print render_ms and mpix_per_s on stderr\n"
+    "  --overwrite          allow OUT to be IN (--force is the same)\n"
+    "  -q, --quiet          no progress bar on stderr (shown only on a terminal)\n"
+    "  --depth FILE         per-pixel depth for cameras that read it (no default)\n"
+    "  --depth-scale S      multiplies an integer depth file's values (default 1)\n"
+    "  --disparity BF       the depth file holds disparity; depth = BF / disparity (default:\n"
+    "                       off, the file holds depth)\n\n"
+    "Examples:\n"
+    "  artcam warp photo.jpg lens.artcam -o fixed.jpg\n"
+    "  artcam warp photo.png dof.artcam -o blurred.png --depth depth.exr --filter bicubic\n";
 
 int warpCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
@@ -70,7 +55,9 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--filter", "", true},
                          {"--threads", "", true},
                          {"--stats", "", false},
+                         {"--overwrite", "", false},
                          {"--force", "", false},
+                         {"--quiet", "-q", false},
                          {"--depth", "", true},
                          {"--depth-scale", "", true},
                          {"--disparity", "", true}});
@@ -78,95 +65,38 @@ int warpCommand(const std::vector<std::string>& argv) {
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
   const std::string& input = args.positional()[0];
-  std::error_code ec;
-  if (!args.has("--force") && std::filesystem::equivalent(input, *output, ec))
-    throw CommandError(*output + ": refusing to overwrite the input image (use --force)");
+  // Never replace the photo being warped by default (issue 9, "no lost work").
+  if (!args.has("--overwrite") && !args.has("--force") && sameFile(input, *output))
+    throw CommandError(*output + ": refusing to overwrite the input image " + input +
+                       " (use --overwrite)");
+  const WarpRequest request = parseWarpRequest(args);
+  const WarpCameraFile camera = loadWarpCamera(args.positional()[1]);
 
-  WarpOptions options;
-  const std::string filter_name = args.valueOr("--filter", "bilinear");
-  const auto filter = filterFromName(filter_name);
-  if (!filter) throw UsageError("unknown --filter \"" + filter_name + "\"");
-  options.filter = *filter;
-  if (args.has("--size")) {
-    const FrameSize size = parseSize(*args.value("--size"), "--size");
-    options.width = size.width;
-    options.height = size.height;
-  }
-  if (args.has("--threads")) {
-    try {
-      options.threads = std::stoi(*args.value("--threads"));
-    } catch (const std::exception&) {
-      throw UsageError("--threads expects a whole number");
-    }
-    if (options.threads < 0) throw UsageError("--threads expects a whole number ≥ 0");
-  }
-
-  const auto doc = readArtcamFile(args.positional()[1]);
-  if (!doc) throw CommandError(doc.status.message);
-  const Camera& camera = doc->camera;
-  // Output size: the camera may have been made on a preview, so its target frame scales by
-  // the ratio between this photo and the source frame it was made for (normalised frames make
-  // that exact).
-  const auto sizeFor = [&](int input_width) {
-    if (options.width != 0 || options.height != 0 || !camera.sourceSize().isImage()) return;
-    const double scale = static_cast<double>(input_width) / camera.sourceSize().width;
-    options.width = std::max(1, static_cast<int>(std::lround(camera.targetSize().width * scale)));
-    options.height = std::max(1, static_cast<int>(std::lround(camera.targetSize().height * scale)));
+  // Ctrl-C stops between bands of rows; the atomic writer removes its temporary.
+  const CooperativeInterrupt interrupt;
+  ProgressBar bar(0, args.has("--quiet"));
+  auto stage = [&](const char* name) {
+    return cancelOnInterrupt([&bar, name](double done) { bar.stage(name, done); });
   };
-  // Colour/depth cameras, layers and depth of field go to the attributed renderer (issue 6).
-  const auto effect = readArtcamEffectFile(args.positional()[1]);
-  if (!effect) throw CommandError(effect.status.message);
-  if (needsAttributedWarp(*effect)) {
-    const auto image = readImage(input);
-    if (!image) throw CommandError(image.status.message);
-    sizeFor(image->image.width);
-    AttributedWarpRequest request{*output, args.value("--depth"), 1.0, 0.0, options, args.has("--stats")};
-    try {
-      request.depth_scale = std::stod(args.valueOr("--depth-scale", "1"));
-      request.baseline_focal = std::stod(args.valueOr("--disparity", "0"));
-    } catch (const std::exception&) {
-      throw UsageError("--depth-scale and --disparity expect numbers");
+  try {
+    DecodedInput decoded = decodeForWarp(camera, input, *output, stage("reading"));
+    RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
+    encodeWarp(rendered, stage("writing"));
+    if (request.stats && !rendered.written) {
+      const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
+      std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms,
+                   rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0);
     }
-    return warpAttributed(*effect, *image, request);
+    if (!rendered.written)
+      std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), rendered.width, rendered.height,
+                  rendered.description.c_str());
+  } catch (const CommandError&) {
+    if (!interruptRequested()) throw;
   }
-  // Piecewise cameras (issue 8): the mesh warp, never the top-level single camera alone.
-  if (const auto pieces = readPiecewiseFile(args.positional()[1]); pieces && pieces->pieces)
-    return warpPiecewise(*pieces->pieces, input, *output, options, args.has("--stats"));
-  WarpSummary summary;
-  int out_width = 0, out_height = 0;
-  // The stored-type path (issue 5: peak memory ≤ input + output + a small constant).
-  auto stored = readStoredImage(input);
-  if (!stored) throw CommandError(stored.status.message);
-  if (storedWriteKeepsEncoding(*output, stored->type)) {
-    sizeFor(stored->width);
-    const FrameSize out_size = warpOutputSize(camera, options);
-    const bool add_alpha = stored->alpha_channel < 0 && formatStoresAlpha(*output);
-    StoredImage warped = makeStoredImage(
-        out_size.width, out_size.height, stored->channels + (add_alpha ? 1 : 0),
-        add_alpha ? stored->channels : stored->alpha_channel, stored->type);
-    warpImage(std::as_const(*stored).view(), camera, warped.view(), options, &summary);
-    if (const Status s = writeStoredImage(*output, std::as_const(warped).view(), &stored->info); !s)
-      throw CommandError(s.message);
-    out_width = warped.width;
-    out_height = warped.height;
-  } else {
-    // Re-encoding between integer and float files goes through linear light (image_io.h).
-    stored = {};
-    const auto image = readImage(input);
-    if (!image) throw CommandError(image.status.message);
-    sizeFor(image->image.width);
-    const ImageF warped = warpImage(image->image, camera, options, &summary);
-    if (const Status s = writeImage(*output, warped, &image->info); !s) throw CommandError(s.message);
-    out_width = warped.width;
-    out_height = warped.height;
+  if (interruptRequested()) {
+    std::fprintf(stderr, "artcam warp: interrupted; %s not written\n", output->c_str());
+    return interruptExitCode();
   }
-  if (args.has("--stats")) {
-    const double mpix = static_cast<double>(out_width) * out_height / 1e6;
-    std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", summary.render_ms,
-                 summary.render_ms > 0 ? mpix / (summary.render_ms / 1000.0) : 0.0);
-  }
-  std::printf("wrote %s (%dx%d, kernel %s, %lld transparent pixels)\n", output->c_str(),
-              out_width, out_height, summary.kernel.c_str(), summary.transparent_pixels);
   return 0;
 }
 

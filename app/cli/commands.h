@@ -23,6 +23,7 @@ struct Command {
 int fitCommand(const std::vector<std::string>& args);
 int mapCommand(const std::vector<std::string>& args);
 int warpCommand(const std::vector<std::string>& args);
+int batchCommand(const std::vector<std::string>& args);  // artcam batch: many images, one camera
 int infoCommand(const std::vector<std::string>& args);
 int benchCommand(const std::vector<std::string>& args);
 int benchFitCommand(const std::vector<std::string>& args);  // artcam bench fit
@@ -36,6 +37,7 @@ int sampleCommand(const std::vector<std::string>& args);
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
 extern const char* const kWarpUsage;
+extern const char* const kBatchUsage;
 extern const char* const kInfoUsage;
 extern const char* const kBenchUsage;
 extern const char* const kBenchEffectsUsage;

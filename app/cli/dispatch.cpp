@@ -1,5 +1,6 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/interrupt.h"
 
 #include <cstdio>
 #include <exception>
@@ -12,6 +13,7 @@ const Command kCommands[] = {
     {"fit", "fit a camera to point matches (CSV)", kFitUsage, fitCommand},
     {"map", "map source pixels through a camera", kMapUsage, mapCommand},
     {"warp", "warp an image through a camera", kWarpUsage, warpCommand},
+    {"batch", "warp many images or a frame sequence", kBatchUsage, batchCommand},
     {"info", "describe a camera file", kInfoUsage, infoCommand},
     {"bench", "time the render kernels (CSV, plot)", kBenchUsage, benchCommand},
     {"render", "render a point cloud through 3D and view cameras", kRenderUsage, renderCommand},
@@ -57,6 +59,8 @@ int run(int argc, char** argv) {
         std::printf("%s", effects ? kBenchEffectsUsage : c.usage);
         return 0;
       }
+    // Ctrl-C/kill never leave a partial file (interrupt.h).
+    installInterruptHandlers();
     try {
       return c.run(rest);
     } catch (const UsageError& e) {

@@ -4,6 +4,7 @@
 #include "core/io/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 namespace artcam {
 
@@ -19,13 +21,17 @@ namespace {
 
 std::string errnoText(int err) { return std::strerror(err); }
 
+std::string temporaryPrefixFor(const std::filesystem::path& target) {
+  return "." + target.stem().string() + ".tmp-";
+}
+
 // ".name.tmp-<pid>-<n>.ext" beside the target: hidden, unique per process and call, and with
 // the target's extension.
 std::string temporaryPathFor(const std::string& path) {
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path target(path);
-  const std::string name = "." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) +
-                           "-" + std::to_string(counter++) + target.extension().string();
+  const std::string name = temporaryPrefixFor(target) + std::to_string(::getpid()) + "-" +
+                           std::to_string(counter++) + target.extension().string();
   return (target.parent_path() / name).string();
 }
 
@@ -42,15 +48,105 @@ bool syncPath(const std::string& path, int flags, int& err) {
   return ok;
 }
 
+// The live temporaries, readable from a signal handler: fixed slots, no allocation. A slot's
+// state is generation·4 + {0 free, 1 being filled, 2 live}; the handler copies a live path and
+// unlinks it only if the state did not change meanwhile (another thread may reuse the slot).
+constexpr int kLiveSlots = 64;
+constexpr std::size_t kMaxLivePath = 4096;
+struct LiveSlot {
+  std::atomic<unsigned long> state{0};
+  char path[kMaxLivePath];
+};
+static_assert(std::atomic<unsigned long>::is_always_lock_free);
+LiveSlot g_live[kLiveSlots];
+
+// Returns the slot, or -1 when the path is too long or all slots are taken (the save still
+// works; only the signal-time cleanup misses it).
+int registerLive(const std::string& path) {
+  if (path.size() >= kMaxLivePath) return -1;
+  for (int i = 0; i < kLiveSlots; ++i) {
+    unsigned long state = g_live[i].state.load();
+    if ((state & 3) != 0 || !g_live[i].state.compare_exchange_strong(state, state + 1)) continue;
+    std::memcpy(g_live[i].path, path.c_str(), path.size() + 1);
+    g_live[i].state.store(state + 2, std::memory_order_release);
+    return i;
+  }
+  return -1;
+}
+
+void unregisterLive(int slot) {
+  if (slot < 0) return;
+  const unsigned long state = g_live[slot].state.load();
+  g_live[slot].state.store((state & ~3UL) + 4, std::memory_order_release);
+}
+
+// "<pid>-<n>" → pid, or -1.
+long pidOfTemporary(const std::string& middle) {
+  const size_t dash = middle.find('-');
+  if (dash == 0 || dash == std::string::npos || dash + 1 == middle.size()) return -1;
+  for (size_t k = 0; k < middle.size(); ++k)
+    if (k != dash && (middle[k] < '0' || middle[k] > '9')) return -1;
+  try {
+    return std::stol(middle.substr(0, dash));
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
 }  // namespace
+
+void removeLiveTemporaries() noexcept {
+  for (LiveSlot& slot : g_live) {
+    const unsigned long before = slot.state.load(std::memory_order_acquire);
+    if ((before & 3) != 2) continue;
+    char copy[kMaxLivePath];
+    std::memcpy(copy, slot.path, kMaxLivePath);
+    copy[kMaxLivePath - 1] = '\0';
+    if (slot.state.load(std::memory_order_acquire) == before) ::unlink(copy);
+  }
+}
+
+bool isAtomicTemporaryName(const std::string& file_name) {
+  static const std::regex kName(R"(^\..*\.tmp-[0-9]+-[0-9]+(\.[^.]*)?$)");
+  return std::regex_match(file_name, kName);
+}
+
+int removeStaleTemporaries(const std::string& path) {
+  const std::filesystem::path target(path);
+  const std::string prefix = temporaryPrefixFor(target);
+  const std::string extension = target.extension().string();
+  std::filesystem::path folder = target.parent_path();
+  if (folder.empty()) folder = ".";
+  int removed = 0;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() + extension.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+      continue;
+    const long pid =
+        pidOfTemporary(name.substr(prefix.size(), name.size() - prefix.size() - extension.size()));
+    // Only a writer that is gone: kill(pid, 0) fails with ESRCH. A live one (ours, another
+    // process's, or one we may not signal) keeps its file.
+    if (pid <= 0 || pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+      continue;
+    std::error_code ignored;
+    if (std::filesystem::remove(it->path(), ignored)) ++removed;
+  }
+  return removed;
+}
 
 Status writeAtomically(const std::string& path,
                        const std::function<Status(const std::string& temp_path)>& write) {
   if (path.empty()) return Status::failure("cannot write: empty file name");
+  removeStaleTemporaries(path);
   const std::string temp = temporaryPathFor(path);
+  // Registered before the writer creates it, so a signal at any point finds it.
+  const int slot = registerLive(temp);
   auto discard = [&] {
     std::error_code ignored;
     std::filesystem::remove(temp, ignored);
+    unregisterLive(slot);
   };
 
   Status written;
@@ -66,6 +162,7 @@ Status writeAtomically(const std::string& path,
   }
   std::error_code exists_error;
   if (!std::filesystem::exists(temp, exists_error)) {
+    unregisterLive(slot);
     return Status::failure(path + ": cannot write: the writer produced no file");
   }
 
@@ -83,6 +180,7 @@ Status writeAtomically(const std::string& path,
     discard();
     return Status::failure(path + ": cannot write: " + errnoText(err));
   }
+  unregisterLive(slot);
   // Make the rename itself durable; failing here leaves a complete file, so it is not an error.
   std::string folder = std::filesystem::path(path).parent_path().string();
   if (folder.empty()) folder = ".";

@@ -1,5 +1,13 @@
 // Atomic saves (DESIGN §5): write to a temporary file in the target's folder, flush, then
 // rename over the target. On any failure the temporary is removed and the target untouched.
+//
+// Temporaries are named ".<stem>.tmp-<pid>-<n><ext>" (hidden, with the target's extension
+// because image writers pick their format from it). Two things keep them from outliving the
+// save (issue 9, "no lost work"):
+// - every live temporary is registered, and removeLiveTemporaries() unlinks them from a signal
+//   handler (async-signal-safe), so an interrupted program leaves none behind;
+// - a SIGKILLed writer cannot clean up, so each save first removes the temporaries of ITS
+//   target left by processes that no longer exist (never those of a running process).
 #pragma once
 
 #include "core/model/status.h"
@@ -14,5 +22,17 @@ namespace artcam {
 Status writeAtomically(const std::string& path,
                        const std::function<Status(const std::string& temp_path)>& write);
 Status writeTextAtomically(const std::string& path, const std::string& text);
+
+// Unlinks every temporary a save in this process is writing right now. Async-signal-safe
+// (only atomics and unlink(2)): meant for a SIGINT/SIGTERM handler that then calls _exit.
+void removeLiveTemporaries() noexcept;
+
+// Whether `file_name` (no folder) is an atomic save's temporary: ".<stem>.tmp-<pid>-<n><ext>".
+// Batch jobs use it so a stale temporary is never taken for an input or an output.
+bool isAtomicTemporaryName(const std::string& file_name);
+
+// Removes the temporaries for `path` whose writing process is gone (killed mid-save); returns
+// how many. writeAtomically calls it before each save.
+int removeStaleTemporaries(const std::string& path);
 
 }  // namespace artcam

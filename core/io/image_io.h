@@ -62,6 +62,9 @@ struct WriteImageOptions {
   // (uint8 for PNG/JPEG, half for EXR). Else "uint8", "uint16", "half" or "float".
   std::string pixel_type;
   int jpeg_quality = 95;
+  // Fraction of rows written, between bands; return false to cancel (the write then fails with
+  // "cancelled" and no file is left: the save is atomic).
+  std::function<bool(double)> progress = {};
 };
 
 // `like` (may be null) supplies metadata and the default pixel type.

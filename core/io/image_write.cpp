@@ -159,38 +159,30 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     spec.attribute("Compression", "jpeg:" + std::to_string(quality));
   }
 
-  // Encoded values in the written channel order.
-  std::vector<float> encoded;
-  encoded.reserve(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) *
-                  static_cast<size_t>(channels));
+  // Encoded values in the written channel order, a band of rows at a time: no whole-image
+  // copy beside the float image (issue 9, "big images").
   const size_t in_channels = static_cast<size_t>(image.channels);
-  for (size_t p = 0; p < image.data.size(); p += in_channels) {
-    const float* px = image.data.data() + p;
-    const float a = image.alpha_channel >= 0 ? px[image.alpha_channel] : 1.0f;
-    // Unassociated output divides by alpha; alpha 0 has no colour.
-    const bool divide = alpha >= 0 && !associated;
-    for (size_t c = 0; c < in_channels; ++c) {
-      if (static_cast<int>(c) == image.alpha_channel) {
-        if (keep_alpha) encoded.push_back(a);
-        continue;
+  const bool divide = alpha >= 0 && !associated;  // unassociated output; alpha 0 has no colour
+  auto encodeRows = [&](int y0, int y1, std::vector<float>& encoded) {
+    encoded.clear();
+    const size_t begin = static_cast<size_t>(y0) * static_cast<size_t>(image.width) * in_channels;
+    const size_t end = static_cast<size_t>(y1) * static_cast<size_t>(image.width) * in_channels;
+    for (size_t p = begin; p < end; p += in_channels) {
+      const float* px = image.data.data() + p;
+      const float a = image.alpha_channel >= 0 ? px[image.alpha_channel] : 1.0f;
+      for (size_t c = 0; c < in_channels; ++c) {
+        if (static_cast<int>(c) == image.alpha_channel) {
+          if (keep_alpha) encoded.push_back(a);
+          continue;
+        }
+        const double linear = !divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0;
+        encoded.push_back(static_cast<float>(transfer.encode(linear)));
       }
-      const double linear = !divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0;
-      encoded.push_back(static_cast<float>(transfer.encode(linear)));
     }
-  }
-  std::vector<std::uint8_t> bytes;
-  std::vector<std::uint16_t> words;
-  OIIO::TypeDesc data_type = OIIO::TypeDesc::FLOAT;
-  const void* data = encoded.data();
-  if (pixel_type == "uint8") {
-    bytes = quantise<std::uint8_t>(encoded);
-    data_type = OIIO::TypeDesc::UINT8;
-    data = bytes.data();
-  } else if (pixel_type == "uint16") {
-    words = quantise<std::uint16_t>(encoded);
-    data_type = OIIO::TypeDesc::UINT16;
-    data = words.data();
-  }
+  };
+  const OIIO::TypeDesc data_type = pixel_type == "uint8"    ? OIIO::TypeDesc::UINT8
+                                   : pixel_type == "uint16" ? OIIO::TypeDesc::UINT16
+                                                            : OIIO::TypeDesc::FLOAT;
 
   return writeAtomically(path, [&](const std::string& temp) {
     // OIIO names the file it was given; the user knows only the target.
@@ -198,7 +190,29 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       return Status::failure(fail + replaceAll(oneLine(message), temp, path));
     };
     if (!out->open(temp, spec)) return failure(out->geterror());
-    if (!out->write_image(data_type, data)) {
+    constexpr int kBand = 64;
+    std::vector<float> encoded;
+    std::vector<std::uint8_t> bytes;
+    std::vector<std::uint16_t> words;
+    bool ok = true;
+    for (int y0 = 0; ok && y0 < image.height; y0 += kBand) {
+      if (options.progress && !options.progress(static_cast<double>(y0) / image.height)) {
+        out->close();
+        return failure("cancelled");
+      }
+      const int y1 = std::min(image.height, y0 + kBand);
+      encodeRows(y0, y1, encoded);
+      const void* data = encoded.data();
+      if (data_type == OIIO::TypeDesc::UINT8) {
+        bytes = quantise<std::uint8_t>(encoded);
+        data = bytes.data();
+      } else if (data_type == OIIO::TypeDesc::UINT16) {
+        words = quantise<std::uint16_t>(encoded);
+        data = words.data();
+      }
+      ok = out->write_scanlines(y0, y1, 0, data_type, data);
+    }
+    if (!ok) {
       const std::string message = out->geterror();
       out->close();
       return failure(message);

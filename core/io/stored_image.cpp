@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <set>
 
 namespace artcam {
@@ -189,6 +190,13 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   return R::success(std::move(image));
 }
 
+Result<PixelType> readStoredPixelType(const std::string& path) {
+  auto opened = io_input::openImageInput(path);
+  if (!opened) return Result<PixelType>::failure(opened.status.message);
+  std::string name;
+  return Result<PixelType>::success(storedType((*opened)->spec().format, name));
+}
+
 bool storedWriteKeepsEncoding(const std::string& path, PixelType type) {
   auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
   if (!out) {
@@ -274,8 +282,20 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
     };
     if (!out->open(temp, spec)) return failure(out->geterror());
     bool ok = true;
+    // Cancel between bands (OIIO's callback returns true to stop).
+    struct Context {
+      const std::function<bool(double)>* progress;
+      bool cancelled = false;
+    } context{options.progress ? &options.progress : nullptr};
+    const OIIO::ProgressCallback callback =
+        options.progress ? +[](void* opaque, float done) {
+          auto* c = static_cast<Context*>(opaque);
+          if (!(*c->progress)(static_cast<double>(done))) c->cancelled = true;
+          return c->cancelled;
+        } : nullptr;
     if (direct) {
-      ok = out->write_image(oiioType(image.type), image.data, OIIO::AutoStride, image.row_bytes);
+      ok = out->write_image(oiioType(image.type), image.data, OIIO::AutoStride, image.row_bytes,
+                            OIIO::AutoStride, callback, &context);
     } else {
       constexpr int kBand = 64;
       const size_t row_bytes = static_cast<size_t>(image.width) * static_cast<size_t>(channels) *
@@ -283,6 +303,8 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
       std::vector<std::uint8_t> band(row_bytes * kBand);
       const float full = pixelTypeFullScale(image.type);
       for (int y0 = 0; ok && y0 < image.height; y0 += kBand) {
+        if (callback && callback(&context, static_cast<float>(y0) / static_cast<float>(image.height)))
+          break;
         const int y1 = std::min(image.height, y0 + kBand);
         for (int y = y0; y < y1; ++y) {
           void* dst = band.data() + static_cast<size_t>(y - y0) * row_bytes;
@@ -303,6 +325,10 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
         }
         ok = out->write_scanlines(y0, y1, 0, oiioType(image.type), band.data());
       }
+    }
+    if (context.cancelled) {
+      out->close();
+      return failure("cancelled");
     }
     if (!ok) {
       const std::string message = out->geterror();

@@ -46,6 +46,9 @@ struct StoredImage {
 StoredImage makeStoredImage(int width, int height, int channels, int alpha_channel, PixelType type);
 
 Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options = {});
+// The pixel type readStoredImage would give `path`, from its header alone (choosing between the
+// stored and the float path before decoding anything), with readStoredImage's refusals.
+Result<PixelType> readStoredPixelType(const std::string& path);
 
 // True when writing `type` samples to `path`'s format keeps their encoding: integer samples
 // into a format that stores integers, float into one that stores float/half. False also when
