@@ -208,7 +208,9 @@ ImageCamera aerial2d(const Params& p) {
                                    frameOf(p), frameOf(p))}};
 }
 ImageCamera depthOfField2d(const Params& p) {
-  return {{depthOfFieldCamera({p.number("focus"), p.number("blur")}, frameOf(p), frameOf(p))}, "blur-variance"};
+  return {{depthOfFieldCamera({p.number("focus"), p.number("blur"), p.number("thin-lens")},
+                              frameOf(p), frameOf(p))},
+          "blur-variance"};
 }
 
 struct ImagePreset {
@@ -226,7 +228,7 @@ const ImagePreset kImagePresets[] = {
     {"chromatic-aberration-2d", "2D (Fig 4 middle): three RTcams scale/shift R, G, B", "red=0.006 green=0 blue=-0.006 red-dx=0 green-dx=0 blue-dx=0 red-dy=0 green-dy=0 blue-dy=0 size=600,400", rgbShift2d},
     {"colour-shift", "2D (Fig 4 right, eq 8/9): each layer moves by its colour, p(1 + s_k c_k)", "s-red=0.05 s-green=0 s-blue=-0.03 size=600,400", colourShift2d},
     {"aerial-perspective", "2D (§3): contrast falls with log depth towards haze (needs --depth)", "haze=0.62,0.72,0.86 strength=0.7 near=1 far=100 size=600,400", aerial2d},
-    {"depth-of-field", "2D (§3): Gaussian blur, sigma = blur·|d - focus|/d (needs --depth)", "focus=2 blur=0.01 size=600,400", depthOfField2d},
+    {"depth-of-field", "2D (§3): Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)); thin-lens 1: /d (thin lens), 0: /focus (linear) (needs --depth)", "focus=2 blur=0.01 thin-lens=1 size=600,400", depthOfField2d},
 };
 
 struct CloudPreset {

@@ -15,17 +15,22 @@ Camera depthOfFieldCamera(const DepthOfFieldParams& p, FrameSize source, FrameSi
     throw std::invalid_argument("depth of field: the focus depth must be positive");
   if (!(p.blur >= 0.0) || !std::isfinite(p.blur))
     throw std::invalid_argument("depth of field: blur must be a number ≥ 0");
+  if (!(p.thin_lens >= 0.0 && p.thin_lens <= 1.0))
+    throw std::invalid_argument("depth of field: thin-lens must be between 0 (linear) and 1");
   constexpr int kW = 2, kD = 7, kDh = 8, kN = 9;
   const auto e = [](int i) { return Eigen::VectorXd::Unit(kN, i); };
   Stage stage;
   for (int i = 0; i < kD; ++i) stage.q.push_back(symmetricOuter(e(i), e(kW)));
-  // σ² = k²(d − f)² / d²: numerator k²·(d, 1)ᵀ(d, 1) around f, denominator d².
-  const double k2 = p.blur * p.blur;
+  // σ² = k²(d − f)² / ((1 − γ)f + γd)²: numerator k²·(d − f·d_h)², denominator the square of
+  // the linear form γ·d + (1 − γ)·f·d_h (header; the paper's eqs (1)/(5) on the depth block).
+  const double k2 = p.blur * p.blur, g = p.thin_lens, fh = (1.0 - g) * p.focus;
   Eigen::MatrixXd num = Eigen::MatrixXd::Zero(kN, kN), den = Eigen::MatrixXd::Zero(kN, kN);
   num(kD, kD) = k2;
   num(kD, kDh) = num(kDh, kD) = -k2 * p.focus;
   num(kDh, kDh) = k2 * p.focus * p.focus;
-  den(kD, kD) = 1.0;
+  den(kD, kD) = g * g;
+  den(kD, kDh) = den(kDh, kD) = g * fh;
+  den(kDh, kDh) = fh * fh;
   stage.q.push_back(num);
   stage.q.push_back(den);
   return Camera(

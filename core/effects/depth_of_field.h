@@ -2,12 +2,17 @@
 // camera stage of depth.
 //
 // The camera, over [position 3 | colour 4 | depth 2], keeps position and colour and maps depth
-// to the blur VARIANCE in normalised units² (frames.h: the larger image side spans 2), a
-// rational quadratic in d as one stage must be:
-//   σ²(d) = (d Q_d dᵀ) / (d Q_h dᵀ) = k²·(d − f)² / d²,
-// i.e. σ = k·|d − f|/d: zero at the focus depth f, k at infinity, k·(f/d − 1) in front — the
-// thin lens's circle of confusion, proportional to |1/f − 1/d|. In output pixels
-// σ_px = √σ² · max(w, h)/2.
+// to the blur VARIANCE in normalised units² (frames.h: the larger image side spans 2). The
+// paper's §3 makes σ proportional to depth and notes that "under ARTcam control the changes can
+// be non-linear"; both are one stage, the output d/d_h of eqs (1)/(5) on the depth block:
+//   σ²(d) = (d Q_d dᵀ) / (d Q_h dᵀ) = k²·(d − f)² / ((1 − γ)·f + γ·d)²,
+// a ratio of quadratics in (d, 1). γ = thin_lens:
+// - γ = 1, thin lens: σ = k·|d − f|/d, the circle of confusion A·|z − z_f|/z — zero at the
+//   focus depth f, k at infinity, k·(f/d − 1) in front (proportional to |1/f − 1/d|);
+// - γ = 0, linear: σ = k·|d − f|/f, proportional to the distance from the focal plane, with the
+//   thin lens's slope k/f at the focus but growing without bound behind it;
+// - between, the denominator blends the two (still positive for d > 0).
+// In output pixels σ_px = √σ² · max(w, h)/2.
 //
 // Halo rule (both blurs): a sample y contributes to output pixel x only if σ_y ≥ halo_ratio·σ_x.
 // A sharp foreground (σ ≈ 0) in front of a blurred background therefore does not smear into
@@ -32,7 +37,8 @@ namespace artcam {
 
 struct DepthOfFieldParams {
   double focus = 2.0;  // depth in focus, f (same unit as the depth image)
-  double blur = 0.01;  // k: σ at infinite depth, normalised units (× max(w, h)/2 pixels)
+  double blur = 0.01;  // k: σ at infinite depth (thin lens), normalised units (× max(w, h)/2 px)
+  double thin_lens = 1.0;  // γ in [0, 1]: 1 thin lens σ ∝ |d − f|/d, 0 linear σ ∝ |d − f|/f
 };
 Camera depthOfFieldCamera(const DepthOfFieldParams& p, FrameSize source, FrameSize target);
 

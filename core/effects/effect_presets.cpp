@@ -21,8 +21,8 @@ const std::vector<EffectSpec>& effectSpecs() {
       {"aerial-perspective", "contrast falls with log depth towards haze (§3)",
        {{"strength", 0.7, 0.0, 1.0}, {"near", 1.0, 0.01, 1e4}, {"far", 100.0, 0.02, 1e5},
         {"haze-r", 0.62, 0.0, 1.0}, {"haze-g", 0.72, 0.0, 1.0}, {"haze-b", 0.86, 0.0, 1.0}}, true},
-      {"depth-of-field", "Gaussian blur, σ = blur·|d − focus|/d (§3)",
-       {{"focus", 2.0, 0.01, 1e4}, {"blur", 0.01, 0.0, 0.05}}, true},
+      {"depth-of-field", "Gaussian blur, σ = blur·|d − focus|/(focus + thin-lens·(d − focus)) (§3)",
+       {{"focus", 2.0, 0.01, 1e4}, {"blur", 0.01, 0.0, 0.05}, {"thin-lens", 1.0, 0.0, 1.0}}, true},
   };
   return specs;
 }
@@ -61,7 +61,7 @@ EffectSetup buildEffect(const std::string& name, const std::map<std::string, dou
     p.far = v["far"];
     setup.layers = {aerialPerspectiveCamera(p, frame, frame)};
   } else if (name == "depth-of-field") {
-    setup.layers = {depthOfFieldCamera({v["focus"], v["blur"]}, frame, frame)};
+    setup.layers = {depthOfFieldCamera({v["focus"], v["blur"], v["thin-lens"]}, frame, frame)};
     setup.depth_output = "blur-variance";
   }
   return setup;

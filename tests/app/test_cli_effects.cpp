@@ -2,6 +2,7 @@
 // as processes on the bundled photo. Expectations are the effects' neutral settings, which must
 // give back the photo (to 8-bit rounding): zero colour shift, aerial perspective at the near
 // depth, depth of field at the focus depth; and refusals naming their cause.
+#include "core/io/artcam_file.h"
 #include "tests/support/test_support.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -114,6 +115,32 @@ class TestCliEffects : public QObject {
     r = artcamCli({"preset", "barrel", "--k", "0.9", "-o", dir.filePath("b.artcam")});
     QCOMPARE(r.exit_code, 1);
     QVERIFY2(r.err.contains("pole"), qPrintable(r.err));
+  }
+
+  // --thin-lens picks the depth-of-field stage (depth_of_field.h): the written camera's σ² at a
+  // few depths against k²(d − f)²/d² (thin lens, the default) and k²(d − f)²/f² (linear).
+  void depthOfFieldLensModels() {
+    QTemporaryDir dir;
+    const double f = 2.0, k = 0.02;
+    for (const double gamma : {1.0, 0.0}) {
+      QStringList args = {"preset", "depth-of-field", "--focus", "2", "--blur", "0.02", "-o",
+                          dir.filePath("dof.artcam")};
+      if (gamma == 0.0) args << "--thin-lens" << "0";
+      const Run r = artcamCli(args);
+      QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+      const auto doc = artcam::readArtcamFile(dir.filePath("dof.artcam").toStdString());
+      QVERIFY2(doc.ok(), doc.status.message.c_str());
+      for (const double d : {0.5, 1.0, 3.0, 40.0}) {
+        Eigen::VectorXd x(9);
+        x << 0.0, 0.0, 1, 0.5, 0.5, 0.5, 1, d, 1;
+        const double den = gamma == 1.0 ? d : f;
+        const double expected = k * k * (d - f) * (d - f) / (den * den);
+        QVERIFY(std::abs(doc.value->camera.evaluate(x)[7] - expected) <= 1e-12);
+      }
+    }
+    const Run bad = artcamCli({"preset", "depth-of-field", "--thin-lens", "2", "-o", dir.filePath("bad.artcam")});
+    QCOMPARE(bad.exit_code, 1);
+    QVERIFY2(bad.err.contains("thin-lens"), qPrintable(bad.err));
   }
 
   void chromaticAberrationWritesThreeLayers() {

@@ -1,6 +1,6 @@
-// Depth of field (depth_of_field.h): the σ² stage against its closed form; the exact blur
-// against a per-pixel double-precision Gaussian written here; the fast stack against the
-// exact blur (PSNR); the halo rule: a sharp foreground must not bleed into the blurred
+// Depth of field (depth_of_field.h): the σ² stage against its closed form (thin lens, linear
+// and between); the exact blur against a per-pixel double-precision Gaussian written here; the
+// fast stack against the exact blur (PSNR); the halo rule: a sharp foreground must not bleed into the blurred
 // background beyond a threshold, and without the rule it would (so the test can fail).
 #include "core/effects/depth_of_field.h"
 #include "core/render/attributed.h"
@@ -66,6 +66,39 @@ class TestDepthOfField : public QObject {
       QVERIFY(std::abs(y[7] - expected) <= 1e-12 * (1 + expected));
       QVERIFY(std::abs(y[3] - 0.2) < 1e-12);  // colour untouched
     }
+  }
+
+  // The non-linear option (header): σ² = k²(d − f)²/((1 − γ)f + γd)². Checked against the
+  // closed forms of the two named models and a blend, and by what each model means: the linear
+  // one gains k per focus distance behind the focal plane, the thin lens tends to k at infinity.
+  void lensModelsAreClosedForm() {
+    const FrameSize size{64, 48};
+    const double f = 2.5, k = 0.03;
+    const auto variance = [&](double gamma, double d) {
+      const Camera cam = depthOfFieldCamera({f, k, gamma}, size, size);
+      Eigen::VectorXd x(9);
+      x << 0.1, -0.2, 1, 0.2, 0.3, 0.4, 1, d, 1;
+      return cam.evaluate(x)[7];
+    };
+    for (const double gamma : {0.0, 0.25, 1.0})
+      for (int i = 0; i < 50; ++i) {
+        const double d = test::uniform(0.2, 80.0);
+        const double den = (1 - gamma) * f + gamma * d;
+        const double expected = k * k * (d - f) * (d - f) / (den * den);
+        QVERIFY2(std::abs(variance(gamma, d) - expected) <= 1e-12 * (1 + expected),
+                 qPrintable(QString("γ %1 d %2").arg(gamma).arg(d)));
+      }
+    // Linear: σ = k·|d − f|/f, so one focus distance further adds exactly k.
+    QVERIFY(std::abs(std::sqrt(variance(0.0, 3 * f)) - std::sqrt(variance(0.0, 2 * f)) - k) < 1e-12);
+    QVERIFY(std::abs(std::sqrt(variance(0.0, 0.5 * f)) - 0.5 * k) < 1e-12);
+    // Thin lens: σ → k far away, and in front σ = k·(f/d − 1).
+    QVERIFY(std::abs(std::sqrt(variance(1.0, 1e9)) - k) < 1e-8);
+    QVERIFY(std::abs(std::sqrt(variance(1.0, 0.5 * f)) - k) < 1e-12);
+    // Both are sharp at the focus and agree to first order near it (same slope k/f).
+    QVERIFY(variance(0.0, f) == 0.0 && variance(1.0, f) == 0.0);
+    const double e = 1e-4 * f;
+    QVERIFY(std::abs(std::sqrt(variance(0.0, f + e)) - std::sqrt(variance(1.0, f + e))) < 1e-3 * k * e / f);
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, depthOfFieldCamera({f, k, 1.5}, size, size));
   }
 
   void exactBlurMatchesDirectGaussian() {
