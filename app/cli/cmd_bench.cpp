@@ -53,6 +53,7 @@ const char* const kBenchUsage =
     "  --plot OUT.png   a PNG of speed (x, log) against error (y, log), one colour per kernel\n"
     "  --peer DIR       also run DIR/cvwarp (the OpenCV maps + remap peer) on the same image\n"
     "  --only LIST      run only the named kernels (default: all)\n"
+    "  --filter LIST    run only the named filters: nearest,bilinear,bicubic (default: all)\n"
     "  --no-e2e         skip the last part: `artcam warp`'s path on a JPEG of the image\n"
     "                   (decode into 8-bit, render, encode) timed by part, and the 1920-px\n"
     "                   preview from the mip pyramid, on stderr\n\n"

@@ -71,6 +71,34 @@ __attribute__((target("avx2"))) void projectiveSpanAvx2(const ProjectiveRow& r, 
   }
 }
 
+
+// A span of the inverse homography in float, eight lanes, re-anchored at the span's first
+// pixel: with (X, Y, W) + t (dX, dY, dW) the homogeneous source point and s₀ = (X, Y) / W,
+//   s(t) = s₀ + t β / (1 + γ t),  β = (dX, dY) − s₀ dW) / W, γ = dW / W,
+// exactly; only the offset from s₀ is float (~64 px · 2⁻²⁴), the division _mm256_rcp_ps and one
+// Newton step. Only for spans without a horizon (ProjectiveKernel::span checks).
+// Float spans only where positions stay within this (source pixels): half an ulp ≤ 1e-3 px.
+constexpr double kFloatSpanLimit = 16384.0;
+
+struct ProjectiveSpanF {
+  float base_x, base_y, beta_x, beta_y, gamma;
+};
+
+__attribute__((target("avx2"))) void projectiveSpanFloatAvx2(const ProjectiveSpanF& f, float* sx, float* sy) {
+  const __m256 bx = _mm256_set1_ps(f.base_x), by = _mm256_set1_ps(f.base_y);
+  const __m256 betax = _mm256_set1_ps(f.beta_x), betay = _mm256_set1_ps(f.beta_y);
+  const __m256 gamma = _mm256_set1_ps(f.gamma);
+  const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f), eight = _mm256_set1_ps(8.0f);
+  __m256 t = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int i = 0; i < kSpanPixels; i += 8, t = _mm256_add_ps(t, eight)) {
+    const __m256 d = _mm256_add_ps(one, _mm256_mul_ps(t, gamma));
+    const __m256 r0 = _mm256_rcp_ps(d);
+    const __m256 tr = _mm256_mul_ps(t, _mm256_mul_ps(r0, _mm256_sub_ps(two, _mm256_mul_ps(d, r0))));
+    _mm256_storeu_ps(sx + i, _mm256_add_ps(bx, _mm256_mul_ps(tr, betax)));
+    _mm256_storeu_ps(sy + i, _mm256_add_ps(by, _mm256_mul_ps(tr, betay)));
+  }
+}
+
 #endif
 
 bool cpuHasAvx2() {
@@ -139,6 +167,27 @@ class ProjectiveKernel final : public CoordinateKernel {
       return 0;
     }
     const ProjectiveRow r{h0.x(), h0.y(), h0.z(), dx, dy, dw, centre_positive_ ? 1.0 : -1.0};
+#if defined(__x86_64__)
+    if (!scalar_only_ && cpuHasAvx2()) {
+      // W is linear along the span: on the centre's side at both ends means on it throughout,
+      // and then each coordinate is monotone, so its ends bound it. Float only where it is
+      // exact enough: W changing by at most 2× over the span (1 + γ t computed without
+      // cancellation) and positions within ±kFloatSpanLimit (half an ulp ≤ 1e-3 px).
+      const double w_end = r.w + (n - 1) * r.dw;
+      const double u0 = r.x / r.w, v0 = r.y / r.w;
+      const double u1 = (r.x + (n - 1) * r.dx) / w_end, v1 = (r.y + (n - 1) * r.dy) / w_end;
+      const double ratio = w_end / r.w;
+      if (r.w * r.sign > 0.0 && ratio >= 0.5 && ratio <= 2.0 &&
+          std::max({std::abs(u0), std::abs(v0), std::abs(u1), std::abs(v1)}) <= kFloatSpanLimit) {
+        const ProjectiveSpanF f{static_cast<float>(u0), static_cast<float>(v0),
+                                static_cast<float>((r.dx - u0 * r.dw) / r.w),
+                                static_cast<float>((r.dy - v0 * r.dw) / r.w), static_cast<float>(r.dw / r.w)};
+        projectiveSpanFloatAvx2(f, sx, sy);  // all kSpanPixels lanes: sx, sy have the room
+        std::fill(valid, valid + n, static_cast<unsigned char>(1));
+        return 0;
+      }
+    }
+#endif
     float fx[kSpanPixels], fy[kSpanPixels];
     std::int32_t ok[kSpanPixels];
     (scalar_only_ ? projectiveSpanScalar : projectiveSpanDispatched)(r, fx, fy, ok);
@@ -260,38 +309,67 @@ constexpr int kGridPixels = kSpanPixels / 2;  // RationalKernel::kGrid
 }
 
 #if defined(__x86_64__)
-// The AVX2 version of the loop above, written out (GCC's -O2 does not vectorise it): the same
-// operations in the same order, no FMA, so it is bit-identical to the scalar fallback.
-__attribute__((target("avx2"))) void seedCellAvx2(const SeedRow& r, int first, float* sx, float* sy) {
-  __m256d a[3], b[3], c[3];
-  for (int k = 0; k < 3; ++k) {
-    a[k] = _mm256_set1_pd(r.a[k]);
-    b[k] = _mm256_set1_pd(r.b[k]);
-    c[k] = _mm256_set1_pd(r.c[k]);
-  }
-  const __m256d lx = _mm256_set1_pd(r.lx), ly = _mm256_set1_pd(r.ly);
-  const __m256d kx = _mm256_set1_pd(r.slope_x), ky = _mm256_set1_pd(r.slope_y);
-  const __m256d one = _mm256_set1_pd(1.0), four = _mm256_set1_pd(4.0);
-  __m256d t = _mm256_add_pd(_mm256_set1_pd(first), _mm256_setr_pd(0.0, 1.0, 2.0, 3.0));
-  for (int j = 0; j < kGridPixels; j += 4, t = _mm256_add_pd(t, four)) {
-    __m256d n[3];
-    for (int k = 0; k < 3; ++k)
-      n[k] = _mm256_add_pd(c[k], _mm256_mul_pd(t, _mm256_add_pd(b[k], _mm256_mul_pd(t, a[k]))));
-    const __m256d inv = _mm256_div_pd(one, n[2]);
-    const __m256d cx = _mm256_add_pd(lx, _mm256_mul_pd(t, kx)), cy = _mm256_add_pd(ly, _mm256_mul_pd(t, ky));
-    _mm_storeu_ps(sx + j, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[0], inv), cx)));
-    _mm_storeu_ps(sy + j, _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(n[1], inv), cy)));
+// A certified span (both cells) in float, eight lanes (issue 5: "float offsets relative to
+// the tile origin"). Re-anchored at the span's first pixel in double: with
+// n_k(j) = c_k + j (b_k + j a_k) the seed's forms there (eq 3) and s₀ = (c_0, c_1) / c_2,
+//   seed(j) = s₀ + j (β + j α) / (1 + j (γ + j δ)),  β = (b − s₀ b_2) / c_2, α = (a − s₀ a_2) / c_2,
+// γ = b_2 / c_2, δ = a_2 / c_2, exactly; only the offset from s₀ (≤ 64 px plus the lens's
+// stretch) is float, so its rounding is ~64 · 2⁻²⁴ px, and the one rounding of s₀ + offset to
+// float is the half ulp every float position has anyway (≤ 2.4e-4 px at 6000 px). The
+// division is _mm256_rcp_ps and one Newton step (relative error ~2⁻²², ~1e-5 px on the
+// offset). The grid correction is linear along each cell: l_c + j k_c.
+struct SeedSpanF {
+  float base_x, base_y, beta_x, alpha_x, beta_y, alpha_y, gamma, delta;
+  float lx[2], ly[2], kx[2], ky[2];  // per cell
+};
+
+// The seed's part of SeedSpanF from the forms at the span's first pixel; false where float
+// would not be exact enough (as for homographies: the denominator changing by more than 2×
+// over the span, or the seed beyond ±kFloatSpanLimit), and the caller takes the double code.
+bool anchorSpan(const SeedRow& r, SeedSpanF& f) {
+  const double inv = 1.0 / r.c[2];
+  const double s0x = r.c[0] * inv, s0y = r.c[1] * inv;
+  const double t = kSpanPixels - 1;
+  const double ratio = (r.c[2] + t * (r.b[2] + t * r.a[2])) * inv;
+  if (!(ratio >= 0.5 && ratio <= 2.0 && std::abs(s0x) <= kFloatSpanLimit && std::abs(s0y) <= kFloatSpanLimit))
+    return false;
+  f.base_x = static_cast<float>(s0x);
+  f.base_y = static_cast<float>(s0y);
+  f.beta_x = static_cast<float>((r.b[0] - s0x * r.b[2]) * inv);
+  f.alpha_x = static_cast<float>((r.a[0] - s0x * r.a[2]) * inv);
+  f.beta_y = static_cast<float>((r.b[1] - s0y * r.b[2]) * inv);
+  f.alpha_y = static_cast<float>((r.a[1] - s0y * r.a[2]) * inv);
+  f.gamma = static_cast<float>(r.b[2] * inv);
+  f.delta = static_cast<float>(r.a[2] * inv);
+  return true;
+}
+
+__attribute__((target("avx2"))) void seedSpanFloatAvx2(const SeedSpanF& f, float* sx, float* sy) {
+  const __m256 bx = _mm256_set1_ps(f.base_x), by = _mm256_set1_ps(f.base_y);
+  const __m256 betax = _mm256_set1_ps(f.beta_x), alphax = _mm256_set1_ps(f.alpha_x);
+  const __m256 betay = _mm256_set1_ps(f.beta_y), alphay = _mm256_set1_ps(f.alpha_y);
+  const __m256 gamma = _mm256_set1_ps(f.gamma), delta = _mm256_set1_ps(f.delta);
+  const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f), eight = _mm256_set1_ps(8.0f);
+  __m256 j = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int cell = 0; cell < 2; ++cell) {
+    const __m256 lx = _mm256_set1_ps(f.lx[cell]), ly = _mm256_set1_ps(f.ly[cell]);
+    const __m256 kx = _mm256_set1_ps(f.kx[cell]), ky = _mm256_set1_ps(f.ky[cell]);
+    for (int g = 0; g < kGridPixels; g += 8, j = _mm256_add_ps(j, eight)) {
+      const int i = cell * kGridPixels + g;
+      const __m256 d = _mm256_add_ps(one, _mm256_mul_ps(j, _mm256_add_ps(gamma, _mm256_mul_ps(j, delta))));
+      const __m256 r0 = _mm256_rcp_ps(d);
+      const __m256 r = _mm256_mul_ps(r0, _mm256_sub_ps(two, _mm256_mul_ps(d, r0)));
+      const __m256 ox = _mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(betax, _mm256_mul_ps(j, alphax)), r), kx);
+      const __m256 oy = _mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(betay, _mm256_mul_ps(j, alphay)), r), ky);
+      _mm256_storeu_ps(sx + i, _mm256_add_ps(_mm256_add_ps(bx, lx), _mm256_mul_ps(j, ox)));
+      _mm256_storeu_ps(sy + i, _mm256_add_ps(_mm256_add_ps(by, ly), _mm256_mul_ps(j, oy)));
+    }
   }
 }
 
 #endif
 
-void seedCell(const SeedRow& r, int first, float* sx, float* sy, bool scalar_only) {
-#if defined(__x86_64__)
-  if (!scalar_only && cpuHasAvx2()) return seedCellAvx2(r, first, sx, sy);
-#endif
-  seedCellBody(r, first, sx, sy);
-}
+void seedCell(const SeedRow& r, int first, float* sx, float* sy) { seedCellBody(r, first, sx, sy); }
 
 class RationalKernel final : public CoordinateKernel {
  public:
@@ -610,19 +688,39 @@ class RationalKernel final : public CoordinateKernel {
       r.b[k] = q.du(u0, v);
       r.a[k] = q.a;
     }
-    for (int c0 = 0; c0 < n; c0 += kGrid) {
-      // The correction, bilinear in the cell: linear along the row, from the nodes (gi, gj).
+    // The correction, bilinear in the cell at pixel c0: linear along the row, from the nodes
+    // (gi, gj): corr(i) = left + slope · (u − gi · kGrid) at u = x0 + i + 0.5.
+    const auto correction = [&](int c0) {
       const int gi = (x0 + c0) / kGrid;
       const Eigen::Vector2d left = (1 - fy) * node(gi, gj) + fy * node(gi, gj + 1);
       const Eigen::Vector2d right = (1 - fy) * node(gi + 1, gj) + fy * node(gi + 1, gj + 1);
       const Eigen::Vector2d slope = (right - left) / kGrid;
-      // corr(i) = left + slope · (u − gi · kGrid) at u = x0 + i + 0.5.
       const Eigen::Vector2d at_x0 = left + slope * (u0 - gi * kGrid);
       r.lx = at_x0.x();
       r.ly = at_x0.y();
       r.slope_x = slope.x();
       r.slope_y = slope.y();
-      seedCell(r, c0, sx + c0, sy + c0, scalar_only_);
+    };
+    bool done = false;
+#if defined(__x86_64__)
+    SeedSpanF f{};
+    if (!scalar_only_ && cpuHasAvx2() && anchorSpan(r, f)) {
+      for (int c0 = 0, cell = 0; c0 < n; c0 += kGrid, ++cell) {
+        correction(c0);
+        for (int c = cell; c < 2; ++c) {  // a span's missing second cell copies the first
+          f.lx[c] = static_cast<float>(r.lx);
+          f.ly[c] = static_cast<float>(r.ly);
+          f.kx[c] = static_cast<float>(r.slope_x);
+          f.ky[c] = static_cast<float>(r.slope_y);
+        }
+      }
+      seedSpanFloatAvx2(f, sx, sy);
+      done = true;
+    }
+#endif
+    for (int c0 = 0; c0 < n && !done; c0 += kGrid) {
+      correction(c0);
+      seedCell(r, c0, sx + c0, sy + c0);
     }
     std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
     // The row state as if these pixels had been solved (their solutions are these positions).

@@ -195,7 +195,8 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   po.band_rows = kBandRows;
   const bool finished = parallelForRows(out_px.height, po, [&](int y0, int y1) {
     long long band_transparent = 0, band_newton = 0;
-    float sx[kSpanPixels], sy[kSpanPixels];
+    // Two position buffers, swapped each row: the row just done is the prefetch's "row above".
+    alignas(32) float positions[2][2][kSpanPixels];
     unsigned char valid[kSpanPixels];
     if (offset) {
       for (int y = y0; y < y1; ++y) band_transparent += copyRow(source, out, y, *offset);
@@ -208,12 +209,15 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
     // and the sampler prefetches those source lines: the diagonal sweep of a warped row is a
     // pattern the hardware prefetcher does not follow (measured: most of the sampling time
     // was waiting on source loads).
-    float px[kSpanPixels], py[kSpanPixels];
     for (int tx = 0; tx < out_px.width; tx += kTileSpans * kSpanPixels) {
       const int tile_end = std::min(out_px.width, tx + kTileSpans * kSpanPixels);
       for (int x0 = tx; x0 < tile_end; x0 += kSpanPixels) {
         const int n = std::min(kSpanPixels, out_px.width - x0);
         for (int y = y0; y < y1; ++y) {
+          float* sx = positions[y & 1][0];
+          float* sy = positions[y & 1][1];
+          const float* px = positions[(y & 1) ^ 1][0];
+          const float* py = positions[(y & 1) ^ 1][1];
           RowState& row_state = row_states[y - y0];
           band_newton += kernel.span(y, x0, n, sx, sy, valid, row_state);
           if (y > y0) sampler.prefetch(n, sx, sy, px, py, kPrefetchRows);
@@ -236,8 +240,6 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
             }
           }
           band_transparent += sampler.run(y, x0, n, sx, sy, valid, ss, jac);
-          std::copy(sx, sx + n, px);
-          std::copy(sy, sy + n, py);
         }
       }
     }

@@ -166,6 +166,74 @@ class TestFastPaths : public QObject {
     QVERIFY2(checked <= 1.0 / 256.0, qPrintable(QString("checked worst %1 px").arg(checked)));
   }
 
+  // The SIMD coordinate spans run in float, re-anchored at each span's first pixel (certified
+  // cells of the rational kernel, homographies without a horizon in the span): every position
+  // within 1/256 px of the exact double inverse and within 1e-3 px of the scalar double code,
+  // with the same preimage flags. Cameras: the bench's mild lens (all cells certified), a
+  // strong perspective whose horizon crosses the frame (spans at the horizon take the double
+  // path), and an affine map.
+  void floatSpansAgreeWithScalarAndReference_data() {
+    QTest::addColumn<Camera>("camera");
+    const FrameSize size{1200, 800};
+    const double p[3][6] = {{0.030, 0.020, 1.000, -0.010, 0.010, 0.005},
+                            {0.010, -0.020, 0.015, 0.030, 0.980, -0.004},
+                            {0.020, 0.010, 0.040, -0.020, -0.030, 1.000}};
+    std::vector<Eigen::Matrix3d> q(3);
+    for (int k = 0; k < 3; ++k)
+      q[static_cast<size_t>(k)] << p[k][0], p[k][1] / 2, p[k][2] / 2, p[k][1] / 2, p[k][3],
+          p[k][4] / 2, p[k][2] / 2, p[k][4] / 2, p[k][5];
+    QTest::newRow("mild lens") << Camera::rtcam(q, size, size);
+    Eigen::Matrix3d h;
+    h << 1.1, 0.2, 0.05, -0.1, 0.9, 0.02, 0.4, 0.9, 1.0;  // horizon 0.4 x + 0.9 y + 1 = 0 crosses
+    QTest::newRow("perspective with horizon") << test::homographyCamera(h, size, size);
+    h << 1.3, 0.1, 0.02, -0.05, 0.8, -0.03, 0.05, -0.08, 1.0;
+    QTest::newRow("perspective") << test::homographyCamera(h, size, size);
+  }
+
+  void floatSpansAgreeWithScalarAndReference() {
+    QFETCH(Camera, camera);
+    const FrameSize size{1200, 800};
+    const CameraStructure structure = analyseStructure(camera);
+    CoordinateOptions simd_options, scalar_options;
+    scalar_options.scalar_only = true;
+    const KernelChoice simd = makeCoordinateKernel(camera, structure, size, size, simd_options, 2);
+    const KernelChoice scalar = makeCoordinateKernel(camera, structure, size, size, scalar_options, 2);
+    const auto reference = makeReferenceInverse(camera, structure, size, size);
+    std::vector<Eigen::Vector2d> exact(static_cast<size_t>(size.width));
+    std::vector<unsigned char> exact_ok(static_cast<size_t>(size.width));
+    float ax[kSpanPixels], ay[kSpanPixels], bx[kSpanPixels], by[kSpanPixels];
+    unsigned char a_ok[kSpanPixels], b_ok[kSpanPixels];
+    double to_scalar = 0.0, to_exact = 0.0;
+    long long compared = 0, flags_differ = 0;
+    for (int y = 0; y < size.height; y += 3) {
+      reference->row(y, size.width, exact.data(), exact_ok.data());
+      RowState sa, sb;
+      for (int x0 = 0; x0 < size.width; x0 += kSpanPixels) {
+        const int n = std::min(kSpanPixels, size.width - x0);
+        simd.kernel->span(y, x0, n, ax, ay, a_ok, sa);
+        scalar.kernel->span(y, x0, n, bx, by, b_ok, sb);
+        for (int i = 0; i < n; ++i) {
+          flags_differ += (a_ok[i] != 0) != (b_ok[i] != 0);
+          const size_t k = static_cast<size_t>(x0 + i);
+          // Positions a filter can read (bicubic's support beyond the border included); far
+          // beyond the horizon a float position is coarse in every code path and unused.
+          if (!a_ok[i] || !b_ok[i] || !exact_ok[k] || !(std::abs(exact[k].x() - size.width / 2.0) < size.width / 2.0 + 8) ||
+              !(std::abs(exact[k].y() - size.height / 2.0) < size.height / 2.0 + 8))
+            continue;
+          ++compared;
+          to_scalar = std::max(to_scalar, std::hypot(double(ax[i]) - bx[i], double(ay[i]) - by[i]));
+          to_exact = std::max(to_exact, std::hypot(ax[i] - exact[k].x(), ay[i] - exact[k].y()));
+        }
+      }
+    }
+    qInfo("%s: %lld compared, worst %.2e px to the scalar code, %.2e px to the exact inverse",
+          simd.name.c_str(), compared, to_scalar, to_exact);
+    QVERIFY(compared > size.width * size.height / 30);
+    QCOMPARE(flags_differ, 0LL);
+    QVERIFY2(to_scalar <= 1e-3, qPrintable(QString("to scalar %1 px").arg(to_scalar)));
+    QVERIFY2(to_exact <= 1.0 / 256.0, qPrintable(QString("to exact %1 px").arg(to_exact)));
+  }
+
   // Strong random maps and a pole through the frame: whatever is certified stays in budget, and
   // the cells the pole curve crosses are not certified.
   void certificationRefusesWhatItCannotVouchFor_data() {
