@@ -19,7 +19,9 @@ const char* const kComposeUsage =
     "rational cameras become a two-stage chain, which `artcam warp` renders exactly.\n\n"
     "options:\n"
     "  -o, --output FILE   the composed camera (written atomically)\n"
-    "  --force             allow OUT to be one of the inputs\n";
+    "  --force             allow OUT to be one of the inputs\n\n"
+    "Example:\n"
+    "  artcam compose view-to-table.artcam reflection.artcam -o view-to-reflection.artcam\n";
 
 int composeCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true}, {"--force", "", false}});

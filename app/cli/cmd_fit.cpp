@@ -50,7 +50,11 @@ const char* const kFitUsage =
     "the simplest adequate one; root-polynomial is not a quadratic form, so when it wins the\n"
     "camera holds the best representable model (and --model root-polynomial is refused).\n"
     "Prints dE00 per sample, mean, median and max. --size is the size of the photos the camera\n"
-    "will recolour (its geometry is the identity); --threshold is in dE00 (default 3).\n";
+    "will recolour (its geometry is the identity); --threshold is in dE00 (default 3).\n\n"
+    "-o/--output names the camera file (required; written atomically).\n\n"
+    "Examples:\n"
+    "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
+    "  artcam fit matches.csv -o mirror.artcam --size 640x480 --piecewise --max-error 0.3\n";
 
 int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize source,
                         FrameSize target);  // cmd_fit_piecewise.cpp

@@ -13,7 +13,9 @@ const char* const kInfoUsage =
     "usage: artcam info CAM.artcam\n\n"
     "Prints the camera's blocks, its structure (which parts are zero; geometry identity,\n"
     "translation, affine, homography or rational), its frames, its tensors (normalised\n"
-    "frame) and the fit report it came from, if any.\n";
+    "frame) and the fit report it came from, if any. No options.\n\n"
+    "Example:\n"
+    "  artcam info lens.artcam\n";
 
 int infoCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {});

@@ -28,8 +28,13 @@ const char* const kInsertUsage =
     "  --canonical WxH     size of the grid's canonical view (default: GRAPHIC's size)\n"
     "  --save-camera FILE  also write the fitted piecewise camera\n"
     "  --mesh-step PX      lattice spacing of the mesh render, source pixels (default 4)\n"
+    "  -o, --output OUT    the composited image (required)\n"
+    "  --force             allow OUT to be PHOTO\n"
     "OUT keeps PHOTO's format and metadata; it is written atomically and may not be PHOTO\n"
-    "unless --force is given.\n";
+    "unless --force is given.\n\n"
+    "Example:\n"
+    "  artcam sample mirror-sphere -o demo && artcam insert demo/mirror-sphere.png \\\n"
+    "      demo/emblem.png --matches demo/mirror-sphere-grid.csv -o inserted.png\n";
 
 namespace {
 

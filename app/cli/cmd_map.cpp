@@ -13,7 +13,9 @@ const char* const kMapUsage =
     "usage: artcam map CAM.artcam POINTS.csv\n\n"
     "Reads rows x,y (source pixels; a header line is allowed) and prints rows x,y,X,Y with\n"
     "the target pixels, numbers as %.17g. A point on the camera's pole curve (where it maps\n"
-    "to infinity) is an error naming its row; nothing is printed then.\n";
+    "to infinity) is an error naming its row; nothing is printed then. No options.\n\n"
+    "Example:\n"
+    "  artcam map lens.artcam corners.csv > corners-mapped.csv\n";
 
 int mapCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {});

@@ -312,7 +312,11 @@ const char* const kPresetUsage =
     "chromatic-aberration-2d, colour-shift, aerial-perspective, depth-of-field) apply to photos\n"
     "with artcam warp (the last two need --depth FILE); --size W,H is the photo's size.\n"
     "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
-    "its parameters and defaults.\n";
+    "its parameters and defaults; every parameter is optional. -o/--output names OUT (required).\n\n"
+    "Examples:\n"
+    "  artcam preset list\n"
+    "  artcam preset barrel --k -0.2 --size 6000,4000 -o barrel.artcam\n"
+    "  artcam preset pinhole --eye 3,2,-4 -o view.artcam\n";
 
 int presetCommand(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0].starts_with("-")) throw UsageError("missing NAME");

@@ -34,7 +34,12 @@ const char* const kRenderUsage =
     "--size defaults to 512x512. --layers rgb renders the red, green and blue layers apart (the\n"
     "paper's chromatic aberration). Splats cover --splat-scale (0.75) times the image of one\n"
     "point spacing (--point-size, default: the median nearest-neighbour distance).\n"
-    "--stats prints points, render_ms and points_per_s on stderr (render only, no file I/O).\n";
+    "--stats prints points, render_ms and points_per_s on stderr (render only, no file I/O).\n"
+    "--threads N sets the worker threads (default 0: all cores). -o/--output names OUT\n"
+    "(required; written atomically).\n\n"
+    "Examples:\n"
+    "  artcam preset cube-of-cubes -o cube.ply && artcam preset twist -o twist.artcam\n"
+    "  artcam render cube.ply twist.artcam -o twisted.png --size 800x600 --eye 3,2,-4\n";
 
 namespace {
 

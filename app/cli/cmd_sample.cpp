@@ -24,6 +24,9 @@ const char* const kSampleUsage =
     "options:\n"
     "  --squares N     squares along the board's side (default 24)\n"
     "  --size WxH      photo size (default 640x480)\n"
+    "  -o, --output DIR  the folder to write into (required; created if missing)\n"
+    "Example:\n"
+    "  artcam sample water-glass -o demo --squares 16 --size 800x600\n"
     "Then: artcam insert DIR/NAME.png DIR/emblem.png --matches DIR/NAME-grid.csv -o OUT.png\n";
 
 int sampleCommand(const std::vector<std::string>& argv) {

@@ -34,7 +34,11 @@ void printHelp() {
       "\nPixels: centres at i + 0.5, (0, 0) the top-left corner, y down. Cameras are stored\n"
       "in normalised frames, so a camera made on a preview applies to the full-size photo.\n"
       "Errors: one line on stderr naming the file, the place and the cause; exit status 1\n"
-      "(2 for a usage error); no partial output file is ever left behind.\n");
+      "(2 for a usage error); no partial output file is ever left behind.\n\n"
+      "options: -h, --help (this page), --version (print the version). The manual: man artcam.\n\n"
+      "Example:\n"
+      "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
+      "  artcam warp photo.jpg lens.artcam -o fixed.jpg\n");
 }
 
 }  // namespace

@@ -1,0 +1,95 @@
+# Installs what a desktop needs besides the two programs (desktop entry, icons, AppStream
+# metainfo, MIME types, manual pages) and configures CPack's Debian package, so that
+# `cmake --install` and `cpack -G DEB` lay down the same files (packaging/build-deb.sh).
+# Relative destinations: cpack installs under /usr, `cmake --install` under CMAKE_INSTALL_PREFIX.
+include(GNUInstallDirs)
+
+set(ARTCAM_APP_ID org.artcam.Studio)  # reverse-DNS id shared by the .desktop, icon and metainfo
+set(_artcam_desktop_dir ${PROJECT_SOURCE_DIR}/packaging/desktop)
+
+# The MIME types describe the CLI's files too, so they install with either front end.
+install(FILES ${_artcam_desktop_dir}/${ARTCAM_APP_ID}.mime.xml
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/mime/packages RENAME ${ARTCAM_APP_ID}.xml)
+
+set(_artcam_man_pages artcam.1)
+if(ARTCAM_BUILD_GUI)
+  list(APPEND _artcam_man_pages artcam-studio.1)
+  install(FILES ${_artcam_desktop_dir}/${ARTCAM_APP_ID}.desktop
+    DESTINATION ${CMAKE_INSTALL_DATADIR}/applications)
+  install(FILES ${_artcam_desktop_dir}/${ARTCAM_APP_ID}.metainfo.xml
+    DESTINATION ${CMAKE_INSTALL_DATADIR}/metainfo)
+  install(FILES ${_artcam_desktop_dir}/icons/${ARTCAM_APP_ID}.svg
+    DESTINATION ${CMAKE_INSTALL_DATADIR}/icons/hicolor/scalable/apps)
+  foreach(_size 16 24 32 48 64 128 256)
+    install(FILES ${_artcam_desktop_dir}/icons/${ARTCAM_APP_ID}-${_size}.png
+      DESTINATION ${CMAKE_INSTALL_DATADIR}/icons/hicolor/${_size}x${_size}/apps
+      RENAME ${ARTCAM_APP_ID}.png)
+  endforeach()
+endif()
+
+# The bundled sample (README, "Two commands"): a photo (CC0, resources/README.md), a camera, its
+# matches and a project that opens the photo by its relative path.
+install(FILES ${PROJECT_SOURCE_DIR}/resources/coffee.png ${PROJECT_SOURCE_DIR}/resources/sample.artcam
+  ${PROJECT_SOURCE_DIR}/resources/sample.artcamproj ${PROJECT_SOURCE_DIR}/resources/sample-matches.csv
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/artcam-studio/examples)
+
+# Manual pages, compressed as Debian policy asks (gzip -9n: no name or time stamp inside, so
+# the package is reproducible).
+find_program(ARTCAM_GZIP gzip REQUIRED)
+set(_artcam_man_outputs "")
+foreach(_page IN LISTS _artcam_man_pages)
+  set(_src ${PROJECT_SOURCE_DIR}/docs/man/${_page})
+  set(_copy ${PROJECT_BINARY_DIR}/man/${_page})
+  add_custom_command(OUTPUT ${_copy}.gz
+    COMMAND ${CMAKE_COMMAND} -E copy ${_src} ${_copy}
+    COMMAND ${ARTCAM_GZIP} -9nf ${_copy}
+    DEPENDS ${_src} VERBATIM)
+  list(APPEND _artcam_man_outputs ${_copy}.gz)
+endforeach()
+add_custom_target(artcam_man ALL DEPENDS ${_artcam_man_outputs})
+install(FILES ${_artcam_man_outputs} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+
+# The Debian package: one package with both programs; dpkg-shlibdeps derives Depends from the
+# installed binaries' shared libraries (Qt, OpenImageIO, libstdc++ ...).
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME artcam-studio)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_VENDOR "ARTcam Studio")
+set(CPACK_PACKAGE_CONTACT "ARTcam Studio maintainers <maintainers@artcam.invalid>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
+  "fit rational tensor cameras and warp photographs through them")
+set(CPACK_PACKAGE_DESCRIPTION
+  "ARTcam Studio fits Attributed Rational Tensor cameras (every output coordinate a ratio of
+quadratic forms of the input) to point matches and warps photographs through them: lens
+distortion, reflections, refractions and artistic deformations. The package holds the
+artcam-studio GUI and the artcam command-line tool.")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_STRIP_FILES ON)  # RelWithDebInfo binaries carry debug info the package does not need
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # artcam-studio_<version>_<arch>.deb
+set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "qt6-wayland")
+set(CPACK_DEBIAN_COMPRESSION_TYPE xz)
+include(CPack)
+
+# Cheap checks of what this file installs (the .deb itself is built by packaging/build-deb.sh,
+# not by CI). The validators are required, not optional: packaging/install-deps.sh installs them.
+if(ARTCAM_BUILD_TESTS)
+  add_test(NAME packaging/desktop_files
+    COMMAND bash ${PROJECT_SOURCE_DIR}/packaging/check-desktop-files.sh)
+  add_test(NAME packaging/man_pages COMMAND bash ${PROJECT_SOURCE_DIR}/packaging/check-man-pages.sh)
+  add_test(NAME app/cli_version COMMAND artcam --version)
+  set_tests_properties(app/cli_version PROPERTIES
+    PASS_REGULAR_EXPRESSION "^artcam ${PROJECT_VERSION}\n$")
+  if(TARGET artcam-studio)
+    # The version the studio reports is the project's; --help lists its options.
+    add_test(NAME app/studio_version COMMAND artcam-studio --version)
+    add_test(NAME app/studio_help COMMAND artcam-studio --help)
+    set_tests_properties(app/studio_version app/studio_help PROPERTIES
+      ENVIRONMENT "QT_QPA_PLATFORM=offscreen")
+    set_tests_properties(app/studio_version PROPERTIES
+      PASS_REGULAR_EXPRESSION "^ARTcam Studio ${PROJECT_VERSION}\n$")
+    set_tests_properties(app/studio_help PROPERTIES
+      PASS_REGULAR_EXPRESSION "--version.*\\.artcamproj")
+  endif()
+endif()

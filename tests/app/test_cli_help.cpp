@@ -1,0 +1,160 @@
+// `artcam --help` and every `artcam COMMAND --help` are complete: each option a command's parser
+// accepts is named on its help page and in the manual page docs/man/artcam.1, and each page
+// carries an example. The expected options are not taken from the help text (that is what is
+// under test) but read from the sources: the command table in app/cli/dispatch.cpp and the
+// OptionSpec lists ({"--name", "-x", takes_value}) in app/cli/cmd_<command>*.cpp, so an option
+// added to a parser without documentation fails here.
+#include "tests/app/cli_run.h"
+
+#include <QtTest/QtTest>
+
+#include <QDir>
+#include <QFile>
+#include <QRegularExpression>
+#include <QSet>
+
+using artcam::test::artcamCli;
+
+namespace {
+
+const QString kCliDir = QStringLiteral(ARTCAM_SOURCE_DIR "/app/cli");
+
+QString readText(const QString& path) {
+  QFile f(path);
+  if (!f.open(QIODevice::ReadOnly)) return {};
+  return QString::fromUtf8(f.readAll());
+}
+
+// Command names from the dispatcher's table: {"name", "summary", kNameUsage, nameCommand}.
+QStringList commandsFromDispatch() {
+  static const QRegularExpression row(
+      QStringLiteral("\\{\"([a-z][a-z-]*)\",\\s*\"[^\"]*\",\\s*k\\w+Usage,"));
+  QStringList names;
+  for (auto it = row.globalMatch(readText(kCliDir + "/dispatch.cpp")); it.hasNext();)
+    names << it.next().captured(1);
+  return names;
+}
+
+// Long and short option names of every OptionSpec literal in a source file.
+QStringList optionsInSource(const QString& path) {
+  static const QRegularExpression spec(
+      QStringLiteral("\\{\"(--[a-z0-9][a-z0-9-]*)\",\\s*\"(-[A-Za-z0-9])?\",\\s*(true|false)\\}"));
+  QStringList options;
+  for (auto it = spec.globalMatch(readText(path)); it.hasNext();) {
+    const QRegularExpressionMatch m = it.next();
+    options << m.captured(1);
+    if (!m.captured(2).isEmpty()) options << m.captured(2);
+  }
+  return options;
+}
+
+// One help page and the options it must document: cmd_<command>.cpp is checked against
+// `artcam <command> --help`, cmd_<command>_<sub>.cpp against `artcam <command> <sub> --help`
+// (bench fit, bench effects), so a sub-command's options are found on the page the user reaches.
+struct HelpPage {
+  QStringList invocation;
+  QString source;
+  QStringList options;
+};
+
+QList<HelpPage> helpPages(const QStringList& commands) {
+  QList<HelpPage> pages;
+  const QStringList sources = QDir(kCliDir).entryList({QStringLiteral("cmd_*.cpp")}, QDir::Files);
+  for (const QString& command : commands) {
+    const QString stem = QStringLiteral("cmd_") + QString(command).replace('-', '_');
+    for (const QString& file : sources) {
+      const QString base = file.chopped(4);  // without ".cpp"
+      QStringList invocation{command};
+      if (base != stem) {
+        if (!base.startsWith(stem + '_')) continue;
+        invocation << base.mid(stem.size() + 1);
+      }
+      pages.append(
+          {invocation << QStringLiteral("--help"), file, optionsInSource(kCliDir + '/' + file)});
+    }
+  }
+  return pages;
+}
+
+// The manual page's text as a reader sees it: roff's "\-" is a plain hyphen-minus.
+QString manPageText() {
+  return readText(QStringLiteral(ARTCAM_SOURCE_DIR "/docs/man/artcam.1")).replace("\\-", "-");
+}
+
+bool mentionsOption(const QString& text, const QString& option) {
+  // Whole option names only: "--size" must not be satisfied by "--target-size" or "--sizes".
+  const QRegularExpression word(QStringLiteral("(^|[^A-Za-z0-9-])") +
+                                QRegularExpression::escape(option) +
+                                QStringLiteral("($|[^A-Za-z0-9-])"));
+  return word.match(text).hasMatch();
+}
+
+}  // namespace
+
+class TestCliHelp : public QObject {
+  Q_OBJECT
+
+ private slots:
+  // The source scan itself: if the patterns stopped matching, every later check would pass
+  // vacuously. These commands and options are the ones README's tour uses.
+  void sourceScanFindsKnownCommandsAndOptions() {
+    const QStringList commands = commandsFromDispatch();
+    for (const char* c :
+         {"fit", "map", "warp", "info", "bench", "render", "preset", "compose", "insert", "sample"})
+      QVERIFY2(commands.contains(QString::fromUtf8(c)), c);
+    const QStringList warp = optionsInSource(kCliDir + "/cmd_warp.cpp");
+    for (const char* o : {"--output", "-o", "--size", "--filter", "--threads", "--force"})
+      QVERIFY2(warp.contains(QString::fromUtf8(o)), o);
+    QVERIFY(optionsInSource(kCliDir + "/cmd_bench_effects.cpp").contains("--sigmas"));
+    QVERIFY(mentionsOption("a --size b", "--size"));
+    QVERIFY(!mentionsOption("a --target-size b", "--size"));
+    QVERIFY(!mentionsOption("a --sizes b", "--size"));
+  }
+
+  void topLevelHelpListsEveryCommand() {
+    const artcam::test::CliRun r = artcamCli({"--help"});
+    QCOMPARE(r.exit_code, 0);
+    for (const QString& c : commandsFromDispatch())
+      QVERIFY2(r.out.contains(QStringLiteral("  ") + c + ' '),
+               qPrintable(c + " missing from:\n" + r.out));
+    QVERIFY2(r.out.contains("--version"), qPrintable(r.out));
+    const artcam::test::CliRun version = artcamCli({"--version"});
+    QCOMPARE(version.exit_code, 0);
+    QVERIFY2(version.out.startsWith("artcam "), qPrintable(version.out));
+  }
+
+  void everyOptionIsOnItsHelpPage() {
+    const QList<HelpPage> pages = helpPages(commandsFromDispatch());
+    QVERIFY(pages.size() >= 12);  // ten commands plus bench fit and bench effects at least
+    QStringList problems;         // all of them at once, so one run lists every gap
+    for (const HelpPage& page : pages) {
+      const QString call = QStringLiteral("artcam ") + page.invocation.join(' ');
+      const artcam::test::CliRun r = artcamCli(page.invocation);
+      if (r.exit_code != 0) problems << call + " exited " + QString::number(r.exit_code);
+      if (!r.out.startsWith("usage: artcam ")) problems << call + " does not start with usage:";
+      if (!r.out.contains("example", Qt::CaseInsensitive)) problems << call + " shows no example";
+      for (const QString& option : page.options)
+        if (!mentionsOption(r.out, option))
+          problems << call + " does not mention " + option + " (accepted in " + page.source + ")";
+    }
+    QVERIFY2(problems.isEmpty(), qPrintable(problems.join('\n')));
+  }
+
+  void manPageNamesEveryCommandAndOption() {
+    const QString man = manPageText();
+    QVERIFY2(man.contains(".TH ARTCAM 1"), "docs/man/artcam.1 missing or without its title line");
+    const QStringList commands = commandsFromDispatch();
+    for (const QString& c : commands)
+      QVERIFY2(man.contains(QStringLiteral(".SS ") + c),
+               qPrintable("artcam.1 has no section for " + c));
+    QStringList missing;
+    for (const HelpPage& page : helpPages(commands))
+      for (const QString& option : page.options)
+        if (!mentionsOption(man, option)) missing << option + " of " + page.source;
+    QVERIFY2(missing.isEmpty(),
+             qPrintable("docs/man/artcam.1 does not mention " + missing.join(", ")));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliHelp)
+#include "test_cli_help.moc"
