@@ -7,10 +7,10 @@
 // Frames: masks are the photo's size; anchors are photo PIXELS (centres at i + 0.5).
 #pragma once
 
-#include "core/depth/depth_map_file.h"
 #include "core/depth/depth_raster.h"
 #include "core/depth/inverse_depth_plane.h"
 #include "core/depth/region_mask.h"
+#include "core/io/depth_file.h"
 #include "core/model/camera.h"
 
 #include <QObject>
@@ -31,11 +31,12 @@ struct DepthPlaneLayer {
 
 struct DepthMapSource {
   QString path;  // absolute
-  DepthMapOptions options;
-  std::shared_ptr<const ImageF> map;  // 2-channel depth image (depth_raster.h form)
+  DepthFileOptions options;
+  std::shared_ptr<const ImageF> map;  // 1-channel depths, 0 = none (depth_file.h)
   bool operator==(const DepthMapSource& o) const {
     return path == o.path && options.scale == o.options.scale &&
-           options.inverse == o.options.inverse && map == o.map;
+           options.inverse == o.options.inverse &&
+           options.baseline_focal == o.options.baseline_focal && map == o.map;
   }
 };
 

@@ -46,7 +46,7 @@ struct ViewState {
 // The depth map file a project refers to (loaded by the session, off the GUI thread).
 struct DepthMapRef {
   QString path;  // absolute once read
-  DepthMapOptions options;
+  DepthFileOptions options;
 };
 
 struct Project {

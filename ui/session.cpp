@@ -1,7 +1,7 @@
 #include "ui/session.h"
 
 #include "core/io/artcam_file.h"
-#include "core/depth/depth_map_file.h"
+#include "core/io/depth_file.h"
 #include "ui/autosave.h"
 #include "ui/commands.h"
 #include "ui/depth_commands.h"
@@ -353,7 +353,7 @@ void Session::cancelExport() {
   if (export_job_) export_job_->cancel();
 }
 
-void Session::loadDepthMap(const QString& path, const DepthMapOptions& options) {
+void Session::loadDepthMap(const QString& path, const DepthFileOptions& options) {
   if (!document_->photo()) {
     showError(tr("Load depth map"), tr("Open a photo before loading its depth map."));
     return;
@@ -363,12 +363,12 @@ void Session::loadDepthMap(const QString& path, const DepthMapOptions& options) 
   readDepthMapAsync(abs, options, /*undoable=*/true);
 }
 
-void Session::readDepthMapAsync(const QString& path, const DepthMapOptions& options,
+void Session::readDepthMapAsync(const QString& path, const DepthFileOptions& options,
                                 bool undoable) {
   const quint64 serial = photo_serial_;
   auto result = std::make_shared<Result<ImageF>>();
   QThread* reader = QThread::create(
-      [path, options, result] { *result = readDepthMap(path.toStdString(), options); });
+      [path, options, result] { *result = readDepthFile(path.toStdString(), options); });
   connect(reader, &QThread::finished, this, [this, reader, result, path, options, serial, undoable] {
     reader->deleteLater();
     if (serial != photo_serial_) return;  // another photo opened meanwhile
@@ -384,7 +384,7 @@ void Session::readDepthMapAsync(const QString& path, const DepthMapOptions& opti
   reader->start();
 }
 
-void Session::applyDepthMap(const QString& path, const DepthMapOptions& options,
+void Session::applyDepthMap(const QString& path, const DepthFileOptions& options,
                             std::shared_ptr<const ImageF> map, bool undoable) {
   const FrameSize f = document_->frame();
   // Sampled nearest at the photo's scale, so any size works; a different aspect would put depth
@@ -442,7 +442,7 @@ void Session::loadDepthMapDialog(double scale, bool inverse) {
       dialog_parent_, tr("Load depth map"), QFileInfo(document_->photo()->path).absolutePath(),
       tr("Depth maps (*.exr *.tif *.tiff *.png *.pgm *.pfm);;All files (*)"));
   if (path.isEmpty()) return;
-  DepthMapOptions options;
+  DepthFileOptions options;
   options.scale = scale;
   options.inverse = inverse;
   loadDepthMap(path, options);

@@ -72,7 +72,7 @@ class Session : public QObject {
   // Stops a running export at its next tile (the progress dialog's Cancel does the same).
   void cancelExport();
   // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.
-  void loadDepthMap(const QString& path, const artcam::DepthMapOptions& options);
+  void loadDepthMap(const QString& path, const artcam::DepthFileOptions& options);
   // Reads a point cloud (.ply) on a worker thread for the 3D view; cloudLoaded on success.
   void openCloud(const QString& path);
   // At start-up: offers the newest recovery left by a session that did not close cleanly.
@@ -109,8 +109,8 @@ class Session : public QObject {
  private:
   void startLoading(const QString& photo_path, std::optional<Project> project,
                     bool recovered = false);
-  void readDepthMapAsync(const QString& path, const DepthMapOptions& options, bool undoable);
-  void applyDepthMap(const QString& path, const DepthMapOptions& options,
+  void readDepthMapAsync(const QString& path, const DepthFileOptions& options, bool undoable);
+  void applyDepthMap(const QString& path, const DepthFileOptions& options,
                      std::shared_ptr<const ImageF> map, bool undoable);
   void showError(const QString& title, const QString& message);
   void addRecent(const QString& path);

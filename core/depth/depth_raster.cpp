@@ -17,8 +17,8 @@ ImageF rasteriseDepth(const std::vector<DepthLayer>& layers, int photo_width, in
   for (const DepthLayer& layer : layers)
     if (!layer.mask || layer.mask->width() != photo_width || layer.mask->height() != photo_height)
       throw std::invalid_argument("rasteriseDepth: a layer's mask is not the photo's size");
-  if (base_map && (base_map->empty() || base_map->channels != 2))
-    throw std::invalid_argument("rasteriseDepth: the base map must be a 2-channel depth image");
+  if (base_map && (base_map->empty() || base_map->channels < 1 || base_map->channels > 2))
+    throw std::invalid_argument("rasteriseDepth: the base map must be a 1- or 2-channel depth image");
   if (!(options.max_depth > 0.0) || !std::isfinite(options.max_depth))
     throw std::invalid_argument("rasteriseDepth: max_depth must be finite and positive");
 
@@ -47,9 +47,11 @@ ImageF rasteriseDepth(const std::vector<DepthLayer>& layers, int photo_width, in
           const int bx = std::min(base_map->width - 1, static_cast<int>(px * base_map->width / photo_width));
           const int by = std::min(base_map->height - 1, static_cast<int>(py * base_map->height / photo_height));
           const float* b = base_map->pixel(bx, by);
-          if (b[1] > 0.0f && b[0] > 0.0f && std::isfinite(b[0])) {
-            alpha = std::min(1.0, static_cast<double>(b[1]));
-            inv = alpha * alpha / static_cast<double>(b[0]);  // a · (1/z), z = ch0/a
+          // (a·z, a), or z alone (depth_file.h: coverage 1 where z > 0).
+          const double a = base_map->channels == 2 ? std::min(1.0, static_cast<double>(b[1])) : 1.0;
+          if (a > 0.0 && b[0] > 0.0f && std::isfinite(b[0])) {
+            alpha = a;
+            inv = a * a / static_cast<double>(b[0]);  // a · (1/z), z = ch0/a
           }
         }
         for (const DepthLayer& layer : layers) {
@@ -96,9 +98,14 @@ ImageF rasteriseDepth(const std::vector<DepthLayer>& layers, int photo_width, in
 }
 
 std::optional<double> depthAt(const ImageF& depth, int x, int y) {
-  if (depth.channels != 2 || x < 0 || y < 0 || x >= depth.width || y >= depth.height)
+  if (depth.channels < 1 || depth.channels > 2 || x < 0 || y < 0 || x >= depth.width ||
+      y >= depth.height)
     return std::nullopt;
   const float* p = depth.pixel(x, y);
+  if (depth.channels == 1) {  // z alone, 0 = none (depth_file.h)
+    if (!(p[0] > 0.0f) || !std::isfinite(p[0])) return std::nullopt;
+    return static_cast<double>(p[0]);
+  }
   if (!(p[1] > 0.0f)) return std::nullopt;
   return static_cast<double>(p[0]) / p[1];
 }

@@ -11,8 +11,9 @@
 //
 // Compositing: layers in order, later on top, "over" in INVERSE depth with the mask coverage
 // as alpha (the plane is affine in inverse depth, so a soft edge blends the two surfaces the
-// way a perspective-correct interpolation would). An optional base map (a loaded depth file,
-// same 2-channel form, any size: sampled nearest) lies under every layer.
+// way a perspective-correct interpolation would). An optional base map (a loaded depth file:
+// depth_file.h's 1-channel z with 0 = none, or this 2-channel form; any size: sampled nearest)
+// lies under every layer.
 //
 // Inverse depths below 1/max_depth (a plane seen towards its horizon, or beyond it) are clamped
 // to it and counted: depth stays finite and positive.
@@ -57,7 +58,8 @@ ImageF rasteriseDepth(const std::vector<DepthLayer>& layers, int photo_width, in
                       const ImageF* base_map = nullptr, const DepthRasterOptions& options = {},
                       DepthRasterSummary* summary = nullptr);
 
-// Depth at a pixel of a raster, or nothing where it has no depth.
+// Depth at a pixel of a raster (2 channels) or a depth file's image (1 channel), or nothing
+// where it has no depth.
 std::optional<double> depthAt(const ImageF& depth, int x, int y);
 
 }  // namespace artcam

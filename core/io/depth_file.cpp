@@ -1,58 +1,86 @@
 #include "core/io/depth_file.h"
 
-#include <OpenImageIO/imagebuf.h>
+#include "core/io/image_input.h"
+#include "core/io/io_text.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace artcam {
 
+namespace {
+
+bool isInteger(OIIO::TypeDesc::BASETYPE t) {
+  return t == OIIO::TypeDesc::UINT8 || t == OIIO::TypeDesc::INT8 || t == OIIO::TypeDesc::UINT16 ||
+         t == OIIO::TypeDesc::INT16;
+}
+
+// The first channel's stored values as floats: integer counts exactly (asking OpenImageIO for
+// FLOAT would normalise them to [0, 1]), float values as they are.
+bool readFirstChannel(OIIO::ImageInput& in, std::vector<float>& values) {
+  const OIIO::ImageSpec& spec = in.spec();
+  const size_t n = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height);
+  values.resize(n);
+  const OIIO::TypeDesc::BASETYPE t = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
+  if (!isInteger(t)) return in.read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, values.data());
+  const auto widen = [&](auto tag, OIIO::TypeDesc type) {
+    std::vector<decltype(tag)> raw(n);
+    if (!in.read_image(0, 0, 0, 1, type, raw.data())) return false;
+    std::transform(raw.begin(), raw.end(), values.begin(), [](auto v) { return static_cast<float>(v); });
+    return true;
+  };
+  switch (t) {
+    case OIIO::TypeDesc::UINT8: return widen(uint8_t{}, OIIO::TypeDesc::UINT8);
+    case OIIO::TypeDesc::INT8: return widen(int8_t{}, OIIO::TypeDesc::INT8);
+    case OIIO::TypeDesc::UINT16: return widen(uint16_t{}, OIIO::TypeDesc::UINT16);
+    default: return widen(int16_t{}, OIIO::TypeDesc::INT16);
+  }
+}
+
+}  // namespace
+
 Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& options,
                              DepthFileSummary* summary) {
+  using R = Result<ImageF>;
   if (!(options.scale > 0.0) || !std::isfinite(options.scale))
-    return Result<ImageF>::failure(path + ": the depth scale must be a positive number");
+    return R::failure(path + ": the depth scale must be a finite number greater than 0");
   if (!(options.baseline_focal >= 0.0) || !std::isfinite(options.baseline_focal))
-    return Result<ImageF>::failure(path + ": baseline·focal must be a number ≥ 0");
-  OIIO::ImageBuf buf(path);
-  if (!buf.init_spec(path, 0, 0))
-    return Result<ImageF>::failure(path + ": cannot open as an image: " + buf.geterror());
-  const OIIO::ImageSpec spec = buf.spec();  // a copy: reading as float changes buf.spec()
-  if (spec.nchannels < 1 || spec.width < 1 || spec.height < 1)
-    return Result<ImageF>::failure(path + ": the depth image is empty");
-  // Read the stored values without any colour conversion: raw counts or raw floats.
-  const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
-                        spec.format.basetype == OIIO::TypeDesc::HALF ||
-                        spec.format.basetype == OIIO::TypeDesc::DOUBLE;
-  std::vector<float> first(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height));
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT) ||
-      !buf.get_pixels(OIIO::ROI(0, spec.width, 0, spec.height, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT,
-                      first.data()))
-    return Result<ImageF>::failure(path + ": cannot read pixels: " + buf.geterror());
-  // OIIO converts integers to [0, 1]; undo that to get counts.
-  const double counts = is_float ? 1.0 : static_cast<double>(spec.format.basetype == OIIO::TypeDesc::UINT16 ? 65535
-                                                               : spec.format.basetype == OIIO::TypeDesc::UINT8 ? 255
-                                                               : 1);
-  const double scale = is_float ? 1.0 : options.scale * counts;
+    return R::failure(path + ": baseline·focal must be a finite number ≥ 0");
+  auto opened = io_input::openImageInput(path);
+  if (!opened) return R::failure(opened.status.message);
+  OIIO::ImageInput& in = **opened;
+  const OIIO::ImageSpec& spec = in.spec();
+  if (static_cast<int64_t>(spec.width) * spec.height > (int64_t{1} << 30))
+    return R::failure(path + ": the depth map is too large (" + std::to_string(spec.width) + "x" +
+                      std::to_string(spec.height) + ")");
+  std::vector<float> values;
+  if (!readFirstChannel(in, values))
+    return R::failure(path + ": cannot read pixels: " + io_text::oneLine(in.geterror()));
+
+  const double disparity_factor =
+      options.baseline_focal > 0.0 ? options.baseline_focal : options.inverse ? 1.0 : 0.0;
   ImageF depth(spec.width, spec.height, 1);
   DepthFileSummary s;
+  s.pixel_type = spec.format.c_str();
   s.min_depth = std::numeric_limits<double>::infinity();
-  s.max_depth = 0.0;
-  for (size_t i = 0; i < first.size(); ++i) {
-    double v = first[i] * scale;
-    if (options.baseline_focal > 0.0) v = options.baseline_focal / v;
-    if (!(v > 0.0) || !std::isfinite(v)) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    double z = static_cast<double>(values[i]) * options.scale;
+    if (disparity_factor > 0.0) z = disparity_factor / z;  // 0 → inf: a hole below
+    if (!(z > 0.0) || !std::isfinite(z)) {
       ++s.holes;
       continue;  // stays 0: no depth
     }
-    depth.data[i] = static_cast<float>(v);
-    s.min_depth = std::min(s.min_depth, v);
-    s.max_depth = std::max(s.max_depth, v);
+    depth.data[i] = static_cast<float>(z);
+    s.min_depth = std::min(s.min_depth, z);
+    s.max_depth = std::max(s.max_depth, z);
   }
-  if (s.holes == static_cast<long long>(first.size()))
-    return Result<ImageF>::failure(path + ": no pixel holds a usable (positive, finite) depth");
+  if (s.holes == static_cast<long long>(values.size()))
+    return R::failure(path + ": no pixel holds a usable (positive, finite) depth");
   if (summary) *summary = s;
-  return Result<ImageF>::success(std::move(depth));
+  return R::success(std::move(depth));
 }
 
 }  // namespace artcam

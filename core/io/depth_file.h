@@ -1,13 +1,18 @@
-// Depth images for the depth block (DESIGN §1 `(d, 1)`; issue 6 item 4): read a depth or
-// disparity map into a 1-channel float ImageF of depths.
+// Depth images for the depth block (DESIGN §1 `(d, 1)`; issue 6 item 4): THE reader of depth and
+// disparity map files, for the CLI (artcam warp --depth) and the studio (a map under the
+// painted planes, depth_raster.h).
 //
-// - Float files (EXR, float TIFF): values are depths as stored (no transfer curve).
-// - Integer files (16-bit PNG/TIFF, 8-bit): the stored integer counts times `scale`
-//   (e.g. 0.001 for millimetres → metres). No sRGB decoding: counts are not light.
-// - Disparity: with baseline_focal > 0 the (scaled) values are disparities and depth is
-//   baseline·focal / disparity.
-// Pixels with a non-positive or non-finite depth (holes, zero disparity) become 0, which the
-// renderers treat as "no depth" — never NaN. Only the first channel is read.
+// Output: a 1-channel float ImageF of depths, the file's size; 0 means "no depth" (holes: a
+// non-positive or non-finite value, zero disparity) — never NaN. Only the first channel is read.
+// - Float files (EXR, float/half TIFF): the stored values.
+// - Integer files (16-bit PNG/TIFF, 8-bit): the STORED integer counts, exactly (no sRGB decoding
+//   and no [0, 1] normalisation: counts are not light).
+// - Either is then multiplied by `scale` (depth units per stored unit, e.g. 0.001 for a
+//   millimetre PNG read in metres).
+// - Disparity: with baseline_focal > 0 the scaled values are disparities and depth is
+//   baseline·focal / disparity; `inverse` is the same with baseline·focal = 1 (values are 1/z).
+// Errors are one line naming the file and the cause (missing, not an image, empty, too large,
+// bad scale, no usable depth at all).
 #pragma once
 
 #include "core/model/image.h"
@@ -18,16 +23,17 @@
 namespace artcam {
 
 struct DepthFileOptions {
-  double scale = 1.0;           // per integer count; ignored for float files
-  double baseline_focal = 0.0;  // > 0: the file holds disparity (same unit as scale gives)
+  double scale = 1.0;           // depth units per stored unit (count or float value)
+  bool inverse = false;         // values are inverse depth: baseline_focal 1 unless given
+  double baseline_focal = 0.0;  // > 0: values are disparity; depth = baseline_focal / value
 };
 
 struct DepthFileSummary {
-  long long holes = 0;  // pixels without a usable depth
-  double min_depth = 0.0, max_depth = 0.0;
+  std::string pixel_type;  // as stored: "uint8", "uint16", "int8", "int16", "half", "float", …
+  long long holes = 0;     // pixels without a usable depth
+  double min_depth = 0.0, max_depth = 0.0;  // over the pixels with depth
 };
 
-// Errors name the file and the cause ("d.png: cannot open: …", "… has 0 channels").
 Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& options = {},
                              DepthFileSummary* summary = nullptr);
 

@@ -3,7 +3,7 @@
 // (checked against the affine interpolation of their inverse depths, computed here); typed
 // depths; the overlay and its legend range; depth in the project file (v2, v1 still read);
 // depth map files loaded off the GUI thread as an undoable edit.
-#include "core/depth/depth_map_file.h"
+#include "core/io/depth_file.h"
 #include "core/io/image_io.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/depth_commands.h"
@@ -221,7 +221,7 @@ class TestDepthPlanes : public QObject {
     l.mask.stamp({20, 15}, BrushOptions{9, 0.3, false});
     l.anchors = {{{1.0 / 3.0, 2.0}, 4.5}, {{30, 2}, 1e-3}, {{5, 25}, 12}};
     p.depth_layers = {l, DepthPlaneLayer{"Empty", RegionMask(40, 30), {}}};
-    p.depth_map = DepthMapRef{dir_.filePath("depth.exr"), DepthMapOptions{0.001, true}};
+    p.depth_map = DepthMapRef{dir_.filePath("depth.exr"), DepthFileOptions{0.001, true}};
     const QString path = dir_.filePath("depth.artcamproj");
     QVERIFY(writeProject(path, p).ok);
     const Result<Project> back = readProject(path);

@@ -1,7 +1,7 @@
 // core/depth: painted regions, planes in inverse depth from three points, the depth raster and
 // depth map files. Plane depths are checked against a closed form made here: a world plane seen
 // by a pinhole, intersected with the ray through each pixel centre.
-#include "core/depth/depth_map_file.h"
+#include "core/io/depth_file.h"
 #include "core/depth/depth_raster.h"
 #include "core/depth/inverse_depth_plane.h"
 #include "core/depth/region_mask.h"
@@ -255,13 +255,13 @@ class TestDepth : public QObject {
       QVERIFY(out->write_image(OIIO::TypeDesc::UINT16, v));
       QVERIFY(out->close());
     }
-    DepthMapOptions mm;
+    DepthFileOptions mm;
     mm.scale = 0.001;
-    DepthMapInfo info;
-    const Result<ImageF> map = readDepthMap(png, mm, &info);
+    DepthFileSummary info;
+    const Result<ImageF> map = readDepthFile(png, mm, &info);
     QVERIFY2(map.ok(), map.status.message.c_str());
     QCOMPARE(info.pixel_type, std::string("uint16"));
-    QCOMPARE(info.missing, size_t{1});
+    QCOMPARE(info.holes, 1LL);
     QCOMPARE(depthAt(*map, 0, 0), std::optional<double>());
     QVERIFY(std::abs(*depthAt(*map, 1, 0) - 1.0) < 1e-6);
     QVERIFY(std::abs(*depthAt(*map, 0, 1) - 65.535) < 1e-4);
@@ -274,15 +274,15 @@ class TestDepth : public QObject {
     WriteImageOptions as_float;
     as_float.pixel_type = "float";
     QVERIFY(writeImage(exr, f, nullptr, as_float).ok);
-    const Result<ImageF> fmap = readDepthMap(exr, {}, &info);
+    const Result<ImageF> fmap = readDepthFile(exr, {}, &info);
     QVERIFY2(fmap.ok(), fmap.status.message.c_str());
-    QCOMPARE(info.missing, size_t{2});
+    QCOMPARE(info.holes, 2LL);
     QCOMPARE(*depthAt(*fmap, 0, 0), 2.5);
     QCOMPARE(*depthAt(*fmap, 3, 0), 1000.0);
     QVERIFY(noNaN(*fmap));
-    DepthMapOptions inverse;
+    DepthFileOptions inverse;
     inverse.inverse = true;
-    QVERIFY(std::abs(*depthAt(*readDepthMap(exr, inverse), 0, 0) - 0.4) < 1e-7);
+    QVERIFY(std::abs(*depthAt(*readDepthFile(exr, inverse), 0, 0) - 0.4) < 1e-7);
 
     // As a base map under a layer: the layer covers its region, the map shows elsewhere.
     RegionMask left(4, 1);
@@ -293,13 +293,13 @@ class TestDepth : public QObject {
     QCOMPARE(depthAt(combined, 1, 0), std::optional<double>());
     QVERIFY(std::abs(*depthAt(combined, 3, 0) - 1000.0) < 1e-2);
 
-    const Result<ImageF> missing = readDepthMap(dir.filePath("nope.exr").toStdString());
+    const Result<ImageF> missing = readDepthFile(dir.filePath("nope.exr").toStdString());
     QVERIFY(!missing.ok());
     QVERIFY(missing.status.message.find("nope.exr") != std::string::npos);
     QVERIFY(missing.status.message.find("no such file") != std::string::npos);
-    DepthMapOptions bad;
+    DepthFileOptions bad;
     bad.scale = 0.0;
-    QVERIFY(readDepthMap(exr, bad).status.message.find("scale") != std::string::npos);
+    QVERIFY(readDepthFile(exr, bad).status.message.find("scale") != std::string::npos);
   }
 };
 
