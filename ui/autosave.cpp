@@ -1,5 +1,7 @@
 #include "ui/autosave.h"
 
+#include "core/io/atomic_file.h"
+
 #include <QCryptographicHash>
 #include <QDir>
 #include <QFile>
@@ -8,7 +10,6 @@
 #include <QJsonObject>
 #include <QLocale>
 #include <QMessageBox>
-#include <QSaveFile>
 #include <QStandardPaths>
 #include <QThread>
 
@@ -20,18 +21,22 @@ namespace {
 
 const char kRecoveryOf[] = "recovery_of";
 
-// Written on the worker thread: QSaveFile writes aside and renames (atomic).
+// Written on the worker thread by core's atomic writer (write aside, fsync, rename): a studio
+// killed mid-write leaves the previous recovery file whole, and its hidden temporary
+// (".name.tmp-<pid>-<n>.artcamproj", never listed as a recovery) is removed by the next
+// autosave once that process is gone (core/io/atomic_file.h).
 QString writeFile(const QString& path, const QByteArray& bytes) {
   QDir().mkpath(QFileInfo(path).absolutePath());
-  QSaveFile file(path);
-  if (!file.open(QIODevice::WriteOnly))
-    return QStringLiteral("%1: cannot write: %2").arg(path, file.errorString());
-  if (file.write(bytes) != bytes.size()) {
-    file.cancelWriting();
-    return QStringLiteral("%1: write failed: %2").arg(path, file.errorString());
-  }
-  if (!file.commit()) return QStringLiteral("%1: could not save: %2").arg(path, file.errorString());
-  return {};
+  const Status s = writeTextAtomically(QFile::encodeName(path).toStdString(), bytes.toStdString());
+  return s ? QString() : QString::fromStdString(s.message);
+}
+
+// Tests (a short interval to kill the studio after its autosave) and users who want another
+// rhythm: ARTCAM_AUTOSAVE_INTERVAL_MS, at least 100 ms.
+int intervalFromEnvironment() {
+  bool ok = false;
+  const int ms = qEnvironmentVariableIntValue("ARTCAM_AUTOSAVE_INTERVAL_MS", &ok);
+  return ok && ms >= 100 ? ms : Autosave::kDefaultIntervalMs;
 }
 
 QString recoveryOf(const QString& recovery_path) {
@@ -46,7 +51,7 @@ Autosave::Autosave(Snapshot snapshot, QObject* parent)
     : QObject(parent),
       snapshot_(std::move(snapshot)),
       dir_(QStandardPaths::writableLocation(QStandardPaths::AppLocalDataLocation) + "/recovery") {
-  timer_.setInterval(kDefaultIntervalMs);
+  timer_.setInterval(intervalFromEnvironment());
   connect(&timer_, &QTimer::timeout, this, &Autosave::saveNow);
 }
 

@@ -3,7 +3,8 @@
 // blocks on file I/O); a clean save or close removes it. A recovery file left behind means the
 // studio did not close cleanly: on the next start (or when its project is opened) the user is
 // offered to recover it when it is newer than the saved project (or the project was never
-// saved). The prompt is injectable so tests run without modal dialogs.
+// saved). The prompt is injectable so tests run without modal dialogs. The interval is one
+// minute, or ARTCAM_AUTOSAVE_INTERVAL_MS (≥ 100) from the environment.
 //
 // Recovery files live in one folder (default: <AppLocalDataLocation>/recovery), one per project:
 // "<project base name>-<12 hex of SHA-1 of its absolute path>.artcamproj", or "untitled.artcamproj"
