@@ -16,5 +16,5 @@ cd "$build"
 rm -f artcam-studio_*.deb
 cpack -G DEB
 deb="$(ls "$build"/artcam-studio_*.deb)"
-dpkg-deb --info "$deb" | sed -n '/Package:/,$p'
+dpkg-deb --info "$deb"
 echo "build-deb: $deb ($(du -h "$deb" | cut -f1))"
