@@ -44,6 +44,20 @@ PixelType storedType(OIIO::TypeDesc t, std::string& name) {
   }
 }
 
+// Our progress callback (false: cancel) as OIIO's (true: stop), for reads and writes.
+struct CancelHook {
+  const std::function<bool(double)>& progress;
+  bool cancelled = false;
+  OIIO::ProgressCallback callback() const {
+    if (!progress) return nullptr;
+    return +[](void* opaque, float done) {
+      auto* hook = static_cast<CancelHook*>(opaque);
+      if (!hook->progress(static_cast<double>(done))) hook->cancelled = true;
+      return hook->cancelled;
+    };
+  }
+};
+
 // Formats that store only 8-bit integers / only float (image_write.cpp's fitPixelType).
 bool integerOnlyFormat(const std::string& f) {
   static const std::set<std::string> k{"jpeg", "bmp", "targa", "gif", "webp", "ico", "heif", "png", "pnm"};
@@ -143,16 +157,8 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
     return R::failure(path + ": cannot read: not enough memory for " + std::to_string(spec.width) +
                       "x" + std::to_string(spec.height) + " pixels");
   }
-  struct Context {
-    const std::function<bool(double)>* progress;
-    bool cancelled = false;
-  } context{options.progress ? &options.progress : nullptr};
-  const OIIO::ProgressCallback callback =
-      options.progress ? +[](void* opaque, float done) {
-        auto* c = static_cast<Context*>(opaque);
-        if (!(*c->progress)(static_cast<double>(done))) c->cancelled = true;
-        return c->cancelled;
-      } : nullptr;
+  CancelHook context{options.progress};
+  const OIIO::ProgressCallback callback = context.callback();
   bool ok = true;
   if (spec.tile_width > 0) {
     ok = in->read_image(0, 0, 0, channels, oiioType(type), image.bytes.data(), OIIO::AutoStride,
@@ -282,17 +288,8 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
     };
     if (!out->open(temp, spec)) return failure(out->geterror());
     bool ok = true;
-    // Cancel between bands (OIIO's callback returns true to stop).
-    struct Context {
-      const std::function<bool(double)>* progress;
-      bool cancelled = false;
-    } context{options.progress ? &options.progress : nullptr};
-    const OIIO::ProgressCallback callback =
-        options.progress ? +[](void* opaque, float done) {
-          auto* c = static_cast<Context*>(opaque);
-          if (!(*c->progress)(static_cast<double>(done))) c->cancelled = true;
-          return c->cancelled;
-        } : nullptr;
+    CancelHook context{options.progress};  // cancel between bands
+    const OIIO::ProgressCallback callback = context.callback();
     if (direct) {
       ok = out->write_image(oiioType(image.type), image.data, OIIO::AutoStride, image.row_bytes,
                             OIIO::AutoStride, callback, &context);
