@@ -163,20 +163,22 @@ const Preset kPresets[] = {
      "3D→image: Claus–Fitzgibbon rational lens, u = f·x/(1 + k|x|²), or --matrix A (view camera)",
      "focal=2.4 k=0.5 matrix=0 eye=2.744,2.058,-3.430 at=0,0,0 up=0,1,0", rationalLens},
     {"identity", "3D: leaves points and colours as they are", "", identity3d},
-    {"twist", "3D (Fig 1): twist about y, atan(rate·Y)", "rate=0.35", twist},
-    {"pincushion", "3D (Fig 1): P/(1 - k|P - c|²); k < 0 barrel", "k=0.12 centre=0,0,0",
+    {"twist-3d", "3D (Fig 1): twist about y, atan(rate·Y)", "rate=0.35", twist},
+    {"pincushion-3d", "3D (Fig 1): P/(1 - k|P - c|²); k < 0 barrel", "k=0.12 centre=0,0,0",
      pincushion},
-    {"inverse-perspective", "3D (Fig 1): objects magnify as they recede from eye",
+    {"inverse-perspective-3d", "3D (Fig 1): objects magnify as they recede from eye",
      "eye=2.744,2.058,-3.430 at=0,0,0 up=0,1,0 gain=0", inversePerspective},
     {"colour-scale", "3D (Fig 1): warm expands, cold shrinks, scale 1 + s(r - b)",
      "strength=0.35 centre=0,0,0", colourScale},
-    {"chromatic-aberration", "3D (Fig 1): per-layer scale; render with --layers rgb",
+    {"chromatic-aberration-3d", "3D (Fig 1): per-layer scale; render with --layers rgb",
      "red=0.06 green=0 blue=-0.06 centre=0,0,0", chromaticAberration},
 };
 
 // Image-space (2D) cameras over [position 3 (| colour 4) (| depth 2)], stored in the normalised
 // frame of a size×size image; layered ones (chromatic aberration, the paper's Fig 4) and depth
-// of field use the .artcam extras (artcam_file.h). Names that a 3D preset already has get "-2d".
+// of field use the .artcam extras (artcam_file.h). They have the plain effect names (issue 6's
+// `artcam preset NAME`, the studio's effects panel: effect_presets.h); the point-cloud versions
+// of the paper's Fig 1 end in "-3d".
 FrameSize frameOf(const Params& p) {
   const std::vector<double>& v = p.list("size");
   if (v.size() != 2 || !(v[0] >= 1) || !(v[1] >= 1) || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]))
@@ -222,10 +224,10 @@ struct ImagePreset {
 
 const ImagePreset kImagePresets[] = {
     {"barrel", "2D: radial lens u' = u/(1 - k r^2), k < 0 barrel", "k=-0.15 size=600,400", radial2d},
-    {"pincushion-2d", "2D: radial lens u' = u/(1 - k r^2), k > 0 pincushion", "k=0.15 size=600,400", radial2d},
-    {"twist-2d", "2D: each row turns by atan(rate·v): v' = v + rate·u·v", "rate=0.3 size=600,400", twist2d},
-    {"inverse-perspective-2d", "2D: far (upper) rows magnify: p' = p/(1 + gain·v)", "gain=0.35 size=600,400", inversePerspective2d},
-    {"chromatic-aberration-2d", "2D (Fig 4 middle): three RTcams scale/shift R, G, B", "red=0.006 green=0 blue=-0.006 red-dx=0 green-dx=0 blue-dx=0 red-dy=0 green-dy=0 blue-dy=0 size=600,400", rgbShift2d},
+    {"pincushion", "2D: radial lens u' = u/(1 - k r^2), k > 0 pincushion", "k=0.15 size=600,400", radial2d},
+    {"twist", "2D: each row turns by atan(rate·v): v' = v + rate·u·v", "rate=0.3 size=600,400", twist2d},
+    {"inverse-perspective", "2D: far (upper) rows magnify: p' = p/(1 + gain·v)", "gain=0.35 size=600,400", inversePerspective2d},
+    {"chromatic-aberration", "2D (Fig 4 middle): three RTcams scale/shift R, G, B", "red=0.006 green=0 blue=-0.006 red-dx=0 green-dx=0 blue-dx=0 red-dy=0 green-dy=0 blue-dy=0 size=600,400", rgbShift2d},
     {"colour-shift", "2D (Fig 4 right, eq 8/9): each layer moves by its colour, p(1 + s_k c_k)", "s-red=0.05 s-green=0 s-blue=-0.03 size=600,400", colourShift2d},
     {"aerial-perspective", "2D (§3): contrast falls with log depth towards haze (needs --depth)", "haze=0.62,0.72,0.86 strength=0.7 near=1 far=100 size=600,400", aerial2d},
     {"depth-of-field", "2D (§3): Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)); thin-lens 1: /d (thin lens), 0: /focus (linear) (needs --depth)", "focus=2 blur=0.01 thin-lens=1 size=600,400", depthOfField2d},
@@ -306,11 +308,11 @@ const char* const kPresetUsage =
     "View cameras (pinhole, orthographic, pushbroom, xslit, glc, rational-lens) project object\n"
     "space to the image: outputs (u, v, nearness), (u, v) in the normalised frame (the larger\n"
     "image side spans [-1, 1], v down); use them with artcam render --view. 3D cameras (identity,\n"
-    "twist, pincushion, inverse-perspective, colour-scale, chromatic-aberration) move points and\n"
-    "colours before the view. cube-of-cubes writes the sample cloud of the paper's Fig 1.\n"
-    "Image cameras (barrel, pincushion-2d, twist-2d, inverse-perspective-2d,\n"
-    "chromatic-aberration-2d, colour-shift, aerial-perspective, depth-of-field) apply to photos\n"
-    "with artcam warp (the last two need --depth FILE); --size W,H is the photo's size.\n"
+    "twist-3d, pincushion-3d, inverse-perspective-3d, colour-scale, chromatic-aberration-3d) move\n"
+    "points and colours before the view. cube-of-cubes writes the sample cloud of the paper's\n"
+    "Fig 1. Image cameras (barrel, pincushion, twist, inverse-perspective, chromatic-aberration,\n"
+    "colour-shift, aerial-perspective, depth-of-field) apply to photos with artcam warp (the\n"
+    "last two need --depth FILE); --size W,H is the photo's size.\n"
     "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
     "its parameters and defaults; every parameter is optional. -o/--output names OUT (required).\n\n"
     "Examples:\n"
@@ -338,7 +340,7 @@ int presetCommand(const std::vector<std::string>& argv) {
     if (const Status s = writeArtcamFile(output, doc); !s) throw CommandError(s.message);
     std::printf("wrote %s (%s%s%s)\n", output.c_str(), p.name, summary.empty() ? "" : ": ",
                 summary.c_str());
-    if (name == "chromatic-aberration")
+    if (name == "chromatic-aberration-3d")
       std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
     return 0;
   }

@@ -38,7 +38,7 @@ const char* const kRenderUsage =
     "--threads N sets the worker threads (default 0: all cores). -o/--output names OUT\n"
     "(required; written atomically).\n\n"
     "Examples:\n"
-    "  artcam preset cube-of-cubes -o cube.ply && artcam preset twist -o twist.artcam\n"
+    "  artcam preset cube-of-cubes -o cube.ply && artcam preset twist-3d -o twist.artcam\n"
     "  artcam render cube.ply twist.artcam -o twisted.png --size 800x600 --eye 3,2,-4\n";
 
 namespace {

@@ -12,8 +12,14 @@ trap 'rm -rf "$tmp"' EXIT
 cmp -s "$tmp/cube.ply" "$cloud" || echo "note: $cloud differs from what the code makes now" >&2
 
 # Fig 1: original, twist, pin-cushion / inverse perspective, colour scale, chromatic aberration.
-for preset in identity twist pincushion inverse-perspective colour-scale chromatic-aberration; do
-  "$artcam" preset "$preset" -o "$tmp/$preset.artcam" >/dev/null
+# The point-cloud presets end in -3d (the plain names are the image effects); the files keep the
+# panel names.
+for panel in identity twist pincushion inverse-perspective colour-scale chromatic-aberration; do
+  case $panel in
+    identity | colour-scale) preset=$panel ;;
+    *) preset=$panel-3d ;;
+  esac
+  "$artcam" preset "$preset" -o "$tmp/$panel.artcam" >/dev/null
 done
 "$artcam" render "$cloud" "$tmp/identity.artcam" --size 256x256 -o "$out/original.png"
 "$artcam" render "$cloud" "$tmp/twist.artcam" --size 256x256 -o "$out/twist.png"

@@ -188,7 +188,7 @@ class TestCli : public QObject {
 
   // Object space: a preset camera applied to the bundled cloud, to an image and to a cloud.
   void presetAndRenderTheSampleCloud() {
-    Run r = artcamCli({"preset", "twist", "-o", path("twist.artcam")});
+    Run r = artcamCli({"preset", "twist-3d", "-o", path("twist.artcam")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     r = artcamCli({"render", QString::fromStdString(test::resourcePath("cube.ply")), path("twist.artcam"),
                    "-o", path("twist.png"), "--size", "128x96"});

@@ -143,10 +143,46 @@ class TestCliEffects : public QObject {
     QVERIFY2(bad.err.contains("thin-lens"), qPrintable(bad.err));
   }
 
+  // Issue 6's names are the image presets (position block (u, v, 1), a photo frame); the
+  // paper's Fig 1 point-cloud versions end in -3d (position (X, Y, Z, 1), no frame). The radial
+  // lenses also against their closed form u' = u/(1 − k r²) in the normalised frame.
+  void issueNamesAreImagePresets() {
+    QTemporaryDir dir;
+    const QString out = dir.filePath("p.artcam");
+    for (const char* name : {"barrel", "pincushion", "twist", "inverse-perspective", "chromatic-aberration",
+                             "colour-shift", "aerial-perspective", "depth-of-field"}) {
+      const Run r = artcamCli({"preset", name, "-o", out});
+      QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
+      const auto doc = artcam::readArtcamFile(out.toStdString());
+      QVERIFY2(doc.ok(), doc.status.message.c_str());
+      QCOMPARE(doc.value->camera.blocks().front().size, 3);
+      QVERIFY2(doc.value->camera.sourceSize().isImage(), name);
+    }
+    for (const char* name : {"twist-3d", "pincushion-3d", "inverse-perspective-3d", "chromatic-aberration-3d"}) {
+      const Run r = artcamCli({"preset", name, "-o", out});
+      QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
+      const auto doc = artcam::readArtcamFile(out.toStdString());
+      QVERIFY2(doc.ok(), doc.status.message.c_str());
+      QCOMPARE(doc.value->camera.blocks().front().size, 4);
+    }
+    QCOMPARE(artcamCli({"preset", "twist-2d", "-o", out}).exit_code, 2);  // the old names are gone
+    for (const double k : {0.15, -0.2}) {
+      const Run r = artcamCli({"preset", k > 0 ? "pincushion" : "barrel", "--k", QString::number(k), "-o", out});
+      QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+      const auto doc = artcam::readArtcamFile(out.toStdString());
+      QVERIFY2(doc.ok(), doc.status.message.c_str());
+      const double u = 0.3, v = -0.2, g = 1.0 / (1.0 - k * (u * u + v * v));
+      Eigen::VectorXd x(3);
+      x << u, v, 1;
+      const Eigen::VectorXd y = doc.value->camera.evaluate(x);
+      QVERIFY(std::abs(y[0] - u * g) < 1e-12 && std::abs(y[1] - v * g) < 1e-12);
+    }
+  }
+
   void chromaticAberrationWritesThreeLayers() {
     QTemporaryDir dir;
     const QString photo = QString::fromStdString(artcam::test::resourcePath("coffee.png"));
-    Run r = artcamCli({"preset", "chromatic-aberration-2d", "--red", "0.01", "-o", dir.filePath("ca.artcam")});
+    Run r = artcamCli({"preset", "chromatic-aberration", "--red", "0.01", "-o", dir.filePath("ca.artcam")});
     QCOMPARE(r.exit_code, 0);
     QFile f(dir.filePath("ca.artcam"));
     QVERIFY(f.open(QIODevice::ReadOnly));

@@ -17,10 +17,10 @@ oiiotool --pattern fill:top=0.05:bottom=1.0 600x400 1 --powc -1 -d float -o "$tm
 "$artcam" preset barrel --k 0 -o "$tmp/identity.artcam" >/dev/null
 "$artcam" warp "$photo" "$tmp/identity.artcam" --size $size -o "$out/original.png" >/dev/null
 "$artcam" preset barrel --k -0.25 -o "$tmp/barrel.artcam" >/dev/null
-"$artcam" preset pincushion-2d --k 0.25 -o "$tmp/pincushion.artcam" >/dev/null
-"$artcam" preset twist-2d --rate 0.4 -o "$tmp/twist.artcam" >/dev/null
-"$artcam" preset inverse-perspective-2d --gain 0.5 -o "$tmp/inverse-perspective.artcam" >/dev/null
-"$artcam" preset chromatic-aberration-2d --red 0.015 --blue -0.015 -o "$tmp/chromatic-aberration.artcam" >/dev/null
+"$artcam" preset pincushion --k 0.25 -o "$tmp/pincushion.artcam" >/dev/null
+"$artcam" preset twist --rate 0.4 -o "$tmp/twist.artcam" >/dev/null
+"$artcam" preset inverse-perspective --gain 0.5 -o "$tmp/inverse-perspective.artcam" >/dev/null
+"$artcam" preset chromatic-aberration --red 0.015 --blue -0.015 -o "$tmp/chromatic-aberration.artcam" >/dev/null
 "$artcam" preset colour-shift --s-red 0.12 --s-green 0 --s-blue -0.08 -o "$tmp/colour-shift.artcam" >/dev/null
 "$artcam" preset aerial-perspective --near 1 --far 20 --strength 0.85 -o "$tmp/aerial-perspective.artcam" >/dev/null
 "$artcam" preset depth-of-field --focus 1.9 --blur 0.03 -o "$tmp/depth-of-field.artcam" >/dev/null
