@@ -1,5 +1,7 @@
 #include "ui/cloud_view.h"
 
+#include "core/render/attributed.h"
+
 #include "core/cameras/effects_3d.h"
 #include "core/cameras/projective_cameras.h"
 #include "core/io/ply.h"
@@ -155,8 +157,10 @@ CloudRenderRequest CloudView::currentRequest() const {
     }
   }
   // The document's image camera as a lens, unless it is the identity (nothing to apply).
+  // Its geometry only: the lens warp is a gather of positions (a colour block is the photo's).
   if (document_->photo() && analyseStructure(document_->camera()).geometry != GeometryClass::Identity)
-    r.lens = document_->camera();
+    r.lens = document_->camera().blocks().size() == 1 ? document_->camera()
+                                                      : positionPart(document_->camera());
   return r;
 }
 

@@ -1,5 +1,7 @@
 #include "ui/document.h"
 
+#include "ui/colour/colour_stage.h"
+
 #include <algorithm>
 #include <exception>
 
@@ -27,6 +29,7 @@ void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
   pairs_ = std::move(pairs);
   model_ = model;
   manual_camera_ = std::move(manual_camera);
+  colour_block_.reset();
   selection_.clear();
   refit();
   depth_.reset(frame());
@@ -100,6 +103,12 @@ void Document::setManualCamera(std::optional<Camera> camera) {
   emit cameraChanged();
 }
 
+void Document::setColourBlock(std::optional<Camera> colour) {
+  colour_block_ = std::move(colour);
+  refit();
+  emit cameraChanged();
+}
+
 int Document::pairsNeeded() const {
   const ModelClass m = model_ == ModelClass::Auto ? ModelClass::Translation : model_;
   return std::max(0, minimumMatches(m) - enabledPairCount());
@@ -155,6 +164,8 @@ void Document::refit() {
       for (size_t i = 0; i < r.size() && i < residual_by_pair_.size(); ++i)
         residual_by_pair_[i] = r[i];
     }
+    // After the residuals: they are a property of the geometry (a position-only camera).
+    if (colour_block_) camera_ = withColourBlock(camera_, *colour_block_);
   } catch (const std::exception& e) {
     // A broken contract in the engine must not take the GUI down: report it as a failed fit.
     fit_ = FitSummary{};

@@ -48,7 +48,8 @@ class Document : public QObject {
   // --- photo (not undoable: a new photo starts a new session) ---
   const PhotoPtr& photo() const { return photo_; }
   FrameSize frame() const;
-  // Replaces everything: photo, pairs, model; clears the undo stack and marks clean.
+  // Replaces everything: photo, pairs, model; clears the colour block and the undo stack and
+  // marks clean.
   void reset(PhotoPtr photo, std::vector<Pair> pairs = {}, ModelClass model = ModelClass::Auto,
              std::optional<Camera> manual_camera = std::nullopt);
 
@@ -68,7 +69,13 @@ class Document : public QObject {
   const std::optional<Camera>& manualCamera() const { return manual_camera_; }
   void setManualCamera(std::optional<Camera> camera);
   const FitSummary& fit() const { return fit_; }
-  // Manual camera, else the fitted one, else identity (too few or degenerate pairs).
+  // The fitted colour block (ui/colour: a colourCamera, identity geometry) or none. When set,
+  // camera() carries it in its last stage's colour outputs (colour/colour_stage.h), so the
+  // preview, the export and .artcam files show the colour change.
+  const std::optional<Camera>& colourBlock() const { return colour_block_; }
+  void setColourBlock(std::optional<Camera> colour);
+  // Manual camera, else the fitted one, else identity (too few or degenerate pairs); with the
+  // colour block when there is one.
   const Camera& camera() const { return camera_; }
   // Enabled pairs still missing before the chosen model is determined (0 when enough).
   int pairsNeeded() const;
@@ -99,6 +106,7 @@ class Document : public QObject {
   std::vector<Pair> pairs_;
   ModelClass model_ = ModelClass::Auto;
   std::optional<Camera> manual_camera_;
+  std::optional<Camera> colour_block_;
   FitSummary fit_;
   Camera camera_;
   std::vector<double> residual_by_pair_;

@@ -1,9 +1,12 @@
 #include "ui/export_job.h"
 
 #include "core/io/image_io.h"
+#include "core/render/attributed.h"
 #include "core/render/warp.h"
+#include "ui/render_worker.h"
 
 #include <exception>
+#include <string>
 
 namespace artcam::ui {
 
@@ -32,7 +35,19 @@ void ExportJob::run() {
       return !cancel_.load();
     };
     WarpSummary summary;
-    const ImageF out = warpImage(photo_->full.image, camera_, options, &summary);
+    ImageF out;
+    if (RenderWorker::needsAttributes(camera_)) {
+      AttributedOptions a;
+      a.filter = options.filter;
+      a.progress = options.progress;
+      AttributedSummary as;
+      out = renderAttributed(photo_->full.image, depth_.get(), camera_, a, &as).colour;
+      summary.cancelled = as.cancelled;
+      summary.kernel = std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
+      summary.render_ms = as.render_ms;
+    } else {
+      out = warpImage(photo_->full.image, camera_, options, &summary);
+    }
     if (summary.cancelled || cancel_) {
       emit done(false, tr("Export cancelled."));
       return;

@@ -1,6 +1,9 @@
 // Full-resolution export of the warped photo in a worker thread: warpImage on the original
 // pixels with progress and cancel (polled between tiles), then writeImage with the photo's
 // format and metadata (atomic). Results come back by queued signals; exceptions stop here.
+// A camera that changes colour or depth (RenderWorker::needsAttributes) renders through
+// core's attributed renderer instead (colour-only path when the geometry is the identity), so
+// a fitted colour block is in the exported file as it is in the preview.
 #pragma once
 
 #include "core/model/camera.h"
@@ -10,6 +13,7 @@
 #include <QThread>
 
 #include <atomic>
+#include <memory>
 
 namespace artcam::ui {
 
@@ -21,6 +25,8 @@ class ExportJob : public QThread {
   ~ExportJob() override;  // cancels and joins
 
   void cancel() { cancel_ = true; }
+  // The depth block's input for cameras that read depth (before start()).
+  void setDepth(std::shared_ptr<const ImageF> depth) { depth_ = std::move(depth); }
 
  signals:
   void progressChanged(int percent);
@@ -34,6 +40,7 @@ class ExportJob : public QThread {
   PhotoPtr photo_;
   Camera camera_;
   QString path_;
+  std::shared_ptr<const ImageF> depth_;
   std::atomic<bool> cancel_{false};
 };
 

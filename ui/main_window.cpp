@@ -2,6 +2,7 @@
 
 #include "ui/canvas.h"
 #include "ui/cloud_view.h"
+#include "ui/colour/colour_dock.h"
 #include "ui/commands.h"
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
@@ -99,6 +100,16 @@ MainWindow::MainWindow(QWidget* parent)
       effects_panel->setDepth(effects_depth_);
     }
   });
+  auto* colour_dock = new QDockWidget(tr("Colour"), this);
+  colour_dock->setObjectName("colourDock");
+  colour_dock_ = new ColourDock(document_, this);
+  colour_dock->setWidget(colour_dock_);
+  tabifyDockWidget(effects_dock, colour_dock);
+  connect(colour_dock_, &ColourDock::statusMessage, this,
+          [this](const QString& m) { statusBar()->showMessage(m, 8000); });
+  // Cameras with a depth block read the painted depth in the preview too (same raster).
+  connect(depth_overlay_, &DepthOverlay::changed, preview_,
+          [this] { preview_->setDepth(depth_overlay_->raster()); });
   pairs_dock->raise();
   connect(depth_panel_, &DepthPanel::loadDepthMapRequested, this, [this] {
     session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
@@ -133,6 +144,7 @@ MainWindow::MainWindow(QWidget* parent)
     preview_view_->setOpacity(v.opacity);
   });
 
+  colour_dock_->attachToSession(session_);
   createMenus();
   (new InsertionStudio(this, canvas_, document_))->attachToSession(session_);  // Insertion dock, menu and tools
   updateTitle();

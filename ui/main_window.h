@@ -15,6 +15,7 @@ namespace artcam::ui {
 
 class Canvas;
 class CloudView;
+class ColourDock;
 class DepthOverlay;
 class DepthPanel;
 class DepthToolSettings;
@@ -41,6 +42,7 @@ class MainWindow : public QMainWindow {
   FitStatus* fitStatus() const { return fit_status_; }
   DepthPanel* depthPanel() const { return depth_panel_; }
   CloudView* cloudView() const { return cloud_view_; }
+  ColourDock* colourDock() const { return colour_dock_; }
   DepthOverlay* depthOverlay() const { return depth_overlay_; }
   DepthToolSettings* depthToolSettings() const { return depth_settings_; }
 
@@ -67,6 +69,7 @@ class MainWindow : public QMainWindow {
   std::shared_ptr<const ImageF> effects_depth_;  // the raster last given to the effects panel
   DepthPanel* depth_panel_;
   CloudView* cloud_view_;
+  ColourDock* colour_dock_ = nullptr;
   QMenu* recent_menu_ = nullptr;
 };
 

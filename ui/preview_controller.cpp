@@ -19,6 +19,12 @@ PreviewController::PreviewController(Document* document, QObject* parent)
 
 PreviewController::~PreviewController() { worker_.shutdown(); }
 
+void PreviewController::setDepth(std::shared_ptr<const ImageF> depth) {
+  if (depth == depth_) return;
+  depth_ = std::move(depth);
+  if (document_->camera().layout().find(BlockKind::Depth) >= 0) schedule();
+}
+
 void PreviewController::schedule() {
   const PhotoPtr& photo = document_->photo();
   ++generation_;
@@ -37,11 +43,17 @@ void PreviewController::schedule() {
   }
   RenderRequest request;
   request.source = source_;
-  // The pyramid aliases the photo, which keeps the levels' base image alive.
-  if (photo->pyramid) request.pyramid = std::shared_ptr<const StoredMipPyramid>(photo, photo->pyramid.get());
   request.camera = document_->camera();
-  const FrameSize size = photo->pyramid ? livePreviewSize(*photo)
-                                        : FrameSize{photo->preview.width, photo->preview.height};
+  // Colour (or depth) changing cameras render from the float preview copy at its own size, so
+  // a colour-only camera takes core's no-resampling path; geometry-only ones use the pyramid.
+  const bool attributed = RenderWorker::needsAttributes(request.camera);
+  // The pyramid aliases the photo, which keeps the levels' base image alive.
+  if (photo->pyramid && !attributed)
+    request.pyramid = std::shared_ptr<const StoredMipPyramid>(photo, photo->pyramid.get());
+  if (attributed) request.depth = depth_;
+  const FrameSize size = request.pyramid
+                             ? livePreviewSize(*photo)
+                             : FrameSize{photo->preview.width, photo->preview.height};
   request.width = size.width;
   request.height = size.height;
   request.generation = generation_;

@@ -27,6 +27,9 @@ class PreviewController : public QObject {
   quint64 requestedGeneration() const { return generation_; }
   double lastRenderMs() const { return last_ms_; }
   RenderWorker* worker() { return &worker_; }
+  // The depth raster cameras with a depth block read (core/depth/depth_raster.h form); null:
+  // none. Re-renders when the camera needs it.
+  void setDepth(std::shared_ptr<const ImageF> depth);
 
  public slots:
   void schedule();
@@ -41,6 +44,7 @@ class PreviewController : public QObject {
   Document* document_;
   RenderWorker worker_;
   std::shared_ptr<const ImageF> source_;  // shared with the worker; rebuilt per photo
+  std::shared_ptr<const ImageF> depth_;
   const void* source_photo_ = nullptr;
   quint64 generation_ = 0;
   QImage image_;

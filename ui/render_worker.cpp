@@ -1,11 +1,14 @@
 #include "ui/render_worker.h"
 
+#include "core/model/structure.h"
+#include "core/render/attributed.h"
 #include "core/render/warp.h"
 #include "ui/image_convert.h"
 
-
 #include <algorithm>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 namespace artcam::ui {
 
@@ -20,8 +23,34 @@ WarpOptions RenderWorker::passOptions(int width, int height) {
   return options;
 }
 
+bool RenderWorker::needsAttributes(const Camera& camera) {
+  const CameraStructure s = analyseStructure(camera);
+  return s.attributes_change || s.geometry_depends_on_attributes;
+}
+
 QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& options,
                                 WarpSummary* summary) {
+  if (needsAttributes(job.camera)) {
+    if (!job.source || job.source->empty())
+      throw std::invalid_argument("a camera that changes colour needs the float preview copy");
+    AttributedOptions a;
+    a.filter = options.filter;
+    a.width = options.width;
+    a.height = options.height;
+    a.threads = options.threads;
+    a.progress = options.progress;
+    AttributedSummary as;
+    const AttributedImage out = renderAttributed(*job.source, job.depth.get(), job.camera, a, &as);
+    if (summary) {
+      summary->cancelled = as.cancelled;
+      summary->kernel = std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
+      summary->transparent_pixels = as.transparent_pixels;
+      summary->render_ms = as.render_ms;
+      summary->note = as.note;
+    }
+    if (as.cancelled) return {};
+    return qimageFromLinear(out.colour);
+  }
   if (job.pyramid) {
     QImage out(options.width, options.height, QImage::Format_RGBA8888_Premultiplied);
     ImageView view = packedView<void>(out.bits(), out.width(), out.height(), 4, PixelType::UInt8,

@@ -4,6 +4,11 @@
 // full passes are slow (kCoarseAboveMs), and
 // results delivered by queued signals carrying a QImage and the request's generation stamp.
 // Every exception stops at run(); it becomes a `failed` signal, never reaches the event loop.
+//
+// Cameras that change colour or depth (a fitted colour block, issue 6) render through core's
+// attributed renderer (core/render/attributed.h) from the float preview copy: its colour-only
+// path when the geometry is the identity, else gather (or splat). Geometry-only cameras keep
+// the 8-bit pyramid path, which is what makes a drag's preview fast.
 #pragma once
 
 #include "core/model/camera.h"
@@ -26,6 +31,8 @@ struct RenderRequest {
   // QImage (issue 5's preview path); else the float path from `source`.
   std::shared_ptr<const StoredMipPyramid> pyramid;
   std::shared_ptr<const ImageF> source;  // the downscaled preview source
+  // Depth block input for cameras that read depth (core/depth/depth_raster.h form, any size).
+  std::shared_ptr<const ImageF> depth;
   Camera camera;
   int width = 0;  // full-pass output size (the coarse pass is a quarter of it)
   int height = 0;
@@ -44,7 +51,11 @@ class RenderWorker : public QThread {
   // The warp options of a preview pass (no progress hook): one place, so a direct render with
   // them reproduces the worker's image exactly.
   static WarpOptions passOptions(int width, int height);
+  // Whether `camera` needs the attributed renderer: its colour or depth outputs differ from the
+  // identity, or its positions read them (structure.h).
+  static bool needsAttributes(const Camera& camera);
   // One pass of a request with those options (plus a progress hook): what the worker emits.
+  // A camera that needsAttributes() renders from `source` (never the pyramid).
   static QImage renderPass(const RenderRequest& job, const WarpOptions& options,
                            WarpSummary* summary);
 

@@ -1,0 +1,104 @@
+#include "ui/colour/colour_project.h"
+
+#include "core/io/artcam_file.h"
+#include "core/io/atomic_file.h"
+
+#include <QJsonArray>
+#include <QJsonDocument>
+
+#include <charconv>
+#include <cmath>
+
+namespace artcam::ui {
+namespace {
+
+QJsonArray point(const Eigen::Vector2d& p) { return QJsonArray{p.x(), p.y()}; }
+
+std::optional<Eigen::Vector2d> readPoint(const QJsonValue& v) {
+  const QJsonArray a = v.toArray();
+  if (a.size() != 2 || !a[0].isDouble() || !a[1].isDouble()) return std::nullopt;
+  const Eigen::Vector2d p(a[0].toDouble(), a[1].toDouble());
+  if (!p.allFinite()) return std::nullopt;
+  return p;
+}
+
+}  // namespace
+
+QJsonObject colourPartToJson(const ColourSampleState& s, const std::optional<Camera>& block) {
+  if (s.samples.empty() && s.reference_path.isEmpty() && !block) return {};
+  QJsonObject o;
+  o["radius"] = s.radius;
+  if (!s.reference_path.isEmpty()) o["reference"] = s.reference_path;
+  QJsonArray samples;
+  for (const ColourSample& c : s.samples)
+    samples.append(QJsonObject{
+        {"source", point(c.source)}, {"reference", point(c.reference)}, {"enabled", c.enabled}});
+  o["samples"] = samples;
+  if (block) {
+    ArtcamDocument doc;
+    doc.camera = *block;
+    o["colour_block"] =
+        QJsonDocument::fromJson(QByteArray::fromStdString(toArtcamJson(doc))).object();
+  }
+  return o;
+}
+
+Result<ColourProjectPart> colourPartFromJson(const QJsonObject& o, const std::string& where) {
+  const auto fail = [&](const std::string& m) {
+    return Result<ColourProjectPart>::failure(where + m);
+  };
+  ColourProjectPart part;
+  if (o.isEmpty()) return Result<ColourProjectPart>::success(std::move(part));
+  const QJsonValue radius = o["radius"];
+  if (!radius.isDouble() || radius.toDouble() != std::floor(radius.toDouble()) ||
+      radius.toInt(-1) < 0 || radius.toInt() > kMaxPatchRadius)
+    return fail("/radius: expected a whole number of pixels from 0 to " +
+                std::to_string(kMaxPatchRadius));
+  part.state.radius = radius.toInt();
+  part.state.reference_path = o["reference"].toString();
+  const QJsonArray samples = o["samples"].toArray();
+  for (qsizetype i = 0; i < samples.size(); ++i) {
+    const QJsonObject m = samples[i].toObject();
+    const auto a = readPoint(m["source"]), b = readPoint(m["reference"]);
+    if (!a || !b)
+      return fail("/samples/" + std::to_string(i) + ": expected source and reference [x, y]");
+    part.state.samples.push_back({*a, *b, m["enabled"].toBool(true)});
+  }
+  if (o.contains("colour_block")) {
+    const QByteArray text =
+        QJsonDocument(o["colour_block"].toObject()).toJson(QJsonDocument::Compact);
+    Result<ArtcamDocument> cam = parseArtcamJson(text.toStdString(), where + "/colour_block");
+    if (!cam) return Result<ColourProjectPart>::failure(cam.status.message);
+    part.colour_block = cam->camera;
+  }
+  return Result<ColourProjectPart>::success(std::move(part));
+}
+
+Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMatch>& samples) {
+  bool any_disabled = false;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const PointMatch& m = samples[i];
+    if (m.source.size() != 3 || m.target.size() != 3 || !m.source.allFinite() ||
+        !m.target.allFinite())
+      return Status::failure(path + ": cannot write: sample " + std::to_string(i + 1) +
+                             " is not two finite RGB colours");
+    any_disabled = any_disabled || !m.enabled;
+  }
+  std::string text = "src_r,src_g,src_b,dst_r,dst_g,dst_b";
+  text += any_disabled ? ",enabled\n" : "\n";
+  char buffer[32];
+  for (const PointMatch& m : samples) {
+    for (int k = 0; k < 6; ++k) {
+      const double v = k < 3 ? m.source[k] : m.target[k - 3];
+      // Locale-free %.17g: the GUI runs under the user's locale (decimal commas).
+      const auto r =
+          std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
+      text += (k ? "," : "") + std::string(buffer, r.ptr);
+    }
+    if (any_disabled) text += m.enabled ? ",1" : ",0";
+    text += "\n";
+  }
+  return writeTextAtomically(path, text);
+}
+
+}  // namespace artcam::ui
