@@ -6,20 +6,41 @@
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QCoreApplication>
+#include <QGuiApplication>
 #include <QStringList>
 
-int main(int argc, char** argv) {
-  QApplication app(argc, argv);
-  QApplication::setOrganizationName("ARTcam");
-  QApplication::setApplicationName("ARTcam Studio");
-  QApplication::setApplicationVersion("0.1.0");
+namespace {
 
-  QCommandLineParser parser;
-  parser.setApplicationDescription("Warp photographs through an ARTcam camera.");
+void describeCommandLine(QCommandLineParser& parser) {
+  QCoreApplication::setOrganizationName("ARTcam");
+  QCoreApplication::setApplicationName("ARTcam Studio");
+  QCoreApplication::setApplicationVersion("0.1.0");
+  parser.setApplicationDescription(
+      "Fit ARTcam cameras to point matches and warp photographs through them.\n"
+      "Qt's own options (-platform NAME, ...) are accepted too. The manual: man artcam-studio.");
   parser.addHelpOption();
   parser.addVersionOption();
   parser.addPositionalArgument("file",
                                "A photo, project (.artcamproj) or camera (.artcam) to open.");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // --help and --version answer before QApplication connects to a display, so they work in a
+  // terminal without one. Other errors wait for QApplication, which strips Qt's own options.
+  {
+    QCoreApplication probe(argc, argv);
+    QCommandLineParser parser;
+    describeCommandLine(parser);
+    parser.parse(QCoreApplication::arguments());
+    if (parser.isSet("help") || parser.isSet("version")) parser.process(probe);  // exits
+  }
+  QApplication app(argc, argv);
+  QGuiApplication::setDesktopFileName("org.artcam.Studio");  // Wayland app id = the .desktop file
+  QCommandLineParser parser;
+  describeCommandLine(parser);
   parser.process(app);
 
   artcam::ui::MainWindow window;

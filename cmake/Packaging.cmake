@@ -82,11 +82,12 @@ if(ARTCAM_BUILD_TESTS)
   set_tests_properties(app/cli_version PROPERTIES
     PASS_REGULAR_EXPRESSION "^artcam ${PROJECT_VERSION}\n$")
   if(TARGET artcam-studio)
-    # The version the studio reports is the project's; --help lists its options.
+    # The version the studio reports is the project's; --help lists its options. No display at
+    # all (xcb without DISPLAY would abort): both must answer before Qt opens one.
     add_test(NAME app/studio_version COMMAND artcam-studio --version)
     add_test(NAME app/studio_help COMMAND artcam-studio --help)
     set_tests_properties(app/studio_version app/studio_help PROPERTIES
-      ENVIRONMENT "QT_QPA_PLATFORM=offscreen")
+      ENVIRONMENT "QT_QPA_PLATFORM=xcb;DISPLAY=;WAYLAND_DISPLAY=")
     set_tests_properties(app/studio_version PROPERTIES
       PASS_REGULAR_EXPRESSION "^ARTcam Studio ${PROJECT_VERSION}\n$")
     set_tests_properties(app/studio_help PROPERTIES
