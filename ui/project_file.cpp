@@ -1,6 +1,7 @@
 #include "ui/project_file.h"
 
 #include "core/io/artcam_file.h"
+#include "ui/preview_view.h"
 
 #include <QDir>
 #include <QFile>
@@ -10,7 +11,10 @@
 #include <QJsonObject>
 #include <QSaveFile>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 
 namespace artcam::ui {
 namespace {
@@ -26,6 +30,31 @@ std::optional<Eigen::Vector2d> readPoint(const QJsonValue& v) {
 }
 
 std::string str(const QString& s) { return s.toStdString(); }
+
+// A depth mask larger than this is refused before it is allocated (two bytes per pixel while it
+// is decoded): 2^30 pixels is beyond any photo the studio edits (a 30 000 × 20 000 photo is
+// 0.6 Gpix), and a few bytes of runs must not be able to ask for gigabytes.
+constexpr std::uint64_t kMaxMaskPixels = std::uint64_t{1} << 30;
+
+// Pixels the run bytes cover, read with region_mask.h's grammar (a value byte, then the run
+// length as a little-endian base-128 varint) but without allocating the mask; nullopt when the
+// bytes are malformed. Lets a lying size or broken runs be refused before anything is allocated.
+std::optional<std::uint64_t> pixelsCoveredByRuns(const QByteArray& runs) {
+  std::uint64_t covered = 0;
+  qsizetype i = 0;
+  while (i < runs.size()) {
+    ++i;  // the value byte
+    std::uint64_t run = 0;
+    for (int shift = 0;; shift += 7) {
+      if (i >= runs.size() || shift > 35) return std::nullopt;
+      const auto b = static_cast<std::uint8_t>(runs[i++]);
+      run |= static_cast<std::uint64_t>(b & 0x7f) << shift;
+      if (!(b & 0x80)) break;
+    }
+    covered += run;  // at most 2^42 per run: no overflow for any file that fits in memory
+  }
+  return covered;
+}
 
 QString pathForFile(const QString& path, const QString& project_path) {
   const QDir base = QFileInfo(project_path).absoluteDir();
@@ -79,9 +108,19 @@ Status parseDepth(const QJsonObject& depth, const std::string& name, const QStri
                                                   QByteArray::AbortOnBase64DecodingErrors);
     if (raw.isEmpty() && !o["mask"].toString().isEmpty())
       return Status::failure(where + "/mask: not base64");
+    const int width = size[0].toInt(), height = size[1].toInt();
+    const std::uint64_t pixels = static_cast<std::uint64_t>(std::max(width, 0)) *
+                                 static_cast<std::uint64_t>(std::max(height, 0));
+    if (pixels > kMaxMaskPixels)
+      return Status::failure(where + "/size: " + std::to_string(width) + "x" +
+                             std::to_string(height) + " is larger than the 2^30-pixel limit of a mask");
+    const auto covered = pixelsCoveredByRuns(raw);
+    if (!covered) return Status::failure(where + "/mask: truncated or malformed run lengths");
+    if (pixels > 0 && *covered != pixels)
+      return Status::failure(where + "/mask: runs cover " + std::to_string(*covered) + " of " +
+                             std::to_string(pixels) + " pixels");
     const std::vector<uint8_t> runs(raw.begin(), raw.end());
-    Result<RegionMask> mask =
-        decodeMaskRuns(runs, size[0].toInt(), size[1].toInt(), where + "/mask");
+    Result<RegionMask> mask = decodeMaskRuns(runs, width, height, where + "/mask");
     if (!mask) return mask.status;
     l.mask = std::move(*mask.value);
     const QJsonArray anchors = o["anchors"].toArray();
@@ -200,6 +239,15 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
   if (centre) p.view.centre = QPointF(centre->x(), centre->y());
   p.view.preview_mode = view["preview_mode"].toInt(0);
   p.view.opacity = view["opacity"].toDouble(0.5);
+  // The view is restored as it is read (the mode becomes an enum, the scale a zoom), so values no
+  // studio writes are refused here rather than turned into a broken view.
+  if (!(p.view.scale >= 0.0) || !std::isfinite(p.view.scale))
+    return Result<Project>::failure(name + ": /view/scale: expected a number ≥ 0");
+  if (p.view.preview_mode < 0 || p.view.preview_mode > static_cast<int>(PreviewMode::WarpedOnly))
+    return Result<Project>::failure(name + ": /view/preview_mode: expected 0 to " +
+                                    std::to_string(static_cast<int>(PreviewMode::WarpedOnly)));
+  if (!(p.view.opacity >= 0.0 && p.view.opacity <= 1.0))
+    return Result<Project>::failure(name + ": /view/opacity: expected a number from 0 to 1");
   if (root.contains("parts")) {
     if (!root["parts"].isObject())
       return Result<Project>::failure(name + ": /parts: expected an object of named parts");

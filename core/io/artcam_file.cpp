@@ -62,13 +62,18 @@ double numberAt(const Json& j, const std::string& path) {
   return value;
 }
 
-long long wholeNumberAt(const Json& j, const std::string& path, long long min) {
+// Whole numbers end up in ints: 2^31 and above would wrap (to a negative frame size).
+long long wholeNumberAt(const Json& j, const std::string& path, long long min,
+                        long long max = (1LL << 31) - 1) {
   if (!j.is_number_integer()) refuse(path, "expected a whole number, found " + describe(j));
-  if (j.is_number_unsigned() && j.get<unsigned long long>() > (1ULL << 31))
-    refuse(path, "number out of range: " + describe(j));
+  if (j.is_number_unsigned() && j.get<unsigned long long>() > static_cast<unsigned long long>(max))
+    refuse(path, "number out of range: " + describe(j) + " (at most " + std::to_string(max) + ")");
   const long long value = j.get<long long>();
-  if (value < min || value > (1LL << 31))
+  if (value < min)
     refuse(path, "expected a whole number of at least " + std::to_string(min) + ", found " +
+                     std::to_string(value));
+  if (value > max)
+    refuse(path, "expected a whole number of at most " + std::to_string(max) + ", found " +
                      std::to_string(value));
   return value;
 }
@@ -97,10 +102,14 @@ std::string stringAt(const Json& j, const std::string& path) {
   return j.get<std::string>();
 }
 
+// A frame is the size of the image a renderer allocates; a side beyond 2^20 pixels (a million)
+// is no photo but a corrupt or hostile file, refused here before anything renders it.
+constexpr long long kMaxFrameSide = 1LL << 20;
+
 FrameSize frameAt(const Json& j, const std::string& path) {
   if (!j.is_array() || j.size() != 2) refuse(path, "expected [w, h], found " + describe(j));
-  return {static_cast<int>(wholeNumberAt(j[0], path + "/0", 0)),
-          static_cast<int>(wholeNumberAt(j[1], path + "/1", 0))};
+  return {static_cast<int>(wholeNumberAt(j[0], path + "/0", 0, kMaxFrameSide)),
+          static_cast<int>(wholeNumberAt(j[1], path + "/1", 0, kMaxFrameSide))};
 }
 
 std::vector<Block> blocksAt(const Json& j, const std::string& path) {
@@ -141,13 +150,15 @@ Stage stageAt(const Json& j, const std::string& path, int n) {
     if (rows.size() != count)
       refuse(tensor_path,
              "expected " + std::to_string(n) + " rows, found " + std::to_string(rows.size()));
+    // Every row is read before the n×n matrix is allocated: a file listing n empty rows must
+    // not make us allocate n² doubles (30 000 empty rows, 90 kB, would ask for 7 GB).
+    std::vector<std::vector<double>> values;
+    for (size_t r = 0; r < count; ++r)
+      values.push_back(numbersAt(rows[r], tensor_path + "/" + std::to_string(r), count));
     Eigen::MatrixXd q(n, n);
-    for (size_t r = 0; r < count; ++r) {
-      const std::vector<double> row =
-          numbersAt(rows[r], tensor_path + "/" + std::to_string(r), count);
+    for (size_t r = 0; r < count; ++r)
       for (size_t c = 0; c < count; ++c)
-        q(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = row[c];
-    }
+        q(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = values[r][c];
     stage.q.push_back(std::move(q));
   }
   return stage;
@@ -420,6 +431,32 @@ void emit(const Json& j, int indent, std::string& out) {
   out += std::string(static_cast<size_t>(indent), ' ') + (j.is_array() ? "]" : "}");
 }
 
+// Deeper nesting than any .artcam needs is refused before parsing: readers that embed a
+// document (piecewise patches, projects) re-serialise parts of the tree recursively, and a
+// few hundred kilobytes of "[[[[" would overflow the stack there. Brackets inside strings
+// do not count. Returns the byte offset where the limit is crossed, or npos.
+constexpr int kMaxJsonDepth = 64;
+
+size_t tooDeepAt(std::string_view text) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return k;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string_view::npos;
+}
+
 // "line L, column C" of the byte nlohmann stopped at (1-based, counted in bytes).
 std::string positionOf(std::string_view text, size_t byte) {
   const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
@@ -432,6 +469,10 @@ std::string positionOf(std::string_view text, size_t byte) {
 }  // namespace
 
 Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string& name) {
+  if (const size_t deep = tooDeepAt(text); deep != std::string_view::npos)
+    return Result<ArtcamDocument>::failure(name + ": " + positionOf(text, deep + 1) +
+                                           ": nested deeper than " + std::to_string(kMaxJsonDepth) +
+                                           " levels (not an ARTcam file)");
   Json root;
   try {
     root = Json::parse(text.begin(), text.end());

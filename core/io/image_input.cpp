@@ -2,6 +2,7 @@
 
 #include "core/io/io_text.h"
 
+#include <exception>
 #include <filesystem>
 #include <system_error>
 
@@ -15,12 +16,35 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
                       (std::filesystem::exists(path, error) ? "not a file" : "no such file"));
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
+  OIIO::ImageInput::unique_ptr in;
+  try {
+    in = OIIO::ImageInput::open(path, &config);
+  } catch (const std::exception& e) {
+    // OIIO 2.4's GIF reader throws std::length_error on a 34-byte file that starts "GIF89a"
+    // (tests/core/io/test_hostile_images.cpp); a decoder's exception is a refusal like any other.
+    return R::failure(path + ": cannot read: the decoder failed: " + io_text::oneLine(e.what()));
+  }
   if (!in) return R::failure(path + ": cannot read: " + io_text::oneLine(OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     return R::failure(path + ": cannot read: the image is empty");
   if (spec.depth > 1) return R::failure(path + ": cannot read: volume images are not supported");
+  // A header can claim any size; the readers allocate what it claims before decoding. No codec
+  // OpenImageIO reads packs more than kMaxCompression decoded bytes into one file byte (deflate
+  // peaks at 1032:1, LZW near 2700:1), so a claim beyond that is a corrupt or truncated file,
+  // refused before gigabytes are asked for (a 67-byte PNG can claim 100 000 × 100 000 pixels).
+  constexpr double kMaxCompression = 4096.0;
+  const double decoded_bytes = static_cast<double>(spec.width) * static_cast<double>(spec.height) *
+                               static_cast<double>(spec.nchannels) *
+                               static_cast<double>(spec.format.size());
+  const double file_bytes = static_cast<double>(std::filesystem::file_size(path, error));
+  if (!error && decoded_bytes > kMaxCompression * file_bytes)
+    return R::failure(path + ": cannot read: the header claims " + std::to_string(spec.width) +
+                      "x" + std::to_string(spec.height) + " pixels (" +
+                      std::to_string(static_cast<long long>(decoded_bytes / 1e6)) +
+                      " MB decoded) but the file holds only " +
+                      std::to_string(static_cast<long long>(file_bytes)) +
+                      " bytes (corrupt or truncated)");
   return R::success(std::move(in));
 }
 

@@ -3,6 +3,7 @@
 // type) refuse the same files with the same one-line messages.
 #pragma once
 
+#include "core/io/io_text.h"
 #include "core/model/status.h"
 
 #include <OpenImageIO/imageio.h>
@@ -14,6 +15,14 @@ namespace artcam::io_input {
 // A regular file OpenImageIO opens, with at least one pixel and channel and not a volume; alpha
 // is asked for unassociated (the readers premultiply themselves).
 Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path);
+
+// A decode that returned true may still have met damage: libjpeg fills a truncated JPEG with
+// grey and only warns, which OIIO records as an error. Call after reading; failure names the
+// file and OIIO's message.
+inline Status decodeProblems(OIIO::ImageInput& in, const std::string& path) {
+  if (!in.has_error()) return Status::success();
+  return Status::failure(path + ": cannot read: " + io_text::oneLine(in.geterror()));
+}
 
 // Channels a reader keeps (beyond the fourth — EXR depth, masks — they are left behind) and the
 // alpha channel among them, or -1.

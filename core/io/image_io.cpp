@@ -138,20 +138,26 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   const bool tables =
       (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
       (!associated || linear);
-  if (tables && spec.format == OIIO::TypeDesc::UINT8) {
-    std::vector<std::uint8_t> stored(image.data.size());
-    ok = read(OIIO::TypeDesc::UINT8, stored.data());
-    if (ok && !context.cancelled) decodeIntegers(stored, transfer, image);
-  } else if (tables) {
-    std::vector<std::uint16_t> stored(image.data.size());
-    ok = read(OIIO::TypeDesc::UINT16, stored.data());
-    if (ok && !context.cancelled) decodeIntegers(stored, transfer, image);
-  } else {
-    ok = read(OIIO::TypeDesc::FLOAT, image.data.data());
-    if (ok && !context.cancelled) decodeFloats(transfer, associated && !linear, image);
+  try {
+    if (tables && spec.format == OIIO::TypeDesc::UINT8) {
+      std::vector<std::uint8_t> stored(image.data.size());
+      ok = read(OIIO::TypeDesc::UINT8, stored.data());
+      if (ok && !context.cancelled) decodeIntegers(stored, transfer, image);
+    } else if (tables) {
+      std::vector<std::uint16_t> stored(image.data.size());
+      ok = read(OIIO::TypeDesc::UINT16, stored.data());
+      if (ok && !context.cancelled) decodeIntegers(stored, transfer, image);
+    } else {
+      ok = read(OIIO::TypeDesc::FLOAT, image.data.data());
+      if (ok && !context.cancelled) decodeFloats(transfer, associated && !linear, image);
+    }
+  } catch (const std::exception& e) {  // a decoder's exception (see image_input.cpp)
+    return R::failure(path + ": cannot read: the decoder failed: " + oneLine(e.what()));
   }
   if (context.cancelled) return R::failure(path + ": cannot read: cancelled");
   if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));
+  if (const Status damage = io_input::decodeProblems(*in, path); !damage)
+    return R::failure(damage.message);
   if (!associated) premultiply(image);
   in->close();
 

@@ -118,14 +118,13 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 // Pairs of `names.size() / 2` numbers per side under the header `names` (+ optional enabled).
-Result<std::vector<PointMatch>> readPairsCsv(const std::string& path,
-                                             const std::vector<std::string>& names) {
+// `path` names the file in messages.
+Result<std::vector<PointMatch>> parsePairsCsv(std::string_view text, const std::string& path,
+                                              const std::vector<std::string>& names) {
   using R = Result<std::vector<PointMatch>>;
-  const std::optional<std::string> text = readText(path);
-  if (!text) return R::failure(path + ": cannot read: no such file or not readable");
   const int dimension = static_cast<int>(names.size() / 2);
   const size_t numbers = names.size();
-  const std::vector<Line> lines = contentLines(*text);
+  const std::vector<Line> lines = contentLines(text);
   if (lines.empty()) return R::failure(path + ": empty, expected the header " + joined(names));
 
   // Header: the coordinate columns, optionally followed by "enabled" (0/1, true/false).
@@ -176,25 +175,57 @@ Result<std::vector<PointMatch>> readPairsCsv(const std::string& path,
 
 }  // namespace
 
-Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension) {
+Result<std::vector<PointMatch>> parseMatchesCsv(std::string_view text, const std::string& name,
+                                                int dimension) {
   using R = Result<std::vector<PointMatch>>;
   if (dimension != 2 && dimension != 3)
-    return R::failure(path + ": matches must have 2 or 3 coordinates per side, not " +
+    return R::failure(name + ": matches must have 2 or 3 coordinates per side, not " +
                       std::to_string(dimension));
-  return readPairsCsv(path, dimension == 2 ? std::vector<std::string>{"src_x", "src_y", "dst_x", "dst_y"}
-                                           : std::vector<std::string>{"src_x", "src_y", "src_z",
-                                                                      "dst_x", "dst_y", "dst_z"});
+  return parsePairsCsv(text, name,
+                       dimension == 2 ? std::vector<std::string>{"src_x", "src_y", "dst_x", "dst_y"}
+                                      : std::vector<std::string>{"src_x", "src_y", "src_z",
+                                                                 "dst_x", "dst_y", "dst_z"});
+}
+
+Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension) {
+  const std::optional<std::string> text = readText(path);
+  if (!text)
+    return Result<std::vector<PointMatch>>::failure(path +
+                                                    ": cannot read: no such file or not readable");
+  return parseMatchesCsv(*text, path, dimension);
 }
 
 Result<std::vector<PointMatch>> readColourSamplesCsv(const std::string& path,
                                                      ColourEncoding encoding) {
+  const std::optional<std::string> text = readText(path);
+  if (!text)
+    return Result<std::vector<PointMatch>>::failure(path +
+                                                    ": cannot read: no such file or not readable");
+  return parseColourSamplesCsv(*text, path, encoding);
+}
+
+Result<std::vector<PointMatch>> parseColourSamplesCsv(std::string_view text,
+                                                      const std::string& name,
+                                                      ColourEncoding encoding) {
   auto samples =
-      readPairsCsv(path, {"src_r", "src_g", "src_b", "dst_r", "dst_g", "dst_b"});
+      parsePairsCsv(text, name, {"src_r", "src_g", "src_b", "dst_r", "dst_g", "dst_b"});
   if (samples && encoding == ColourEncoding::Srgb) {
     const Transfer srgb = Transfer::srgb();
-    for (PointMatch& sample : *samples)
-      for (Eigen::VectorXd* side : {&sample.source, &sample.target})
-        for (Eigen::Index k = 0; k < 3; ++k) (*side)[k] = srgb.decode((*side)[k]);
+    const char* const names[] = {"src_r", "src_g", "src_b", "dst_r", "dst_g", "dst_b"};
+    for (size_t s = 0; s < samples->size(); ++s) {
+      PointMatch& sample = (*samples)[s];
+      for (int k = 0; k < 6; ++k) {
+        double& value = k < 3 ? sample.source[k] : sample.target[k - 3];
+        const double encoded = value;
+        value = srgb.decode(encoded);
+        // The decode raises to the power 2.4: a huge encoded value (1e308) overflows to inf.
+        if (!std::isfinite(value))
+          return Result<std::vector<PointMatch>>::failure(
+              name + ": sample " + std::to_string(s + 1) + ", column " + std::to_string(k + 1) +
+              " (" + names[k] + "): sRGB value " + std::to_string(encoded) +
+              " decodes to a non-finite linear value (sRGB-encoded values are 0…1)");
+      }
+    }
   }
   return samples;
 }

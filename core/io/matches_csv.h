@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace artcam {
@@ -35,6 +36,12 @@ enum class ColourEncoding { Linear, Srgb };
 Result<std::vector<PointMatch>> readColourSamplesCsv(const std::string& path,
                                                      ColourEncoding encoding = ColourEncoding::Linear);
 Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path);
+// The same readers on text already in memory; `name` stands for the file in messages (the
+// fuzz targets in fuzz/ call these).
+Result<std::vector<PointMatch>> parseMatchesCsv(std::string_view text, const std::string& name,
+                                                int dimension = 2);
+Result<std::vector<PointMatch>> parseColourSamplesCsv(
+    std::string_view text, const std::string& name, ColourEncoding encoding = ColourEncoding::Linear);
 // Writes the header and rows with %.17g numbers (locale-free, round-trip exact; atomic).
 Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches);
 

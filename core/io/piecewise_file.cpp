@@ -26,8 +26,14 @@ Result<PiecewiseDocument> readPiecewiseFile(const std::string& path) {
   if (!in) return fail(path + ": cannot read: no such file or not readable");
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  auto whole = parseArtcamJson(text, path);  // names syntax errors by line and column
+  if (in.bad()) return fail(path + ": cannot read: I/O error");
+  return parsePiecewiseJson(buffer.str(), path);
+}
+
+Result<PiecewiseDocument> parsePiecewiseJson(std::string_view text, const std::string& path) {
+  // Names syntax errors by line and column, and refuses nesting deep enough to overflow the
+  // stack when a patch's camera is re-serialised below.
+  auto whole = parseArtcamJson(text, path);
   if (!whole) return fail(whole.status.message);
 
   PiecewiseDocument doc{*whole, std::nullopt};
@@ -77,6 +83,8 @@ Result<PiecewiseDocument> readPiecewiseFile(const std::string& path) {
         patch.support.emplace_back(v[0].get<double>(), v[1].get<double>());
       }
     }
+    if (p.contains("model") && !p["model"].is_string())
+      return fail(where + "/model: expected a string");
     patch.model = p.value("model", std::string());
     patch.matches = p.contains("matches") && p["matches"].is_number_integer() ? p["matches"].get<int>() : 0;
     if (p.contains("rms_px") && finiteNumber(p["rms_px"])) patch.rms_px = p["rms_px"].get<double>();

@@ -19,6 +19,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace artcam {
 
@@ -28,6 +29,8 @@ struct PiecewiseDocument {
 };
 
 Result<PiecewiseDocument> readPiecewiseFile(const std::string& path);
+// The same on text in memory; `name` stands for the file in messages.
+Result<PiecewiseDocument> parsePiecewiseJson(std::string_view text, const std::string& name);
 Status writePiecewiseFile(const std::string& path, const PiecewiseDocument& document);
 
 }  // namespace artcam

@@ -160,24 +160,30 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   CancelHook context{options.progress};
   const OIIO::ProgressCallback callback = context.callback();
   bool ok = true;
-  if (spec.tile_width > 0) {
-    ok = in->read_image(0, 0, 0, channels, oiioType(type), image.bytes.data(), OIIO::AutoStride,
-                        OIIO::AutoStride, OIIO::AutoStride, callback, &context);
-  } else {
-    // Bands of scanlines straight into the image: OIIO's read_image decodes a JPEG into a
-    // whole-image buffer of its own first (measured +65 MiB for 24 Mpix).
-    constexpr int kBand = 64;
-    const size_t row_bytes = static_cast<size_t>(image.width) * static_cast<size_t>(channels) *
-                             static_cast<size_t>(pixelTypeSize(type));
-    for (int y = 0; ok && y < spec.height && !context.cancelled; y += kBand) {
-      const int y1 = std::min(spec.height, y + kBand);
-      ok = in->read_scanlines(0, 0, spec.y + y, spec.y + y1, 0, 0, channels, oiioType(type),
-                              image.bytes.data() + static_cast<size_t>(y) * row_bytes);
-      if (callback) callback(&context, static_cast<float>(y1) / static_cast<float>(spec.height));
+  try {
+    if (spec.tile_width > 0) {
+      ok = in->read_image(0, 0, 0, channels, oiioType(type), image.bytes.data(), OIIO::AutoStride,
+                          OIIO::AutoStride, OIIO::AutoStride, callback, &context);
+    } else {
+      // Bands of scanlines straight into the image: OIIO's read_image decodes a JPEG into a
+      // whole-image buffer of its own first (measured +65 MiB for 24 Mpix).
+      constexpr int kBand = 64;
+      const size_t row_bytes = static_cast<size_t>(image.width) * static_cast<size_t>(channels) *
+                               static_cast<size_t>(pixelTypeSize(type));
+      for (int y = 0; ok && y < spec.height && !context.cancelled; y += kBand) {
+        const int y1 = std::min(spec.height, y + kBand);
+        ok = in->read_scanlines(0, 0, spec.y + y, spec.y + y1, 0, 0, channels, oiioType(type),
+                                image.bytes.data() + static_cast<size_t>(y) * row_bytes);
+        if (callback) callback(&context, static_cast<float>(y1) / static_cast<float>(spec.height));
+      }
     }
+  } catch (const std::exception& e) {  // a decoder's exception (see image_input.cpp)
+    return R::failure(path + ": cannot read: the decoder failed: " + oneLine(e.what()));
   }
   if (context.cancelled) return R::failure(path + ": cannot read: cancelled");
   if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));
+  if (const Status damage = io_input::decodeProblems(*in, path); !damage)
+    return R::failure(damage.message);
   in->close();
   if (alpha >= 0 && !associated) {
     switch (type) {

@@ -1,0 +1,23 @@
+// libFuzzer target: the match-list CSV reader (core/io/matches_csv.h), 2D and 3D. The first
+// byte picks the dimension so one corpus covers both headers.
+#include "core/io/matches_csv.h"
+#include "fuzz/fuzz_check.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace artcam;
+  const int dimension = size > 0 && (data[0] & 1) ? 3 : 2;
+  const auto parsed = parseMatchesCsv(fuzz::textOf(data, size), fuzz::kInputName, dimension);
+  if (!parsed) {
+    fuzz::checkRefusal(parsed.status.message);
+    return 0;
+  }
+  for (const PointMatch& m : *parsed)
+    fuzz::require(m.source.size() == dimension && m.target.size() == dimension &&
+                      m.source.allFinite() && m.target.allFinite(),
+                  "matches have the header's dimension and finite coordinates");
+  return 0;
+}

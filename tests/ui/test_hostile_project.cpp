@@ -1,0 +1,73 @@
+// Replays the project-file fuzz corpus (fuzz/corpus/project/: seeds and nasty inputs, see
+// fuzz/fuzz_project.cpp) through readProject: every file parses or is refused with one line
+// naming the file and the cause; the nasty ones for the reason they were kept. The depth masks
+// of the nasty files claim up to 2^31 pixels: they must be refused before allocation.
+#include "ui/project_file.h"
+
+#include <QDir>
+#include <QFileInfo>
+#include <QtTest/QtTest>
+
+using namespace artcam;
+
+namespace {
+
+QString corpusDir() { return QStringLiteral(ARTCAM_SOURCE_DIR "/fuzz/corpus/project"); }
+
+QStringList corpusFiles() { return QDir(corpusDir()).entryList(QDir::Files, QDir::Name); }
+
+}  // namespace
+
+class TestHostileProject : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void corpus_data() {
+    QTest::addColumn<QString>("file");
+    const QStringList files = corpusFiles();
+    QVERIFY2(files.size() >= 3, "fuzz/corpus/project has fewer than 3 inputs");
+    for (const QString& f : files) QTest::newRow(f.toUtf8().constData()) << f;
+  }
+
+  void corpus() {
+    QFETCH(QString, file);
+    const Result<ui::Project> read = ui::readProject(corpusDir() + "/" + file);
+    if (file.startsWith("seed-")) {
+      QVERIFY2(read.ok(), read.status.message.c_str());
+      return;
+    }
+    if (read.ok()) return;
+    const std::string& m = read.status.message;
+    QVERIFY2(m.rfind(file.toStdString() + ": ", 0) == 0, m.c_str());
+    QVERIFY2(m.size() > static_cast<size_t>(file.size()) + 4, m.c_str());
+    QVERIFY2(m.find('\n') == std::string::npos, m.c_str());
+  }
+
+  void nastyRefusedForTheirReason_data() {
+    QTest::addColumn<QString>("file");
+    QTest::addColumn<QString>("cause");
+    QTest::newRow("giant mask")
+        << "nasty-giant-mask.artcamproj"
+        << "/depth/layers/0/size: 46340x46340 is larger than the 2^30-pixel limit";
+    QTest::newRow("lying mask") << "nasty-lying-mask.artcamproj"
+                                << "/depth/layers/0/mask: runs cover 8 of 900000000 pixels";
+    QTest::newRow("preview mode") << "nasty-preview-mode.artcamproj"
+                                  << "/view/preview_mode: expected 0 to 3";
+    QTest::newRow("deep nesting") << "nasty-deep-nesting.artcamproj"
+                                  << "not valid JSON at offset";
+    QTest::newRow("deep camera") << "nasty-deep-camera.artcamproj"
+                                 << "/camera: line 1, column 321: nested deeper than 64 levels";
+  }
+
+  void nastyRefusedForTheirReason() {
+    QFETCH(QString, file);
+    QFETCH(QString, cause);
+    const Result<ui::Project> read = ui::readProject(corpusDir() + "/" + file);
+    QVERIFY2(!read.ok(), file.toUtf8().constData());
+    QVERIFY2(read.status.message.find(cause.toStdString()) != std::string::npos,
+             read.status.message.c_str());
+  }
+};
+
+QTEST_GUILESS_MAIN(TestHostileProject)
+#include "test_hostile_project.moc"
