@@ -120,12 +120,14 @@ template <class T>
 }
 
 // 8-bit nearest and bilinear without leaving integers in the interior (most pixels): nearest
-// copies the bytes, bilinear uses weights of 1/256 (a position quantum of 1/512 px per axis,
-// eight times finer than OpenCV's 1/32) in exact integers, columns first:
-//   L = (256 − ay) p00 + ay p10, R = (256 − ay) p01 + ay p11, out = ((256 − ax) L + ax R + 2¹⁵) >> 16,
-// the one rounding at the end; the result is within one code value of the float path. Border
-// pixels take the float taps and their exact semantics. The AVX2 clone (span_sampler_avx2.h)
-// computes the same integers.
+// copies the bytes, bilinear weighs rows by 1/255 and columns by 1/256 (position quanta of
+// 1/510 and 1/512 px at worst, sixteen times finer than OpenCV's 1/32), in exact integers:
+//   L = (255 − ay) p00 + ay p10, R = (255 − ay) p01 + ay p11,
+//   out = ⌊((256 − ax) L + ax R + 32640) / 65280⌋,
+// the one rounding at the end; within one code value of the float path. Rows by 255ths, not
+// 256ths, so both row weights fit a byte (the AVX2 clone's _mm256_maddubs_epi16) and the lower
+// row is always y0 + 1. Border pixels take the float taps and their exact semantics. The AVX2
+// clone (span_sampler_avx2.h) computes the same integers.
 // A: alpha appended to a source without one (RGB → RGBA previews): 255 inside, the coverage
 // at the borders, as sampleSpan's general path.
 template <int C, Filter F, bool A = false>
@@ -146,15 +148,16 @@ long long sampleSpanU8(const Context& k, std::uint8_t* out, int n, const float* 
       }
     } else {
       if (valid[i] && fx >= 0.0f && fy >= 0.0f && fx < w - 1.0f && fy < h - 1.0f) {
-        const int qx = static_cast<int>(fx * 256.0f + 0.5f), qy = static_cast<int>(fy * 256.0f + 0.5f);
-        const int x0 = std::min(qx >> 8, w - 2), y0 = std::min(qy >> 8, h - 2);
-        const int ax = qx - (x0 << 8), ay = qy - (y0 << 8);  // 0 … 256
+        const int qx = static_cast<int>(fx * 256.0f + 0.5f);
+        const int x0 = std::min(qx >> 8, w - 2), y0 = static_cast<int>(fy);  // fy < h − 1
+        const int ax = qx - (x0 << 8);                                          // 0 … 256
+        const int ay = static_cast<int>((fy - static_cast<float>(y0)) * 255.0f + 0.5f);  // 0 … 255
         const std::uint8_t* r0 = pixelAt<std::uint8_t>(k, x0, y0, C);
         const std::uint8_t* r1 = pixelAt<std::uint8_t>(k, x0, y0 + 1, C);
         for (int c = 0; c < C; ++c) {
-          const int left = (256 - ay) * r0[c] + ay * r1[c];
-          const int right = (256 - ay) * r0[c + C] + ay * r1[c + C];
-          out[c] = static_cast<std::uint8_t>(((256 - ax) * left + ax * right + (1 << 15)) >> 16);
+          const int left = (255 - ay) * r0[c] + ay * r1[c];
+          const int right = (255 - ay) * r0[c + C] + ay * r1[c + C];
+          out[c] = static_cast<std::uint8_t>(((256 - ax) * left + ax * right + 32640) / 65280);
         }
         if (src_alpha >= 0) transparent += out[src_alpha] == 0;
         continue;

@@ -3,8 +3,8 @@
 // Runtime dispatch only: these functions carry __attribute__((target("avx2"))), the rest of the
 // program keeps the x86-64 baseline, and span_sampler.cpp picks them when the CPU reports AVX2
 // (the build never targets the host CPU as a whole). They compute EXACTLY what the scalar 8-bit
-// interior path computes — the same float→fixed-point rounding (q = int(f · 256 + 0.5), no FMA),
-// the same integer bilinear with weights of 1/256 and the same rounding — eight pixels at a time, so the tests
+// interior path computes — the same float→fixed-point rounding (no FMA), the same integer
+// bilinear (rows by 1/255, columns by 1/256) and the same rounding — eight pixels at a time, so the tests
 // can demand bit-identical output from the scalar fallback. A group of eight with any pixel
 // outside the interior (or without a preimage) goes to the scalar routine, which owns the
 // border semantics.
@@ -45,25 +45,26 @@ __attribute__((target("avx2"))) inline bool allInterior(__m256 fx, __m256 fy, __
 
 // bilinearU8's pieces. Pixels p and p + 4: [top 8 bytes | bottom 8 bytes] in one lane each.
 __attribute__((target("avx2"), always_inline)) inline __m256i pixelPair(const std::uint8_t* src,
-                                                                        const std::int32_t* top,
-                                                                        const std::int32_t* bottom, int p) {
+                                                                        const std::uint8_t* below,
+                                                                        const std::int32_t* top, int p) {
   const auto rows = [&](int q) __attribute__((always_inline)) {
     const __m128i t = _mm_loadl_epi64(static_cast<const __m128i*>(static_cast<const void*>(src + top[q])));
     return _mm_castpd_si128(
-        _mm_loadh_pd(_mm_castsi128_pd(t), static_cast<const double*>(static_cast<const void*>(src + bottom[q]))));
+        _mm_loadh_pd(_mm_castsi128_pd(t), static_cast<const double*>(static_cast<const void*>(below + top[q]))));
   };
   const __m128i a = rows(p), b = rows(p + 4);
   return _mm256_inserti128_si256(_mm256_castsi128_si256(a), b, 1);
 }
 
-// Rows, then columns: (256 − ay) top + ay bottom − 2¹⁵ per tap and channel (exact in 16 bits),
-// then (256 − ax) left + ax right + the bias, >> 16: one pixel per lane, channels in 32 bits.
+// Rows, then columns: (255 − ay) top + ay bottom − 128 · 255 per tap and channel (exact in 16
+// bits), then (256 − ax) left + ax right + the bias, >> 8: one pixel per lane, channels in 32
+// bits, still to be divided by 255.
 __attribute__((target("avx2"), always_inline)) inline __m256i weighPair(__m256i taps, __m256i y_weights,
                                                                         __m256i x_weights, __m256i pairs,
                                                                         __m256i sign, __m256i bias) {
   const __m256i signed_taps = _mm256_xor_si256(_mm256_shuffle_epi8(taps, pairs), sign);
   const __m256i columns = _mm256_maddubs_epi16(y_weights, signed_taps);
-  return _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(columns, x_weights), bias), 16);
+  return _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(columns, x_weights), bias), 8);
 }
 
 // Bilinear, C = 3 or 4 interleaved 8-bit channels (alpha, if any, premultiplied like the rest),
@@ -73,11 +74,13 @@ __attribute__((target("avx2"), always_inline)) inline __m256i weighPair(__m256i 
 //   128-bit lane, [top | bottom]; pixels k and k + 4 share a 256-bit register, so each one's
 //   weights are an in-lane broadcast of its 32-bit lane (no lane crossing);
 // - one shuffle orders the bytes as (top, bottom) pairs per channel and tap, one
-//   _mm256_maddubs_epi16 weighs the rows: the unsigned operand is the weights (256 − ay, ay),
-//   the signed one the pixels − 128 (xor 0x80), so L − 2¹⁵ is exact in 16 bits. The weight
-//   256 (ay = 0) does not fit a byte: then both rows are the top one, weighted 128 + 128.
-// - one _mm256_madd_epi16 weighs the columns (256 − ax, ax) into 32 bits, + 2²³ + 2¹⁵, >> 16;
+//   _mm256_maddubs_epi16 weighs the rows: the unsigned operand is the weights (255 − ay, ay),
+//   the signed one the pixels − 128 (xor 0x80), so L − 128 · 255 is exact in 16 bits;
+// - one _mm256_madd_epi16 weighs the columns (256 − ax, ax) into 32 bits; + the bias, >> 8,
+//   packed to 16 bits, ÷ 255 as (q · 0x8081) >> 23 (exact for every 16-bit q);
 // - two packs put pixels 0–3 in the low lane and 4–7 in the high one, in order.
+// Offsets go from vector to general registers by 64-bit extracts (a round trip through memory
+// stalled on store forwarding).
 template <int C, bool kAppendAlpha = false>
 __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context& k, std::uint8_t* out,
                                                      int n, const float* sx, const float* sy,
@@ -85,17 +88,18 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
   static_assert(C == 3 || C == 4);
   static_assert(!kAppendAlpha || C == 3);  // RGB in, RGBA out: alpha = coverage, 1 inside
   constexpr int kOut = kAppendAlpha ? 4 : C;
-  const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(256.0f);
+  const __m256 half = _mm256_set1_ps(0.5f), scale_x = _mm256_set1_ps(256.0f), scale_y = _mm256_set1_ps(255.0f);
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
   // The 8-byte loads read past the right tap (RGB: two bytes), so the lower row must not be
-  // the image's last; this also keeps ay ≤ 255 (y0 needs no clamp, unlike the scalar path).
+  // the image's last.
   const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - 2.5f);
   const __m256i xlim = _mm256_set1_epi32(k.width - 2);
   const __m256i row = _mm256_set1_epi32(static_cast<int>(k.src_row));
-  const __m256i c256 = _mm256_set1_epi32(256), c128 = _mm256_set1_epi32(128 | (128 << 8));
+  const __m256i c255 = _mm256_set1_epi32(255), c256 = _mm256_set1_epi32(256);
   const __m256i zero = _mm256_setzero_si256();
   const __m256i sign = _mm256_set1_epi8(static_cast<char>(0x80));
-  const __m256i bias = _mm256_set1_epi32((1 << 23) + (1 << 15));
+  const __m256i bias = _mm256_set1_epi32(128 * 255 * 256 + 32640);
+  const __m256i div255 = _mm256_set1_epi16(static_cast<short>(0x8081));
   // [top 8 bytes | bottom 8 bytes] → (top, bottom) pairs for (c of tap 0, c of tap 1), c = R, G, B(, A).
   const __m128i pairs = C == 4 ? _mm_setr_epi8(0, 8, 4, 12, 1, 9, 5, 13, 2, 10, 6, 14, 3, 11, 7, 15)
                                : _mm_setr_epi8(0, 8, 3, 11, 1, 9, 4, 12, 2, 10, 5, 13, -1, -1, -1, -1);
@@ -103,6 +107,7 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
   // RGBx → RGB per lane: four pixels' 16 bytes into 12.
   const __m256i squeeze = _mm256_broadcastsi128_si256(
       _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
+  const std::uint8_t* below = k.src + k.src_row;
   long long transparent = 0;
   int i = 0;
   for (; i + 8 <= n; i += 8) {
@@ -112,46 +117,40 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
       transparent += scalar(k, out + i * kOut, 8, sx + i, sy + i, valid + i);
       continue;
     }
-    const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale), half));
-    const __m256i qy = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fy, scale), half));
+    const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale_x), half));
     const __m256i x0 = _mm256_min_epi32(_mm256_srai_epi32(qx, 8), xlim);
-    const __m256i y0 = _mm256_srai_epi32(qy, 8);
+    const __m256i y0 = _mm256_cvttps_epi32(fy);
     const __m256i ax = _mm256_sub_epi32(qx, _mm256_slli_epi32(x0, 8));  // 0 … 256
-    const __m256i ay = _mm256_and_si256(qy, _mm256_set1_epi32(255));    // 0 … 255
+    const __m256i ay = _mm256_cvttps_epi32(
+        _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0)), scale_y), half));  // 0 … 255
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x0, 2) : _mm256_add_epi32(x0, _mm256_slli_epi32(x0, 1));
     const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y0, row), xoff);
-    const __m256i flat = _mm256_cmpeq_epi32(ay, zero);  // ay = 0: the top row twice, 128 + 128
-    const __m256i off_bottom = _mm256_add_epi32(off, _mm256_andnot_si256(flat, row));
-    // Offsets into general registers (two per 64-bit extract) rather than through memory.
-    const __m128i tl = _mm256_castsi256_si128(off), th = _mm256_extracti128_si256(off, 1);
-    const __m128i bl = _mm256_castsi256_si128(off_bottom), bh = _mm256_extracti128_si256(off_bottom, 1);
-    const std::uint64_t t01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(tl)), t23 = static_cast<std::uint64_t>(_mm_extract_epi64(tl, 1));
-    const std::uint64_t t45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(th)), t67 = static_cast<std::uint64_t>(_mm_extract_epi64(th, 1));
-    const std::uint64_t b01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(bl)), b23 = static_cast<std::uint64_t>(_mm_extract_epi64(bl, 1));
-    const std::uint64_t b45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(bh)), b67 = static_cast<std::uint64_t>(_mm_extract_epi64(bh, 1));
-    const std::int32_t top[8] = {static_cast<std::int32_t>(t01), static_cast<std::int32_t>(t01 >> 32),
-                                 static_cast<std::int32_t>(t23), static_cast<std::int32_t>(t23 >> 32),
-                                 static_cast<std::int32_t>(t45), static_cast<std::int32_t>(t45 >> 32),
-                                 static_cast<std::int32_t>(t67), static_cast<std::int32_t>(t67 >> 32)};
-    const std::int32_t bottom[8] = {static_cast<std::int32_t>(b01), static_cast<std::int32_t>(b01 >> 32),
-                                    static_cast<std::int32_t>(b23), static_cast<std::int32_t>(b23 >> 32),
-                                    static_cast<std::int32_t>(b45), static_cast<std::int32_t>(b45 >> 32),
-                                    static_cast<std::int32_t>(b67), static_cast<std::int32_t>(b67 >> 32)};
-    // Bytes (256 − ay, ay, 256 − ay, ay) per lane; words (256 − ax, ax).
-    const __m256i wy_pair = _mm256_blendv_epi8(
-        _mm256_or_si256(_mm256_sub_epi32(c256, ay), _mm256_slli_epi32(ay, 8)), c128, flat);
+    const __m128i lo = _mm256_castsi256_si128(off), hi = _mm256_extracti128_si256(off, 1);
+    const std::uint64_t o01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(lo));
+    const std::uint64_t o23 = static_cast<std::uint64_t>(_mm_extract_epi64(lo, 1));
+    const std::uint64_t o45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(hi));
+    const std::uint64_t o67 = static_cast<std::uint64_t>(_mm_extract_epi64(hi, 1));
+    const std::int32_t top[8] = {static_cast<std::int32_t>(o01), static_cast<std::int32_t>(o01 >> 32),
+                                 static_cast<std::int32_t>(o23), static_cast<std::int32_t>(o23 >> 32),
+                                 static_cast<std::int32_t>(o45), static_cast<std::int32_t>(o45 >> 32),
+                                 static_cast<std::int32_t>(o67), static_cast<std::int32_t>(o67 >> 32)};
+    // Bytes (255 − ay, ay, 255 − ay, ay) per lane; words (256 − ax, ax).
+    const __m256i wy_pair = _mm256_or_si256(_mm256_sub_epi32(c255, ay), _mm256_slli_epi32(ay, 8));
     const __m256i wy = _mm256_or_si256(wy_pair, _mm256_slli_epi32(wy_pair, 16));
     const __m256i wx = _mm256_or_si256(_mm256_sub_epi32(c256, ax), _mm256_slli_epi32(ax, 16));
-    const __m256i p0 = weighPair(pixelPair(k.src, top, bottom, 0), _mm256_shuffle_epi32(wy, 0x00),
+    const __m256i p0 = weighPair(pixelPair(k.src, below, top, 0), _mm256_shuffle_epi32(wy, 0x00),
                                  _mm256_shuffle_epi32(wx, 0x00), pairs2, sign, bias);
-    const __m256i p1 = weighPair(pixelPair(k.src, top, bottom, 1), _mm256_shuffle_epi32(wy, 0x55),
+    const __m256i p1 = weighPair(pixelPair(k.src, below, top, 1), _mm256_shuffle_epi32(wy, 0x55),
                                  _mm256_shuffle_epi32(wx, 0x55), pairs2, sign, bias);
-    const __m256i p2 = weighPair(pixelPair(k.src, top, bottom, 2), _mm256_shuffle_epi32(wy, 0xAA),
+    const __m256i p2 = weighPair(pixelPair(k.src, below, top, 2), _mm256_shuffle_epi32(wy, 0xAA),
                                  _mm256_shuffle_epi32(wx, 0xAA), pairs2, sign, bias);
-    const __m256i p3 = weighPair(pixelPair(k.src, top, bottom, 3), _mm256_shuffle_epi32(wy, 0xFF),
+    const __m256i p3 = weighPair(pixelPair(k.src, below, top, 3), _mm256_shuffle_epi32(wy, 0xFF),
                                  _mm256_shuffle_epi32(wx, 0xFF), pairs2, sign, bias);
     // Low lane: pixels 0 1 2 3, high lane: 4 5 6 7, four bytes each.
-    __m256i bytes = _mm256_packus_epi16(_mm256_packus_epi32(p0, p1), _mm256_packus_epi32(p2, p3));
+    // ⌊q / 255⌋ = (q · 0x8081) >> 23 for every 16-bit q.
+    const __m256i q01 = _mm256_srli_epi16(_mm256_mulhi_epu16(_mm256_packus_epi32(p0, p1), div255), 7);
+    const __m256i q23 = _mm256_srli_epi16(_mm256_mulhi_epu16(_mm256_packus_epi32(p2, p3), div255), 7);
+    __m256i bytes = _mm256_packus_epi16(q01, q23);
     std::uint8_t* o = out + i * kOut;
     if constexpr (C == 4 || kAppendAlpha) {
       if constexpr (kAppendAlpha) bytes = _mm256_or_si256(bytes, _mm256_set1_epi32(static_cast<int>(0xFF000000u)));
@@ -177,8 +176,10 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
   return transparent;
 }
 
-// Nearest, C = 3 or 4: offsets for eight pixels at once, then one 4-byte load and store each.
-// RGB's 4-byte load reads one byte past the pixel, so the tap must not be on the last row.
+// Nearest, C = 3 or 4: offsets for eight pixels at once, into general registers (a round trip
+// through memory stalled on store forwarding: measured 2 ns/px), one 4-byte load each,
+// assembled four pixels per 128-bit register and stored as in bilinearU8. RGB's 4-byte load
+// reads one byte past the pixel, so the tap must not be on the last row.
 template <int C, bool kAppendAlpha = false>
 __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& k, std::uint8_t* out,
                                                     int n, const float* sx, const float* sy,
@@ -190,8 +191,9 @@ __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& 
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
   const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - (C == 3 ? 1.5f : 1.0f));
   const __m256i row = _mm256_set1_epi32(static_cast<int>(k.src_row));
+  const __m128i squeeze = _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+  const __m128i opaque = _mm_set1_epi32(static_cast<int>(0xFF000000u));
   long long transparent = 0;
-  alignas(32) std::int32_t off[8];
   int i = 0;
   for (; i + 8 <= n; i += 8) {
     const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx + i), half);
@@ -203,15 +205,41 @@ __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& 
     const __m256i x = _mm256_cvttps_epi32(_mm256_add_ps(fx, half));
     const __m256i y = _mm256_cvttps_epi32(_mm256_add_ps(fy, half));
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x, 2) : _mm256_add_epi32(x, _mm256_slli_epi32(x, 1));
-    _mm256_store_si256(static_cast<__m256i*>(static_cast<void*>(off)),
-                       _mm256_add_epi32(_mm256_mullo_epi32(y, row), xoff));
+    const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y, row), xoff);
+    const __m128i lo = _mm256_castsi256_si128(off), hi = _mm256_extracti128_si256(off, 1);
+    const std::uint64_t o01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(lo));
+    const std::uint64_t o23 = static_cast<std::uint64_t>(_mm_extract_epi64(lo, 1));
+    const std::uint64_t o45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(hi));
+    const std::uint64_t o67 = static_cast<std::uint64_t>(_mm_extract_epi64(hi, 1));
+    const auto at = [&](std::uint64_t pair, int second) __attribute__((always_inline)) {
+      return _mm_loadu_si32(k.src + static_cast<std::int32_t>(second ? pair >> 32 : pair));
+    };
+    const auto four = [&](std::uint64_t a, std::uint64_t b) __attribute__((always_inline)) {
+      return _mm_unpacklo_epi64(_mm_unpacklo_epi32(at(a, 0), at(a, 1)), _mm_unpacklo_epi32(at(b, 0), at(b, 1)));
+    };
+    __m128i first = four(o01, o23), second = four(o45, o67);
     std::uint8_t* o = out + i * kOut;
-    for (int j = 0; j < 8; ++j, o += kOut) {
-      std::uint32_t word;
-      std::memcpy(&word, k.src + off[j], 4);
-      if constexpr (kAppendAlpha) word |= 0xFF000000u;
-      std::memcpy(o, &word, kOut == 4 || j < 7 ? 4 : 3);
-      if (k.src_alpha >= 0) transparent += ((word >> (8 * k.src_alpha)) & 0xFFu) == 0;
+    if constexpr (C == 4 || kAppendAlpha) {
+      if constexpr (kAppendAlpha) {
+        first = _mm_or_si128(first, opaque);
+        second = _mm_or_si128(second, opaque);
+      }
+      _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o)), first);
+      _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 16)), second);
+      if (k.src_alpha >= 0) {
+        const __m128i z = _mm_setzero_si128();
+        const unsigned zero_bytes = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(first, z))) |
+                                    static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(second, z))) << 16;
+        transparent += __builtin_popcount(zero_bytes & (0x11111111u << k.src_alpha));
+      }
+    } else {
+      const __m128i a = _mm_shuffle_epi8(first, squeeze), b = _mm_shuffle_epi8(second, squeeze);
+      _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o)), a);
+      _mm_storel_epi64(static_cast<__m128i*>(static_cast<void*>(o + 12)), b);
+      const std::uint32_t last = static_cast<std::uint32_t>(_mm_extract_epi32(b, 2));
+      std::memcpy(o + 20, &last, 4);
+      if (k.src_alpha >= 0)
+        for (int p = 0; p < 8; ++p) transparent += o[3 * p + k.src_alpha] == 0;
     }
   }
   if (i < n) transparent += scalar(k, out + i * kOut, n - i, sx + i, sy + i, valid + i);

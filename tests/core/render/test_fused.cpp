@@ -243,7 +243,7 @@ class TestFused : public QObject {
             worst = std::max(worst, std::abs(got - expected));
           }
       // Integers round to nearest (0.5) plus float accumulation on a 65535 scale; 8-bit
-      // bilinear runs in fixed point (1/256 weights): within one code value.
+      // bilinear runs in fixed point (1/255 and 1/256 weights): within one code value.
       const double allowed = pt == PixelType::Float ? 1e-5 : pt == PixelType::UInt8 ? 1.0 : 0.5 + 1e-5 * full;
       QVERIFY2(worst <= allowed, qPrintable(QString("%1: worst %2").arg(filterName(f).data()).arg(worst)));
     }
