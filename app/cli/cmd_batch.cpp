@@ -193,6 +193,7 @@ int batchCommand(const std::vector<std::string>& argv) {
   decoder.join();
   encoder.join();
 
+  bar.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int written = tally.written.load(), failed = tally.failed.load();

@@ -82,6 +82,7 @@ int warpCommand(const std::vector<std::string>& argv) {
     DecodedInput decoded = decodeForWarp(camera, input, *output, stage("reading"));
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
     encodeWarp(rendered, stage("writing"));
+    bar.finish();
     if (request.stats && !rendered.written) {
       const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
       std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms,
@@ -93,6 +94,7 @@ int warpCommand(const std::vector<std::string>& argv) {
   } catch (const CommandError&) {
     if (!interruptRequested()) throw;
   }
+  bar.finish();
   if (interruptRequested()) {
     std::fprintf(stderr, "artcam warp: interrupted; %s not written\n", output->c_str());
     return interruptExitCode();

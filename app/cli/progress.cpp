@@ -59,6 +59,12 @@ void ProgressBar::error(const std::string& line) {
   redrawLocked(true);
 }
 
+void ProgressBar::finish() {
+  const std::lock_guard lock(mutex_);
+  clearLocked();
+  finished_ = true;
+}
+
 void ProgressBar::clearLocked() {
   if (!drawn_) return;
   std::fprintf(stderr, "\r\033[K");
@@ -67,7 +73,7 @@ void ProgressBar::clearLocked() {
 }
 
 void ProgressBar::redrawLocked(bool force) {
-  if (!terminal_) return;
+  if (!terminal_ || finished_) return;
   const auto now = std::chrono::steady_clock::now();
   if (!force && now - last_draw_ < std::chrono::milliseconds(100)) return;
   last_draw_ = now;

@@ -29,6 +29,8 @@ class ProgressBar {
   void itemDone(double megapixels, const std::string& line);
   // An error line, always printed (above the bar on a terminal).
   void error(const std::string& line);
+  // Clears the bar for good (before the job's own last lines on stdout).
+  void finish();
 
  private:
   void redrawLocked(bool force);
@@ -45,6 +47,7 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point last_draw_{};
   bool drawn_ = false;
+  bool finished_ = false;
 };
 
 }  // namespace artcam::cli
