@@ -18,7 +18,8 @@ ImageF rasteriseDepth(const std::vector<DepthLayer>& layers, int photo_width, in
     if (!layer.mask || layer.mask->width() != photo_width || layer.mask->height() != photo_height)
       throw std::invalid_argument("rasteriseDepth: a layer's mask is not the photo's size");
   if (base_map && (base_map->empty() || base_map->channels < 1 || base_map->channels > 2))
-    throw std::invalid_argument("rasteriseDepth: the base map must be a 1- or 2-channel depth image");
+    throw std::invalid_argument(
+        "rasteriseDepth: the base map must be a 1- or 2-channel depth image");
   if (!(options.max_depth > 0.0) || !std::isfinite(options.max_depth))
     throw std::invalid_argument("rasteriseDepth: max_depth must be finite and positive");
 
@@ -44,8 +45,10 @@ ImageF rasteriseDepth(const std::vector<DepthLayer>& layers, int photo_width, in
         double inv = 0.0;  // premultiplied inverse depth
         double alpha = 0.0;
         if (base_map) {
-          const int bx = std::min(base_map->width - 1, static_cast<int>(px * base_map->width / photo_width));
-          const int by = std::min(base_map->height - 1, static_cast<int>(py * base_map->height / photo_height));
+          const int bx =
+              std::min(base_map->width - 1, static_cast<int>(px * base_map->width / photo_width));
+          const int by = std::min(base_map->height - 1,
+                                  static_cast<int>(py * base_map->height / photo_height));
           const float* b = base_map->pixel(bx, by);
           // (a·z, a), or z alone (depth_file.h: coverage 1 where z > 0).
           const double a = base_map->channels == 2 ? std::min(1.0, static_cast<double>(b[1])) : 1.0;

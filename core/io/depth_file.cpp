@@ -29,14 +29,19 @@ bool readFirstChannel(OIIO::ImageInput& in, std::vector<float>& values) {
   const auto widen = [&](auto tag, OIIO::TypeDesc type) {
     std::vector<decltype(tag)> raw(n);
     if (!in.read_image(0, 0, 0, 1, type, raw.data())) return false;
-    std::transform(raw.begin(), raw.end(), values.begin(), [](auto v) { return static_cast<float>(v); });
+    std::transform(raw.begin(), raw.end(), values.begin(),
+                   [](auto v) { return static_cast<float>(v); });
     return true;
   };
   switch (t) {
-    case OIIO::TypeDesc::UINT8: return widen(uint8_t{}, OIIO::TypeDesc::UINT8);
-    case OIIO::TypeDesc::INT8: return widen(int8_t{}, OIIO::TypeDesc::INT8);
-    case OIIO::TypeDesc::UINT16: return widen(uint16_t{}, OIIO::TypeDesc::UINT16);
-    default: return widen(int16_t{}, OIIO::TypeDesc::INT16);
+    case OIIO::TypeDesc::UINT8:
+      return widen(uint8_t{}, OIIO::TypeDesc::UINT8);
+    case OIIO::TypeDesc::INT8:
+      return widen(int8_t{}, OIIO::TypeDesc::INT8);
+    case OIIO::TypeDesc::UINT16:
+      return widen(uint16_t{}, OIIO::TypeDesc::UINT16);
+    default:
+      return widen(int16_t{}, OIIO::TypeDesc::INT16);
   }
 }
 
@@ -57,17 +62,20 @@ Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& op
     return R::failure(path + ": the depth map is too large (" + std::to_string(spec.width) + "x" +
                       std::to_string(spec.height) + ")");
   std::vector<float> values;
+  const double scale =
+      isInteger(static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype)) ? options.scale : 1.0;
   if (!readFirstChannel(in, values))
     return R::failure(path + ": cannot read pixels: " + io_text::oneLine(in.geterror()));
 
-  const double disparity_factor =
-      options.baseline_focal > 0.0 ? options.baseline_focal : options.inverse ? 1.0 : 0.0;
+  const double disparity_factor = options.baseline_focal > 0.0 ? options.baseline_focal
+                                  : options.inverse            ? 1.0
+                                                               : 0.0;
   ImageF depth(spec.width, spec.height, 1);
   DepthFileSummary s;
   s.pixel_type = spec.format.c_str();
   s.min_depth = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < values.size(); ++i) {
-    double z = static_cast<double>(values[i]) * options.scale;
+    double z = static_cast<double>(values[i]) * scale;
     if (disparity_factor > 0.0) z = disparity_factor / z;  // 0 → inf: a hole below
     if (!(z > 0.0) || !std::isfinite(z)) {
       ++s.holes;

@@ -4,11 +4,12 @@
 //
 // Output: a 1-channel float ImageF of depths, the file's size; 0 means "no depth" (holes: a
 // non-positive or non-finite value, zero disparity) — never NaN. Only the first channel is read.
-// - Float files (EXR, float/half TIFF): the stored values.
+// - Float files (EXR, float/half TIFF): the stored values, as they are (a float file already
+//   holds a depth in its own unit; `scale` is for counts).
 // - Integer files (16-bit PNG/TIFF, 8-bit): the STORED integer counts, exactly (no sRGB decoding
-//   and no [0, 1] normalisation: counts are not light).
-// - Either is then multiplied by `scale` (depth units per stored unit, e.g. 0.001 for a
-//   millimetre PNG read in metres).
+//   and no [0, 1] normalisation: counts are not light), times `scale` (depth units per count,
+//   e.g. 0.001 for a millimetre PNG read in metres). The CLI's --depth-scale, the studio's
+//   depth-map scale.
 // - Disparity: with baseline_focal > 0 the scaled values are disparities and depth is
 //   baseline·focal / disparity; `inverse` is the same with baseline·focal = 1 (values are 1/z).
 // Errors are one line naming the file and the cause (missing, not an image, empty, too large,
@@ -23,7 +24,7 @@
 namespace artcam {
 
 struct DepthFileOptions {
-  double scale = 1.0;           // depth units per stored unit (count or float value)
+  double scale = 1.0;           // depth units per stored integer count; float files as stored
   bool inverse = false;         // values are inverse depth: baseline_focal 1 unless given
   double baseline_focal = 0.0;  // > 0: values are disparity; depth = baseline_focal / value
 };

@@ -101,7 +101,8 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   map_scale_->setDecimals(6);
   map_scale_->setValue(1.0);
   map_scale_->setToolTip(
-      tr("Depth per stored unit, e.g. 0.001 for a 16-bit PNG in millimetres read as metres"));
+      tr("Depth per stored count of an integer (16-bit PNG/TIFF) file, e.g. 0.001 for "
+         "millimetres read as metres; float EXR/TIFF files are read as stored"));
   map_inverse_->setToolTip(tr("The file stores inverse depth (disparity-like)"));
   auto* load = new QPushButton(tr("Load…"), map_box);
   load->setToolTip(tr("Load a float EXR/TIFF or 16-bit PNG depth map under the planes"));

@@ -1,11 +1,12 @@
 // Depth files (depth_file.h): 16-bit counts with a scale, float EXR as stored, disparity with a
-// baseline·focal factor, holes as 0, errors naming the file. Fixtures written here with OIIO.
+// baseline·focal factor or inverse depth, holes as 0, the summary, errors naming the file.
+// Fixtures written here with OIIO.
 #include "core/io/depth_file.h"
 
 #include <OpenImageIO/imagebuf.h>
 
-#include <QtTest/QtTest>
 #include <QTemporaryDir>
+#include <QtTest/QtTest>
 
 #include <cmath>
 #include <cstdint>
@@ -16,7 +17,8 @@ using namespace artcam;
 namespace {
 
 template <class T>
-bool writeGrey(const std::string& path, int w, int h, const std::vector<T>& values, OIIO::TypeDesc type) {
+bool writeGrey(const std::string& path, int w, int h, const std::vector<T>& values,
+               OIIO::TypeDesc type) {
   OIIO::ImageSpec spec(w, h, 1, type);
   OIIO::ImageBuf buf(spec);
   buf.set_pixels(OIIO::ROI::All(), type, values.data());
@@ -41,7 +43,10 @@ class TestDepthFile : public QObject {
     QVERIFY2(depth.ok(), qPrintable(QString::fromStdString(depth.status.message)));
     for (size_t i = 0; i < counts.size(); ++i)
       QVERIFY2(std::abs(depth->data[i] - counts[i] * 0.001) <= 1e-6 * (1 + counts[i] * 0.001),
-               qPrintable(QString("pixel %1: %2, expected %3").arg(i).arg(depth->data[i]).arg(counts[i] * 0.001)));
+               qPrintable(QString("pixel %1: %2, expected %3")
+                              .arg(i)
+                              .arg(depth->data[i])
+                              .arg(counts[i] * 0.001)));
     QCOMPARE(summary.holes, 1LL);  // the 0 count
     QCOMPARE(depth->data[0], 0.0f);
   }
@@ -78,6 +83,45 @@ class TestDepthFile : public QObject {
     DepthFileOptions bad;
     bad.scale = 0.0;
     QVERIFY(!readDepthFile(path, bad).ok());
+  }
+
+  // The one reader's remaining rules (depth_file.h): a float file ignores the count scale;
+  // inverse depth is disparity with baseline·focal 1 after the count scale; the summary names
+  // the stored type and the depth range; a file that is not an image is refused by name.
+  void scaleInverseAndSummary() {
+    QTemporaryDir dir;
+    const std::string exr = dir.filePath("z.exr").toStdString();
+    QVERIFY(writeGrey(exr, 2, 1, std::vector<float>{1.25f, 4.0f}, OIIO::TypeDesc::FLOAT));
+    DepthFileOptions mm;
+    mm.scale = 0.001;
+    DepthFileSummary summary;
+    const auto as_stored = readDepthFile(exr, mm, &summary);
+    QVERIFY(as_stored.ok());
+    QCOMPARE(as_stored->data[1], 4.0f);
+    QCOMPARE(summary.pixel_type, std::string("float"));
+    QCOMPARE(summary.min_depth, 1.25);
+    QCOMPARE(summary.max_depth, 4.0);
+
+    const std::string png = dir.filePath("inv.png").toStdString();
+    QVERIFY(writeGrey(png, 2, 1, std::vector<std::uint16_t>{500, 2000}, OIIO::TypeDesc::UINT16));
+    DepthFileOptions inverse;
+    inverse.scale = 0.001;  // counts of 1/1000 per metre
+    inverse.inverse = true;
+    const auto z = readDepthFile(png, inverse, &summary);
+    QVERIFY(z.ok());
+    QVERIFY(std::abs(z->data[0] - 1.0 / 0.5) < 1e-6);
+    QVERIFY(std::abs(z->data[1] - 1.0 / 2.0) < 1e-6);
+    QCOMPARE(summary.pixel_type, std::string("uint16"));
+
+    const QString text = dir.filePath("notes.png");
+    QFile f(text);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("not a picture");
+    f.close();
+    const auto refused = readDepthFile(text.toStdString());
+    QVERIFY(!refused.ok());
+    QVERIFY2(refused.status.message.find(text.toStdString() + ": cannot read") == 0,
+             refused.status.message.c_str());
   }
 };
 
