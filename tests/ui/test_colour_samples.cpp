@@ -154,6 +154,7 @@ class TestColourSamples : public QObject {
     QVERIFY(fit.max_de < 1e-3);
     QVERIFY(st.doc.colourBlock().has_value());
     QVERIFY(st.dock.report().contains("linear"));
+    QVERIFY(st.dock.report().contains("Held-out"));  // the selection's evidence is shown
 
     // Colours never sampled go through the block as through M.
     const Eigen::Vector3d probes[] = {{0.3, 0.5, 0.2}, {0.9, 0.1, 0.4}, {0.05, 0.05, 0.05}};

@@ -42,6 +42,11 @@ QColor displayColour(const Eigen::VectorXd& linear) {
   return QColor(code(linear[0]), code(linear[1]), code(linear[2]));
 }
 
+QString modelName(ColourModel model) {
+  const std::string_view name = colourModelName(model);
+  return QString::fromUtf8(name.data(), static_cast<qsizetype>(name.size()));
+}
+
 QString colourText(const Eigen::VectorXd& c) {
   return QStringLiteral("%1 %2 %3").arg(c[0], 0, 'f', 3).arg(c[1], 0, 'f', 3).arg(c[2], 0, 'f', 3);
 }
@@ -335,9 +340,9 @@ void ColourDock::onFitted(const ColourFitSummary& summary, quint64 tag) {
            "camera's colour is unchanged (Auto picks the best storable model).");
   if (ok) {
     try {
-      document_->undoStack()->push(new SetColourBlockCommand(
-          document_, colourCamera(summary.map, f),
-          tr("Fit colour (%1)").arg(QString::fromUtf8(colourModelName(summary.map.model).data()))));
+      document_->undoStack()->push(
+          new SetColourBlockCommand(document_, colourCamera(summary.map, f),
+                                    tr("Fit colour (%1)").arg(modelName(summary.map.model))));
     } catch (const std::exception& e) {
       message_ = tr("Colour fit: %1").arg(QString::fromUtf8(e.what()));
       ok = false;
@@ -436,12 +441,18 @@ QString ColourDock::report() const {
   QString text;
   if (last_fit_) {
     const ColourFitSummary& s = *last_fit_;
-    if (s.status.ok)
+    if (s.status.ok) {
       text = tr("%1 — chosen: %2. %3")
-                 .arg(QString::fromStdString(s.report()),
-                      QString::fromUtf8(colourModelName(s.selected).data()),
+                 .arg(QString::fromStdString(s.report()), modelName(s.selected),
                       QString::fromStdString(s.reason));
-    else
+      // The selection's evidence: every candidate's held-out ΔE00 (– where not computable).
+      QStringList held_out;
+      for (const ColourCandidate& c : s.candidates)
+        held_out << tr("%1 %2").arg(modelName(c.model), c.fitted && c.held_out_de >= 0.0
+                                                            ? QString::number(c.held_out_de, 'f', 2)
+                                                            : QStringLiteral("–"));
+      if (!held_out.isEmpty()) text += tr("\nHeld-out ΔE00: %1").arg(held_out.join(", "));
+    } else
       text = QString::fromStdString(s.status.message);
   }
   if (!message_.isEmpty()) text = text.isEmpty() ? message_ : message_ + "\n" + text;
