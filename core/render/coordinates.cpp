@@ -158,16 +158,9 @@ class ProjectiveKernel final : public CoordinateKernel {
            RowState&) const override {
     const Eigen::Vector3d h0 = m_ * Eigen::Vector3d(x0 + 0.5, y + 0.5, 1.0);
     const double dx = m_(0, 0), dy = m_(1, 0), dw = m_(2, 0);
-    if (affine_) {
-      for (int i = 0; i < n; ++i) {
-        sx[i] = static_cast<float>(h0.x() + i * dx);
-        sy[i] = static_cast<float>(h0.y() + i * dy);
-        valid[i] = 1;
-      }
-      return 0;
-    }
     const ProjectiveRow r{h0.x(), h0.y(), h0.z(), dx, dy, dw, centre_positive_ ? 1.0 : -1.0};
 #if defined(__x86_64__)
+    // Affine maps too (W = 1, γ = 0): the float lanes beat the double loop below.
     if (!scalar_only_ && cpuHasAvx2()) {
       // W is linear along the span: on the centre's side at both ends means on it throughout,
       // and then each coordinate is monotone, so its ends bound it. Float only where it is
@@ -188,6 +181,14 @@ class ProjectiveKernel final : public CoordinateKernel {
       }
     }
 #endif
+    if (affine_) {
+      for (int i = 0; i < n; ++i) {
+        sx[i] = static_cast<float>(h0.x() + i * dx);
+        sy[i] = static_cast<float>(h0.y() + i * dy);
+        valid[i] = 1;
+      }
+      return 0;
+    }
     float fx[kSpanPixels], fy[kSpanPixels];
     std::int32_t ok[kSpanPixels];
     (scalar_only_ ? projectiveSpanScalar : projectiveSpanDispatched)(r, fx, fy, ok);

@@ -171,7 +171,7 @@ class TestFastPaths : public QObject {
   // within 1/256 px of the exact double inverse and within 1e-3 px of the scalar double code,
   // with the same preimage flags. Cameras: the bench's mild lens (all cells certified), a
   // strong perspective whose horizon crosses the frame (spans at the horizon take the double
-  // path), and an affine map.
+  // path), a milder one, and an affine map (W = 1).
   void floatSpansAgreeWithScalarAndReference_data() {
     QTest::addColumn<Camera>("camera");
     const FrameSize size{1200, 800};
@@ -188,6 +188,8 @@ class TestFastPaths : public QObject {
     QTest::newRow("perspective with horizon") << test::homographyCamera(h, size, size);
     h << 1.3, 0.1, 0.02, -0.05, 0.8, -0.03, 0.05, -0.08, 1.0;
     QTest::newRow("perspective") << test::homographyCamera(h, size, size);
+    h << 1.02, 0.05, 0.01, -0.04, 0.99, -0.02, 0.0, 0.0, 1.0;
+    QTest::newRow("affine") << test::homographyCamera(h, size, size);
   }
 
   void floatSpansAgreeWithScalarAndReference() {
