@@ -2,6 +2,7 @@
 
 #include "core/io/artcam_file.h"
 #include "core/io/atomic_file.h"
+#include "ui/json_points.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -10,19 +11,6 @@
 #include <cmath>
 
 namespace artcam::ui {
-namespace {
-
-QJsonArray point(const Eigen::Vector2d& p) { return QJsonArray{p.x(), p.y()}; }
-
-std::optional<Eigen::Vector2d> readPoint(const QJsonValue& v) {
-  const QJsonArray a = v.toArray();
-  if (a.size() != 2 || !a[0].isDouble() || !a[1].isDouble()) return std::nullopt;
-  const Eigen::Vector2d p(a[0].toDouble(), a[1].toDouble());
-  if (!p.allFinite()) return std::nullopt;
-  return p;
-}
-
-}  // namespace
 
 QJsonObject colourPartToJson(const ColourSampleState& s, const std::optional<Camera>& block) {
   if (s.samples.empty() && s.reference_path.isEmpty() && !block) return {};
@@ -31,8 +19,9 @@ QJsonObject colourPartToJson(const ColourSampleState& s, const std::optional<Cam
   if (!s.reference_path.isEmpty()) o["reference"] = s.reference_path;
   QJsonArray samples;
   for (const ColourSample& c : s.samples)
-    samples.append(QJsonObject{
-        {"source", point(c.source)}, {"reference", point(c.reference)}, {"enabled", c.enabled}});
+    samples.append(QJsonObject{{"source", jsonFromPoint(c.source)},
+                               {"reference", jsonFromPoint(c.reference)},
+                               {"enabled", c.enabled}});
   o["samples"] = samples;
   if (block) {
     ArtcamDocument doc;
@@ -59,7 +48,7 @@ Result<ColourProjectPart> colourPartFromJson(const QJsonObject& o, const std::st
   const QJsonArray samples = o["samples"].toArray();
   for (qsizetype i = 0; i < samples.size(); ++i) {
     const QJsonObject m = samples[i].toObject();
-    const auto a = readPoint(m["source"]), b = readPoint(m["reference"]);
+    const auto a = pointFromJson(m["source"]), b = pointFromJson(m["reference"]);
     if (!a || !b)
       return fail("/samples/" + std::to_string(i) + ": expected source and reference [x, y]");
     part.state.samples.push_back({*a, *b, m["enabled"].toBool(true)});
