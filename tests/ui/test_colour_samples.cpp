@@ -321,6 +321,41 @@ class TestColourSamples : public QObject {
     QCOMPARE(preview.image(), test::directPreviewRender(doc));
   }
 
+  void previewOfAWarpWithAColourBlock() {
+    // Geometry and colour at once: the preview must be the geometry-only warp of the preview
+    // copy with M applied per pixel (a linear map commutes with the interpolation of
+    // premultiplied colour), which core's plain warpImage gives independently of the
+    // attributed renderer.
+    Document doc;
+    PreviewController preview(&doc);
+    doc.reset(test::syntheticPhoto(), test::ninePairs());
+    QVERIFY(doc.fit().status.ok);
+    const Camera geometry = doc.camera();
+    doc.undoStack()->push(new SetColourBlockCommand(
+        &doc, colourCamera(linearMap(transformM()), doc.frame()), "colour"));
+    QVERIFY(test::waitForNewestPreview(preview));
+    const QImage got = preview.image();
+    WarpOptions options;
+    options.width = got.width();
+    options.height = got.height();
+    const ImageF warped = warpImage(doc.photo()->preview, geometry, options);
+    int worst = 0, compared = 0;
+    for (int y = 3; y < got.height(); y += 17)
+      for (int x = 3; x < got.width(); x += 13) {
+        const float* w = warped.pixel(x, y);
+        const QRgb g = got.pixel(x, y);
+        if (warped.alpha_channel < 0 || w[warped.alpha_channel] < 0.999f || qAlpha(g) < 255)
+          continue;  // edges: coverage differs in rounding only
+        const Eigen::Vector3d want = transformM() * Eigen::Vector3d(w[0], w[1], w[2]);
+        worst = std::max({worst, std::abs(qRed(g) - srgbCode(want[0])),
+                          std::abs(qGreen(g) - srgbCode(want[1])),
+                          std::abs(qBlue(g) - srgbCode(want[2]))});
+        ++compared;
+      }
+    QVERIFY(compared > 200);
+    QVERIFY2(worst <= 2, qPrintable(QString("worst %1 codes").arg(worst)));
+  }
+
   void projectKeepsSamplesAndColourBlock() {
     const QString source_path = dir_.filePath("source.tif");
     const QString reference_path = dir_.filePath("reference.tif");
