@@ -1,6 +1,7 @@
 #include "core/render/span_sampler.h"
 
 #include "core/render/span_sampler_avx2.h"
+#include "core/render/span_sampler_cubic.h"
 
 #include <algorithm>
 #include <cmath>
@@ -183,6 +184,51 @@ long long sampleSpanU8(const Context& k, std::uint8_t* out, int n, const float* 
   return transparent;
 }
 
+// 8-bit bicubic, C = 3 or 4: pixels whose taps are all inside by cubic::interior* (rows first,
+// span_sampler_cubic.h; kSimd picks the AVX2 clone, bit-identical), the rest by the general
+// float taps. A: alpha appended to RGB (previews): 255 inside, the coverage at the borders.
+template <int C, bool A, bool kSimd>
+[[gnu::always_inline]] inline long long cubicSpanU8(const Context& k, std::uint8_t* out, int n,
+                                                    const float* sx, const float* sy,
+                                                    const unsigned char* valid) {
+  long long transparent = 0;
+  for (int i = 0; i < n; ++i, out += C + (A ? 1 : 0)) {
+    const float fx = sx[i] - 0.5f, fy = sy[i] - 0.5f;
+    cubic::CubicInterior p;
+    if (valid[i] && p.fits<C>(k, fx, fy)) {
+      float alpha = 1.0f;
+#ifdef ARTCAM_HAVE_AVX2_CUBIC
+      if constexpr (kSimd) {
+        alpha = cubic::interiorAvx2<C, A>(k, p, out, i + 1 < n);
+      } else
+#endif
+      {
+        float v[4];
+        cubic::interiorScalar<C>(k, p, v);
+        for (int c = 0; c < C; ++c) out[c] = store<std::uint8_t>(v[c], k.full);
+        if constexpr (A) out[C] = 255;
+        if (k.src_alpha >= 0) alpha = v[k.src_alpha];
+      }
+      if constexpr (!A)
+        if (k.src_alpha >= 0) transparent += !(std::clamp(alpha, 0.0f, k.full) > 0.0f);
+      continue;
+    }
+    float sum[C] = {};
+    const float coverage = valid[i] ? bicubicTap<std::uint8_t, C>(k, fx, fy, sum) : 0.0f;
+    for (int c = 0; c < C; ++c) out[c] = store<std::uint8_t>(sum[c], k.full);
+    float alpha = coverage;
+    if constexpr (A) {
+      alpha = std::clamp(coverage, 0.0f, 1.0f) * k.full;
+      out[C] = store<std::uint8_t>(alpha, k.full);
+    } else if (k.src_alpha >= 0) {
+      alpha = std::clamp(sum[k.src_alpha], 0.0f, k.full);
+      out[k.src_alpha] = store<std::uint8_t>(alpha, k.full);
+    }
+    transparent += alpha <= 0.0f;
+  }
+  return transparent;
+}
+
 template <class T, int C, Filter F>
 long long sampleSpan(const Context& k, unsigned char* out_bytes, int n, const float* sx,
                      const float* sy, const unsigned char* valid, int supersample,
@@ -198,6 +244,11 @@ long long sampleSpan(const Context& k, unsigned char* out_bytes, int n, const fl
   if constexpr (std::is_same_v<T, std::uint8_t> && F != Filter::Bicubic) {
     if (supersample <= 1 && oc == C) return sampleSpanU8<C, F>(k, out, n, sx, sy, valid);
     if (supersample <= 1 && k.append_alpha && oc == C + 1) return sampleSpanU8<C, F, true>(k, out, n, sx, sy, valid);
+  }
+  if constexpr (std::is_same_v<T, std::uint8_t> && F == Filter::Bicubic && (C == 3 || C == 4)) {
+    if (supersample <= 1 && oc == C) return cubicSpanU8<C, false, false>(k, out, n, sx, sy, valid);
+    if constexpr (C == 3)
+      if (supersample <= 1 && k.append_alpha && oc == C + 1) return cubicSpanU8<3, true, false>(k, out, n, sx, sy, valid);
   }
   if (supersample <= 1 && oc == C) {
     // The common case (one tap, output channels = source channels): no alpha bookkeeping
@@ -277,10 +328,24 @@ long long sampleSpanU8Simd(const Context& k, unsigned char* out_bytes, int n, co
   else return avx2::nearestU8<C>(k, out, n, sx, sy, valid, &sampleSpanU8<C, F>);
 }
 
-// AVX2 when the CPU has it and the source's byte offsets fit the gathers' 32-bit indices.
+// The AVX2 clone of the 8-bit bicubic (span_sampler_cubic.h): the interior pixels by
+// cubic::interiorAvx2, everything else as the scalar code.
+template <int C>
+__attribute__((target("avx2"))) long long cubicSpanU8Simd(const Context& k, unsigned char* out, int n,
+                                                         const float* sx, const float* sy,
+                                                         const unsigned char* valid, int supersample,
+                                                         const float* jac) {
+  if (supersample <= 1 && k.out_channels == C) return cubicSpanU8<C, false, true>(k, out, n, sx, sy, valid);
+  if constexpr (C == 3)
+    if (supersample <= 1 && k.append_alpha && k.out_channels == 4) return cubicSpanU8<3, true, true>(k, out, n, sx, sy, valid);
+  return sampleSpan<std::uint8_t, C, Filter::Bicubic>(k, out, n, sx, sy, valid, supersample, jac);
+}
+
+// AVX2 when the CPU has it and the source's byte offsets fit the 32-bit offsets.
 SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter) {
   if (src.type != PixelType::UInt8 || (src.channels != 3 && src.channels != 4)) return nullptr;
-  if (filter == Filter::Bicubic || !__builtin_cpu_supports("avx2")) return nullptr;
+  if (!__builtin_cpu_supports("avx2")) return nullptr;
+  if (filter == Filter::Bicubic) return src.channels == 3 ? cubicSpanU8Simd<3> : cubicSpanU8Simd<4>;
   if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
   if (filter == Filter::Bilinear)
     return src.channels == 3 ? sampleSpanU8Simd<3, Filter::Bilinear> : sampleSpanU8Simd<4, Filter::Bilinear>;

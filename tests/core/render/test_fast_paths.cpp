@@ -91,13 +91,13 @@ class TestFastPaths : public QObject {
     QTest::addColumn<int>("channels");
     QTest::addColumn<int>("alpha");
     QTest::addColumn<int>("filter");
-    for (int f : {0, 1})
+    for (int f : {0, 1, 2})
       for (int c : {3, 4})
         for (int a : {-1, c - 1, c}) {
           if (c == 3 && a == 2) continue;  // RGB with alpha is not a layout we store
           if (c == 4 && a == 4) continue;  // a = c: alpha appended to RGB (previews)
-          QTest::newRow(qPrintable(QString("%1 %2ch alpha %3").arg(f ? "bilinear" : "nearest").arg(c).arg(a)))
-              << c << a << f;
+          const char* name = f == 0 ? "nearest" : f == 1 ? "bilinear" : "bicubic";
+          QTest::newRow(qPrintable(QString("%1 %2ch alpha %3").arg(name).arg(c).arg(a))) << c << a << f;
         }
   }
 
@@ -105,7 +105,7 @@ class TestFastPaths : public QObject {
     QFETCH(int, channels);
     QFETCH(int, alpha);
     QFETCH(int, filter);
-    const Filter f = filter ? Filter::Bilinear : Filter::Nearest;
+    const Filter f = filter == 0 ? Filter::Nearest : filter == 1 ? Filter::Bilinear : Filter::Bicubic;
     const int w = 53, h = 29;  // odd sizes: the last row and column are borders
     const bool append = alpha == channels;  // alpha appended to the output only
     const int src_alpha = append ? -1 : alpha, out_channels = channels + (append ? 1 : 0);
