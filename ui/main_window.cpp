@@ -107,6 +107,7 @@ MainWindow::MainWindow(QWidget* parent)
   tabifyDockWidget(effects_dock, colour_dock);
   connect(colour_dock_, &ColourDock::statusMessage, this,
           [this](const QString& m) { statusBar()->showMessage(m, 8000); });
+  connect(colour_dock_, &ColourDock::samplesRestored, colour_dock, &QDockWidget::raise);
   // Cameras with a depth block read the painted depth in the preview too (same raster).
   connect(depth_overlay_, &DepthOverlay::changed, preview_,
           [this] { preview_->setDepth(depth_overlay_->raster()); });

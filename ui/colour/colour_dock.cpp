@@ -197,6 +197,7 @@ void ColourDock::attachToSession(Session* session) {
     model_->setState(std::move(loaded->state));
     if (loaded->colour_block) document_->setColourBlock(std::move(loaded->colour_block));
     if (!reference.isEmpty()) startReferenceLoad(reference, /*undoable=*/false);
+    if (!model_->state().samples.empty()) emit samplesRestored();
   };
   session->addProjectPart(std::move(part));
 }

@@ -71,6 +71,8 @@ class ColourDock : public QWidget {
   void fitFinished(bool ok);
   void referenceLoaded(bool ok, const QString& message);
   void statusMessage(const QString& message);
+  // An opened project brought colour samples back (the window shows this dock).
+  void samplesRestored();
 
  protected:
   void keyPressEvent(class QKeyEvent* event) override;
