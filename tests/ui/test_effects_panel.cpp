@@ -52,6 +52,29 @@ class TestEffectsPanel : public QObject {
     QVERIFY(panel.preview() == expected);
   }
 
+  // The depth-of-field lens model is a panel parameter: thin-lens 0 reaches the camera as the
+  // linear σ² = k²(d − f)²/f² (depth_of_field.h), checked at a few depths.
+  void depthOfFieldOffersTheLinearModel() {
+    Document doc;
+    doc.reset(test::syntheticPhoto());
+    EffectsPanel panel(&doc);
+    panel.setEffect("depth-of-field");
+    QVERIFY(panel.parameters().count("thin-lens"));
+    QCOMPARE(panel.parameters().at("thin-lens"), 1.0);  // the thin lens by default
+    QVERIFY(panel.setParameter("thin-lens", 0.0));
+    QVERIFY(panel.setParameter("focus", 3.0));
+    QVERIFY(panel.setParameter("blur", 0.02));
+    QVERIFY(waitForGeneration(panel, panel.requestedGeneration()));
+    const EffectSetup setup = buildEffect("depth-of-field", panel.parameters(), {64, 48});
+    QCOMPARE(setup.depth_output, std::string("blur-variance"));
+    for (const double d : {0.5, 3.0, 9.0}) {
+      Eigen::VectorXd x(9);
+      x << 0.0, 0.0, 1, 0.5, 0.5, 0.5, 1, d, 1;
+      const double expected = 0.02 * 0.02 * (d - 3.0) * (d - 3.0) / 9.0;
+      QVERIFY(std::abs(setup.layers.front().evaluate(x)[7] - expected) < 1e-12);
+    }
+  }
+
   void depthEffectsUseTheStandInAndSayWhy() {
     Document doc;
     doc.reset(test::syntheticPhoto());
