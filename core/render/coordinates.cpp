@@ -381,6 +381,7 @@ class RationalKernel final : public CoordinateKernel {
         certify_tolerance_(options.certify_tolerance_px),
         scalar_only_(options.scalar_only) {
     if (seed && seed->stageCount() == 1) seed_q_ = seed->stage(0);
+    for (const Eigen::Matrix3d& q : seed_q_) seed_forms_.emplace_back(q);
     if (newton_.forward().stageCount() == 1)
       for (const Eigen::Matrix3d& q : newton_.forward().stage(0)) forward_q_.emplace_back(q);
     buildCorrectionGrid(target_px, threads);
@@ -698,7 +699,7 @@ class RationalKernel final : public CoordinateKernel {
     const double v = y + 0.5, u0 = x0 + 0.5;
     SeedRow r;
     for (int k = 0; k < 3; ++k) {
-      const Quadratic q(seed_q_[static_cast<size_t>(k)]);
+      const Quadratic& q = seed_forms_[static_cast<size_t>(k)];
       r.c[k] = q.value(u0, v);
       r.b[k] = q.du(u0, v);
       r.a[k] = q.a;
@@ -764,6 +765,7 @@ class RationalKernel final : public CoordinateKernel {
 
   NewtonInverse newton_;
   std::vector<Eigen::Matrix3d> seed_q_;
+  std::vector<Quadratic> seed_forms_;  // seed_q_ as n = a u² + b uv + …, for fastSpan
   std::vector<Quadratic> forward_q_;
   double seed_tolerance_;
   double certify_tolerance_;
