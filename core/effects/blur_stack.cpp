@@ -28,7 +28,7 @@ namespace artcam {
 namespace {
 
 constexpr int kC = 5;  // premultiplied r, g, b, a times the halo mask, and the mask itself
-constexpr uint8_t kSharp = 0xff;
+constexpr uint16_t kSharp = 0xffff;  // "no level": the pixel stays sharp
 
 // A 5-channel image without zero-filling it first.
 struct Buffer5 {
@@ -277,7 +277,7 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
     // Each pixel's upper level j (its lower one is j − 1, or the sharp image for j = 0) and the
     // weight t of level j that matches its variance: t = (σ² − σ_lo²)/(σ_hi² − σ_lo²).
     const size_t n = static_cast<size_t>(y1 - y0) * static_cast<size_t>(w);
-    std::vector<uint8_t> upper(n, kSharp);
+    std::vector<uint16_t> upper(n, kSharp);
     std::vector<float> weight(n, 0.0f);
     std::vector<int> x_min(static_cast<size_t>(count), w), x_max(static_cast<size_t>(count), -1);
     for (int y = y0; y < y1; ++y)
@@ -291,7 +291,7 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
         const double lo = j > 0 ? levels[static_cast<size_t>(j - 1)].sigma : 0.0,
                      hi = levels[static_cast<size_t>(j)].sigma;
         const double t = std::clamp((s * s - lo * lo) / (hi * hi - lo * lo), 0.0, 1.0);
-        upper[i] = static_cast<uint8_t>(j);
+        upper[i] = static_cast<uint16_t>(j);
         weight[i] = static_cast<float>(t);
         float* o = out.pixel(x, y);
         const float keep = j == 0 ? static_cast<float>(1.0 - t) : 0.0f;  // the sharp image's share
