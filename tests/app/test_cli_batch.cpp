@@ -196,6 +196,28 @@ class TestCliBatch : public QObject {
     QVERIFY2(QDir(path("one")).entryList(QDir::Files | QDir::Hidden).isEmpty(),
              qPrintable(QDir(path("one")).entryList(QDir::Files | QDir::Hidden).join(", ")));
   }
+
+  // Commands that do not poll for Ctrl-C (here render) are stopped by the handler itself,
+  // which removes the temporary of the save in flight: exit 130, an empty folder.
+  void anyCommandInterruptedLeavesNoTemporary() {
+    QVERIFY(QDir().mkpath(path("render/out")));
+    const QString camera = path("render/twist.artcam");
+    QCOMPARE(artcamCli({"preset", "twist-3d", "-o", camera}).exit_code, 0);
+    QProcess p;
+    p.start(QStringLiteral(ARTCAM_CLI_PATH),
+            {"render", QStringLiteral(ARTCAM_RESOURCES_DIR "/cube.ply"), camera, "-o",
+             path("render/out/big.png"), "--size", "12000x12000"});
+    QVERIFY(p.waitForStarted());
+    QVERIFY(waitUntil([&] {
+      return !hiddenFiles(path("render/out")).isEmpty() || p.state() == QProcess::NotRunning;
+    }));
+    QCOMPARE(p.state(), QProcess::Running);
+    QCOMPARE(::kill(static_cast<pid_t>(p.processId()), SIGINT), 0);
+    QVERIFY(p.waitForFinished(120000));
+    QCOMPARE(p.exitCode(), 130);
+    QVERIFY2(QDir(path("render/out")).entryList(QDir::Files | QDir::Hidden).isEmpty(),
+             qPrintable(QDir(path("render/out")).entryList(QDir::Files | QDir::Hidden).join(", ")));
+  }
 };
 
 QTEST_GUILESS_MAIN(TestCliBatch)
