@@ -326,6 +326,10 @@ void Session::exportImage(const QString& path) {
     return;
   }
   auto* job = new ExportJob(document_->photo(), document_->camera(), path, this);
+  // A camera with a depth block reads the painted depth (rasterised here: the depth model lives
+  // on the GUI thread; only such cameras pay for it).
+  if (document_->camera().layout().find(BlockKind::Depth) >= 0)
+    job->setDepth(std::make_shared<const ImageF>(document_->depth()->rasterise()));
   export_job_ = job;
   QProgressDialog* dialog = nullptr;
   if (interactive_) {
