@@ -76,12 +76,13 @@ void horizontalPass(const float* padded, const std::vector<float>& g, int r, int
     addScaled(out, padded + static_cast<size_t>(k) * kC, g[static_cast<size_t>(k)], n);
 }
 
-// Separable Gaussian of a (small, shrunk) 5-channel image, zero outside.
-Buffer5 blur5(const Buffer5& in, double sigma, int threads) {
+// Separable Gaussian of a (small, shrunk) 5-channel image, zero outside. The result is written
+// over the input's storage: one fresh buffer per level instead of two (fresh pages cost).
+Buffer5 blur5(Buffer5 in, double sigma, int threads) {
   const int w = in.w, h = in.h;
   int r = 0;
   const std::vector<float> g = gaussianKernel(sigma, r);
-  Buffer5 tmp(w, h), out(w, h);
+  Buffer5 tmp(w, h);
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 32;
@@ -95,7 +96,7 @@ Buffer5 blur5(const Buffer5& in, double sigma, int threads) {
   const size_t row = static_cast<size_t>(w) * kC;
   parallelForRows(h, po, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
-      float* dst = out.row(y);
+      float* dst = in.row(y);  // the horizontal pass no longer needs it
       std::fill(dst, dst + row, 0.0f);
       const int k0 = std::max(-r, -y), k1 = std::min(r, h - 1 - y);
       for (int k = k0; k <= k1; ++k) {
@@ -105,7 +106,7 @@ Buffer5 blur5(const Buffer5& in, double sigma, int threads) {
       }
     }
   });
-  return out;
+  return in;
 }
 
 // The halo-masked input of a level (a pixel counts when its σ ≥ threshold), f×f box-averaged;
