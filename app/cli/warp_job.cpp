@@ -128,6 +128,10 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
         out.output, request.depth_path, request.depth_scale, request.baseline_focal,
         options,    request.stats};
     warpAttributed(camera.effect, *source.loaded, attributed);
+    // The attributed renderer sizes its output by the same rule (warp.h outputSizeFor).
+    const FrameSize size = outputSizeFor(camera.camera(), options.width, options.height);
+    out.width = size.width;
+    out.height = size.height;
     out.written = true;
     out.render_ms = millisecondsSince(start);
     out.description = "attributed renderer";
