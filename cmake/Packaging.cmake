@@ -58,11 +58,13 @@ set(CPACK_PACKAGE_VENDOR "ARTcam Studio")
 set(CPACK_PACKAGE_CONTACT "ARTcam Studio maintainers <maintainers@artcam.invalid>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
   "fit rational tensor cameras and warp photographs through them")
+# Lines under 80 columns (lintian's extended-description-line-too-long).
 set(CPACK_PACKAGE_DESCRIPTION
-  "ARTcam Studio fits Attributed Rational Tensor cameras (every output coordinate a ratio of
-quadratic forms of the input) to point matches and warps photographs through them: lens
-distortion, reflections, refractions and artistic deformations. The package holds the
-artcam-studio GUI and the artcam command-line tool.")
+  "ARTcam Studio fits Attributed Rational Tensor cameras (every output
+coordinate a ratio of quadratic forms of the input) to point matches and
+warps photographs through them: lens distortion, reflections, refractions
+and artistic deformations. The package holds the artcam-studio GUI and the
+artcam command-line tool.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_STRIP_FILES ON)  # RelWithDebInfo binaries carry debug info the package does not need
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # artcam-studio_<version>_<arch>.deb
