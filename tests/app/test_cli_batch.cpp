@@ -139,6 +139,13 @@ class TestCliBatch : public QObject {
         {"batch", kCamera, path("seq/f_%03d.png"), "-o", path("seq-out5"), "--first", "5"});
     QVERIFY2(from.exit_code == 0, qPrintable(from.err));
     QCOMPARE(visibleFiles(path("seq-out5")), QStringList({"f_005.png"}));
+    // The pattern is parsed, never handed to printf: anything but one %d / %0Nd is refused.
+    for (const char* bad : {"seq/f_%s.png", "seq/f_%d_%d.png", "seq/f_%n.png"}) {
+      const Run refused = artcamCli({"batch", kCamera, path(bad), "-o", path("seq-bad")});
+      QCOMPARE(refused.exit_code, 2);
+      QVERIFY2(refused.err.contains("frame pattern"), qPrintable(refused.err));
+    }
+    QVERIFY(visibleFiles(path("seq-bad")).isEmpty());
   }
 
   // SIGINT once the first output is finished: exit 130, the finished outputs complete, no
