@@ -240,12 +240,80 @@ std::vector<Level> planLevels(float max_sigma, const BlurOptions& o) {
   return levels;
 }
 
+// Rows [y0, y1) of the output (holding the sharp image there): each pixel blended from its two
+// bracketing levels. Each pixel's upper level j (its lower one is j − 1, or the sharp image for
+// j = 0) and the weight t of level j that matches its variance, t = (σ² − σ_lo²)/(σ_hi² − σ_lo²),
+// come first, with the columns each level is needed in; then level by level, only there.
+void blendBand(const ImageF& rgba, const ImageF& sigma_px, const std::vector<Level>& levels,
+               double min_sigma, int y0, int y1, ImageF& out) {
+  const int w = rgba.width, count = static_cast<int>(levels.size());
+  const size_t n = static_cast<size_t>(y1 - y0) * static_cast<size_t>(w);
+  std::vector<uint16_t> upper(n, kSharp);
+  std::vector<float> weight(n, 0.0f);
+  std::vector<int> x_min(static_cast<size_t>(count), w), x_max(static_cast<size_t>(count), -1);
+  for (int y = y0; y < y1; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i =
+          static_cast<size_t>(y - y0) * static_cast<size_t>(w) + static_cast<size_t>(x);
+      const double s = sigma_px.pixel(x, y)[0];
+      if (!(s >= min_sigma)) continue;
+      int j = 0;
+      while (j < count - 1 && s >= levels[static_cast<size_t>(j)].sigma) ++j;
+      const double lo = j > 0 ? levels[static_cast<size_t>(j - 1)].sigma : 0.0,
+                   hi = levels[static_cast<size_t>(j)].sigma;
+      const double t = std::clamp((s * s - lo * lo) / (hi * hi - lo * lo), 0.0, 1.0);
+      upper[i] = static_cast<uint16_t>(j);
+      weight[i] = static_cast<float>(t);
+      float* o = out.pixel(x, y);
+      const float keep = j == 0 ? static_cast<float>(1.0 - t) : 0.0f;  // the sharp image's share
+      for (int c = 0; c < 4; ++c) o[c] *= keep;
+      for (const int l : {j - 1, j}) {
+        if (l < 0) continue;
+        x_min[static_cast<size_t>(l)] = std::min(x_min[static_cast<size_t>(l)], x);
+        x_max[static_cast<size_t>(l)] = std::max(x_max[static_cast<size_t>(l)], x);
+      }
+    }
+  std::vector<float> scratch, fine;
+  for (int l = 0; l < count; ++l) {
+    const int xa = x_min[static_cast<size_t>(l)], xb = x_max[static_cast<size_t>(l)] + 1;
+    if (xb <= xa) continue;
+    const Level& level = levels[static_cast<size_t>(l)];
+    if (level.shrink == 1) fineLevelBand(rgba, sigma_px, level, y0, y1, xa, xb, scratch, fine);
+    for (int y = y0; y < y1; ++y)
+      for (int x = xa; x < xb; ++x) {
+        const size_t i =
+            static_cast<size_t>(y - y0) * static_cast<size_t>(w) + static_cast<size_t>(x);
+        if (upper[i] == kSharp) continue;
+        const int j = upper[i];
+        float share = 0.0f;
+        if (j == l)
+          share = weight[i];
+        else if (j - 1 == l)
+          share = 1.0f - weight[i];
+        else
+          continue;
+        float v[4];
+        if (level.shrink == 1) {
+          const float* f =
+              fine.data() + (static_cast<size_t>(y - y0) * static_cast<size_t>(xb - xa) +
+                             static_cast<size_t>(x - xa)) *
+                                4;
+          std::copy(f, f + 4, v);
+        } else {
+          coarseLevelAt(rgba, level, x, y, v);
+        }
+        float* o = out.pixel(x, y);
+        for (int c = 0; c < 4; ++c) o[c] += share * v[c];
+      }
+  }
+}
+
 }  // namespace
 
 ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& options) {
   checkBlurInputs(rgba, sigma_px);
   if (!(options.level_ratio > 1.0)) throw std::invalid_argument("stack level ratio must exceed 1");
-  const int w = rgba.width, h = rgba.height;
+  const int h = rgba.height;
   ImageF out = rgba;  // sharp pixels stay as they are
   float max_sigma = 0.0f;
   for (float s : sigma_px.data) max_sigma = std::max(max_sigma, s);
@@ -273,69 +341,8 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
   po.band_rows = 32;
   if (options.progress)
     po.progress = [&](double f) { return options.progress(1.0 / 3.0 + f * 2.0 / 3.0); };
-  const int count = static_cast<int>(levels.size());
   const bool done = parallelForRows(h, po, [&](int y0, int y1) {
-    // Each pixel's upper level j (its lower one is j − 1, or the sharp image for j = 0) and the
-    // weight t of level j that matches its variance: t = (σ² − σ_lo²)/(σ_hi² − σ_lo²).
-    const size_t n = static_cast<size_t>(y1 - y0) * static_cast<size_t>(w);
-    std::vector<uint16_t> upper(n, kSharp);
-    std::vector<float> weight(n, 0.0f);
-    std::vector<int> x_min(static_cast<size_t>(count), w), x_max(static_cast<size_t>(count), -1);
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < w; ++x) {
-        const size_t i =
-            static_cast<size_t>(y - y0) * static_cast<size_t>(w) + static_cast<size_t>(x);
-        const double s = sigma_px.pixel(x, y)[0];
-        if (!(s >= options.min_sigma)) continue;
-        int j = 0;
-        while (j < count - 1 && s >= levels[static_cast<size_t>(j)].sigma) ++j;
-        const double lo = j > 0 ? levels[static_cast<size_t>(j - 1)].sigma : 0.0,
-                     hi = levels[static_cast<size_t>(j)].sigma;
-        const double t = std::clamp((s * s - lo * lo) / (hi * hi - lo * lo), 0.0, 1.0);
-        upper[i] = static_cast<uint16_t>(j);
-        weight[i] = static_cast<float>(t);
-        float* o = out.pixel(x, y);
-        const float keep = j == 0 ? static_cast<float>(1.0 - t) : 0.0f;  // the sharp image's share
-        for (int c = 0; c < 4; ++c) o[c] *= keep;
-        for (const int l : {j - 1, j}) {
-          if (l < 0) continue;
-          x_min[static_cast<size_t>(l)] = std::min(x_min[static_cast<size_t>(l)], x);
-          x_max[static_cast<size_t>(l)] = std::max(x_max[static_cast<size_t>(l)], x);
-        }
-      }
-    std::vector<float> scratch, fine;
-    for (int l = 0; l < count; ++l) {
-      const int xa = x_min[static_cast<size_t>(l)], xb = x_max[static_cast<size_t>(l)] + 1;
-      if (xb <= xa) continue;
-      const Level& level = levels[static_cast<size_t>(l)];
-      if (level.shrink == 1) fineLevelBand(rgba, sigma_px, level, y0, y1, xa, xb, scratch, fine);
-      for (int y = y0; y < y1; ++y)
-        for (int x = xa; x < xb; ++x) {
-          const size_t i =
-              static_cast<size_t>(y - y0) * static_cast<size_t>(w) + static_cast<size_t>(x);
-          if (upper[i] == kSharp) continue;
-          const int j = upper[i];
-          float share = 0.0f;
-          if (j == l)
-            share = weight[i];
-          else if (j - 1 == l)
-            share = 1.0f - weight[i];
-          else
-            continue;
-          float v[4];
-          if (level.shrink == 1) {
-            const float* f =
-                fine.data() + (static_cast<size_t>(y - y0) * static_cast<size_t>(xb - xa) +
-                               static_cast<size_t>(x - xa)) *
-                                  4;
-            std::copy(f, f + 4, v);
-          } else {
-            coarseLevelAt(rgba, level, x, y, v);
-          }
-          float* o = out.pixel(x, y);
-          for (int c = 0; c < 4; ++c) o[c] += share * v[c];
-        }
-    }
+    blendBand(rgba, sigma_px, levels, options.min_sigma, y0, y1, out);
   });
   return done ? out : ImageF{};
 }
