@@ -109,42 +109,6 @@ Buffer5 blur5(Buffer5 in, double sigma, int threads) {
   return in;
 }
 
-// The halo-masked input of a level (a pixel counts when its σ ≥ threshold), f×f box-averaged;
-// a partial last block is averaged over what it holds.
-Buffer5 maskedShrunk(const ImageF& rgba, const ImageF& sigma, float threshold, int f, int threads) {
-  const int w = rgba.width, h = rgba.height;
-  Buffer5 out((w + f - 1) / f, (h + f - 1) / f);
-  ParallelOptions po;
-  po.threads = threads;
-  po.band_rows = std::max(1, 64 / f);
-  parallelForRows(out.h, po, [&](int y0, int y1) {
-    for (int sy = y0; sy < y1; ++sy) {
-      float* dst = out.row(sy);
-      std::fill(dst, dst + static_cast<size_t>(out.w) * kC, 0.0f);
-      const int ya = sy * f, yb = std::min(h, sy * f + f);
-      for (int y = ya; y < yb; ++y) {
-        const float* s = sigma.pixel(0, y);
-        const float* p = rgba.pixel(0, y);
-        for (int sx = 0; sx < out.w; ++sx) {
-          float* o = dst + static_cast<size_t>(sx) * kC;
-          for (int x = sx * f; x < std::min(w, sx * f + f); ++x) {
-            if (!(s[x] >= threshold)) continue;
-            const float* q = p + static_cast<size_t>(x) * 4;
-            o[0] += q[0], o[1] += q[1], o[2] += q[2], o[3] += q[3], o[4] += 1.0f;
-          }
-        }
-      }
-      if (f > 1)
-        for (int sx = 0; sx < out.w; ++sx) {
-          const float count = static_cast<float>((yb - ya) * (std::min(w, sx * f + f) - sx * f));
-          for (int c = 0; c < kC; ++c)
-            dst[static_cast<size_t>(sx) * kC + static_cast<size_t>(c)] /= count;
-        }
-    }
-  });
-  return out;
-}
-
 struct Level {
   double sigma = 0.0;
   float threshold = 0.0f;  // the halo rule at this level: halo_ratio·σ
@@ -153,6 +117,60 @@ struct Level {
   std::vector<float> kernel;  // shrink == 1: the full-resolution kernel
   int radius = 0;
 };
+
+// The halo-masked inputs of the coarse levels (`coarse`, σ rising), each f×f box-averaged into
+// its `blurred` buffer (a partial last block averaged over what it holds), in ONE pass over the
+// full-resolution image: a pixel counts in a level when its σ ≥ the level's threshold, and the
+// thresholds rise with the levels, so each pixel adds to a prefix of them. Bands of rows are
+// aligned to the largest f, so every band owns whole shrunk rows of every level.
+void maskedShrinkAll(const ImageF& rgba, const ImageF& sigma, const std::vector<Level*>& coarse,
+                     int threads) {
+  const int w = rgba.width, h = rgba.height;
+  int largest = 1;
+  std::vector<int> shift;
+  for (Level* l : coarse) {
+    l->blurred = Buffer5((w + l->shrink - 1) / l->shrink, (h + l->shrink - 1) / l->shrink);
+    largest = std::max(largest, l->shrink);
+    int k = 0;
+    while ((1 << k) < l->shrink) ++k;
+    shift.push_back(k);
+  }
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = largest * std::max(1, 32 / largest);
+  parallelForRows(h, po, [&](int y0, int y1) {
+    for (const Level* l : coarse) {
+      const int f = l->shrink;
+      for (int sy = y0 / f; sy < (y1 + f - 1) / f; ++sy)
+        std::fill(l->blurred.row(sy), l->blurred.row(sy) + static_cast<size_t>(l->blurred.w) * kC,
+                  0.0f);
+    }
+    for (int y = y0; y < y1; ++y) {
+      const float* s = sigma.pixel(0, y);
+      const float* p = rgba.pixel(0, y);
+      for (int x = 0; x < w; ++x) {
+        const float* q = p + static_cast<size_t>(x) * 4;
+        for (size_t i = 0; i < coarse.size() && s[x] >= coarse[i]->threshold; ++i) {
+          float* o =
+              coarse[i]->blurred.row(y >> shift[i]) + static_cast<size_t>(x >> shift[i]) * kC;
+          o[0] += q[0], o[1] += q[1], o[2] += q[2], o[3] += q[3], o[4] += 1.0f;
+        }
+      }
+    }
+    for (const Level* l : coarse) {
+      const int f = l->shrink;
+      for (int sy = y0 / f; sy < (y1 + f - 1) / f; ++sy) {
+        float* dst = l->blurred.row(sy);
+        const int rows = std::min(h, sy * f + f) - sy * f;
+        for (int sx = 0; sx < l->blurred.w; ++sx) {
+          const float count = static_cast<float>(rows * (std::min(w, sx * f + f) - sx * f));
+          for (int c = 0; c < kC; ++c)
+            dst[static_cast<size_t>(sx) * kC + static_cast<size_t>(c)] /= count;
+        }
+      }
+    }
+  });
+}
 
 // Rows [y0, y1) × columns [x0, x1) of a full-resolution level, normalised by the blurred mask
 // (a pixel the mask leaves empty falls back to its own colour), 4 channels, into `out`.
@@ -313,6 +331,7 @@ void blendBand(const ImageF& rgba, const ImageF& sigma_px, const std::vector<Lev
 ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& options) {
   checkBlurInputs(rgba, sigma_px);
   if (!(options.level_ratio > 1.0)) throw std::invalid_argument("stack level ratio must exceed 1");
+  if (!(options.halo_ratio >= 0.0)) throw std::invalid_argument("halo ratio must be ≥ 0");
   const int h = rgba.height;
   ImageF out = rgba;  // sharp pixels stay as they are
   float max_sigma = 0.0f;
@@ -327,12 +346,15 @@ ImageF stackBlur(const ImageF& rgba, const ImageF& sigma_px, const BlurOptions& 
   const auto report = [&](double fraction) {
     return !options.progress || options.progress(fraction);
   };
-  for (Level& l : levels) {
-    if (l.shrink == 1) continue;
-    const int f = l.shrink;
+  std::vector<Level*> coarse_levels;
+  for (Level& l : levels)
+    if (l.shrink > 1) coarse_levels.push_back(&l);
+  maskedShrinkAll(rgba, sigma_px, coarse_levels, options.threads);
+  for (Level* l : coarse_levels) {
+    const int f = l->shrink;
     const double extra = (f * f - 1.0) / 12.0 + f * f / 6.0;
-    l.blurred = blur5(maskedShrunk(rgba, sigma_px, l.threshold, f, options.threads),
-                      std::sqrt(std::max(l.sigma * l.sigma - extra, 0.25)) / f, options.threads);
+    l->blurred = blur5(std::move(l->blurred),
+                       std::sqrt(std::max(l->sigma * l->sigma - extra, 0.25)) / f, options.threads);
     if (!report(++coarse_done / (3.0 * static_cast<double>(coarse)))) return {};
   }
 
