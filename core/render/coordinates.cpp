@@ -84,6 +84,8 @@ struct ProjectiveSpanF {
   float base_x, base_y, beta_x, beta_y, gamma;
 };
 
+// kAffine: γ = 0, no division (rcp + Newton of 1 is 1 − ~2⁻²⁴, which an identity would show).
+template <bool kAffine>
 __attribute__((target("avx2"))) void projectiveSpanFloatAvx2(const ProjectiveSpanF& f, float* sx, float* sy) {
   const __m256 bx = _mm256_set1_ps(f.base_x), by = _mm256_set1_ps(f.base_y);
   const __m256 betax = _mm256_set1_ps(f.beta_x), betay = _mm256_set1_ps(f.beta_y);
@@ -91,9 +93,12 @@ __attribute__((target("avx2"))) void projectiveSpanFloatAvx2(const ProjectiveSpa
   const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f), eight = _mm256_set1_ps(8.0f);
   __m256 t = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
   for (int i = 0; i < kSpanPixels; i += 8, t = _mm256_add_ps(t, eight)) {
-    const __m256 d = _mm256_add_ps(one, _mm256_mul_ps(t, gamma));
-    const __m256 r0 = _mm256_rcp_ps(d);
-    const __m256 tr = _mm256_mul_ps(t, _mm256_mul_ps(r0, _mm256_sub_ps(two, _mm256_mul_ps(d, r0))));
+    __m256 tr = t;
+    if constexpr (!kAffine) {
+      const __m256 d = _mm256_add_ps(one, _mm256_mul_ps(t, gamma));
+      const __m256 r0 = _mm256_rcp_ps(d);
+      tr = _mm256_mul_ps(t, _mm256_mul_ps(r0, _mm256_sub_ps(two, _mm256_mul_ps(d, r0))));
+    }
     _mm256_storeu_ps(sx + i, _mm256_add_ps(bx, _mm256_mul_ps(tr, betax)));
     _mm256_storeu_ps(sy + i, _mm256_add_ps(by, _mm256_mul_ps(tr, betay)));
   }
@@ -175,7 +180,8 @@ class ProjectiveKernel final : public CoordinateKernel {
         const ProjectiveSpanF f{static_cast<float>(u0), static_cast<float>(v0),
                                 static_cast<float>((r.dx - u0 * r.dw) / r.w),
                                 static_cast<float>((r.dy - v0 * r.dw) / r.w), static_cast<float>(r.dw / r.w)};
-        projectiveSpanFloatAvx2(f, sx, sy);  // all kSpanPixels lanes: sx, sy have the room
+        // All kSpanPixels lanes: sx, sy have the room.
+        (r.dw == 0.0 ? projectiveSpanFloatAvx2<true> : projectiveSpanFloatAvx2<false>)(f, sx, sy);
         std::fill(valid, valid + n, static_cast<unsigned char>(1));
         return 0;
       }

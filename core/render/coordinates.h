@@ -9,7 +9,9 @@
 // does not need"):
 // - projective (identity, translation, affine, homography): the exact inverse homography,
 //   evaluated at each span's start and stepped by one column of it per pixel (i · step, not
-//   a running sum, so nothing drifts);
+//   a running sum, so nothing drifts). Under AVX2 the span runs in float lanes re-anchored in
+//   double at its first pixel, s₀ + t β / (1 + γ t) (only the offset from s₀ is float), where
+//   that is exact enough (no horizon, W within 2× along the span, |s| ≤ 16384 px);
 // - rational: the fitted inverse seed (inverse_seed.h) evaluated by forward differences,
 //   re-anchored at every span start (drift ≈ span² · ε), plus a correction bilinear between
 //   nodes of a coarse grid where the exact inverse was solved once. Along a row, once two
@@ -19,7 +21,9 @@
 //   δ = J⁻¹ r. When |δ| ≤ the seed tolerance and s is on the centre's side of the poles and
 //   folds (inverse.h), s − δ is taken (the Newton step the check has already paid for, which
 //   leaves an error ~ curvature · δ²); only pixels where every start misses run the damped
-//   Newton of inverse.h.
+//   Newton of inverse.h. Certified cells (certify_tolerance_px) skip the check; under AVX2
+//   their spans run in float lanes re-anchored per span like the projective ones. The SIMD
+//   lanes are tested against the scalar double code (≤ 1e-3 px) and the exact inverse.
 #pragma once
 
 #include "core/model/camera.h"
