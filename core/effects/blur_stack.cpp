@@ -3,14 +3,17 @@
 //
 // What makes it fast on 24 Mpix (a σ = 16 blur does not need full resolution):
 // - Coarse levels (σ ≥ shrink_from_sigma) blur a 2×, 4×, … box-shrunk copy of the masked image
-//   with a small separable kernel; they are a few MB and kept whole.
+//   with a small separable kernel; they are at most a quarter of the image and kept whole. All
+//   their masked shrinks come from one read of the full-resolution image.
 // - Fine levels (σ below that) are blurred at full resolution, but only band by band and only
 //   over the columns whose pixels need them (plus the kernel radius), so no full-resolution
 //   level image is ever written and a level that no pixel of a band uses costs nothing there.
 // - One pass over the output then blends each pixel from its two levels: the full-resolution
 //   work is a couple of passes, not two per level.
-// Every level is computed exactly as before this split (same mask, kernels, shrink, tent
-// read-back), so the error against exactBlur is unchanged.
+// - The separable passes are flat row sums over zero-padded rows (addScaled), which the
+//   compiler vectorises.
+// Every level is the same as in a level-by-level stack (same mask, kernels, shrink, tent
+// read-back), so the error against exactBlur is that of the stack itself.
 #include "core/effects/depth_of_field.h"
 
 #include "core/effects/blur_inputs.h"
