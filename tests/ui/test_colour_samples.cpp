@@ -10,6 +10,7 @@
 #include "tests/ui/ui_fixtures.h"
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_dock.h"
+#include "ui/colour/colour_project.h"
 #include "ui/colour/colour_stage.h"
 #include "ui/colour/patch_view.h"
 #include "ui/commands.h"
@@ -18,6 +19,7 @@
 #include "ui/preview_controller.h"
 #include "ui/session.h"
 
+#include <QJsonDocument>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -407,6 +409,30 @@ class TestColourSamples : public QObject {
     // The reopened samples read the same colours (the reference was read again).
     const auto a = dock.model()->colourPair(1), b = dock2.model()->colourPair(1);
     QVERIFY(a && b && a->source == b->source && a->target == b->target);
+  }
+
+  void malformedPartsAreNamedByPath() {
+    const auto parse = [](const char* json) {
+      return colourPartFromJson(QJsonDocument::fromJson(json).object(),
+                                "p.artcamproj: /parts/colour");
+    };
+    const auto radius = parse(R"({"radius": 2.5, "samples": []})");
+    QVERIFY(!radius.ok());
+    QVERIFY(QString::fromStdString(radius.status.message)
+                .startsWith("p.artcamproj: /parts/colour/radius"));
+    const auto sample =
+        parse(R"({"radius": 3, "samples": [{"source": [1, 2], "reference": [3]}]})");
+    QVERIFY(!sample.ok());
+    QVERIFY(QString::fromStdString(sample.status.message).contains("/parts/colour/samples/0"));
+    const auto block = parse(R"({"radius": 3, "samples": [], "colour_block": {"format": "x"}})");
+    QVERIFY(!block.ok());
+    QVERIFY(QString::fromStdString(block.status.message).contains("/parts/colour/colour_block"));
+    const auto good = parse(
+        R"({"radius": 3, "samples": [{"source": [1, 2], "reference": [3, 4], "enabled": false}]})");
+    QVERIFY2(good.ok(), good.status.message.c_str());
+    QCOMPARE(good->state.radius, 3);
+    QVERIFY(good->state.samples.size() == 1 && !good->state.samples[0].enabled);
+    QVERIFY(good->state.samples[0].reference == Eigen::Vector2d(3, 4));
   }
 
   void csvExportReadsBackInCore() {
