@@ -12,6 +12,8 @@
 // - γ = 0, linear: σ = k·|d − f|/f, proportional to the distance from the focal plane, with the
 //   thin lens's slope k/f at the focus but growing without bound behind it;
 // - between, the denominator blends the two (still positive for d > 0).
+// A pixel without depth (d = 0, a hole of the depth file) gets σ = k/(1 − γ): the thin lens's
+// 0/0 is not finite and the renderer leaves it sharp.
 // In output pixels σ_px = √σ² · max(w, h)/2.
 //
 // Halo rule (both blurs): a sample y contributes to output pixel x only if σ_y ≥ halo_ratio·σ_x.
