@@ -76,6 +76,8 @@ big = camera([("position", 3)])
 big["blocks"] = big["blocks"] * 3000
 big["stages"] = [{"tensors": [[[]] * 9000] + [0] * 8999}]
 put("artcam", "nasty-empty-rows.artcam", json.dumps(big).replace(" ", ""))
+put("artcam", "nasty-kind-newline.artcam",
+    json.dumps(camera([("position", 3)])).replace('"position"', '"posi\\ntion"', 1))
 put("artcam", "nasty-version.artcam", json.dumps(dict(camera([("position", 3)]), version=99999999999999999999)))
 
 # ---- piecewise .artcam ----

@@ -31,6 +31,13 @@ std::optional<Eigen::Vector2d> readPoint(const QJsonValue& v) {
 
 std::string str(const QString& s) { return s.toStdString(); }
 
+// A string from the file quoted for a one-line message: JSON-escaped (Qt's parser lets raw
+// control characters, newlines included, through inside strings) and cut at 40 characters.
+std::string quoted(const QString& s) {
+  const QByteArray array = QJsonDocument(QJsonArray{s.left(40)}).toJson(QJsonDocument::Compact);
+  return array.mid(1, array.size() - 2).toStdString();  // drop the [ ]
+}
+
 // A depth mask larger than this is refused before it is allocated (two bytes per pixel while it
 // is decoded): 2^30 pixels is beyond any photo the studio edits (a 30 000 × 20 000 photo is
 // 0.6 Gpix), and a few bytes of runs must not be able to ask for gigabytes.
@@ -214,8 +221,8 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
   p.photo_path = pathFromFile(photo, project_path);
   const auto model = modelClassFromName(str(root["model"].toString("auto")));
   if (!model)
-    return Result<Project>::failure(name + ": /model: unknown model \"" +
-                                    str(root["model"].toString()) + "\"");
+    return Result<Project>::failure(name + ": /model: unknown model " +
+                                    quoted(root["model"].toString()));
   p.model = *model;
   const QJsonArray pairs = root["pairs"].toArray();
   for (qsizetype i = 0; i < pairs.size(); ++i) {

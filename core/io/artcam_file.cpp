@@ -29,6 +29,8 @@ struct Refusal {
   throw Refusal{path + ": " + cause};
 }
 
+// A value quoted for a one-line message: strings JSON-escaped (a "\n" in a file's string must not
+// split the message), long values cut.
 std::string describe(const Json& j) {
   if (j.is_string() || j.is_number() || j.is_boolean() || j.is_null()) {
     std::string text = j.dump();
@@ -123,7 +125,8 @@ std::vector<Block> blocksAt(const Json& j, const std::string& path) {
     const std::optional<BlockKind> kind = blockKindFromName(kind_name);
     if (!kind)
       refuse(here + "/kind",
-             "unknown block kind \"" + kind_name + "\" (expected position, colour or depth)");
+             "unknown block kind " + describe(Json(kind_name)) +
+                 " (expected position, colour or depth)");
     const Block parsed{
         *kind, static_cast<int>(wholeNumberAt(field(block, here, "size"), here + "/size", 1))};
     if (!isValidBlock(parsed))
@@ -280,8 +283,8 @@ ArtcamExtras extrasAt(const Json& root, const Camera& main) {
   if (root.contains("depth_output")) {
     extras.depth_output = stringAt(root["depth_output"], "/depth_output");
     if (extras.depth_output != "depth" && extras.depth_output != "blur-variance")
-      refuse("/depth_output", "expected \"depth\" or \"blur-variance\", found \"" +
-                                  extras.depth_output + "\"");
+      refuse("/depth_output", "expected \"depth\" or \"blur-variance\", found " +
+                                  describe(Json(extras.depth_output)));
   }
   return extras;
 }

@@ -53,6 +53,9 @@ class TestHostileProject : public QObject {
                                 << "/depth/layers/0/mask: runs cover 8 of 900000000 pixels";
     QTest::newRow("preview mode") << "nasty-preview-mode.artcamproj"
                                   << "/view/preview_mode: expected 0 to 3";
+    // Found by fuzz_project: a raw newline inside the model name split the message in two.
+    QTest::newRow("newline in model") << "found-model-newline.artcamproj"
+                                      << "/model: unknown model \"\\u0000\\ny\"";
     QTest::newRow("deep nesting") << "nasty-deep-nesting.artcamproj"
                                   << "not valid JSON at offset";
     QTest::newRow("deep camera") << "nasty-deep-camera.artcamproj"

@@ -156,6 +156,7 @@ class TestHostileInputs : public QObject {
         "/frames/source/0: expected a whole number of at least 0, found -1");
     row("artcam", "nasty-empty-rows.artcam",
         "/stages/0/tensors/0/0: expected 9000 numbers, found 0");
+    row("artcam", "nasty-kind-newline.artcam", "/blocks/0/kind: unknown block kind \"posi\\ntion\"");
     row("artcam", "nasty-version.artcam", "/version: expected a whole number, found");
     row("piecewise", "nasty-model-not-string.artcam", "/patches/0/model: expected a string");
     row("piecewise", "nasty-deep-camera.artcam", "nested deeper than 64 levels");
