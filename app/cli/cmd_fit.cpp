@@ -1,6 +1,7 @@
 // artcam fit: matches CSV → .artcam (paper §4, DESIGN §2).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "core/colour/colour_map.h"
 #include "core/fit/fit_colour.h"
 #include "core/fit/fit_image.h"
@@ -51,7 +52,8 @@ const char* const kFitUsage =
     "camera holds the best representable model (and --model root-polynomial is refused).\n"
     "Prints dE00 per sample, mean, median and max. --size is the size of the photos the camera\n"
     "will recolour (its geometry is the identity); --threshold is in dE00 (default 3).\n\n"
-    "-o/--output names the camera file (required; written atomically).\n\n"
+    "-o/--output names the camera file (required; written atomically).\n"
+    "-q/--quiet shows no progress bar (drawn on stderr only when it is a terminal).\n\n"
     "Examples:\n"
     "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
     "  artcam fit matches.csv -o mirror.artcam --size 640x480 --piecewise --max-error 0.3\n";
@@ -87,56 +89,65 @@ int fitColourCommand(const Args& args, const std::string& output) {
     }
     if (!(options.robust_threshold_de > 0)) throw UsageError("--threshold must be positive");
   }
-  const std::string& csv = args.positional()[0];
-  const auto samples =
-      readColourSamplesCsv(csv, args.has("--srgb") ? ColourEncoding::Srgb : ColourEncoding::Linear);
-  if (!samples) throw CommandError(samples.status.message);
-  const ColourFitSummary fit = fitColourSamples(*samples, options);
-  if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
+  // No core hook here: the bar names the stage and Ctrl-C exits at once (interrupt.h).
+  return runJobStages("fit", args.has("--quiet"), [&](JobStages& job) {
+    const std::string& csv = args.positional()[0];
+    job.stage("reading");
+    const auto samples = readColourSamplesCsv(
+        csv, args.has("--srgb") ? ColourEncoding::Srgb : ColourEncoding::Linear);
+    if (!samples) throw CommandError(samples.status.message);
+    job.stage("fitting");
+    const ColourFitSummary fit = fitColourSamples(*samples, options);
+    if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
-  ArtcamDocument doc{colourCamera(fit.map, frame), *samples, fit.record()};
-  if (const Status s = writeArtcamFile(output, doc); !s) throw CommandError(s.message);
+    job.stage("writing");
+    ArtcamDocument doc{colourCamera(fit.map, frame), *samples, fit.record()};
+    if (const Status s = writeArtcamFile(output, doc); !s) throw CommandError(s.message);
+    job.finish();
 
-  if (args.has("--json")) {
-    nlohmann::json j = {{"block", "colour"},
-                        {"model", std::string(colourModelName(fit.map.model))},
-                        {"selected", std::string(colourModelName(fit.selected))},
-                        {"samples", fit.delta_e.size()},
-                        {"delta_e", fit.delta_e},
-                        {"mean_de", fit.mean_de},
-                        {"median_de", fit.median_de},
-                        {"max_de", fit.max_de},
-                        {"rms_rgb", fit.rms_rgb},
-                        {"reason", fit.reason},
-                        {"output", output}};
-    if (fit.held_out_de >= 0) j["held_out_de"] = fit.held_out_de;
-    nlohmann::json candidates = nlohmann::json::array();
-    for (const ColourCandidate& c : fit.candidates) {
-      nlohmann::json jc = {{"model", std::string(colourModelName(c.model))}, {"fitted", c.fitted}};
-      if (c.fitted) jc["mean_de"] = c.mean_de;
-      if (c.held_out_de >= 0) jc["held_out_de"] = c.held_out_de;
-      if (!c.fitted) jc["failure"] = c.failure;
-      candidates.push_back(jc);
+    if (args.has("--json")) {
+      nlohmann::json j = {{"block", "colour"},
+                          {"model", std::string(colourModelName(fit.map.model))},
+                          {"selected", std::string(colourModelName(fit.selected))},
+                          {"samples", fit.delta_e.size()},
+                          {"delta_e", fit.delta_e},
+                          {"mean_de", fit.mean_de},
+                          {"median_de", fit.median_de},
+                          {"max_de", fit.max_de},
+                          {"rms_rgb", fit.rms_rgb},
+                          {"reason", fit.reason},
+                          {"output", output}};
+      if (fit.held_out_de >= 0) j["held_out_de"] = fit.held_out_de;
+      nlohmann::json candidates = nlohmann::json::array();
+      for (const ColourCandidate& c : fit.candidates) {
+        nlohmann::json jc = {{"model", std::string(colourModelName(c.model))},
+                             {"fitted", c.fitted}};
+        if (c.fitted) jc["mean_de"] = c.mean_de;
+        if (c.held_out_de >= 0) jc["held_out_de"] = c.held_out_de;
+        if (!c.fitted) jc["failure"] = c.failure;
+        candidates.push_back(jc);
+      }
+      j["candidates"] = candidates;
+      if (options.robust) j["inliers"] = fit.inliers;
+      std::printf("%s\n", j.dump().c_str());
+      return 0;
     }
-    j["candidates"] = candidates;
-    if (options.robust) j["inliers"] = fit.inliers;
-    std::printf("%s\n", j.dump().c_str());
-    return 0;
-  }
-  std::printf("%s\n", fit.report().c_str());
-  if (!fit.reason.empty()) std::printf("%s\n", fit.reason.c_str());
-  if (fit.held_out_de >= 0) std::printf("held-out mean dE00 %.4g (cross-validated)\n", fit.held_out_de);
-  std::printf("dE00 per sample (enabled, in file order):");
-  for (size_t k = 0; k < fit.delta_e.size(); ++k)
-    std::printf("%s %zu:%.3g", k % 10 ? "" : "\n ", k + 1, fit.delta_e[k]);
-  std::printf("\n");
-  if (options.robust) {
-    std::printf("inliers (%zu):", fit.inliers.size());
-    for (int k : fit.inliers) std::printf(" %d", k + 1);
+    std::printf("%s\n", fit.report().c_str());
+    if (!fit.reason.empty()) std::printf("%s\n", fit.reason.c_str());
+    if (fit.held_out_de >= 0)
+      std::printf("held-out mean dE00 %.4g (cross-validated)\n", fit.held_out_de);
+    std::printf("dE00 per sample (enabled, in file order):");
+    for (size_t k = 0; k < fit.delta_e.size(); ++k)
+      std::printf("%s %zu:%.3g", k % 10 ? "" : "\n ", k + 1, fit.delta_e[k]);
     std::printf("\n");
-  }
-  std::printf("wrote %s\n", output.c_str());
-  return 0;
+    if (options.robust) {
+      std::printf("inliers (%zu):", fit.inliers.size());
+      for (int k : fit.inliers) std::printf(" %d", k + 1);
+      std::printf("\n");
+    }
+    std::printf("wrote %s\n", output.c_str());
+    return 0;
+  });
 }
 
 }  // namespace
@@ -155,7 +166,8 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--block", "", true},
                          {"--srgb", "", false},
                          {"--piecewise", "", false},
-                         {"--max-error", "", true}});
+                         {"--max-error", "", true},
+                         {"--quiet", "-q", false}});
   args.expectPositional(1, "MATCHES.csv");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
@@ -197,52 +209,60 @@ int fitCommand(const std::vector<std::string>& argv) {
     if (!(options.robust_threshold_px > 0)) throw UsageError("--threshold must be positive");
   }
 
-  const std::string& csv = args.positional()[0];
-  const auto matches = readMatchesCsv(csv, dimension);
-  if (!matches) throw CommandError(matches.status.message);
-  const FitSummary fit = dimension == 2 ? fitImageCamera(*matches, source, target, options)
-                                        : fitObjectCamera(*matches, options);
-  if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
+  // No core hook here (the robust fit's RANSAC included): the bar names the stage and Ctrl-C
+  // exits at once, the handler removing the atomic writer's temporary (interrupt.h).
+  return runJobStages("fit", args.has("--quiet"), [&](JobStages& job) {
+    const std::string& csv = args.positional()[0];
+    job.stage("reading");
+    const auto matches = readMatchesCsv(csv, dimension);
+    if (!matches) throw CommandError(matches.status.message);
+    job.stage(options.robust ? "fitting (robust)" : "fitting");
+    const FitSummary fit = dimension == 2 ? fitImageCamera(*matches, source, target, options)
+                                          : fitObjectCamera(*matches, options);
+    if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
-  ArtcamDocument doc{fit.camera, *matches, fit.record};
-  if (const Status s = writeArtcamFile(*output, doc); !s) throw CommandError(s.message);
+    job.stage("writing");
+    ArtcamDocument doc{fit.camera, *matches, fit.record};
+    if (const Status s = writeArtcamFile(*output, doc); !s) throw CommandError(s.message);
+    job.finish();
 
-  if (args.has("--json")) {
-    nlohmann::json j = {{"model", fit.record.model},
-                              {"matches", fit.record.matches},
-                              {"rms_px", fit.record.rms_px},
-                              {"max_px", fit.record.max_px},
-                              {"residuals_px", fit.record.residuals_px},
-                              {"singular_values", fit.record.singular_values},
-                              {"reason", fit.record.reason},
-                              {"output", *output}};
-    nlohmann::json& jr = j;
-    if (fit.record.held_out_rms_px >= 0) jr["held_out_rms_px"] = fit.record.held_out_rms_px;
-    if (fit.record.algebraic_rms_px >= 0) jr["algebraic_rms_px"] = fit.record.algebraic_rms_px;
-    if (fit.record.pole_checked) {
-      jr["pole_free"] = fit.record.pole_free;
-      jr["pole_margin"] = fit.record.pole_margin;
+    if (args.has("--json")) {
+      nlohmann::json j = {{"model", fit.record.model},
+                          {"matches", fit.record.matches},
+                          {"rms_px", fit.record.rms_px},
+                          {"max_px", fit.record.max_px},
+                          {"residuals_px", fit.record.residuals_px},
+                          {"singular_values", fit.record.singular_values},
+                          {"reason", fit.record.reason},
+                          {"output", *output}};
+      nlohmann::json& jr = j;
+      if (fit.record.held_out_rms_px >= 0) jr["held_out_rms_px"] = fit.record.held_out_rms_px;
+      if (fit.record.algebraic_rms_px >= 0) jr["algebraic_rms_px"] = fit.record.algebraic_rms_px;
+      if (fit.record.pole_checked) {
+        jr["pole_free"] = fit.record.pole_free;
+        jr["pole_margin"] = fit.record.pole_margin;
+      }
+      if (options.robust) jr["inliers"] = fit.record.inliers;
+      std::printf("%s\n", j.dump().c_str());
+    } else {
+      std::printf("%s\n", fit.report().c_str());
+      if (!fit.record.reason.empty()) std::printf("%s\n", fit.record.reason.c_str());
+      if (fit.record.held_out_rms_px >= 0)
+        std::printf("held-out RMS %.4g (cross-validated)\n", fit.record.held_out_rms_px);
+      if (fit.record.algebraic_rms_px >= 0)
+        std::printf("refined from the algebraic RMS %.4g\n", fit.record.algebraic_rms_px);
+      if (fit.record.pole_checked)
+        std::printf("%s over the source frame (margin %.3g)\n",
+                    fit.record.pole_free ? "pole-free" : "HAS A POLE", fit.record.pole_margin);
+      if (options.robust) {
+        std::printf("inliers (%zu):", fit.record.inliers.size());
+        for (int k : fit.record.inliers) std::printf(" %d", k + 1);
+        std::printf("\n");
+      }
+      std::printf("wrote %s\n", output->c_str());
     }
-    if (options.robust) jr["inliers"] = fit.record.inliers;
-    std::printf("%s\n", j.dump().c_str());
-  } else {
-    std::printf("%s\n", fit.report().c_str());
-    if (!fit.record.reason.empty()) std::printf("%s\n", fit.record.reason.c_str());
-    if (fit.record.held_out_rms_px >= 0)
-      std::printf("held-out RMS %.4g (cross-validated)\n", fit.record.held_out_rms_px);
-    if (fit.record.algebraic_rms_px >= 0)
-      std::printf("refined from the algebraic RMS %.4g\n", fit.record.algebraic_rms_px);
-    if (fit.record.pole_checked)
-      std::printf("%s over the source frame (margin %.3g)\n",
-                  fit.record.pole_free ? "pole-free" : "HAS A POLE", fit.record.pole_margin);
-    if (options.robust) {
-      std::printf("inliers (%zu):", fit.record.inliers.size());
-      for (int k : fit.record.inliers) std::printf(" %d", k + 1);
-      std::printf("\n");
-    }
-    std::printf("wrote %s\n", output->c_str());
-  }
-  return 0;
+    return 0;
+  });
 }
 
 }  // namespace artcam::cli

@@ -2,6 +2,7 @@
 // --max-error (issue 8; core/piecewise/piecewise_fit.h).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "core/fit/fit_image.h"
 #include "core/io/matches_csv.h"
 #include "core/io/piecewise_file.h"
@@ -31,29 +32,40 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
   }
   options.refine = !args.has("--no-refine");
 
-  const std::string& csv = args.positional()[0];
-  const auto matches = readMatchesCsv(csv, 2);
-  if (!matches) throw CommandError(matches.status.message);
-  const PiecewiseSummary fit = fitPiecewise(*matches, source, target, options);
-  if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
+  // Nothing here has a progress hook in core: the bar names the stage, and Ctrl-C exits at once
+  // (the atomic writer's temporary is removed by the handler, interrupt.h).
+  return runJobStages("fit", args.has("--quiet"), [&](JobStages& job) {
+    const std::string& csv = args.positional()[0];
+    job.stage("reading");
+    const auto matches = readMatchesCsv(csv, 2);
+    if (!matches) throw CommandError(matches.status.message);
+    job.stage("fitting patches");
+    const PiecewiseSummary fit = fitPiecewise(*matches, source, target, options);
+    if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
-  // The file's top level is the best single camera, so plain readers still get one; when no
-  // pole-free single camera exists, the largest patch's camera stands in.
-  FitOptions single_options;
-  single_options.diagnostics = false;
-  const FitSummary single = fitImageCamera(*matches, source, target, single_options);
-  PiecewiseDocument doc{ArtcamDocument{single.status ? single.camera : fit.camera.patches.front().camera,
-                                       *matches, single.status ? std::optional(single.record) : std::nullopt},
-                        fit.camera};
-  if (const Status s = writePiecewiseFile(output, doc); !s) throw CommandError(s.message);
-  std::printf("%s\n", fit.report().c_str());
-  for (size_t i = 0; i < fit.camera.patches.size(); ++i) {
-    const CameraPatch& p = fit.camera.patches[i];
-    std::printf("  patch %zu [%.1f, %.1f]-[%.1f, %.1f] %s: %d matches, RMS %.3g px, max %.3g px%s\n",
-                i, p.rect.x0, p.rect.y0, p.rect.x1, p.rect.y1, p.model.c_str(), p.matches, p.rms_px,
-                p.max_px, p.within_tolerance ? "" : " (above the threshold)");
-  }
-  return 0;
+    // The file's top level is the best single camera, so plain readers still get one; when no
+    // pole-free single camera exists, the largest patch's camera stands in.
+    job.stage("fitting the single camera");
+    FitOptions single_options;
+    single_options.diagnostics = false;
+    const FitSummary single = fitImageCamera(*matches, source, target, single_options);
+    PiecewiseDocument doc{
+        ArtcamDocument{single.status ? single.camera : fit.camera.patches.front().camera, *matches,
+                       single.status ? std::optional(single.record) : std::nullopt},
+        fit.camera};
+    job.stage("writing");
+    if (const Status s = writePiecewiseFile(output, doc); !s) throw CommandError(s.message);
+    job.finish();
+    std::printf("%s\n", fit.report().c_str());
+    for (size_t i = 0; i < fit.camera.patches.size(); ++i) {
+      const CameraPatch& p = fit.camera.patches[i];
+      std::printf(
+          "  patch %zu [%.1f, %.1f]-[%.1f, %.1f] %s: %d matches, RMS %.3g px, max %.3g px%s\n", i,
+          p.rect.x0, p.rect.y0, p.rect.x1, p.rect.y1, p.model.c_str(), p.matches, p.rms_px,
+          p.max_px, p.within_tolerance ? "" : " (above the threshold)");
+    }
+    return 0;
+  });
 }
 
 }  // namespace artcam::cli

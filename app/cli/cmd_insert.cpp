@@ -2,6 +2,7 @@
 // photo (issue 8; the paper's §5, Figs 7 and 8).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "core/io/piecewise_file.h"
@@ -30,6 +31,7 @@ const char* const kInsertUsage =
     "  --mesh-step PX      lattice spacing of the mesh render, source pixels (default 4)\n"
     "  -o, --output OUT    the composited image (required)\n"
     "  --force             allow OUT to be PHOTO\n"
+    "  -q, --quiet         no progress bar (drawn on stderr only when it is a terminal)\n"
     "OUT keeps PHOTO's format and metadata; it is written atomically and may not be PHOTO\n"
     "unless --force is given.\n\n"
     "Example:\n"
@@ -60,7 +62,8 @@ int insertCommand(const std::vector<std::string>& argv) {
                          {"--max-error", "", true},
                          {"--save-camera", "", true},
                          {"--mesh-step", "", true},
-                         {"--force", "", false}});
+                         {"--force", "", false},
+                         {"--quiet", "-q", false}});
   args.expectPositional(2, "PHOTO and GRAPHIC");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
@@ -71,68 +74,83 @@ int insertCommand(const std::vector<std::string>& argv) {
   if (!args.has("--force") && std::filesystem::equivalent(photo_path, *output, ec))
     throw CommandError(*output + ": refusing to overwrite the input photo (use --force)");
 
-  auto photo = readImage(photo_path);
-  if (!photo) throw CommandError(photo.status.message);
-  const auto graphic = readImage(args.positional()[1]);
-  if (!graphic) throw CommandError(graphic.status.message);
-  const FrameSize photo_size{photo->image.width, photo->image.height};
-  const FrameSize canonical = args.has("--canonical")
-                                  ? parseSize(*args.value("--canonical"), "--canonical")
-                                  : FrameSize{graphic->image.width, graphic->image.height};
+  // The image reads and the final write poll for Ctrl-C; the fit, the mesh render and the
+  // camera file have no hook in core (a signal there exits at once, removing temporaries).
+  return runJobStages("insert", args.has("--quiet"), [&](JobStages& job) {
+    ReadImageOptions read;
+    read.progress = job.polled("reading photo");
+    auto photo = readImage(photo_path, read);
+    if (!photo) throw CommandError(photo.status.message);
+    read.progress = job.polled("reading graphic");
+    const auto graphic = readImage(args.positional()[1], read);
+    if (!graphic) throw CommandError(graphic.status.message);
+    const FrameSize photo_size{photo->image.width, photo->image.height};
+    const FrameSize canonical = args.has("--canonical")
+                                    ? parseSize(*args.value("--canonical"), "--canonical")
+                                    : FrameSize{graphic->image.width, graphic->image.height};
 
-  PiecewiseCamera camera;
-  if (args.has("--matches")) {
-    const std::string csv = *args.value("--matches");
-    const auto matches = readMatchesCsv(csv, 2);
-    if (!matches) throw CommandError(matches.status.message);
-    PiecewiseOptions options;
-    options.max_error_px = positiveNumber(args, "--max-error", options.max_error_px);
-    const PiecewiseSummary fit = fitPiecewise(*matches, canonical, photo_size, options);
-    if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
-    std::printf("%s\n", fit.report().c_str());
-    camera = fit.camera;
-    if (const auto save = args.value("--save-camera")) {
-      PiecewiseDocument doc{ArtcamDocument{camera.patches.front().camera, *matches, std::nullopt}, camera};
-      if (const Status s = writePiecewiseFile(*save, doc); !s) throw CommandError(s.message);
-    }
-  } else {
-    const std::string path = *args.value("--camera");
-    const auto doc = readPiecewiseFile(path);
-    if (!doc) throw CommandError(doc.status.message);
-    if (doc->pieces) {
-      camera = *doc->pieces;
+    PiecewiseCamera camera;
+    std::string fit_report;  // printed after the bar is gone
+    if (args.has("--matches")) {
+      const std::string csv = *args.value("--matches");
+      const auto matches = readMatchesCsv(csv, 2);
+      if (!matches) throw CommandError(matches.status.message);
+      PiecewiseOptions options;
+      options.max_error_px = positiveNumber(args, "--max-error", options.max_error_px);
+      job.stage("fitting");
+      const PiecewiseSummary fit = fitPiecewise(*matches, canonical, photo_size, options);
+      if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
+      fit_report = fit.report();
+      camera = fit.camera;
+      if (const auto save = args.value("--save-camera")) {
+        job.stage("writing " + *save);
+        PiecewiseDocument doc{ArtcamDocument{camera.patches.front().camera, *matches, std::nullopt},
+                              camera};
+        if (const Status s = writePiecewiseFile(*save, doc); !s) throw CommandError(s.message);
+      }
     } else {
-      const Camera& single = doc->whole.camera;
-      if (single.blocks().size() != 1 || !single.sourceSize().isImage())
-        throw CommandError(path + ": insert needs a 2D position camera");
-      camera.source_size = single.sourceSize();
-      camera.target_size = single.targetSize();
-      CameraPatch whole;
-      whole.rect = {0, 0, double(single.sourceSize().width), double(single.sourceSize().height)};
-      whole.camera = single;
-      whole.model = "single";
-      camera.patches.push_back(std::move(whole));
+      const std::string path = *args.value("--camera");
+      const auto doc = readPiecewiseFile(path);
+      if (!doc) throw CommandError(doc.status.message);
+      if (doc->pieces) {
+        camera = *doc->pieces;
+      } else {
+        const Camera& single = doc->whole.camera;
+        if (single.blocks().size() != 1 || !single.sourceSize().isImage())
+          throw CommandError(path + ": insert needs a 2D position camera");
+        camera.source_size = single.sourceSize();
+        camera.target_size = single.targetSize();
+        CameraPatch whole;
+        whole.rect = {0, 0, double(single.sourceSize().width), double(single.sourceSize().height)};
+        whole.camera = single;
+        whole.model = "single";
+        camera.patches.push_back(std::move(whole));
+      }
+      if (camera.target_size != photo_size)
+        throw CommandError(
+            path + ": the camera's target frame is " + std::to_string(camera.target_size.width) +
+            "x" + std::to_string(camera.target_size.height) + " but " + photo_path + " is " +
+            std::to_string(photo_size.width) + "x" + std::to_string(photo_size.height));
     }
-    if (camera.target_size != photo_size)
-      throw CommandError(path + ": the camera's target frame is " +
-                         std::to_string(camera.target_size.width) + "x" +
-                         std::to_string(camera.target_size.height) + " but " + photo_path +
-                         " is " + std::to_string(photo_size.width) + "x" +
-                         std::to_string(photo_size.height));
-  }
 
-  PiecewiseRenderOptions render;
-  render.mesh_step_px = positiveNumber(args, "--mesh-step", render.mesh_step_px);
-  const auto start = std::chrono::steady_clock::now();
-  const ImageF inserted = renderPiecewise(graphic->image, camera, render);
-  compositeOver(inserted, photo->image);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (const Status s = writeImage(*output, photo->image, &photo->info); !s)
-    throw CommandError(s.message);
-  std::printf("wrote %s (%zu patches, render + composite %.1f ms)\n", output->c_str(),
-              camera.patches.size(), ms);
-  return 0;
+    PiecewiseRenderOptions render;
+    render.mesh_step_px = positiveNumber(args, "--mesh-step", render.mesh_step_px);
+    job.stage("rendering");
+    const auto start = std::chrono::steady_clock::now();
+    const ImageF inserted = renderPiecewise(graphic->image, camera, render);
+    compositeOver(inserted, photo->image);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    WriteImageOptions write;
+    write.progress = job.polled("writing");
+    if (const Status s = writeImage(*output, photo->image, &photo->info, write); !s)
+      throw CommandError(s.message);
+    job.finish();
+    if (!fit_report.empty()) std::printf("%s\n", fit_report.c_str());
+    std::printf("wrote %s (%zu patches, render + composite %.1f ms)\n", output->c_str(),
+                camera.patches.size(), ms);
+    return 0;
+  });
 }
 
 }  // namespace artcam::cli

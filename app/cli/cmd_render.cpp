@@ -2,6 +2,7 @@
 // image (z-buffered splats, DESIGN §3) or, with -o *.ply, the moved cloud itself.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "core/cloud/cloud_render.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
@@ -36,7 +37,8 @@ const char* const kRenderUsage =
     "point spacing (--point-size, default: the median nearest-neighbour distance).\n"
     "--stats prints points, render_ms and points_per_s on stderr (render only, no file I/O).\n"
     "--threads N sets the worker threads (default 0: all cores). -o/--output names OUT\n"
-    "(required; written atomically).\n\n"
+    "(required; written atomically). -q/--quiet shows no progress bar (drawn on stderr only\n"
+    "when it is a terminal).\n\n"
     "Examples:\n"
     "  artcam preset cube-of-cubes -o cube.ply && artcam preset twist-3d -o twist.artcam\n"
     "  artcam render cube.ply twist.artcam -o twisted.png --size 800x600 --eye 3,2,-4\n";
@@ -97,7 +99,8 @@ int renderCommand(const std::vector<std::string>& argv) {
                          {"--point-size", "", true},
                          {"--splat-scale", "", true},
                          {"--threads", "", true},
-                         {"--stats", "", false}});
+                         {"--stats", "", false},
+                         {"--quiet", "-q", false}});
   args.expectPositional(2, "CLOUD.ply and CAM.artcam");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
@@ -128,58 +131,72 @@ int renderCommand(const std::vector<std::string>& argv) {
   if (args.has("--view") && (args.has("--eye") || args.has("--at") || args.has("--fov")))
     throw UsageError("--view replaces --eye, --at and --fov");
 
-  const auto cloud = readPly(args.positional()[0]);
-  if (!cloud) throw CommandError(cloud.status.message);
-  const std::vector<Camera> effects = {readObjectCamera(args.positional()[1])};
+  return runJobStages("render", args.has("--quiet"), [&](JobStages& job) {
+    job.stage("reading");
+    const auto cloud = readPly(args.positional()[0]);
+    if (!cloud) throw CommandError(cloud.status.message);
+    const std::vector<Camera> effects = {readObjectCamera(args.positional()[1])};
 
-  if (endsWith(*output, ".ply")) {
-    size_t dropped = 0;
-    const PointCloud moved = applyCameras(*cloud, effects, options.threads, &dropped);
-    if (const Status s = writePly(*output, moved); !s) throw CommandError(s.message);
-    std::printf("wrote %s (%zu points, %zu dropped where the camera does not map)\n",
-                output->c_str(), moved.size(), dropped);
-    return 0;
-  }
-
-  Camera view;
-  if (args.has("--view")) {
-    view = readObjectCamera(*args.value("--view"));
-  } else {
-    const CloudBounds bounds = cloudBounds(*cloud);
-    const CameraPose fallback = defaultViewPose(bounds);
-    const Eigen::Vector3d at = args.has("--at")
-                                   ? parseVector(*args.value("--at"), "--at")
-                                   : (bounds.empty ? Eigen::Vector3d::Zero() : bounds.centre());
-    const Eigen::Vector3d eye = args.has("--eye") ? parseVector(*args.value("--eye"), "--eye")
-                                                  : at + (fallback.centre - bounds.centre());
-    CameraPose pose;
-    try {
-      pose = CameraPose::lookAt(eye, at);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--eye/--at: ") + e.what());
+    if (endsWith(*output, ".ply")) {
+      size_t dropped = 0;
+      job.stage("moving points");
+      const PointCloud moved = applyCameras(*cloud, effects, options.threads, &dropped);
+      job.stage("writing");
+      if (const Status s = writePly(*output, moved); !s) throw CommandError(s.message);
+      job.finish();
+      std::printf("wrote %s (%zu points, %zu dropped where the camera does not map)\n",
+                  output->c_str(), moved.size(), dropped);
+      return 0;
     }
-    PinholeParams pin;
-    if (args.has("--fov")) {
-      const double fov = parsePositive(*args.value("--fov"), "--fov");
-      if (fov >= 180) throw UsageError("--fov expects degrees below 180");
-      pin.focal = 1.0 / std::tan(fov * std::numbers::pi / 360.0);
-      pin.pose = pose;
+
+    Camera view;
+    if (args.has("--view")) {
+      view = readObjectCamera(*args.value("--view"));
     } else {
-      pin = framingPinhole(applyCameras(*cloud, effects, options.threads), pose, options.width,
-                           options.height);
+      const CloudBounds bounds = cloudBounds(*cloud);
+      const CameraPose fallback = defaultViewPose(bounds);
+      const Eigen::Vector3d at = args.has("--at")
+                                     ? parseVector(*args.value("--at"), "--at")
+                                     : (bounds.empty ? Eigen::Vector3d::Zero() : bounds.centre());
+      const Eigen::Vector3d eye = args.has("--eye") ? parseVector(*args.value("--eye"), "--eye")
+                                                    : at + (fallback.centre - bounds.centre());
+      CameraPose pose;
+      try {
+        pose = CameraPose::lookAt(eye, at);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--eye/--at: ") + e.what());
+      }
+      PinholeParams pin;
+      if (args.has("--fov")) {
+        const double fov = parsePositive(*args.value("--fov"), "--fov");
+        if (fov >= 180) throw UsageError("--fov expects degrees below 180");
+        pin.focal = 1.0 / std::tan(fov * std::numbers::pi / 360.0);
+        pin.pose = pose;
+      } else {
+        job.stage("framing");
+        pin = framingPinhole(applyCameras(*cloud, effects, options.threads), pose, options.width,
+                             options.height);
+      }
+      view = pinholeCamera(pin);
     }
-    view = pinholeCamera(pin);
-  }
 
-  CloudRenderSummary summary;
-  const ImageF image = renderCloud(*cloud, effects, view, options, &summary);
-  if (const Status s = writeImage(*output, image); !s) throw CommandError(s.message);
-  if (args.has("--stats"))
-    std::fprintf(stderr, "points=%zu render_ms=%.1f points_per_s=%.0f\n", summary.points,
-                 summary.render_ms, summary.pointsPerSecond());
-  std::printf("wrote %s (%dx%d, %zu points drawn, %zu dropped)\n", output->c_str(), image.width,
-              image.height, summary.drawn, summary.dropped);
-  return 0;
+    // renderCloud and writeImage poll: Ctrl-C cancels them (an empty image, no file left).
+    CloudRenderSummary summary;
+    options.progress = job.polled("rendering");
+    const ImageF image = renderCloud(*cloud, effects, view, options, &summary);
+    job.check();
+    WriteImageOptions write;
+    write.progress = job.polled("writing");
+    if (const Status s = writeImage(*output, image, nullptr, write); !s)
+      throw CommandError(s.message);
+    job.finish();
+    if (args.has("--stats"))
+      std::fprintf(stderr, "points=%zu render_ms=%.1f points_per_s=%.0f\n", summary.points,
+                   summary.render_ms, summary.pointsPerSecond());
+    std::printf("wrote %s (%dx%d, %zu points drawn, %zu dropped)\n", output->c_str(), image.width,
+                image.height, summary.drawn, summary.dropped);
+    return 0;
+  });
 }
 
 }  // namespace artcam::cli

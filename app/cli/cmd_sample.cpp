@@ -2,6 +2,7 @@
 // (issue 8): a photo, its calibration-grid matches and a graphic to insert.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "core/piecewise/sample_scenes.h"
@@ -25,12 +26,16 @@ const char* const kSampleUsage =
     "  --squares N     squares along the board's side (default 24)\n"
     "  --size WxH      photo size (default 640x480)\n"
     "  -o, --output DIR  the folder to write into (required; created if missing)\n"
+    "  -q, --quiet     no progress bar (drawn on stderr only when it is a terminal)\n"
     "Example:\n"
     "  artcam sample water-glass -o demo --squares 16 --size 800x600\n"
     "Then: artcam insert DIR/NAME.png DIR/emblem.png --matches DIR/NAME-grid.csv -o OUT.png\n";
 
 int sampleCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--output", "-o", true}, {"--squares", "", true}, {"--size", "", true}});
+  const Args args(argv, {{"--output", "-o", true},
+                         {"--squares", "", true},
+                         {"--size", "", true},
+                         {"--quiet", "-q", false}});
   args.expectPositional(1, "the sample's name");
   const auto dir = args.value("--output");
   if (!dir) throw UsageError("missing -o DIR");
@@ -44,39 +49,54 @@ int sampleCommand(const std::vector<std::string>& argv) {
     if (squares < 2 || squares > 256) throw UsageError("--squares must be between 2 and 256");
   }
   const FrameSize size = parseSize(args.valueOr("--size", "640x480"), "--size");
+  const std::string& name = args.positional()[0];
+  if (name != "mirror-sphere" && name != "water-glass")
+    throw UsageError("unknown sample \"" + name + "\" (mirror-sphere or water-glass)");
   std::error_code ec;
   std::filesystem::create_directories(*dir, ec);
   if (ec) throw CommandError(*dir + ": cannot create the directory: " + ec.message());
 
-  const std::string& name = args.positional()[0];
-  SampleScene sample;
-  if (name == "mirror-sphere") {
-    MirrorSphereScene scene;
-    scene.focal_px = 0.9 * size.width;
-    scene.floor_centre_z = 1.6;  // the board lies in front of the sphere, all of it reflected
-    scene.photo_width = size.width;
-    scene.photo_height = size.height;
-    sample = makeMirrorSphereSample(scene, squares);
-  } else if (name == "water-glass") {
-    WaterGlassScene scene;
-    scene.focal_px = 0.9 * size.width;
-    scene.backdrop_half = 0.75;  // a small board, magnified by the water
-    scene.photo_width = size.width;
-    scene.photo_height = size.height;
-    sample = makeWaterGlassSample(scene, squares);
-  } else {
-    throw UsageError("unknown sample \"" + name + "\" (mirror-sphere or water-glass)");
-  }
-  const std::filesystem::path base(*dir);
-  const std::string photo = (base / (name + ".png")).string();
-  const std::string csv = (base / (name + "-grid.csv")).string();
-  const std::string emblem = (base / "emblem.png").string();
-  if (const Status s = writeImage(photo, sample.photo); !s) throw CommandError(s.message);
-  if (const Status s = writeMatchesCsv(csv, sample.grid_matches); !s) throw CommandError(s.message);
-  if (const Status s = writeImage(emblem, makeEmblemGraphic(512)); !s) throw CommandError(s.message);
-  std::printf("wrote %s, %s (%zu grid corners), %s\n", photo.c_str(), csv.c_str(),
-              sample.grid_matches.size(), emblem.c_str());
-  return 0;
+  return runJobStages("sample", args.has("--quiet"), [&](JobStages& job) {
+    // The scene makers have no progress hook: Ctrl-C while ray tracing exits at once (nothing
+    // has been written yet); the image writes poll and cancel, removing their temporary.
+    job.stage("ray tracing");
+    SampleScene sample;
+    if (name == "mirror-sphere") {
+      MirrorSphereScene scene;
+      scene.focal_px = 0.9 * size.width;
+      scene.floor_centre_z = 1.6;  // the board lies in front of the sphere, all of it reflected
+      scene.photo_width = size.width;
+      scene.photo_height = size.height;
+      sample = makeMirrorSphereSample(scene, squares);
+    } else {
+      WaterGlassScene scene;
+      scene.focal_px = 0.9 * size.width;
+      scene.backdrop_half = 0.75;  // a small board, magnified by the water
+      scene.photo_width = size.width;
+      scene.photo_height = size.height;
+      sample = makeWaterGlassSample(scene, squares);
+    }
+    const std::filesystem::path base(*dir);
+    const std::string photo = (base / (name + ".png")).string();
+    const std::string csv = (base / (name + "-grid.csv")).string();
+    const std::string emblem = (base / "emblem.png").string();
+    WriteImageOptions write;
+    write.progress = job.polled("writing " + name + ".png");
+    if (const Status s = writeImage(photo, sample.photo, nullptr, write); !s)
+      throw CommandError(s.message);
+    job.stage("writing " + name + "-grid.csv");
+    if (const Status s = writeMatchesCsv(csv, sample.grid_matches); !s)
+      throw CommandError(s.message);
+    job.stage("drawing emblem.png");
+    const ImageF graphic = makeEmblemGraphic(512);
+    write.progress = job.polled("writing emblem.png");
+    if (const Status s = writeImage(emblem, graphic, nullptr, write); !s)
+      throw CommandError(s.message);
+    job.finish();
+    std::printf("wrote %s, %s (%zu grid corners), %s\n", photo.c_str(), csv.c_str(),
+                sample.grid_matches.size(), emblem.c_str());
+    return 0;
+  });
 }
 
 }  // namespace artcam::cli

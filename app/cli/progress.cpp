@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace artcam::cli {
 namespace {
@@ -33,6 +34,7 @@ void ProgressBar::stage(const std::string& name, double fraction) {
   const std::lock_guard lock(mutex_);
   const bool changed = name != stage_;
   stage_ = name;
+  fraction_known_ = fraction >= 0.0;
   fraction_ = std::clamp(fraction, 0.0, 1.0);
   redrawLocked(changed);
 }
@@ -89,12 +91,58 @@ void ProgressBar::redrawLocked(bool force) {
     const std::string eta = whole > 0 ? clock(elapsed / whole * (1.0 - whole)) : "?";
     std::snprintf(text, sizeof text, "%s %d/%d files  %.1f Mpix/s  ETA %s", bar.c_str(), done_,
                   items_, rate, eta.c_str());
-  } else {
+  } else if (fraction_known_) {
     std::snprintf(text, sizeof text, "%s %s %3.0f%%", bar.c_str(), stage_.c_str(), 100.0 * whole);
+  } else {
+    std::snprintf(text, sizeof text, "%s %s", bar.c_str(), stage_.c_str());
   }
   std::fprintf(stderr, "\r\033[K%s", text);
   std::fflush(stderr);
   drawn_ = true;
+}
+
+namespace {
+
+struct JobInterrupted : std::runtime_error {
+  JobInterrupted() : std::runtime_error("interrupted") {}
+};
+
+}  // namespace
+
+void JobStages::check() {
+  if (interruptRequested()) throw JobInterrupted();
+}
+
+void JobStages::stage(const std::string& name) {
+  // Leave cooperative mode first: a signal from here on exits at once (nothing polls), one
+  // that came before is seen by check().
+  cooperative_.reset();
+  check();
+  bar_.stage(name, -1.0);
+}
+
+std::function<bool(double)> JobStages::polled(const std::string& name) {
+  cooperative_.emplace();
+  check();
+  bar_.stage(name, 0.0);
+  return cancelOnInterrupt([this, name](double done) { bar_.stage(name, done); });
+}
+
+void JobStages::finish() {
+  cooperative_.reset();
+  check();
+  bar_.finish();
+}
+
+int runJobStages(const char* command, bool quiet, const std::function<int(JobStages&)>& body) {
+  try {
+    JobStages job(quiet);
+    return body(job);
+  } catch (const std::exception&) {
+    if (!interruptRequested()) throw;
+  }
+  std::fprintf(stderr, "artcam %s: interrupted; unfinished outputs not written\n", command);
+  return interruptExitCode();
 }
 
 }  // namespace artcam::cli
