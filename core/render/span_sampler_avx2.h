@@ -43,10 +43,25 @@ __attribute__((target("avx2"))) inline bool allInterior(__m256 fx, __m256 fy, __
   return _mm256_movemask_ps(in) == 0xFF;
 }
 
+// Eight 32-bit byte offsets moved from a vector to general registers, two per 64-bit
+// extract: a round trip through memory stalled on store forwarding (measured, both samplers).
+struct Offsets8 {
+  std::uint64_t pair[4];
+  [[gnu::always_inline]] std::int32_t operator[](int i) const {
+    return static_cast<std::int32_t>(pair[i >> 1] >> (32 * (i & 1)));
+  }
+};
+
+__attribute__((target("avx2"), always_inline)) inline Offsets8 toRegisters(__m256i off) {
+  const __m128i lo = _mm256_castsi256_si128(off), hi = _mm256_extracti128_si256(off, 1);
+  return {{static_cast<std::uint64_t>(_mm_cvtsi128_si64(lo)), static_cast<std::uint64_t>(_mm_extract_epi64(lo, 1)),
+           static_cast<std::uint64_t>(_mm_cvtsi128_si64(hi)), static_cast<std::uint64_t>(_mm_extract_epi64(hi, 1))}};
+}
+
 // bilinearU8's pieces. Pixels p and p + 4: [top 8 bytes | bottom 8 bytes] in one lane each.
 __attribute__((target("avx2"), always_inline)) inline __m256i pixelPair(const std::uint8_t* src,
                                                                         const std::uint8_t* below,
-                                                                        const std::int32_t* top, int p) {
+                                                                        const Offsets8& top, int p) {
   const auto rows = [&](int q) __attribute__((always_inline)) {
     const __m128i t = _mm_loadl_epi64(static_cast<const __m128i*>(static_cast<const void*>(src + top[q])));
     return _mm_castpd_si128(
@@ -79,8 +94,6 @@ __attribute__((target("avx2"), always_inline)) inline __m256i weighPair(__m256i 
 // - one _mm256_madd_epi16 weighs the columns (256 − ax, ax) into 32 bits; + the bias, >> 8,
 //   packed to 16 bits, ÷ 255 as (q · 0x8081) >> 23 (exact for every 16-bit q);
 // - two packs put pixels 0–3 in the low lane and 4–7 in the high one, in order.
-// Offsets go from vector to general registers by 64-bit extracts (a round trip through memory
-// stalled on store forwarding).
 template <int C, bool kAppendAlpha = false>
 __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context& k, std::uint8_t* out,
                                                      int n, const float* sx, const float* sy,
@@ -125,15 +138,7 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
         _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0)), scale_y), half));  // 0 … 255
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x0, 2) : _mm256_add_epi32(x0, _mm256_slli_epi32(x0, 1));
     const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y0, row), xoff);
-    const __m128i lo = _mm256_castsi256_si128(off), hi = _mm256_extracti128_si256(off, 1);
-    const std::uint64_t o01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(lo));
-    const std::uint64_t o23 = static_cast<std::uint64_t>(_mm_extract_epi64(lo, 1));
-    const std::uint64_t o45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(hi));
-    const std::uint64_t o67 = static_cast<std::uint64_t>(_mm_extract_epi64(hi, 1));
-    const std::int32_t top[8] = {static_cast<std::int32_t>(o01), static_cast<std::int32_t>(o01 >> 32),
-                                 static_cast<std::int32_t>(o23), static_cast<std::int32_t>(o23 >> 32),
-                                 static_cast<std::int32_t>(o45), static_cast<std::int32_t>(o45 >> 32),
-                                 static_cast<std::int32_t>(o67), static_cast<std::int32_t>(o67 >> 32)};
+    const Offsets8 top = toRegisters(off);
     // Bytes (255 − ay, ay, 255 − ay, ay) per lane; words (256 − ax, ax).
     const __m256i wy_pair = _mm256_or_si256(_mm256_sub_epi32(c255, ay), _mm256_slli_epi32(ay, 8));
     const __m256i wy = _mm256_or_si256(wy_pair, _mm256_slli_epi32(wy_pair, 16));
@@ -176,8 +181,8 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
   return transparent;
 }
 
-// Nearest, C = 3 or 4: offsets for eight pixels at once, into general registers (a round trip
-// through memory stalled on store forwarding: measured 2 ns/px), one 4-byte load each,
+// Nearest, C = 3 or 4: offsets for eight pixels at once, into general registers
+// (toRegisters), one 4-byte load each,
 // assembled four pixels per 128-bit register and stored as in bilinearU8. RGB's 4-byte load
 // reads one byte past the pixel, so the tap must not be on the last row.
 template <int C, bool kAppendAlpha = false>
@@ -206,18 +211,12 @@ __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& 
     const __m256i y = _mm256_cvttps_epi32(_mm256_add_ps(fy, half));
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x, 2) : _mm256_add_epi32(x, _mm256_slli_epi32(x, 1));
     const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y, row), xoff);
-    const __m128i lo = _mm256_castsi256_si128(off), hi = _mm256_extracti128_si256(off, 1);
-    const std::uint64_t o01 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(lo));
-    const std::uint64_t o23 = static_cast<std::uint64_t>(_mm_extract_epi64(lo, 1));
-    const std::uint64_t o45 = static_cast<std::uint64_t>(_mm_cvtsi128_si64(hi));
-    const std::uint64_t o67 = static_cast<std::uint64_t>(_mm_extract_epi64(hi, 1));
-    const auto at = [&](std::uint64_t pair, int second) __attribute__((always_inline)) {
-      return _mm_loadu_si32(k.src + static_cast<std::int32_t>(second ? pair >> 32 : pair));
+    const Offsets8 at = toRegisters(off);
+    const auto four = [&](int p) __attribute__((always_inline)) {
+      const auto load = [&](int q) __attribute__((always_inline)) { return _mm_loadu_si32(k.src + at[q]); };
+      return _mm_unpacklo_epi64(_mm_unpacklo_epi32(load(p), load(p + 1)), _mm_unpacklo_epi32(load(p + 2), load(p + 3)));
     };
-    const auto four = [&](std::uint64_t a, std::uint64_t b) __attribute__((always_inline)) {
-      return _mm_unpacklo_epi64(_mm_unpacklo_epi32(at(a, 0), at(a, 1)), _mm_unpacklo_epi32(at(b, 0), at(b, 1)));
-    };
-    __m128i first = four(o01, o23), second = four(o45, o67);
+    __m128i first = four(0), second = four(4);
     std::uint8_t* o = out + i * kOut;
     if constexpr (C == 4 || kAppendAlpha) {
       if constexpr (kAppendAlpha) {

@@ -79,6 +79,19 @@ double worstAgainstReference(const Camera& camera, FrameSize size, const Coordin
   return worst;
 }
 
+// The OpenCV peer's mild lens-like map (peerbench/common.hpp default_map), as in `artcam bench
+// render`: n_k = p_k · (u², uv, u, v², v, 1).
+Camera benchLens(FrameSize size) {
+  const double p[3][6] = {{0.030, 0.020, 1.000, -0.010, 0.010, 0.005},
+                          {0.010, -0.020, 0.015, 0.030, 0.980, -0.004},
+                          {0.020, 0.010, 0.040, -0.020, -0.030, 1.000}};
+  std::vector<Eigen::Matrix3d> q(3);
+  for (int k = 0; k < 3; ++k)
+    q[static_cast<size_t>(k)] << p[k][0], p[k][1] / 2, p[k][2] / 2, p[k][1] / 2, p[k][3],
+        p[k][4] / 2, p[k][2] / 2, p[k][4] / 2, p[k][5];
+  return Camera::rtcam(q, size, size);
+}
+
 std::filesystem::path scratch(const std::string& name) {
   return std::filesystem::temp_directory_path() /
          ("artcam-fast-paths-" + std::to_string(QCoreApplication::applicationPid()) + "-" + name);
@@ -148,14 +161,7 @@ class TestFastPaths : public QObject {
     // The OpenCV peer's mild lens-like map (peerbench/common.hpp default_map, as in `artcam
     // bench render`), on a frame large enough for 32-px cells to be smooth at 1/512 px.
     const FrameSize size{2000, 1500};
-    const double p[3][6] = {{0.030, 0.020, 1.000, -0.010, 0.010, 0.005},
-                            {0.010, -0.020, 0.015, 0.030, 0.980, -0.004},
-                            {0.020, 0.010, 0.040, -0.020, -0.030, 1.000}};
-    std::vector<Eigen::Matrix3d> q(3);
-    for (int k = 0; k < 3; ++k)
-      q[static_cast<size_t>(k)] << p[k][0], p[k][1] / 2, p[k][2] / 2, p[k][1] / 2, p[k][3],
-          p[k][4] / 2, p[k][2] / 2, p[k][4] / 2, p[k][5];
-    const Camera camera = Camera::rtcam(q, size, size);
+    const Camera camera = benchLens(size);
     CoordinateOptions co;
     double share = 0.0;
     const double worst = worstAgainstReference(camera, size, co, &share);
@@ -178,14 +184,7 @@ class TestFastPaths : public QObject {
   void floatSpansAgreeWithScalarAndReference_data() {
     QTest::addColumn<Camera>("camera");
     const FrameSize size{1200, 800};
-    const double p[3][6] = {{0.030, 0.020, 1.000, -0.010, 0.010, 0.005},
-                            {0.010, -0.020, 0.015, 0.030, 0.980, -0.004},
-                            {0.020, 0.010, 0.040, -0.020, -0.030, 1.000}};
-    std::vector<Eigen::Matrix3d> q(3);
-    for (int k = 0; k < 3; ++k)
-      q[static_cast<size_t>(k)] << p[k][0], p[k][1] / 2, p[k][2] / 2, p[k][1] / 2, p[k][3],
-          p[k][4] / 2, p[k][2] / 2, p[k][4] / 2, p[k][5];
-    QTest::newRow("mild lens") << Camera::rtcam(q, size, size);
+    QTest::newRow("mild lens") << benchLens(size);
     Eigen::Matrix3d h;
     h << 1.1, 0.2, 0.05, -0.1, 0.9, 0.02, 0.4, 0.9, 1.0;  // horizon 0.4 x + 0.9 y + 1 = 0 crosses
     QTest::newRow("perspective with horizon") << test::homographyCamera(h, size, size);
