@@ -15,9 +15,40 @@
 #include <QProcess>
 #include <QTemporaryDir>
 
+#include <fcntl.h>
 #include <signal.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 using namespace artcam::test;
+
+namespace {
+
+// Runs the CLI with stderr on a pseudo-terminal (isatty true there) and returns what the
+// terminal received; "" with ok = false when no pty could be made.
+QByteArray stderrOnTerminal(const QStringList& args, bool& ok) {
+  ok = false;
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0) return {};
+  QByteArray seen;
+  if (::grantpt(master) == 0 && ::unlockpt(master) == 0) {
+    if (const char* slave = ::ptsname(master)) {
+      QProcess p;
+      p.setStandardErrorFile(QString::fromLocal8Bit(slave));
+      p.start(QStringLiteral(ARTCAM_CLI_PATH), args);
+      ok = p.waitForFinished(300000) && p.exitStatus() == QProcess::NormalExit && p.exitCode() == 0;
+      // The child has exited, so its writes are all in the pty's buffer; read without waiting.
+      ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
+      char buffer[4096];
+      for (ssize_t n; (n = ::read(master, buffer, sizeof buffer)) > 0;)
+        seen.append(buffer, static_cast<qsizetype>(n));
+    }
+  }
+  ::close(master);
+  return seen;
+}
+
+}  // namespace
 
 class TestCliProgress : public QObject {
   Q_OBJECT
@@ -84,6 +115,28 @@ class TestCliProgress : public QObject {
       QVERIFY(hiddenFiles(out).isEmpty());
       QVERIFY(hiddenFiles(sample).isEmpty());
     }
+  }
+
+  // On a terminal the bar is drawn in place (carriage return + erase line) naming the stages,
+  // and cleared before the report; --quiet draws nothing.
+  void barOnATerminalUnlessQuiet() {
+    const QStringList render = {"render",
+                                QStringLiteral(ARTCAM_RESOURCES_DIR "/cube.ply"),
+                                path("twist.artcam"),
+                                "-o",
+                                path("terminal.png"),
+                                "--size",
+                                "600x400"};
+    bool ok = false;
+    const QByteArray bar = stderrOnTerminal(render, ok);
+    QVERIFY(ok);
+    QVERIFY2(bar.contains("\r\033[K"), bar.constData());
+    for (const char* stage : {"reading", "rendering", "writing"})
+      QVERIFY2(bar.contains(stage), bar.constData());
+    QVERIFY2(bar.endsWith("\r\033[K"), bar.constData());  // cleared at the end
+    const QByteArray quiet = stderrOnTerminal(QStringList(render) << "--quiet", ok);
+    QVERIFY(ok);
+    QVERIFY2(quiet.isEmpty(), quiet.constData());
   }
 
   // Ray tracing has no progress hook in core: SIGINT there exits at once with 130, and the
