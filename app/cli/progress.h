@@ -71,7 +71,7 @@ class JobStages {
   std::function<bool(double)> polled(const std::string& name);
   // Throws once a signal came (after a polled core call that returned early).
   void check();
-  // Clears the bar before the command's own lines on stdout; throws once a signal came.
+  // Clears the bar before the command's own lines on stdout (all outputs written).
   void finish();
 
  private:
