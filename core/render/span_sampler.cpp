@@ -391,7 +391,6 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
     throw std::invalid_argument("the output must have the source's channels, or one more for alpha");
   if (append && dst.alpha_channel != src.channels)
     throw std::invalid_argument("an appended alpha channel must be the output's last channel");
-  pixel_bytes_ = src.pixelBytes();
   context_.src = static_cast<const unsigned char*>(src.data);
   context_.src_row = src.row_bytes;
   context_.width = src.width;
@@ -411,24 +410,6 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
       fn_ = simd;
       simd_ = true;
     }
-}
-
-void SpanSampler::prefetch(int n, const float* sx, const float* sy, const float* px,
-                           const float* py, float rows_ahead) const {
-  const Context& k = context_;
-  const std::ptrdiff_t pixel = dst_.channels > 0 ? static_cast<std::ptrdiff_t>(pixel_bytes_) : 0;
-  const float w = static_cast<float>(k.width), h = static_cast<float>(k.height) - 1.0f;
-  const auto one = [&](int i) {
-    const float x = sx[i] + rows_ahead * (sx[i] - px[i]);
-    const float y = sy[i] + rows_ahead * (sy[i] - py[i]) - 0.5f;
-    if (!(x >= 0.0f && y >= 0.0f && x < w && y < h)) return;  // also NaN
-    const unsigned char* p = k.src + static_cast<std::ptrdiff_t>(y) * k.src_row +
-                             static_cast<std::ptrdiff_t>(x) * pixel;
-    __builtin_prefetch(p);
-    __builtin_prefetch(p + k.src_row);
-  };
-  for (int i = 0; i < n; i += 8) one(i);
-  if (n > 0) one(n - 1);
 }
 
 long long SpanSampler::run(int y, int x0, int n, const float* sx, const float* sy,

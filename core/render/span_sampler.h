@@ -33,12 +33,6 @@ class SpanSampler {
   long long run(int y, int x0, int n, const float* sx, const float* sy, const unsigned char* valid,
                 int supersample = 1, const float* jacobian = nullptr) const;
 
-  // Prefetches the source lines that output pixels will read `rows_ahead` rows further down,
-  // extrapolated from this row's positions (sx, sy) and the row above's (px, py). A hint only:
-  // addresses outside the source are skipped, nothing is read.
-  void prefetch(int n, const float* sx, const float* sy, const float* px, const float* py,
-                float rows_ahead) const;
-
   struct Context {
     const unsigned char* src = nullptr;
     std::ptrdiff_t src_row = 0;
@@ -58,7 +52,6 @@ class SpanSampler {
   ImageView dst_;
   SpanFn fn_ = nullptr;
   bool simd_ = false;
-  int pixel_bytes_ = 0;
 };
 
 }  // namespace artcam
