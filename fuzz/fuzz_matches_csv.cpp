@@ -1,5 +1,6 @@
-// libFuzzer target: the match-list CSV reader (core/io/matches_csv.h), 2D and 3D. The first
-// byte picks the dimension so one corpus covers both headers.
+// libFuzzer target: the match-list CSV reader (core/io/matches_csv.h), 2D and 3D: 3D when the
+// text names src_z (as the replay test tests/core/io/test_hostile_inputs.cpp decides), so one
+// corpus covers both headers.
 #include "core/io/matches_csv.h"
 #include "fuzz/fuzz_check.h"
 
@@ -9,8 +10,9 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace artcam;
-  const int dimension = size > 0 && (data[0] & 1) ? 3 : 2;
-  const auto parsed = parseMatchesCsv(fuzz::textOf(data, size), fuzz::kInputName, dimension);
+  const std::string_view text = fuzz::textOf(data, size);
+  const int dimension = text.find("src_z") != std::string_view::npos ? 3 : 2;
+  const auto parsed = parseMatchesCsv(text, fuzz::kInputName, dimension);
   if (!parsed) {
     fuzz::checkRefusal(parsed.status.message);
     return 0;
