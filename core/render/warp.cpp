@@ -205,7 +205,9 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
     // A software prefetch of the source lines the next rows will read (extrapolated from the
     // last two rows) used to pay here; with the AVX2 samplers it cost more than it saved
     // (~8 % of the CPU time of a 24 Mpix bilinear render, measured) and is gone, as is a
-    // prefetch of the output lines two rows down (no gain measured).
+    // prefetch of the output lines two rows down (no gain measured). The 8-bit bilinear
+    // samplers prefetch instead, from the taps they have just read, the same lines a few rows
+    // down (span_sampler_avx2.h, prefetchRowsAhead): exact addresses, no extrapolation.
     for (int tx = 0; tx < out_px.width; tx += kTileSpans * kSpanPixels) {
       const int tile_end = std::min(out_px.width, tx + kTileSpans * kSpanPixels);
       for (int x0 = tx; x0 < tile_end; x0 += kSpanPixels) {
