@@ -1,6 +1,7 @@
 #include "core/render/span_sampler.h"
 
 #include "core/render/span_sampler_avx2.h"
+#include "core/render/span_sampler_avx512.h"
 #include "core/render/span_sampler_cubic.h"
 
 #include <algorithm>
@@ -341,18 +342,40 @@ __attribute__((target("avx2"))) long long cubicSpanU8Simd(const Context& k, unsi
   return sampleSpan<std::uint8_t, C, Filter::Bicubic>(k, out, n, sx, sy, valid, supersample, jac);
 }
 
-// AVX2 when the CPU has it and the source's byte offsets fit the 32-bit offsets.
-SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter) {
+#ifdef ARTCAM_HAVE_AVX512_SAMPLER
+// The AVX-512 bilinear (span_sampler_avx512.h) for RGB8 → RGB8 without alpha, the photo
+// case; every other layout, and every group it cannot take, runs the AVX2 clone.
+long long bilinearRgb8Avx512(const Context& k, unsigned char* out, int n, const float* sx,
+                             const float* sy, const unsigned char* valid, int supersample,
+                             const float* jac) {
+  if (supersample > 1 || k.append_alpha || k.out_channels != 3 || k.src_alpha >= 0)
+    return sampleSpanU8Simd<3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
+  return avx512::bilinearRgb8(k, out, n, sx, sy, valid, &sampleSpanU8<3, Filter::Bilinear>);
+}
+
+bool cpuHasAvx512Sampler() {
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi");
+}
+#endif
+
+// AVX2 when the CPU has it and the source's byte offsets fit the 32-bit offsets; AVX-512 for
+// RGB8 bilinear where the CPU has it and rows hold a 64-byte window.
+SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter, bool allow_avx512) {
   if (src.type != PixelType::UInt8 || (src.channels != 3 && src.channels != 4)) return nullptr;
   if (!__builtin_cpu_supports("avx2")) return nullptr;
   if (filter == Filter::Bicubic) return src.channels == 3 ? cubicSpanU8Simd<3> : cubicSpanU8Simd<4>;
   if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
+#ifdef ARTCAM_HAVE_AVX512_SAMPLER
+  if (filter == Filter::Bilinear && src.channels == 3 && allow_avx512 && src.row_bytes >= 64 && cpuHasAvx512Sampler())
+    return bilinearRgb8Avx512;
+#endif
   if (filter == Filter::Bilinear)
     return src.channels == 3 ? sampleSpanU8Simd<3, Filter::Bilinear> : sampleSpanU8Simd<4, Filter::Bilinear>;
   return src.channels == 3 ? sampleSpanU8Simd<3, Filter::Nearest> : sampleSpanU8Simd<4, Filter::Nearest>;
 }
 #else
-SpanSampler::SpanFn pickSimd(const ConstImageView&, Filter) { return nullptr; }
+SpanSampler::SpanFn pickSimd(const ConstImageView&, Filter, bool) { return nullptr; }
 #endif
 
 template <class T, Filter F>
@@ -378,7 +401,7 @@ SpanSampler::SpanFn pickFilter(Filter filter, int channels) {
 }  // namespace
 
 SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter,
-                         bool allow_simd)
+                         bool allow_simd, bool allow_avx512)
     : dst_(dst) {
   if (src.empty() || src.channels < 1 || src.channels > 4)
     throw std::invalid_argument("the source image is empty or has more than 4 channels");
@@ -406,9 +429,12 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
     case PixelType::Float: fn_ = pickFilter<float>(filter, src.channels); break;
   }
   if (allow_simd)
-    if (const SpanFn simd = pickSimd(src, filter)) {
+    if (const SpanFn simd = pickSimd(src, filter, allow_avx512)) {
       fn_ = simd;
       simd_ = true;
+#ifdef ARTCAM_HAVE_AVX512_SAMPLER
+      avx512_ = simd == bilinearRgb8Avx512;
+#endif
     }
 }
 

@@ -24,8 +24,12 @@ class SpanSampler {
   // last) when src has no alpha. Throws std::invalid_argument otherwise. `allow_simd`: take the
   // AVX2 clone of the 8-bit one-tap paths where the CPU has it (runtime dispatch, bit-identical
   // to the scalar code: span_sampler_avx2.h); false keeps the portable scalar code.
-  SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter, bool allow_simd = true);
+  // `allow_avx512`: for RGB8 bilinear, the AVX-512 clone (span_sampler_avx512.h, also
+  // bit-identical) where the CPU has it; false stops at AVX2 (tests compare the two).
+  SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter, bool allow_simd = true,
+              bool allow_avx512 = true);
   bool usesSimd() const { return simd_; }
+  bool usesAvx512() const { return avx512_; }
 
   // Writes output pixels x0 … x0 + n − 1 of row y. `jacobian` (row-major 2×2, d source / d
   // target) is read only when supersample > 1. Returns the count of transparent pixels
@@ -52,6 +56,7 @@ class SpanSampler {
   ImageView dst_;
   SpanFn fn_ = nullptr;
   bool simd_ = false;
+  bool avx512_ = false;
 };
 
 }  // namespace artcam
