@@ -43,6 +43,22 @@ __attribute__((target("avx2"))) inline bool allInterior(__m256 fx, __m256 fy, __
   return _mm256_movemask_ps(in) == 0xFF;
 }
 
+// Eight lanes without a single tap inside the source (or without a preimage): the scalar path
+// (bilinearTap's first test, NaN included) writes zeros there, transparent — every layout
+// (colour 0, alpha or coverage 0). A lens's corners outside the source are whole groups of
+// these; they need no per-pixel pass.
+__attribute__((target("avx2"))) inline bool allOutside(__m256 fx, __m256 fy, const SpanSampler::Context& k,
+                                                       const unsigned char* valid) {
+  const __m256 minus_one = _mm256_set1_ps(-1.0f);
+  const __m256 w = _mm256_set1_ps(static_cast<float>(k.width)), h = _mm256_set1_ps(static_cast<float>(k.height));
+  const __m256 some_tap = _mm256_and_ps(
+      _mm256_and_ps(_mm256_cmp_ps(fx, minus_one, _CMP_GT_OQ), _mm256_cmp_ps(fy, minus_one, _CMP_GT_OQ)),
+      _mm256_and_ps(_mm256_cmp_ps(fx, w, _CMP_LT_OQ), _mm256_cmp_ps(fy, h, _CMP_LT_OQ)));
+  const __m128i v8 = _mm_loadl_epi64(static_cast<const __m128i*>(static_cast<const void*>(valid)));
+  const __m256i has = _mm256_cmpgt_epi32(_mm256_cvtepu8_epi32(v8), _mm256_setzero_si256());
+  return _mm256_movemask_ps(_mm256_and_ps(some_tap, _mm256_castsi256_ps(has))) == 0;
+}
+
 // Eight 32-bit byte offsets moved from a vector to general registers, two per 64-bit
 // extract: a round trip through memory stalled on store forwarding (measured, both samplers).
 struct Offsets8 {
@@ -144,7 +160,12 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
     const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx + i), half);
     const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy + i), half);
     if (!allInterior(fx, fy, xmax, ymax, valid + i)) {
-      transparent += scalar(k, out + i * kOut, 8, sx + i, sy + i, valid + i);
+      if (allOutside(fx, fy, k, valid + i)) {
+        std::memset(out + i * kOut, 0, 8 * kOut);
+        transparent += 8;
+      } else {
+        transparent += scalar(k, out + i * kOut, 8, sx + i, sy + i, valid + i);
+      }
       continue;
     }
     const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale_x), half));

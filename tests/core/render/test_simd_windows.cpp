@@ -5,7 +5,8 @@
 // - groups within one source row, and groups crossing one row (the blended second permute);
 // - groups it hands to the AVX2 clone: crossing two rows, wider than its window (minified),
 //   running right to left, touching a border or an invalid pixel, and the tails of spans
-//   whose length is not a multiple of sixteen;
+//   whose length is not a multiple of sixteen; groups wholly outside the source (the AVX2
+//   clone writes their zeros without the scalar pass);
 // - the lower-row limit of the interior (positions just above and below h − 2.5).
 // On a CPU without AVX-512 the test still compares the AVX2 clone (or the scalar code, when
 // there is no SIMD at all) with the scalar path and says so.
@@ -77,6 +78,8 @@ class TestSimdWindows : public QObject {
       if (kind == 3) {  // straddling a border
         ox = test::uniform(-6.0, 6.0);
         oy = round % 16 < 8 ? test::uniform(-2.0, 2.0) : test::uniform(h - 4.0, h + 1.0);
+        if (round % 24 == 3) oy = test::uniform(h + 0.2, h + 3.0);  // wholly outside: zeros
+        if (round % 24 == 11) ox = test::uniform(-30.0, -8.0);      // outside, then entering
       }
       if (kind == 2 && round % 16 < 8) oy = h - 2.0 + test::uniform(-0.02, 0.02);  // fy ≈ h − 2.5
       for (int i = 0; i < n; ++i) {
