@@ -374,6 +374,47 @@ __attribute__((target("avx2"))) void seedSpanFloatAvx2(const SeedSpanF& f, float
   }
 }
 
+// The same span sixteen lanes at a time where the CPU has AVX-512F (runtime dispatch, as
+// above): half the instructions of the AVX2 loop, which costs ~20 % of a certified render's
+// CPU. The division is _mm512_rcp14_ps and one Newton step (relative error ~2⁻²⁸, below the
+// AVX2 loop's), and the compiler may fuse products and sums, so the lanes differ from the
+// AVX2 ones in the last bits only; the tests hold both to the same bounds (the scalar double
+// code within 1e-3 px, the exact inverse within 1/256 px) through the dispatch.
+#pragma GCC diagnostic push
+// GCC 12's intrinsics start from _mm512_undefined_*() (a self-initialised variable): a false
+// positive of both warnings.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+__attribute__((target("avx512f"))) void seedSpanFloatAvx512(const SeedSpanF& f, float* sx, float* sy) {
+  const __m512 bx = _mm512_set1_ps(f.base_x), by = _mm512_set1_ps(f.base_y);
+  const __m512 betax = _mm512_set1_ps(f.beta_x), alphax = _mm512_set1_ps(f.alpha_x);
+  const __m512 betay = _mm512_set1_ps(f.beta_y), alphay = _mm512_set1_ps(f.alpha_y);
+  const __m512 gamma = _mm512_set1_ps(f.gamma), delta = _mm512_set1_ps(f.delta);
+  const __m512 one = _mm512_set1_ps(1.0f), two = _mm512_set1_ps(2.0f), sixteen = _mm512_set1_ps(16.0f);
+  __m512 j = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  for (int cell = 0; cell < 2; ++cell) {
+    const __m512 lx = _mm512_set1_ps(f.lx[cell]), ly = _mm512_set1_ps(f.ly[cell]);
+    const __m512 kx = _mm512_set1_ps(f.kx[cell]), ky = _mm512_set1_ps(f.ky[cell]);
+    const __m512 base_x = _mm512_add_ps(bx, lx), base_y = _mm512_add_ps(by, ly);
+    for (int g = 0; g < kGridPixels; g += 16, j = _mm512_add_ps(j, sixteen)) {
+      const int i = cell * kGridPixels + g;
+      const __m512 d = _mm512_add_ps(one, _mm512_mul_ps(j, _mm512_add_ps(gamma, _mm512_mul_ps(j, delta))));
+      const __m512 r0 = _mm512_rcp14_ps(d);
+      const __m512 r = _mm512_mul_ps(r0, _mm512_sub_ps(two, _mm512_mul_ps(d, r0)));
+      const __m512 ox = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(betax, _mm512_mul_ps(j, alphax)), r), kx);
+      const __m512 oy = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(betay, _mm512_mul_ps(j, alphay)), r), ky);
+      _mm512_storeu_ps(sx + i, _mm512_add_ps(base_x, _mm512_mul_ps(j, ox)));
+      _mm512_storeu_ps(sy + i, _mm512_add_ps(base_y, _mm512_mul_ps(j, oy)));
+    }
+  }
+}
+#pragma GCC diagnostic pop
+
+bool cpuHasAvx512f() {
+  static const bool has = __builtin_cpu_supports("avx512f");
+  return has;
+}
+
 #endif
 
 void seedCell(const SeedRow& r, int first, float* sx, float* sy) { seedCellBody(r, first, sx, sy); }
@@ -385,7 +426,8 @@ class RationalKernel final : public CoordinateKernel {
       : newton_(std::move(forward), source_px, options.residual_tolerance_px),
         seed_tolerance_(options.seed_tolerance_px),
         certify_tolerance_(options.certify_tolerance_px),
-        scalar_only_(options.scalar_only) {
+        scalar_only_(options.scalar_only),
+        avx512_(options.allow_avx512) {
     if (seed && seed->stageCount() == 1) seed_q_ = seed->stage(0);
     for (const Eigen::Matrix3d& q : seed_q_) seed_forms_.emplace_back(q);
     if (newton_.forward().stageCount() == 1)
@@ -736,7 +778,8 @@ class RationalKernel final : public CoordinateKernel {
           f.ky[c] = static_cast<float>(r.slope_y);
         }
       }
-      seedSpanFloatAvx2(f, sx, sy);
+      if (avx512_ && cpuHasAvx512f()) seedSpanFloatAvx512(f, sx, sy);
+      else seedSpanFloatAvx2(f, sx, sy);
       done = true;
     }
 #endif
@@ -776,6 +819,7 @@ class RationalKernel final : public CoordinateKernel {
   double seed_tolerance_;
   double certify_tolerance_;
   bool scalar_only_;
+  bool avx512_;
   int grid_w_ = 0, grid_h_ = 0;
   std::vector<Eigen::Vector2d> nodes_;
   std::vector<unsigned char> node_valid_;

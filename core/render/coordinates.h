@@ -57,6 +57,9 @@ struct CoordinateOptions {
   bool force_rational = false;  // run the rational kernel on projective cameras (tests, bench)
   // Run the portable scalar code where a SIMD clone exists (tests and the benchmark compare).
   bool scalar_only = false;
+  // Let certified rational spans take the AVX-512 lanes where the CPU has them (false: AVX2;
+  // the tests hold both to the same bounds).
+  bool allow_avx512 = true;
 };
 
 // What the rational kernel carries along a row from span to span: the last solutions, whose

@@ -2,8 +2,9 @@
 // - the AVX2 8-bit samplers (nearest and bilinear: span_sampler_avx2.h; bicubic:
 //   span_sampler_cubic.h) are bit-identical to the portable scalar code, borders, invalid
 //   pixels and alpha included;
-// - the float AVX2 coordinate spans (certified rational cells, homographies, affine maps) stay
-//   within 1e-3 px of the scalar double code and 1/256 px of the exact inverse;
+// - the float AVX2 coordinate spans (certified rational cells, homographies, affine maps), and
+//   the AVX-512 ones of certified cells, stay within 1e-3 px of the scalar double code and
+//   1/256 px of the exact inverse;
 // - certified cells of the rational kernel (coordinates.h) stay within 1/256 px of the exact
 //   double-precision inverse (Newton to ~1e-7 px), cover almost all of a mild lens, and none of
 //   a camera whose pole runs through the frame;
@@ -183,22 +184,26 @@ class TestFastPaths : public QObject {
   // path), a milder one, and an affine map (W = 1).
   void floatSpansAgreeWithScalarAndReference_data() {
     QTest::addColumn<Camera>("camera");
+    QTest::addColumn<bool>("avx512");
     const FrameSize size{1200, 800};
-    QTest::newRow("mild lens") << benchLens(size);
+    QTest::newRow("mild lens") << benchLens(size) << true;
+    QTest::newRow("mild lens, AVX2 lanes") << benchLens(size) << false;
     Eigen::Matrix3d h;
     h << 1.1, 0.2, 0.05, -0.1, 0.9, 0.02, 0.4, 0.9, 1.0;  // horizon 0.4 x + 0.9 y + 1 = 0 crosses
-    QTest::newRow("perspective with horizon") << test::homographyCamera(h, size, size);
+    QTest::newRow("perspective with horizon") << test::homographyCamera(h, size, size) << true;
     h << 1.3, 0.1, 0.02, -0.05, 0.8, -0.03, 0.05, -0.08, 1.0;
-    QTest::newRow("perspective") << test::homographyCamera(h, size, size);
+    QTest::newRow("perspective") << test::homographyCamera(h, size, size) << true;
     h << 1.02, 0.05, 0.01, -0.04, 0.99, -0.02, 0.0, 0.0, 1.0;
-    QTest::newRow("affine") << test::homographyCamera(h, size, size);
+    QTest::newRow("affine") << test::homographyCamera(h, size, size) << true;
   }
 
   void floatSpansAgreeWithScalarAndReference() {
     QFETCH(Camera, camera);
+    QFETCH(bool, avx512);
     const FrameSize size{1200, 800};
     const CameraStructure structure = analyseStructure(camera);
     CoordinateOptions simd_options, scalar_options;
+    simd_options.allow_avx512 = avx512;
     scalar_options.scalar_only = true;
     const KernelChoice simd = makeCoordinateKernel(camera, structure, size, size, simd_options, 2);
     const KernelChoice scalar = makeCoordinateKernel(camera, structure, size, size, scalar_options, 2);
