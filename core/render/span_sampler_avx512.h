@@ -143,6 +143,7 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
     const __m512i wy = _mm512_or_si512(_mm512_sub_epi32(c255, ay), _mm512_slli_epi32(ay, 8));
     const __m512i wx = _mm512_or_si512(_mm512_sub_epi32(c256, ax), _mm512_slli_epi32(ax, 16));
     __m256i words[3];
+#pragma GCC unroll 3
     for (int j = 0; j < 3; ++j) {
       const __m512i index = _mm512_add_epi8(_mm512_permutexvar_epi8(expand_b[j], rel3), offset_b[j]);
       __m512i taps = _mm512_permutex2var_epi8(top, index, bottom);
