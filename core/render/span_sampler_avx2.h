@@ -74,7 +74,7 @@ __attribute__((target("avx2"), always_inline)) inline Offsets8 toRegisters(__m25
            static_cast<std::uint64_t>(_mm_cvtsi128_si64(hi)), static_cast<std::uint64_t>(_mm_extract_epi64(hi, 1))}};
 }
 
-// Source rows ahead of the one being read (issue 5: the bilinear samplers waited on memory for
+// Source rows ahead of the one being read (issue 5: the 8-bit samplers waited on memory for
 // about a third of their time). The warp walks each span down its band (warp.cpp), so the
 // rows this group of pixels reads now, plus kPrefetchRows, are what the same span reads about
 // kPrefetchRows output rows later (a magnification near 1; elsewhere a harmless miss): far
@@ -251,6 +251,7 @@ __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& 
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x, 2) : _mm256_add_epi32(x, _mm256_slli_epi32(x, 1));
     const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y, row), xoff);
     const Offsets8 at = toRegisters(off);
+    prefetchRowsAhead(k, k.src + at[0]);
     const auto four = [&](int p) __attribute__((always_inline)) {
       const auto load = [&](int q) __attribute__((always_inline)) { return _mm_loadu_si32(k.src + at[q]); };
       return _mm_unpacklo_epi64(_mm_unpacklo_epi32(load(p), load(p + 1)), _mm_unpacklo_epi32(load(p + 2), load(p + 3)));
