@@ -84,6 +84,12 @@ __attribute__((target("avx2"))) inline float interiorAvx2(const SpanSampler::Con
   const __m128i spread = C == 4 ? _mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)
                                 : _mm_setr_epi8(0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 9, 10, 11, -1);
   const std::uint8_t* r = k.src + static_cast<std::ptrdiff_t>(p.y0) * k.src_row + p.x0 * C;
+  // The line this pixel's taps start on, seven rows down: the first of the four rows the same
+  // span reads about four output rows later (the span-major walk of warp.cpp; as
+  // span_sampler_avx2.h's prefetchRowsAhead). A prefetch never faults; the address is formed
+  // as an integer so no pointer leaves the image.
+  _mm_prefetch(reinterpret_cast<const char*>(reinterpret_cast<std::uintptr_t>(r) +
+                                             static_cast<std::uintptr_t>(7 * k.src_row)), _MM_HINT_T0);
   __m256 even_odd = _mm256_setzero_ps(), later = _mm256_setzero_ps();  // taps (0 | 1), (2 | 3)
   for (int j = 0; j < 4; ++j, r += k.src_row) {
     const __m128i bytes = _mm_shuffle_epi8(_mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(r))), spread);
