@@ -22,6 +22,8 @@
 
 #include "core/render/span_sampler_avx2.h"
 
+#include <algorithm>
+
 #ifdef ARTCAM_HAVE_AVX2_SAMPLER
 #define ARTCAM_HAVE_AVX512_SAMPLER 1
 
@@ -115,7 +117,11 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
     const __m512i x0 = _mm512_min_epi32(_mm512_srai_epi32(qx, 8), xlim);
     const __m512i y0 = _mm512_cvttps_epi32(fy);
     const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(x0));
-    const int y_first = _mm512_reduce_min_epi32(y0);
+    // The upper row: the lower of the first and last pixels' rows, not a full reduction (a
+    // smooth map's rows are monotone over sixteen pixels; where one in between is lower, its
+    // negative dy fails the 0 … 1 test below and the group goes to the AVX2 clone).
+    const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(y0)),
+                                 _mm_extract_epi32(_mm512_extracti32x4_epi32(y0, 3), 3));
     const __m512i rel = _mm512_sub_epi32(x0, _mm512_set1_epi32(x_first));
     const __m512i dy = _mm512_sub_epi32(y0, _mm512_set1_epi32(y_first));  // 0 or 1 below
     const __mmask16 lower_pair = _mm512_test_epi32_mask(dy, dy);
