@@ -229,7 +229,9 @@ class TestRender : public QObject {
     QVERIFY(s.cancelled);
   }
 
-  void renderSpeedForAMillionPoints() {
+  // Speed is the benchmark's business (`artcam bench`, never a timed test): this renders a
+  // million points through both paths and checks coverage; the printed rate is information.
+  void renderAMillionPoints() {
     const PointCloud cloud = cubeOfCubes({79});  // 27·6·79² = 1 010 394 points
     QVERIFY(cloud.size() > 1000000);
     CloudRenderOptions o;
@@ -244,7 +246,7 @@ class TestRender : public QObject {
       qInfo("%s: %zu points, %.1f ms, %.2f Mpoints/s on %d threads", name, s.points, s.render_ms,
             s.pointsPerSecond() / 1e6, static_cast<int>(std::thread::hardware_concurrency()));
       QVERIFY(opaquePixels(im) > 100000);
-      QVERIFY2(s.pointsPerSecond() > 2e5, "far below the expected rate: a performance cliff");
+      QVERIFY(s.points >= cloud.size());  // every point went through (× 3 with RGB layers)
     }
   }
 };
