@@ -251,37 +251,56 @@ Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path) {
   return R::success(std::move(points));
 }
 
-Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches) {
-  const Eigen::Index d = matches.empty() ? 2 : matches.front().source.size();
-  if (d != 2 && d != 3)
-    return Status::failure(path + ": cannot write: matches must have 2 or 3 coordinates per side");
+namespace {
+
+// The rows of both CSV kinds: `columns` names the 2·d values; an `enabled` column is added when
+// a row is disabled. `what` names a row in messages ("match", "sample").
+Status writeRows(const std::string& path, const std::vector<PointMatch>& rows, Eigen::Index d,
+                 const char* columns, const char* what) {
   bool any_disabled = false;
-  for (size_t m = 0; m < matches.size(); ++m) {
-    const PointMatch& match = matches[m];
-    if (match.source.size() != d || match.target.size() != d)
-      return Status::failure(path + ": cannot write: match " + std::to_string(m) +
-                             " has a different number of coordinates than match 0");
-    if (!match.source.allFinite() || !match.target.allFinite())
-      return Status::failure(path + ": cannot write: match " + std::to_string(m) +
-                             " has a non-finite coordinate");
-    any_disabled = any_disabled || !match.enabled;
+  for (size_t m = 0; m < rows.size(); ++m) {
+    const PointMatch& row = rows[m];
+    if (row.source.size() != d || row.target.size() != d)
+      return Status::failure(path + ": cannot write: " + what + " " + std::to_string(m) +
+                             " has " + std::to_string(row.source.size()) + " and " +
+                             std::to_string(row.target.size()) + " values per side, not " +
+                             std::to_string(d));
+    if (!row.source.allFinite() || !row.target.allFinite())
+      return Status::failure(path + ": cannot write: " + what + " " + std::to_string(m) +
+                             " has a non-finite value");
+    any_disabled = any_disabled || !row.enabled;
   }
-  std::string text = d == 2 ? "src_x,src_y,dst_x,dst_y" : "src_x,src_y,src_z,dst_x,dst_y,dst_z";
+  std::string text = columns;
   if (any_disabled) text += ",enabled";
   text += "\n";
   char buffer[32];
-  for (const PointMatch& match : matches) {
+  for (const PointMatch& row : rows) {
     for (Eigen::Index k = 0; k < 2 * d; ++k) {
-      const double v = k < d ? match.source[k] : match.target[k - d];
+      const double v = k < d ? row.source[k] : row.target[k - d];
       // %.17g, but locale-free: a GUI process runs under the user's locale (decimal commas).
       const auto result =
           std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
       text += (k ? "," : "") + std::string(buffer, result.ptr);
     }
-    if (any_disabled) text += match.enabled ? ",1" : ",0";
+    if (any_disabled) text += row.enabled ? ",1" : ",0";
     text += "\n";
   }
   return writeTextAtomically(path, text);
+}
+
+}  // namespace
+
+Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches) {
+  const Eigen::Index d = matches.empty() ? 2 : matches.front().source.size();
+  if (d != 2 && d != 3)
+    return Status::failure(path + ": cannot write: matches must have 2 or 3 coordinates per side");
+  return writeRows(path, matches, d,
+                   d == 2 ? "src_x,src_y,dst_x,dst_y" : "src_x,src_y,src_z,dst_x,dst_y,dst_z",
+                   "match");
+}
+
+Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMatch>& samples) {
+  return writeRows(path, samples, 3, "src_r,src_g,src_b,dst_r,dst_g,dst_b", "sample");
 }
 
 }  // namespace artcam

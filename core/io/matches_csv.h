@@ -44,5 +44,7 @@ Result<std::vector<PointMatch>> parseColourSamplesCsv(
     std::string_view text, const std::string& name, ColourEncoding encoding = ColourEncoding::Linear);
 // Writes the header and rows with %.17g numbers (locale-free, round-trip exact; atomic).
 Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches);
+// Colour samples in the columns parseColourSamplesCsv reads (linear light, as given).
+Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMatch>& samples);
 
 }  // namespace artcam

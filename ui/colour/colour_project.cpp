@@ -1,13 +1,11 @@
 #include "ui/colour/colour_project.h"
 
 #include "core/io/artcam_file.h"
-#include "core/io/atomic_file.h"
 #include "ui/json_points.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
 
-#include <charconv>
 #include <cmath>
 
 namespace artcam::ui {
@@ -61,33 +59,6 @@ Result<ColourProjectPart> colourPartFromJson(const QJsonObject& o, const std::st
     part.colour_block = cam->camera;
   }
   return Result<ColourProjectPart>::success(std::move(part));
-}
-
-Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMatch>& samples) {
-  bool any_disabled = false;
-  for (size_t i = 0; i < samples.size(); ++i) {
-    const PointMatch& m = samples[i];
-    if (m.source.size() != 3 || m.target.size() != 3 || !m.source.allFinite() ||
-        !m.target.allFinite())
-      return Status::failure(path + ": cannot write: sample " + std::to_string(i + 1) +
-                             " is not two finite RGB colours");
-    any_disabled = any_disabled || !m.enabled;
-  }
-  std::string text = "src_r,src_g,src_b,dst_r,dst_g,dst_b";
-  text += any_disabled ? ",enabled\n" : "\n";
-  char buffer[32];
-  for (const PointMatch& m : samples) {
-    for (int k = 0; k < 6; ++k) {
-      const double v = k < 3 ? m.source[k] : m.target[k - 3];
-      // Locale-free %.17g: the GUI runs under the user's locale (decimal commas).
-      const auto r =
-          std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
-      text += (k ? "," : "") + std::string(buffer, r.ptr);
-    }
-    if (any_disabled) text += m.enabled ? ",1" : ",0";
-    text += "\n";
-  }
-  return writeTextAtomically(path, text);
 }
 
 }  // namespace artcam::ui

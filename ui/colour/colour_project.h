@@ -33,6 +33,5 @@ QJsonObject colourPartToJson(const ColourSampleState& state, const std::optional
 // `where` prefixes messages ("p.artcamproj: /parts/colour").
 Result<ColourProjectPart> colourPartFromJson(const QJsonObject& json, const std::string& where);
 
-Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMatch>& samples);
 
 }  // namespace artcam::ui
