@@ -8,8 +8,9 @@
 //
 // Depth: the image given to setDepth (1 channel, or the 2-channel form of core/depth/
 // depth_raster.h, any size) — e.g. the studio's painted planes rasterised; otherwise a stand-in
-// ramp, far at the top (1 … 100 log-spaced), which the status line says. The panel does not change the document: effects that change colour are not yet
-// something the main preview can render (render_worker is geometry-only).
+// ramp, far at the top (1 … 100 log-spaced), which the status line says. The panel previews an
+// effect on its own and does not change the document (the main preview renders the document's
+// camera, colour and depth blocks included, through core's attributed renderer).
 #pragma once
 
 #include "core/effects/effect_presets.h"
