@@ -40,14 +40,6 @@ p["parts"] = {"colour": {
     "colour_block": json.load(open(work + "/warm.artcam"))}}
 json.dump(p, open(work + "/colour.artcamproj", "w"))
 PY
-Xvfb "$display" -screen 0 1600x1000x24 >/dev/null 2>&1 &
-xvfb=$!
-studio=""
-trap 'kill $xvfb $studio 2>/dev/null || true; rm -rf "$work"' EXIT
-sleep 2
-DISPLAY="$display" "$studio_bin" "$work/colour.artcamproj" &
-studio=$!
-sleep 12
-DISPLAY="$display" import -window root "$work/full.png"
-convert "$work/full.png" -crop 1400x900+0+0 +repage -resize 1100x -strip "$out"
-echo "screenshot: $out"
+trap 'rm -rf "$work"' EXIT
+STUDIO="$studio_bin" SETTLE=12 DISPLAY_NUMBER="$display" \
+  bash "$root/packaging/screenshot.sh" "$out" "$work/colour.artcamproj"
