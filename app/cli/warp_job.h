@@ -14,7 +14,7 @@
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
-#include "core/piecewise/piecewise_camera.h"
+#include "core/model/piecewise_camera.h"
 #include "core/render/warp.h"
 
 #include <functional>

@@ -3,8 +3,8 @@
 // point order, so no two threads touch a pixel and ties resolve the same way every run.
 #include "core/cloud/cloud_render.h"
 
-#include "core/cloud/cloud_camera.h"
-#include "core/render/parallel.h"
+#include "core/model/compiled_camera.h"
+#include "core/util/parallel.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,6 +1,6 @@
 #include "core/cloud/sample_clouds.h"
 
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 
 #include <stdexcept>
 

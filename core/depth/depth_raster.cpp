@@ -1,6 +1,6 @@
 #include "core/depth/depth_raster.h"
 
-#include "core/render/parallel.h"
+#include "core/util/parallel.h"
 
 #include <algorithm>
 #include <atomic>

@@ -17,7 +17,7 @@
 #include "core/effects/depth_of_field.h"
 
 #include "core/effects/blur_inputs.h"
-#include "core/render/parallel.h"
+#include "core/util/parallel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
 

@@ -4,7 +4,7 @@
 #include "core/io/matches_csv.h"
 
 #include "core/io/atomic_file.h"
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 
 #include <algorithm>
 #include <charconv>

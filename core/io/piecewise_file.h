@@ -15,7 +15,7 @@
 
 #include "core/io/artcam_file.h"
 #include "core/model/status.h"
-#include "core/piecewise/piecewise_camera.h"
+#include "core/model/piecewise_camera.h"
 
 #include <optional>
 #include <string>

@@ -3,7 +3,7 @@
 // follow, then one pass over the vertices. Numbers parse with std::from_chars (locale-free, exact).
 #include "core/io/ply.h"
 
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 
 #include <algorithm>
 #include <array>

@@ -3,7 +3,7 @@
 #include "core/io/ply.h"
 
 #include "core/io/atomic_file.h"
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 
 #include <algorithm>
 #include <array>

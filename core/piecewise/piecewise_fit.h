@@ -12,7 +12,7 @@
 #include "core/fit/fit_image.h"
 #include "core/model/fit_record.h"
 #include "core/model/status.h"
-#include "core/piecewise/piecewise_camera.h"
+#include "core/model/piecewise_camera.h"
 
 #include <string>
 #include <vector>

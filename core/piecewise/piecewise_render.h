@@ -10,7 +10,7 @@
 #pragma once
 
 #include "core/model/image.h"
-#include "core/piecewise/piecewise_camera.h"
+#include "core/model/piecewise_camera.h"
 
 namespace artcam {
 

@@ -4,7 +4,7 @@
 
 #include "core/model/frames.h"
 #include "core/render/coordinates.h"
-#include "core/render/parallel.h"
+#include "core/util/parallel.h"
 #include "core/render/sampling.h"
 #include "core/render/splat.h"
 #include "core/render/warp.h"

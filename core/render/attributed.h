@@ -29,7 +29,7 @@
 // sheets, so "over" would be wrong.
 #pragma once
 
-#include "core/cloud/cloud_camera.h"
+#include "core/model/compiled_camera.h"
 #include "core/model/camera.h"
 #include "core/model/image.h"
 #include "core/model/structure.h"

@@ -2,7 +2,7 @@
 
 #include "core/model/frames.h"
 #include "core/render/inverse_seed.h"
-#include "core/render/parallel.h"
+#include "core/util/parallel.h"
 
 #include <Eigen/LU>
 

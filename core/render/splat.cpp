@@ -2,7 +2,7 @@
 #include "core/render/splat.h"
 
 #include "core/model/frames.h"
-#include "core/render/parallel.h"
+#include "core/util/parallel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
-#include "core/render/parallel.h"
+#include "core/util/parallel.h"
 #include "core/render/sampling.h"
 #include "core/render/span_sampler.h"
 

@@ -3,7 +3,7 @@
 #include "core/colour/colour_difference.h"
 #include "core/colour/colour_map.h"
 #include "core/io/matches_csv.h"
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_fit_job.h"
 #include "ui/colour/colour_project.h"

@@ -12,7 +12,7 @@
 
 #include "core/model/fit_record.h"
 #include "core/model/image.h"
-#include "core/piecewise/piecewise_camera.h"
+#include "core/model/piecewise_camera.h"
 #include "core/piecewise/piecewise_fit.h"
 #include "ui/matting/graphic_placement.h"
 #include "ui/newest_request_slot.h"

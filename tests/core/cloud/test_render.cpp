@@ -4,7 +4,7 @@
 // The last case times a 1-million-point cloud and prints points per second.
 #include "core/cameras/effects_3d.h"
 #include "core/cameras/projective_cameras.h"
-#include "core/cloud/cloud_camera.h"
+#include "core/model/compiled_camera.h"
 #include "core/cloud/cloud_render.h"
 #include "core/cloud/sample_clouds.h"
 #include "tests/support/test_support.h"

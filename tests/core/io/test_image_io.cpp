@@ -2,7 +2,7 @@
 // formula; alpha premultiplied inside, unassociated in PNG; metadata carried over; refusals
 // that name the file and leave nothing behind. Fixtures are written with OIIO directly.
 #include "core/io/image_io.h"
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>

@@ -2,7 +2,7 @@
 // properties and elements, and refusals that name the file, the header line or vertex and the
 // cause (including lying counts, which must fail before any allocation).
 #include "core/io/ply.h"
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>

@@ -1,4 +1,4 @@
-#include "core/render/parallel.h"
+#include "core/util/parallel.h"
 
 #include <algorithm>
 #include <atomic>

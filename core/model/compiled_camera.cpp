@@ -1,4 +1,4 @@
-#include "core/cloud/cloud_camera.h"
+#include "core/model/compiled_camera.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "core/io/transfer.h"
+#include "core/colour/transfer.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "core/piecewise/piecewise_camera.h"
+#include "core/model/piecewise_camera.h"
 
 #include <algorithm>
 #include <cmath>
