@@ -1,5 +1,6 @@
-// libFuzzer target: the piecewise .artcam reader (core/io/piecewise_file.h).
-#include "core/io/piecewise_file.h"
+// libFuzzer target: the .artcam reader on piecewise files (core/io/artcam_file.h), from the
+// piecewise corpus.
+#include "core/io/artcam_file.h"
 #include "fuzz/fuzz_check.h"
 
 #include <cstddef>
@@ -7,8 +8,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace artcam;
-  const Result<PiecewiseDocument> parsed =
-      parsePiecewiseJson(fuzz::textOf(data, size), fuzz::kInputName);
+  const Result<Artcam> parsed = parseArtcam(fuzz::textOf(data, size), fuzz::kInputName);
   if (!parsed) fuzz::checkRefusal(parsed.status.message);
   return 0;
 }

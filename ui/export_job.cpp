@@ -1,9 +1,7 @@
 #include "ui/export_job.h"
 
 #include "core/io/image_io.h"
-#include "core/render/attributed.h"
-#include "core/render/warp.h"
-#include "ui/render_worker.h"
+#include "core/pipeline/render.h"
 
 #include <exception>
 #include <string>
@@ -34,20 +32,11 @@ void ExportJob::run() {
       }
       return !cancel_.load();
     };
-    WarpSummary summary;
-    ImageF out;
-    if (RenderWorker::needsAttributes(camera_)) {
-      AttributedOptions a;
-      a.filter = options.filter;
-      a.progress = options.progress;
-      AttributedSummary as;
-      out = renderAttributed(photo_->full.image, depth_.get(), camera_, a, &as).colour;
-      summary.cancelled = as.cancelled;
-      summary.kernel = std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
-      summary.render_ms = as.render_ms;
-    } else {
-      out = warpImage(photo_->full.image, camera_, options, &summary);
-    }
+    RenderOptions render_options;
+    render_options.warp = options;
+    RenderSummary summary;
+    const ImageF out =
+        render(RenderInputs::of(photo_->full.image, depth_.get()), Artcam(camera_), render_options, &summary);
     if (summary.cancelled || cancel_) {
       emit done(false, tr("Export cancelled."));
       return;
@@ -58,8 +47,8 @@ void ExportJob::run() {
       return;
     }
     emit progressChanged(100);
-    emit done(true, tr("Exported %1 (%2 kernel, %3 ms)")
-                        .arg(path_, QString::fromStdString(summary.kernel))
+    emit done(true, tr("Exported %1 (%2, %3 ms)")
+                        .arg(path_, QString::fromStdString(summary.describe()))
                         .arg(summary.render_ms, 0, 'f', 0));
   } catch (const std::exception& e) {
     emit done(false, tr("Export of %1 failed: %2").arg(path_, QString::fromUtf8(e.what())));

@@ -1,9 +1,9 @@
-// Full-resolution export of the warped photo in a worker thread: warpImage on the original
-// pixels with progress and cancel (polled between tiles), then writeImage with the photo's
-// format and metadata (atomic). Results come back by queued signals; exceptions stop here.
-// A camera that changes colour or depth (RenderWorker::needsAttributes) renders through
-// core's attributed renderer instead (colour-only path when the geometry is the identity), so
-// a fitted colour block is in the exported file as it is in the preview.
+// Full-resolution export of the warped photo in a worker thread: core's render front door
+// (core/pipeline/render.h) on the original pixels with progress and cancel (polled between
+// tiles), then writeImage with the photo's format and metadata (atomic). Results come back by
+// queued signals; exceptions stop here. The front door picks the same path as the preview does
+// (colour/depth cameras through the attributed renderer), so a fitted colour block is in the
+// exported file as it is in the preview.
 #pragma once
 
 #include "core/model/camera.h"

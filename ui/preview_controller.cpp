@@ -1,5 +1,6 @@
 #include "ui/preview_controller.h"
 
+#include "core/pipeline/render.h"
 #include "ui/document.h"
 
 namespace artcam::ui {
@@ -46,7 +47,7 @@ void PreviewController::schedule() {
   request.camera = document_->camera();
   // Colour (or depth) changing cameras render from the float preview copy at its own size, so
   // a colour-only camera takes core's no-resampling path; geometry-only ones use the pyramid.
-  const bool attributed = RenderWorker::needsAttributes(request.camera);
+  const bool attributed = needsLinearPhoto(Artcam(request.camera));
   // The pyramid aliases the photo, which keeps the levels' base image alive.
   if (photo->pyramid && !attributed)
     request.pyramid = std::shared_ptr<const StoredMipPyramid>(photo, photo->pyramid.get());

@@ -183,9 +183,7 @@ QByteArray projectToJson(const Project& project, const QString& project_path) {
   }
   root["pairs"] = pairs;
   if (project.manual_camera) {
-    ArtcamDocument doc;
-    doc.camera = *project.manual_camera;
-    const std::string text = toArtcamJson(doc);
+    const std::string text = toArtcamJson(Artcam(*project.manual_camera));
     root["camera"] = QJsonDocument::fromJson(QByteArray::fromStdString(text)).object();
   }
   QJsonObject view;
@@ -236,9 +234,12 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
   }
   if (root.contains("camera")) {
     const QByteArray text = QJsonDocument(root["camera"].toObject()).toJson(QJsonDocument::Compact);
-    Result<ArtcamDocument> cam = parseArtcamJson(text.toStdString(), name + ": /camera");
+    Result<Artcam> cam = parseArtcam(text.toStdString(), name + ": /camera");
     if (!cam) return Result<Project>::failure(cam.status.message);
-    p.manual_camera = cam->camera;
+    if (cam->layers.size() != 1 || cam->pieces)
+      return Result<Project>::failure(name + ": /camera: expected one camera, found a " +
+                                      std::string(artcamKindName(cam->kind())) + " camera");
+    p.manual_camera = cam->main();
   }
   const QJsonObject view = root["view"].toObject();
   p.view.scale = view["scale"].toDouble(0.0);

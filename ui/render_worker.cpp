@@ -1,8 +1,6 @@
 #include "ui/render_worker.h"
 
-#include "core/model/structure.h"
-#include "core/render/attributed.h"
-#include "core/render/warp.h"
+#include "core/pipeline/render.h"
 #include "ui/image_convert.h"
 
 #include <algorithm>
@@ -23,43 +21,45 @@ WarpOptions RenderWorker::passOptions(int width, int height) {
   return options;
 }
 
-bool RenderWorker::needsAttributes(const Camera& camera) {
-  const CameraStructure s = analyseStructure(camera);
-  return s.attributes_change || s.geometry_depends_on_attributes;
-}
-
+// Every pass goes through core's render front door: a geometry camera with a pyramid renders
+// straight into the RGBA8 QImage; everything else (colour, depth, layers) renders from the float
+// preview copy and is encoded for display.
 QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& options,
                                 WarpSummary* summary) {
-  if (needsAttributes(job.camera)) {
-    if (!job.source || job.source->empty())
-      throw std::invalid_argument("a camera that changes colour needs the float preview copy");
-    AttributedOptions a;
-    a.filter = options.filter;
-    a.width = options.width;
-    a.height = options.height;
-    a.threads = options.threads;
-    a.progress = options.progress;
-    AttributedSummary as;
-    const AttributedImage out = renderAttributed(*job.source, job.depth.get(), job.camera, a, &as);
-    if (summary) {
-      summary->cancelled = as.cancelled;
-      summary->kernel = std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
-      summary->transparent_pixels = as.transparent_pixels;
-      summary->render_ms = as.render_ms;
-      summary->note = as.note;
-    }
-    if (as.cancelled) return {};
-    return qimageFromLinear(out.colour);
-  }
+  const Artcam camera(job.camera);
+  RenderInputs inputs;
   if (job.pyramid) {
-    QImage out(options.width, options.height, QImage::Format_RGBA8888_Premultiplied);
-    ImageView view = packedView<void>(out.bits(), out.width(), out.height(), 4, PixelType::UInt8,
-                                      /*alpha_channel=*/3);
-    view.row_bytes = out.bytesPerLine();
-    warpPreview(*job.pyramid, job.camera, view, options, summary);
-    return out;
+    inputs.photo = job.pyramid->level(0);
+    inputs.pyramid = job.pyramid.get();
   }
-  return qimageFromLinear(warpImage(*job.source, job.camera, options, summary));
+  if (job.source && !job.source->empty()) {
+    inputs.linear = job.source.get();
+    if (inputs.photo.empty()) inputs.photo = viewOf(*job.source);
+  }
+  inputs.depth = job.depth.get();
+  RenderOptions render_options;
+  render_options.warp = options;
+  RenderSummary rs;
+  QImage image;
+  if (job.pyramid && !needsLinearPhoto(camera)) {
+    image = QImage(options.width, options.height, QImage::Format_RGBA8888_Premultiplied);
+    ImageView view = packedView<void>(image.bits(), image.width(), image.height(), 4,
+                                      PixelType::UInt8, /*alpha_channel=*/3);
+    view.row_bytes = image.bytesPerLine();
+    render(inputs, camera, render_options, view, &rs);
+  } else {
+    const ImageF out = render(inputs, camera, render_options, &rs);
+    if (!rs.cancelled) image = qimageFromLinear(out);
+  }
+  if (summary) {
+    summary->cancelled = rs.cancelled;
+    summary->kernel = rs.kernel;
+    summary->transparent_pixels = rs.transparent_pixels;
+    summary->render_ms = rs.render_ms;
+    summary->note = rs.note;
+  }
+  if (rs.cancelled) return {};
+  return image;
 }
 
 RenderWorker::RenderWorker(QObject* parent) : QThread(parent) {}

@@ -1,12 +1,12 @@
-// The live preview renderer (STYLE, after Qt's Mandelbrot example): one thread, one pending
+// The live preview renderer (after Qt's Mandelbrot example): one thread, one pending
 // request slot where the newest request wins, std::atomic restart/abort flags polled between
 // tiles through WarpOptions::progress, a coarse pass (1/4 size) before the full preview while
 // full passes are slow (kCoarseAboveMs), and
 // results delivered by queued signals carrying a QImage and the request's generation stamp.
 // Every exception stops at run(); it becomes a `failed` signal, never reaches the event loop.
 //
-// Cameras that change colour or depth (a fitted colour block, issue 6) render through core's
-// attributed renderer (core/render/attributed.h) from the float preview copy: its colour-only
+// Cameras that change colour or depth (a fitted colour block) render through core's
+// render front door (core/pipeline/render.h) from the float preview copy: the colour-only
 // path when the geometry is the identity, else gather (or splat). Geometry-only cameras keep
 // the 8-bit pyramid path, which is what makes a drag's preview fast.
 #pragma once
@@ -28,7 +28,7 @@ namespace artcam::ui {
 
 struct RenderRequest {
   // When set, the 8-bit path: warpPreview from the photo's mip pyramid straight into an RGBA8
-  // QImage (issue 5's preview path); else the float path from `source`.
+  // QImage (the preview path); else the float path from `source`.
   std::shared_ptr<const StoredMipPyramid> pyramid;
   std::shared_ptr<const ImageF> source;  // the downscaled preview source
   // Depth block input for cameras that read depth (core/depth/depth_raster.h form, any size).
@@ -51,11 +51,9 @@ class RenderWorker : public QThread {
   // The warp options of a preview pass (no progress hook): one place, so a direct render with
   // them reproduces the worker's image exactly.
   static WarpOptions passOptions(int width, int height);
-  // Whether `camera` needs the attributed renderer: its colour or depth outputs differ from the
-  // identity, or its positions read them (structure.h).
-  static bool needsAttributes(const Camera& camera);
-  // One pass of a request with those options (plus a progress hook): what the worker emits.
-  // A camera that needsAttributes() renders from `source` (never the pyramid).
+  // One pass of a request with those options (plus a progress hook): what the worker emits,
+  // rendered by core's front door (core/pipeline/render.h). A camera that needs the linear
+  // photo (needsLinearPhoto: colour, depth, layers) renders from `source`, never the pyramid.
   static QImage renderPass(const RenderRequest& job, const WarpOptions& options,
                            WarpSummary* summary);
 

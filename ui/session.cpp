@@ -262,12 +262,19 @@ void Session::importArtcam(const QString& path) {
     showError(tr("Import camera"), tr("Open a photo before importing a camera onto it."));
     return;
   }
-  Result<ArtcamDocument> doc = readArtcamFile(path.toStdString());
+  Result<Artcam> doc = readArtcam(path.toStdString());
   if (!doc) {
     showError(tr("Import camera"), QString::fromStdString(doc.status.message));
     return;
   }
-  const Camera& cam = doc->camera;
+  const Camera& cam = doc->main();
+  if (doc->kind() != ArtcamKind::Single && doc->kind() != ArtcamKind::Chained) {
+    showError(tr("Import camera"),
+              tr("%1: a %2 camera cannot be edited here (only image position cameras can).")
+                  .arg(path)
+                  .arg(QString::fromUtf8(std::string(artcamKindName(doc->kind())).c_str())));
+    return;
+  }
   if (cam.blocks().size() != 1 || cam.blocks()[0] != Block{BlockKind::Position, 3}) {
     showError(tr("Import camera"),
               tr("%1: only image position cameras can be edited here (this one has %2 blocks).")
@@ -303,11 +310,10 @@ void Session::importArtcam(const QString& path) {
 }
 
 bool Session::exportArtcam(const QString& path) {
-  ArtcamDocument doc;
-  doc.camera = document_->camera();
+  Artcam doc(document_->camera());
   doc.matches = document_->matches();
   if (!document_->manualCamera() && document_->fit().status.ok) doc.fit = document_->fit().record;
-  const Status status = writeArtcamFile(path.toStdString(), doc);
+  const Status status = writeArtcam(path.toStdString(), doc);
   if (!status) {
     showError(tr("Export camera"), QString::fromStdString(status.message));
     return false;

@@ -453,7 +453,7 @@ int benchCommand(const std::vector<std::string>& argv) {
         o.filter = f;
         o.threads = threads;
         o.antialias = c.antialias;
-        o.scalar_only = c.scalar_only;
+        o.coordinates.scalar_only = c.scalar_only;
         std::vector<double> times, cpu;
         WarpSummary s;
         warpImage(src, c.camera, dst, o, &s);  // warm-up

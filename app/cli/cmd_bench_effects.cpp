@@ -203,7 +203,7 @@ int benchEffectsCommand(const std::vector<std::string>& argv) {
   cam.stages()[0].q[2](0, 0) = cam.stages()[0].q[2](1, 1) = 0.06;
   cam.stages()[0].q[2](0, 2) = cam.stages()[0].q[2](2, 0) = 0.02;
   AttributedOptions gather_options, splat_options;
-  gather_options.threads = splat_options.threads = blur.threads;
+  gather_options.warp.threads = splat_options.warp.threads = blur.threads;
   splat_options.force_path = "splat";
   AttributedImage g, sp;
   const double gather_ms =

@@ -1,54 +1,78 @@
-// artcam compose: one camera from a sequence of cameras (DESIGN §1 chains; paper §5).
+// artcam compose: one camera from a sequence of cameras (chains of stages; the paper's §5),
+// layer by layer for layered cameras, patch by patch for a piecewise first camera.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "core/io/artcam_file.h"
 #include "core/model/compose.h"
 #include "core/model/structure.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 
 namespace artcam::cli {
 
 const char* const kComposeUsage =
-    "usage: artcam compose FIRST.artcam SECOND.artcam [MORE.artcam…] -o OUT.artcam\n\n"
+    "usage: artcam compose FIRST.artcam SECOND.artcam [MORE.artcam…] -o OUT.artcam [--json]\n\n"
     "Writes the camera that applies FIRST, then SECOND, and so on: OUT(x) = SECOND(FIRST(x)).\n"
     "The target pixels of each camera are the source pixels of the next (frame sizes may\n"
     "differ; the change of normalised frame is folded in).\n\n"
     "A homography on either side collapses into its neighbour, so e.g. a canonical view →\n"
     "table homography → reflection ARTcam becomes one single-stage camera. Two general\n"
-    "rational cameras become a two-stage chain, which `artcam warp` renders exactly.\n\n"
+    "rational cameras become a two-stage chain, which `artcam warp` renders exactly.\n"
+    "Layered cameras (chromatic aberration) compose layer by layer; a single camera composes\n"
+    "with every layer. A piecewise camera composes patch by patch when it comes first and the\n"
+    "next camera is a single image position camera. Depth flows from one camera's depth\n"
+    "output to the next one's depth input: composing is refused when the first outputs\n"
+    "something else than a depth (aerial perspective's log depth, depth of field's blur\n"
+    "variance) and the next reads depth, since the next would read the wrong quantity.\n\n"
     "options:\n"
     "  -o, --output FILE   the composed camera (written atomically)\n"
-    "  --force             allow OUT to be one of the inputs\n\n"
+    "  --json              print {\"output\": …, \"kind\": …, \"structure\": …, \"steps\": […]}\n"
+    "  --overwrite         replace an existing OUT (--force is the same); never an input\n\n"
     "Example:\n"
     "  artcam compose view-to-table.artcam reflection.artcam -o view-to-reflection.artcam\n";
 
 int composeCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--output", "-o", true}, {"--force", "", false}});
+  const Args args(argv, {{"--output", "-o", true},
+                         {"--force", "", false},
+                         {"--overwrite", "", false},
+                         {"--json", "", false}});
   const std::vector<std::string>& inputs = args.positional();
   if (inputs.size() < 2) throw UsageError("compose needs at least two camera files");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT.artcam");
   for (const std::string& in : inputs)
-    if (in == *output && !args.has("--force"))
-      throw CommandError(*output + ": refusing to overwrite an input camera (use --force)");
-
-  auto first = readArtcamFile(inputs[0]);
+    if (in == *output)
+      throw CommandError(*output + ": refusing to overwrite the input camera " + in);
+  auto first = readArtcam(inputs[0]);
   if (!first) throw CommandError(first.status.message);
-  Camera composed = first->camera;
+  Artcam composed = std::move(*first);
+  const bool json = args.has("--json");
+  nlohmann::json steps = nlohmann::json::array();
   for (size_t i = 1; i < inputs.size(); ++i) {
-    const auto next = readArtcamFile(inputs[i]);
+    const auto next = readArtcam(inputs[i]);
     if (!next) throw CommandError(next.status.message);
-    CompositionSummary summary;
-    auto c = composeCameras(composed, next->camera, &summary);
+    std::string description;
+    auto c = composeArtcams(composed, *next, &description);
     if (!c) throw CommandError(inputs[i] + ": cannot follow " + inputs[i - 1] + ": " + c.status.message);
     composed = std::move(*c);
-    std::printf("%s: %s\n", inputs[i].c_str(), summary.description.c_str());
+    steps.push_back({{"camera", inputs[i]}, {"description", description}});
+    if (!json) std::printf("%s: %s\n", inputs[i].c_str(), description.c_str());
   }
-  // No matches or fit record: the composed camera was not fitted to anything.
-  const ArtcamDocument doc{composed, {}, std::nullopt};
-  if (const Status s = writeArtcamFile(*output, doc); !s) throw CommandError(s.message);
-  std::printf("wrote %s: %s\n", output->c_str(), analyseStructure(composed).summary.c_str());
+  if (const Status s = writeArtcam(*output, composed); !s) throw CommandError(s.message);
+  const std::string summary = analyseStructure(composed.main()).summary;
+  if (json)
+    std::printf("%s\n", nlohmann::json{{"output", *output},
+                                       {"kind", std::string(artcamKindName(composed.kind()))},
+                                       {"layers", composed.layers.size()},
+                                       {"structure", summary},
+                                       {"steps", steps}}
+                            .dump()
+                            .c_str());
+  else
+    std::printf("wrote %s: %s camera, %s\n", output->c_str(),
+                std::string(artcamKindName(composed.kind())).c_str(), summary.c_str());
   return 0;
 }
 

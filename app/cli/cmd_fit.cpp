@@ -101,8 +101,10 @@ int fitColourCommand(const Args& args, const std::string& output) {
     if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
     job.stage("writing");
-    ArtcamDocument doc{colourCamera(fit.map, frame), *samples, fit.record()};
-    if (const Status s = writeArtcamFile(output, doc); !s) throw CommandError(s.message);
+    Artcam doc(colourCamera(fit.map, frame));
+    doc.matches = *samples;
+    doc.fit = fit.record();
+    if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
 
     if (args.has("--json")) {
@@ -222,8 +224,10 @@ int fitCommand(const std::vector<std::string>& argv) {
     if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
     job.stage("writing");
-    ArtcamDocument doc{fit.camera, *matches, fit.record};
-    if (const Status s = writeArtcamFile(*output, doc); !s) throw CommandError(s.message);
+    Artcam doc(fit.camera);
+    doc.matches = *matches;
+    doc.fit = fit.record;
+    if (const Status s = writeArtcam(*output, doc); !s) throw CommandError(s.message);
     job.finish();
 
     if (args.has("--json")) {

@@ -5,7 +5,7 @@
 #include "app/cli/progress.h"
 #include "core/fit/fit_image.h"
 #include "core/io/matches_csv.h"
-#include "core/io/piecewise_file.h"
+#include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_fit.h"
 
 #include <cstdio>
@@ -49,12 +49,12 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
     FitOptions single_options;
     single_options.diagnostics = false;
     const FitSummary single = fitImageCamera(*matches, source, target, single_options);
-    PiecewiseDocument doc{
-        ArtcamDocument{single.status ? single.camera : fit.camera.patches.front().camera, *matches,
-                       single.status ? std::optional(single.record) : std::nullopt},
-        fit.camera};
+    Artcam doc(single.status ? single.camera : fit.camera.patches.front().camera);
+    doc.matches = *matches;
+    if (single.status) doc.fit = single.record;
+    doc.pieces = fit.camera;
     job.stage("writing");
-    if (const Status s = writePiecewiseFile(output, doc); !s) throw CommandError(s.message);
+    if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
     std::printf("%s\n", fit.report().c_str());
     for (size_t i = 0; i < fit.camera.patches.size(); ++i) {

@@ -5,9 +5,10 @@
 #include "app/cli/progress.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
-#include "core/io/piecewise_file.h"
+#include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_fit.h"
 #include "core/piecewise/piecewise_render.h"
+#include "core/pipeline/render.h"
 
 #include <chrono>
 #include <cstdio>
@@ -104,19 +105,20 @@ int insertCommand(const std::vector<std::string>& argv) {
       camera = fit.camera;
       if (const auto save = args.value("--save-camera")) {
         job.stage("writing " + *save);
-        PiecewiseDocument doc{ArtcamDocument{camera.patches.front().camera, *matches, std::nullopt},
-                              camera};
-        if (const Status s = writePiecewiseFile(*save, doc); !s) throw CommandError(s.message);
+        Artcam doc(camera.patches.front().camera);
+        doc.matches = *matches;
+        doc.pieces = camera;
+        if (const Status s = writeArtcam(*save, doc); !s) throw CommandError(s.message);
       }
     } else {
       const std::string path = *args.value("--camera");
-      const auto doc = readPiecewiseFile(path);
+      const auto doc = readArtcam(path);
       if (!doc) throw CommandError(doc.status.message);
       if (doc->pieces) {
         camera = *doc->pieces;
       } else {
-        const Camera& single = doc->whole.camera;
-        if (single.blocks().size() != 1 || !single.sourceSize().isImage())
+        const Camera& single = doc->main();
+        if (doc->layers.size() != 1 || single.blocks().size() != 1 || !single.sourceSize().isImage())
           throw CommandError(path + ": insert needs a 2D position camera");
         camera.source_size = single.sourceSize();
         camera.target_size = single.targetSize();
@@ -133,11 +135,21 @@ int insertCommand(const std::vector<std::string>& argv) {
             std::to_string(photo_size.width) + "x" + std::to_string(photo_size.height));
     }
 
-    PiecewiseRenderOptions render;
-    render.mesh_step_px = positiveNumber(args, "--mesh-step", render.mesh_step_px);
+    // Through the render front door: the piecewise camera as a camera value, on the photo's frame.
+    Artcam lens(camera.patches.front().camera);
+    lens.pieces = camera;
+    RenderOptions render_options;
+    render_options.mesh_step_px = positiveNumber(args, "--mesh-step", render_options.mesh_step_px);
+    render_options.warp.width = camera.target_size.width;
+    render_options.warp.height = camera.target_size.height;
     job.stage("rendering");
     const auto start = std::chrono::steady_clock::now();
-    const ImageF inserted = renderPiecewise(graphic->image, camera, render);
+    ImageF inserted;
+    try {
+      inserted = render(RenderInputs::of(graphic->image), lens, render_options);
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("cannot render the graphic: ") + e.what());
+    }
     compositeOver(inserted, photo->image);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -1,8 +1,12 @@
-// artcam map: source pixels → target pixels through a camera, exact to %.17g.
+// artcam map: source pixels → target pixels through any camera, exact to %.17g.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
+#include "core/model/structure.h"
+#include "core/render/attributed.h"
+
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <string>
@@ -10,39 +14,75 @@
 namespace artcam::cli {
 
 const char* const kMapUsage =
-    "usage: artcam map CAM.artcam POINTS.csv\n\n"
+    "usage: artcam map CAM.artcam POINTS.csv [--json]\n\n"
     "Reads rows x,y (source pixels; a header line is allowed) and prints rows x,y,X,Y with\n"
-    "the target pixels, numbers as %.17g. A point on the camera's pole curve (where it maps\n"
-    "to infinity) is an error naming its row; nothing is printed then. No options.\n\n"
+    "the target pixels, numbers as %.17g. Every camera kind maps:\n"
+    "  a piecewise camera through the patch that holds the point (as warp renders it);\n"
+    "  a layered camera (chromatic aberration) prints one X,Y pair per layer:\n"
+    "    x,y,X1,Y1,X2,Y2,…;\n"
+    "  a camera with colour or depth blocks maps through its position part, when its\n"
+    "    positions depend on position alone (otherwise map refuses: where a point goes\n"
+    "    depends on its colour or depth).\n"
+    "A point on the camera's pole curve (where it maps to infinity) or outside every patch is\n"
+    "an error naming its row; nothing is printed then.\n\n"
+    "options:\n"
+    "  --json    print {\"layers\": L, \"points\": [{\"source\": [x, y], \"target\": [[X, Y], …]}, …]}\n\n"
     "Example:\n"
     "  artcam map lens.artcam corners.csv > corners-mapped.csv\n";
 
 int mapCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {});
+  const Args args(argv, {{"--json", "", false}});
   args.expectPositional(2, "CAM.artcam and POINTS.csv");
-  const auto doc = readArtcamFile(args.positional()[0]);
-  if (!doc) throw CommandError(doc.status.message);
-  const Camera& camera = doc->camera;
-  const auto& layout = camera.layout();
-  if (layout.blocks.size() != 1 || layout.blocks[0].kind != BlockKind::Position ||
-      layout.blocks[0].size != 3)
-    throw CommandError(args.positional()[0] +
-                       ": map needs a position-only image camera (its blocks carry colour or "
-                       "depth, or it is 3D)");
+  const std::string& path = args.positional()[0];
+  const auto camera = readArtcam(path);
+  if (!camera) throw CommandError(camera.status.message);
+  const Camera& main = camera->main();
+  const int position = main.layout().find(BlockKind::Position);
+  if (position < 0 || main.blocks()[static_cast<size_t>(position)].size != 3 ||
+      !main.sourceSize().isImage())
+    throw CommandError(path + ": map needs an image camera (this one is 3D or has no position)");
+  // Each layer's position part: exact where positions read position alone.
+  std::vector<Camera> geometry;
+  for (size_t l = 0; l < camera->layers.size(); ++l) {
+    const Camera& layer = camera->layers[l];
+    if (analyseStructure(layer).geometry_depends_on_attributes)
+      throw CommandError(path + ": " +
+                         (camera->layers.size() > 1 ? "layer " + std::to_string(l + 1) + ": " : "") +
+                         "its positions depend on colour or depth, so where a point goes depends "
+                         "on the photo; map cannot say (warp renders it)");
+    geometry.push_back(layer.blocks().size() == 1 ? layer : positionPart(layer));
+  }
   const auto points = readPointsCsv(args.positional()[1]);
   if (!points) throw CommandError(points.status.message);
+  const bool json = args.has("--json");
+  nlohmann::json rows = nlohmann::json::array();
   std::string out;
-  char line[160];
+  char line[64];
   for (size_t k = 0; k < points->size(); ++k) {
     const Eigen::Vector2d& p = (*points)[k];
-    const auto y = targetPixelFromSourcePixel(camera, p);
-    if (!y)
-      throw CommandError(args.positional()[1] + ": point " + std::to_string(k + 1) +
-                         " lies on the camera's pole curve and has no image");
-    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g\n", p.x(), p.y(), y->x(), y->y());
-    out += line;
+    std::snprintf(line, sizeof line, "%.17g,%.17g", p.x(), p.y());
+    std::string text = line;
+    nlohmann::json targets = nlohmann::json::array();
+    for (const Camera& g : geometry) {
+      const auto y = camera->pieces ? camera->pieces->targetPixelFromSourcePixel(p)
+                                    : targetPixelFromSourcePixel(g, p);
+      if (!y)
+        throw CommandError(args.positional()[1] + ": point " + std::to_string(k + 1) +
+                           (camera->pieces ? " lies outside every patch of " + path
+                                           : " lies on the camera's pole curve and has no image"));
+      std::snprintf(line, sizeof line, ",%.17g,%.17g", y->x(), y->y());
+      text += line;
+      targets.push_back({y->x(), y->y()});
+    }
+    out += text + "\n";
+    rows.push_back({{"source", {p.x(), p.y()}}, {"target", std::move(targets)}});
   }
-  std::fputs(out.c_str(), stdout);
+  if (json) {
+    const nlohmann::json doc = {{"camera", path}, {"layers", geometry.size()}, {"points", rows}};
+    std::printf("%s\n", doc.dump().c_str());
+  } else {
+    std::fputs(out.c_str(), stdout);
+  }
   return 0;
 }
 

@@ -331,13 +331,13 @@ int presetCommand(const std::vector<std::string>& argv) {
   for (const Preset& p : kPresets) {
     if (name != p.name) continue;
     const Params params = parseParams(p.params, argv, output, summary);
-    ArtcamDocument doc;
+    Artcam doc;
     try {
-      doc.camera = p.build(params);
+      doc = Artcam(p.build(params));
     } catch (const std::invalid_argument& e) {
       throw CommandError(std::string("preset ") + p.name + ": " + e.what());
     }
-    if (const Status s = writeArtcamFile(output, doc); !s) throw CommandError(s.message);
+    if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     std::printf("wrote %s (%s%s%s)\n", output.c_str(), p.name, summary.empty() ? "" : ": ",
                 summary.c_str());
     if (name == "chromatic-aberration-3d")
@@ -353,11 +353,10 @@ int presetCommand(const std::vector<std::string>& argv) {
     } catch (const std::invalid_argument& e) {
       throw CommandError(std::string("preset ") + p.name + ": " + e.what());
     }
-    ArtcamDocument doc{made.layers.front(), {}, std::nullopt};
-    ArtcamExtras extras;
-    extras.layers.assign(made.layers.begin() + 1, made.layers.end());
-    extras.depth_output = made.depth_output;
-    if (const Status s = writeArtcamFile(output, doc, extras); !s) throw CommandError(s.message);
+    Artcam doc;
+    doc.layers = made.layers;
+    doc.depth_output = *depthOutputFromName(made.depth_output);
+    if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     std::printf("wrote %s (%s: %s)\n", output.c_str(), p.name, summary.c_str());
     return 0;
   }

@@ -68,15 +68,18 @@ double parsePositive(const std::string& text, const std::string& option) {
 }
 
 Camera readObjectCamera(const std::string& path) {
-  auto doc = readArtcamFile(path);
+  auto doc = readArtcam(path);
   if (!doc) throw CommandError(doc.status.message);
-  const BlockLayout& l = doc->camera.layout();
+  if (doc->layers.size() != 1 || doc->pieces)
+    throw CommandError(path + ": a " + std::string(artcamKindName(doc->kind())) +
+                       " camera cannot view a point cloud (one object-space camera is needed)");
+  const BlockLayout& l = doc->main().layout();
   const int p = l.find(BlockKind::Position);
   if (p < 0 || l.blocks[p].size != 4)
     throw CommandError(path +
                        ": not an object-space camera (its position block must have 4 "
                        "elements, X Y Z 1; image cameras are for artcam warp)");
-  return doc->camera;
+  return doc->main();
 }
 
 bool endsWith(const std::string& s, const std::string& tail) {

@@ -1,4 +1,4 @@
-// artcam warp: image → image through a position camera (gather warp, DESIGN §3). The stages
+// artcam warp: image → image through any camera (core/pipeline/render.h). The stages
 // (decode, render, encode) are warp_job.h's, shared with artcam batch.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
@@ -16,10 +16,13 @@ const char* const kWarpUsage =
     "                   [--threads N] [--stats] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
-    "The output has the camera's target frame size scaled by IN's size over the camera's\n"
-    "source frame (a camera made on a preview applies to the full photo), or --size.\n"
-    "Pixels with no preimage are transparent (an alpha channel is added where the format has\n"
-    "one; else they are black).\n"
+    "Output frame: the camera's target frame scaled per axis by IN's size over the camera's\n"
+    "source frame and rounded, so a camera made on a preview applies to the full photo and a\n"
+    "camera of IN's own size and aspect keeps IN's exact size; if IN's aspect differs from the\n"
+    "source frame's by more than a rounding pixel the result is stretched per axis and a\n"
+    "warning names both sizes. --size WxH overrides the rule.\n"
+    "Channels: IN's channels are kept; an alpha channel is added only where some pixel has no\n"
+    "preimage (transparent; black in formats without alpha) or IN had alpha.\n"
     "OUT keeps IN's pixel type and metadata. Where OUT's format stores IN's kind of sample\n"
     "(8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and writes the stored\n"
     "values in place (no float copy: peak memory about input + output), interpolating them in\n"
@@ -27,8 +30,8 @@ const char* const kWarpUsage =
     "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130); it may\n"
     "not be IN unless --overwrite is given. --stats prints render_ms=<ms>\n"
     "mpix_per_s=<Mpix/s> on stderr (the render alone, without file I/O).\n"
-    "A piecewise camera (artcam fit --piecewise) is rendered by its seamless mesh warp on its\n"
-    "target frame.\n"
+    "Every camera kind renders: a piecewise camera (artcam fit --piecewise) by its seamless\n"
+    "mesh warp, layered and attributed cameras by the attributed renderer.\n"
     "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
     "field go to the attributed renderer; those that read depth need --depth FILE: float\n"
     "EXR/TIFF as stored, integer files times --depth-scale S, or disparity made depth as\n"
@@ -65,7 +68,7 @@ int warpCommand(const std::vector<std::string>& argv) {
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
   const std::string& input = args.positional()[0];
-  // Never replace the photo being warped by default (issue 9, "no lost work").
+  // Never replace the photo being warped by default: an input is never lost.
   if (!args.has("--overwrite") && !args.has("--force") && sameFile(input, *output))
     throw CommandError(*output + ": refusing to overwrite the input image " + input +
                        " (use --overwrite)");
@@ -83,13 +86,14 @@ int warpCommand(const std::vector<std::string>& argv) {
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
     encodeWarp(rendered, stage("writing"));
     bar.finish();
-    if (request.stats && !rendered.written) {
+    if (!rendered.warning.empty())
+      std::fprintf(stderr, "artcam warp: warning: %s\n", rendered.warning.c_str());
+    if (request.stats) {
       const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
       std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms,
                    rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0);
     }
-    if (!rendered.written)
-      std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), rendered.width, rendered.height,
+    std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), rendered.width, rendered.height,
                   rendered.description.c_str());
   } catch (const CommandError&) {
     if (!interruptRequested()) throw;

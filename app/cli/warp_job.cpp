@@ -1,13 +1,12 @@
 #include "app/cli/warp_job.h"
 
 #include "app/cli/commands.h"
-#include "app/cli/warp_attributed.h"
-#include "core/io/piecewise_file.h"
-#include "core/piecewise/piecewise_render.h"
+#include "core/io/depth_file.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <new>
 #include <system_error>
@@ -16,70 +15,73 @@
 namespace artcam::cli {
 namespace {
 
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
+std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+CommandError outOfMemory(const std::string& output, FrameSize size, int channels, PixelType type) {
+  const double gib = static_cast<double>(size.width) * size.height * channels * pixelTypeSize(type) /
+                     (1024.0 * 1024.0 * 1024.0);
+  char amount[32];
+  std::snprintf(amount, sizeof amount, "%.2f", gib);
+  return CommandError(output + ": cannot write: not enough memory for " +
+                      sizeText(size.width, size.height) + " (" + amount + " GiB)");
 }
 
-// The camera may have been made on a preview, so its target frame scales by the ratio between
-// this photo and the source frame it was made for (normalised frames make that exact).
-WarpOptions optionsForInput(const Camera& camera, WarpOptions options, int input_width) {
-  if (options.width != 0 || options.height != 0 || !camera.sourceSize().isImage()) return options;
-  const double scale = static_cast<double>(input_width) / camera.sourceSize().width;
-  options.width = std::max(1, static_cast<int>(std::lround(camera.targetSize().width * scale)));
-  options.height = std::max(1, static_cast<int>(std::lround(camera.targetSize().height * scale)));
-  return options;
-}
-
-std::string describe(const WarpSummary& summary) {
-  return "kernel " + summary.kernel + ", " + std::to_string(summary.transparent_pixels) +
-         " transparent pixels";
+// The output keeps the photo's channels: the alpha the renderer adds is dropped again where the
+// photo had none and every pixel has a preimage.
+void dropAddedAlpha(StoredImage& image, bool input_had_alpha) {
+  if (input_had_alpha || image.alpha_channel < 0) return;
+  const int channels = dropOpaqueAlpha(image.view());
+  if (channels == image.channels) return;
+  image.channels = channels;
+  image.alpha_channel = -1;
 }
 
 }  // namespace
 
 WarpRequest parseWarpRequest(const Args& args) {
   WarpRequest request;
+  WarpOptions& warp = request.options.warp;
   const std::string filter_name = args.valueOr("--filter", "bilinear");
   const auto filter = filterFromName(filter_name);
   if (!filter) throw UsageError("unknown --filter \"" + filter_name + "\"");
-  request.options.filter = *filter;
+  warp.filter = *filter;
   if (args.has("--size")) {
     const FrameSize size = parseSize(*args.value("--size"), "--size");
-    request.options.width = size.width;
-    request.options.height = size.height;
+    warp.width = size.width;
+    warp.height = size.height;
   }
   if (args.has("--threads")) {
     try {
-      request.options.threads = std::stoi(*args.value("--threads"));
+      warp.threads = std::stoi(*args.value("--threads"));
     } catch (const std::exception&) {
       throw UsageError("--threads expects a whole number");
     }
-    if (request.options.threads < 0) throw UsageError("--threads expects a whole number ≥ 0");
+    if (warp.threads < 0) throw UsageError("--threads expects a whole number ≥ 0");
   }
-  request.depth_path = args.value("--depth");
+  DepthFileOptions depth;
   try {
-    request.depth_scale = std::stod(args.valueOr("--depth-scale", "1"));
-    request.baseline_focal = std::stod(args.valueOr("--disparity", "0"));
+    depth.scale = std::stod(args.valueOr("--depth-scale", "1"));
+    depth.baseline_focal = std::stod(args.valueOr("--disparity", "0"));
   } catch (const std::exception&) {
     throw UsageError("--depth-scale and --disparity expect numbers");
+  }
+  if (const auto path = args.value("--depth")) {
+    DepthFileSummary summary;
+    auto read = readDepthFile(*path, depth, &summary);
+    if (!read) throw CommandError(read.status.message);
+    request.depth = std::move(*read);
+    std::printf("depth %s: %dx%d, %g..%g, %lld holes\n", path->c_str(), request.depth->width,
+                request.depth->height, summary.min_depth, summary.max_depth, summary.holes);
   }
   request.stats = args.has("--stats");
   return request;
 }
 
 WarpCameraFile loadWarpCamera(const std::string& path) {
-  WarpCameraFile file;
-  file.path = path;
-  auto effect = readArtcamEffectFile(path);
-  if (!effect) throw CommandError(effect.status.message);
-  file.effect = std::move(*effect);
-  // Colour/depth cameras, layers and depth of field go to the attributed renderer (issue 6).
-  file.attributed = needsAttributedWarp(file.effect);
-  // Piecewise cameras (issue 8): the mesh warp, never the top-level single camera alone.
-  if (!file.attributed)
-    if (auto pieces = readPiecewiseFile(path); pieces && pieces->pieces)
-      file.pieces = std::move(pieces->pieces);
+  auto camera = readArtcam(path);
+  if (!camera) throw CommandError(camera.status.message);
+  WarpCameraFile file{path, std::move(*camera), false};
+  file.linear = needsLinearPhoto(file.camera);
   return file;
 }
 
@@ -94,10 +96,10 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const std::string& inpu
   DecodedInput decoded{input, output, std::nullopt, std::nullopt};
   ReadImageOptions read;
   read.progress = progress;
-  // The stored-type path where the output keeps the input's encoding (issue 5: peak memory
-  // ≤ input + output + a small constant); re-encoding between integer and float files, and
-  // the piecewise and attributed renderers, go through linear light (image_io.h).
-  if (!camera.attributed && !camera.pieces) {
+  // The stored-type path where the output keeps the input's encoding (peak memory ≤ input +
+  // output + a small constant); re-encoding between integer and float files, and cameras that
+  // render from the linear photo, go through linear light (image_io.h).
+  if (!camera.linear) {
     const auto type = readStoredPixelType(input);
     if (!type) throw CommandError(type.status.message);
     if (storedWriteKeepsEncoding(output, *type)) {
@@ -118,77 +120,57 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
   DecodedInput source = std::move(input);  // freed on return, before the output is encoded
   RenderedOutput out;
   out.output = source.output;
-  const auto start = std::chrono::steady_clock::now();
-  auto cancelled = [&] { return CommandError(source.input + ": cancelled"); };
-
-  if (camera.attributed) {
-    WarpOptions options =
-        optionsForInput(camera.camera(), request.options, source.loaded->image.width);
-    AttributedWarpRequest attributed{
-        out.output, request.depth_path, request.depth_scale, request.baseline_focal,
-        options,    request.stats};
-    warpAttributed(camera.effect, *source.loaded, attributed);
-    // The attributed renderer sizes its output by the same rule (warp.h outputSizeFor).
-    const FrameSize size = outputSizeFor(camera.camera(), options.width, options.height);
-    out.width = size.width;
-    out.height = size.height;
-    out.written = true;
-    out.render_ms = millisecondsSince(start);
-    out.description = "attributed renderer";
-    return out;
-  }
-  if (camera.pieces) {
-    if (request.options.width != 0 || request.options.height != 0)
-      throw UsageError(
-          "--size does not apply to piecewise cameras (they render on their target frame)");
-    out.image = renderPiecewise(source.loaded->image, *camera.pieces);
-    out.like = source.loaded->info;
-    out.width = out.image->width;
-    out.height = out.image->height;
-    out.render_ms = millisecondsSince(start);
-    out.description =
-        "piecewise mesh warp, " + std::to_string(camera.pieces->patches.size()) + " patches";
-    return out;
-  }
-
-  WarpSummary summary;
-  if (source.stored) {
-    const StoredImage& in = *source.stored;
-    WarpOptions options = optionsForInput(camera.camera(), request.options, in.width);
-    options.progress = progress;
-    const FrameSize size = warpOutputSize(camera.camera(), options);
-    const bool add_alpha = in.alpha_channel < 0 && formatStoresAlpha(out.output);
-    try {
-      out.stored = makeStoredImage(size.width, size.height, in.channels + (add_alpha ? 1 : 0),
-                                   add_alpha ? in.channels : in.alpha_channel, in.type);
-    } catch (const std::bad_alloc&) {
-      throw CommandError(out.output + ": cannot write: not enough memory for " +
-                         std::to_string(size.width) + "x" + std::to_string(size.height) +
-                         " pixels");
+  RenderOptions options = request.options;
+  options.warp.progress = progress;
+  const ImageF* depth = request.depth ? &*request.depth : nullptr;
+  RenderSummary summary;
+  try {
+    if (source.stored) {
+      const StoredImage& in = *source.stored;
+      const OutputFrame frame = outputFrameFor(camera.camera, {in.width, in.height},
+                                               options.warp.width, options.warp.height);
+      const bool add_alpha = in.alpha_channel < 0 && formatStoresAlpha(out.output);
+      const int channels = in.channels + (add_alpha ? 1 : 0);
+      try {
+        out.stored = makeStoredImage(frame.size.width, frame.size.height, channels,
+                                     add_alpha ? in.channels : in.alpha_channel, in.type);
+      } catch (const std::bad_alloc&) {
+        throw outOfMemory(out.output, frame.size, channels, in.type);
+      }
+      RenderInputs inputs;
+      inputs.photo = in.view();
+      inputs.depth = depth;
+      render(inputs, camera.camera, options, out.stored->view(), &summary);
+      if (!summary.cancelled) dropAddedAlpha(*out.stored, in.alpha_channel >= 0);
+      out.like = in.info;
+      out.width = frame.size.width;
+      out.height = frame.size.height;
+      out.warning = frame.warning;
+    } else {
+      const LoadedImage& in = *source.loaded;
+      ImageF image = render(RenderInputs::of(in.image, depth), camera.camera, options, &summary);
+      if (!summary.cancelled) {
+        if (in.image.alpha_channel < 0) dropOpaqueAlpha(image);
+        out.width = image.width;
+        out.height = image.height;
+        out.image = std::move(image);
+      }
+      out.like = in.info;
+      out.warning = outputFrameFor(camera.camera, {in.image.width, in.image.height},
+                                   options.warp.width, options.warp.height).warning;
     }
-    warpImage(in.view(), camera.camera(), out.stored->view(), options, &summary);
-    out.like = in.info;
-    out.width = size.width;
-    out.height = size.height;
-  } else {
-    WarpOptions options =
-        optionsForInput(camera.camera(), request.options, source.loaded->image.width);
-    options.progress = progress;
-    out.image = warpImage(source.loaded->image, camera.camera(), options, &summary);
-    out.like = source.loaded->info;
-    if (!summary.cancelled) {
-      out.width = out.image->width;
-      out.height = out.image->height;
-    }
+  } catch (const std::bad_alloc&) {
+    throw CommandError(out.output + ": cannot render: not enough memory");
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(camera.path + ": cannot render " + source.input + ": " + e.what());
   }
-  if (summary.cancelled) throw cancelled();
+  if (summary.cancelled) throw CommandError(source.input + ": cancelled");
   out.render_ms = summary.render_ms;
-  out.description = describe(summary);
+  out.description = summary.describe();
   return out;
 }
 
 void encodeWarp(RenderedOutput& output, const Progress& progress) {
-  if (output.written) return;
   WriteImageOptions options;
   options.progress = progress;
   const Status s = output.stored

@@ -4,18 +4,21 @@
 // Each stage takes a progress callback that may cancel (interrupt.h); a cancelled or failed
 // stage throws CommandError naming the file, and no output file is left (atomic saves).
 //
-// Memory (issue 9, "big images"): where the output format stores the input's kind of sample
-// the image stays in its stored pixel type (core/io/stored_image.h: decode and encode in bands
-// of rows, no float copy), and renderForWarp drops the input as soon as the output exists, so
-// a warp peaks at input + output and a pipeline at the images it holds in flight.
+// Every render goes through core's front door (core/pipeline/render.h) with the camera value
+// read once (core/io/artcam_file.h), so warp and batch render every camera kind the same way.
+//
+// Memory: where the camera renders from the stored photo and the output format stores the
+// input's kind of sample, the image stays in its stored pixel type (core/io/stored_image.h:
+// decode and encode in bands of rows, no float copy), and renderForWarp drops the input as soon
+// as the output exists, so a warp peaks at input + output and a pipeline at the images it
+// holds in flight.
 #pragma once
 
 #include "app/cli/args.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
-#include "core/model/piecewise_camera.h"
-#include "core/render/warp.h"
+#include "core/pipeline/render.h"
 
 #include <functional>
 #include <optional>
@@ -26,18 +29,14 @@ namespace artcam::cli {
 // A camera file read once for any number of images.
 struct WarpCameraFile {
   std::string path;
-  ArtcamEffectFile effect;                // the camera (document.camera) and its layers
-  bool attributed = false;                // colour/depth/layers: the attributed renderer
-  std::optional<PiecewiseCamera> pieces;  // a piecewise camera: its mesh warp
-  const Camera& camera() const { return effect.document.camera; }
+  Artcam camera;
+  bool linear = false;  // renders from the linear float photo (needsLinearPhoto)
 };
 WarpCameraFile loadWarpCamera(const std::string& path);
 
 struct WarpRequest {
-  WarpOptions options;  // filter, threads; width × height 0: scaled from each input (below)
-  std::optional<std::string> depth_path;  // attributed cameras that read depth
-  double depth_scale = 1.0;
-  double baseline_focal = 0.0;
+  RenderOptions options;  // filter, threads; width × height 0: the output-frame rule per input
+  std::optional<ImageF> depth;  // --depth FILE, read once for every input
   bool stats = false;
 };
 
@@ -62,11 +61,11 @@ struct RenderedOutput {
   std::optional<StoredImage> stored;
   std::optional<ImageF> image;
   ImageInfo like;        // the input's format and metadata, written back
-  bool written = false;  // the attributed renderer writes its own output
   int width = 0;
   int height = 0;
   double render_ms = 0.0;
-  std::string description;  // "kernel homography, 12 transparent pixels"
+  std::string description;  // "gather warp (homography), 12 transparent pixels"
+  std::string warning;      // the output-frame rule's aspect warning, if any
 };
 // Consumes the input (freed before returning).
 RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,

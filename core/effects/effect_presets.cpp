@@ -74,8 +74,8 @@ AttributedImage renderEffect(const ImageF& source, const ImageF* depth, const Ef
   AttributedImage out = renderLayers(source, depth, setup.layers, options, &report);
   if (report.cancelled || setup.depth_output != "blur-variance") return out;
   BlurOptions blur;
-  blur.threads = options.threads;
-  blur.progress = options.progress;
+  blur.threads = options.warp.threads;
+  blur.progress = options.warp.progress;
   out.colour = stackBlur(out.colour, sigmaPixelsFromVariance(out.depth), blur);
   if (out.colour.empty()) {
     report.cancelled = true;

@@ -22,6 +22,8 @@ double denominatorAt(const Eigen::Matrix3d& q, const Eigen::Vector2d& p) {
 std::string PoleCheck::describe() const {
   char buf[160];
   if (!checked) return "pole check applies to single-stage 2D position cameras only";
+  if (pole_free && !std::isfinite(margin))
+    return "the denominator is zero or not finite over the source frame";
   if (pole_free)
     std::snprintf(buf, sizeof buf, "pole-free over the source frame (margin %.3g)", margin);
   else

@@ -226,7 +226,91 @@ FitRecord fitAt(const Json& j, const std::string& path) {
   return fit;
 }
 
-ArtcamDocument documentAt(const Json& root) {
+// The geometry of one camera: blocks, frames, stages. `prefix` is the JSON path of the object
+// holding them ("" at the top level, "/patches/3/camera" for a patch's embedded camera).
+Camera cameraAt(const Json& root, const std::string& prefix) {
+  objectAt(root, prefix.empty() ? "/" : prefix);
+  std::vector<Block> blocks = blocksAt(field(root, prefix, "blocks"), prefix + "/blocks");
+  const int n = BlockLayout(blocks).dimension;
+  const std::string frames_path = prefix + "/frames";
+  const Json& frames = objectAt(field(root, prefix, "frames"), frames_path);
+  const FrameSize source = frameAt(field(frames, frames_path, "source"), frames_path + "/source");
+  const FrameSize target = frameAt(field(frames, frames_path, "target"), frames_path + "/target");
+  const Json& stages_json = arrayAt(field(root, prefix, "stages"), prefix + "/stages", "stages");
+  if (stages_json.empty()) refuse(prefix + "/stages", "expected at least one stage");
+  std::vector<Stage> stages;
+  for (size_t s = 0; s < stages_json.size(); ++s)
+    stages.push_back(stageAt(stages_json[s], prefix + "/stages/" + std::to_string(s), n));
+  try {
+    return Camera(std::move(blocks), std::move(stages), source, target);
+  } catch (const std::invalid_argument& e) {
+    throw Refusal{(prefix.empty() ? std::string() : prefix + ": ") + "invalid camera: " + e.what()};
+  }
+}
+
+std::vector<Camera> layersAt(const Json& j, const Camera& main) {
+  const Json& layers = arrayAt(j, "/layers", "layers");
+  std::vector<Camera> out;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    const std::string path = "/layers/" + std::to_string(l);
+    objectAt(layers[l], path);
+    const Json& stages_json = arrayAt(field(layers[l], path, "stages"), path + "/stages", "stages");
+    if (stages_json.empty()) refuse(path + "/stages", "expected at least one stage");
+    std::vector<Stage> stages;
+    for (size_t s = 0; s < stages_json.size(); ++s)
+      stages.push_back(stageAt(stages_json[s], path + "/stages/" + std::to_string(s), main.dimension()));
+    try {
+      out.emplace_back(main.blocks(), std::move(stages), main.sourceSize(), main.targetSize());
+    } catch (const std::invalid_argument& e) {
+      throw Refusal{path + ": invalid camera: " + e.what()};
+    }
+  }
+  return out;
+}
+
+// Read before anything is allocated per patch: a list longer than kMaxPatches is refused by its
+// size alone.
+PiecewiseCamera piecesAt(const Json& root, const Camera& main) {
+  const Json& patches = arrayAt(root["patches"], "/patches", "patches");
+  if (patches.empty()) refuse("/patches", "expected at least one patch");
+  if (patches.size() > static_cast<size_t>(kMaxPatches))
+    refuse("/patches", std::to_string(patches.size()) + " patches, more than the " +
+                           std::to_string(kMaxPatches) + " allowed");
+  PiecewiseCamera pieces;
+  pieces.source_size = main.sourceSize();
+  pieces.target_size = main.targetSize();
+  if (root.contains("support_margin_px")) {
+    pieces.support_margin_px = numberAt(root["support_margin_px"], "/support_margin_px");
+    if (pieces.support_margin_px < 0.0) refuse("/support_margin_px", "expected a number ≥ 0");
+  }
+  for (size_t i = 0; i < patches.size(); ++i) {
+    const std::string where = "/patches/" + std::to_string(i);
+    const Json& p = objectAt(patches[i], where);
+    CameraPatch patch;
+    const std::vector<double> r = numbersAt(field(p, where, "rect"), where + "/rect", 4);
+    patch.rect = {r[0], r[1], r[2], r[3]};
+    if (!(patch.rect.x1 > patch.rect.x0 && patch.rect.y1 > patch.rect.y0))
+      refuse(where + "/rect", "x1 must exceed x0 and y1 must exceed y0");
+    patch.camera = cameraAt(objectAt(field(p, where, "camera"), where + "/camera"), where + "/camera");
+    if (p.contains("support")) {
+      const Json& hull = arrayAt(p["support"], where + "/support", "[x, y] points");
+      for (size_t k = 0; k < hull.size(); ++k) {
+        const std::vector<double> v = numbersAt(hull[k], where + "/support/" + std::to_string(k), 2);
+        patch.support.emplace_back(v[0], v[1]);
+      }
+    }
+    if (p.contains("model")) patch.model = stringAt(p["model"], where + "/model");
+    if (p.contains("matches"))
+      patch.matches = static_cast<int>(wholeNumberAt(p["matches"], where + "/matches", 0));
+    // -1 marks an error that could not be measured (written so by the fitter).
+    if (p.contains("rms_px")) patch.rms_px = numberAt(p["rms_px"], where + "/rms_px");
+    if (p.contains("max_px")) patch.max_px = numberAt(p["max_px"], where + "/max_px");
+    pieces.patches.push_back(std::move(patch));
+  }
+  return pieces;
+}
+
+Artcam artcamAt(const Json& root) {
   if (!root.is_object())
     throw Refusal{"expected a JSON object at the top level, found " + describe(root)};
   const auto format = root.find("format");
@@ -238,55 +322,26 @@ ArtcamDocument documentAt(const Json& root) {
     throw Refusal{"written by a newer ARTcam (version " + std::to_string(version) +
                   "; this build reads up to " + std::to_string(kArtcamFormatVersion) + ")"};
 
-  std::vector<Block> blocks = blocksAt(field(root, "", "blocks"), "/blocks");
-  const int n = BlockLayout(blocks).dimension;
-  const Json& frames = objectAt(field(root, "", "frames"), "/frames");
-  const FrameSize source = frameAt(field(frames, "/frames", "source"), "/frames/source");
-  const FrameSize target = frameAt(field(frames, "/frames", "target"), "/frames/target");
-  const Json& stages_json = arrayAt(field(root, "", "stages"), "/stages", "stages");
-  if (stages_json.empty()) refuse("/stages", "expected at least one stage");
-  std::vector<Stage> stages;
-  for (size_t s = 0; s < stages_json.size(); ++s)
-    stages.push_back(stageAt(stages_json[s], "/stages/" + std::to_string(s), n));
-
-  std::optional<Camera> camera;
-  try {
-    camera.emplace(std::move(blocks), std::move(stages), source, target);
-  } catch (const std::invalid_argument& e) {
-    throw Refusal{std::string("invalid camera: ") + e.what()};
-  }
-  ArtcamDocument document{std::move(*camera), {}, std::nullopt};
-  if (root.contains("matches")) document.matches = matchesAt(root["matches"], "/matches");
-  if (root.contains("fit")) document.fit = fitAt(root["fit"], "/fit");
-  return document;
-}
-
-ArtcamExtras extrasAt(const Json& root, const Camera& main) {
-  ArtcamExtras extras;
+  Artcam camera(cameraAt(root, ""));
   if (root.contains("layers")) {
-    const Json& layers = arrayAt(root["layers"], "/layers", "layers");
-    for (size_t l = 0; l < layers.size(); ++l) {
-      const std::string path = "/layers/" + std::to_string(l);
-      objectAt(layers[l], path);
-      const Json& stages_json = arrayAt(field(layers[l], path, "stages"), path + "/stages", "stages");
-      if (stages_json.empty()) refuse(path + "/stages", "expected at least one stage");
-      std::vector<Stage> stages;
-      for (size_t s = 0; s < stages_json.size(); ++s)
-        stages.push_back(stageAt(stages_json[s], path + "/stages/" + std::to_string(s), main.dimension()));
-      try {
-        extras.layers.emplace_back(main.blocks(), std::move(stages), main.sourceSize(), main.targetSize());
-      } catch (const std::invalid_argument& e) {
-        throw Refusal{path + ": invalid camera: " + e.what()};
-      }
-    }
+    std::vector<Camera> more = layersAt(root["layers"], camera.main());
+    camera.layers.insert(camera.layers.end(), more.begin(), more.end());
   }
   if (root.contains("depth_output")) {
-    extras.depth_output = stringAt(root["depth_output"], "/depth_output");
-    if (extras.depth_output != "depth" && extras.depth_output != "blur-variance")
-      refuse("/depth_output", "expected \"depth\" or \"blur-variance\", found " +
-                                  describe(Json(extras.depth_output)));
+    const std::string name = stringAt(root["depth_output"], "/depth_output");
+    const std::optional<DepthOutput> output = depthOutputFromName(name);
+    if (!output)
+      refuse("/depth_output",
+             "expected \"depth\" or \"blur-variance\", found " + describe(Json(name)));
+    camera.depth_output = *output;
   }
-  return extras;
+  if (root.contains("patches")) camera.pieces = piecesAt(root, camera.main());
+  if (root.contains("matches")) camera.matches = matchesAt(root["matches"], "/matches");
+  if (root.contains("fit")) camera.fit = fitAt(root["fit"], "/fit");
+  // What a well-formed file can still get wrong: zero stages, patches that overlap or leave
+  // the frame, layers of other frames.
+  if (const Status s = validateArtcam(camera); !s) throw Refusal{s.message};
+  return camera;
 }
 
 // ---- writing ----
@@ -330,22 +385,8 @@ struct Builder {
     return stages;
   }
 
-  void extras(const Camera& main, const ArtcamExtras& e, Json& root) {
-    if (!e.layers.empty()) {
-      Json layers = Json::array();
-      for (size_t l = 0; l < e.layers.size(); ++l) {
-        if (e.layers[l].blocks() != main.blocks())
-          throw std::invalid_argument("layer " + std::to_string(l + 1) +
-                                      " has other blocks than the main camera");
-        layers.push_back({{"stages", stagesOf(e.layers[l], "/layers/" + std::to_string(l))}});
-      }
-      root["layers"] = std::move(layers);
-    }
-    if (e.depth_output != "depth") root["depth_output"] = e.depth_output;
-  }
-
-  Json document(const ArtcamDocument& d) {
-    const Camera& camera = d.camera;
+  // The geometry of one camera (a patch embeds it as a complete camera-only document).
+  Json cameraJson(const Camera& camera, const std::string& prefix) {
     Json root;
     root["format"] = "artcam";
     root["version"] = kArtcamFormatVersion;
@@ -355,7 +396,42 @@ struct Builder {
     root["blocks"] = blocks;
     root["frames"] = {{"source", {camera.sourceSize().width, camera.sourceSize().height}},
                       {"target", {camera.targetSize().width, camera.targetSize().height}}};
-    root["stages"] = stagesOf(camera, "");
+    root["stages"] = stagesOf(camera, prefix);
+    return root;
+  }
+
+  Json patchesJson(const PiecewiseCamera& pieces) {
+    Json patches = Json::array();
+    for (size_t i = 0; i < pieces.patches.size(); ++i) {
+      const CameraPatch& p = pieces.patches[i];
+      const std::string where = "/patches/" + std::to_string(i);
+      Json j;
+      j["rect"] = {number(p.rect.x0, where + "/rect"), number(p.rect.y0, where + "/rect"),
+                   number(p.rect.x1, where + "/rect"), number(p.rect.y1, where + "/rect")};
+      j["model"] = p.model;
+      j["matches"] = p.matches;
+      j["rms_px"] = std::isfinite(p.rms_px) ? p.rms_px : -1.0;
+      j["max_px"] = std::isfinite(p.max_px) ? p.max_px : -1.0;
+      Json hull = Json::array();
+      for (const Eigen::Vector2d& v : p.support)
+        hull.push_back({number(v.x(), where + "/support"), number(v.y(), where + "/support")});
+      j["support"] = std::move(hull);
+      j["camera"] = cameraJson(p.camera, where + "/camera");
+      patches.push_back(std::move(j));
+    }
+    return patches;
+  }
+
+  Json document(const Artcam& d) {
+    Json root = cameraJson(d.main(), "");
+    if (d.layers.size() > 1) {
+      Json layers = Json::array();
+      for (size_t l = 1; l < d.layers.size(); ++l)
+        layers.push_back({{"stages", stagesOf(d.layers[l], "/layers/" + std::to_string(l - 1))}});
+      root["layers"] = std::move(layers);
+    }
+    if (d.depth_output != DepthOutput::Depth)
+      root["depth_output"] = std::string(depthOutputName(d.depth_output));
     if (!d.matches.empty()) {
       Json matches = Json::array();
       for (size_t m = 0; m < d.matches.size(); ++m) {
@@ -386,6 +462,10 @@ struct Builder {
         root["fit"]["pole_margin"] = number(f.pole_margin, "/fit/pole_margin");
       }
       if (!f.inliers.empty()) root["fit"]["inliers"] = f.inliers;
+    }
+    if (d.pieces) {
+      root["support_margin_px"] = number(d.pieces->support_margin_px, "/support_margin_px");
+      root["patches"] = patchesJson(*d.pieces);
     }
     return root;
   }
@@ -471,9 +551,9 @@ std::string positionOf(std::string_view text, size_t byte) {
 
 }  // namespace
 
-Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string& name) {
+Result<Artcam> parseArtcam(std::string_view text, const std::string& name) {
   if (const size_t deep = tooDeepAt(text); deep != std::string_view::npos)
-    return Result<ArtcamDocument>::failure(name + ": " + positionOf(text, deep + 1) +
+    return Result<Artcam>::failure(name + ": " + positionOf(text, deep + 1) +
                                            ": nested deeper than " + std::to_string(kMaxJsonDepth) +
                                            " levels (not an ARTcam file)");
   Json root;
@@ -486,7 +566,7 @@ Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string&
       cause = cause.substr(at);
     else if (const size_t colon = cause.find(": "); colon != std::string::npos)
       cause = cause.substr(colon + 2);
-    return Result<ArtcamDocument>::failure(name + ": " + positionOf(text, e.byte) +
+    return Result<Artcam>::failure(name + ": " + positionOf(text, e.byte) +
                                            ": invalid JSON: " + cause);
   } catch (const Json::out_of_range& e) {
     // An overflowing literal ("number overflow parsing '1e999'"): nlohmann gives no position,
@@ -496,61 +576,31 @@ Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string&
     const size_t close = what.rfind('\'');
     const std::string literal = open < close ? what.substr(open + 1, close - open - 1) : "";
     const size_t at = literal.empty() ? std::string_view::npos : text.find(literal);
-    return Result<ArtcamDocument>::failure(
+    return Result<Artcam>::failure(
         name + ": " + (at == std::string_view::npos ? "" : positionOf(text, at + 1) + ": ") +
         "not a finite number: " + (literal.empty() ? what : literal));
   } catch (const Json::exception& e) {
-    return Result<ArtcamDocument>::failure(name + ": invalid JSON: " + e.what());
+    return Result<Artcam>::failure(name + ": invalid JSON: " + e.what());
   }
   try {
-    return Result<ArtcamDocument>::success(documentAt(root));
+    return Result<Artcam>::success(artcamAt(root));
   } catch (const Refusal& refusal) {
-    return Result<ArtcamDocument>::failure(name + ": " + refusal.message);
+    return Result<Artcam>::failure(name + ": " + refusal.message);
   }
 }
 
-std::vector<Camera> ArtcamEffectFile::allLayers() const {
-  std::vector<Camera> all{document.camera};
-  all.insert(all.end(), extras.layers.begin(), extras.layers.end());
-  return all;
-}
-
-Result<ArtcamEffectFile> parseArtcamEffectJson(std::string_view text, const std::string& name) {
-  Result<ArtcamDocument> doc = parseArtcamJson(text, name);
-  if (!doc) return Result<ArtcamEffectFile>::failure(doc.status.message);
-  try {
-    // The text parsed once already; parse again for the optional fields.
-    const Json root = Json::parse(text.begin(), text.end());
-    ArtcamExtras extras = extrasAt(root, doc->camera);
-    return Result<ArtcamEffectFile>::success({std::move(*doc), std::move(extras)});
-  } catch (const Refusal& refusal) {
-    return Result<ArtcamEffectFile>::failure(name + ": " + refusal.message);
-  }
-}
-
-Result<ArtcamEffectFile> readArtcamEffectFile(const std::string& path) {
+Result<Artcam> readArtcam(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in)
-    return Result<ArtcamEffectFile>::failure(path + ": cannot read: no such file or not readable");
+  if (!in) return Result<Artcam>::failure(path + ": cannot read: no such file or not readable");
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) return Result<ArtcamEffectFile>::failure(path + ": cannot read: I/O error");
-  return parseArtcamEffectJson(text.str(), path);
+  if (in.bad()) return Result<Artcam>::failure(path + ": cannot read: I/O error");
+  return parseArtcam(text.str(), path);
 }
 
-Result<ArtcamDocument> readArtcamFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    return Result<ArtcamDocument>::failure(path + ": cannot read: no such file or not readable");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return Result<ArtcamDocument>::failure(path + ": cannot read: I/O error");
-  return parseArtcamJson(text.str(), path);
-}
-
-std::string toArtcamJson(const ArtcamDocument& document) {
+std::string toArtcamJson(const Artcam& camera) {
   Builder builder;
-  const Json root = builder.document(document);
+  const Json root = builder.document(camera);
   if (!builder.bad_path.empty())
     throw std::invalid_argument("cannot write .artcam: " + builder.bad_path +
                                 " is not a finite number");
@@ -559,41 +609,14 @@ std::string toArtcamJson(const ArtcamDocument& document) {
   return out + "\n";
 }
 
-std::string toArtcamJson(const ArtcamDocument& document, const ArtcamExtras& extras) {
+Status writeArtcam(const std::string& path, const Artcam& camera) {
+  if (const Status s = validateArtcam(camera); !s)
+    return Status::failure(path + ": cannot write: " + s.message);
   Builder builder;
-  Json root = builder.document(document);
-  builder.extras(document.camera, extras, root);
+  builder.document(camera);
   if (!builder.bad_path.empty())
-    throw std::invalid_argument("cannot write .artcam: " + builder.bad_path +
-                                " is not a finite number");
-  std::string out;
-  emit(root, 0, out);
-  return out + "\n";
-}
-
-Status writeArtcamFile(const std::string& path, const ArtcamDocument& document,
-                       const ArtcamExtras& extras) {
-  try {
-    document.camera.validate();
-    for (const Camera& layer : extras.layers) layer.validate();
-    return writeTextAtomically(path, toArtcamJson(document, extras));
-  } catch (const std::invalid_argument& e) {
-    return Status::failure(path + ": cannot write: " + e.what());
-  }
-}
-
-Status writeArtcamFile(const std::string& path, const ArtcamDocument& document) {
-  try {
-    document.camera.validate();
-  } catch (const std::invalid_argument& e) {
-    return Status::failure(path + ": cannot write: invalid camera: " + e.what());
-  }
-  Builder builder;
-  builder.document(document);
-  if (!builder.bad_path.empty())
-    return Status::failure(path + ": cannot write: " + builder.bad_path +
-                           " is not a finite number");
-  return writeTextAtomically(path, toArtcamJson(document));
+    return Status::failure(path + ": cannot write: " + builder.bad_path + " is not a finite number");
+  return writeTextAtomically(path, toArtcamJson(camera));
 }
 
 }  // namespace artcam

@@ -1,20 +1,34 @@
-// The .artcam file (DESIGN §5): JSON, versioned, numbers written so they read back bit-exactly.
+// The .artcam file: JSON, versioned, the one reader and the one writer of the camera value
+// (core/model/artcam.h). Numbers are written so they read back bit-exactly.
 //
 //   { "format": "artcam", "version": 1,
 //     "blocks": [ {"kind": "position", "size": 3}, … ],
 //     "frames": { "source": [w, h], "target": [w, h] },   // pixels; tensors are normalised
 //     "stages": [ { "tensors": [ [[…N numbers…] ×N rows] ×N tensors ] }, … ],
+//     "layers": [ { "stages": [ … ] }, … ],              // optional: layers after the first
+//     "depth_output": "depth" | "blur-variance",         // optional, default "depth"
 //     "matches": [ {"source": [x, y], "target": [X, Y], "enabled": true}, … ],  // optional
 //     "fit": { "model": …, "matches": …, "rms_px": …, "max_px": …, "residuals_px": […],
-//              "singular_values": […], "reason": … } }                            // optional
+//              "singular_values": […], "reason": … },                          // optional
+//     "support_margin_px": m,                              // optional, with "patches"
+//     "patches": [ { "rect": [x0, y0, x1, y1],           // source pixels
+//                    "support": [[x, y], …],              // hull of its matches (optional)
+//                    "model": "quadratic", "matches": n, "rms_px": …, "max_px": …,
+//                    "camera": { format, version, blocks, frames, stages } }, … ] }
 //
 // A newer version is refused with a clear message; a missing or malformed field is named by
 // its JSON path (e.g. "/stages/0/tensors/2/1: expected 3 numbers, found 2"); a JSON syntax
 // error by line and column. Unknown fields are ignored (room for additions within version 1).
+// What parses but breaks the camera's invariants (validateArtcam: zero stages, overlapping
+// patches, patches outside the frame, more than kMaxPatches) is refused on read and on write.
 //
 // Decisions:
-// - Tensors are kept exactly as written, symmetric or not: Q and (Q + Qᵀ)/2 are the same camera
-//   (DESIGN §1), and keeping the file's numbers makes read/write round trips bit-exact.
+// - One JSON parse per file: layers, patches and their embedded cameras are read from the same
+//   tree with their paths.
+// - A piecewise camera keeps its single-camera fit at the top level, so the file is still a
+//   complete camera for a reader that ignores "patches" (an older build).
+// - Tensors are kept exactly as written, symmetric or not: Q and (Q + Qᵀ)/2 are the same
+//   camera, and keeping the file's numbers makes read/write round trips bit-exact.
 // - Numbers round-trip bit-exactly (shortest round-trip decimal, correctly rounded on read).
 //   NaN/inf are refused both ways: JSON cannot hold them, and a literal that overflows
 //   (1e999) is refused on read.
@@ -23,55 +37,22 @@
 //   "rms_px", "max_px" are required, the lists and "reason" optional.
 #pragma once
 
-#include "core/model/camera.h"
-#include "core/model/fit_record.h"
+#include "core/model/artcam.h"
 #include "core/model/status.h"
 
-#include <optional>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace artcam {
 
 inline constexpr int kArtcamFormatVersion = 1;
 
-struct ArtcamDocument {
-  Camera camera;
-  std::vector<PointMatch> matches;
-  std::optional<FitRecord> fit;
-};
-
 // `name` is used in error messages ("CAM.artcam: /frames/source: expected [w, h]").
-Result<ArtcamDocument> parseArtcamJson(std::string_view text, const std::string& name);
-Result<ArtcamDocument> readArtcamFile(const std::string& path);
-// Throws std::invalid_argument if a number is not finite (writeArtcamFile reports it instead).
-std::string toArtcamJson(const ArtcamDocument& document);
-// Atomic: written beside the target, flushed, then renamed over it.
-Status writeArtcamFile(const std::string& path, const ArtcamDocument& document);
-
-// Attributed cameras (issue 6), optional fields of version 1 that older readers ignore:
-//   "layers": [ { "stages": [ … ] }, … ]   more cameras with the main camera's blocks and frames;
-//                                          the picture is the sum of every layer's colour
-//                                          (render/attributed.h renderLayers; the paper's Fig 4)
-//   "depth_output": "depth" | "blur-variance"
-//                                          what the depth output means: a depth, or the blur
-//                                          variance of depth of field (effects/depth_of_field.h)
-// Kept apart from ArtcamDocument so the existing aggregate stays as it is.
-struct ArtcamExtras {
-  std::vector<Camera> layers;  // beyond document.camera
-  std::string depth_output = "depth";
-};
-struct ArtcamEffectFile {
-  ArtcamDocument document;
-  ArtcamExtras extras;
-  // document.camera followed by the extra layers.
-  std::vector<Camera> allLayers() const;
-};
-Result<ArtcamEffectFile> parseArtcamEffectJson(std::string_view text, const std::string& name);
-Result<ArtcamEffectFile> readArtcamEffectFile(const std::string& path);
-std::string toArtcamJson(const ArtcamDocument& document, const ArtcamExtras& extras);
-Status writeArtcamFile(const std::string& path, const ArtcamDocument& document,
-                       const ArtcamExtras& extras);
+Result<Artcam> parseArtcam(std::string_view text, const std::string& name);
+Result<Artcam> readArtcam(const std::string& path);
+// Throws std::invalid_argument if a number is not finite (writeArtcam reports it instead).
+std::string toArtcamJson(const Artcam& camera);
+// Validates, then writes atomically: beside the target, flushed, then renamed over it.
+Status writeArtcam(const std::string& path, const Artcam& camera);
 
 }  // namespace artcam

@@ -16,6 +16,7 @@
 //   second's first stage, where it is affine and so exact).
 #pragma once
 
+#include "core/model/artcam.h"
 #include "core/model/camera.h"
 #include "core/model/status.h"
 
@@ -35,5 +36,26 @@ struct CompositionSummary {
 // fed to an object-space source or the reverse.
 Result<Camera> composeCameras(const Camera& first, const Camera& second,
                               CompositionSummary* summary = nullptr);
+
+}  // namespace artcam
+
+namespace artcam {
+
+// compose for whole camera values: x ↦ second(first(x)), layer by layer.
+// - Layers: a single camera composes with every layer of a layered one; two layered cameras
+//   compose layer k with layer k and must have as many layers. The picture is the sum of the
+//   layers' colours and each layer selects its own colour channel, so second_j(first_k(·))
+//   vanishes for j ≠ k and the sum of the pairwise compositions is the whole composition.
+// - Depth: a chain feeds first's depth output to second's depth input. That is right when first
+//   passes depth on unchanged, or when second does not read depth; otherwise (aerial
+//   perspective outputs a log depth, depth of field outputs a blur variance) the second camera
+//   would read something else than a depth, and composition is refused with that reason. The
+//   result's depth output means what second's does.
+// - Patches: a piecewise first composes each patch (and its single-camera fit) with a
+//   single-layer position-only second; a piecewise second is refused (its patches are
+//   rectangles of its own source, which first's map would bend).
+// Matches and fit records are dropped: the result was not fitted to anything.
+Result<Artcam> composeArtcams(const Artcam& first, const Artcam& second,
+                              std::string* description = nullptr);
 
 }  // namespace artcam

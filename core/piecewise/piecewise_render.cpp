@@ -79,7 +79,10 @@ ImageF renderPiecewise(const ImageF& source, const PiecewiseCamera& camera,
   if (!camera.target_size.isImage() || !camera.source_size.isImage())
     throw std::invalid_argument("renderPiecewise: the camera has no image frames");
   const int channels = source.alpha_channel >= 0 ? source.channels : source.channels + 1;
-  ImageF out(camera.target_size.width, camera.target_size.height, channels, channels - 1);
+  const FrameSize size = options.output.isImage() ? options.output : camera.target_size;
+  const double out_x = static_cast<double>(size.width) / camera.target_size.width;
+  const double out_y = static_cast<double>(size.height) / camera.target_size.height;
+  ImageF out(size.width, size.height, channels, channels - 1);
   PiecewiseRenderStats stats;
   if (camera.patches.empty()) {
     if (stats_out) *stats_out = stats;
@@ -113,7 +116,7 @@ ImageF renderPiecewise(const ImageF& source, const PiecewiseCamera& camera,
           }
       }
       v.valid = count > 0;
-      if (v.valid) v.target = sum / count;
+      if (v.valid) v.target = (sum / count).cwiseProduct(Eigen::Vector2d(out_x, out_y));
     }
 
   const double sx = static_cast<double>(source.width) / camera.source_size.width;

@@ -16,6 +16,9 @@ namespace artcam {
 
 struct PiecewiseRenderOptions {
   double mesh_step_px = 4.0;  // source lattice spacing
+  // The output size; 0×0: the camera's target frame. Another size scales the target frame to it
+  // per axis (the output-frame rule of core/pipeline/render.h).
+  FrameSize output;
 };
 
 struct PiecewiseRenderStats {
@@ -24,7 +27,7 @@ struct PiecewiseRenderStats {
 };
 
 // The source (premultiplied linear float, as ImageF) seen through the camera, on the target
-// frame. The result always has an alpha channel (last): coverage times the source's alpha;
+// frame (or options.output). The result always has an alpha channel (last): coverage times the source's alpha;
 // pixels no patch reaches are transparent black, never NaN. The source image may have any
 // size: source pixel coordinates of the camera are scaled to it.
 ImageF renderPiecewise(const ImageF& source, const PiecewiseCamera& camera,

@@ -171,8 +171,8 @@ long long countTransparent(const ImageF& rgba) {
 
 ParallelOptions parallelOptions(const AttributedOptions& options) {
   ParallelOptions po;
-  po.threads = options.threads;
-  po.progress = options.progress;
+  po.threads = options.warp.threads;
+  po.progress = options.warp.progress;
   return po;
 }
 
@@ -206,13 +206,11 @@ bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
     report.note = "the camera's position denominator is zero everywhere";
     return true;  // the output is already transparent
   }
-  CoordinateOptions co;
-  co.residual_tolerance_px = options.residual_tolerance_px;
-  const KernelChoice choice =
-      makeCoordinateKernel(geometry, structure, source_px, out_px, co, options.threads);
+  const KernelChoice choice = makeCoordinateKernel(geometry, structure, source_px, out_px,
+                                                   options.warp.coordinates, options.warp.threads);
   report.kernel = choice.name;
   report.note = choice.note;
-  const Sampler sampler(rgba, options.filter);
+  const Sampler sampler(rgba, options.warp.filter);
   ParallelOptions po = parallelOptions(options);
   po.band_rows = 16;
   return parallelForRows(out_px.height, po, [&](int y0, int y1) {
@@ -251,7 +249,7 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
   report = AttributedSummary{};
   camera.validate();
   checkSourceImage(source);
-  const FrameSize out_px = outputSizeFor(camera, options.width, options.height);
+  const FrameSize out_px = outputSizeFor(camera, options.warp.width, options.warp.height);
   const FrameSize source_px{source.width, source.height};
   const CameraStructure structure = analyseStructure(camera);
   AttributedPath path = chooseAttributedPath(camera, structure, source_px, out_px);
@@ -275,13 +273,9 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
   AttributedImage out;
   bool finished = true;
   if (path == AttributedPath::Geometry) {
-    WarpOptions wo;
-    wo.filter = options.filter;
+    WarpOptions wo = options.warp;
     wo.width = out_px.width;
     wo.height = out_px.height;
-    wo.threads = options.threads;
-    wo.progress = options.progress;
-    wo.residual_tolerance_px = options.residual_tolerance_px;
     WarpSummary ws;
     out.colour = warpImage(rgba, camera, wo, &ws);
     report.kernel = ws.kernel;
@@ -290,8 +284,8 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
   } else if (path == AttributedPath::Splat) {
     SplatOptions so;
     so.supersample = options.splat_supersample;
-    so.threads = options.threads;
-    so.progress = options.progress;
+    so.threads = options.warp.threads;
+    so.progress = options.warp.progress;
     SplatSummary ss;
     out = splatImage(rgba, depth, camera, out_px, so, &ss);
     report.kernel = "splat";
@@ -329,9 +323,11 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
   std::string kernels;
   for (size_t l = 0; l < layers.size(); ++l) {
     AttributedOptions lo = options;
-    if (options.progress) {
+    if (options.warp.progress) {
       const double n = static_cast<double>(layers.size());
-      lo.progress = [&, l, n](double f) { return options.progress((static_cast<double>(l) + f) / n); };
+      lo.warp.progress = [&, l, n](double f) {
+        return options.warp.progress((static_cast<double>(l) + f) / n);
+      };
     }
     AttributedImage layer = renderAttributed(source, depth, layers[l], lo, &report);
     if (report.cancelled) return {};

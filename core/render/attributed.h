@@ -1,5 +1,5 @@
-// Rendering ARTcams that change colour or depth (DESIGN §3, issue 6): the three strategies of
-// the design's table, chosen from the structure analysis (structure.h), plus layered cameras.
+// Rendering ARTcams that change colour or depth: three strategies chosen from the structure
+// analysis (structure.h), plus layered cameras. Callers go through core/pipeline/render.h.
 //
 // Conventions:
 // - Images are ImageF (image.h): linear light, premultiplied alpha, pixel centres at i + 0.5.
@@ -46,14 +46,11 @@ enum class AttributedPath { Geometry, ColourOnly, Gather, Splat };
 std::string_view attributedPathName(AttributedPath path);
 
 struct AttributedOptions {
-  Filter filter = Filter::Bilinear;  // gather sampling
-  int width = 0;                     // output size; 0×0: the camera's target frame
-  int height = 0;
-  int threads = 0;  // 0: all cores
-  // Called between bands with the fraction done; return false to cancel (the result is then
-  // empty and summary->cancelled is set).
-  std::function<bool(double)> progress;
-  double residual_tolerance_px = 1e-3;  // gather: Newton acceptance (warp.h)
+  // Output size (0×0: the camera's target frame), filter, threads, progress and the coordinate
+  // kernels' options: the geometry and gather paths use them exactly as warpImage does. The
+  // progress callback reports and cancels every path (the result is then empty and
+  // summary->cancelled is set).
+  WarpOptions warp;
   // Splat: sub-samples per output pixel side (splat.h); more costs S² but smooths minified
   // regions (no moiré).
   int splat_supersample = 3;

@@ -97,7 +97,7 @@ void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const Im
   const double footprint = centreFootprint(camera, {base.width, base.height}, {out.width, out.height});
   const int level = pyramid.levelFor(footprint);
   WarpOptions o = options;
-  o.certify_tolerance_px = std::max(o.certify_tolerance_px, kPreviewCertifyTolerancePx);
+  o.coordinates.certify_tolerance_px = std::max(o.coordinates.certify_tolerance_px, kPreviewCertifyTolerancePx);
   WarpSummary local;
   WarpSummary& report = summary ? *summary : local;
   warpImage(pyramid.level(level), camera, out, o, &report);

@@ -139,14 +139,14 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   report = WarpSummary{};
 
   camera.validate();
-  if (!(options.residual_tolerance_px > 0.0) || !std::isfinite(options.residual_tolerance_px))
+  if (!(options.coordinates.residual_tolerance_px > 0.0) || !std::isfinite(options.coordinates.residual_tolerance_px))
     throw std::invalid_argument("warp residual tolerance must be a positive number of pixels");
-  if (!(options.seed_tolerance_px > 0.0) || !std::isfinite(options.seed_tolerance_px))
+  if (!(options.coordinates.seed_tolerance_px > 0.0) || !std::isfinite(options.coordinates.seed_tolerance_px))
     throw std::invalid_argument("warp seed tolerance must be a positive number of pixels");
-  if (!(options.certify_tolerance_px >= 0.0) || !std::isfinite(options.certify_tolerance_px))
+  if (!(options.coordinates.certify_tolerance_px >= 0.0) || !std::isfinite(options.coordinates.certify_tolerance_px))
     throw std::invalid_argument("warp certify tolerance must be a number of pixels ≥ 0");
   if (options.threads < 0) throw std::invalid_argument("warp thread count must not be negative");
-  const SpanSampler sampler(source, out, options.filter, !options.scalar_only);  // validates both images
+  const SpanSampler sampler(source, out, options.filter, !options.coordinates.scalar_only);  // validates both images
   const CameraStructure structure = analyseStructure(camera);
   checkCamera(camera, structure);
 
@@ -166,14 +166,8 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
     return;
   }
 
-  CoordinateOptions co;
-  co.residual_tolerance_px = options.residual_tolerance_px;
-  co.seed_tolerance_px = options.seed_tolerance_px;
-  co.certify_tolerance_px = options.certify_tolerance_px;
-  co.fit_inverse_seed = options.fit_inverse_seed;
-  co.force_rational = options.force_rational;
-  co.scalar_only = options.scalar_only;
-  const KernelChoice choice = makeCoordinateKernel(camera, structure, source_px, out_px, co, options.threads);
+  const KernelChoice choice =
+      makeCoordinateKernel(camera, structure, source_px, out_px, options.coordinates, options.threads);
   report.kernel = choice.name;
   report.note = choice.note;
   report.certified_share = choice.kernel->certifiedShare();

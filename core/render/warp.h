@@ -1,4 +1,5 @@
-// Gather warp of an image through a position camera (DESIGN §3), fused (issue 5).
+// Gather warp of an image through a position camera: each output pixel looks up its source
+// point through the inverse map, and positions are made and sampled in one pass (fused).
 //
 // For each output pixel centre (x + 0.5, y + 0.5) the source point is found through the
 // inverse map: exact for identity/translation/affine/homography cameras (from the structure
@@ -15,6 +16,7 @@
 #include "core/model/camera.h"
 #include "core/model/image.h"
 #include "core/model/image_view.h"
+#include "core/render/coordinates.h"
 
 #include <functional>
 #include <optional>
@@ -38,30 +40,15 @@ struct WarpOptions {
   int threads = 0;  // 0: all cores
   // Called between tiles with the fraction done; return false to cancel.
   std::function<bool(double)> progress;
-  // Newton: a pixel whose forward-mapped preimage misses its centre by more than this
-  // (output pixels) has no preimage.
-  double residual_tolerance_px = 1e-3;
-  // Testing and benchmarks: run the general rational (Newton) kernel even when the structure
-  // analysis found an exact one (identity … homography).
-  bool force_rational = false;
-  // Seed Newton with an inverse camera fitted to the forward map (DESIGN §3). Off: seeds come
-  // from the neighbouring pixel and the map linearised at the frame centre only.
-  bool fit_inverse_seed = true;
-  // The rational kernel's seed check (coordinates.h): a seed within this of its Newton step
-  // (source pixels) is taken after that one step; only the others run the full Newton.
-  double seed_tolerance_px = 1.0 / 256.0;
-  // The rational kernel's certified cells (coordinates.h): where the correction grid's error
-  // estimates stay within this (source pixels), pixels skip the per-pixel check. 0: off. The
-  // default keeps every pixel within 1/256 px of the exact inverse (issue 5); a preview may
-  // trade accuracy for speed with a larger value (kPreviewCertifyTolerancePx).
-  double certify_tolerance_px = 1.0 / 512.0;
+  // How the inverse map is found (Newton acceptance, seed check, certified cells, inverse-seed
+  // fit, forcing the rational kernel, scalar code): the coordinate kernels' own options, nested
+  // so every renderer that gathers passes the same set on.
+  CoordinateOptions coordinates;
   // Anti-aliasing where the map minifies: each output pixel averages n × n taps over its
   // footprint, n = ⌈longest side of the footprint in source pixels⌉ (per span of pixels, from
   // the Jacobian), at most max_supersample. Off: one tap per pixel (the exact semantics above).
   bool antialias = false;
   int max_supersample = 4;
-  // Use the portable scalar code even where a SIMD clone was dispatched (tests, benchmark).
-  bool scalar_only = false;
 };
 
 struct WarpSummary {
@@ -89,7 +76,7 @@ FrameSize warpOutputSize(const Camera& camera, const WarpOptions& options);
 //
 // Errors: throws std::invalid_argument for a broken contract — an invalid camera or source,
 // negative sizes, a camera without a 2D position block, a camera whose geometry depends on
-// colour or depth (those need the splat renderer, DESIGN §3), or one that also transforms
+// colour or depth (those need the splat renderer, splat.h), or one that also transforms
 // colour/depth (not rendered here yet). A camera whose denominator is zero everywhere renders
 // fully transparent (kernel "degenerate").
 // Cancel: when options.progress returns false the render stops between bands of rows and

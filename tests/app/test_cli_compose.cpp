@@ -17,7 +17,7 @@ using Run = artcam::test::CliRun;
 namespace {
 
 void writeCamera(const QString& path, const Camera& camera) {
-  const Status s = writeArtcamFile(path.toStdString(), ArtcamDocument{camera, {}, std::nullopt});
+  const Status s = writeArtcam(path.toStdString(), Artcam(camera));
   QVERIFY2(s.ok, s.message.c_str());
 }
 
@@ -40,17 +40,17 @@ class TestCliCompose : public QObject {
                              dir.filePath("s.artcam"), "-o", dir.filePath("c.artcam")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     QVERIFY(r.out.contains("homography"));
-    const auto doc = readArtcamFile(dir.filePath("c.artcam").toStdString());
+    const auto doc = readArtcam(dir.filePath("c.artcam").toStdString());
     QVERIFY2(doc.ok(), doc.status.message.c_str());
     // h folds into r (one stage), then the second lens chains: two stages.
-    QCOMPARE(doc->camera.stages().size(), size_t{2});
-    QCOMPARE(doc->camera.sourceSize(), (FrameSize{800, 600}));
+    QCOMPARE(doc->main().stages().size(), size_t{2});
+    QCOMPARE(doc->main().sourceSize(), (FrameSize{800, 600}));
     for (int k = 0; k < 20; ++k) {
       const Eigen::Vector2d p(test::uniform(40, 760), test::uniform(30, 570));
       const auto expected = targetPixelFromSourcePixel(
           second_lens, *targetPixelFromSourcePixel(
                            table_to_reflection, *targetPixelFromSourcePixel(view_to_table, p)));
-      const auto got = targetPixelFromSourcePixel(doc->camera, p);
+      const auto got = targetPixelFromSourcePixel(doc->main(), p);
       QVERIFY(expected && got);
       QVERIFY((*got - *expected).norm() < 1e-8);
     }

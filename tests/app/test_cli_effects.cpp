@@ -128,14 +128,14 @@ class TestCliEffects : public QObject {
       if (gamma == 0.0) args << "--thin-lens" << "0";
       const Run r = artcamCli(args);
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-      const auto doc = artcam::readArtcamFile(dir.filePath("dof.artcam").toStdString());
+      const auto doc = artcam::readArtcam(dir.filePath("dof.artcam").toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
       for (const double d : {0.5, 1.0, 3.0, 40.0}) {
         Eigen::VectorXd x(9);
         x << 0.0, 0.0, 1, 0.5, 0.5, 0.5, 1, d, 1;
         const double den = gamma == 1.0 ? d : f;
         const double expected = k * k * (d - f) * (d - f) / (den * den);
-        QVERIFY(std::abs(doc.value->camera.evaluate(x)[7] - expected) <= 1e-12);
+        QVERIFY(std::abs(doc.value->main().evaluate(x)[7] - expected) <= 1e-12);
       }
     }
     const Run bad = artcamCli({"preset", "depth-of-field", "--thin-lens", "2", "-o", dir.filePath("bad.artcam")});
@@ -153,28 +153,28 @@ class TestCliEffects : public QObject {
                              "colour-shift", "aerial-perspective", "depth-of-field"}) {
       const Run r = artcamCli({"preset", name, "-o", out});
       QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
-      const auto doc = artcam::readArtcamFile(out.toStdString());
+      const auto doc = artcam::readArtcam(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
-      QCOMPARE(doc.value->camera.blocks().front().size, 3);
-      QVERIFY2(doc.value->camera.sourceSize().isImage(), name);
+      QCOMPARE(doc.value->main().blocks().front().size, 3);
+      QVERIFY2(doc.value->main().sourceSize().isImage(), name);
     }
     for (const char* name : {"twist-3d", "pincushion-3d", "inverse-perspective-3d", "chromatic-aberration-3d"}) {
       const Run r = artcamCli({"preset", name, "-o", out});
       QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
-      const auto doc = artcam::readArtcamFile(out.toStdString());
+      const auto doc = artcam::readArtcam(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
-      QCOMPARE(doc.value->camera.blocks().front().size, 4);
+      QCOMPARE(doc.value->main().blocks().front().size, 4);
     }
     QCOMPARE(artcamCli({"preset", "twist-2d", "-o", out}).exit_code, 2);  // the old names are gone
     for (const double k : {0.15, -0.2}) {
       const Run r = artcamCli({"preset", k > 0 ? "pincushion" : "barrel", "--k", QString::number(k), "-o", out});
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-      const auto doc = artcam::readArtcamFile(out.toStdString());
+      const auto doc = artcam::readArtcam(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
       const double u = 0.3, v = -0.2, g = 1.0 / (1.0 - k * (u * u + v * v));
       Eigen::VectorXd x(3);
       x << u, v, 1;
-      const Eigen::VectorXd y = doc.value->camera.evaluate(x);
+      const Eigen::VectorXd y = doc.value->main().evaluate(x);
       QVERIFY(std::abs(y[0] - u * g) < 1e-12 && std::abs(y[1] - v * g) < 1e-12);
     }
   }
@@ -189,7 +189,7 @@ class TestCliEffects : public QObject {
     QVERIFY(f.readAll().contains("\"layers\""));
     r = artcamCli({"warp", photo, dir.filePath("ca.artcam"), "-o", dir.filePath("ca.png")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-    QVERIFY2(r.out.contains("gather"), qPrintable(r.out));
+    QVERIFY2(r.out.contains("layered"), qPrintable(r.out));
     // Red moved, green did not: the two differ from the photo by different amounts.
     QVERIFY(maxLevelDifference(photo, dir.filePath("ca.png"), 8) > 3);
   }

@@ -2,7 +2,7 @@
 // fit, the graphic lands inside the reflection and nowhere else, a saved piecewise camera
 // gives the same result, and bad input leaves no output behind.
 #include "core/io/image_io.h"
-#include "core/io/piecewise_file.h"
+#include "core/io/artcam_file.h"
 #include "core/piecewise/sample_scenes.h"
 
 #include "tests/app/cli_run.h"
@@ -66,7 +66,7 @@ class TestCliInsert : public QObject {
     QCOMPARE(changed_outside, 0);
 
     // The saved piecewise camera reproduces the same image.
-    const auto saved = readPiecewiseFile(dir.filePath("sphere.artcam").toStdString());
+    const auto saved = readArtcam(dir.filePath("sphere.artcam").toStdString());
     QVERIFY2(saved.ok(), saved.status.message.c_str());
     QVERIFY(saved->pieces && saved->pieces->patches.size() > 1);
     r = artcamCli({"insert", dir.filePath("mirror-sphere.png"), dir.filePath("emblem.png"),
@@ -84,12 +84,12 @@ class TestCliInsert : public QObject {
                              dir.filePath("glass.artcam")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     QVERIFY(r.out.contains("patch 0"));
-    const auto doc = readPiecewiseFile(dir.filePath("glass.artcam").toStdString());
+    const auto doc = readArtcam(dir.filePath("glass.artcam").toStdString());
     QVERIFY2(doc.ok(), doc.status.message.c_str());
     QVERIFY(doc->pieces.has_value());
     // Every grid match, read back from the file the sample wrote, within the threshold.
-    QVERIFY(!doc->whole.matches.empty());
-    for (const PointMatch& m : doc->whole.matches) {
+    QVERIFY(!doc->matches.empty());
+    for (const PointMatch& m : doc->matches) {
       const auto y = doc->pieces->targetPixelFromSourcePixel(m.source);
       QVERIFY(y);
       QVERIFY2((*y - m.target).norm() <= 0.2 + 1e-9, qPrintable(QString::number((*y - m.target).norm())));

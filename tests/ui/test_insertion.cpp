@@ -6,7 +6,7 @@
 // does not snap, Del and undo remove the match; closing mid-fit shuts down cleanly.
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
-#include "core/io/piecewise_file.h"
+#include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_render.h"
 #include "core/piecewise/sample_scenes.h"
 #include "tests/support/test_support.h"
@@ -339,7 +339,7 @@ class TestInsertion : public QObject {
     QVERIFY2(worst <= 1, qPrintable(QString::number(worst)));
 
     // The camera file reads back with the same patches, mapping the matches the same.
-    const auto doc = readPiecewiseFile(camera_path.toStdString());
+    const auto doc = readArtcam(camera_path.toStdString());
     QVERIFY2(doc.ok(), doc.status.message.c_str());
     QVERIFY(doc->pieces);
     QCOMPARE(doc->pieces->patches.size(), fit.camera->patches.size());

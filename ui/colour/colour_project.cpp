@@ -22,10 +22,8 @@ QJsonObject colourPartToJson(const ColourSampleState& s, const std::optional<Cam
                                {"enabled", c.enabled}});
   o["samples"] = samples;
   if (block) {
-    ArtcamDocument doc;
-    doc.camera = *block;
     o["colour_block"] =
-        QJsonDocument::fromJson(QByteArray::fromStdString(toArtcamJson(doc))).object();
+        QJsonDocument::fromJson(QByteArray::fromStdString(toArtcamJson(Artcam(*block)))).object();
   }
   return o;
 }
@@ -54,9 +52,13 @@ Result<ColourProjectPart> colourPartFromJson(const QJsonObject& o, const std::st
   if (o.contains("colour_block")) {
     const QByteArray text =
         QJsonDocument(o["colour_block"].toObject()).toJson(QJsonDocument::Compact);
-    Result<ArtcamDocument> cam = parseArtcamJson(text.toStdString(), where + "/colour_block");
+    Result<Artcam> cam = parseArtcam(text.toStdString(), where + "/colour_block");
     if (!cam) return Result<ColourProjectPart>::failure(cam.status.message);
-    part.colour_block = cam->camera;
+    if (cam->kind() != ArtcamKind::Attributed && cam->kind() != ArtcamKind::Single &&
+        cam->kind() != ArtcamKind::Chained)
+      return Result<ColourProjectPart>::failure(where + "/colour_block: expected one camera, found a " +
+                                                std::string(artcamKindName(cam->kind())) + " camera");
+    part.colour_block = cam->main();
   }
   return Result<ColourProjectPart>::success(std::move(part));
 }

@@ -2,7 +2,7 @@
 
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
-#include "core/io/piecewise_file.h"
+#include "core/io/artcam_file.h"
 #include "ui/document.h"
 #include "ui/matting/board_view.h"
 #include "ui/matting/insertion_model.h"
@@ -346,9 +346,10 @@ void InsertionPanel::exportCamera(const QString& path) {
       [p = path.toStdString(), camera = fit.camera, matches = model_->pointMatches()] {
         // As `artcam insert --save-camera` writes it: the top level holds a plain camera
         // (the first patch's) and the matches, "patches" the piecewise camera.
-        PiecewiseDocument doc{ArtcamDocument{camera->patches.front().camera, matches, std::nullopt},
-                              *camera};
-        const Status st = writePiecewiseFile(p, doc);
+        Artcam doc(camera->patches.front().camera);
+        doc.matches = matches;
+        doc.pieces = *camera;
+        const Status st = writeArtcam(p, doc);
         return st ? Result<bool>::success(true) : Result<bool>::failure(st.message);
       },
       [this, path](Result<bool> r) {

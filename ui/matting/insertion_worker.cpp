@@ -2,8 +2,8 @@
 
 #include "core/model/camera.h"
 #include "core/piecewise/piecewise_render.h"
+#include "core/pipeline/render.h"
 #include "ui/image_convert.h"
-
 
 #include <algorithm>
 #include <chrono>
@@ -117,10 +117,17 @@ ImageF InsertionWorker::composite(const ImageF& photo, const ImageF& graphic,
                                   const std::vector<Eigen::Vector2d>& region,
                                   const GraphicPlacement& placement) {
   const FrameSize size{photo.width, photo.height};
+  // Through core's render front door, on the photo's size (the output-frame rule scales the
+  // camera's target frame to it).
+  Artcam lens(camera.patches.front().camera);
+  lens.pieces = camera;
+  RenderOptions options;
+  options.warp.width = size.width;
+  options.warp.height = size.height;
   ImageF top = placement.fillsBoard()
-                   ? renderPiecewise(graphic, retarget(camera, size))
-                   : renderPiecewise(placeGraphic(graphic, camera.source_size, placement),
-                                     retarget(camera, size));
+                   ? render(RenderInputs::of(graphic), lens, options)
+                   : render(RenderInputs::of(placeGraphic(graphic, camera.source_size, placement)),
+                            lens, options);
   if (region.size() >= 3 && size != camera.target_size) {
     // The region is in full-resolution photo pixels.
     const double sx = double(size.width) / camera.target_size.width;

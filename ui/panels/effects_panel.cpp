@@ -143,7 +143,7 @@ void EffectsPanel::startRender() {
     try {
       const EffectSetup setup = buildEffect(name, values, frame);
       AttributedOptions options;
-      options.progress = [this, generation](double) { return generation_.load() == generation; };
+      options.warp.progress = [this, generation](double) { return generation_.load() == generation; };
       AttributedSummary summary;
       const AttributedImage out = renderEffect(source, &depth, setup, options, &summary);
       if (summary.cancelled) return;

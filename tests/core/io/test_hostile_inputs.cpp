@@ -6,7 +6,7 @@
 // The fuzz targets themselves are in fuzz/ (a clang build, README "Hostile input").
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
-#include "core/io/piecewise_file.h"
+#include "core/io/artcam_file.h"
 #include "core/io/ply.h"
 
 #include <QtTest/QtTest>
@@ -65,12 +65,12 @@ std::map<std::string, Reader> readers() {
   return {
       {"artcam",
        [](const std::string& p) {
-         const auto r = readArtcamEffectFile(p);
-         return outcomeOf(r, r.ok() ? r->allLayers().size() : 0);
+         const auto r = readArtcam(p);
+         return outcomeOf(r, r.ok() ? r->layers.size() : 0);
        }},
       {"piecewise",
        [](const std::string& p) {
-         const auto r = readPiecewiseFile(p);
+         const auto r = readArtcam(p);
          return outcomeOf(r, r.ok() ? 1 + (r->pieces ? r->pieces->patches.size() : 0)
                                     : 0);  // the whole camera + patches
        }},

@@ -3,7 +3,7 @@
 // the mesh render of an inserted graphic must match the ray-traced image of it, and the
 // .artcam round trip must keep every patch.
 #include "core/io/atomic_file.h"
-#include "core/io/piecewise_file.h"
+#include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_fit.h"
 #include "core/piecewise/piecewise_render.h"
 #include "core/piecewise/sample_scenes.h"
@@ -233,9 +233,10 @@ class TestPiecewise : public QObject {
     QVERIFY(fit.status.ok);
     QTemporaryDir dir;
     const std::string path = dir.filePath("sphere.artcam").toStdString();
-    PiecewiseDocument doc{ArtcamDocument{fit.camera.patches.front().camera, {}, std::nullopt}, fit.camera};
-    QVERIFY(writePiecewiseFile(path, doc).ok);
-    const auto back = readPiecewiseFile(path);
+    Artcam doc(fit.camera.patches.front().camera);
+    doc.pieces = fit.camera;
+    QVERIFY(writeArtcam(path, doc).ok);
+    const auto back = readArtcam(path);
     QVERIFY2(back.ok(), back.status.message.c_str());
     QVERIFY(back->pieces.has_value());
     QCOMPARE(back->pieces->patches.size(), fit.camera.patches.size());
@@ -249,17 +250,17 @@ class TestPiecewise : public QObject {
       if (a) QCOMPARE((*a - *b).norm(), 0.0);  // bit-exact numbers in the file
     }
     // A plain reader still opens it (the top-level single camera).
-    QVERIFY(readArtcamFile(path).ok());
+    QVERIFY(readArtcam(path).ok());
   }
 
   void badPatchesAreNamed() {
     QTemporaryDir dir;
     const std::string path = dir.filePath("bad.artcam").toStdString();
     const Camera c = Camera::identity({{BlockKind::Position, 3}}, {64, 64}, {64, 64});
-    std::string text = toArtcamJson(ArtcamDocument{c, {}, std::nullopt});
+    std::string text = toArtcamJson(Artcam(c));
     text.insert(text.rfind('}'), ", \"patches\": [ {\"rect\": [10, 0, 5, 8]} ]");
     QVERIFY(writeTextAtomically(path, text).ok);
-    const auto back = readPiecewiseFile(path);
+    const auto back = readArtcam(path);
     QVERIFY(!back.ok());
     QVERIFY2(back.status.message.find("/patches/0/rect") != std::string::npos,
              back.status.message.c_str());

@@ -301,7 +301,7 @@ class TestAttributed : public QObject {
     const FrameSize size{64, 64};
     const ImageF src = randomRgba(size.width, size.height, false);
     AttributedOptions o;
-    o.progress = [](double) { return false; };
+    o.warp.progress = [](double) { return false; };
     AttributedSummary summary;
     const AttributedImage out = renderLayers(src, nullptr, colourShiftLayers({}, size, size), o, &summary);
     QVERIFY(summary.cancelled);

@@ -171,7 +171,7 @@ class TestFused : public QObject {
     WarpOptions o;
     WarpSummary dispatched_summary, scalar_summary;
     const ImageF dispatched = warpImage(src, camera, o, &dispatched_summary);
-    o.scalar_only = true;
+    o.coordinates.scalar_only = true;
     const ImageF scalar = warpImage(src, camera, o, &scalar_summary);
     QCOMPARE(dispatched_summary.certified_share, 0.0);
     QVERIFY(dispatched.data == scalar.data);
@@ -292,7 +292,7 @@ class TestFused : public QObject {
       o.filter = f;
       WarpSummary copy_summary, general_summary;
       const ImageF copy = warpImage(src, camera, o, &copy_summary);
-      o.force_rational = true;
+      o.coordinates.force_rational = true;
       const ImageF general = warpImage(src, camera, o, &general_summary);
       QCOMPARE(copy_summary.kernel, std::string("translation-copy"));
       double worst = 0.0;

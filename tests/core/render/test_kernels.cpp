@@ -110,7 +110,7 @@ class TestKernels : public QObject {
       options.width = out_w;
       WarpSummary exact_summary, general_summary;
       const ImageF exact = warpImage(src, camera, options, &exact_summary);
-      options.force_rational = true;
+      options.coordinates.force_rational = true;
       const ImageF general = warpImage(src, camera, options, &general_summary);
       QCOMPARE(QString::fromStdString(exact_summary.kernel), kernel);
       QCOMPARE(general_summary.kernel, std::string("rational"));

@@ -134,7 +134,7 @@ class TestWarpReference : public QObject {
     QCOMPARE(analyseStructure(camera).geometry, GeometryClass::Rational);
 
     WarpOptions options;
-    options.fit_inverse_seed = fitted_seed;
+    options.coordinates.fit_inverse_seed = fitted_seed;
     WarpSummary summary;
     const ImageF out = warpImage(photo, camera, options, &summary);
     QCOMPARE(summary.kernel, std::string("rational"));

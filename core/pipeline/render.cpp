@@ -1,0 +1,321 @@
+#include "core/pipeline/render.h"
+
+#include "core/effects/depth_of_field.h"
+#include "core/model/structure.h"
+#include "core/piecewise/piecewise_render.h"
+#include "core/render/attributed.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace artcam {
+
+RenderInputs RenderInputs::of(const ImageF& linear_photo, const ImageF* depth) {
+  RenderInputs inputs;
+  inputs.photo = viewOf(linear_photo);
+  inputs.linear = &linear_photo;
+  inputs.depth = depth;
+  return inputs;
+}
+
+std::string_view renderPathName(RenderPath path) {
+  switch (path) {
+    case RenderPath::Geometry: return "gather warp";
+    case RenderPath::Preview: return "preview warp";
+    case RenderPath::ColourOnly: return "colour only";
+    case RenderPath::Gather: return "attributed gather";
+    case RenderPath::Splat: return "splat";
+    case RenderPath::Layered: return "layered";
+    case RenderPath::Piecewise: return "piecewise mesh warp";
+  }
+  return "gather warp";
+}
+
+std::string RenderSummary::describe() const {
+  std::string text(renderPathName(path));
+  if (!kernel.empty()) text += " (" + kernel + ")";
+  if (blurred) text += " + depth-of-field blur";
+  text += ", " + std::to_string(transparent_pixels) + " transparent pixels";
+  return text;
+}
+
+OutputFrame outputFrameFor(const Artcam& camera, FrameSize photo, int width, int height) {
+  OutputFrame frame;
+  const FrameSize source = camera.sourceSize();
+  const FrameSize target = camera.targetSize();
+  if (width < 0 || height < 0) throw std::invalid_argument("output size must not be negative");
+  if (width > 0 || height > 0 || !source.isImage() || !photo.isImage()) {
+    frame.size = outputSizeFor(camera.main(), width, height);
+    return frame;
+  }
+  const double sx = static_cast<double>(photo.width) / source.width;
+  const double sy = static_cast<double>(photo.height) / source.height;
+  frame.size = {std::max(1, static_cast<int>(std::lround(target.width * sx))),
+                std::max(1, static_cast<int>(std::lround(target.height * sy)))};
+  // The photo's height if it had the source frame's aspect: more than a rounding pixel away
+  // means the camera was made for a photo of another shape.
+  const double expected_height = source.height * sx;
+  if (std::abs(photo.height - expected_height) > 1.0)
+    frame.warning = "the photo is " + std::to_string(photo.width) + "x" +
+                    std::to_string(photo.height) + " but the camera was made for " +
+                    std::to_string(source.width) + "x" + std::to_string(source.height) +
+                    " (another aspect): the result is stretched per axis";
+  return frame;
+}
+
+namespace {
+
+struct Analysis {
+  bool linear = false;       // renders from the linear float photo
+  bool attributes = false;   // some layer changes or reads colour/depth
+};
+
+Analysis analyse(const Artcam& camera) {
+  Analysis a;
+  for (const Camera& layer : camera.layers) {
+    const CameraStructure s = analyseStructure(layer);
+    a.attributes = a.attributes || s.attributes_change || s.geometry_depends_on_attributes;
+  }
+  a.linear = camera.pieces.has_value() || camera.layers.size() > 1 || a.attributes ||
+             camera.depth_output != DepthOutput::Depth;
+  return a;
+}
+
+RenderPath attributedPath(AttributedPath path) {
+  switch (path) {
+    case AttributedPath::ColourOnly: return RenderPath::ColourOnly;
+    case AttributedPath::Gather: return RenderPath::Gather;
+    case AttributedPath::Splat: return RenderPath::Splat;
+    case AttributedPath::Geometry: return RenderPath::Geometry;
+  }
+  return RenderPath::Geometry;
+}
+
+long long countTransparent(const ImageF& image) {
+  if (image.alpha_channel < 0) return 0;
+  long long n = 0;
+  for (size_t i = static_cast<size_t>(image.alpha_channel); i < image.data.size();
+       i += static_cast<size_t>(image.channels))
+    n += !(image.data[i] > 0.0f);
+  return n;
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Layers (or one attributed camera), then the depth-of-field blur when the depth output is the
+// blur variance σ² (effects/depth_of_field.h).
+ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera,
+                              const RenderOptions& options, FrameSize size, RenderSummary& report,
+                              ImageF* depth_out) {
+  AttributedOptions a;
+  a.warp = options.warp;
+  a.warp.width = size.width;
+  a.warp.height = size.height;
+  a.splat_supersample = options.splat_supersample;
+  a.force_path = options.force_path;
+  AttributedSummary as;
+  AttributedImage out = camera.layers.size() > 1
+                            ? renderLayers(*inputs.linear, inputs.depth, camera.layers, a, &as)
+                            : renderAttributed(*inputs.linear, inputs.depth, camera.main(), a, &as);
+  report.path = camera.layers.size() > 1 ? RenderPath::Layered : attributedPath(as.path);
+  report.kernel = as.kernel;
+  report.note = as.note;
+  if (as.cancelled) {
+    report.cancelled = true;
+    return {};
+  }
+  if (camera.depth_output == DepthOutput::BlurVariance) {
+    if (out.depth.empty())
+      throw std::invalid_argument("a blur-variance camera needs a depth output");
+    BlurOptions blur;
+    blur.threads = options.warp.threads;
+    blur.progress = options.warp.progress;
+    out.colour = stackBlur(out.colour, sigmaPixelsFromVariance(out.depth), blur);
+    if (out.colour.empty()) {
+      report.cancelled = true;
+      return {};
+    }
+    report.blurred = true;
+  }
+  if (depth_out) *depth_out = std::move(out.depth);
+  return std::move(out.colour);
+}
+
+ImageF renderPieces(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
+                    FrameSize size, RenderSummary& report) {
+  PiecewiseRenderOptions p;
+  p.mesh_step_px = options.mesh_step_px;
+  p.output = size;
+  report.path = RenderPath::Piecewise;
+  report.kernel = std::to_string(camera.pieces->patches.size()) + " patches";
+  ImageF out = renderPiecewise(*inputs.linear, *camera.pieces, p);
+  // The mesh warp has no cancel points; honour a cancel asked for meanwhile.
+  if (options.warp.progress && !options.warp.progress(1.0)) {
+    report.cancelled = true;
+    return {};
+  }
+  return out;
+}
+
+void requireLinear(const RenderInputs& inputs) {
+  if (!inputs.linear || inputs.linear->empty())
+    throw std::invalid_argument(
+        "this camera (layers, colour or depth blocks, depth of field or patches) renders from the "
+        "linear float photo, which was not given");
+}
+
+// Copies a float image into a float view of the same shape.
+void copyInto(const ImageF& image, const ImageView& out) {
+  if (out.type != PixelType::Float || out.width != image.width || out.height != image.height ||
+      out.channels != image.channels)
+    throw std::invalid_argument("render: the output view does not have the rendered shape (" +
+                                std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                ", " + std::to_string(image.channels) + " float channels)");
+  const size_t row = static_cast<size_t>(image.width) * static_cast<size_t>(image.channels);
+  for (int y = 0; y < image.height; ++y)
+    std::memcpy(out.row(y), image.data.data() + row * static_cast<size_t>(y), row * sizeof(float));
+}
+
+}  // namespace
+
+bool needsLinearPhoto(const Artcam& camera) { return analyse(camera).linear; }
+
+void render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
+            const ImageView& out, RenderSummary* summary) {
+  const auto start = std::chrono::steady_clock::now();
+  RenderSummary local;
+  RenderSummary& report = summary ? *summary : local;
+  report = RenderSummary{};
+  if (const Status s = validateArtcam(camera); !s)
+    throw std::invalid_argument("invalid camera: " + s.message);
+  report.size = {out.width, out.height};
+  if (analyse(camera).linear) {
+    ImageF image = render(inputs, camera, options, &report);
+    if (report.cancelled) return;
+    copyInto(image, out);
+    report.render_ms = msSince(start);
+    return;
+  }
+  WarpOptions warp = options.warp;
+  warp.width = out.width;
+  warp.height = out.height;
+  WarpSummary ws;
+  if (inputs.pyramid) {
+    warpPreview(*inputs.pyramid, camera.main(), out, warp, &ws);
+    report.path = RenderPath::Preview;
+  } else {
+    if (inputs.photo.empty()) throw std::invalid_argument("render: no photo given");
+    warpImage(inputs.photo, camera.main(), out, warp, &ws);
+    report.path = RenderPath::Geometry;
+  }
+  report.kernel = ws.kernel;
+  report.note = ws.note;
+  report.transparent_pixels = ws.transparent_pixels;
+  report.cancelled = ws.cancelled;
+  report.render_ms = msSince(start);
+}
+
+ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
+              RenderSummary* summary, ImageF* depth_out) {
+  const auto start = std::chrono::steady_clock::now();
+  RenderSummary local;
+  RenderSummary& report = summary ? *summary : local;
+  report = RenderSummary{};
+  if (const Status s = validateArtcam(camera); !s)
+    throw std::invalid_argument("invalid camera: " + s.message);
+  const Analysis analysis = analyse(camera);
+  const ConstImageView& photo = inputs.linear ? viewOf(*inputs.linear) : inputs.photo;
+  // The output frame follows the full photo even when a smaller linear copy renders it.
+  const FrameSize photo_size = inputs.photo.empty() ? FrameSize{photo.width, photo.height}
+                                                    : FrameSize{inputs.photo.width, inputs.photo.height};
+  const OutputFrame frame =
+      outputFrameFor(camera, photo_size, options.warp.width, options.warp.height);
+  report.size = frame.size;
+  ImageF out;
+  if (analysis.linear) {
+    requireLinear(inputs);
+    out = camera.pieces ? renderPieces(inputs, camera, options, frame.size, report)
+                        : renderAttributedCamera(inputs, camera, options, frame.size, report,
+                                                 depth_out);
+  } else {
+    if (photo.empty()) throw std::invalid_argument("render: no photo given");
+    const int channels = photo.alpha_channel >= 0 ? photo.channels : photo.channels + 1;
+    out = ImageF(frame.size.width, frame.size.height, channels, channels - 1);
+    WarpOptions warp = options.warp;
+    warp.width = frame.size.width;
+    warp.height = frame.size.height;
+    WarpSummary ws;
+    if (inputs.linear || photo.type == PixelType::Float) {
+      warpImage(inputs.linear ? viewOf(*inputs.linear) : photo, camera.main(), viewOf(out), warp, &ws);
+    } else {
+      throw std::invalid_argument("render: a float output needs the photo as float (RenderInputs::linear)");
+    }
+    report.path = RenderPath::Geometry;
+    report.kernel = ws.kernel;
+    report.note = ws.note;
+    report.cancelled = ws.cancelled;
+    if (ws.cancelled) out = {};
+  }
+  if (!frame.warning.empty()) report.note = frame.warning + (report.note.empty() ? "" : "; " + report.note);
+  report.transparent_pixels = countTransparent(out);
+  report.render_ms = msSince(start);
+  return out;
+}
+
+int dropOpaqueAlpha(const ImageView& image) {
+  if (image.alpha_channel < 0 || image.alpha_channel != image.channels - 1 || image.channels < 2)
+    return image.channels;
+  const int size = pixelTypeSize(image.type);
+  const int c = image.channels;
+  const auto opaque = [&](const unsigned char* p) {
+    switch (image.type) {
+      case PixelType::UInt8: return p[0] == 255;
+      case PixelType::UInt16: {
+        std::uint16_t v;
+        std::memcpy(&v, p, 2);
+        return v == 65535;
+      }
+      case PixelType::Float: {
+        float v;
+        std::memcpy(&v, p, 4);
+        return v >= 1.0f;
+      }
+    }
+    return false;
+  };
+  for (int y = 0; y < image.height; ++y) {
+    const auto* row = static_cast<const unsigned char*>(image.row(y));
+    for (int x = 0; x < image.width; ++x)
+      if (!opaque(row + (static_cast<size_t>(x) * c + (c - 1)) * size)) return c;
+  }
+  // Packed rows of c − 1 channels, written front to back (never ahead of what is read).
+  auto* base = static_cast<unsigned char*>(image.data);
+  const size_t in_pixel = static_cast<size_t>(c) * size, out_pixel = static_cast<size_t>(c - 1) * size;
+  size_t written = 0;
+  for (int y = 0; y < image.height; ++y) {
+    const auto* row = static_cast<const unsigned char*>(image.row(y));
+    for (int x = 0; x < image.width; ++x) {
+      std::memmove(base + written, row + static_cast<size_t>(x) * in_pixel, out_pixel);
+      written += out_pixel;
+    }
+  }
+  return c - 1;
+}
+
+bool dropOpaqueAlpha(ImageF& image) {
+  const int before = image.channels;
+  const int after = dropOpaqueAlpha(viewOf(image));
+  if (after == before) return false;
+  image.channels = after;
+  image.alpha_channel = -1;
+  image.data.resize(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) *
+                    static_cast<size_t>(after));
+  return true;
+}
+
+}  // namespace artcam

@@ -1,0 +1,106 @@
+// The render front door: one call that renders a photo (and its depth) through any camera value
+// (core/model/artcam.h). The studio's preview and export, `artcam warp`, `batch`, `insert` and
+// the effects panel all come through here, so a camera renders the same everywhere.
+//
+// The path follows from the camera's structure, analysed once (core/model/structure.h):
+//   piecewise              the mesh warp of its patches (core/piecewise/piecewise_render.h)
+//   layered or attributed  the attributed renderer (core/render/attributed.h): colour-only
+//                          (identity geometry, no resampling), gather (geometry from position
+//                          alone, eq 4), splat (geometry reading colour or depth, eq 8/9);
+//                          layers summed (the paper's Fig 4); then, when the depth output is
+//                          the blur variance, the depth-of-field blur stack
+//   geometry only          the gather warp's kernels on the photo as stored (core/render/warp.h:
+//                          identity … homography exactly, rational by certified Newton), or the
+//                          mip level that matches the output scale when a pyramid is given
+//
+// The output frame (one rule for every caller): the photo scaled by target frame / source frame,
+// per axis and rounded, so a camera of the photo's own size and aspect keeps the photo's exact
+// size; a photo whose aspect differs from the camera's source frame by more than a rounding
+// pixel is stretched per axis, and the plan says so (OutputFrame::warning). An explicit size
+// overrides it (one side 0: the other from the target frame's aspect).
+//
+// Channels: the geometry paths keep the photo's channels and add alpha; dropOpaqueAlpha removes
+// that alpha again where the photo had none and every output pixel has a preimage.
+#pragma once
+
+#include "core/model/artcam.h"
+#include "core/model/image.h"
+#include "core/model/image_view.h"
+#include "core/render/mip_pyramid.h"
+#include "core/render/warp.h"
+
+#include <string>
+#include <string_view>
+
+namespace artcam {
+
+struct RenderInputs {
+  // The photo read in place, any pixel type: what the geometry kernels sample.
+  ConstImageView photo;
+  // The photo as linear float (premultiplied): what the attributed and piecewise paths read.
+  // Required for cameras where needsLinearPhoto() is true; may be a smaller copy (a preview).
+  const ImageF* linear = nullptr;
+  // Previews: geometry cameras sample the pyramid level that matches the output scale.
+  const StoredMipPyramid* pyramid = nullptr;
+  // The depth block's input: 1 channel (d) or 2 (coverage·d, coverage), any size.
+  const ImageF* depth = nullptr;
+
+  static RenderInputs of(const ImageF& linear_photo, const ImageF* depth = nullptr);
+};
+
+struct RenderOptions {
+  // Output size (0×0: the output-frame rule), filter, threads, progress/cancel, antialias and the
+  // coordinate kernels' tolerances: every path takes them.
+  WarpOptions warp;
+  int splat_supersample = 3;  // cameras whose geometry reads colour or depth (splat.h)
+  double mesh_step_px = 4.0;  // piecewise cameras' source lattice (piecewise_render.h)
+  std::string force_path;     // tests and benchmarks: "splat" or "gather"
+};
+
+enum class RenderPath { Geometry, Preview, ColourOnly, Gather, Splat, Layered, Piecewise };
+std::string_view renderPathName(RenderPath path);
+
+struct RenderSummary {
+  RenderPath path = RenderPath::Geometry;
+  bool blurred = false;          // the depth-of-field blur stack ran after the layers
+  std::string kernel;            // the coordinate kernel ("homography", "rational", "splat", …)
+  FrameSize size;                // the output size
+  long long transparent_pixels = 0;
+  double render_ms = 0.0;
+  bool cancelled = false;
+  std::string note;              // e.g. the output-frame warning, a splat's dropped triangles
+  // One line for users: "gather warp (homography), 0 transparent pixels".
+  std::string describe() const;
+};
+
+struct OutputFrame {
+  FrameSize size;
+  std::string warning;  // non-empty when the photo's aspect differs from the source frame's
+};
+// The output-frame rule above, for a photo of `photo` pixels; width/height from options.warp.
+OutputFrame outputFrameFor(const Artcam& camera, FrameSize photo, int width = 0, int height = 0);
+
+// True when the camera renders from the linear float photo (RenderInputs::linear): layers,
+// colour or depth blocks that change or steer geometry, depth of field, patches.
+bool needsLinearPhoto(const Artcam& camera);
+
+// Renders into `out`, which must have outputFrameFor's size and, for cameras that render from
+// the stored photo, the photo's pixel type with its channels (+ alpha as warpImage allows);
+// for cameras needing the linear photo `out` must be float RGBA (4 channels, alpha 3).
+// Throws std::invalid_argument naming the cause for a broken contract (a missing input, an
+// invalid camera, a wrong output shape). On cancel `out` is partial and summary->cancelled set.
+void render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
+            const ImageView& out, RenderSummary* summary = nullptr);
+
+// The same, allocating the output: float, premultiplied, alpha last; the photo's channels + alpha
+// on the geometry paths, RGBA on the others. Empty when cancelled. `depth_out` (may be null)
+// receives the camera's depth output where it has one.
+ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options = {},
+              RenderSummary* summary = nullptr, ImageF* depth_out = nullptr);
+
+// Drops the alpha channel (the last) when every pixel's alpha is full: returns the narrower view's
+// channel count written in place (packed rows), or the old count when some pixel is not opaque.
+int dropOpaqueAlpha(const ImageView& image);
+bool dropOpaqueAlpha(ImageF& image);
+
+}  // namespace artcam
