@@ -1,4 +1,4 @@
-// artcam warp: image → image through a position camera (gather warp, DESIGN §3). The stages
+// artcam warp: image → image through a position camera (gather warp). The stages
 // (decode, render, encode) are warp_job.h's, shared with artcam batch.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
@@ -65,7 +65,7 @@ int warpCommand(const std::vector<std::string>& argv) {
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
   const std::string& input = args.positional()[0];
-  // Never replace the photo being warped by default (issue 9, "no lost work").
+  // Never replace the photo being warped by default: no lost work.
   if (!args.has("--overwrite") && !args.has("--force") && sameFile(input, *output))
     throw CommandError(*output + ": refusing to overwrite the input image " + input +
                        " (use --overwrite)");

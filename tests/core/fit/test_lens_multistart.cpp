@@ -1,4 +1,4 @@
-// Issue 4, "done when": on real-lens cases the default fit (algebraic DLT, LM refinement, pole
+// On real-lens cases the default fit (algebraic DLT, LM refinement, pole
 // retries) comes within a few percent of the best a rational quadratic can do for that lens.
 // "The best" is estimated independently of the default pipeline's start: LM from many starts
 // (the identity perturbed at three scales, the default result perturbed, the lifted
