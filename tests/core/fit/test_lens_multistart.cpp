@@ -3,7 +3,7 @@
 // "The best" is estimated independently of the default pipeline's start: LM from many starts
 // (the identity perturbed at three scales, the default result perturbed, the lifted
 // homography), keeping the lowest pole-free RMS. Lens models as lensfun documents them (poly3,
-// poly5, ptlens), both directions; the figures are printed for the closing note.
+// poly5, ptlens), both directions; the figures are printed.
 #include "core/fit/fit_image.h"
 #include "core/fit/poles.h"
 #include "core/fit/refine.h"
