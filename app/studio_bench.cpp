@@ -1,4 +1,4 @@
-// artcam-studio-bench: the studio's edit-to-preview latency (issue 3's benchmark; a benchmark,
+// artcam-studio-bench: the studio's edit-to-preview latency (a benchmark,
 // not a test). A 24-megapixel photo (made in code, or --photo FILE) is loaded as the studio
 // loads it (display copy and 8-bit mip pyramid built once), ten pairs through a rational lens
 // are fitted, and then each edit moves one target point and the clock runs from the edit (the

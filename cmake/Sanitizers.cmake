@@ -1,4 +1,4 @@
-# Sanitizer and fuzzing builds (issue 9, items 2 and 4). Both instrument EVERY target of the build
+# Sanitizer and fuzzing builds. Both instrument EVERY target of the build
 # (core, ui, app, tests), so each gets its own build directory:
 #
 #   cmake -S . -B build-asan -G Ninja -DARTCAM_SANITIZE=address,undefined

@@ -1,5 +1,5 @@
 #!/bin/sh
-# artcam batch against the same warps one after the other (issue 9, "batch work"): N photos of
+# artcam batch against the same warps one after the other: N photos of
 # W×H RGB8 JPEG → RGBA8 TIFF. Prints both wall times, their ratio and the batch's peak RSS
 # beside the pipeline's bound (2 inputs + 2 outputs in flight) and one warp's peak.
 # usage: packaging/bench-batch.sh [BUILD_DIR]      (env: N=6, W=6000, H=4000, TMPDIR)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Peak memory of a big-image warp (issue 9, "big images"): a W×H RGB8 photo (default
+# Peak memory of a big-image warp: a W×H RGB8 photo (default
 # 30000×20000, 600 Mpix) warped through resources/sample.artcam into a TIFF, measured with
 # /usr/bin/time -v, against the sizes of the input and output pixels. Target: input + output +
 # a small constant (the warp reads and writes the stored 8-bit samples in bands of rows, no float

@@ -1,4 +1,4 @@
-// Autosave and crash recovery (issue 3 item 7). Every `interval` the modified document is
+// Autosave and crash recovery. Every `interval` the modified document is
 // written as a project to a RECOVERY file (atomically, on a worker thread: the GUI thread never
 // blocks on file I/O); a clean save or close removes it. A recovery file left behind means the
 // studio did not close cleanly: on the next start (or when its project is opened) the user is

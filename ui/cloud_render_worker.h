@@ -1,4 +1,4 @@
-// The 3D view's renderer (issue 7 item 5), shaped like RenderWorker (after Qt's Mandelbrot
+// The 3D view's renderer, shaped like RenderWorker (after Qt's Mandelbrot
 // example): one pending request slot where the newest wins, std::atomic restart/abort flags
 // polled between row bands through the renderers' progress hooks, a coarse pass (1/4 size)
 // before the full one, results by queued signal with the request's generation stamp. No

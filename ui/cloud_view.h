@@ -1,4 +1,4 @@
-// The 3D view of a point cloud (issue 7 item 5): orbit by dragging (left button: yaw and
+// The 3D view of a point cloud: orbit by dragging (left button: yaw and
 // pitch about the cloud's centre), zoom by the wheel (distance to the centre), a 3D effect of
 // the paper's Fig 1 chosen from a list, and the document's current image camera applied live
 // to the view as a lens (so moving a pair re-renders the cloud too). Renders in a

@@ -1,4 +1,4 @@
-// The depth part of the document (issue 3 item 6): painted regions ("depth layers"), each given
+// The depth part of the document: painted regions ("depth layers"), each given
 // depth at three clicked points (a plane in inverse depth, core/depth/inverse_depth_plane.h),
 // and an optional depth map file underneath them all. Owned by Document; changed only through
 // the commands of depth_commands.h (which call the mutators below), except a brush stroke in

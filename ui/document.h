@@ -1,6 +1,6 @@
 // The model every panel shares: the photo, the point pairs, the model class, the camera and
 // its fit. Panels read it and listen to its signals; they change it only through the
-// QUndoCommands of commands.h (STYLE: every document edit is a command), which call the
+// QUndoCommands of commands.h (every document edit is a command), which call the
 // mutators below. Selection is view state: not undoable, not saved.
 //
 // Frames: pairs are in PIXELS of the photo (centres at i + 0.5); source and target frames are

@@ -1,4 +1,4 @@
-// Conversions between the engine's ImageF (linear light, premultiplied alpha; DESIGN §1) and
+// Conversions between the engine's ImageF (linear light, premultiplied alpha) and
 // what Qt paints (8-bit sRGB QImage). Only the GUI needs them, so they live in ui/, not core/.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Loads a photo off the GUI thread (STYLE: never block the GUI on I/O): readImage, then the
+// Loads a photo off the GUI thread (the GUI thread never blocks on I/O): readImage, then the
 // preview and display copies, all in a QThread. Progress and the result arrive by queued
 // signals. One loader per file; cancel() makes the read stop at its next progress callback.
 #pragma once

@@ -1,4 +1,4 @@
-// The loupe (issue 3 item 1): a magnified, nearest-neighbour view of the photo around the
+// The loupe: a magnified, nearest-neighbour view of the photo around the
 // cursor, drawn in a corner of the canvas away from the cursor while a tool places or drags a
 // point, with a crosshair on the exact sub-pixel cursor position, so points can be placed to a
 // fraction of a pixel without zooming the whole view.

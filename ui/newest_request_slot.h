@@ -1,4 +1,4 @@
-// The request half of the studio's workers (STYLE, after Qt's Mandelbrot example), shared by the
+// The request half of the studio's workers (after Qt's Mandelbrot example), shared by the
 // preview, 3D view and insertion workers: one pending slot where the newest request wins,
 // atomic restart/abort flags the job in flight polls between tiles, and the thread started on
 // the first request and joined on shutdown. The worker's run() loops on take().

@@ -3,7 +3,7 @@
 //
 // Frames: `full` is the original resolution; pairs and the canvas work in its PIXELS (centres
 // at i + 0.5). `preview` is a box-downscaled copy with (nearly) the same aspect, rendered
-// through the same camera: cameras live in normalised frames, so that is correct (DESIGN §1).
+// through the same camera: cameras live in normalised frames, so that is correct.
 #pragma once
 
 #include "core/io/image_io.h"
@@ -30,7 +30,7 @@ struct Photo {
   LoadedImage full;
   ImageF preview;
   QImage display;  // 8-bit sRGB of `full`, downscaled to kDisplayMaxSide
-  // The live preview's source (issue 5 "preview path"): the display copy as premultiplied
+  // The live preview's source: the display copy as premultiplied
   // RGBA8 and its 8-bit mip pyramid (levels view pyramid_base, which must not change), built
   // once per photo on the loader thread, so an edit re-renders a screen-sized preview from
   // the level that matches its scale.

@@ -1,6 +1,6 @@
-// The one object that owns widget ↔ image coordinates for a canvas (STYLE, after Krita's
+// The one object that owns widget ↔ image coordinates for a canvas (after Krita's
 // KisCoordinatesConverter). Image coordinates are photo PIXELS with (0, 0) the top-left corner
-// of the top-left pixel (DESIGN §1); widget coordinates are logical widget pixels.
+// of the top-left pixel, as in the engine; widget coordinates are logical widget pixels.
 //   widget = image * scale + offset
 #pragma once
 

@@ -1,4 +1,4 @@
-// artcam batch: many photos (or a frame sequence) through one camera (issue 9, "batch work").
+// artcam batch: many photos (or a frame sequence) through one camera.
 // Three stages overlap across files — decode (a thread), render (this thread, itself on all
 // cores), encode (a thread) — joined by BoundedQueues of capacity 1, so about two inputs and
 // two outputs are in memory at once however many files there are. The stages are warp_job.h's,

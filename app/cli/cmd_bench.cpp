@@ -1,4 +1,4 @@
-// artcam bench render: speed and position error of every render kernel and filter (issue 5).
+// artcam bench render: speed and position error of every render kernel and filter.
 // A benchmark, not a test: figures are medians of repeated renders on a photo-sized image made
 // in code; the error is the distance (source pixels) between the fused kernel's source
 // positions and an exact double-precision inverse (coordinates.h, makeReferenceInverse).

@@ -1,4 +1,4 @@
-// artcam bench effects: time against error for issue 6's renderers.
+// artcam bench effects: time against error for the effect renderers.
 // - Depth of field: the fast blur stack against the exact per-pixel Gaussian (depth_of_field.h)
 //   over blur strengths: PSNR on a crop (the exact blur costs O(σ²) per pixel), the time of
 //   both on that crop, and the stack's time on the whole image.

@@ -1,4 +1,4 @@
-// artcam bench fit: time against error for every fitting method (issue 4). A benchmark, not a
+// artcam bench fit: time against error for every fitting method. A benchmark, not a
 // test: medians of repeated fits on matches made in code from a known rational camera, the
 // error measured against that true map on a dense grid (target pixels).
 #include "app/cli/args.h"

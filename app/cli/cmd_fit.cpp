@@ -1,4 +1,4 @@
-// artcam fit: matches CSV → .artcam (paper §4, DESIGN §2).
+// artcam fit: matches CSV → .artcam (paper §4).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"

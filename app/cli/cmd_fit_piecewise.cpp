@@ -1,5 +1,5 @@
 // artcam fit --piecewise: one camera per patch, split until every patch's max error is under
-// --max-error (issue 8; core/piecewise/piecewise_fit.h).
+// --max-error (core/piecewise/piecewise_fit.h).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"

@@ -1,5 +1,5 @@
 // artcam insert: a graphic rendered into a reflection or refraction and composited over the
-// photo (issue 8; the paper's §5, Figs 7 and 8).
+// photo (the paper's §5, Figs 7 and 8).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"

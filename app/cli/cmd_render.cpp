@@ -1,5 +1,5 @@
 // artcam render: a point cloud through a 3D ARTcam, then a projecting view camera, into an
-// image (z-buffered splats, DESIGN §3) or, with -o *.ply, the moved cloud itself.
+// image (z-buffered splats) or, with -o *.ply, the moved cloud itself.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"

@@ -1,5 +1,5 @@
 // artcam sample: the bundled environment-matting samples, made in code by ray tracing
-// (issue 8): a photo, its calibration-grid matches and a graphic to insert.
+// (the paper's Figs 7 and 8): a photo, its calibration-grid matches and a graphic to insert.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"

@@ -1,5 +1,5 @@
-// Ctrl-C and kill for long CLI jobs (issue 9, "can be interrupted without leaving partial
-// files"). SIGINT/SIGTERM handlers are installed once for every command (dispatch.cpp):
+// Ctrl-C and kill for long CLI jobs, which stop without leaving partial
+// files. SIGINT/SIGTERM handlers are installed once for every command (dispatch.cpp):
 // - by default a signal unlinks the temporaries of saves in flight (core/io/atomic_file.h;
 //   finished outputs were renamed into place and stay) and exits with 128 + signal number
 //   (130 for SIGINT) at once;

@@ -1,4 +1,4 @@
-// Progress of long CLI jobs on stderr (issue 9, "every long CLI job shows progress").
+// Progress of long CLI jobs on stderr: every long CLI job shows progress.
 // On a terminal: one line redrawn in place at most 10 times a second,
 //   [##########----------]  12/40 files  38.2 Mpix/s  ETA 0:42
 // (a single job shows its stage and percentage instead of files). Not a terminal (a log, a

@@ -1,8 +1,9 @@
 // Where a camera stands in object space, and the helpers that build object-space tensors.
 //
 // Conventions:
-// - Camera coordinates: x right, y DOWN, z forward (the image's v grows downwards, DESIGN §1
-//   "Frames and pixels"). A pose maps world to camera: P_cam = R (P_world - C).
+// - Camera coordinates: x right, y DOWN, z forward (the image's v grows downwards, as in
+//   docs/architecture.md, "Frames and pixels"). A pose maps world to camera:
+//   P_cam = R (P_world - C).
 // - The family cameras (projective_cameras.h, glc.h) and the 3D effects are written in camera
 //   (or local) coordinates and moved into the world by substituting the input row vector,
 //   x_cam = x_world H_row, so Q_i <- H_row Q_i H_rowᵀ (frames.h changeInputFrame).

@@ -5,7 +5,7 @@
 //
 // Block layouts: position (4) alone, or position (4) then colour (4) when the geometry reads
 // colour through the pc coupling (eq 6/7: Q_ipc; stored symmetrically, so every coupling is
-// built with symmetricOuter, which halves the two off-diagonal blocks — DESIGN §1).
+// built with symmetricOuter, which halves the two off-diagonal blocks — eq 10).
 #pragma once
 
 #include "core/cameras/camera_pose.h"

@@ -1,14 +1,14 @@
 // The classical cameras as object-space ARTcams (the paper's §1: the RTcam "subsumes the linear
 // camera and many non-linear cameras as special cases", proven in [HCS*07]).
 //
-// Every camera here is a 4→4 position tensor (DESIGN §1, "Output blocks mirror input blocks"):
+// Every camera here is a 4→4 position tensor (output blocks mirror input blocks, eq 3):
 // z = x Q_i xᵀ for x = (X, Y, Z, 1) and the outputs, divided by z_4, are
 //   (u, v, nearness, 1)
 // - (u, v): the image point in the NORMALISED frame of the output image (frames.h: the larger
 //   image side spans [-1, 1], v down), so one camera renders at any size;
 // - nearness: larger is nearer along every ray, and > 0 exactly for the points the camera sees
 //   (in front of it); the cloud renderer's z-buffer keeps the largest. For the pinhole it is
-//   inverse depth W/Z, as in DESIGN §1.
+//   inverse depth W/Z.
 // Each camera is written in camera coordinates (camera_pose.h: x right, y down, z forward) and
 // moved by its pose. Each has its RAY DEFINITION beside it, written from the geometry and not
 // from the tensor, so the tests can check one against the other: the image point of P is the

@@ -1,4 +1,4 @@
-// Object-space rendering (DESIGN §3, last row: "forward map, project, z-buffered splat").
+// Object-space rendering: forward map, project, z-buffered splat.
 //
 // A cloud goes through a chain: zero or more 3D ARTcams (effects_3d.h, fitted object cameras),
 // each mapping (X, Y, Z, 1) [| colour] to moved points, then one projecting camera

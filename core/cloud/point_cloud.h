@@ -1,6 +1,6 @@
 // A coloured point cloud in object space (the paper's Fig 1 works on one).
 //
-// Conventions (DESIGN §1):
+// Conventions (docs/architecture.md, "The model"):
 // - Positions are object units, (X, Y, Z); the ARTcam position block sees (X, Y, Z, 1).
 // - Colours are LINEAR light, PREMULTIPLIED by alpha, like ImageF: the colour block sees
 //   (a·r, a·g, a·b, a) as it is stored here. Files hold sRGB-encoded bytes or linear floats

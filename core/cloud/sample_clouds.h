@@ -13,7 +13,7 @@ struct CubeOfCubesOptions {
 };
 
 // 27 small cubes, surfaces only (27·6·n² points). Cube (i, j, k) ∈ {0, 1, 2}³ along (x, y, z) has
-// the sRGB colour (0.15 + 0.425·i, 0.15 + 0.425·j, 0.15 + 0.425·k), stored linear (DESIGN §1):
+// the sRGB colour (0.15 + 0.425·i, 0.15 + 0.425·j, 0.15 + 0.425·k), stored linear:
 // red grows along x, green along y (up), blue along z, so warm and cold cubes sit at opposite
 // corners and every cube has all three channels (the layers of chromatic aberration show).
 PointCloud cubeOfCubes(const CubeOfCubesOptions& options = {});

@@ -2,7 +2,7 @@
 //
 // Conventions:
 // - RGB is LINEAR light with the sRGB / Rec. 709 primaries and D65 white (IEC 61966-2-1), the
-//   engine's working space (DESIGN §1); 1 = diffuse white. Values outside [0, 1] are allowed.
+//   engine's working space; 1 = diffuse white. Values outside [0, 1] are allowed.
 // - XYZ is scaled so the RGB white (1, 1, 1) has Y = 1, and CIELAB's reference white is that
 //   same white, so (1, 1, 1) is L* = 100, a* = b* = 0 up to round-off.
 // - CIEDE2000 follows CIE 142-2001 as written out by Sharma, Wu & Dalal, "The CIEDE2000

@@ -1,4 +1,4 @@
-// Colour transforms fitted from colour samples (issue 6 item 7), the candidates of colour
+// Colour transforms fitted from colour samples, the candidates of colour
 // calibration by model selection (the paper's §4.1 and [LH07]), simplest first:
 //
 //   linear          dst = M (r, g, b)ᵀ                      3×3,  9 parameters
@@ -57,7 +57,7 @@ QuadraticRange quadraticRangeOverBox(const Eigen::Matrix4d& q, const Eigen::Vect
 
 // The ARTcam that applies `map` to every pixel: blocks [position (u, v, 1) | colour (a·r, a·g,
 // a·b, a)], geometry the identity on `frame` (so the renderer takes its colour-only path), and
-// the colour block (DESIGN §1, eq 6/7):
+// the colour block (eq 6/7):
 // - linear, affine: the pc part, z_ci = p_3 · (c · h_i) — linear in premultiplied colour, so
 //   output alpha = input alpha;
 // - quadratic: the cc part, z_ci = c Q_i cᵀ, homogeneous of degree 2 in c, so the colour

@@ -1,4 +1,4 @@
-// Transfer functions between stored (encoded) values and linear light (DESIGN §1: colour is
+// Transfer functions between stored (encoded) values and linear light (colour is
 // linear inside the engine). Exact formulas, in double:
 // - sRGB (IEC 61966-2-1): v <= 0.04045 ? v / 12.92 : ((v + 0.055) / 1.055)^2.4
 // - Rec709 (ITU-R BT.709 OETF): v < 0.081 ? v / 4.5 : ((v + 0.099) / 1.099)^(1/0.45)

@@ -1,4 +1,4 @@
-// Depth planes → a per-pixel depth image (DESIGN §1 depth block `(d, 1)`), for the effects
+// Depth planes → a per-pixel depth image (the depth block `(d, 1)`), for the effects
 // (depth of field, aerial perspective: the paper's §3) and the studio's overlay.
 //
 // Output: a 2-channel ImageF, (coverage·z, coverage), alpha_channel = 1: the depth block in

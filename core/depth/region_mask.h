@@ -1,6 +1,7 @@
 // A painted region of a photo: one coverage byte per photo pixel (0 = outside, 255 = inside),
 // so brushes can have soft edges. Pixel (x, y) covers [x, x+1)×[y, y+1); its centre is
-// (x + 0.5, y + 0.5) (DESIGN §1). Positions passed here are photo PIXELS in that convention.
+// (x + 0.5, y + 0.5), as everywhere in the engine. Positions passed here are photo PIXELS in
+// that convention.
 //
 // Decisions:
 // - Painting keeps the larger coverage (max), erasing the smaller of (old, 255 − dab): dabs

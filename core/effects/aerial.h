@@ -1,6 +1,6 @@
 // Aerial perspective (the paper's §3): contrast falls with the logarithm of distance, towards
 // a haze colour. Built as a two-stage chain over [position 3 | colour 4 | depth 2]
-// (DESIGN §1 "a camera may be a chain of stages"):
+// (a chain keeps each stage one quadratic form, so each stays linear to fit):
 //
 //   stage 1, depth only:  l = (d Q_d dᵀ) / (d Q_h dᵀ) for d = (depth, 1), a rational quadratic
 //            fitted to the normalised log  l*(d) = ln(d/near) / ln(far/near)  over [near, far]

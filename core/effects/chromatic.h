@@ -13,7 +13,7 @@
 //   position's homogeneous output is p3·c4, so y = (p1, p2)·(s_k·c_k + c4)/(p3·c4)
 //   = p·(1 + s_k·r_k) with r_k the unpremultiplied channel: bright red expands for s_red > 0.
 //   The geometry depends on colour (splat path). Stored symmetrically, every coupling is built
-//   with symmetricOuter, which halves the off-diagonal blocks (DESIGN §1).
+//   with symmetricOuter, which halves the off-diagonal blocks (eq 10).
 #pragma once
 
 #include "core/model/camera.h"

@@ -1,4 +1,4 @@
-// Depth of field (the paper's §3, DESIGN §3): a spatially varying Gaussian whose sigma is a
+// Depth of field (the paper's §3): a spatially varying Gaussian whose sigma is a
 // camera stage of depth.
 //
 // The camera, over [position 3 | colour 4 | depth 2], keeps position and colour and maps depth

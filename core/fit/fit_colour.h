@@ -1,4 +1,4 @@
-// Colour calibration (issue 6 item 7, issue 4 item 5; the paper's §4.1): fit a colour
+// Colour calibration (the paper's §4.1): fit a colour
 // transform to colour-sample pairs, choosing its complexity by held-out error ("colour
 // constancy by model selection", [LH07]), and report CIEDE2000 ΔE per sample and overall.
 //

@@ -162,7 +162,7 @@ ModelFit fitAlgebraic(ModelClass model, const Problem& pb, bool condition) {
   }
   out.singular_values = s.singular_values;
   if (s.null_dimension > 1 && model == ModelClass::Quadratic) {
-    // Exact homography data: Q_i = sym(l h_iᵀ) fits for every line l (DESIGN §2), and an
+    // Exact homography data: Q_i = sym(l h_iᵀ) fits for every line l, and an
     // arbitrary null vector is 0/0 along l. Fix l to the line at infinity: the homography.
     if (moments) {
       src = applyTransform(ts, pb.src);
@@ -289,7 +289,7 @@ void restartNearby(ModelFit& best, double& best_rms, const Problem& pb, int rest
   }
 }
 
-// The algebraic fit, then (images) refinement and the pole rule of DESIGN §2.
+// The algebraic fit, then (images) refinement and the pole rule (poles.h).
 ModelFit fitModel(ModelClass model, const Problem& pb, const FitOptions& options) {
   ModelFit fit = fitAlgebraic(model, pb, options.condition);
   if (!fit.status || pb.dimension != 2) return fit;
@@ -386,7 +386,7 @@ double heldOutError(ModelClass model, const Problem& pb, const FitOptions& optio
   return std::sqrt(sum / m);
 }
 
-// The ladder (DESIGN §2): the simplest model whose held-out error a richer one does not beat
+// The ladder: the simplest model whose held-out error a richer one does not beat
 // by more than options.auto_improvement; an exactly determined richer model (no held-out check
 // possible) wins only where the validated ones do not fit exactly.
 ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chosen,

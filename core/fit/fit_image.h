@@ -1,5 +1,5 @@
 // Fitting an image camera (2D position block, n = 3) to point matches: the paper's §4 DLT
-// with conditioning on both sides, and the model ladder (DESIGN §2).
+// with conditioning on both sides, and the model ladder.
 //
 // Matches are in PIXELS of their frames (centres at i + 0.5). They are first taken to the
 // normalised frames of frames.h, then conditioned (centroid to the origin, RMS distance √2)

@@ -1,4 +1,4 @@
-// Conditioning for the DLT (DESIGN §2, "normalise both sides"): a similarity that moves a
+// Conditioning for the DLT, on both sides of the matches: a similarity that moves a
 // point set's centroid to the origin and its RMS distance from it to √d (d = 2 for image
 // positions, 3 for object space or colour). Building the design matrix from conditioned points
 // keeps its singular values within a few orders of magnitude, so the SVD null space stays

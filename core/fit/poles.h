@@ -1,4 +1,4 @@
-// Poles (DESIGN §2): the denominator x Q_n xᵀ of an image camera must keep one sign over the
+// Poles: the denominator x Q_n xᵀ of an image camera must keep one sign over the
 // whole source frame, or the map runs to infinity between the pixels. The denominator is a
 // quadratic polynomial in (u, v), so its extremes over the frame rectangle are found exactly
 // among the corners, the vertex of each edge's 1D quadratic and the interior critical point:

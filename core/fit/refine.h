@@ -1,4 +1,4 @@
-// Levenberg–Marquardt refinement of an image camera's reprojection error (DESIGN §2): the
+// Levenberg–Marquardt refinement of an image camera's reprojection error: the
 // algebraic DLT minimises |D r|, which weighs matches by their denominators; the geometric
 // error is what a user sees. Works in the normalised frames on the 18 upper-triangle entries
 // of Q_1..Q_3 (scale is a gauge freedom: the damping handles it and steps are renormalised).

@@ -1,4 +1,4 @@
-// Robust fitting (DESIGN §2): MSAC over minimal sets with local optimisation (LO-RANSAC). Hand-
+// Robust fitting: MSAC over minimal sets with local optimisation (LO-RANSAC). Hand-
 // clicked pairs include a wrong click now and then; detector matches include many. Each
 // iteration fits the model exactly to a random minimal set (9 pairs for the quadratic), scores
 // every match by min(e², t²) (MSAC), and when a better model appears re-fits it on its inliers

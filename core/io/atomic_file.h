@@ -1,9 +1,9 @@
-// Atomic saves (DESIGN §5): write to a temporary file in the target's folder, flush, then
+// Atomic saves: write to a temporary file in the target's folder, flush, then
 // rename over the target. On any failure the temporary is removed and the target untouched.
 //
 // Temporaries are named ".<stem>.tmp-<pid>-<n><ext>" (hidden, with the target's extension
 // because image writers pick their format from it). Two things keep them from outliving the
-// save (issue 9, "no lost work"):
+// save, so no work is lost:
 // - every live temporary is registered, and removeLiveTemporaries() unlinks them from a signal
 //   handler (async-signal-safe), so an interrupted program leaves none behind;
 // - a SIGKILLed writer cannot clean up, so each save first removes the temporaries of ITS

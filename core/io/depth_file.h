@@ -1,4 +1,4 @@
-// Depth images for the depth block (DESIGN §1 `(d, 1)`; issue 6 item 4): THE reader of depth and
+// Depth images for the depth block (`(d, 1)`): THE reader of depth and
 // disparity map files, for the CLI (artcam warp --depth) and the studio (a map under the
 // painted planes, depth_raster.h).
 //

@@ -1,6 +1,7 @@
 // Images through OpenImageIO: every format it reads and writes (PNG, JPEG, TIFF 8/16-bit, EXR).
 //
-// Inside the engine pixels are ImageF: float, linear light, premultiplied alpha (DESIGN §1).
+// Inside the engine pixels are ImageF: float, linear light, premultiplied alpha
+// (docs/architecture.md, "Images").
 // readImage decodes sRGB (or whatever OIIO reports as the file's colour space; 8/16-bit files
 // without a colour space are taken as sRGB, float files as linear) and premultiplies.
 // writeImage does the reverse and keeps the input's pixel format and metadata when given

@@ -160,7 +160,7 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   }
 
   // Encoded values in the written channel order, a band of rows at a time: no whole-image
-  // copy beside the float image (issue 9, "big images").
+  // copy beside the float image (big images).
   const size_t in_channels = static_cast<size_t>(image.channels);
   const bool divide = alpha >= 0 && !associated;  // unassociated output; alpha 0 has no colour
   auto encodeRows = [&](int y0, int y1, std::vector<float>& encoded) {

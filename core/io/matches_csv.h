@@ -1,10 +1,10 @@
-// CSV inputs of the CLI (DESIGN §5): match lists with the header `src_x,src_y,dst_x,dst_y`
+// CSV inputs of the CLI: match lists with the header `src_x,src_y,dst_x,dst_y`
 // (pixels; 3D: src_x,src_y,src_z,dst_x,dst_y,dst_z), colour samples with the header
 // `src_r,src_g,src_b,dst_r,dst_g,dst_b`, and point lists `x,y` (a header line is allowed).
 //
 // Colour samples: one pair of RGB colours per row, the source colour (a patch in the photo to
 // recolour) and the colour it should become. Values are LINEAR-LIGHT RGB with sRGB (Rec. 709)
-// primaries and D65 white, 1 = diffuse white (the engine's working space, DESIGN §1): values
+// primaries and D65 white, 1 = diffuse white (the engine's working space): values
 // above 1 or below 0 are kept. ColourEncoding::Srgb reads values that are sRGB-ENCODED
 // (0…1, e.g. 8-bit codes divided by 255) and decodes them to linear light on read. Opaque:
 // there is no alpha column. Errors name the file, the line and the cause ("matches.csv:7: expected 4 numbers,

@@ -6,7 +6,7 @@
 // - The `vertex` element's x, y, z (any scalar type: char…double) and optional red, green,
 //   blue [alpha] (also diffuse_red/…): uchar is sRGB-encoded like an 8-bit image and decoded to
 //   linear light; float/double colours are linear already (like EXR); alpha is never encoded.
-//   Colours are premultiplied by alpha on the way in (DESIGN §1, core/cloud/point_cloud.h).
+//   Colours are premultiplied by alpha on the way in (core/cloud/point_cloud.h).
 // - Other vertex properties (normals, confidence…) and other elements (faces…) are skipped,
 //   lists included, except that a list property on `vertex` is refused.
 // - Every refusal is one line naming the file, the header line or vertex index, and the cause:

@@ -1,6 +1,6 @@
 // The ARTcam model: blocks, symmetric tensors, stages, evaluation (paper eq 3, 5).
 //
-// Conventions (DESIGN §1):
+// Conventions (docs/architecture.md, "The model"):
 // - An input point is one ROW vector x made of blocks; each block is a homogeneous projective
 //   subspace whose LAST element is its homogeneous weight: position (u, v, 1) or (X, Y, Z, 1),
 //   colour premultiplied (a·r, a·g, a·b, a), depth (d, 1).
@@ -88,7 +88,7 @@ class Camera {
 
   // Throws std::invalid_argument naming what is wrong (sizes, symmetry, non-finite entries).
   void validate() const;
-  // Replaces every Q_i by (Q_i + Q_iᵀ)/2: the same camera (DESIGN §1).
+  // Replaces every Q_i by (Q_i + Q_iᵀ)/2: the same camera (eq 10).
   void symmetrize();
 
   // z of one stage, eq 3 (homogeneous, undivided).

@@ -20,7 +20,7 @@ CompiledCamera::CompiledCamera(const Camera& camera) : layout_(camera.layout()) 
                      i < layout_.offsets[position] + layout_.blocks[position].size;
       for (int a = 0; a < n; ++a)
         for (int b = a; b < n; ++b) {
-          // x Q xᵀ counts an off-diagonal pair twice (DESIGN §1): merge it into one term.
+          // x Q xᵀ counts an off-diagonal pair twice (eq 10): merge it into one term.
           const double c = a == b ? q(a, a) : q(a, b) + q(b, a);
           if (c != 0.0) out.terms.push_back({a, b, c});
         }

@@ -1,4 +1,4 @@
-// Composition of cameras (DESIGN §1 "chain"; the paper's §5: a canonical view → table
+// Composition of cameras into one (the paper's §5: a canonical view → table
 // homography → reflection becomes one camera).
 //
 // compose(first, second) is the camera x ↦ second(first(x)). Pixels are the common currency
@@ -7,7 +7,7 @@
 //
 // What comes out, cheapest first:
 // - second is a homography A (position only, one stage): A mixes first's last-stage outputs,
-//   Q'_i = Σ_j A_ij Q_j (DESIGN §1, output side). Exact for any first camera.
+//   Q'_i = Σ_j A_ij Q_j (the output-side rule). Exact for any first camera.
 // - first is a homography H (position only, one stage): substituting x ← x Hᵀ gives the
 //   input-side rule Q_i ← H_row Q_i H_rowᵀ with H_row = Hᵀ. A projective H changes the
 //   position block's homogeneous weight, which cancels in eq 5 only because every output is

@@ -1,4 +1,4 @@
-// Frames and frame changes (DESIGN §1 "Frames and pixels").
+// Frames and frame changes (docs/architecture.md, "Frames and pixels").
 //
 // - Pixel centres are at i + 0.5; (0, 0) is the top-left corner of the top-left pixel, y down.
 // - The normalised frame of a w×h image: u_n = (u - w/2) / s, v_n = (v - h/2) / s,

@@ -1,5 +1,5 @@
 // The engine's image: interleaved float, LINEAR light, PREMULTIPLIED alpha when there is an
-// alpha channel (DESIGN §1: colour is linear inside the engine; alpha is the homogeneous
+// alpha channel (colour is linear inside the engine; alpha is the homogeneous
 // weight). Pixel (x, y) covers [x, x+1)×[y, y+1); its centre is (x + 0.5, y + 0.5).
 #pragma once
 

@@ -1,5 +1,5 @@
 // Typed, strided views of interleaved images, so the warp reads 8-bit, 16-bit and float pixels
-// where they lie instead of converting a whole photo to float first (issue 5, "pixel formats").
+// where they lie instead of converting a whole photo to float first (288 MB for 24 Mpix).
 //
 // Conventions (image.h): pixel (x, y) covers [x, x+1)×[y, y+1), its centre is (x + 0.5, y + 0.5);
 // 1 to 4 interleaved channels; colour PREMULTIPLIED by alpha when there is an alpha channel.

@@ -1,4 +1,4 @@
-// Piecewise cameras (DESIGN §1 "piecewise"; the paper's §5: refraction through a glass needed
+// Piecewise cameras (the paper's §5: refraction through a glass needed
 // 6 + 16 patches). One camera per rectangular patch of the SOURCE image, all stored in the
 // same normalised frames (the whole source and target sizes), so a patch is just a camera and
 // the rectangle of source pixels it answers for.

@@ -1,4 +1,4 @@
-// Memory for whole images (issue 5): zero-filled bytes, aligned to 2 MiB and, on Linux, advised
+// Memory for whole images: zero-filled bytes, aligned to 2 MiB and, on Linux, advised
 // to live on transparent huge pages before the first touch.
 //
 // Why: a warp reads its source along tilted, curved rows, so every output row touches a new

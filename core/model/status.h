@@ -1,6 +1,6 @@
 // Expected failures (a degenerate fit, an unreadable file) are values, not exceptions
-// (STYLE.md "Errors"): a Status carries one line a user can act on, naming the file, the place
-// (line, JSON path) and the cause. Broken contracts still throw.
+// (docs/architecture.md, "Errors"): a Status carries one line a user can act on, naming the
+// file, the place (line, JSON path) and the cause. Broken contracts still throw.
 #pragma once
 
 #include <optional>

@@ -1,9 +1,9 @@
 // Structure analysis: which blocks of each Q_i are zero, and what class the geometry is.
-// Run once per camera; renderers pick the cheapest exact kernel from it (DESIGN §3,
-// "skip what a scene doesn't need").
+// Run once per camera; renderers pick the cheapest exact kernel from it, so
+// a scene never pays for what its camera does not need.
 //
 // A position map is a homography exactly when every position tensor shares one linear factor:
-// Q_i = sym(l h_iᵀ) for a common l, so y_i = (x·h_i)/(x·h_n) (DESIGN §2). Affine, translation
+// Q_i = sym(l h_iᵀ) for a common l, so y_i = (x·h_i)/(x·h_n) (eq 1). Affine, translation
 // and identity are special homographies.
 #pragma once
 

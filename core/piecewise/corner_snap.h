@@ -1,5 +1,5 @@
-// Snapping a click to a calibration-grid corner (issue 8: "click the grid matches, with
-// automatic snapping to grid corners where the image has them").
+// Snapping a click to a calibration-grid corner (the grid matches are clicked, and
+// a click snaps to a grid corner where the image has one).
 //
 // A checkerboard's X-corner is a saddle of the image intensity: the Hessian of the smoothed
 // luminance has a strongly negative determinant there. The strongest saddle within the search

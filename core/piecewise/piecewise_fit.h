@@ -1,4 +1,4 @@
-// Fitting a piecewise camera (DESIGN §1, §2 "⊂ piecewise"; paper §5): split the region the
+// Fitting a piecewise camera (one step beyond the quadratic; paper §5): split the region the
 // matches cover into patches, fit one camera per patch, and subdivide a patch (quadtree) until
 // its max error is below a threshold in pixels.
 //

@@ -61,7 +61,7 @@ void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, dou
   out.attributes_valid = true;
   if (colour_ >= 0) {
     const double a = z[colour_ + 3];
-    // The colour's homogeneous weight is the output alpha (DESIGN §1); rgb = z_c / z_a is
+    // The colour's homogeneous weight is the output alpha (eq 5); rgb = z_c / z_a is
     // premultiplied again by the clamped alpha.
     const double alpha = std::min(a, 1.0);
     bool ok = a > 0.0 && std::isfinite(a);

@@ -252,7 +252,7 @@ struct CheckInputs {
 
 // The seed check (RationalKernel::check) for a whole span of starts in plain doubles without
 // branches, so it vectorises: q = start − δ, passed = 1 where the check accepts. SIMD by
-// runtime dispatch (issue 5): GCC clones the function for AVX2 and the x86-64 baseline and
+// runtime dispatch: GCC clones the function for AVX2 and the x86-64 baseline and
 // picks one when the program loads (ifunc); no -march flag anywhere, and the baseline clone
 // is the scalar fallback machines without AVX2 run; CoordinateOptions::scalar_only forces it
 // so the tests compare the two (no FMA in either, so they agree bit for bit).
@@ -316,8 +316,8 @@ constexpr int kGridPixels = kSpanPixels / 2;  // RationalKernel::kGrid
 }
 
 #if defined(__x86_64__)
-// A certified span (both cells) in float, eight lanes (issue 5: "float offsets relative to
-// the tile origin"). Re-anchored at the span's first pixel in double: with
+// A certified span (both cells) in float, eight lanes (float offsets relative to
+// the span's origin). Re-anchored at the span's first pixel in double: with
 // n_k(j) = c_k + j (b_k + j a_k) the seed's forms there (eq 3) and s₀ = (c_0, c_1) / c_2,
 //   seed(j) = s₀ + j (β + j α) / (1 + j (γ + j δ)),  β = (b − s₀ b_2) / c_2, α = (a − s₀ a_2) / c_2,
 // γ = b_2 / c_2, δ = a_2 / c_2, exactly; only the offset from s₀ (≤ 64 px plus the lens's
@@ -463,7 +463,7 @@ class RationalKernel final : public CoordinateKernel {
     double bx[kSpanPixels], by[kSpanPixels], qx[kSpanPixels], qy[kSpanPixels];
     unsigned char have[kSpanPixels], passed[kSpanPixels];
     if (!seed_q_.empty()) {
-      // Forward differences (DESIGN §3) in locals the compiler keeps in registers.
+      // Forward differences (two adds a pixel) in locals the compiler keeps in registers.
       const RowQuadratics seed_row(seed_q_, y, x0);
       double n0 = seed_row.numerator(0), n1 = seed_row.numerator(1), n2 = seed_row.numerator(2);
       double d0 = seed_row.delta(0), d1 = seed_row.delta(1), d2 = seed_row.delta(2);

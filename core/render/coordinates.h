@@ -1,12 +1,12 @@
-// Source positions for spans of output pixels: the coordinate half of the fused warp (issue 5).
+// Source positions for spans of output pixels: the coordinate half of the fused warp.
 // No per-pixel map is ever stored: the warp asks for one span of at most kSpanPixels output
 // pixels, samples it while the positions are in L1, and moves on.
 //
 // Conventions: pixel frames, centres at i + 0.5 (frames.h); positions come out in SOURCE
 // pixels as float (6000 px · 2⁻²⁴ ≈ 4e-4 px, ten times finer than the 1/256 px budget).
 //
-// Kernels, chosen once per camera from the structure analysis (DESIGN §3, "skip what a scene
-// does not need"):
+// Kernels, chosen once per camera from the structure analysis, so a scene
+// never pays for what its camera does not need:
 // - projective (identity, translation, affine, homography): the exact inverse homography,
 //   evaluated at each span's start and stepped by one column of it per pixel (i · step, not
 //   a running sum, so nothing drifts). Under AVX2 the span runs in float lanes re-anchored in

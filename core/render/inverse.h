@@ -1,8 +1,8 @@
-// Inverse position maps for the gather warp (DESIGN §3): for every output pixel centre
+// Inverse position maps for the gather warp: for every output pixel centre
 // (x + 0.5, y + 0.5) of a row, the source point in source pixels, or "no preimage".
 //
-// Conventions: pixel frames (centres at i + 0.5, rational_map.h). "No preimage" covers the
-// cases DESIGN §3 names: beyond the pole curve x Q_n xᵀ = 0 (a denominator whose sign differs
+// Conventions: pixel frames (centres at i + 0.5, rational_map.h). "No preimage" (transparent,
+// never NaN) covers: beyond the pole curve x Q_n xᵀ = 0 (a denominator whose sign differs
 // from its sign at the source frame centre), folded (Jacobian determinant sign differs from the
 // centre's), and, for the rational kernel, Newton failing or missing the pixel centre by more
 // than the residual tolerance. A point that maps fine but lies outside the source image IS a
@@ -27,7 +27,7 @@ class InverseMap {
   virtual void row(int y, int width, Eigen::Vector2d* source, unsigned char* valid) const = 0;
 };
 
-// Exact inverse of a homography (eq 1 with Q_i = sym(l h_iᵀ), DESIGN §2): invert the 3×3
+// Exact inverse of a homography (eq 1 with Q_i = sym(l h_iᵀ)): invert the 3×3
 // matrix once and walk each row by one vector add per pixel.
 // `target_from_source_px`: column form, pixels on both sides.
 std::unique_ptr<InverseMap> makeHomographyInverse(const Eigen::Matrix3d& target_from_source_px,
@@ -51,7 +51,7 @@ struct CentreReference {
 std::optional<CentreReference> centreReference(const RationalMap& forward, FrameSize source_px);
 
 // Damped Newton on forward(s) = t with the analytic Jacobian (rational_map.h); a solution must
-// lie on the source centre's side of every pole curve and in the centre's fold (DESIGN §3).
+// lie on the source centre's side of every pole curve and in the centre's fold.
 // Shared by the row inverse below and the fused kernel (coordinates.h), which calls it only
 // for the pixels its seed check rejects.
 class NewtonInverse {
@@ -79,7 +79,7 @@ class NewtonInverse {
   double escape_ = 0.0;
 };
 
-// The general kernel: the inverse of a rational map is not rational (DESIGN §3), so each pixel
+// The general kernel: the inverse of a rational map is not rational, so each pixel
 // is solved by damped Newton on forward(s) = t with the analytic Jacobian (rational_map.h).
 // Starts, in order: `seed` (an approximate inverse camera, output px → source px, evaluated
 // incrementally along the row; may be null), the previous pixel's solution on the row, and the

@@ -1,9 +1,9 @@
 // The approximate inverse camera that seeds the per-pixel Newton of the rational kernel
-// (DESIGN §3: "seed it with an inverse camera fitted to the forward map").
+// (an inverse camera fitted to the forward map).
 //
 // The forward map is sampled on a grid over the source frame; samples on the centre's side of
 // every pole curve and in the centre's fold become matches target → source (roles swapped),
-// and the fitting room fits a full quadratic camera to them (fit_image.h, DESIGN §2). The
+// and the fitting room fits a full quadratic camera to them (fit_image.h). The
 // inverse of a rational map is not rational, so this is only a start: Newton refines it and
 // the residual test decides.
 #pragma once

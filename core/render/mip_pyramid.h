@@ -1,4 +1,4 @@
-// A mip pyramid of a source photo for previews (issue 5, "preview path"): built once per photo,
+// A mip pyramid of a source photo for previews: built once per photo,
 // so a screen-sized preview of a 24-megapixel photo samples a level near its own resolution
 // instead of aliasing through (or supersampling) the full-size image.
 //
@@ -33,7 +33,7 @@ class MipPyramid {
   std::vector<ImageF> levels_;
 };
 
-// The 8-bit twin for interactive previews (issue 5, edit-to-preview): levels of the stored
+// The 8-bit twin for interactive previews: levels of the stored
 // (display-encoded) samples of an RGB or RGBA photo, each a 2×2 box average rounded to nearest
 // (premultiplied alpha averages correctly; averaging encoded values instead of linear light is
 // a preview's approximation). Level 0 is the caller's image, viewed, not copied: it must

@@ -19,7 +19,7 @@ RationalMap::RationalMap(const Camera& camera, FrameSize source_px, FrameSize ta
   // Row-vector input x_n = x_p N_colᵀ, so H_row = N_colᵀ (frames.h); outputs mix by P_col.
   changeInputFrame(c, p, normalizedFromPixelMatrix(source_px).transpose());
   changeOutputFrame(c, p, pixelFromNormalizedMatrix(target_px));
-  c.symmetrize();  // the gradient 2 Q x below assumes symmetric storage (DESIGN §1)
+  c.symmetrize();  // the gradient 2 Q x below assumes symmetric storage (eq 10)
   const int off = layout.offsets[p];
   for (const Stage& st : c.stages()) {
     std::vector<Eigen::Matrix3d> q;

@@ -1,10 +1,10 @@
-// The 2D position map of a camera in PIXEL frames, for renderers (DESIGN §3).
+// The 2D position map of a camera in PIXEL frames, for renderers.
 //
 // Conventions: pixel centres at i + 0.5 (frames.h). A camera stores its tensors in normalised
 // frames; here the first stage's input is re-expressed in source pixels and the last stage's
 // output in target pixels, so one stage computes, for x = (u, v, 1) a row vector,
 //   n_i = x Q_i xᵀ (eq 3, the position block only), y_i = n_i / n_3 (eq 1, 2).
-// A chain composes its stages (DESIGN §1); middle stages stay in normalised coordinates.
+// A chain composes its stages (one after the other); middle stages stay in normalised coordinates.
 //
 // Only the position block is read (its pp sub-blocks): callers check beforehand that the
 // geometry does not depend on colour or depth (CameraStructure::geometry_depends_on_attributes).
@@ -41,8 +41,8 @@ class RationalMap {
 };
 
 // Evaluates one rational stage along a row of pixel centres (x + 0.5, y + 0.5) by forward
-// differences: each quadratic form n(x) = a x² + b x + c advances with two adds per pixel
-// (DESIGN §3). The rounding error grows like (row length)² · ε, about 1e-8 relative on a
+// differences: each quadratic form n(x) = a x² + b x + c advances with two adds per pixel.
+// The rounding error grows like (row length)² · ε, about 1e-8 relative on a
 // 6000-pixel row: fine for seeds that Newton refines, not for final positions.
 class RowQuadratics {
  public:

@@ -1,4 +1,4 @@
-// Reconstruction filters for the gather warp (DESIGN §3).
+// Reconstruction filters for the gather warp.
 //
 // Conventions: pixel (i, j) covers [i, i+1)×[j, j+1) and its value sits at its centre
 // (i + 0.5, j + 0.5) (image.h, frames.h). A source point (sx, sy) in pixels is therefore read at

@@ -1,4 +1,4 @@
-// The sampling half of the fused warp (issue 5): reconstruct a span of output pixels from their
+// The sampling half of the fused warp: reconstruct a span of output pixels from their
 // source positions, reading 8-bit, 16-bit or float pixels in place (image_view.h).
 //
 // Semantics are those of sampling.h, for every pixel type: pixel centres at i + 0.5, taps
@@ -8,7 +8,7 @@
 // colours are clamped only when stored as integers (rounded to nearest). An output without an
 // alpha channel is the premultiplied colour, i.e. composited over black.
 //
-// Anti-aliasing (DESIGN §3, "supersampling where the map minifies"): with a supersampling
+// Anti-aliasing by supersampling where the map minifies: with a supersampling
 // factor n > 1, each output pixel averages n × n filter taps spread over its footprint in the
 // source, s + J · (δx, δy) for δ on an n × n grid in [−½, ½]², J = d source / d target.
 #pragma once

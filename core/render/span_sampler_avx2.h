@@ -1,4 +1,4 @@
-// AVX2 kernels of the 8-bit sampler (span_sampler.cpp only; issue 5, "SIMD where it pays").
+// AVX2 kernels of the 8-bit sampler (span_sampler.cpp only; SIMD where it pays).
 //
 // Runtime dispatch only: these functions carry __attribute__((target("avx2"))), the rest of the
 // program keeps the x86-64 baseline, and span_sampler.cpp picks them when the CPU reports AVX2
@@ -74,7 +74,7 @@ __attribute__((target("avx2"), always_inline)) inline Offsets8 toRegisters(__m25
            static_cast<std::uint64_t>(_mm_cvtsi128_si64(hi)), static_cast<std::uint64_t>(_mm_extract_epi64(hi, 1))}};
 }
 
-// Source rows ahead of the one being read (issue 5: the 8-bit samplers waited on memory for
+// Source rows ahead of the one being read (measured: the 8-bit samplers waited on memory for
 // about a third of their time). The warp walks each span down its band (warp.cpp), so the
 // rows this group of pixels reads now, plus kPrefetchRows, are what the same span reads about
 // kPrefetchRows output rows later (a magnification near 1; elsewhere a harmless miss): far

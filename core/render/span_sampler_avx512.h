@@ -1,5 +1,5 @@
-// AVX-512 (BW + VBMI) bilinear for 8-bit RGB (span_sampler.cpp only; issue 5, "SIMD where it
-// pays"). Runtime dispatch only, as span_sampler_avx2.h: these functions carry a target
+// AVX-512 (BW + VBMI) bilinear for 8-bit RGB (span_sampler.cpp only; SIMD where it
+// pays). Runtime dispatch only, as span_sampler_avx2.h: these functions carry a target
 // attribute, span_sampler.cpp picks them when the CPU reports avx512bw, avx512vl and
 // avx512vbmi, and they compute EXACTLY the scalar 8-bit interior integers (the same
 // float → fixed-point rounding without FMA, rows by 1/255, columns by 1/256, one rounding), so

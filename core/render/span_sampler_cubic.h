@@ -1,5 +1,5 @@
-// The interior of the 8-bit bicubic sampler (span_sampler.cpp only; issue 5, "SIMD where it
-// pays"): a pixel whose 4 × 4 taps are all inside the source, in float, rows first:
+// The interior of the 8-bit bicubic sampler (span_sampler.cpp only; SIMD where it
+// pays): a pixel whose 4 × 4 taps are all inside the source, in float, rows first:
 //   V_i = ((wy0 p0i + wy1 p1i) + wy2 p2i) + wy3 p3i   (tap column i, each channel),
 //   out = (wx0 V_0 + wx2 V_2) + (wx1 V_1 + wx3 V_3),
 // with sampling.h's Keys weights (a = −0.5) from cubicWeightsU8. The portable code and the

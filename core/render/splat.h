@@ -1,5 +1,6 @@
-// Forward (splat) rendering for ARTcams whose positions depend on colour or depth (DESIGN §3:
-// pc/cp coupling into the position outputs, e.g. the paper's eq 8/9 colour shift).
+// Forward (splat) rendering for ARTcams whose positions depend on colour or depth (pc/cp
+// coupling into the position outputs, e.g. the paper's eq 8/9 colour shift): the gather warp
+// cannot invert them.
 //
 // Reconstruction: the source pixel centres, mapped forward one by one with their own colour
 // and depth (eq 3, 5), are the vertices of a triangle mesh (two triangles per 2×2 block of

@@ -1,4 +1,4 @@
-// The fused gather warp (DESIGN §3, issue 5): pick the cheapest exact kernel once per camera
+// The fused gather warp: pick the cheapest exact kernel once per camera
 // from the structure analysis, then fill bands of output rows in parallel, one span of
 // kSpanPixels at a time: source positions (coordinates.h) straight into the sampler
 // (span_sampler.h), so no per-pixel map ever reaches memory.
@@ -65,7 +65,7 @@ void checkCamera(const Camera& camera, const CameraStructure& structure) {
   if (structure.geometry_depends_on_attributes)
     throw std::invalid_argument(
         "this camera's geometry depends on colour or depth (pc/cp coupling): the gather warp "
-        "cannot invert it; it needs the splat renderer (DESIGN §3)");
+        "cannot invert it; it needs the splat renderer");
   if (structure.attributes_change)
     throw std::invalid_argument(
         "this camera also transforms colour or depth; warpImage renders position maps only, the "

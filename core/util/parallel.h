@@ -1,4 +1,4 @@
-// Splitting a render into bands of rows over worker threads (DESIGN §3 "on all cores"), with a
+// Splitting a render into bands of rows over worker threads, so a render uses every core, with a
 // cancel hook polled between bands, after OpenImageIO's parallel_image + cancel callback.
 #pragma once
 

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Remakes the environment-matting samples (issue 8) and the README's before/after images with
+# Remakes the environment-matting samples and the README's before/after images with
 # the CLI: ray-traced photos, their calibration-grid matches, the emblem, and the insertions.
 # usage: resources/insertion/make_insertion.sh path/to/artcam   (run from the repository root;
 #        ImageMagick's convert joins the before/after pairs)

@@ -143,7 +143,7 @@ class TestCliEffects : public QObject {
     QVERIFY2(bad.err.contains("thin-lens"), qPrintable(bad.err));
   }
 
-  // Issue 6's names are the image presets (position block (u, v, 1), a photo frame); the
+  // The plain effect names are the image presets (position block (u, v, 1), a photo frame); the
   // paper's Fig 1 point-cloud versions end in -3d (position (X, Y, Z, 1), no frame). The radial
   // lenses also against their closed form u' = u/(1 − k r²) in the normalised frame.
   void issueNamesAreImagePresets() {

@@ -1,5 +1,5 @@
-// Progress and Ctrl-C for the long CLI jobs other than warp and batch (issue 9, "every long CLI
-// job shows progress and can be interrupted without leaving partial files"): render, insert,
+// Progress and Ctrl-C for the long CLI jobs other than warp and batch (every long CLI
+// job shows progress and can be interrupted without leaving partial files): render, insert,
 // sample and fit accept --quiet; with stderr not a terminal (a pipe, as here) they write no
 // bar, no carriage return and no escape sequence there; SIGINT exits 130 and leaves neither
 // the output nor a temporary, both in a stage without a core hook (sample's ray tracing: the

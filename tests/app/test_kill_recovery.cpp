@@ -1,4 +1,4 @@
-// Recovery after `artcam warp` is SIGKILLed mid-save (issue 9, "no lost work"): the file being
+// Recovery after `artcam warp` is SIGKILLed mid-save: the file being
 // replaced stays whole and unchanged, the killed writer's temporary is never taken for an
 // input or output, and the next save to that name removes it.
 #include "core/io/atomic_file.h"

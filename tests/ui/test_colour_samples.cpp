@@ -1,4 +1,4 @@
-// Colour calibration in the studio (issue 6 items 7 and 9): patches picked on two synthetic
+// Colour calibration in the studio: patches picked on two synthetic
 // photos whose colours differ by a known 3×3 matrix M (made in code), the fit run off the GUI
 // thread recovering M, undo/redo of every sample edit, the preview and the export showing the
 // colour block (checked against M applied by hand and an independent sRGB encoding), the

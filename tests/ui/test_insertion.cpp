@@ -1,4 +1,4 @@
-// Insertion mode (issue 8 item 4): the bundled ray-traced mirror-sphere sample opened through
+// Insertion mode: the bundled ray-traced mirror-sphere sample opened through
 // the panel's API; the piecewise fit arrives from the worker within the threshold with more
 // than one patch (residuals recomputed here against the sample's exact corner positions); the
 // preview equals a direct core renderPiecewise + compositeOver of the same camera; the region

@@ -1,4 +1,4 @@
-// The studio killed mid-edit (issue 9, "no lost work"): artcam-studio opens a photo, an
+// The studio killed mid-edit loses no work: artcam-studio opens a photo, an
 // undoable edit imports a camera with 20 matches (hidden test hook in app/studio_main.cpp),
 // the autosave runs on a short interval (ARTCAM_AUTOSAVE_INTERVAL_MS), and the process is
 // SIGKILLed. The recovery file must be there, load as a project with the photo and the 20

@@ -1,4 +1,4 @@
-// The colour dock's undo commands (STYLE: every edit a QUndoCommand storing old and new
+// The colour dock's undo commands (every edit a QUndoCommand storing old and new
 // values, never deltas, so undo restores the state bit-exactly):
 // - SetColourSamplesCommand: the whole ColourSampleState before and after (add, delete, move,
 //   enable, radius, reference photo); drags of one gesture merge into one step;

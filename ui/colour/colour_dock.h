@@ -1,4 +1,4 @@
-// The Colour dock (issue 6 items 7 and 9): colour calibration from patches picked on two
+// The Colour dock: colour calibration from patches picked on two
 // photos. Open a reference photo; click a patch on the source view (the document's photo)
 // and the matching patch on the reference view, in either order (a half pair waits in
 // yellow; Esc drops it); drag a square to move it; Del deletes the selected samples. The

@@ -1,4 +1,4 @@
-// Colour samples picked on two photos (issue 6 items 7 and 9): a patch of the SOURCE photo
+// Colour samples picked on two photos: a patch of the SOURCE photo
 // (the document's photo, the one the camera recolours) and the matching patch of a REFERENCE
 // photo (how that surface should look). A patch's colour is the mean over a square of side
 // 2·radius + 1 pixels centred on the pixel under the picked point, in LINEAR light

@@ -1,4 +1,4 @@
-// Putting a fitted colour block into a studio camera (issue 6 items 7 and 9; DESIGN §1).
+// Putting a fitted colour block into a studio camera (eq 6/7).
 //
 // The studio's geometry comes from point pairs (or a hand-made camera) and its colour from
 // colour samples; the camera the preview and the export render is both at once. A colour

@@ -1,4 +1,4 @@
-// The one undo command of Insertion mode (STYLE: every edit a QUndoCommand storing old and new
+// The one undo command of Insertion mode (every edit a QUndoCommand storing old and new
 // values, never deltas): the whole InsertionState before and after, so undo restores it
 // bit-exactly. A state is small (a few hundred matches, a shared graphic pointer).
 #pragma once

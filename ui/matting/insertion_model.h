@@ -1,4 +1,4 @@
-// The state of the studio's Insertion mode (issue 8 item 4; the paper's §5, Figs 7 and 8):
+// The state of the studio's Insertion mode (the paper's §5, Figs 7 and 8):
 // calibration-grid matches from the canonical board to the photo, the marked reflecting or
 // refracting region, the board's canonical size and squares, the fit's max error and the
 // graphic to insert. Panels and tools read it and change it only through

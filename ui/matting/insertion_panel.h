@@ -1,4 +1,4 @@
-// The Insertion dock panel (issue 8 item 4): the graphic to insert (loaded off the GUI
+// The Insertion dock panel: the graphic to insert (loaded off the GUI
 // thread), the board's canonical size and squares, grid matches imported from / exported to
 // CSV (`src_x,src_y,dst_x,dst_y`: board pixels → photo pixels, as `artcam sample` writes
 // them), the fit's max error, the error-map toggle, the board view that picks the corner the

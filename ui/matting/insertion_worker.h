@@ -72,7 +72,7 @@ class InsertionWorker : public QThread {
   void shutdown();
 
   // The same camera onto a target frame of another size (the preview copy of the photo):
-  // cameras live in normalised frames (DESIGN §1), so only the recorded sizes change.
+  // cameras live in normalised frames, so only the recorded sizes change.
   static PiecewiseCamera retarget(const PiecewiseCamera& camera, FrameSize target_size);
   // The preview a request gives for a camera (retargeted to the photo's size): the graphic rendered
   // through it, limited to the region, composited over the photo (a copy). Public so tests can

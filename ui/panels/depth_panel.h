@@ -1,4 +1,4 @@
-// The depth panel (issue 3 item 6): the list of depth planes (add, remove, rename, choose the
+// The depth panel: the list of depth planes (add, remove, rename, choose the
 // active one), the brush settings (radius, hardness) and the depth given to the next clicked
 // point, the active plane's three depth points (depth typed here), the plane's status, the
 // overlay switch and opacity, and the depth map file (load with scale / inverse, clear).

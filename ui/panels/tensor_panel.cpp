@@ -185,7 +185,7 @@ void TensorPanel::setEntry(int stage, int element, int row, int col, double valu
   if (row < 0 || col < 0 || row >= m.rows() || col >= m.cols()) return;
   if (m(row, col) == value && m(col, row) == value) return;
   m(row, col) = value;
-  m(col, row) = value;  // symmetric storage (DESIGN §1)
+  m(col, row) = value;  // symmetric storage (eq 10)
   document_->undoStack()->push(new SetCameraCommand(
       document_, std::move(cam),
       tr("Set Q%1(%2, %3) = %4").arg(element + 1).arg(row + 1).arg(col + 1).arg(value),

@@ -1,5 +1,5 @@
 // The tensor panel: every entry of every Q_i of the camera, one table per output element,
-// rows and columns labelled by block element (DESIGN §1: Q_i is symmetric N×N over the
+// rows and columns labelled by block element (Q_i is symmetric N×N over the
 // blocks of x). Typing an entry sets Q_i(r, c) and Q_i(c, r) — storage is symmetric — and
 // pushes one SetCameraCommand, which makes the camera "set by hand" until the user goes back
 // to the fitted one. Presets: identity, barrel, pincushion.

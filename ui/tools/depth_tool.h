@@ -1,4 +1,4 @@
-// The depth tool (issue 3 item 6), in one of four modes on the active depth layer:
+// The depth tool, in one of four modes on the active depth layer:
 // - Brush / Eraser: press and drag paints (erases) the layer's mask with the settings' radius
 //   and hardness; the stroke paints live and becomes ONE undo command on release.
 // - Polygon: each click adds a vertex; Enter or a click on the first vertex closes and fills it

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Renders issue 6's image effects on the bundled photo with the CLI (artcam preset + artcam warp).
+# Renders the image effects on the bundled photo with the CLI (artcam preset + artcam warp).
 # usage: resources/gallery/effects/make_effects_gallery.sh path/to/artcam   (from the repo root)
 # The depth of coffee.png is a stand-in made here with oiiotool: the table seen from above, a
 # plane in inverse depth, 1/d from 1/20 at the top row to 1 at the bottom row (depth 20 … 1).

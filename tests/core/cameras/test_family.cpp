@@ -162,7 +162,7 @@ class TestFamily : public QObject {
       const Eigen::Vector3d y = project(cam, w);
       QVERIFY(std::abs(y[0] - (2.5 * c.x() / c.z() + 0.2)) < 1e-12 * (1 + std::abs(y[0])));
       QVERIFY(std::abs(y[1] - (2.5 * c.y() / c.z() + 0.1)) < 1e-12 * (1 + std::abs(y[1])));
-      QVERIFY(std::abs(y[2] - 1.0 / c.z()) < 1e-12);  // inverse depth (DESIGN §1)
+      QVERIFY(std::abs(y[2] - 1.0 / c.z()) < 1e-12);  // inverse depth, for the z-buffer
     }
     // Behind the camera: nearness negative, so the renderer drops it.
     QVERIFY(project(cam, p.pose.worldFromCamera(Eigen::Vector3d(0.1, 0.2, -3)))[2] < 0);

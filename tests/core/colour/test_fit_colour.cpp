@@ -1,4 +1,4 @@
-// Colour calibration (issue 6 item 7): synthetic colour transforms recovered from samples
+// Colour calibration: synthetic colour transforms recovered from samples
 // (noise-free to round-off, noisy to what the noise allows), the ladder picking the simplest
 // adequate model, root-polynomial never stored, outliers rejected by the robust fit, refusals
 // with their cause, and the written camera evaluated through eq 3/5 (Camera::evaluate), an

@@ -1,4 +1,4 @@
-// Fitting image cameras (paper §4, DESIGN §2): exact recovery, the ladder, refusals.
+// Fitting image cameras (paper §4): exact recovery, the ladder, refusals.
 #include "core/fit/fit_image.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
@@ -121,7 +121,7 @@ class TestFitImage : public QObject {
     }
   }
 
-  // Points on one conic C leave Q_i + a_i C equally good (DESIGN §2).
+  // Points on one conic C leave Q_i + a_i C equally good, for any a_i.
   void pointsOnOneCircleAreRefusedForTheQuadratic() {
     const Camera truth = test::randomRationalCamera(kSrc, kDst, 0.15);
     std::vector<Eigen::Vector2d> circle;

@@ -1,9 +1,9 @@
-// Issue 4, "done when": on real-lens cases the default fit (algebraic DLT, LM refinement, pole
+// On real-lens cases the default fit (algebraic DLT, LM refinement, pole
 // retries) comes within a few percent of the best a rational quadratic can do for that lens.
 // "The best" is estimated independently of the default pipeline's start: LM from many starts
 // (the identity perturbed at three scales, the default result perturbed, the lifted
 // homography), keeping the lowest pole-free RMS. Lens models as lensfun documents them (poly3,
-// poly5, ptlens), both directions; the figures are printed for the closing note.
+// poly5, ptlens), both directions; the figures are printed.
 #include "core/fit/fit_image.h"
 #include "core/fit/poles.h"
 #include "core/fit/refine.h"

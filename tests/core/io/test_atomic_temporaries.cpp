@@ -1,4 +1,4 @@
-// The temporaries of atomic saves (issue 9, "no lost work"): removeLiveTemporaries (what the
+// The temporaries of atomic saves: removeLiveTemporaries (what the
 // CLI's SIGINT handler calls) unlinks a save in flight and leaves the target as it was, stale
 // temporaries of a process that is gone are removed by the next save to that name while a
 // live process's are kept, and isAtomicTemporaryName recognises exactly the writer's names.

@@ -75,7 +75,7 @@ class TestCamera : public QObject {
   }
 
   // Paper eq 8/9: y = (p1, p2)·(s·c1 + c4)/(p3·c4). pc stored symmetric: each coupling term
-  // is split between Q_pc and Q_cp, halving it, because x Q xᵀ counts both (DESIGN §1).
+  // is split between Q_pc and Q_cp, halving it, because x Q xᵀ counts both (eq 10).
   void colourDrivenShiftOfEq8And9() {
     const double s = 0.7;
     Camera cam = Camera::identity({kPos, kCol}, {64, 64}, {64, 64});
@@ -101,7 +101,8 @@ class TestCamera : public QObject {
     }
   }
 
-  // Composing with a homography (DESIGN §1): Q_i ← H Q_i Hᵀ equals applying x ← x H, then Q.
+  // Composing with a homography (the paper's §5, for row vectors): Q_i ← H Q_i Hᵀ equals
+  // applying x ← x H, then Q.
   void inputHomographyCompositionEqualsApplyingHThenQ() {
     const Camera cam = test::randomRationalCamera({64, 48}, {64, 48}, 0.2);
     Eigen::Matrix3d h_row = Eigen::Matrix3d::Identity();

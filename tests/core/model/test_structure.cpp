@@ -35,7 +35,7 @@ class TestStructure : public QObject {
              GeometryClass::Rational);
   }
 
-  // Q_i = sym(l h_iᵀ) is the same homography for any line l (DESIGN §2): found for all of them,
+  // Q_i = sym(l h_iᵀ) is the same homography for any line l (eq 1): found for all of them,
   // and the recovered matrix maps points like the original.
   void findsHomographyWithAnyCommonFactor() {
     Eigen::Matrix3d h;

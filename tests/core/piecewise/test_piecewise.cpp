@@ -1,4 +1,4 @@
-// Piecewise cameras against a ray-traced mirror sphere (issue 8 item 5): exact matches from the
+// Piecewise cameras against a ray-traced mirror sphere: exact matches from the
 // tracer, the quadtree fit must bring every match under the threshold, the seams must agree,
 // the mesh render of an inserted graphic must match the ray-traced image of it, and the
 // .artcam round trip must keep every patch.

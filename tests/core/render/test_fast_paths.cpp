@@ -1,4 +1,4 @@
-// The fast paths of issue 5 against independent answers:
+// The render's fast paths against independent answers:
 // - the AVX2 8-bit samplers (nearest and bilinear: span_sampler_avx2.h; bicubic:
 //   span_sampler_cubic.h) are bit-identical to the portable scalar code, borders, invalid
 //   pixels and alpha included;

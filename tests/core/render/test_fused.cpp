@@ -1,4 +1,4 @@
-// The fused warp (issue 5): forward differences re-anchored per span stay within 1e-6 px; every
+// The fused warp: forward differences re-anchored per span stay within 1e-6 px; every
 // kernel's source positions agree with the exact double-precision inverse to 1/256 px; the seed
 // check leaves Newton to few pixels; typed pixel formats agree with the float path; whole-pixel
 // translations copy; anti-aliasing averages a minified pattern; the mip pyramid picks a level.

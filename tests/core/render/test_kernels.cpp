@@ -1,4 +1,4 @@
-// The kernel ladder (DESIGN §3 "skip what a scene does not need"): every exact kernel agrees
+// The kernel ladder (the cheapest exact kernel per camera class): every exact kernel agrees
 // with the general rational path on the same camera; poles and folds give transparency, never
 // NaN, and the right sheet of the map where there is a choice (checked against closed forms).
 #include "core/model/frames.h"

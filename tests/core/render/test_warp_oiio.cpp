@@ -5,7 +5,7 @@
 // M is an Imath::M33f in ROW-vector convention mapping source to destination pixel
 // coordinates; each destination pixel centre (x + 0.5, y + 0.5) goes through M⁻¹ to (s, t), and
 // source pixel i is weighted by filter(i + 0.5 − s) — so pixel centres are at i + 0.5 on both
-// sides, as in DESIGN §1. The weights are divided by their sum taken over ALL taps, including
+// sides, as in the engine. The weights are divided by their sum taken over ALL taps, including
 // the ones outside the image that read black (WrapBlack), so borders fade like ours. The
 // footprint is scaled by max(1, |ds/dx|, |ds/dy|): with a map that magnifies everywhere the
 // "triangle" filter of width 2 is exactly bilinear interpolation, which is what is compared.
