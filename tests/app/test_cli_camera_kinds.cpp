@@ -295,6 +295,48 @@ class TestCliCameraKinds : public QObject {
     QVERIFY(!QFile::exists(path("never.artcam")));
   }
 
+  void outputFrameAndChannels() {
+    // The sample camera (600×400) on a 451×300 photo keeps the photo's size exactly.
+    ImageF small(451, 300, 3);
+    std::fill(small.data.begin(), small.data.end(), 0.5f);
+    QVERIFY(writeImage(path("small.png").toStdString(), small).ok);
+    auto run = artcamCli({"warp", path("small.png"), path("single.artcam"), "-o", path("small-out.png")});
+    QVERIFY2(run.exit_code == 0, qPrintable(run.err));
+    auto out = readImage(path("small-out.png").toStdString());
+    QVERIFY(out.ok());
+    QCOMPARE(out->image.width, 451);
+    QCOMPARE(out->image.height, 300);
+    QVERIFY(!run.err.contains("warning"));
+    // A portrait photo through the landscape camera: warned, naming both sizes.
+    ImageF portrait(300, 451, 3);
+    QVERIFY(writeImage(path("portrait.png").toStdString(), portrait).ok);
+    run = artcamCli({"warp", path("portrait.png"), path("single.artcam"), "-o", path("p-out.png")});
+    QCOMPARE(run.exit_code, 0);
+    QVERIFY2(run.err.contains("warning") && run.err.contains("300x451") && run.err.contains("600x400"),
+             qPrintable(run.err));
+    // A zoom by 1.1 leaves no pixel without a preimage: an RGB photo stays RGB (no alpha added);
+    // a strong barrel leaves the corners without a preimage, so there alpha is added.
+    Camera zoom = Camera::identity({Block{BlockKind::Position, 3}}, {kW, kH}, {kW, kH});
+    zoom.stages()[0].q[0] *= 1.1;
+    zoom.stages()[0].q[1] *= 1.1;
+    QVERIFY(writeArtcam(path("zoom.artcam").toStdString(), Artcam(zoom)).ok);
+    ImageF photo(kW, kH, 3);
+    std::fill(photo.data.begin(), photo.data.end(), 0.5f);
+    QVERIFY(writeImage(path("rgb.png").toStdString(), photo).ok);
+    QCOMPARE(artcamCli({"warp", path("rgb.png"), path("zoom.artcam"), "-o", path("zoomed.png")}).exit_code, 0);
+    out = readImage(path("zoomed.png").toStdString());
+    QVERIFY(out.ok());
+    QCOMPARE(out->image.channels, 3);
+    QCOMPARE(artcamCli({"preset", "barrel", "--k", "-0.3", "--size", "600,400", "-o",
+                        path("barrel.artcam")})
+                 .exit_code,
+             0);
+    QCOMPARE(artcamCli({"warp", path("rgb.png"), path("barrel.artcam"), "-o", path("lens.png")}).exit_code, 0);
+    out = readImage(path("lens.png").toStdString());
+    QVERIFY(out.ok());
+    QCOMPARE(out->image.channels, 4);
+  }
+
   void mapRefusesWhatItCannotSay() {
     // colour-shift moves each layer by its colour (eq 8/9): where a point goes depends on it.
     QCOMPARE(artcamCli({"preset", "colour-shift", "--size", "600,400", "-o", path("cs.artcam")})
