@@ -1,7 +1,7 @@
 #include "app/cli/warp_attributed.h"
 
 #include "app/cli/commands.h"
-#include "core/effects/effect_presets.h"
+#include "core/effects/render_effect.h"
 #include "core/io/depth_file.h"
 #include "core/model/structure.h"
 #include "core/render/attributed.h"
@@ -38,11 +38,13 @@ int warpAttributed(const ArtcamEffectFile& file, const LoadedImage& image,
   options.threads = request.warp.threads;
   AttributedSummary summary;
   AttributedImage out;
-  EffectSetup setup{file.allLayers(), file.extras.depth_output};
+  Artcam camera;
+  camera.layers = file.allLayers();
+  camera.depth_output = depthOutputFromName(file.extras.depth_output).value_or(DepthOutput::Depth);
   const auto start = std::chrono::steady_clock::now();
   try {
-    // Layers summed; depth of field blurs by the σ² its depth output gives (effect_presets.h).
-    out = renderEffect(image.image, depth ? &*depth : nullptr, setup, options, &summary);
+    // Layers summed; depth of field blurs by the σ² its depth output gives (render_effect.h).
+    out = renderEffect(image.image, depth ? &*depth : nullptr, camera, options, &summary);
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("cannot render: ") + e.what());
   }
