@@ -1,19 +1,18 @@
 // artcam preset: cameras made from a few numbers (the paper's Fig 1 set by "explicitly setting
 // numbers"), and the project's sample clouds.
 //
-// Adding a preset is one line in kPresets: its name, a summary, its parameters as
+// Adding a view or 3D preset is one line in kPresets: its name, a summary, its parameters as
 // "name=default …" (numbers, or comma-separated vectors), and a function from the parsed
-// parameters to a Camera. Image-space (2D) presets fit the same table.
+// parameters to a Camera. The image effects are core's table (effects/effect_table.h): their
+// options, ranges, listing and help pages are made from its rows, and their cameras by its
+// builders.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "core/cameras/effects_3d.h"
 #include "core/cameras/glc.h"
 #include "core/cameras/projective_cameras.h"
 #include "core/cloud/sample_clouds.h"
-#include "core/effects/aerial.h"
-#include "core/effects/chromatic.h"
-#include "core/effects/depth_of_field.h"
-#include "core/effects/image_warps.h"
+#include "core/effects/effect_table.h"
 #include "core/io/artcam_file.h"
 #include "core/io/ply.h"
 
@@ -174,64 +173,29 @@ const Preset kPresets[] = {
      "red=0.06 green=0 blue=-0.06 centre=0,0,0", chromaticAberration},
 };
 
-// Image-space (2D) cameras over [position 3 (| colour 4) (| depth 2)], stored in the normalised
-// frame of a size×size image; layered ones (chromatic aberration, the paper's Fig 4) and depth
-// of field use the .artcam extras (artcam_file.h). They have the plain effect names (issue 6's
-// `artcam preset NAME`, the studio's effects panel: effect_presets.h); the point-cloud versions
-// of the paper's Fig 1 end in "-3d".
-FrameSize frameOf(const Params& p) {
-  const std::vector<double>& v = p.list("size");
-  if (v.size() != 2 || !(v[0] >= 1) || !(v[1] >= 1) || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]))
-    throw UsageError("--size expects W,H in whole pixels");
-  return {static_cast<int>(v[0]), static_cast<int>(v[1])};
-}
-std::array<double, 3> rgb(const Params& p, const char* r, const char* g, const char* b) {
-  return {p.number(r), p.number(g), p.number(b)};
-}
-struct ImageCamera {
-  std::vector<Camera> layers;
-  std::string depth_output = "depth";
-};
-ImageCamera radial2d(const Params& p) { return {{radialLensCamera(p.number("k"), frameOf(p))}}; }
-ImageCamera twist2d(const Params& p) { return {{twistCamera(p.number("rate"), frameOf(p))}}; }
-ImageCamera inversePerspective2d(const Params& p) {
-  return {{inversePerspectiveCamera(p.number("gain"), frameOf(p))}};
-}
-ImageCamera rgbShift2d(const Params& p) {
-  return {rgbShiftLayers({rgb(p, "red", "green", "blue"), rgb(p, "red-dx", "green-dx", "blue-dx"),
-                          rgb(p, "red-dy", "green-dy", "blue-dy")},
-                         frameOf(p), frameOf(p))};
-}
-ImageCamera colourShift2d(const Params& p) {
-  return {colourShiftLayers({rgb(p, "s-red", "s-green", "s-blue")}, frameOf(p), frameOf(p))};
-}
-ImageCamera aerial2d(const Params& p) {
-  return {{aerialPerspectiveCamera({p.vec3("haze"), p.number("strength"), p.number("near"), p.number("far")},
-                                   frameOf(p), frameOf(p))}};
-}
-ImageCamera depthOfField2d(const Params& p) {
-  return {{depthOfFieldCamera({p.number("focus"), p.number("blur"), p.number("thin-lens")},
-                              frameOf(p), frameOf(p))},
-          "blur-variance"};
+// Image effects (effect_table.h): 2D cameras over [position 3 (| colour 4) (| depth 2)] in the
+// normalised frame of the photo's size (--size); the point-cloud versions of the paper's Fig 1
+// end in "-3d".
+constexpr const char* kDefaultEffectSize = "600x400";
+
+// --size WxH; "W,H" is still accepted (the form this command took first).
+FrameSize effectFrame(std::string text) {
+  if (const size_t comma = text.find(','); comma != std::string::npos) text[comma] = 'x';
+  return parseSize(text, "--size");
 }
 
-struct ImagePreset {
-  const char* name;
-  const char* summary;
-  const char* params;
-  ImageCamera (*build)(const Params&);
-};
+std::string effectSummary(const EffectSpec& effect) {
+  return "2D: " + effect.summary + (effect.needs_depth ? " (needs --depth)" : "");
+}
 
-const ImagePreset kImagePresets[] = {
-    {"barrel", "2D: radial lens u' = u/(1 - k r^2), k < 0 barrel", "k=-0.15 size=600,400", radial2d},
-    {"pincushion", "2D: radial lens u' = u/(1 - k r^2), k > 0 pincushion", "k=0.15 size=600,400", radial2d},
-    {"twist", "2D: each row turns by atan(rate·v): v' = v + rate·u·v", "rate=0.3 size=600,400", twist2d},
-    {"inverse-perspective", "2D: far (upper) rows magnify: p' = p/(1 + gain·v)", "gain=0.35 size=600,400", inversePerspective2d},
-    {"chromatic-aberration", "2D (Fig 4 middle): three RTcams scale/shift R, G, B", "red=0.006 green=0 blue=-0.006 red-dx=0 green-dx=0 blue-dx=0 red-dy=0 green-dy=0 blue-dy=0 size=600,400", rgbShift2d},
-    {"colour-shift", "2D (Fig 4 right, eq 8/9): each layer moves by its colour, p(1 + s_k c_k)", "s-red=0.05 s-green=0 s-blue=-0.03 size=600,400", colourShift2d},
-    {"aerial-perspective", "2D (§3): contrast falls with log depth towards haze (needs --depth)", "haze=0.62,0.72,0.86 strength=0.7 near=1 far=100 size=600,400", aerial2d},
-    {"depth-of-field", "2D (§3): Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)); thin-lens 1: /d (thin lens), 0: /focus (linear) (needs --depth)", "focus=2 blur=0.01 thin-lens=1 size=600,400", depthOfField2d},
-};
+// "k=-0.15 [-1 … 0]" for each parameter, then the frame.
+std::vector<std::string> effectParamWords(const EffectSpec& effect) {
+  std::vector<std::string> words;
+  for (const EffectParam& p : effect.params)
+    words.push_back(p.name + "=" + defaultText(p) + " [" + rangeText(p) + "]");
+  words.push_back(std::string("size=") + kDefaultEffectSize);
+  return words;
+}
 
 struct CloudPreset {
   const char* name;
@@ -264,17 +228,36 @@ std::vector<std::pair<std::string, std::string>> defaults(const char* spec) {
   return out;
 }
 
+// Words joined into lines indented under the name column, at most ~96 columns wide.
+std::string wrapped(const std::vector<std::string>& words) {
+  const std::string indent(26, ' ');
+  std::string s, line;
+  for (const std::string& w : words) {
+    if (!line.empty() && line.size() + 1 + w.size() > 70) {
+      s += indent + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  return line.empty() ? s : s + indent + line + "\n";
+}
+
 std::string listing() {
   std::string s;
-  const auto add = [&](const char* name, const char* summary, const char* params) {
+  const auto add = [&](const std::string& name, const std::string& summary,
+                       const std::vector<std::string>& params) {
     char line[512];
-    std::snprintf(line, sizeof line, "  %-21s %s\n", name, summary);
-    s += line;
-    if (*params) s += std::string("  ") + std::string(23, ' ') + params + "\n";
+    std::snprintf(line, sizeof line, "  %-23s %s\n", name.c_str(), summary.c_str());
+    s += line + wrapped(params);
   };
-  for (const Preset& p : kPresets) add(p.name, p.summary, p.params);
-  for (const ImagePreset& p : kImagePresets) add(p.name, p.summary, p.params);
-  for (const CloudPreset& p : kCloudPresets) add(p.name, p.summary, p.params);
+  const auto words = [](const char* params) {
+    std::vector<std::string> out;
+    for (const auto& [name, value] : defaults(params)) out.push_back(name + "=" + value);
+    return out;
+  };
+  for (const Preset& p : kPresets) add(p.name, p.summary, words(p.params));
+  for (const EffectSpec& e : effectSpecs()) add(e.name, effectSummary(e), effectParamWords(e));
+  for (const CloudPreset& p : kCloudPresets) add(p.name, p.summary, words(p.params));
   return s;
 }
 
@@ -298,6 +281,37 @@ Params parseParams(const char* spec, const std::vector<std::string>& argv, std::
   return Params(std::move(values));
 }
 
+// `artcam preset EFFECT [--PARAM VALUE …] [--size WxH] -o OUT` for a row of the effects table.
+int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) {
+  std::vector<OptionSpec> specs = {{"--output", "-o", true}, {"--size", "", true}};
+  for (const EffectParam& p : effect.params) specs.push_back({"--" + p.name, "", true});
+  const Args args(argv, specs);
+  args.expectPositional(1, "NAME");
+  const auto output = args.value("--output");
+  if (!output) throw UsageError("missing -o OUT");
+  const std::string size = args.valueOr("--size", kDefaultEffectSize);
+  const FrameSize frame = effectFrame(size);
+  EffectValues values;
+  std::string summary;
+  for (const EffectParam& p : effect.params) {
+    const std::string text = args.valueOr("--" + p.name, defaultText(p));
+    values[p.name] = parseNumbers(text, p.name);
+    if (const std::string problem = checkEffectValue(p, values[p.name]); !problem.empty())
+      throw UsageError("--" + problem);
+    summary += p.name + "=" + text + " ";
+  }
+  Artcam camera;
+  try {
+    camera = buildEffect(effect.name, values, frame);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError("preset " + effect.name + ": " + e.what());
+  }
+  if (const Status s = writeArtcam(*output, camera); !s) throw CommandError(s.message);
+  std::printf("wrote %s (%s: %ssize=%s)\n", output->c_str(), effect.name.c_str(), summary.c_str(),
+              size.c_str());
+  return 0;
+}
+
 }  // namespace
 
 // A literal: the dispatcher's command table reads it during static initialisation.
@@ -310,15 +324,37 @@ const char* const kPresetUsage =
     "image side spans [-1, 1], v down); use them with artcam render --view. 3D cameras (identity,\n"
     "twist-3d, pincushion-3d, inverse-perspective-3d, colour-scale, chromatic-aberration-3d) move\n"
     "points and colours before the view. cube-of-cubes writes the sample cloud of the paper's\n"
-    "Fig 1. Image cameras (barrel, pincushion, twist, inverse-perspective, chromatic-aberration,\n"
-    "colour-shift, aerial-perspective, depth-of-field) apply to photos with artcam warp (the\n"
-    "last two need --depth FILE); --size W,H is the photo's size.\n"
+    "Fig 1. Image effects (artcam preset --help lists them with their parameters) apply to\n"
+    "photos with artcam warp (those marked \"needs --depth\" with --depth FILE); --size WxH is\n"
+    "the photo's size (default 600x400; W,H also accepted).\n"
     "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
-    "its parameters and defaults; every parameter is optional. -o/--output names OUT (required).\n\n"
+    "its parameters and defaults; every parameter is optional, and an image effect's parameter\n"
+    "outside its range is refused. -o/--output names OUT (required).\n\n"
     "Examples:\n"
     "  artcam preset list\n"
-    "  artcam preset barrel --k -0.2 --size 6000,4000 -o barrel.artcam\n"
+    "  artcam preset barrel --k -0.2 --size 6000x4000 -o barrel.artcam\n"
+    "  artcam preset aerial-perspective --haze 0.6,0.7,0.9 --far 50 -o haze.artcam\n"
     "  artcam preset pinhole --eye 3,2,-4 -o view.artcam\n";
+
+// The usage above, then every image effect of the table with its parameters: type, range,
+// default and meaning ("norm": normalised units, 1 = half the larger image side).
+std::string presetHelp() {
+  std::string s = kPresetUsage;
+  s += "\nImage effects (--PARAM VALUE, ranges inclusive; norm = normalised units, 1 = half the\n"
+       "larger image side; depth units = those of the --depth file given to artcam warp):\n";
+  for (const EffectSpec& e : effectSpecs()) {
+    s += "  " + e.name + "  " + e.summary + (e.needs_depth ? " (needs --depth)" : "") + "\n";
+    for (const EffectParam& p : e.params) {
+      std::string value = "N";
+      for (int i = 1; i < p.size(); ++i) value += ",N";
+      char line[512];
+      std::snprintf(line, sizeof line, "      --%-10s %-6s %s; %s, default %s\n", p.name.c_str(),
+                    value.c_str(), p.meaning.c_str(), rangeText(p).c_str(), defaultText(p).c_str());
+      s += line;
+    }
+  }
+  return s;
+}
 
 int presetCommand(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0].starts_with("-")) throw UsageError("missing NAME");
@@ -344,22 +380,7 @@ int presetCommand(const std::vector<std::string>& argv) {
       std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
     return 0;
   }
-  for (const ImagePreset& p : kImagePresets) {
-    if (name != p.name) continue;
-    const Params params = parseParams(p.params, argv, output, summary);
-    ImageCamera made;
-    try {
-      made = p.build(params);
-    } catch (const std::invalid_argument& e) {
-      throw CommandError(std::string("preset ") + p.name + ": " + e.what());
-    }
-    Artcam doc;
-    doc.layers = made.layers;
-    doc.depth_output = *depthOutputFromName(made.depth_output);
-    if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
-    std::printf("wrote %s (%s: %s)\n", output.c_str(), p.name, summary.c_str());
-    return 0;
-  }
+  if (const EffectSpec* effect = findEffect(name)) return writeEffect(*effect, argv);
   for (const CloudPreset& p : kCloudPresets) {
     if (name != p.name) continue;
     const Params params = parseParams(p.params, argv, output, summary);

@@ -43,6 +43,8 @@ extern const char* const kBenchUsage;
 extern const char* const kBenchEffectsUsage;
 extern const char* const kRenderUsage;
 extern const char* const kPresetUsage;
+// kPresetUsage followed by the image effects of core's table (effects/effect_table.h).
+std::string presetHelp();
 extern const char* const kComposeUsage;
 extern const char* const kInsertUsage;
 extern const char* const kSampleUsage;

@@ -60,7 +60,9 @@ int run(int argc, char** argv) {
       if (a == "--help" || a == "-h") {
         // `bench effects` has its own page; `bench` and `bench fit` share the bench page.
         const bool effects = std::string_view(c.name) == "bench" && rest.front() == "effects";
-        std::printf("%s", effects ? kBenchEffectsUsage : c.usage);
+        // `preset`'s page lists the effects table, so it is made, not a literal.
+        const bool preset = std::string_view(c.name) == "preset";
+        std::printf("%s", effects ? kBenchEffectsUsage : preset ? presetHelp().c_str() : c.usage);
         return 0;
       }
     // Ctrl-C/kill never leave a partial file (interrupt.h).

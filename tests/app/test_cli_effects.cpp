@@ -112,9 +112,32 @@ class TestCliEffects : public QObject {
     QCOMPARE(r.exit_code, 1);
     QVERIFY2(r.err.contains("--depth"), qPrintable(r.err));
     QVERIFY(!QFile::exists(dir.filePath("ap.png")));
-    r = artcamCli({"preset", "barrel", "--k", "0.9", "-o", dir.filePath("b.artcam")});
+  }
+
+  // A value outside the table's range is a usage error (exit 2) whose first line names the
+  // option and the range; a value the camera refuses (near ≥ far) is a command error (exit 1).
+  // Neither writes a file.
+  void outOfRangeValuesAreRefused() {
+    QTemporaryDir dir;
+    const QString out = dir.filePath("b.artcam");
+    Run r = artcamCli({"preset", "barrel", "--k", "0.9", "-o", out});
+    QCOMPARE(r.exit_code, 2);
+    QVERIFY2(r.err.section('\n', 0, 0).contains("--k = 0.9 is outside its range -1 … 0"), qPrintable(r.err));
+    r = artcamCli({"preset", "aerial-perspective", "--haze", "0.5,1.5,0.5", "-o", out});
+    QCOMPARE(r.exit_code, 2);
+    QVERIFY2(r.err.section('\n', 0, 0).contains("--haze = 1.5 is outside its range 0 … 1"), qPrintable(r.err));
+    r = artcamCli({"preset", "aerial-perspective", "--haze", "0.5,0.5", "-o", out});
+    QCOMPARE(r.exit_code, 2);
+    QVERIFY2(r.err.contains("--haze expects 3 comma-separated numbers"), qPrintable(r.err));
+    r = artcamCli({"preset", "aerial-perspective", "--near", "50", "--far", "10", "-o", out});
     QCOMPARE(r.exit_code, 1);
-    QVERIFY2(r.err.contains("pole"), qPrintable(r.err));
+    QVERIFY2(r.err.contains("near"), qPrintable(r.err));
+    QVERIFY(!QFile::exists(out));
+    // The ends of a range are inside it, and the frame may be given as WxH or W,H.
+    r = artcamCli({"preset", "pincushion", "--k", "0.45", "--size", "300,300", "-o", out});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"preset", "inverse-perspective", "--gain", "-0.85", "--size", "200x400", "-o", out});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
   }
 
   // --thin-lens picks the depth-of-field stage (depth_of_field.h): the written camera's σ² at a
@@ -139,7 +162,7 @@ class TestCliEffects : public QObject {
       }
     }
     const Run bad = artcamCli({"preset", "depth-of-field", "--thin-lens", "2", "-o", dir.filePath("bad.artcam")});
-    QCOMPARE(bad.exit_code, 1);
+    QCOMPARE(bad.exit_code, 2);  // outside the table's range 0 … 1
     QVERIFY2(bad.err.contains("thin-lens"), qPrintable(bad.err));
   }
 

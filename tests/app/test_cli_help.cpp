@@ -4,6 +4,7 @@
 // under test) but read from the sources: the command table in app/cli/dispatch.cpp and the
 // OptionSpec lists ({"--name", "-x", takes_value}) in app/cli/cmd_<command>*.cpp, so an option
 // added to a parser without documentation fails here.
+#include "core/effects/effect_table.h"
 #include "tests/app/cli_run.h"
 
 #include <QtTest/QtTest>
@@ -153,6 +154,44 @@ class TestCliHelp : public QObject {
         if (!mentionsOption(man, option)) missing << option + " of " + page.source;
     QVERIFY2(missing.isEmpty(),
              qPrintable("docs/man/artcam.1 does not mention " + missing.join(", ")));
+  }
+
+  // The image effects are core's table (effect_table.h), not OptionSpec literals: every effect
+  // and each of its parameters must be on `artcam preset --help`, in artcam.1, and (names) in
+  // `artcam preset list` beside the view and 3D presets, which keep their own table.
+  void presetPagesListEveryTableEffect() {
+    const artcam::test::CliRun help = artcamCli({"preset", "--help"});
+    QCOMPARE(help.exit_code, 0);
+    const artcam::test::CliRun list = artcamCli({"preset", "list"});
+    QCOMPARE(list.exit_code, 0);
+    const QString man = manPageText();
+    const auto listed = [](const QString& text, const QString& name) {
+      return text.contains(QRegularExpression(QStringLiteral("(^|\\n)  ") +
+                                              QRegularExpression::escape(name) + QStringLiteral(" ")));
+    };
+    QVERIFY(artcam::effectSpecs().size() >= 8);
+    QStringList problems;
+    for (const artcam::EffectSpec& effect : artcam::effectSpecs()) {
+      const QString name = QString::fromStdString(effect.name);
+      if (!listed(help.out, name)) problems << name + " not on preset --help";
+      if (!listed(list.out, name)) problems << name + " not in preset list";
+      if (!man.contains(QStringLiteral(".B ") + name + '\n')) problems << name + " not in artcam.1";
+      for (const artcam::EffectParam& p : effect.params) {
+        const QString option = QStringLiteral("--") + QString::fromStdString(p.name);
+        // On the help page, on the effect's own rows (after its name, before the next effect).
+        const qsizetype at = help.out.indexOf(QStringLiteral("\n  ") + name + ' ');
+        const QString rows = help.out.mid(at, help.out.indexOf(QRegularExpression("\n  [a-z]"), at + 1) - at);
+        if (!mentionsOption(rows, option)) problems << option + " of " + name + " not on preset --help";
+        const qsizetype man_at = man.indexOf(QStringLiteral(".B ") + name + '\n');
+        const QString man_rows = man.mid(man_at, man.indexOf(QStringLiteral("\n.B "), man_at + 1) - man_at);
+        if (!mentionsOption(man_rows, option)) problems << option + " of " + name + " not in artcam.1";
+        if (!rows.contains(QString::fromStdString(artcam::rangeText(p))))
+          problems << option + " of " + name + ": range not on preset --help";
+      }
+    }
+    for (const char* other : {"pinhole", "xslit", "twist-3d", "chromatic-aberration-3d", "cube-of-cubes"})
+      if (!listed(list.out, QString::fromUtf8(other))) problems << QString(other) + " not in preset list";
+    QVERIFY2(problems.isEmpty(), qPrintable(problems.join('\n')));
   }
 };
 

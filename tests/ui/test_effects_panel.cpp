@@ -1,6 +1,7 @@
 // The effects panel: every parameter change renders off the GUI thread, the newest request
 // wins, and what it shows equals a direct render of the same effect on the same thumbnail.
-#include "core/effects/effect_presets.h"
+#include "core/effects/effect_table.h"
+#include "core/pipeline/render.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/depth_commands.h"
 #include "ui/depth_model.h"
@@ -46,8 +47,8 @@ class TestEffectsPanel : public QObject {
 
     const ImageF thumb = boxDownscale(doc.photo()->preview, 384);
     const FrameSize frame{thumb.width, thumb.height};
-    const EffectSetup setup = buildEffect("colour-shift", panel.parameters(), frame);
-    const QImage expected = qimageFromLinear(renderEffect(thumb, nullptr, setup).colour);
+    const Artcam camera = buildEffect("colour-shift", panel.parameters(), frame);
+    const QImage expected = qimageFromLinear(render(RenderInputs::of(thumb), camera));
     QCOMPARE(panel.preview().size(), expected.size());
     QVERIFY(panel.preview() == expected);
   }
@@ -60,18 +61,18 @@ class TestEffectsPanel : public QObject {
     EffectsPanel panel(&doc);
     panel.setEffect("depth-of-field");
     QVERIFY(panel.parameters().count("thin-lens"));
-    QCOMPARE(panel.parameters().at("thin-lens"), 1.0);  // the thin lens by default
+    QCOMPARE(panel.parameters().at("thin-lens"), std::vector<double>{1.0});  // the thin lens by default
     QVERIFY(panel.setParameter("thin-lens", 0.0));
     QVERIFY(panel.setParameter("focus", 3.0));
     QVERIFY(panel.setParameter("blur", 0.02));
     QVERIFY(waitForGeneration(panel, panel.requestedGeneration()));
-    const EffectSetup setup = buildEffect("depth-of-field", panel.parameters(), {64, 48});
-    QCOMPARE(setup.depth_output, std::string("blur-variance"));
+    const Artcam camera = buildEffect("depth-of-field", panel.parameters(), {64, 48});
+    QVERIFY(camera.depth_output == DepthOutput::BlurVariance);
     for (const double d : {0.5, 3.0, 9.0}) {
       Eigen::VectorXd x(9);
       x << 0.0, 0.0, 1, 0.5, 0.5, 0.5, 1, d, 1;
       const double expected = 0.02 * 0.02 * (d - 3.0) * (d - 3.0) / 9.0;
-      QVERIFY(std::abs(setup.layers.front().evaluate(x)[7] - expected) < 1e-12);
+      QVERIFY(std::abs(camera.main().evaluate(x)[7] - expected) < 1e-12);
     }
   }
 

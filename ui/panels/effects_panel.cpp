@@ -1,11 +1,13 @@
 #include "ui/panels/effects_panel.h"
 
+#include "core/pipeline/render.h"
 #include "ui/document.h"
 #include "ui/image_convert.h"
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QMetaObject>
 #include <QTimer>
@@ -72,15 +74,20 @@ QString EffectsPanel::effect() const { return effect_box_->currentText(); }
 void EffectsPanel::setEffect(const QString& name) { effect_box_->setCurrentText(name); }
 
 bool EffectsPanel::setParameter(const QString& name, double value) {
+  return setParameter(name, std::vector<double>{value});
+}
+
+bool EffectsPanel::setParameter(const QString& name, const std::vector<double>& value) {
   const auto it = spins_.find(name.toStdString());
-  if (it == spins_.end()) return false;
-  it->second->setValue(value);
+  if (it == spins_.end() || it->second.size() != value.size()) return false;
+  for (size_t i = 0; i < value.size(); ++i) it->second[i]->setValue(value[i]);
   return true;
 }
 
-std::map<std::string, double> EffectsPanel::parameters() const {
-  std::map<std::string, double> values;
-  for (const auto& [name, spin] : spins_) values[name] = spin->value();
+EffectValues EffectsPanel::parameters() const {
+  EffectValues values;
+  for (const auto& [name, spins] : spins_)
+    for (const QDoubleSpinBox* spin : spins) values[name].push_back(spin->value());
   return values;
 }
 
@@ -97,14 +104,23 @@ void EffectsPanel::rebuildParameters() {
   const EffectSpec* spec = findEffect(effect().toStdString());
   if (!spec) return;
   for (const EffectParam& p : spec->params) {
-    auto* spin = new QDoubleSpinBox(this);
-    spin->setDecimals(4);
-    spin->setRange(p.min, p.max);
-    spin->setSingleStep((p.max - p.min) / 100.0);
-    spin->setValue(p.value);
-    connect(spin, &QDoubleSpinBox::valueChanged, this, &EffectsPanel::schedule);
-    form_->addRow(QString::fromStdString(p.name), spin);
-    spins_[p.name] = spin;
+    // A vector parameter (the haze colour) is one row of spin boxes, one per component.
+    auto* row = new QHBoxLayout;
+    const QString tip = QString::fromStdString(p.meaning + "; " + rangeText(p) + ", default " + defaultText(p));
+    for (int i = 0; i < p.size(); ++i) {
+      auto* spin = new QDoubleSpinBox(this);
+      spin->setObjectName(QString::fromStdString(p.size() == 1 ? p.name : p.name + "[" + std::to_string(i) + "]"));
+      spin->setDecimals(4);  // the table's ranges and defaults are multiples of 0.0001
+      spin->setRange(p.min, p.max);
+      spin->setSingleStep((p.max - p.min) / 100.0);
+      spin->setValue(p.value[static_cast<size_t>(i)]);
+      if (!p.unit.empty()) spin->setSuffix(QString::fromStdString(" " + p.unit));
+      spin->setToolTip(tip);
+      connect(spin, &QDoubleSpinBox::valueChanged, this, &EffectsPanel::schedule);
+      row->addWidget(spin);
+      spins_[p.name].push_back(spin);
+    }
+    form_->addRow(QString::fromStdString(p.name), row);
   }
   setToolTip(QString::fromStdString(spec->summary));
 }
@@ -135,20 +151,20 @@ void EffectsPanel::startRender() {
     depth_note = tr("no depth painted: a ramp stands in (far at the top)");
   }
   const std::string name = effect().toStdString();
-  const std::map<std::string, double> values = parameters();
+  const EffectValues values = parameters();
   std::shared_ptr<std::atomic<bool>> alive = alive_;
   worker_ = std::thread([this, alive, generation, source, depth, frame, name, values, depth_note] {
     QImage image;
     QString message;
     try {
-      const EffectSetup setup = buildEffect(name, values, frame);
-      AttributedOptions options;
+      const Artcam camera = buildEffect(name, values, frame);
+      RenderOptions options;
       options.warp.progress = [this, generation](double) { return generation_.load() == generation; };
-      AttributedSummary summary;
-      const AttributedImage out = renderEffect(source, &depth, setup, options, &summary);
+      RenderSummary summary;
+      const ImageF out = artcam::render(RenderInputs::of(source, &depth), camera, options, &summary);
       if (summary.cancelled) return;
-      image = qimageFromLinear(out.colour);
-      message = QString("%1 path, %2 ms").arg(QString::fromUtf8(attributedPathName(summary.path).data()))
+      image = qimageFromLinear(out);
+      message = QString("%1, %2 ms").arg(QString::fromStdString(summary.describe()))
                     .arg(summary.render_ms, 0, 'f', 1);
       if (findEffect(name)->needs_depth && !depth_note.isEmpty()) message += "; " + depth_note;
     } catch (const std::exception& e) {

@@ -1,5 +1,7 @@
 // The effects panel (issue 6 item 9): pick one of the image effects (core/effects/
-// effect_presets.h), set its parameters, and see it live on the photo's preview copy.
+// effect_table.h), set its parameters, and see it live on the photo's preview copy. The
+// parameter rows are made from the effect's row of the table: one spin box per number (a row of
+// N for a vector parameter), its range, default and unit (as the suffix) from the table.
 //
 // Rendering runs off the GUI thread (STYLE: never block the GUI on a render): every change
 // stamps a new generation, a trailing 80 ms timer coalesces slider drags, and a worker thread
@@ -13,7 +15,8 @@
 // camera, colour and depth blocks included, through core's attributed renderer).
 #pragma once
 
-#include "core/effects/effect_presets.h"
+#include "core/effects/effect_table.h"
+#include "core/model/image.h"
 
 #include <QImage>
 #include <QWidget>
@@ -43,9 +46,11 @@ class EffectsPanel : public QWidget {
 
   QString effect() const;
   void setEffect(const QString& name);
-  // Sets a parameter's spin box (as if typed); false for an unknown name.
+  // Sets a parameter's spin boxes (as if typed); false for an unknown name or a vector of the
+  // wrong size. The spin boxes are named NAME, or NAME[i] for a vector's component i.
   bool setParameter(const QString& name, double value);
-  std::map<std::string, double> parameters() const;
+  bool setParameter(const QString& name, const std::vector<double>& value);
+  EffectValues parameters() const;
   // The depth the effects read; null: the stand-in ramp.
   void setDepth(std::shared_ptr<const ImageF> depth);
 
@@ -71,7 +76,7 @@ class EffectsPanel : public QWidget {
   QLabel* image_label_;
   QLabel* status_label_;
   QTimer* throttle_;
-  std::map<std::string, QDoubleSpinBox*> spins_;
+  std::map<std::string, std::vector<QDoubleSpinBox*>> spins_;
   QImage preview_;
   std::shared_ptr<const ImageF> depth_;
   std::atomic<quint64> generation_{0};

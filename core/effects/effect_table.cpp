@@ -1,0 +1,163 @@
+#include "core/effects/effect_table.h"
+
+#include "core/effects/aerial.h"
+#include "core/effects/chromatic.h"
+#include "core/effects/depth_of_field.h"
+#include "core/effects/image_warps.h"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace artcam {
+
+namespace {
+
+double number(const EffectValues& v, const char* name) { return v.at(name).at(0); }
+std::array<double, 3> rgb(const EffectValues& v, const char* r, const char* g, const char* b) {
+  return {number(v, r), number(v, g), number(v, b)};
+}
+Artcam layered(std::vector<Camera> layers) {
+  Artcam camera;
+  camera.layers = std::move(layers);
+  return camera;
+}
+
+// The builders: parameters to the camera value.
+Artcam radialLens(const EffectValues& v, FrameSize frame) {
+  return Artcam(radialLensCamera(number(v, "k"), frame));
+}
+Artcam twist(const EffectValues& v, FrameSize frame) {
+  return Artcam(twistCamera(number(v, "rate"), frame));
+}
+Artcam inversePerspective(const EffectValues& v, FrameSize frame) {
+  return Artcam(inversePerspectiveCamera(number(v, "gain"), frame));
+}
+Artcam chromaticAberration(const EffectValues& v, FrameSize frame) {
+  RgbShiftParams p;
+  p.scale = rgb(v, "red", "green", "blue");
+  p.dx = rgb(v, "red-dx", "green-dx", "blue-dx");
+  p.dy = rgb(v, "red-dy", "green-dy", "blue-dy");
+  return layered(rgbShiftLayers(p, frame, frame));
+}
+Artcam colourShift(const EffectValues& v, FrameSize frame) {
+  return layered(colourShiftLayers({rgb(v, "s-red", "s-green", "s-blue")}, frame, frame));
+}
+Artcam aerialPerspective(const EffectValues& v, FrameSize frame) {
+  AerialParams p;
+  const std::vector<double>& haze = v.at("haze");
+  p.haze = {haze.at(0), haze.at(1), haze.at(2)};
+  p.strength = number(v, "strength");
+  p.near = number(v, "near");
+  p.far = number(v, "far");
+  return Artcam(aerialPerspectiveCamera(p, frame, frame));
+}
+Artcam depthOfField(const EffectValues& v, FrameSize frame) {
+  Artcam camera(depthOfFieldCamera(
+      {number(v, "focus"), number(v, "blur"), number(v, "thin-lens")}, frame, frame));
+  camera.depth_output = DepthOutput::BlurVariance;
+  return camera;
+}
+
+std::string numberText(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
+const std::vector<EffectSpec>& effectSpecs() {
+  // "norm": normalised frame units, 1 = half the larger image side (frames.h).
+  static const std::vector<EffectSpec> specs = {
+      {"barrel", "radial lens u' = u/(1 - k r^2), k < 0 barrel",
+       {{"k", "radial coefficient", {-0.15}, -1.0, 0.0, ""}}, false, radialLens},
+      {"pincushion", "radial lens u' = u/(1 - k r^2), k > 0 pincushion",
+       {{"k", "radial coefficient", {0.15}, 0.0, 0.45, ""}}, false, radialLens},
+      {"twist", "each row turns by atan(rate·v): v' = v + rate·u·v",
+       {{"rate", "turn per row", {0.3}, -1.0, 1.0, ""}}, false, twist},
+      {"inverse-perspective", "far (upper) rows magnify: p' = p/(1 + gain·v)",
+       {{"gain", "magnification per row", {0.35}, -0.85, 0.85, ""}}, false, inversePerspective},
+      {"chromatic-aberration", "three RTcams scale and shift R, G, B (Fig 4 middle)",
+       {{"red", "red scale - 1", {0.006}, -0.1, 0.1, ""},
+        {"green", "green scale - 1", {0.0}, -0.1, 0.1, ""},
+        {"blue", "blue scale - 1", {-0.006}, -0.1, 0.1, ""},
+        {"red-dx", "red shift right", {0.0}, -0.1, 0.1, "norm"},
+        {"green-dx", "green shift right", {0.0}, -0.1, 0.1, "norm"},
+        {"blue-dx", "blue shift right", {0.0}, -0.1, 0.1, "norm"},
+        {"red-dy", "red shift down", {0.0}, -0.1, 0.1, "norm"},
+        {"green-dy", "green shift down", {0.0}, -0.1, 0.1, "norm"},
+        {"blue-dy", "blue shift down", {0.0}, -0.1, 0.1, "norm"}},
+       false, chromaticAberration},
+      {"colour-shift", "each layer moves by its colour, p(1 + s_k c_k) (Fig 4 right, eq 8/9)",
+       {{"s-red", "red layer's s", {0.05}, -0.5, 0.5, ""},
+        {"s-green", "green layer's s", {0.0}, -0.5, 0.5, ""},
+        {"s-blue", "blue layer's s", {-0.03}, -0.5, 0.5, ""}},
+       false, colourShift},
+      {"aerial-perspective", "contrast falls with log depth towards haze (§3)",
+       {{"haze", "linear RGB of the far haze", {0.62, 0.72, 0.86}, 0.0, 1.0, ""},
+        {"strength", "haze fraction at far", {0.7}, 0.0, 1.0, ""},
+        {"near", "depth where haze starts", {1.0}, 0.01, 1e4, "depth units"},
+        {"far", "depth of full strength", {100.0}, 0.02, 1e5, "depth units"}},
+       true, aerialPerspective},
+      {"depth-of-field",
+       "Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)) (§3)",
+       {{"focus", "depth in focus", {2.0}, 0.01, 1e4, "depth units"},
+        {"blur", "sigma at infinite depth", {0.01}, 0.0, 0.1, "norm"},
+        {"thin-lens", "1 thin lens (/d), 0 linear (/focus)", {1.0}, 0.0, 1.0, ""}},
+       true, depthOfField},
+  };
+  return specs;
+}
+
+const EffectSpec* findEffect(const std::string& name) {
+  for (const EffectSpec& s : effectSpecs())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+const EffectParam* findParam(const EffectSpec& effect, const std::string& name) {
+  for (const EffectParam& p : effect.params)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::string rangeText(const EffectParam& param) {
+  std::string text = numberText(param.min) + " … " + numberText(param.max);
+  return param.unit.empty() ? text : text + " " + param.unit;
+}
+
+std::string defaultText(const EffectParam& param) {
+  std::string text;
+  for (const double v : param.value) text += (text.empty() ? "" : ",") + numberText(v);
+  return text;
+}
+
+std::string checkEffectValue(const EffectParam& param, const std::vector<double>& value) {
+  if (value.size() != param.value.size())
+    return param.size() == 1 ? param.name + " expects one number"
+                             : param.name + " expects " + std::to_string(param.size()) +
+                                   " comma-separated numbers";
+  for (const double v : value)
+    if (!(v >= param.min && v <= param.max))  // NaN fails too
+      return param.name + " = " + numberText(v) + " is outside its range " + rangeText(param);
+  return {};
+}
+
+Artcam buildEffect(const std::string& name, const EffectValues& values, FrameSize frame) {
+  const EffectSpec* spec = findEffect(name);
+  if (!spec) throw std::invalid_argument("unknown effect \"" + name + "\"");
+  EffectValues complete;
+  for (const EffectParam& p : spec->params) complete[p.name] = p.value;
+  for (const auto& [key, value] : values) {
+    const EffectParam* param = findParam(*spec, key);
+    if (!param) throw std::invalid_argument("effect " + name + " has no parameter \"" + key + "\"");
+    if (const std::string problem = checkEffectValue(*param, value); !problem.empty())
+      throw std::invalid_argument(name + ": " + problem);
+    complete[key] = value;
+  }
+  return spec->build(complete, frame);
+}
+
+}  // namespace artcam

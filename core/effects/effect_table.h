@@ -1,0 +1,71 @@
+// The image effects, one table: what `artcam preset NAME`, `artcam preset list`, `artcam preset
+// --help`, the manual page and the studio's effects panel offer, and the builder that makes each
+// effect's camera. A row holds the effect's name, a one-line summary, its parameters (name,
+// number or vector of N numbers, range, default, unit), whether it reads depth, and its builder.
+//
+// Adding an effect: its camera function (e.g. image_warps.h), one row in effect_table.cpp that
+// calls it, and its test. The CLI options (--NAME VALUE, vectors comma-separated), the panel's
+// spin boxes, the listings and the range checks all come from the row.
+//
+// Decisions:
+// - Parameter names are the CLI's (what users' scripts already pass): the haze colour is one
+//   vector `haze` (--haze r,g,b), chromatic aberration keeps its per-channel shifts red-dx ….
+// - A range bounds every component of a parameter; a value outside it is refused (the CLI says
+//   which parameter and its range), never clamped, so a camera is never silently different from
+//   what was asked. Ranges stay where the camera accepts every frame: the radial lens refuses
+//   k·|p|² ≥ 0.95 and |p|² ≤ 2 in the normalised frame, so k ≤ 0.45; inverse perspective refuses
+//   |gain·v| ≥ 0.9 and |v| ≤ 1, so |gain| ≤ 0.85 (image_warps.h).
+// - Builders return the whole camera value (model/artcam.h): chromatic aberration is three
+//   layers, depth of field a depth output that is the blur variance.
+#pragma once
+
+#include "core/model/artcam.h"
+#include "core/model/camera.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+// A parameter's values: one number, or a vector of N (the default's size is the type).
+using EffectValues = std::map<std::string, std::vector<double>>;
+
+struct EffectParam {
+  std::string name;           // the CLI option without "--", the panel's label: "k", "haze"
+  std::string meaning;        // a few words for --help, the manual page and the panel's tooltip
+  std::vector<double> value;  // the default; 1 number, or N for a vector parameter
+  double min = 0, max = 0;    // inclusive, for every component
+  std::string unit;           // "" (a plain factor), "norm" (normalised frame units), "depth units"
+
+  int size() const { return static_cast<int>(value.size()); }
+};
+
+struct EffectSpec {
+  std::string name;
+  std::string summary;
+  std::vector<EffectParam> params;
+  bool needs_depth = false;
+  // `values` holds every parameter of the row, each checked against it. Throws
+  // std::invalid_argument for a value the camera refuses (e.g. near ≥ far, a pole in the frame).
+  Artcam (*build)(const EffectValues& values, FrameSize frame) = nullptr;
+};
+
+const std::vector<EffectSpec>& effectSpecs();
+const EffectSpec* findEffect(const std::string& name);
+const EffectParam* findParam(const EffectSpec& effect, const std::string& name);
+
+// "-1 … 0"; with a unit "0.01 … 10000 depth units".
+std::string rangeText(const EffectParam& param);
+// "-0.15", "0.62,0.72,0.86": the default as the CLI writes it.
+std::string defaultText(const EffectParam& param);
+// Empty when `value` suits the parameter, else one line naming it: "k = 0.9 is outside its
+// range -1 … 0", "haze expects 3 comma-separated numbers".
+std::string checkEffectValue(const EffectParam& param, const std::vector<double>& value);
+
+// The row's builder with the defaults filled in for missing parameters. Throws
+// std::invalid_argument for an unknown effect or parameter, a value checkEffectValue refuses,
+// or one the camera refuses.
+Artcam buildEffect(const std::string& name, const EffectValues& values, FrameSize frame);
+
+}  // namespace artcam
