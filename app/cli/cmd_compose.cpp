@@ -1,6 +1,7 @@
 // artcam compose: one camera from a sequence of cameras (DESIGN §1 chains; paper §5).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "core/io/artcam_file.h"
 #include "core/model/compose.h"
 #include "core/model/structure.h"
@@ -19,19 +20,18 @@ const char* const kComposeUsage =
     "rational cameras become a two-stage chain, which `artcam warp` renders exactly.\n\n"
     "options:\n"
     "  -o, --output FILE   the composed camera (written atomically)\n"
-    "  --force             allow OUT to be one of the inputs\n\n"
+    "  --overwrite         replace OUT if it exists (--force is the same); never an input\n\n"
     "Example:\n"
     "  artcam compose view-to-table.artcam reflection.artcam -o view-to-reflection.artcam\n";
 
 int composeCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--output", "-o", true}, {"--force", "", false}});
+  const Args args(argv,
+                  {{"--output", "-o", true}, {"--overwrite", "", false}, {"--force", "", false}});
   const std::vector<std::string>& inputs = args.positional();
   if (inputs.size() < 2) throw UsageError("compose needs at least two camera files");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT.artcam");
-  for (const std::string& in : inputs)
-    if (in == *output && !args.has("--force"))
-      throw CommandError(*output + ": refusing to overwrite an input camera (use --force)");
+  checkOutputs(args, {*output}, inputs);
 
   auto first = readArtcamFile(inputs[0]);
   if (!first) throw CommandError(first.status.message);

@@ -6,6 +6,7 @@
 // parameters to a Camera. Image-space (2D) presets fit the same table.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "core/cameras/effects_3d.h"
 #include "core/cameras/glc.h"
 #include "core/cameras/projective_cameras.h"
@@ -182,7 +183,7 @@ const Preset kPresets[] = {
 FrameSize frameOf(const Params& p) {
   const std::vector<double>& v = p.list("size");
   if (v.size() != 2 || !(v[0] >= 1) || !(v[1] >= 1) || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]))
-    throw UsageError("--size expects W,H in whole pixels");
+    throw UsageError("--size expects WxH in whole pixels");
   return {static_cast<int>(v[0]), static_cast<int>(v[1])};
 }
 std::array<double, 3> rgb(const Params& p, const char* r, const char* g, const char* b) {
@@ -223,14 +224,14 @@ struct ImagePreset {
 };
 
 const ImagePreset kImagePresets[] = {
-    {"barrel", "2D: radial lens u' = u/(1 - k r^2), k < 0 barrel", "k=-0.15 size=600,400", radial2d},
-    {"pincushion", "2D: radial lens u' = u/(1 - k r^2), k > 0 pincushion", "k=0.15 size=600,400", radial2d},
-    {"twist", "2D: each row turns by atan(rate·v): v' = v + rate·u·v", "rate=0.3 size=600,400", twist2d},
-    {"inverse-perspective", "2D: far (upper) rows magnify: p' = p/(1 + gain·v)", "gain=0.35 size=600,400", inversePerspective2d},
-    {"chromatic-aberration", "2D (Fig 4 middle): three RTcams scale/shift R, G, B", "red=0.006 green=0 blue=-0.006 red-dx=0 green-dx=0 blue-dx=0 red-dy=0 green-dy=0 blue-dy=0 size=600,400", rgbShift2d},
-    {"colour-shift", "2D (Fig 4 right, eq 8/9): each layer moves by its colour, p(1 + s_k c_k)", "s-red=0.05 s-green=0 s-blue=-0.03 size=600,400", colourShift2d},
-    {"aerial-perspective", "2D (§3): contrast falls with log depth towards haze (needs --depth)", "haze=0.62,0.72,0.86 strength=0.7 near=1 far=100 size=600,400", aerial2d},
-    {"depth-of-field", "2D (§3): Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)); thin-lens 1: /d (thin lens), 0: /focus (linear) (needs --depth)", "focus=2 blur=0.01 thin-lens=1 size=600,400", depthOfField2d},
+    {"barrel", "2D: radial lens u' = u/(1 - k r^2), k < 0 barrel", "k=-0.15 size=600x400", radial2d},
+    {"pincushion", "2D: radial lens u' = u/(1 - k r^2), k > 0 pincushion", "k=0.15 size=600x400", radial2d},
+    {"twist", "2D: each row turns by atan(rate·v): v' = v + rate·u·v", "rate=0.3 size=600x400", twist2d},
+    {"inverse-perspective", "2D: far (upper) rows magnify: p' = p/(1 + gain·v)", "gain=0.35 size=600x400", inversePerspective2d},
+    {"chromatic-aberration", "2D (Fig 4 middle): three RTcams scale/shift R, G, B", "red=0.006 green=0 blue=-0.006 red-dx=0 green-dx=0 blue-dx=0 red-dy=0 green-dy=0 blue-dy=0 size=600x400", rgbShift2d},
+    {"colour-shift", "2D (Fig 4 right, eq 8/9): each layer moves by its colour, p(1 + s_k c_k)", "s-red=0.05 s-green=0 s-blue=-0.03 size=600x400", colourShift2d},
+    {"aerial-perspective", "2D (§3): contrast falls with log depth towards haze (needs --depth)", "haze=0.62,0.72,0.86 strength=0.7 near=1 far=100 size=600x400", aerial2d},
+    {"depth-of-field", "2D (§3): Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)); thin-lens 1: /d (thin lens), 0: /focus (linear) (needs --depth)", "focus=2 blur=0.01 thin-lens=1 size=600x400", depthOfField2d},
 };
 
 struct CloudPreset {
@@ -281,7 +282,8 @@ std::string listing() {
 // Parses "--name value" pairs against a preset's defaults.
 Params parseParams(const char* spec, const std::vector<std::string>& argv, std::string& output,
                    std::string& summary) {
-  std::vector<OptionSpec> specs = {{"--output", "-o", true}};
+  std::vector<OptionSpec> specs = {
+      {"--output", "-o", true}, {"--overwrite", "", false}, {"--force", "", false}};
   const auto defs = defaults(spec);
   for (const auto& [name, value] : defs) specs.push_back({"--" + name, "", true});
   const Args args(argv, specs);
@@ -289,10 +291,16 @@ Params parseParams(const char* spec, const std::vector<std::string>& argv, std::
   const auto out = args.value("--output");
   if (!out) throw UsageError("missing -o OUT");
   output = *out;
+  checkOutputs(args, {output}, {});
   std::map<std::string, std::vector<double>> values;
   for (const auto& [name, fallback] : defs) {
     const std::string text = args.valueOr("--" + name, fallback);
-    values[name] = parseNumbers(text, name);
+    if (name == "size") {  // WxH like every size, W,H as before
+      const FrameSize size = parseSize(text, "--size", true);
+      values[name] = {double(size.width), double(size.height)};
+    } else {
+      values[name] = parseNumbers(text, name);
+    }
     summary += (summary.empty() ? "" : " ") + name + "=" + text;
   }
   return Params(std::move(values));
@@ -312,12 +320,13 @@ const char* const kPresetUsage =
     "points and colours before the view. cube-of-cubes writes the sample cloud of the paper's\n"
     "Fig 1. Image cameras (barrel, pincushion, twist, inverse-perspective, chromatic-aberration,\n"
     "colour-shift, aerial-perspective, depth-of-field) apply to photos with artcam warp (the\n"
-    "last two need --depth FILE); --size W,H is the photo's size.\n"
+    "last two need --depth FILE); --size WxH is the photo's size (W,H is also read).\n"
     "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
-    "its parameters and defaults; every parameter is optional. -o/--output names OUT (required).\n\n"
+    "its parameters and defaults; every parameter is optional. -o/--output names OUT (required);\n"
+    "an existing OUT is refused unless --overwrite (--force is the same).\n\n"
     "Examples:\n"
     "  artcam preset list\n"
-    "  artcam preset barrel --k -0.2 --size 6000,4000 -o barrel.artcam\n"
+    "  artcam preset barrel --k -0.2 --size 6000x4000 -o barrel.artcam\n"
     "  artcam preset pinhole --eye 3,2,-4 -o view.artcam\n";
 
 int presetCommand(const std::vector<std::string>& argv) {
@@ -375,7 +384,12 @@ int presetCommand(const std::vector<std::string>& argv) {
                 summary.c_str());
     return 0;
   }
-  throw UsageError("unknown preset \"" + name + "\"");
+  std::vector<std::string> names = {"list"};
+  for (const Preset& p : kPresets) names.push_back(p.name);
+  for (const ImagePreset& p : kImagePresets) names.push_back(p.name);
+  for (const CloudPreset& p : kCloudPresets) names.push_back(p.name);
+  throw UsageError("unknown preset \"" + name + "\" (artcam preset list shows them)",
+                   didYouMean(name, names));
 }
 
 }  // namespace artcam::cli

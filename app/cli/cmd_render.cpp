@@ -2,6 +2,7 @@
 // image (z-buffered splats, DESIGN §3) or, with -o *.ply, the moved cloud itself.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/cloud/cloud_render.h"
 #include "core/io/artcam_file.h"
@@ -22,7 +23,7 @@ const char* const kRenderUsage =
     "usage: artcam render CLOUD.ply CAM.artcam -o OUT.png|OUT.ply [--view VIEW.artcam]\n"
     "                     [--eye X,Y,Z] [--at X,Y,Z] [--fov DEGREES] [--size WxH]\n"
     "                     [--layers whole|rgb] [--point-size H] [--splat-scale S]\n"
-    "                     [--threads N] [--stats]\n\n"
+    "                     [--threads N] [--stats] [--overwrite]\n\n"
     "Moves every point of CLOUD (and its colour) through CAM, an object-space ARTcam (a 3D\n"
     "preset such as twist, or a camera fitted with artcam fit --dim 3; `artcam preset identity`\n"
     "for none). With -o OUT.ply the moved cloud is written. Otherwise it is seen through the\n"
@@ -37,8 +38,9 @@ const char* const kRenderUsage =
     "point spacing (--point-size, default: the median nearest-neighbour distance).\n"
     "--stats prints points, render_ms and points_per_s on stderr (render only, no file I/O).\n"
     "--threads N sets the worker threads (default 0: all cores). -o/--output names OUT\n"
-    "(required; written atomically). -q/--quiet shows no progress bar (drawn on stderr only\n"
-    "when it is a terminal).\n\n"
+    "(required; written atomically; an existing OUT is refused unless --overwrite, --force\n"
+    "being the same, and OUT is never CLOUD or a camera). -q/--quiet shows no progress bar\n"
+    "(drawn on stderr only when it is a terminal).\n\n"
     "Examples:\n"
     "  artcam preset cube-of-cubes -o cube.ply && artcam preset twist-3d -o twist.artcam\n"
     "  artcam render cube.ply twist.artcam -o twisted.png --size 800x600 --eye 3,2,-4\n";
@@ -100,10 +102,15 @@ int renderCommand(const std::vector<std::string>& argv) {
                          {"--splat-scale", "", true},
                          {"--threads", "", true},
                          {"--stats", "", false},
+                         {"--overwrite", "", false},
+                         {"--force", "", false},
                          {"--quiet", "-q", false}});
   args.expectPositional(2, "CLOUD.ply and CAM.artcam");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
+  std::vector<std::string> inputs = args.positional();
+  if (const auto view = args.value("--view")) inputs.push_back(*view);
+  checkOutputs(args, {*output}, inputs);
 
   CloudRenderOptions options;
   if (args.has("--size")) {

@@ -3,8 +3,11 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "app/cli/warp_job.h"
+
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <string>
@@ -13,7 +16,7 @@ namespace artcam::cli {
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--threads N] [--stats] [--quiet] [--overwrite]\n"
+    "                   [--threads N] [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
     "The output has the camera's target frame size scaled by IN's size over the camera's\n"
@@ -24,9 +27,11 @@ const char* const kWarpUsage =
     "(8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and writes the stored\n"
     "values in place (no float copy: peak memory about input + output), interpolating them in\n"
     "the file's own encoding as OpenCV's remap does; otherwise it renders in linear float.\n"
-    "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130); it may\n"
-    "not be IN unless --overwrite is given. --stats prints render_ms=<ms>\n"
-    "mpix_per_s=<Mpix/s> on stderr (the render alone, without file I/O).\n"
+    "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130). An OUT that\n"
+    "exists is refused unless --overwrite; OUT is never IN, the camera or the depth file.\n"
+    "--stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr (the render alone, without\n"
+    "file I/O). --json prints one JSON object on stdout instead of the \"wrote\" line:\n"
+    "{output, width, height, description}, with --stats also render_ms and mpix_per_s.\n"
     "A piecewise camera (artcam fit --piecewise) is rendered by its seamless mesh warp on its\n"
     "target frame.\n"
     "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
@@ -39,7 +44,8 @@ const char* const kWarpUsage =
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
     "  --threads N          worker threads (default 0: all cores)\n"
     "  --stats              print render_ms and mpix_per_s on stderr\n"
-    "  --overwrite          allow OUT to be IN (--force is the same)\n"
+    "  --json               the result (and --stats) as one JSON object on stdout\n"
+    "  --overwrite          replace OUT if it exists (--force is the same); never IN\n"
     "  -q, --quiet          no progress bar on stderr (shown only on a terminal)\n"
     "  --depth FILE         per-pixel depth for cameras that read it (no default)\n"
     "  --depth-scale S      multiplies an integer depth file's values (default 1)\n"
@@ -55,6 +61,7 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--filter", "", true},
                          {"--threads", "", true},
                          {"--stats", "", false},
+                         {"--json", "", false},
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--quiet", "-q", false},
@@ -65,10 +72,9 @@ int warpCommand(const std::vector<std::string>& argv) {
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
   const std::string& input = args.positional()[0];
-  // Never replace the photo being warped by default (issue 9, "no lost work").
-  if (!args.has("--overwrite") && !args.has("--force") && sameFile(input, *output))
-    throw CommandError(*output + ": refusing to overwrite the input image " + input +
-                       " (use --overwrite)");
+  std::vector<std::string> inputs = {input, args.positional()[1]};
+  if (const auto depth = args.value("--depth")) inputs.push_back(*depth);
+  checkOutputs(args, {*output}, inputs);
   const WarpRequest request = parseWarpRequest(args);
   const WarpCameraFile camera = loadWarpCamera(args.positional()[1]);
 
@@ -83,12 +89,22 @@ int warpCommand(const std::vector<std::string>& argv) {
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
     encodeWarp(rendered, stage("writing"));
     bar.finish();
-    if (request.stats && !rendered.written) {
-      const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
-      std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms,
-                   rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0);
+    const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
+    const double mpix_per_s = rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0;
+    if (args.has("--json")) {
+      nlohmann::json j = {{"output", *output},
+                          {"width", rendered.width},
+                          {"height", rendered.height},
+                          {"description", rendered.description}};
+      if (request.stats) {
+        j["render_ms"] = rendered.render_ms;
+        j["mpix_per_s"] = mpix_per_s;
+      }
+      std::printf("%s\n", j.dump().c_str());
+    } else if (request.stats && !rendered.written) {
+      std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms, mpix_per_s);
     }
-    if (!rendered.written)
+    if (!rendered.written && !args.has("--json"))
       std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), rendered.width, rendered.height,
                   rendered.description.c_str());
   } catch (const CommandError&) {
