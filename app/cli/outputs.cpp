@@ -18,11 +18,13 @@ bool isSameFile(const std::string& a, const std::string& b) {
 
 void checkOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
                   bool overwrite) {
-  for (const std::string& out : outputs) {
+  // Inputs first: that refusal holds whatever the options, so it is the one to report.
+  for (const std::string& out : outputs)
     for (const std::string& in : inputs)
       if (isSameFile(in, out))
         throw CommandError(out + ": refusing to overwrite the input " + in +
                            " (an output never replaces one of its inputs, even with --overwrite)");
+  for (const std::string& out : outputs) {
     std::error_code ec;
     // symlink_status: a dangling symlink is an existing name the save would replace.
     if (!overwrite && fs::symlink_status(out, ec).type() != fs::file_type::not_found && !ec)

@@ -124,7 +124,7 @@ class TestCliEffects : public QObject {
     const double f = 2.0, k = 0.02;
     for (const double gamma : {1.0, 0.0}) {
       QStringList args = {"preset", "depth-of-field", "--focus", "2", "--blur", "0.02", "-o",
-                          dir.filePath("dof.artcam")};
+                          dir.filePath("dof.artcam"), "--overwrite"};
       if (gamma == 0.0) args << "--thin-lens" << "0";
       const Run r = artcamCli(args);
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
@@ -151,7 +151,7 @@ class TestCliEffects : public QObject {
     const QString out = dir.filePath("p.artcam");
     for (const char* name : {"barrel", "pincushion", "twist", "inverse-perspective", "chromatic-aberration",
                              "colour-shift", "aerial-perspective", "depth-of-field"}) {
-      const Run r = artcamCli({"preset", name, "-o", out});
+      const Run r = artcamCli({"preset", name, "-o", out, "--overwrite"});
       QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
       const auto doc = artcam::readArtcamFile(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
@@ -159,7 +159,7 @@ class TestCliEffects : public QObject {
       QVERIFY2(doc.value->camera.sourceSize().isImage(), name);
     }
     for (const char* name : {"twist-3d", "pincushion-3d", "inverse-perspective-3d", "chromatic-aberration-3d"}) {
-      const Run r = artcamCli({"preset", name, "-o", out});
+      const Run r = artcamCli({"preset", name, "-o", out, "--overwrite"});
       QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
       const auto doc = artcam::readArtcamFile(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
