@@ -167,7 +167,8 @@ class TestCliEffects : public QObject {
     }
     QCOMPARE(artcamCli({"preset", "twist-2d", "-o", out}).exit_code, 2);  // the old names are gone
     for (const double k : {0.15, -0.2}) {
-      const Run r = artcamCli({"preset", k > 0 ? "pincushion" : "barrel", "--k", QString::number(k), "-o", out});
+      const Run r = artcamCli({"preset", k > 0 ? "pincushion" : "barrel", "--k", QString::number(k),
+                               "-o", out, "--overwrite"});
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
       const auto doc = artcam::readArtcamFile(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
