@@ -9,6 +9,8 @@
 #include "core/io/image_io.h"
 #include "core/io/ply.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -23,7 +25,7 @@ const char* const kRenderUsage =
     "usage: artcam render CLOUD.ply CAM.artcam -o OUT.png|OUT.ply [--view VIEW.artcam]\n"
     "                     [--eye X,Y,Z] [--at X,Y,Z] [--fov DEGREES] [--size WxH]\n"
     "                     [--layers whole|rgb] [--point-size H] [--splat-scale S]\n"
-    "                     [--threads N] [--stats] [--overwrite]\n\n"
+    "                     [--threads N] [--stats] [--json] [--overwrite]\n\n"
     "Moves every point of CLOUD (and its colour) through CAM, an object-space ARTcam (a 3D\n"
     "preset such as twist, or a camera fitted with artcam fit --dim 3; `artcam preset identity`\n"
     "for none). With -o OUT.ply the moved cloud is written. Otherwise it is seen through the\n"
@@ -37,6 +39,9 @@ const char* const kRenderUsage =
     "paper's chromatic aberration). Splats cover --splat-scale (0.75) times the image of one\n"
     "point spacing (--point-size, default: the median nearest-neighbour distance).\n"
     "--stats prints points, render_ms and points_per_s on stderr (render only, no file I/O).\n"
+    "--json prints one JSON object on stdout instead of the \"wrote\" line: {output, points,\n"
+    "dropped} for a cloud; {output, width, height, points, drawn, dropped, render_ms,\n"
+    "points_per_s} for an image.\n"
     "--threads N sets the worker threads (default 0: all cores). -o/--output names OUT\n"
     "(required; written atomically; an existing OUT is refused unless --overwrite, --force\n"
     "being the same, and OUT is never CLOUD or a camera). -q/--quiet shows no progress bar\n"
@@ -102,6 +107,7 @@ int renderCommand(const std::vector<std::string>& argv) {
                          {"--splat-scale", "", true},
                          {"--threads", "", true},
                          {"--stats", "", false},
+                         {"--json", "", false},
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--quiet", "-q", false}});
@@ -151,6 +157,12 @@ int renderCommand(const std::vector<std::string>& argv) {
       job.stage("writing");
       if (const Status s = writePly(*output, moved); !s) throw CommandError(s.message);
       job.finish();
+      if (args.has("--json")) {
+        const nlohmann::json j = {
+            {"output", *output}, {"points", moved.size()}, {"dropped", dropped}};
+        std::printf("%s\n", j.dump().c_str());
+        return 0;
+      }
       std::printf("wrote %s (%zu points, %zu dropped where the camera does not map)\n",
                   output->c_str(), moved.size(), dropped);
       return 0;
@@ -197,6 +209,18 @@ int renderCommand(const std::vector<std::string>& argv) {
     if (const Status s = writeImage(*output, image, nullptr, write); !s)
       throw CommandError(s.message);
     job.finish();
+    if (args.has("--json")) {
+      const nlohmann::json j = {{"output", *output},
+                                {"width", image.width},
+                                {"height", image.height},
+                                {"points", summary.points},
+                                {"drawn", summary.drawn},
+                                {"dropped", summary.dropped},
+                                {"render_ms", summary.render_ms},
+                                {"points_per_s", summary.pointsPerSecond()}};
+      std::printf("%s\n", j.dump().c_str());
+      return 0;
+    }
     if (args.has("--stats"))
       std::fprintf(stderr, "points=%zu render_ms=%.1f points_per_s=%.0f\n", summary.points,
                    summary.render_ms, summary.pointsPerSecond());

@@ -2,11 +2,13 @@
 // command that writes refuses an existing output without --overwrite (alias --force) and never
 // writes over one of its own inputs, whatever the path's spelling (symlink, hard link, ./..);
 // usage errors are at most three lines with a "did you mean" for a near miss; --json reports
-// parse back and agree with the text reports and the files written.
+// (fit --piecewise, warp --stats, render, batch) parse back and agree with the text reports and
+// the files written.
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "core/io/piecewise_file.h"
+#include "core/io/ply.h"
 #include "tests/app/cli_files.h"
 #include "tests/app/cli_run.h"
 
@@ -365,6 +367,38 @@ class TestCliDialect : public QObject {
     QVERIFY(jsonOf(artcamCli({"warp", path("photo.png"), path("cam.artcam"), "-o",
                               path("wn.png"), "--json"}))
                 .contains("description"));
+  }
+
+  // render --json: a cloud's point count against the PLY written and the closed form (27 cubes,
+  // 6 faces, n² samples each); an image's size against the file and its counts against the text.
+  void renderJson() {
+    const Run ply = artcamCli(
+        {"render", path("c.ply"), path("id.artcam"), "-o", path("rj.ply"), "--json"});
+    QVERIFY2(ply.exit_code == 0, qPrintable(ply.err));
+    const QJsonObject p = jsonOf(ply);
+    QCOMPARE(p["output"].toString(), path("rj.ply"));
+    QCOMPARE(p["points"].toInt(), 27 * 6 * 2 * 2);
+    QCOMPARE(p["dropped"].toInt(), 0);
+    const auto cloud = readPly(path("rj.ply").toStdString());
+    QVERIFY(cloud.ok());
+    QCOMPARE(static_cast<int>(cloud->size()), p["points"].toInt());
+
+    const QStringList render = {"render", path("c.ply"), path("id.artcam"), "--size", "64x48"};
+    const Run image = artcamCli(QStringList(render) << "-o" << path("rj.png") << "--json");
+    QVERIFY2(image.exit_code == 0, qPrintable(image.err));
+    const QJsonObject o = jsonOf(image);
+    const auto written = readImage(path("rj.png").toStdString());
+    QVERIFY(written.ok());
+    QCOMPARE(o["width"].toInt(), written->image.width);
+    QCOMPARE(o["height"].toInt(), written->image.height);
+    QCOMPARE(o["width"].toInt(), 64);
+    QCOMPARE(o["points"].toInt(), 27 * 6 * 2 * 2);
+    QVERIFY(o["render_ms"].toDouble() > 0);
+    const Run text = artcamCli(QStringList(render) << "-o" << path("rt.png"));
+    QCOMPARE(text.out.trimmed(), QStringLiteral("wrote %1 (64x48, %2 points drawn, %3 dropped)")
+                                     .arg(path("rt.png"))
+                                     .arg(o["drawn"].toInt())
+                                     .arg(o["dropped"].toInt()));
   }
 
   // batch --json: one entry per file (written or failed, with the error), totals that add up.
