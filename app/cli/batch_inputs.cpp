@@ -77,7 +77,8 @@ std::vector<std::string> expandBatchInputs(const std::vector<std::string>& argum
   return inputs;
 }
 
-std::vector<BatchItem> planBatch(const std::vector<std::string>& inputs, const BatchNaming& naming) {
+std::vector<BatchItem> planBatch(const std::vector<std::string>& inputs,
+                                 const BatchNaming& naming) {
   std::vector<BatchItem> items;
   std::map<std::string, std::string> output_of;  // lexically normal output → its input
   for (const std::string& input : inputs) {

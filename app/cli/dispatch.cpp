@@ -34,7 +34,9 @@ void printHelp() {
       "\nPixels: centres at i + 0.5, (0, 0) the top-left corner, y down. Cameras are stored\n"
       "in normalised frames, so a camera made on a preview applies to the full-size photo.\n"
       "Errors: one line on stderr naming the file, the place and the cause; exit status 1\n"
-      "(2 for a usage error); no partial output file is ever left behind.\n\n"
+      "(2 for a usage error); no partial output file is ever left behind. An output that\n"
+      "exists is replaced only with --overwrite (alias --force); an input never is. Sizes\n"
+      "are WxH; commands that report print one JSON object with --json.\n\n"
       "options: -h, --help (this page), --version (print the version). The manual: man artcam.\n\n"
       "Example:\n"
       "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
@@ -55,7 +57,8 @@ void printUsageError(const std::string& who, const std::string& message, const s
 int run(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
-    printUsageError("artcam", "missing the command (usage: artcam <command> [options])", "", "artcam");
+    printUsageError("artcam", "missing the command (usage: artcam <command> [options])", "",
+                    "artcam");
     return 2;
   }
   if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {

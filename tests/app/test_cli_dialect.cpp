@@ -100,7 +100,8 @@ class TestCliDialect : public QObject {
   // WxH everywhere; preset --size keeps W,H; other sizes refuse W,H naming WxH.
   void sizesAreWxH() {
     for (const char* size : {"300x200", "300,200"}) {
-      const QString out = path(QStringLiteral("size-%1.artcam").arg(QString(size).replace(',', '_')));
+      const QString out =
+          path(QStringLiteral("size-%1.artcam").arg(QString(size).replace(',', '_')));
       const Run r = artcamCli({"preset", "barrel", "--size", size, "-o", out});
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
       const auto doc = readArtcamFile(out.toStdString());
@@ -432,8 +433,10 @@ class TestCliDialect : public QObject {
     QCOMPARE(totals["failed"].toInt(), 1);
     QCOMPARE(totals["not_done"].toInt(), 0);
     double megapixels = 0.0;
-    for (const int i : {0, 2})
-      megapixels += files[i].toObject()["width"].toDouble() * files[i].toObject()["height"].toDouble() / 1e6;
+    for (const int i : {0, 2}) {
+      const QJsonObject f = files[i].toObject();
+      megapixels += f["width"].toDouble() * f["height"].toDouble() / 1e6;
+    }
     QVERIFY(std::abs(totals["megapixels"].toDouble() - megapixels) < 1e-9);
     QCOMPARE(o["interrupted"].toBool(), false);
   }
