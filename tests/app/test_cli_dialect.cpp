@@ -255,6 +255,12 @@ class TestCliDialect : public QObject {
          "did you mean barrel?", "see 'artcam preset --help'"},
         {{"bench", "fit", "--count", "9"}, "artcam bench: unknown option --count",
          "did you mean --counts?", "see 'artcam bench fit --help'"},
+        // Two transpositions are distance 2 (plain Levenshtein would say 4): a hint.
+        {{"warp", "--flitre", "bicubic"}, "artcam warp: unknown option --flitre",
+         "did you mean --filter?", "see 'artcam warp --help'"},
+        // Distance 3 from --filter, further from the rest: no hint.
+        {{"warp", "--xfiltrx", "bicubic"}, "artcam warp: unknown option --xfiltrx", "",
+         "see 'artcam warp --help'"},
         // No single near option: no hint (--d is a prefix of three).
         {{"warp", "--d", "x"}, "artcam warp: unknown option --d", "", "see 'artcam warp --help'"},
         {{"warp", path("photo.png"), path("cam.artcam")}, "artcam warp: missing -o OUT", "",
