@@ -11,7 +11,7 @@ out="$root/out"
 mkdir -p "$out"
 "$build/app/artcam" info "$root/resources/sample.artcam"
 "$build/app/artcam" warp "$root/resources/coffee.png" "$root/resources/sample.artcam" \
-  -o "$out/coffee-warped.png" --stats
+  -o "$out/coffee-warped.png" --stats --overwrite
 echo "demo: the warped sample is $out/coffee-warped.png"
 if [[ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" && -x "$build/app/artcam-studio" ]]; then
   exec "$build/app/artcam-studio" "$root/resources/sample.artcamproj"

@@ -2,7 +2,6 @@
 
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
-#include "app/cli/warp_job.h"
 
 #include <filesystem>
 #include <map>
@@ -78,8 +77,8 @@ std::vector<std::string> expandBatchInputs(const std::vector<std::string>& argum
   return inputs;
 }
 
-std::vector<BatchItem> planBatch(const std::vector<std::string>& inputs, const BatchNaming& naming,
-                                 bool overwrite) {
+std::vector<BatchItem> planBatch(const std::vector<std::string>& inputs,
+                                 const BatchNaming& naming) {
   std::vector<BatchItem> items;
   std::map<std::string, std::string> output_of;  // lexically normal output → its input
   for (const std::string& input : inputs) {
@@ -94,12 +93,6 @@ std::vector<BatchItem> planBatch(const std::vector<std::string>& inputs, const B
     output_of[key] = input;
     items.push_back({input, out.string()});
   }
-  if (!overwrite)
-    for (const BatchItem& item : items)
-      for (const std::string& input : inputs)
-        if (sameFile(input, item.output))
-          throw CommandError(item.output + ": refusing to overwrite the input image " + input +
-                             " (use --overwrite, or another -o DIR or --suffix)");
   return items;
 }
 

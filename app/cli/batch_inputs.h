@@ -26,9 +26,8 @@ struct BatchItem {
 std::vector<std::string> expandBatchInputs(const std::vector<std::string>& arguments,
                                            std::optional<long> first);
 
-// The output of each input; throws CommandError when two inputs would write one output, or
-// (unless `overwrite`) an output is one of the inputs (std::filesystem::equivalent).
-std::vector<BatchItem> planBatch(const std::vector<std::string>& inputs, const BatchNaming& naming,
-                                 bool overwrite);
+// The output of each input; throws CommandError when two inputs would write one output.
+// (Outputs that are inputs or exist already: outputs.h, checked by the command.)
+std::vector<BatchItem> planBatch(const std::vector<std::string>& inputs, const BatchNaming& naming);
 
 }  // namespace artcam::cli

@@ -9,9 +9,12 @@
 #include "app/cli/bounded_queue.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "app/cli/warp_job.h"
 #include "core/io/atomic_file.h"
+
+#include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <chrono>
@@ -27,7 +30,7 @@ namespace artcam::cli {
 const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
-    "                    [--overwrite] [--quiet]\n\n"
+    "                    [--overwrite] [--json] [--quiet]\n\n"
     "Warps every IN through the camera into DIR (created if missing), as artcam warp does,\n"
     "under IN's name, with --suffix added to the name and --format EXT as the extension\n"
     "(format) if given. An IN written as a printf-style pattern, e.g. frames/f_%04d.png, is a\n"
@@ -38,8 +41,12 @@ const char* const kBatchUsage =
     "ETA); otherwise one line per file. A file that fails gets one error line and the rest go\n"
     "on; a summary ends the run. Exit status: 0, 1 if any file failed, 130 when interrupted\n"
     "(Ctrl-C: finished outputs are kept, unfinished ones never appear).\n"
-    "An output that would replace one of the inputs is refused unless --overwrite; two inputs\n"
-    "that would write one output are refused.\n\n"
+    "An output that exists already is refused unless --overwrite; one that would replace an\n"
+    "input (or the camera) is always refused, as are two inputs that would write one output.\n"
+    "--json prints, instead of the summary line, one JSON object {files: [{input, output,\n"
+    "status (written, failed or not done), error, width, height, render_ms, description}],\n"
+    "totals: {files, written, failed, not_done, seconds, megapixels, mpix_per_s},\n"
+    "interrupted}.\n\n"
     "options:\n"
     "  -o, --output DIR     the folder for the outputs (required)\n"
     "  --suffix S           added to each output's name before the extension (default none)\n"
@@ -48,7 +55,8 @@ const char* const kBatchUsage =
     "  --size WxH           output size in pixels (default: the target frame scaled to IN)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
     "  --threads N          render threads (default 0: all cores)\n"
-    "  --overwrite          allow outputs to replace inputs\n"
+    "  --overwrite          replace outputs that exist (--force is the same); never an input\n"
+    "  --json               the results as one JSON object on stdout (above)\n"
     "  -q, --quiet          no progress and no per-file lines (errors and summary only)\n\n"
     "Examples:\n"
     "  artcam batch lens.artcam shoot/*.jpg -o fixed/\n"
@@ -63,6 +71,16 @@ struct Decoded {
 struct Rendered {
   size_t index;
   RenderedOutput image;
+};
+
+// One file's result for --json; each slot is written by the one stage that settles its file.
+struct FileResult {
+  std::string status = "not done";
+  std::string error;
+  int width = 0;
+  int height = 0;
+  double render_ms = 0.0;
+  std::string description;
 };
 
 struct BatchTally {
@@ -82,6 +100,8 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--filter", "", true},
                          {"--threads", "", true},
                          {"--overwrite", "", false},
+                         {"--force", "", false},
+                         {"--json", "", false},
                          {"--quiet", "-q", false}});
   if (args.positional().size() < 2) throw UsageError("expected CAM.artcam and at least one IN");
   const auto folder = args.value("--output");
@@ -117,15 +137,24 @@ int batchCommand(const std::vector<std::string>& argv) {
   if (!std::filesystem::is_directory(naming.folder))
     throw CommandError(naming.folder + ": cannot create the output folder" +
                        (ec ? ": " + ec.message() : std::string(": it is not a folder")));
-  const std::vector<BatchItem> items = planBatch(inputs, naming, args.has("--overwrite"));
+  const std::vector<BatchItem> items = planBatch(inputs, naming);
+  {
+    std::vector<std::string> outputs, read = inputs;
+    for (const BatchItem& item : items) outputs.push_back(item.output);
+    read.push_back(args.positional()[0]);
+    checkOutputs(args, outputs, read);
+  }
   const WarpCameraFile camera = loadWarpCamera(args.positional()[0]);
 
   const CooperativeInterrupt interrupt;
   ProgressBar bar(static_cast<int>(items.size()), quiet);
   BatchTally tally;
+  std::vector<FileResult> results(items.size());
   auto fail = [&](size_t index, const std::string& message) {
     if (interruptRequested()) return;  // a cancelled stage is not the file's fault
     tally.failed.fetch_add(1);
+    results[index].status = "failed";
+    results[index].error = message;
     const std::string& input = items[index].input;
     // Core messages name the file already; add it only when they do not.
     bar.error("artcam batch: " + (message.find(input) == std::string::npos &&
@@ -164,6 +193,8 @@ int batchCommand(const std::vector<std::string>& argv) {
       const BatchItem& names = items[item->index];
       if (guarded(item->index, [&] { encodeWarp(item->image, no_report); })) {
         tally.written.fetch_add(1);
+        results[item->index] = {"written", "", item->image.width, item->image.height,
+                                item->image.render_ms, item->image.description};
         tally.megapixels.store(tally.megapixels.load() + mpix);  // only this thread adds
         char line[64];
         std::snprintf(line, sizeof line, "%zu/%zu ", item->index + 1, items.size());
@@ -198,11 +229,40 @@ int batchCommand(const std::vector<std::string>& argv) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int written = tally.written.load(), failed = tally.failed.load();
   const int left = static_cast<int>(items.size()) - written - failed;
-  std::printf(
+  const double mpix_per_s = seconds > 0 ? tally.megapixels.load() / seconds : 0.0;
+  if (args.has("--json")) {
+    nlohmann::json files = nlohmann::json::array();
+    for (size_t i = 0; i < items.size(); ++i) {
+      const FileResult& f = results[i];
+      nlohmann::json j = {{"input", items[i].input}, {"output", items[i].output},
+                          {"status", f.status}};
+      if (f.status == "failed") j["error"] = f.error;
+      if (f.status == "written") {
+        j["width"] = f.width;
+        j["height"] = f.height;
+        j["render_ms"] = f.render_ms;
+        j["description"] = f.description;
+      }
+      files.push_back(j);
+    }
+    const nlohmann::json totals = {{"files", items.size()},
+                                   {"written", written},
+                                   {"failed", failed},
+                                   {"not_done", left},
+                                   {"seconds", seconds},
+                                   {"megapixels", tally.megapixels.load()},
+                                   {"mpix_per_s", mpix_per_s},
+                                   {"folder", naming.folder}};
+    const nlohmann::json report = {
+        {"files", files}, {"totals", totals}, {"interrupted", interruptRequested()}};
+    std::printf("%s\n", report.dump().c_str());
+  } else {
+    std::printf(
       "batch: %d of %zu written to %s, %d failed%s in %.1f s (%.1f Mpix/s)\n", written,
       items.size(), naming.folder.c_str(), failed,
       interruptRequested() ? (", " + std::to_string(left) + " not done (interrupted)").c_str() : "",
-      seconds, seconds > 0 ? tally.megapixels.load() / seconds : 0.0);
+      seconds, mpix_per_s);
+  }
   std::fflush(stdout);
   if (interruptRequested()) return interruptExitCode();
   return failed > 0 ? 1 : 0;

@@ -4,6 +4,7 @@
 // positions and an exact double-precision inverse (coordinates.h, makeReferenceInverse).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
 #include "core/model/frames.h"
@@ -33,9 +34,9 @@ namespace artcam::cli {
 
 const char* const kBenchUsage =
     "usage: artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
-    "                           [--peer DIR] [--only KERNEL,…] [--no-e2e]\n"
+    "                           [--peer DIR] [--only KERNEL,…] [--no-e2e] [--overwrite]\n"
     "       artcam bench fit [--counts LIST] [--noise LIST] [--seconds S] [--methods LIST]\n"
-    "                        [--plot OUT.png] [--colour]\n"
+    "                        [--plot OUT.png] [--colour] [--overwrite]\n"
     "       artcam bench effects …   (artcam bench effects --help)\n\n"
     "bench render times the fused warp on a WxH RGB8 image made in code: each kernel\n"
     "(identity, translation-copy, affine, homography, rational, rational-scalar without the\n"
@@ -51,6 +52,7 @@ const char* const kBenchUsage =
     "  --reps N         renders per row, the median is reported (default 5)\n"
     "  --threads LIST   comma-separated thread counts (default 1,2)\n"
     "  --plot OUT.png   a PNG of speed (x, log) against error (y, log), one colour per kernel\n"
+    "  --overwrite      replace an existing OUT.png (--force is the same; bench fit too)\n"
     "  --peer DIR       also run DIR/cvwarp (the OpenCV maps + remap peer) on the same image\n"
     "  --only LIST      run only the named kernels (default: all)\n"
     "  --filter LIST    run only the named filters: nearest,bilinear,bicubic (default: all)\n"
@@ -391,9 +393,14 @@ int benchCommand(const std::vector<std::string>& argv) {
                          {"--peer", "", true},
                          {"--only", "", true},
                          {"--filter", "", true},
-                         {"--no-e2e", "", false}});
+                         {"--no-e2e", "", false},
+                         {"--overwrite", "", false},
+                         {"--force", "", false}});
   args.expectPositional(1, "what to benchmark (render)");
-  if (args.positional()[0] != "render") throw UsageError("bench what? \"render\" or \"fit\"");
+  if (args.positional()[0] != "render")
+    throw UsageError("bench what? \"render\", \"fit\" or \"effects\"",
+                     didYouMean(args.positional()[0], {"render", "fit", "effects"}));
+  if (const auto plot = args.value("--plot")) checkOutputs(args, {*plot}, {});
   const FrameSize size = args.has("--size") ? parseSize(*args.value("--size"), "--size")
                                             : FrameSize{6000, 4000};
   int reps = 5;

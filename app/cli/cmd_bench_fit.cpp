@@ -3,6 +3,7 @@
 // error measured against that true map on a dense grid (target pixels).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "core/colour/colour_difference.h"
 #include "core/fit/fit_colour.h"
 #include "core/fit/fit_image.h"
@@ -22,7 +23,7 @@ namespace artcam::cli {
 
 const char* const kBenchFitUsage =
     "usage: artcam bench fit [--counts LIST] [--noise LIST] [--methods LIST] [--plot OUT.png]\n"
-    "                        [--seconds S] [--colour]\n\n"
+    "                        [--seconds S] [--colour] [--overwrite]\n\n"
     "Fits cameras to matches made from a known rational lens on a 6000x4000 frame, for each\n"
     "method (raw-dlt: no conditioning; dlt: conditioned; refine: + Levenberg-Marquardt;\n"
     "robust: + MSAC/LO-RANSAC with 20 % gross outliers added; auto: the model ladder), match\n"
@@ -33,7 +34,7 @@ const char* const kBenchFitUsage =
     "the work; the wall time adds the waits for a core), and the error is against the true map\n"
     "over the frame. --methods picks some of raw-dlt,dlt,refine,robust,auto. --plot writes a\n"
     "PNG of time (x, log) against error (y, log): the Pareto view. --seconds bounds each\n"
-    "cell's timing (0.3).\n"
+    "cell's timing (0.3). An existing --plot file is replaced only with --overwrite (--force).\n"
     "--colour adds colour calibration (fit --block colour): auto and robust auto on 24, 100\n"
     "and 1000 samples of a rational colour map (10 % wrong samples for robust) with noise\n"
     "sigma 0, 0.002, 0.01 in linear RGB, as a second CSV:\n"
@@ -221,8 +222,10 @@ void benchColour(double seconds) {
 
 int benchFitCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--counts", "", true}, {"--noise", "", true}, {"--plot", "", true},
-                         {"--seconds", "", true}, {"--methods", "", true}, {"--colour", "", false}});
+                         {"--seconds", "", true}, {"--methods", "", true}, {"--colour", "", false},
+                         {"--overwrite", "", false}, {"--force", "", false}});
   args.expectPositional(0, "");
+  if (const auto plot = args.value("--plot")) checkOutputs(args, {*plot}, {});
   const std::vector<double> counts =
       parseList(args.valueOr("--counts", "9,30,100,1000,10000,100000"), "--counts");
   const std::vector<double> noises = parseList(args.valueOr("--noise", "0,0.5,2"), "--noise");

@@ -2,6 +2,7 @@
 // layer by layer for layered cameras, patch by patch for a piecewise first camera.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "core/io/artcam_file.h"
 #include "core/model/compose.h"
 #include "core/model/structure.h"
@@ -42,9 +43,8 @@ int composeCommand(const std::vector<std::string>& argv) {
   if (inputs.size() < 2) throw UsageError("compose needs at least two camera files");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT.artcam");
-  for (const std::string& in : inputs)
-    if (in == *output)
-      throw CommandError(*output + ": refusing to overwrite the input camera " + in);
+  checkOutputs(args, {*output}, inputs);
+
   auto first = readArtcam(inputs[0]);
   if (!first) throw CommandError(first.status.message);
   Artcam composed = std::move(*first);

@@ -1,6 +1,7 @@
 // artcam fit: matches CSV → .artcam (paper §4).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/colour/colour_map.h"
 #include "core/fit/fit_colour.h"
@@ -19,7 +20,7 @@ const char* const kFitUsage =
     "                  [--model auto|translation|similarity|affine|homography|quadratic] [--json]\n"
     "                  [--no-refine] [--robust [--threshold PX]] [--allow-poles]\n"
     "       artcam fit --piecewise MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
-    "                  [--max-error PX] [--model quadratic|homography|affine]\n"
+    "                  [--max-error PX] [--model quadratic|homography|affine] [--json]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
     "       artcam fit --block colour SAMPLES.csv -o CAM.artcam --size WxH [--srgb]\n"
     "                  [--model auto|linear|affine|quadratic]\n"
@@ -40,7 +41,10 @@ const char* const kFitUsage =
     "--piecewise splits the region the matches cover into patches (a quadtree) and fits one\n"
     "camera per patch (default quadratic) until every patch's max residual is under --max-error\n"
     "(default 0.5 px); neighbours share the matches near their edges so they agree at the\n"
-    "seams. Prints per-patch errors, the seam gap and the single-camera floor. The file holds\n"
+    "seams. Prints per-patch errors, the seam gap and the single-camera floor; --json prints\n"
+    "{piecewise: true, patches, matches, rms_px, max_px, seam_gap_px, converged, max_error_px,\n"
+    "single_rms_px, single_max_px, patch_list: [{rect: [x0, y0, x1, y1], model, matches,\n"
+    "rms_px, max_px, within_tolerance}], output}. The file holds\n"
     "the single camera at its top level and the patches beside it (artcam insert reads them).\n"
     "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
     "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n"
@@ -52,7 +56,8 @@ const char* const kFitUsage =
     "camera holds the best representable model (and --model root-polynomial is refused).\n"
     "Prints dE00 per sample, mean, median and max. --size is the size of the photos the camera\n"
     "will recolour (its geometry is the identity); --threshold is in dE00 (default 3).\n\n"
-    "-o/--output names the camera file (required; written atomically).\n"
+    "-o/--output names the camera file (required; written atomically). An existing one is\n"
+    "refused unless --overwrite (--force is the same); it is never MATCHES.csv.\n"
     "-q/--quiet shows no progress bar (drawn on stderr only when it is a terminal).\n\n"
     "Examples:\n"
     "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
@@ -169,10 +174,13 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--srgb", "", false},
                          {"--piecewise", "", false},
                          {"--max-error", "", true},
+                         {"--overwrite", "", false},
+                         {"--force", "", false},
                          {"--quiet", "-q", false}});
   args.expectPositional(1, "MATCHES.csv");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
+  checkOutputs(args, {*output}, {args.positional()[0]});
   const std::string block = args.valueOr("--block", "position");
   if (block == "colour" || block == "color") return fitColourCommand(args, *output);
   if (block != "position") throw UsageError("--block expects position or colour");

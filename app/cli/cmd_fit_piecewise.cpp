@@ -8,14 +8,16 @@
 #include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_fit.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 
 namespace artcam::cli {
 
 int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize source,
                         FrameSize target) {
-  if (args.has("--robust") || args.has("--allow-poles") || args.has("--json"))
-    throw UsageError("--robust, --allow-poles and --json do not apply to --piecewise");
+  if (args.has("--robust") || args.has("--allow-poles"))
+    throw UsageError("--robust and --allow-poles do not apply to --piecewise");
   PiecewiseOptions options;
   if (args.has("--max-error")) {
     try {
@@ -56,6 +58,31 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
     job.stage("writing");
     if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
+    if (args.has("--json")) {
+      nlohmann::json patches = nlohmann::json::array();
+      for (const CameraPatch& p : fit.camera.patches)
+        patches.push_back({{"rect", {p.rect.x0, p.rect.y0, p.rect.x1, p.rect.y1}},
+                           {"model", p.model},
+                           {"matches", p.matches},
+                           {"rms_px", p.rms_px},
+                           {"max_px", p.max_px},
+                           {"within_tolerance", p.within_tolerance}});
+      nlohmann::json j = {{"piecewise", true},
+                          {"patches", fit.camera.patches.size()},
+                          {"matches", fit.matches},
+                          {"rms_px", fit.rms_px},
+                          {"max_px", fit.max_px},
+                          {"seam_gap_px", fit.seam_gap_px},
+                          {"converged", fit.converged},
+                          {"max_error_px", options.max_error_px},
+                          {"patch_list", patches},
+                          {"output", output}};
+      // Negative in the summary when the single-camera fit failed: absent here.
+      if (fit.single_rms_px >= 0) j["single_rms_px"] = fit.single_rms_px;
+      if (fit.single_max_px >= 0) j["single_max_px"] = fit.single_max_px;
+      std::printf("%s\n", j.dump().c_str());
+      return 0;
+    }
     std::printf("%s\n", fit.report().c_str());
     for (size_t i = 0; i < fit.camera.patches.size(); ++i) {
       const CameraPatch& p = fit.camera.patches[i];

@@ -2,6 +2,7 @@
 // photo (the paper's §5, Figs 7 and 8).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
@@ -12,14 +13,12 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <system_error>
 
 namespace artcam::cli {
 
 const char* const kInsertUsage =
     "usage: artcam insert PHOTO GRAPHIC (--matches GRID.csv | --camera CAM.artcam) -o OUT\n"
-    "                     [--max-error PX] [--save-camera FILE] [--mesh-step PX] [--force]\n\n"
+    "                     [--max-error PX] [--save-camera FILE] [--mesh-step PX] [--overwrite]\n\n"
     "Renders GRAPHIC into the reflection or refraction seen in PHOTO and composites it over\n"
     "the photo with premultiplied alpha.\n\n"
     "GRAPHIC stands in for the calibration grid: the matches' source points are pixels of the\n"
@@ -31,10 +30,10 @@ const char* const kInsertUsage =
     "  --save-camera FILE  also write the fitted piecewise camera\n"
     "  --mesh-step PX      lattice spacing of the mesh render, source pixels (default 4)\n"
     "  -o, --output OUT    the composited image (required)\n"
-    "  --force             allow OUT to be PHOTO\n"
+    "  --overwrite         replace OUT (and FILE) if they exist (--force is the same)\n"
     "  -q, --quiet         no progress bar (drawn on stderr only when it is a terminal)\n"
-    "OUT keeps PHOTO's format and metadata; it is written atomically and may not be PHOTO\n"
-    "unless --force is given.\n\n"
+    "OUT keeps PHOTO's format and metadata; it is written atomically. Neither OUT nor FILE is\n"
+    "ever one of the inputs (PHOTO, GRAPHIC, GRID.csv, CAM.artcam), even with --overwrite.\n\n"
     "Example:\n"
     "  artcam sample mirror-sphere -o demo && artcam insert demo/mirror-sphere.png \\\n"
     "      demo/emblem.png --matches demo/mirror-sphere-grid.csv -o inserted.png\n";
@@ -63,6 +62,7 @@ int insertCommand(const std::vector<std::string>& argv) {
                          {"--max-error", "", true},
                          {"--save-camera", "", true},
                          {"--mesh-step", "", true},
+                         {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--quiet", "-q", false}});
   args.expectPositional(2, "PHOTO and GRAPHIC");
@@ -71,9 +71,13 @@ int insertCommand(const std::vector<std::string>& argv) {
   if (args.has("--matches") == args.has("--camera"))
     throw UsageError("give exactly one of --matches GRID.csv and --camera CAM.artcam");
   const std::string& photo_path = args.positional()[0];
-  std::error_code ec;
-  if (!args.has("--force") && std::filesystem::equivalent(photo_path, *output, ec))
-    throw CommandError(*output + ": refusing to overwrite the input photo (use --force)");
+  {
+    std::vector<std::string> outputs = {*output}, inputs = args.positional();
+    if (const auto save = args.value("--save-camera")) outputs.push_back(*save);
+    for (const char* read : {"--matches", "--camera"})
+      if (const auto path = args.value(read)) inputs.push_back(*path);
+    checkOutputs(args, outputs, inputs);
+  }
 
   // The image reads and the final write poll for Ctrl-C; the fit, the mesh render and the
   // camera file have no hook in core (a signal there exits at once, removing temporaries).

@@ -8,6 +8,7 @@
 // builders.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "core/cameras/effects_3d.h"
 #include "core/cameras/glc.h"
 #include "core/cameras/projective_cameras.h"
@@ -179,10 +180,7 @@ const Preset kPresets[] = {
 constexpr const char* kDefaultEffectSize = "600x400";
 
 // --size WxH; "W,H" is still accepted (the form this command took first).
-FrameSize effectFrame(std::string text) {
-  if (const size_t comma = text.find(','); comma != std::string::npos) text[comma] = 'x';
-  return parseSize(text, "--size");
-}
+FrameSize effectFrame(const std::string& text) { return parseSize(text, "--size", true); }
 
 std::string effectSummary(const EffectSpec& effect) {
   return "2D: " + effect.summary + (effect.needs_depth ? " (needs --depth)" : "");
@@ -264,7 +262,8 @@ std::string listing() {
 // Parses "--name value" pairs against a preset's defaults.
 Params parseParams(const char* spec, const std::vector<std::string>& argv, std::string& output,
                    std::string& summary) {
-  std::vector<OptionSpec> specs = {{"--output", "-o", true}};
+  std::vector<OptionSpec> specs = {
+      {"--output", "-o", true}, {"--overwrite", "", false}, {"--force", "", false}};
   const auto defs = defaults(spec);
   for (const auto& [name, value] : defs) specs.push_back({"--" + name, "", true});
   const Args args(argv, specs);
@@ -272,10 +271,16 @@ Params parseParams(const char* spec, const std::vector<std::string>& argv, std::
   const auto out = args.value("--output");
   if (!out) throw UsageError("missing -o OUT");
   output = *out;
+  checkOutputs(args, {output}, {});
   std::map<std::string, std::vector<double>> values;
   for (const auto& [name, fallback] : defs) {
     const std::string text = args.valueOr("--" + name, fallback);
-    values[name] = parseNumbers(text, name);
+    if (name == "size") {  // WxH like every size, W,H as before
+      const FrameSize size = parseSize(text, "--size", true);
+      values[name] = {double(size.width), double(size.height)};
+    } else {
+      values[name] = parseNumbers(text, name);
+    }
     summary += (summary.empty() ? "" : " ") + name + "=" + text;
   }
   return Params(std::move(values));
@@ -283,12 +288,16 @@ Params parseParams(const char* spec, const std::vector<std::string>& argv, std::
 
 // `artcam preset EFFECT [--PARAM VALUE …] [--size WxH] -o OUT` for a row of the effects table.
 int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) {
-  std::vector<OptionSpec> specs = {{"--output", "-o", true}, {"--size", "", true}};
+  std::vector<OptionSpec> specs = {{"--output", "-o", true},
+                                   {"--size", "", true},
+                                   {"--overwrite", "", false},
+                                   {"--force", "", false}};
   for (const EffectParam& p : effect.params) specs.push_back({"--" + p.name, "", true});
   const Args args(argv, specs);
   args.expectPositional(1, "NAME");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
+  checkOutputs(args, {*output}, {});
   const std::string size = args.valueOr("--size", kDefaultEffectSize);
   const FrameSize frame = effectFrame(size);
   EffectValues values;
@@ -329,7 +338,8 @@ const char* const kPresetUsage =
     "the photo's size (default 600x400; W,H also accepted).\n"
     "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
     "its parameters and defaults; every parameter is optional, and an image effect's parameter\n"
-    "outside its range is refused. -o/--output names OUT (required).\n\n"
+    "outside its range is refused. -o/--output names OUT (required); an existing OUT is\n"
+    "refused unless --overwrite (--force is the same).\n\n"
     "Examples:\n"
     "  artcam preset list\n"
     "  artcam preset barrel --k -0.2 --size 6000x4000 -o barrel.artcam\n"
@@ -395,7 +405,12 @@ int presetCommand(const std::vector<std::string>& argv) {
                 summary.c_str());
     return 0;
   }
-  throw UsageError("unknown preset \"" + name + "\"");
+  std::vector<std::string> names = {"list"};
+  for (const Preset& p : kPresets) names.push_back(p.name);
+  for (const EffectSpec& e : effectSpecs()) names.push_back(e.name);
+  for (const CloudPreset& p : kCloudPresets) names.push_back(p.name);
+  throw UsageError("unknown preset \"" + name + "\" (artcam preset list shows them)",
+                   didYouMean(name, names));
 }
 
 }  // namespace artcam::cli

@@ -2,11 +2,14 @@
 // image (z-buffered splats) or, with -o *.ply, the moved cloud itself.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/cloud/cloud_render.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/ply.h"
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -22,7 +25,7 @@ const char* const kRenderUsage =
     "usage: artcam render CLOUD.ply CAM.artcam -o OUT.png|OUT.ply [--view VIEW.artcam]\n"
     "                     [--eye X,Y,Z] [--at X,Y,Z] [--fov DEGREES] [--size WxH]\n"
     "                     [--layers whole|rgb] [--point-size H] [--splat-scale S]\n"
-    "                     [--threads N] [--stats]\n\n"
+    "                     [--threads N] [--stats] [--json] [--overwrite]\n\n"
     "Moves every point of CLOUD (and its colour) through CAM, an object-space ARTcam (a 3D\n"
     "preset such as twist, or a camera fitted with artcam fit --dim 3; `artcam preset identity`\n"
     "for none). With -o OUT.ply the moved cloud is written. Otherwise it is seen through the\n"
@@ -36,9 +39,13 @@ const char* const kRenderUsage =
     "paper's chromatic aberration). Splats cover --splat-scale (0.75) times the image of one\n"
     "point spacing (--point-size, default: the median nearest-neighbour distance).\n"
     "--stats prints points, render_ms and points_per_s on stderr (render only, no file I/O).\n"
+    "--json prints one JSON object on stdout instead of the \"wrote\" line: {output, points,\n"
+    "dropped} for a cloud; {output, width, height, points, drawn, dropped, render_ms,\n"
+    "points_per_s} for an image.\n"
     "--threads N sets the worker threads (default 0: all cores). -o/--output names OUT\n"
-    "(required; written atomically). -q/--quiet shows no progress bar (drawn on stderr only\n"
-    "when it is a terminal).\n\n"
+    "(required; written atomically; an existing OUT is refused unless --overwrite, --force\n"
+    "being the same, and OUT is never CLOUD or a camera). -q/--quiet shows no progress bar\n"
+    "(drawn on stderr only when it is a terminal).\n\n"
     "Examples:\n"
     "  artcam preset cube-of-cubes -o cube.ply && artcam preset twist-3d -o twist.artcam\n"
     "  artcam render cube.ply twist.artcam -o twisted.png --size 800x600 --eye 3,2,-4\n";
@@ -103,10 +110,16 @@ int renderCommand(const std::vector<std::string>& argv) {
                          {"--splat-scale", "", true},
                          {"--threads", "", true},
                          {"--stats", "", false},
+                         {"--json", "", false},
+                         {"--overwrite", "", false},
+                         {"--force", "", false},
                          {"--quiet", "-q", false}});
   args.expectPositional(2, "CLOUD.ply and CAM.artcam");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
+  std::vector<std::string> inputs = args.positional();
+  if (const auto view = args.value("--view")) inputs.push_back(*view);
+  checkOutputs(args, {*output}, inputs);
 
   CloudRenderOptions options;
   if (args.has("--size")) {
@@ -147,6 +160,12 @@ int renderCommand(const std::vector<std::string>& argv) {
       job.stage("writing");
       if (const Status s = writePly(*output, moved); !s) throw CommandError(s.message);
       job.finish();
+      if (args.has("--json")) {
+        const nlohmann::json j = {
+            {"output", *output}, {"points", moved.size()}, {"dropped", dropped}};
+        std::printf("%s\n", j.dump().c_str());
+        return 0;
+      }
       std::printf("wrote %s (%zu points, %zu dropped where the camera does not map)\n",
                   output->c_str(), moved.size(), dropped);
       return 0;
@@ -193,6 +212,18 @@ int renderCommand(const std::vector<std::string>& argv) {
     if (const Status s = writeImage(*output, image, nullptr, write); !s)
       throw CommandError(s.message);
     job.finish();
+    if (args.has("--json")) {
+      const nlohmann::json j = {{"output", *output},
+                                {"width", image.width},
+                                {"height", image.height},
+                                {"points", summary.points},
+                                {"drawn", summary.drawn},
+                                {"dropped", summary.dropped},
+                                {"render_ms", summary.render_ms},
+                                {"points_per_s", summary.pointsPerSecond()}};
+      std::printf("%s\n", j.dump().c_str());
+      return 0;
+    }
     if (args.has("--stats"))
       std::fprintf(stderr, "points=%zu render_ms=%.1f points_per_s=%.0f\n", summary.points,
                    summary.render_ms, summary.pointsPerSecond());

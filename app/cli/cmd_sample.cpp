@@ -2,6 +2,7 @@
 // (the paper's Figs 7 and 8): a photo, its calibration-grid matches and a graphic to insert.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
@@ -13,7 +14,8 @@
 namespace artcam::cli {
 
 const char* const kSampleUsage =
-    "usage: artcam sample mirror-sphere|water-glass -o DIR [--squares N] [--size WxH]\n\n"
+    "usage: artcam sample mirror-sphere|water-glass -o DIR [--squares N] [--size WxH]\n"
+    "                     [--overwrite]\n\n"
     "Ray traces a sample scene for `artcam insert` into DIR:\n"
     "  NAME.png        the photo: a chrome sphere on a table that carries a calibration\n"
     "                  checkerboard (mirror-sphere), or a glass of water in front of a\n"
@@ -26,6 +28,7 @@ const char* const kSampleUsage =
     "  --squares N     squares along the board's side (default 24)\n"
     "  --size WxH      photo size (default 640x480)\n"
     "  -o, --output DIR  the folder to write into (required; created if missing)\n"
+    "  --overwrite     replace the three files if they exist (--force is the same)\n"
     "  -q, --quiet     no progress bar (drawn on stderr only when it is a terminal)\n"
     "Example:\n"
     "  artcam sample water-glass -o demo --squares 16 --size 800x600\n"
@@ -35,6 +38,8 @@ int sampleCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
                          {"--squares", "", true},
                          {"--size", "", true},
+                         {"--overwrite", "", false},
+                         {"--force", "", false},
                          {"--quiet", "-q", false}});
   args.expectPositional(1, "the sample's name");
   const auto dir = args.value("--output");
@@ -51,7 +56,13 @@ int sampleCommand(const std::vector<std::string>& argv) {
   const FrameSize size = parseSize(args.valueOr("--size", "640x480"), "--size");
   const std::string& name = args.positional()[0];
   if (name != "mirror-sphere" && name != "water-glass")
-    throw UsageError("unknown sample \"" + name + "\" (mirror-sphere or water-glass)");
+    throw UsageError("unknown sample \"" + name + "\" (mirror-sphere or water-glass)",
+                     didYouMean(name, {"mirror-sphere", "water-glass"}));
+  const std::filesystem::path base(*dir);
+  const std::string photo = (base / (name + ".png")).string();
+  const std::string csv = (base / (name + "-grid.csv")).string();
+  const std::string emblem = (base / "emblem.png").string();
+  checkOutputs(args, {photo, csv, emblem}, {});
   std::error_code ec;
   std::filesystem::create_directories(*dir, ec);
   if (ec) throw CommandError(*dir + ": cannot create the directory: " + ec.message());
@@ -76,10 +87,6 @@ int sampleCommand(const std::vector<std::string>& argv) {
       scene.photo_height = size.height;
       sample = makeWaterGlassSample(scene, squares);
     }
-    const std::filesystem::path base(*dir);
-    const std::string photo = (base / (name + ".png")).string();
-    const std::string csv = (base / (name + "-grid.csv")).string();
-    const std::string emblem = (base / "emblem.png").string();
     WriteImageOptions write;
     write.progress = job.polled("writing " + name + ".png");
     if (const Status s = writeImage(photo, sample.photo, nullptr, write); !s)

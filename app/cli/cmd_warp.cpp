@@ -3,8 +3,11 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
+#include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "app/cli/warp_job.h"
+
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <string>
@@ -13,7 +16,7 @@ namespace artcam::cli {
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--threads N] [--stats] [--quiet] [--overwrite]\n"
+    "                   [--threads N] [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
     "Output frame: the camera's target frame scaled per axis by IN's size over the camera's\n"
@@ -27,9 +30,11 @@ const char* const kWarpUsage =
     "(8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and writes the stored\n"
     "values in place (no float copy: peak memory about input + output), interpolating them in\n"
     "the file's own encoding as OpenCV's remap does; otherwise it renders in linear float.\n"
-    "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130); it may\n"
-    "not be IN unless --overwrite is given. --stats prints render_ms=<ms>\n"
-    "mpix_per_s=<Mpix/s> on stderr (the render alone, without file I/O).\n"
+    "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130). An OUT that\n"
+    "exists is refused unless --overwrite; OUT is never IN, the camera or the depth file.\n"
+    "--stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr (the render alone, without\n"
+    "file I/O). --json prints one JSON object on stdout instead of the \"wrote\" line:\n"
+    "{output, width, height, description}, with --stats also render_ms and mpix_per_s.\n"
     "Every camera kind renders: a piecewise camera (artcam fit --piecewise) by its seamless\n"
     "mesh warp, layered and attributed cameras by the attributed renderer.\n"
     "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
@@ -42,7 +47,8 @@ const char* const kWarpUsage =
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
     "  --threads N          worker threads (default 0: all cores)\n"
     "  --stats              print render_ms and mpix_per_s on stderr\n"
-    "  --overwrite          allow OUT to be IN (--force is the same)\n"
+    "  --json               the result (and --stats) as one JSON object on stdout\n"
+    "  --overwrite          replace OUT if it exists (--force is the same); never IN\n"
     "  -q, --quiet          no progress bar on stderr (shown only on a terminal)\n"
     "  --depth FILE         per-pixel depth for cameras that read it (no default)\n"
     "  --depth-scale S      multiplies an integer depth file's values (default 1)\n"
@@ -58,6 +64,7 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--filter", "", true},
                          {"--threads", "", true},
                          {"--stats", "", false},
+                         {"--json", "", false},
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--quiet", "-q", false},
@@ -68,10 +75,9 @@ int warpCommand(const std::vector<std::string>& argv) {
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
   const std::string& input = args.positional()[0];
-  // Never replace the photo being warped by default: an input is never lost.
-  if (!args.has("--overwrite") && !args.has("--force") && sameFile(input, *output))
-    throw CommandError(*output + ": refusing to overwrite the input image " + input +
-                       " (use --overwrite)");
+  std::vector<std::string> inputs = {input, args.positional()[1]};
+  if (const auto depth = args.value("--depth")) inputs.push_back(*depth);
+  checkOutputs(args, {*output}, inputs);
   const WarpRequest request = parseWarpRequest(args);
   const WarpCameraFile camera = loadWarpCamera(args.positional()[1]);
 
@@ -86,14 +92,26 @@ int warpCommand(const std::vector<std::string>& argv) {
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
     encodeWarp(rendered, stage("writing"));
     bar.finish();
+    const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
+    const double mpix_per_s = rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0;
     if (!rendered.warning.empty())
       std::fprintf(stderr, "artcam warp: warning: %s\n", rendered.warning.c_str());
-    if (request.stats) {
-      const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
-      std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms,
-                   rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0);
+    if (args.has("--json")) {
+      nlohmann::json j = {{"output", *output},
+                          {"width", rendered.width},
+                          {"height", rendered.height},
+                          {"description", rendered.description}};
+      if (!rendered.warning.empty()) j["warning"] = rendered.warning;
+      if (request.stats) {
+        j["render_ms"] = rendered.render_ms;
+        j["mpix_per_s"] = mpix_per_s;
+      }
+      std::printf("%s\n", j.dump().c_str());
+    } else if (request.stats) {
+      std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms, mpix_per_s);
     }
-    std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), rendered.width, rendered.height,
+    if (!args.has("--json"))
+      std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), rendered.width, rendered.height,
                   rendered.description.c_str());
   } catch (const CommandError&) {
     if (!interruptRequested()) throw;

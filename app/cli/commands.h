@@ -1,6 +1,7 @@
 // The artcam subcommands. Each takes the arguments after its name, prints its results on
-// stdout, and reports a failure by throwing: UsageError (exit 2, usage shown) or
-// CommandError (exit 1): one line naming the file, the place and the cause.
+// stdout, and reports a failure by throwing: UsageError (exit 2; the error, a hint and where the
+// help page is, args.h) or CommandError (exit 1): one line naming the file, the place and the
+// cause. Commands that write files check them first with outputs.h.
 #pragma once
 
 #include <stdexcept>

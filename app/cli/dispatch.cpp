@@ -34,20 +34,36 @@ void printHelp() {
       "\nPixels: centres at i + 0.5, (0, 0) the top-left corner, y down. Cameras are stored\n"
       "in normalised frames, so a camera made on a preview applies to the full-size photo.\n"
       "Errors: one line on stderr naming the file, the place and the cause; exit status 1\n"
-      "(2 for a usage error); no partial output file is ever left behind.\n\n"
+      "(2 for a usage error); no partial output file is ever left behind. An output that\n"
+      "exists is replaced only with --overwrite (alias --force); an input never is. Sizes\n"
+      "are WxH; commands that report print one JSON object with --json.\n\n"
       "options: -h, --help (this page), --version (print the version). The manual: man artcam.\n\n"
       "Example:\n"
       "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
       "  artcam warp photo.jpg lens.artcam -o fixed.jpg\n");
 }
 
+// A usage error in at most three lines on stderr: what is wrong, the likely intended name
+// if one is close, and where the full page is (never the page itself: it would bury the error).
+void printUsageError(const std::string& who, const std::string& message, const std::string& hint,
+                     const std::string& help_call) {
+  std::fprintf(stderr, "%s: %s\n", who.c_str(), message.c_str());
+  if (!hint.empty()) std::fprintf(stderr, "%s\n", hint.c_str());
+  std::fprintf(stderr, "see '%s --help'\n", help_call.c_str());
+}
+
 }  // namespace
 
 int run(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+  if (args.empty()) {
+    printUsageError("artcam", "missing the command (usage: artcam <command> [options])", "",
+                    "artcam");
+    return 2;
+  }
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     printHelp();
-    return args.empty() ? 2 : 0;
+    return 0;
   }
   if (args[0] == "--version") {
     std::printf("artcam 0.1.0\n");
@@ -70,14 +86,21 @@ int run(int argc, char** argv) {
     try {
       return c.run(rest);
     } catch (const UsageError& e) {
-      std::fprintf(stderr, "artcam %s: %s\n%s", c.name, e.what(), c.usage);
+      std::string page = std::string("artcam ") + c.name;
+      if (page == "artcam bench" && !rest.empty() &&
+          (rest.front() == "fit" || rest.front() == "effects"))
+        page += " " + rest.front();
+      printUsageError(std::string("artcam ") + c.name, e.what(), e.hint, page);
       return 2;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "artcam %s: %s\n", c.name, e.what());
       return 1;
     }
   }
-  std::fprintf(stderr, "artcam: unknown command \"%s\" (try artcam --help)\n", args[0].c_str());
+  std::vector<std::string> names = {"--help", "--version"};
+  for (const Command& c : kCommands) names.push_back(c.name);
+  printUsageError("artcam", "unknown command \"" + args[0] + "\"", didYouMean(args[0], names),
+                  "artcam");
   return 2;
 }
 

@@ -21,17 +21,17 @@ for panel in identity twist pincushion inverse-perspective colour-scale chromati
   esac
   "$artcam" preset "$preset" -o "$tmp/$panel.artcam" >/dev/null
 done
-"$artcam" render "$cloud" "$tmp/identity.artcam" --size 256x256 -o "$out/original.png"
-"$artcam" render "$cloud" "$tmp/twist.artcam" --size 256x256 -o "$out/twist.png"
-"$artcam" render "$cloud" "$tmp/pincushion.artcam" --size 256x256 -o "$out/pincushion.png"
-"$artcam" render "$cloud" "$tmp/inverse-perspective.artcam" --size 256x256 -o "$out/inverse-perspective.png"
-"$artcam" render "$cloud" "$tmp/colour-scale.artcam" --size 256x256 -o "$out/colour-scale.png"
+"$artcam" render "$cloud" "$tmp/identity.artcam" --size 256x256 --overwrite -o "$out/original.png"
+"$artcam" render "$cloud" "$tmp/twist.artcam" --size 256x256 --overwrite -o "$out/twist.png"
+"$artcam" render "$cloud" "$tmp/pincushion.artcam" --size 256x256 --overwrite -o "$out/pincushion.png"
+"$artcam" render "$cloud" "$tmp/inverse-perspective.artcam" --size 256x256 --overwrite -o "$out/inverse-perspective.png"
+"$artcam" render "$cloud" "$tmp/colour-scale.artcam" --size 256x256 --overwrite -o "$out/colour-scale.png"
 "$artcam" render "$cloud" "$tmp/chromatic-aberration.artcam" --layers rgb --size 256x256 \
-  -o "$out/chromatic-aberration.png"
+  --overwrite -o "$out/chromatic-aberration.png"
 
 # The family of view cameras on the unmoved cube.
 for view in orthographic pushbroom xslit glc rational-lens; do
   "$artcam" preset "$view" -o "$tmp/$view.artcam" >/dev/null
   "$artcam" render "$cloud" "$tmp/identity.artcam" --view "$tmp/$view.artcam" --size 256x256 \
-    -o "$out/view-$view.png"
+    --overwrite -o "$out/view-$view.png"
 done

@@ -10,7 +10,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 for scene in mirror-sphere water-glass; do
-  "$artcam" sample "$scene" -o "$out"
+  "$artcam" sample "$scene" --overwrite -o "$out"
   "$artcam" insert "$out/$scene.png" "$out/emblem.png" --matches "$out/$scene-grid.csv" \
     --max-error 0.25 -o "$tmp/$scene-inserted.png"
   convert "$out/$scene.png" "$tmp/$scene-inserted.png" +append "$out/$scene-before-after.png"

@@ -136,7 +136,7 @@ class TestCliEffects : public QObject {
     // The ends of a range are inside it, and the frame may be given as WxH or W,H.
     r = artcamCli({"preset", "pincushion", "--k", "0.45", "--size", "300,300", "-o", out});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-    r = artcamCli({"preset", "inverse-perspective", "--gain", "-0.85", "--size", "200x400", "-o", out});
+    r = artcamCli({"preset", "inverse-perspective", "--gain", "-0.85", "--size", "200x400", "-o", out, "--overwrite"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
   }
 
@@ -147,7 +147,7 @@ class TestCliEffects : public QObject {
     const double f = 2.0, k = 0.02;
     for (const double gamma : {1.0, 0.0}) {
       QStringList args = {"preset", "depth-of-field", "--focus", "2", "--blur", "0.02", "-o",
-                          dir.filePath("dof.artcam")};
+                          dir.filePath("dof.artcam"), "--overwrite"};
       if (gamma == 0.0) args << "--thin-lens" << "0";
       const Run r = artcamCli(args);
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
@@ -174,7 +174,7 @@ class TestCliEffects : public QObject {
     const QString out = dir.filePath("p.artcam");
     for (const char* name : {"barrel", "pincushion", "twist", "inverse-perspective", "chromatic-aberration",
                              "colour-shift", "aerial-perspective", "depth-of-field"}) {
-      const Run r = artcamCli({"preset", name, "-o", out});
+      const Run r = artcamCli({"preset", name, "-o", out, "--overwrite"});
       QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
       const auto doc = artcam::readArtcam(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
@@ -182,7 +182,7 @@ class TestCliEffects : public QObject {
       QVERIFY2(doc.value->main().sourceSize().isImage(), name);
     }
     for (const char* name : {"twist-3d", "pincushion-3d", "inverse-perspective-3d", "chromatic-aberration-3d"}) {
-      const Run r = artcamCli({"preset", name, "-o", out});
+      const Run r = artcamCli({"preset", name, "-o", out, "--overwrite"});
       QVERIFY2(r.exit_code == 0, qPrintable(QString(name) + ": " + r.err));
       const auto doc = artcam::readArtcam(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());
@@ -190,7 +190,8 @@ class TestCliEffects : public QObject {
     }
     QCOMPARE(artcamCli({"preset", "twist-2d", "-o", out}).exit_code, 2);  // the old names are gone
     for (const double k : {0.15, -0.2}) {
-      const Run r = artcamCli({"preset", k > 0 ? "pincushion" : "barrel", "--k", QString::number(k), "-o", out});
+      const Run r = artcamCli({"preset", k > 0 ? "pincushion" : "barrel", "--k", QString::number(k),
+                               "-o", out, "--overwrite"});
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
       const auto doc = artcam::readArtcam(out.toStdString());
       QVERIFY2(doc.ok(), doc.status.message.c_str());

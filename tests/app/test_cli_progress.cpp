@@ -126,7 +126,8 @@ class TestCliProgress : public QObject {
                                 "-o",
                                 path("terminal.png"),
                                 "--size",
-                                "600x400"};
+                                "600x400",
+                                "--overwrite"};  // run twice below
     bool ok = false;
     const QByteArray bar = stderrOnTerminal(render, ok);
     QVERIFY(ok);

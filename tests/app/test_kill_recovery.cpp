@@ -32,13 +32,14 @@ class TestKillRecovery : public QObject {
     QVERIFY(QDir().mkpath(path("out")));
     QVERIFY(writeNoisePhoto(path("photo.png"), 300, 200));
     const QString target = path("out/result.png");
-    QVERIFY(writeNoisePhoto(target, 320, 240));  // the file a new save replaces
+    QVERIFY(writeNoisePhoto(target, 320, 240));  // the file a new save replaces (--overwrite)
     const QByteArray old_bytes = fileBytes(target);
 
     // A large output (PNG encoding takes seconds) so the kill lands while it is written.
     QProcess p;
     p.start(QStringLiteral(ARTCAM_CLI_PATH),
-            {"warp", path("photo.png"), kCamera, "-o", target, "--size", "6000x4000"});
+            {"warp", path("photo.png"), kCamera, "-o", target, "--size", "6000x4000",
+             "--overwrite"});
     QVERIFY(p.waitForStarted());
     QVERIFY(waitUntil(
         [&] { return !hiddenFiles(path("out")).isEmpty() || p.state() == QProcess::NotRunning; }));
@@ -63,7 +64,8 @@ class TestKillRecovery : public QObject {
     QVERIFY(visibleFiles(path("batch")).isEmpty());
 
     // The next save to that name removes the dead writer's temporary.
-    const Run again = artcamCli({"warp", path("photo.png"), kCamera, "-o", target});
+    const Run again =
+        artcamCli({"warp", path("photo.png"), kCamera, "-o", target, "--overwrite"});
     QVERIFY2(again.exit_code == 0, qPrintable(again.err));
     QVERIFY2(hiddenFiles(path("out")).isEmpty(), qPrintable(hiddenFiles(path("out")).join(", ")));
     const auto fresh = readImage(target.toStdString());

@@ -15,7 +15,7 @@ oiiotool --pattern fill:top=0.05:bottom=1.0 600x400 1 --powc -1 -d float -o "$tm
 
 # The original at the gallery's size: a radial lens with k = 0 is the identity.
 "$artcam" preset barrel --k 0 -o "$tmp/identity.artcam" >/dev/null
-"$artcam" warp "$photo" "$tmp/identity.artcam" --size $size -o "$out/original.png" >/dev/null
+"$artcam" warp "$photo" "$tmp/identity.artcam" --size $size --overwrite -o "$out/original.png" >/dev/null
 "$artcam" preset barrel --k -0.25 -o "$tmp/barrel.artcam" >/dev/null
 "$artcam" preset pincushion --k 0.25 -o "$tmp/pincushion.artcam" >/dev/null
 "$artcam" preset twist --rate 0.4 -o "$tmp/twist.artcam" >/dev/null
@@ -27,5 +27,5 @@ oiiotool --pattern fill:top=0.05:bottom=1.0 600x400 1 --powc -1 -d float -o "$tm
 for effect in barrel pincushion twist inverse-perspective chromatic-aberration colour-shift \
               aerial-perspective depth-of-field; do
   "$artcam" warp "$photo" "$tmp/$effect.artcam" --depth "$tmp/depth.exr" --size $size \
-    -o "$out/$effect.png"
+    --overwrite -o "$out/$effect.png"
 done

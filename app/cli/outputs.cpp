@@ -1,0 +1,40 @@
+#include "app/cli/outputs.h"
+
+#include "app/cli/commands.h"
+
+#include <filesystem>
+#include <system_error>
+
+namespace artcam::cli {
+
+namespace fs = std::filesystem;
+
+bool overwriteRequested(const Args& args) { return args.has("--overwrite") || args.has("--force"); }
+
+bool isSameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return fs::equivalent(a, b, ec) && !ec;
+}
+
+void checkOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
+                  bool overwrite) {
+  // Inputs first: that refusal holds whatever the options, so it is the one to report.
+  for (const std::string& out : outputs)
+    for (const std::string& in : inputs)
+      if (isSameFile(in, out))
+        throw CommandError(out + ": refusing to overwrite the input " + in +
+                           " (an output never replaces one of its inputs, even with --overwrite)");
+  for (const std::string& out : outputs) {
+    std::error_code ec;
+    // symlink_status: a dangling symlink is an existing name the save would replace.
+    if (!overwrite && fs::symlink_status(out, ec).type() != fs::file_type::not_found && !ec)
+      throw CommandError(out + " exists; pass --overwrite to replace it");
+  }
+}
+
+void checkOutputs(const Args& args, const std::vector<std::string>& outputs,
+                  const std::vector<std::string>& inputs) {
+  checkOutputs(outputs, inputs, overwriteRequested(args));
+}
+
+}  // namespace artcam::cli
