@@ -7,9 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <new>
-#include <system_error>
 #include <utility>
 
 namespace artcam::cli {
@@ -180,11 +178,6 @@ void encodeWarp(RenderedOutput& output, const Progress& progress) {
   if (!s) throw CommandError(s.message);
   output.stored.reset();
   output.image.reset();
-}
-
-bool sameFile(const std::string& input, const std::string& output) {
-  std::error_code ec;
-  return std::filesystem::equivalent(input, output, ec) && !ec;
 }
 
 }  // namespace artcam::cli

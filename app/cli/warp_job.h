@@ -73,8 +73,4 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
 
 void encodeWarp(RenderedOutput& output, const Progress& progress);
 
-// True when `output` names the same existing file as `input` (hard links and different
-// spellings included: std::filesystem::equivalent, not a string compare).
-bool sameFile(const std::string& input, const std::string& output);
-
 }  // namespace artcam::cli
