@@ -181,6 +181,37 @@ void copyInto(const ImageF& image, const ImageView& out) {
     std::memcpy(out.row(y), image.data.data() + row * static_cast<size_t>(y), row * sizeof(float));
 }
 
+// The geometry kernels on the photo as stored (or the preview's mip level), into `out`.
+void renderGeometry(const ConstImageView& photo, const StoredMipPyramid* pyramid,
+                    const Artcam& camera, const RenderOptions& options, const ImageView& out,
+                    RenderSummary& report) {
+  WarpOptions warp = options.warp;
+  warp.width = out.width;
+  warp.height = out.height;
+  WarpSummary ws;
+  if (pyramid) {
+    warpPreview(*pyramid, camera.main(), out, warp, &ws);
+    report.path = RenderPath::Preview;
+  } else {
+    if (photo.empty()) throw std::invalid_argument("render: no photo given");
+    warpImage(photo, camera.main(), out, warp, &ws);
+    report.path = RenderPath::Geometry;
+  }
+  report.kernel = ws.kernel;
+  report.note = ws.note;
+  report.transparent_pixels = ws.transparent_pixels;
+  report.cancelled = ws.cancelled;
+}
+
+// The caller's summary (or a local one) reset, after the camera's invariants are checked.
+RenderSummary& startReport(RenderSummary* summary, RenderSummary& local, const Artcam& camera) {
+  RenderSummary& report = summary ? *summary : local;
+  report = RenderSummary{};
+  if (const Status s = validateArtcam(camera); !s)
+    throw std::invalid_argument("invalid camera: " + s.message);
+  return report;
+}
+
 }  // namespace
 
 bool needsLinearPhoto(const Artcam& camera) { return analyse(camera).linear; }
@@ -189,34 +220,15 @@ void render(const RenderInputs& inputs, const Artcam& camera, const RenderOption
             const ImageView& out, RenderSummary* summary) {
   const auto start = std::chrono::steady_clock::now();
   RenderSummary local;
-  RenderSummary& report = summary ? *summary : local;
-  report = RenderSummary{};
-  if (const Status s = validateArtcam(camera); !s)
-    throw std::invalid_argument("invalid camera: " + s.message);
+  RenderSummary& report = startReport(summary, local, camera);
   report.size = {out.width, out.height};
   if (analyse(camera).linear) {
     ImageF image = render(inputs, camera, options, &report);
     if (report.cancelled) return;
     copyInto(image, out);
-    report.render_ms = msSince(start);
-    return;
-  }
-  WarpOptions warp = options.warp;
-  warp.width = out.width;
-  warp.height = out.height;
-  WarpSummary ws;
-  if (inputs.pyramid) {
-    warpPreview(*inputs.pyramid, camera.main(), out, warp, &ws);
-    report.path = RenderPath::Preview;
   } else {
-    if (inputs.photo.empty()) throw std::invalid_argument("render: no photo given");
-    warpImage(inputs.photo, camera.main(), out, warp, &ws);
-    report.path = RenderPath::Geometry;
+    renderGeometry(inputs.photo, inputs.pyramid, camera, options, out, report);
   }
-  report.kernel = ws.kernel;
-  report.note = ws.note;
-  report.transparent_pixels = ws.transparent_pixels;
-  report.cancelled = ws.cancelled;
   report.render_ms = msSince(start);
 }
 
@@ -224,12 +236,9 @@ ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOpti
               RenderSummary* summary, ImageF* depth_out) {
   const auto start = std::chrono::steady_clock::now();
   RenderSummary local;
-  RenderSummary& report = summary ? *summary : local;
-  report = RenderSummary{};
-  if (const Status s = validateArtcam(camera); !s)
-    throw std::invalid_argument("invalid camera: " + s.message);
+  RenderSummary& report = startReport(summary, local, camera);
   const Analysis analysis = analyse(camera);
-  const ConstImageView& photo = inputs.linear ? viewOf(*inputs.linear) : inputs.photo;
+  const ConstImageView photo = inputs.linear ? viewOf(*inputs.linear) : inputs.photo;
   // The output frame follows the full photo even when a smaller linear copy renders it.
   const FrameSize photo_size = inputs.photo.empty() ? FrameSize{photo.width, photo.height}
                                                     : FrameSize{inputs.photo.width, inputs.photo.height};
@@ -244,22 +253,13 @@ ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOpti
                                                  depth_out);
   } else {
     if (photo.empty()) throw std::invalid_argument("render: no photo given");
+    if (photo.type != PixelType::Float)
+      throw std::invalid_argument(
+          "render: a float output needs the photo as float (RenderInputs::linear)");
     const int channels = photo.alpha_channel >= 0 ? photo.channels : photo.channels + 1;
     out = ImageF(frame.size.width, frame.size.height, channels, channels - 1);
-    WarpOptions warp = options.warp;
-    warp.width = frame.size.width;
-    warp.height = frame.size.height;
-    WarpSummary ws;
-    if (inputs.linear || photo.type == PixelType::Float) {
-      warpImage(inputs.linear ? viewOf(*inputs.linear) : photo, camera.main(), viewOf(out), warp, &ws);
-    } else {
-      throw std::invalid_argument("render: a float output needs the photo as float (RenderInputs::linear)");
-    }
-    report.path = RenderPath::Geometry;
-    report.kernel = ws.kernel;
-    report.note = ws.note;
-    report.cancelled = ws.cancelled;
-    if (ws.cancelled) out = {};
+    renderGeometry(photo, nullptr, camera, options, viewOf(out), report);
+    if (report.cancelled) out = {};
   }
   if (!frame.warning.empty()) report.note = frame.warning + (report.note.empty() ? "" : "; " + report.note);
   report.transparent_pixels = countTransparent(out);
