@@ -2,70 +2,78 @@
 
 #include "core/io/image_io.h"
 #include "core/render/attributed.h"
-#include "core/render/warp.h"
 #include "ui/render_worker.h"
 
-#include <exception>
 #include <string>
 
 namespace artcam::ui {
 
+namespace {
+
+struct ExportOutcome {
+  bool ok = false;
+  QString message;
+};
+
+}  // namespace
+
 ExportJob::ExportJob(PhotoPtr photo, Camera camera, QString path, QObject* parent)
-    : QThread(parent),
+    : QObject(parent),
       photo_(std::move(photo)),
       camera_(std::move(camera)),
       path_(std::move(path)) {}
 
-ExportJob::~ExportJob() {
-  cancel_ = true;
-  wait();
+ExportJob::~ExportJob() { cancel(); }
+
+void ExportJob::cancel() {
+  if (job_) job_->cancel();
 }
 
-void ExportJob::run() {
-  try {
-    WarpOptions options;
-    options.filter = Filter::Bicubic;
-    int last = -1;
-    options.progress = [this, &last](double f) {
-      const int percent = static_cast<int>(f * 95.0);  // the rest is writing
-      if (percent != last) {
-        last = percent;
-        emit progressChanged(percent);
-      }
-      return !cancel_.load();
-    };
-    WarpSummary summary;
-    ImageF out;
-    if (RenderWorker::needsAttributes(camera_)) {
-      AttributedOptions a;
-      a.filter = options.filter;
-      a.progress = options.progress;
-      AttributedSummary as;
-      out = renderAttributed(photo_->full.image, depth_.get(), camera_, a, &as).colour;
-      summary.cancelled = as.cancelled;
-      summary.kernel = std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
-      summary.render_ms = as.render_ms;
-    } else {
-      out = warpImage(photo_->full.image, camera_, options, &summary);
-    }
-    if (summary.cancelled || cancel_) {
-      emit done(false, tr("Export cancelled."));
-      return;
-    }
-    const Status status = writeImage(path_.toStdString(), out, &photo_->full.info);
-    if (!status) {
-      emit done(false, QString::fromStdString(status.message));
-      return;
-    }
-    emit progressChanged(100);
-    emit done(true, tr("Exported %1 (%2 kernel, %3 ms)")
-                        .arg(path_, QString::fromStdString(summary.kernel))
-                        .arg(summary.render_ms, 0, 'f', 0));
-  } catch (const std::exception& e) {
-    emit done(false, tr("Export of %1 failed: %2").arg(path_, QString::fromUtf8(e.what())));
-  } catch (...) {
-    emit done(false, tr("Export of %1 failed: unknown error").arg(path_));
+ImageF ExportJob::render(const ImageF& photo, const ImageF* depth, const Camera& camera,
+                         const std::function<bool(double)>& progress, WarpSummary* summary) {
+  if (RenderWorker::needsAttributes(camera)) {
+    AttributedOptions a;
+    a.filter = Filter::Bicubic;
+    a.progress = progress;
+    AttributedSummary as;
+    ImageF out = renderAttributed(photo, depth, camera, a, &as).colour;
+    summary->cancelled = as.cancelled;
+    summary->kernel = std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
+    summary->render_ms = as.render_ms;
+    return out;
   }
+  WarpOptions options;
+  options.filter = Filter::Bicubic;
+  options.progress = progress;
+  return warpImage(photo, camera, options, summary);
+}
+
+void ExportJob::start() {
+  if (job_) return;
+  // Everything the work reads is copied or shared here: the job never touches this object.
+  job_ = runInBackground(
+      this,
+      [photo = photo_, camera = camera_, path = path_, depth = depth_](JobContext& job) {
+        WarpSummary summary;
+        const ImageF out = render(photo->full.image, depth.get(), camera,
+                                  [&job](double f) { return job.progress(f * 0.95); },  // the rest is writing
+                                  &summary);
+        if (summary.cancelled || job.cancelled()) return ExportOutcome{false, tr("Export cancelled.")};
+        const Status status = writeImage(path.toStdString(), out, &photo->full.info);
+        if (!status) return ExportOutcome{false, QString::fromStdString(status.message)};
+        job.setProgress(1.0);
+        return ExportOutcome{true, tr("Exported %1 (%2 kernel, %3 ms)")
+                                       .arg(path, QString::fromStdString(summary.kernel))
+                                       .arg(summary.render_ms, 0, 'f', 0)};
+      },
+      [this](JobOutcome<ExportOutcome> outcome) {
+        if (outcome.value)
+          emit done(outcome.value->ok, outcome.value->message);
+        else
+          emit done(false, tr("Export of %1 failed: %2").arg(path_, outcome.error));
+        emit finished();
+      });
+  connect(job_, &BackgroundJob::progressChanged, this, &ExportJob::progressChanged);
 }
 
 }  // namespace artcam::ui
