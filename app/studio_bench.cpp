@@ -185,10 +185,11 @@ int runLatency(const Options& o) {
   std::printf("lens_strength=%.3g\n", o.strength);
   std::printf("photo=%dx%d\ndecode_ms=%.0f\nprepare_ms=%.0f\npreview=%dx%d\n", size.width,
               size.height, loaded->decode_ms, loaded->prepare_ms, preview.width, preview.height);
-  std::printf("edits=%d\nedit_to_preview_ms_median=%.1f\nedit_to_preview_ms_min=%.1f\n"
-              "edit_to_preview_ms_p90=%.1f\nfinal_pass_render_ms_median=%.1f\n",
-              o.edits, percentile(latency_ms, 0.5), percentile(latency_ms, 0.0),
-              percentile(latency_ms, 0.9), percentile(render_ms, 0.5));
+  std::printf(
+      "edits=%d\nedit_to_preview_ms_median=%.1f\nedit_to_preview_ms_min=%.1f\n"
+      "edit_to_preview_ms_p90=%.1f\nfinal_pass_render_ms_median=%.1f\n",
+      o.edits, percentile(latency_ms, 0.5), percentile(latency_ms, 0.0),
+      percentile(latency_ms, 0.9), percentile(render_ms, 0.5));
   return 0;
 }
 
@@ -234,9 +235,11 @@ int runDrag(const Options& o) {
         (pairs[grabbed].target - pairs[grabbed].source).norm())
       grabbed = k;
   const Pair before = doc->pairs()[grabbed];
-  const QPointF start = canvas->view().widgetFromImage(QPointF(before.target.x(), before.target.y()));
+  const QPointF start =
+      canvas->view().widgetFromImage(QPointF(before.target.x(), before.target.y()));
   const QPointF centre(canvas->width() / 2.0, canvas->height() / 2.0);
-  const QPointF toward = (centre - start) / std::hypot(centre.x() - start.x(), centre.y() - start.y());
+  const QPointF toward =
+      (centre - start) / std::hypot(centre.x() - start.x(), centre.y() - start.y());
 
   QElapsedTimer clock;
   clock.start();
@@ -278,7 +281,8 @@ int runDrag(const Options& o) {
       sendMouse(canvas, QEvent::MouseButtonPress, start, Qt::LeftButton, Qt::LeftButton);
     } else if (step <= o.moves) {
       // Along the line toward the centre, then a little sideways: 2 widget px per move.
-      const QPointF p = start + toward * (2.0 * step) + QPointF(toward.y(), -toward.x()) * (step % 7);
+      const QPointF p =
+          start + toward * (2.0 * step) + QPointF(toward.y(), -toward.x()) * (step % 7);
       const qint64 t0 = clock.nsecsElapsed();
       sendMouse(canvas, QEvent::MouseMove, p, Qt::NoButton, Qt::LeftButton);
       handler_ms.push_back(msSince(clock, t0));
@@ -293,7 +297,8 @@ int runDrag(const Options& o) {
   mouse.start();
   loop.exec();
   const qint64 drag_end_ns = clock.nsecsElapsed();
-  const QPointF end = start + toward * (2.0 * o.moves) + QPointF(toward.y(), -toward.x()) * (o.moves % 7);
+  const QPointF end =
+      start + toward * (2.0 * o.moves) + QPointF(toward.y(), -toward.x()) * (o.moves % 7);
   sendMouse(canvas, QEvent::MouseButtonRelease, end, Qt::LeftButton, Qt::NoButton);
   // Until the last edit's preview is shown.
   QElapsedTimer wait;
@@ -328,15 +333,18 @@ int runDrag(const Options& o) {
   std::printf("photo=%dx%d\npairs=%d\nmodel=%s\n", size.width, size.height, o.pairs,
               doc->fit().record.model.c_str());
   std::printf("moves=%d\nmove_interval_ms=8\n", o.moves);
-  std::printf("move_event_gui_ms_median=%.2f\nmove_event_gui_ms_p90=%.2f\nmove_event_gui_ms_max=%.2f\n",
-              percentile(handler_ms, 0.5), percentile(handler_ms, 0.9), percentile(handler_ms, 1.0));
-  std::printf("event_loop_stall_ms_median=%.2f\nevent_loop_stall_ms_p99=%.2f\n"
-              "event_loop_stall_ms_max=%.2f\n",
-              percentile(stall_ms, 0.5), percentile(stall_ms, 0.99), percentile(stall_ms, 1.0));
-  std::printf("edit_to_preview_ms_median=%.1f\nedit_to_preview_ms_p90=%.1f\n"
-              "edit_to_preview_ms_max=%.1f\nmoves_without_preview_during_drag=%d\n",
-              percentile(latency_ms, 0.5), percentile(latency_ms, 0.9),
-              percentile(latency_ms, 1.0), unanswered);
+  std::printf(
+      "move_event_gui_ms_median=%.2f\nmove_event_gui_ms_p90=%.2f\nmove_event_gui_ms_max=%.2f\n",
+      percentile(handler_ms, 0.5), percentile(handler_ms, 0.9), percentile(handler_ms, 1.0));
+  std::printf(
+      "event_loop_stall_ms_median=%.2f\nevent_loop_stall_ms_p99=%.2f\n"
+      "event_loop_stall_ms_max=%.2f\n",
+      percentile(stall_ms, 0.5), percentile(stall_ms, 0.99), percentile(stall_ms, 1.0));
+  std::printf(
+      "edit_to_preview_ms_median=%.1f\nedit_to_preview_ms_p90=%.1f\n"
+      "edit_to_preview_ms_max=%.1f\nmoves_without_preview_during_drag=%d\n",
+      percentile(latency_ms, 0.5), percentile(latency_ms, 0.9), percentile(latency_ms, 1.0),
+      unanswered);
   std::printf("release_to_final_preview_ms=%.1f\n", settle_ms);
   std::printf("fits_on_gui_thread=%ld\nfits_on_worker=%ld\n",
               fits_after.gui_thread - fits_before.gui_thread,
@@ -354,16 +362,25 @@ int main(int argc, char** argv) {
       std::fputs(kUsage, stdout);
       return 0;
     }
-    if (std::strcmp(argv[i], "--drag") == 0) o.drag = true;
-    else if (std::strcmp(argv[i], "--fit-on-gui-thread") == 0) o.fit_on_gui = true;
-    else if (std::strcmp(argv[i], "--photo") == 0 && has_value) o.photo_path = argv[++i];
-    else if (std::strcmp(argv[i], "--edits") == 0 && has_value) o.edits = std::max(3, std::atoi(argv[++i]));
-    else if (std::strcmp(argv[i], "--strength") == 0 && has_value) o.strength = std::atof(argv[++i]);
-    else if (std::strcmp(argv[i], "--pairs") == 0 && has_value) o.pairs = std::max(10, std::atoi(argv[++i]));
-    else if (std::strcmp(argv[i], "--moves") == 0 && has_value) o.moves = std::max(5, std::atoi(argv[++i]));
+    if (std::strcmp(argv[i], "--drag") == 0)
+      o.drag = true;
+    else if (std::strcmp(argv[i], "--fit-on-gui-thread") == 0)
+      o.fit_on_gui = true;
+    else if (std::strcmp(argv[i], "--photo") == 0 && has_value)
+      o.photo_path = argv[++i];
+    else if (std::strcmp(argv[i], "--edits") == 0 && has_value)
+      o.edits = std::max(3, std::atoi(argv[++i]));
+    else if (std::strcmp(argv[i], "--strength") == 0 && has_value)
+      o.strength = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--pairs") == 0 && has_value)
+      o.pairs = std::max(10, std::atoi(argv[++i]));
+    else if (std::strcmp(argv[i], "--moves") == 0 && has_value)
+      o.moves = std::max(5, std::atoi(argv[++i]));
     else {
-      std::fprintf(stderr, "artcam-studio-bench: unknown option or missing value: %s\n"
-                           "see artcam-studio-bench --help\n", argv[i]);
+      std::fprintf(stderr,
+                   "artcam-studio-bench: unknown option or missing value: %s\n"
+                   "see artcam-studio-bench --help\n",
+                   argv[i]);
       return 2;
     }
   }

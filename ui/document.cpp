@@ -66,8 +66,9 @@ void Document::setPairs(const std::vector<int>& indices, const std::vector<Pair>
     // so only the edit is recorded here; camera, fit and residuals follow from the worker.
     ++edit_revision_;
     if (!fit_worker_)
-      fit_worker_ = std::make_unique<FitWorker>(
-          [this](FittedCamera fitted, quint64 revision) { onWorkerFit(std::move(fitted), revision); });
+      fit_worker_ = std::make_unique<FitWorker>([this](FittedCamera fitted, quint64 revision) {
+        onWorkerFit(std::move(fitted), revision);
+      });
     fit_worker_->request({fitInputs(), edit_revision_});
     emit pairsChanged();
     return;

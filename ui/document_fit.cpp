@@ -53,7 +53,8 @@ FittedCamera fitDocumentCamera(const FitInputs& in) {
     if (in.manual_camera) {
       out.camera = *in.manual_camera;
     } else if (enabled == 0) {
-      out.fit.status = Status::failure("No point pairs yet: click a source point, then its target.");
+      out.fit.status =
+          Status::failure("No point pairs yet: click a source point, then its target.");
     } else if (const int need = pairsNeededFor(in.model, enabled); need > 0) {
       out.fit.status =
           Status::failure("Need " + std::to_string(need) + " more pair" + (need == 1 ? "" : "s") +

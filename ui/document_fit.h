@@ -17,7 +17,7 @@ namespace artcam::ui {
 struct Pair;
 
 struct FitInputs {
-  FrameSize frame;  // the photo's pixels; not an image frame: no photo yet
+  FrameSize frame;                  // the photo's pixels; not an image frame: no photo yet
   std::vector<PointMatch> matches;  // every pair, with its enabled flag
   ModelClass model = ModelClass::Auto;
   std::optional<Camera> manual_camera;

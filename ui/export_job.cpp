@@ -38,7 +38,8 @@ ImageF ExportJob::render(const ImageF& photo, const ImageF* depth, const Camera&
     AttributedSummary as;
     ImageF out = renderAttributed(photo, depth, camera, a, &as).colour;
     summary->cancelled = as.cancelled;
-    summary->kernel = std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
+    summary->kernel =
+        std::string(attributedPathName(as.path)) + (as.kernel.empty() ? "" : " " + as.kernel);
     summary->render_ms = as.render_ms;
     return out;
   }
@@ -55,10 +56,12 @@ void ExportJob::start() {
       this,
       [photo = photo_, camera = camera_, path = path_, depth = depth_](JobContext& job) {
         WarpSummary summary;
-        const ImageF out = render(photo->full.image, depth.get(), camera,
-                                  [&job](double f) { return job.progress(f * 0.95); },  // the rest is writing
-                                  &summary);
-        if (summary.cancelled || job.cancelled()) return ExportOutcome{false, tr("Export cancelled.")};
+        const ImageF out = render(
+            photo->full.image, depth.get(), camera,
+            [&job](double f) { return job.progress(f * 0.95); },  // the rest is writing
+            &summary);
+        if (summary.cancelled || job.cancelled())
+          return ExportOutcome{false, tr("Export cancelled.")};
         const Status status = writeImage(path.toStdString(), out, &photo->full.info);
         if (!status) return ExportOutcome{false, QString::fromStdString(status.message)};
         job.setProgress(1.0);

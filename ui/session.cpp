@@ -371,8 +371,7 @@ void Session::readDepthMapAsync(const QString& path, const DepthFileOptions& opt
                                 bool undoable) {
   const quint64 serial = photo_serial_;
   runInBackground(
-      this,
-      [path, options](JobContext&) { return readDepthFile(path.toStdString(), options); },
+      this, [path, options](JobContext&) { return readDepthFile(path.toStdString(), options); },
       [this, path, options, serial, undoable](JobOutcome<Result<ImageF>> outcome) {
         if (serial != photo_serial_) return;  // another photo opened meanwhile
         if (!outcome.value || !*outcome.value) {

@@ -23,7 +23,8 @@ void ColourFitJob::launch(Request request) {
   running_ = true;
   const quint64 tag = request.tag;
   job_ = runInBackground(
-      this, [r = std::move(request)](JobContext&) { return fitColourSamples(r.samples, r.options); },
+      this,
+      [r = std::move(request)](JobContext&) { return fitColourSamples(r.samples, r.options); },
       [this, tag](JobOutcome<ColourFitSummary> outcome) {
         ColourFitSummary summary;
         if (outcome.value)

@@ -25,7 +25,7 @@
 namespace artcam::ui {
 
 struct EffectRequest {
-  PhotoPtr photo;                      // its preview copy is the source
+  PhotoPtr photo;                       // its preview copy is the source
   std::shared_ptr<const ImageF> depth;  // null: the stand-in ramp
   std::string effect;
   std::map<std::string, double> values;
