@@ -11,7 +11,9 @@
 //     and drags it through --moves mouse-move events (default 120), one every 8 ms (a 125 Hz
 //     mouse). It measures the GUI thread's time inside each move event, the event loop's
 //     longest stalls (a 1 ms heartbeat timer's gaps), the edit-to-preview latency of every move
-//     (until a final preview of that edit or a newer one is shown) and where the fits ran.
+//     (until a final preview of that edit or a newer one is shown), the GUI thread's CPU time
+//     over the drag (what it did itself, against the wall time others kept it waiting) and
+//     where the fits ran.
 #include "core/io/image_io.h"
 #include "ui/canvas.h"
 #include "ui/document.h"
@@ -27,6 +29,8 @@
 #include <QMouseEvent>
 #include <QStandardPaths>
 #include <QTimer>
+
+#include <time.h>
 
 #include <algorithm>
 #include <cmath>
@@ -55,8 +59,8 @@ const char kUsage[] =
     "  --drag               a mouse drag in the whole studio window: one target point of\n"
     "                       --pairs pairs is dragged through --moves mouse moves at 125 Hz;\n"
     "                       prints the GUI thread's time per move event (median, max), the\n"
-    "                       event loop's longest stalls, the edit-to-preview latency and how\n"
-    "                       many fits ran on the GUI thread\n"
+    "                       event loop's longest stalls, the GUI thread's CPU time, the\n"
+    "                       edit-to-preview latency and how many fits ran on the GUI thread\n"
     "\n"
     "options:\n"
     "  --photo FILE         use this photo instead of a synthetic 6000x4000 one\n"
@@ -106,6 +110,14 @@ double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
+}
+
+// CPU time this thread has used (not wall time): separates the GUI thread's own work from the
+// time other threads and processes keep it off the CPU.
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
 }
 
 double msSince(const QElapsedTimer& clock, qint64 start_ns) {
@@ -293,10 +305,14 @@ int runDrag(const Options& o) {
     }
     ++step;
   });
+  const double cpu_start_ms = threadCpuMs();
+  const qint64 drag_start_ns = clock.nsecsElapsed();
   heartbeat.start();
   mouse.start();
   loop.exec();
   const qint64 drag_end_ns = clock.nsecsElapsed();
+  const double gui_cpu_ms = threadCpuMs() - cpu_start_ms;
+  const double drag_wall_ms = static_cast<double>(drag_end_ns - drag_start_ns) / 1e6;
   const QPointF end =
       start + toward * (2.0 * o.moves) + QPointF(toward.y(), -toward.x()) * (o.moves % 7);
   sendMouse(canvas, QEvent::MouseButtonRelease, end, Qt::LeftButton, Qt::NoButton);
@@ -345,6 +361,8 @@ int runDrag(const Options& o) {
       "edit_to_preview_ms_max=%.1f\nmoves_without_preview_during_drag=%d\n",
       percentile(latency_ms, 0.5), percentile(latency_ms, 0.9), percentile(latency_ms, 1.0),
       unanswered);
+  std::printf("drag_wall_ms=%.0f\ngui_thread_cpu_ms=%.0f\ngui_thread_cpu_ms_per_move=%.2f\n",
+              drag_wall_ms, gui_cpu_ms, gui_cpu_ms / o.moves);
   std::printf("release_to_final_preview_ms=%.1f\n", settle_ms);
   std::printf("fits_on_gui_thread=%ld\nfits_on_worker=%ld\n",
               fits_after.gui_thread - fits_before.gui_thread,
