@@ -1,6 +1,7 @@
 #include "ui/autosave.h"
 
 #include "core/io/atomic_file.h"
+#include "ui/background_job.h"
 
 #include <QCryptographicHash>
 #include <QDir>
@@ -11,10 +12,10 @@
 #include <QLocale>
 #include <QMessageBox>
 #include <QStandardPaths>
-#include <QThread>
 
 #include <algorithm>
 #include <memory>
+#include <mutex>
 
 namespace artcam::ui {
 namespace {
@@ -69,12 +70,9 @@ Autosave::Prompt Autosave::dialogPrompt(QWidget* parent) {
   };
 }
 
-Autosave::~Autosave() {
-  if (writer_) {
-    writer_->wait();
-    delete writer_;
-  }
-}
+// A write in flight finishes on its own (atomic, and it removes what was removed meanwhile);
+// at application exit the job helper waits for it.
+Autosave::~Autosave() = default;
 
 void Autosave::setProjectPath(const QString& path) {
   const QString abs = path.isEmpty() ? QString() : QFileInfo(path).absoluteFilePath();
@@ -125,7 +123,7 @@ Result<Project> Autosave::readRecovery(const QString& recovery_path) {
 }
 
 void Autosave::saveNow() {
-  if (writer_) {
+  if (writing_) {
     again_ = true;  // one more after the write in flight, with the newest state
     return;
   }
@@ -136,25 +134,41 @@ void Autosave::saveNow() {
   QJsonObject root = QJsonDocument::fromJson(projectToJson(*project, path)).object();
   root[kRecoveryOf] = project_path_;
   const QByteArray bytes = QJsonDocument(root).toJson(QJsonDocument::Compact);
-  auto result = std::make_shared<QString>();
-  writer_ = QThread::create([path, bytes, result] { *result = writeFile(path, bytes); });
-  connect(writer_, &QThread::finished, this, [this, result] {
-    writer_->deleteLater();
-    writer_ = nullptr;
-    emit saved(result->isEmpty(), *result);
-    if (again_) {
-      again_ = false;
-      saveNow();
-    }
-  });
-  writer_->start(QThread::LowPriority);
+  writing_ = true;
+  {
+    const std::lock_guard<std::mutex> lock(stale_->mutex);
+    stale_->writing = true;
+  }
+  runInBackground(
+      this,
+      [path, bytes, stale = stale_](JobContext&) {
+        const QString error = writeFile(path, bytes);
+        // Removed while this write was in flight: the write must not bring the file back, even
+        // when the Autosave is gone by now (a clean close), so the worker removes it.
+        const std::lock_guard<std::mutex> lock(stale->mutex);
+        for (const QString& removed : stale->paths) QFile::remove(removed);
+        stale->paths.clear();
+        stale->writing = false;
+        return error;
+      },
+      [this](JobOutcome<QString> outcome) {
+        writing_ = false;
+        const QString error = outcome.value ? *outcome.value : outcome.error;
+        emit saved(error.isEmpty(), error);
+        if (again_) {
+          again_ = false;
+          saveNow();
+        }
+      });
 }
 
 void Autosave::removeRecovery(const QString& project_path) {
-  if (writer_) writer_->wait();  // a write in flight must not re-create the file afterwards
   again_ = false;
-  QFile::remove(recoveryPathFor(project_path));
-  QFile::remove(recoveryPathFor(QString()));
+  const std::lock_guard<std::mutex> lock(stale_->mutex);
+  for (const QString& path : {recoveryPathFor(project_path), recoveryPathFor(QString())}) {
+    QFile::remove(path);
+    if (stale_->writing) stale_->paths << path;  // the write in flight may re-create it
+  }
 }
 
 }  // namespace artcam::ui

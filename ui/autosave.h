@@ -17,11 +17,14 @@
 #include <QDateTime>
 #include <QObject>
 #include <QString>
+#include <QStringList>
 #include <QTimer>
 
 class QWidget;
 
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -86,7 +89,14 @@ class Autosave : public QObject {
   QString dir_;
   QString project_path_;
   QTimer timer_;
-  QThread* writer_ = nullptr;  // a write in flight
+  bool writing_ = false;  // a write in flight (background_job.h)
+  // Recovery files removed while a write was in flight; that write removes them again.
+  struct StaleRecoveries {
+    std::mutex mutex;
+    bool writing = false;
+    QStringList paths;
+  };
+  std::shared_ptr<StaleRecoveries> stale_ = std::make_shared<StaleRecoveries>();
   bool again_ = false;         // a save was asked for while one was in flight
 };
 

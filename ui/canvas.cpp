@@ -170,7 +170,7 @@ void Canvas::paintEvent(QPaintEvent*) {
   const QRectF target = view_.widgetFromImage(QRectF(0, 0, f.width, f.height));
   // Smooth when minifying; nearest when magnifying so pixels are visible for precise clicks.
   painter.setRenderHint(QPainter::SmoothPixmapTransform, view_.scale() < 1.0);
-  painter.drawImage(target, photo->display);
+  display_cache_.draw(painter, target, photo->display);
   paintDepth(painter, target);
   painter.setRenderHint(QPainter::Antialiasing, true);
   paintPairs(painter);

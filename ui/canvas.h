@@ -10,6 +10,7 @@
 #pragma once
 
 #include "ui/loupe.h"
+#include "ui/scaled_image_cache.h"
 #include "ui/view_transform.h"
 
 #include <QPoint>
@@ -79,6 +80,7 @@ class Canvas : public QWidget {
 
   Document* document_;
   ViewTransform view_;
+  ScaledImageCache display_cache_;  // the display copy at the current zoom
   std::unique_ptr<Tool> tool_;
   DepthOverlay* depth_overlay_ = nullptr;
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans

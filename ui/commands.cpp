@@ -27,7 +27,14 @@ MovePairsCommand::MovePairsCommand(Document* document, std::vector<int> indices,
   setText(text);
 }
 
-void MovePairsCommand::redo() { document_->setPairs(indices_, after_); }
+// The push of a drag's move (gesture id, first redo) fits in the worker: the GUI thread only
+// records it. Undo and redo later refit at once, so camera() is exact when they return.
+void MovePairsCommand::redo() {
+  const bool live_move = gesture_ != 0 && !pushed_;
+  pushed_ = true;
+  document_->setPairs(indices_, after_,
+                      live_move ? Document::Refit::InWorker : Document::Refit::Now);
+}
 void MovePairsCommand::undo() { document_->setPairs(indices_, before_); }
 
 bool MovePairsCommand::mergeWith(const QUndoCommand* other) {

@@ -1,7 +1,7 @@
 // Every document edit is a QUndoCommand (after Qt's undoframework example). Commands
 // store old and new values, never deltas, so undo restores state bit-exactly; the document
 // refits from that state. Drags push one MovePairsCommand per mouse move and merge them
-// (mergeWith) into one step per gesture.
+// (mergeWith) into one step per gesture; those pushes fit in the document's FitWorker.
 #pragma once
 
 #include "core/fit/fit_image.h"
@@ -45,6 +45,7 @@ class MovePairsCommand : public QUndoCommand {
   std::vector<Pair> before_;
   std::vector<Pair> after_;
   int gesture_;
+  bool pushed_ = false;  // the first redo (QUndoStack::push) has run
 };
 
 class DeletePairsCommand : public QUndoCommand {

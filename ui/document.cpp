@@ -1,24 +1,14 @@
 #include "ui/document.h"
 
-#include "ui/colour/colour_stage.h"
+#include "ui/fit_worker.h"
 
 #include <algorithm>
-#include <exception>
 
 namespace artcam::ui {
-namespace {
 
-const Block kImagePosition{BlockKind::Position, 3};
+Document::Document(QObject* parent) : QObject(parent) { camera_ = identityImageCamera({}); }
 
-// Cameras need image frames; before a photo is open a 1×1 placeholder keeps them valid.
-Camera identityCamera(FrameSize f) {
-  if (!f.isImage()) f = {1, 1};
-  return Camera::identity({kImagePosition}, f, f);
-}
-
-}  // namespace
-
-Document::Document(QObject* parent) : QObject(parent) { camera_ = identityCamera({}); }
+Document::~Document() = default;
 
 FrameSize Document::frame() const { return photo_ ? photo_->size() : FrameSize{}; }
 
@@ -64,11 +54,24 @@ void Document::removePair(int index) {
   emit cameraChanged();
 }
 
-void Document::setPairs(const std::vector<int>& indices, const std::vector<Pair>& values) {
+void Document::setPairs(const std::vector<int>& indices, const std::vector<Pair>& values,
+                        Refit refit_mode) {
   const size_t n = std::min(indices.size(), values.size());
   for (size_t k = 0; k < n; ++k) {
     const int i = indices[k];
     if (i >= 0 && i < static_cast<int>(pairs_.size())) pairs_[static_cast<size_t>(i)] = values[k];
+  }
+  if (refit_mode == Refit::InWorker && fits_in_worker_) {
+    // A drag's move: a fit of a few hundred pairs per mouse move would stall the GUI thread,
+    // so only the edit is recorded here; camera, fit and residuals follow from the worker.
+    ++edit_revision_;
+    if (!fit_worker_)
+      fit_worker_ = std::make_unique<FitWorker>([this](FittedCamera fitted, quint64 revision) {
+        onWorkerFit(std::move(fitted), revision);
+      });
+    fit_worker_->request({fitInputs(), edit_revision_});
+    emit pairsChanged();
+    return;
   }
   refit();
   emit pairsChanged();
@@ -109,10 +112,7 @@ void Document::setColourBlock(std::optional<Camera> colour) {
   emit cameraChanged();
 }
 
-int Document::pairsNeeded() const {
-  const ModelClass m = model_ == ModelClass::Auto ? ModelClass::Translation : model_;
-  return std::max(0, minimumMatches(m) - enabledPairCount());
-}
+int Document::pairsNeeded() const { return pairsNeededFor(model_, enabledPairCount()); }
 
 double Document::residual(int index) const {
   if (index < 0 || index >= static_cast<int>(residual_by_pair_.size())) return -1.0;
@@ -132,46 +132,30 @@ void Document::setSelection(std::vector<int> indices) {
   emit selectionChanged();
 }
 
-// Every edit refits (the fit is a small SVD: cheap on the GUI thread for a few hundred
-// pairs). The camera is a pure function of (photo, pairs, model, manual camera), which is what
-// makes undo restore it exactly.
+FitInputs Document::fitInputs() const {
+  return {frame(), matches(), model_, manual_camera_, colour_block_};
+}
+
+void Document::applyFit(FittedCamera fitted) {
+  fit_ = std::move(fitted.fit);
+  camera_ = std::move(fitted.camera);
+  residual_by_pair_ = std::move(fitted.residual_by_pair);
+}
+
+// Discrete edits refit on the GUI thread (a small SVD for a few pairs, and camera() is then
+// exact when the edit returns); a newer revision drops any worker fit still on its way.
 void Document::refit() {
-  const FrameSize f = frame();
-  fit_ = FitSummary{};
-  residual_by_pair_.assign(pairs_.size(), -1.0);
-  camera_ = identityCamera(f);
-  if (!f.isImage()) return;
-  try {
-    if (manual_camera_) {
-      camera_ = *manual_camera_;
-    } else if (enabledPairCount() == 0) {
-      fit_.status = Status::failure("No point pairs yet: click a source point, then its target.");
-    } else if (const int need = pairsNeeded(); need > 0) {
-      fit_.status =
-          Status::failure("Need " + std::to_string(need) + " more pair" + (need == 1 ? "" : "s") +
-                          " for the " + std::string(modelClassName(model_)) + " model.");
-    } else {
-      FitOptions options;
-      options.model = model_;
-      fit_ = fitImageCamera(matches(), f, f, options);
-      if (fit_.status.ok) camera_ = fit_.camera;
-    }
-    if (!pairs_.empty()) {
-      // Residuals of every pair, disabled ones too: they show how far an outlier is off.
-      std::vector<PointMatch> all = matches();
-      for (PointMatch& m : all) m.enabled = true;
-      const std::vector<double> r = reprojectionResiduals(camera_, all);
-      for (size_t i = 0; i < r.size() && i < residual_by_pair_.size(); ++i)
-        residual_by_pair_[i] = r[i];
-    }
-    // After the residuals: they are a property of the geometry (a position-only camera).
-    if (colour_block_) camera_ = withColourBlock(camera_, *colour_block_);
-  } catch (const std::exception& e) {
-    // A broken contract in the engine must not take the GUI down: report it as a failed fit.
-    fit_ = FitSummary{};
-    fit_.status = Status::failure(std::string("Fit failed: ") + e.what());
-    camera_ = identityCamera(f);
-  }
+  ++edit_revision_;
+  applyFit(fitDocumentCamera(fitInputs()));
+  camera_revision_ = edit_revision_;
+}
+
+void Document::onWorkerFit(FittedCamera fitted, quint64 revision) {
+  if (revision != edit_revision_) return;  // a newer edit exists: its own fit is coming
+  applyFit(std::move(fitted));
+  camera_revision_ = revision;
+  emit pairsChanged();  // residuals changed
+  emit cameraChanged();
 }
 
 }  // namespace artcam::ui

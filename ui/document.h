@@ -10,6 +10,7 @@
 #include "core/fit/fit_image.h"
 #include "core/model/camera.h"
 #include "ui/depth_model.h"
+#include "ui/document_fit.h"
 #include "ui/photo.h"
 
 #include <QObject>
@@ -17,10 +18,13 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace artcam::ui {
+
+class FitWorker;
 
 struct Pair {
   Eigen::Vector2d source{0.0, 0.0};  // where a feature is in the photo
@@ -39,6 +43,7 @@ class Document : public QObject {
 
  public:
   explicit Document(QObject* parent = nullptr);
+  ~Document() override;
 
   QUndoStack* undoStack() { return &undo_stack_; }
   // Depth planes and map (depth_model.h); reset() empties it for the new photo.
@@ -57,8 +62,21 @@ class Document : public QObject {
   const std::vector<Pair>& pairs() const { return pairs_; }
   void insertPair(int index, const Pair& pair);
   void removePair(int index);
+  // How an edit refits. Now: before the call returns (discrete edits, undo, redo), so camera()
+  // and fit() are exact at once. InWorker (a drag's mouse moves): the GUI thread only records
+  // the pairs and emits pairsChanged; the FitWorker fits the newest pairs and its result
+  // arrives later as pairsChanged + cameraChanged, unless a newer edit superseded it.
+  enum class Refit { Now, InWorker };
   // Sets several pairs at once and refits once (drags of a multi-selection).
-  void setPairs(const std::vector<int>& indices, const std::vector<Pair>& values);
+  void setPairs(const std::vector<int>& indices, const std::vector<Pair>& values,
+                Refit refit = Refit::Now);
+  // Every edit of the fit's inputs bumps editRevision(); camera(), fit() and residual() are
+  // those of cameraRevision(). fitPending(): a worker fit of a newer edit is still on its way.
+  quint64 editRevision() const { return edit_revision_; }
+  quint64 cameraRevision() const { return camera_revision_; }
+  bool fitPending() const { return camera_revision_ != edit_revision_; }
+  // false: Refit::InWorker fits on the GUI thread too (artcam-studio-bench's comparison).
+  void setFitsInWorker(bool in_worker) { fits_in_worker_ = in_worker; }
   int enabledPairCount() const;
   std::vector<PointMatch> matches() const;  // all pairs, with their enabled flags
 
@@ -99,6 +117,9 @@ class Document : public QObject {
 
  private:
   void refit();
+  FitInputs fitInputs() const;
+  void applyFit(FittedCamera fitted);
+  void onWorkerFit(FittedCamera fitted, quint64 revision);
 
   QUndoStack undo_stack_;
   DepthModel depth_;
@@ -111,6 +132,10 @@ class Document : public QObject {
   Camera camera_;
   std::vector<double> residual_by_pair_;
   std::vector<int> selection_;
+  quint64 edit_revision_ = 0;
+  quint64 camera_revision_ = 0;
+  bool fits_in_worker_ = true;
+  std::unique_ptr<FitWorker> fit_worker_;  // started by the first Refit::InWorker edit
 };
 
 }  // namespace artcam::ui

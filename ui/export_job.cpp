@@ -1,60 +1,68 @@
 #include "ui/export_job.h"
 
 #include "core/io/image_io.h"
-#include "core/pipeline/render.h"
 
-#include <exception>
 #include <string>
 
 namespace artcam::ui {
 
+namespace {
+
+struct ExportOutcome {
+  bool ok = false;
+  QString message;
+};
+
+}  // namespace
+
 ExportJob::ExportJob(PhotoPtr photo, Camera camera, QString path, QObject* parent)
-    : QThread(parent),
+    : QObject(parent),
       photo_(std::move(photo)),
       camera_(std::move(camera)),
       path_(std::move(path)) {}
 
-ExportJob::~ExportJob() {
-  cancel_ = true;
-  wait();
+ExportJob::~ExportJob() { cancel(); }
+
+void ExportJob::cancel() {
+  if (job_) job_->cancel();
 }
 
-void ExportJob::run() {
-  try {
-    WarpOptions options;
-    options.filter = Filter::Bicubic;
-    int last = -1;
-    options.progress = [this, &last](double f) {
-      const int percent = static_cast<int>(f * 95.0);  // the rest is writing
-      if (percent != last) {
-        last = percent;
-        emit progressChanged(percent);
-      }
-      return !cancel_.load();
-    };
-    RenderOptions render_options;
-    render_options.warp = options;
-    RenderSummary summary;
-    const ImageF out =
-        render(RenderInputs::of(photo_->full.image, depth_.get()), Artcam(camera_), render_options, &summary);
-    if (summary.cancelled || cancel_) {
-      emit done(false, tr("Export cancelled."));
-      return;
-    }
-    const Status status = writeImage(path_.toStdString(), out, &photo_->full.info);
-    if (!status) {
-      emit done(false, QString::fromStdString(status.message));
-      return;
-    }
-    emit progressChanged(100);
-    emit done(true, tr("Exported %1 (%2, %3 ms)")
-                        .arg(path_, QString::fromStdString(summary.describe()))
-                        .arg(summary.render_ms, 0, 'f', 0));
-  } catch (const std::exception& e) {
-    emit done(false, tr("Export of %1 failed: %2").arg(path_, QString::fromUtf8(e.what())));
-  } catch (...) {
-    emit done(false, tr("Export of %1 failed: unknown error").arg(path_));
-  }
+ImageF ExportJob::render(const ImageF& photo, const ImageF* depth, const Camera& camera,
+                         const std::function<bool(double)>& progress, RenderSummary* summary) {
+  RenderOptions options;
+  options.warp.filter = Filter::Bicubic;
+  options.warp.progress = progress;
+  return artcam::render(RenderInputs::of(photo, depth), Artcam(camera), options, summary);
+}
+
+void ExportJob::start() {
+  if (job_) return;
+  // Everything the work reads is copied or shared here: the job never touches this object.
+  job_ = runInBackground(
+      this,
+      [photo = photo_, camera = camera_, path = path_, depth = depth_](JobContext& job) {
+        RenderSummary summary;
+        const ImageF out = render(
+            photo->full.image, depth.get(), camera,
+            [&job](double f) { return job.progress(f * 0.95); },  // the rest is writing
+            &summary);
+        if (summary.cancelled || job.cancelled())
+          return ExportOutcome{false, tr("Export cancelled.")};
+        const Status status = writeImage(path.toStdString(), out, &photo->full.info);
+        if (!status) return ExportOutcome{false, QString::fromStdString(status.message)};
+        job.setProgress(1.0);
+        return ExportOutcome{true, tr("Exported %1 (%2, %3 ms)")
+                                       .arg(path, QString::fromStdString(summary.describe()))
+                                       .arg(summary.render_ms, 0, 'f', 0)};
+      },
+      [this](JobOutcome<ExportOutcome> outcome) {
+        if (outcome.value)
+          emit done(outcome.value->ok, outcome.value->message);
+        else
+          emit done(false, tr("Export of %1 failed: %2").arg(path_, outcome.error));
+        emit finished();
+      });
+  connect(job_, &BackgroundJob::progressChanged, this, &ExportJob::progressChanged);
 }
 
 }  // namespace artcam::ui

@@ -1,47 +1,57 @@
-// Full-resolution export of the warped photo in a worker thread: core's render front door
-// (core/pipeline/render.h) on the original pixels with progress and cancel (polled between
-// tiles), then writeImage with the photo's format and metadata (atomic). Results come back by
-// queued signals; exceptions stop here. The front door picks the same path as the preview does
-// (colour/depth cameras through the attributed renderer), so a fitted colour block is in the
-// exported file as it is in the preview.
+// Full-resolution export of the warped photo, a one-shot job of background_job.h: the render on
+// the original pixels with progress and cancel (polled between tiles), then writeImage with the
+// photo's format and metadata (atomic). The outcome comes back on the GUI thread as done();
+// exceptions are caught by the job helper and become the message.
+// The render goes through core's render front door (core/pipeline/render.h), which picks the
+// same path as the preview does (colour/depth cameras through the attributed renderer), so a
+// fitted colour block is in the exported file as it is in the preview.
 #pragma once
 
 #include "core/model/camera.h"
+#include "core/pipeline/render.h"
+#include "ui/background_job.h"
 #include "ui/photo.h"
 
+#include <QObject>
+#include <QPointer>
 #include <QString>
-#include <QThread>
 
-#include <atomic>
+#include <functional>
 #include <memory>
 
 namespace artcam::ui {
 
-class ExportJob : public QThread {
+class ExportJob : public QObject {
   Q_OBJECT
 
  public:
   ExportJob(PhotoPtr photo, Camera camera, QString path, QObject* parent = nullptr);
-  ~ExportJob() override;  // cancels and joins
+  ~ExportJob() override;  // cancels the render; never waits for it
 
-  void cancel() { cancel_ = true; }
   // The depth block's input for cameras that read depth (before start()).
   void setDepth(std::shared_ptr<const ImageF> depth) { depth_ = std::move(depth); }
+  // Starts the export off the GUI thread (once).
+  void start();
+  void cancel();
+
+  // The render of an export, the one place that calls the renderer: full resolution, bicubic,
+  // `progress` polled between tiles (false cancels; summary->cancelled then).
+  static ImageF render(const ImageF& photo, const ImageF* depth, const Camera& camera,
+                       const std::function<bool(double)>& progress, RenderSummary* summary);
 
  signals:
   void progressChanged(int percent);
   // ok false: message says why (or that it was cancelled).
   void done(bool ok, const QString& message);
-
- protected:
-  void run() override;
+  // After done(), whatever the outcome.
+  void finished();
 
  private:
   PhotoPtr photo_;
   Camera camera_;
   QString path_;
   std::shared_ptr<const ImageF> depth_;
-  std::atomic<bool> cancel_{false};
+  QPointer<BackgroundJob> job_;
 };
 
 }  // namespace artcam::ui

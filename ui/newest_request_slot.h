@@ -1,7 +1,8 @@
-// The request half of the studio's workers (after Qt's Mandelbrot example), shared by the
-// preview, 3D view and insertion workers: one pending slot where the newest request wins,
-// atomic restart/abort flags the job in flight polls between tiles, and the thread started on
-// the first request and joined on shutdown. The worker's run() loops on take().
+// The request half of the studio's newest-request workers (after Qt's Mandelbrot example),
+// shared by the preview, 3D view, insertion, effects and fit workers: one pending slot where the
+// newest request wins, atomic restart/abort flags the job in flight polls between tiles, and
+// the thread started on the first request and joined on shutdown (the only wait, when the
+// owner goes). The worker's run() loops on take(). One-shot jobs use background_job.h instead.
 #pragma once
 
 #include <QMutex>

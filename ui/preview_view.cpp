@@ -78,14 +78,14 @@ void PreviewArea::paintEvent(QPaintEvent*) {
       const QRectF left = fitted(QRectF(0, 0, width() / 2.0 - 2, height()), aspect);
       const QRectF right =
           fitted(QRectF(width() / 2.0 + 2, 0, width() / 2.0 - 2, height()), aspect);
-      painter.drawImage(left, source);
+      source_cache_.draw(painter, left, source);
       checker(right);
       if (!warped.isNull()) painter.drawImage(right, warped);
       break;
     }
     case PreviewMode::Overlay: {
       const QRectF r = fitted(QRectF(rect()), aspect);
-      painter.drawImage(r, source);
+      source_cache_.draw(painter, r, source);
       painter.setOpacity(opacity_);
       if (!warped.isNull()) painter.drawImage(r, warped);
       painter.setOpacity(1.0);
@@ -96,7 +96,7 @@ void PreviewArea::paintEvent(QPaintEvent*) {
       const double x = r.left() + split_ * r.width();
       painter.save();
       painter.setClipRect(QRectF(r.left(), r.top(), x - r.left(), r.height()));
-      painter.drawImage(r, source);
+      source_cache_.draw(painter, r, source);
       painter.restore();
       painter.save();
       const QRectF right(x, r.top(), r.right() - x, r.height());

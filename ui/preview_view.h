@@ -3,6 +3,8 @@
 // (photo) and the PreviewController (warped); never renders itself.
 #pragma once
 
+#include "ui/scaled_image_cache.h"
+
 #include <QWidget>
 
 class QComboBox;
@@ -36,6 +38,7 @@ class PreviewArea : public QWidget {
  private:
   Document* document_;
   PreviewController* controller_;
+  ScaledImageCache source_cache_;  // the photo's display copy at the drawn size
   PreviewMode mode_ = PreviewMode::SideBySide;
   double opacity_ = 0.5;
   double split_ = 0.5;

@@ -3,6 +3,7 @@
 #include "core/io/artcam_file.h"
 #include "core/io/depth_file.h"
 #include "ui/autosave.h"
+#include "ui/background_job.h"
 #include "ui/commands.h"
 #include "ui/depth_commands.h"
 #include "ui/document.h"
@@ -15,7 +16,6 @@
 #include <QMessageBox>
 #include <QProgressDialog>
 #include <QSettings>
-#include <QThread>
 
 #include <cmath>
 
@@ -163,7 +163,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
     // A newer open replaces the one in flight; its result is never applied.
     disconnect(loader_, nullptr, this, nullptr);
     loader_->cancel();
-    connect(loader_, &QThread::finished, loader_, &QObject::deleteLater);
+    connect(loader_, &ImageLoader::finished, loader_, &QObject::deleteLater);
   }
   pending_project_ = std::move(project);
   pending_recovered_ = recovered;
@@ -225,7 +225,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
     pending_project_.reset();
     showError(tr("Open photo"), message);
   });
-  connect(loader, &QThread::finished, this, [this, loader] {
+  connect(loader, &ImageLoader::finished, this, [this, loader] {
     if (loader == loader_) loader_ = nullptr;
     loader->deleteLater();
     emit loadProgress(-1);
@@ -355,7 +355,7 @@ void Session::exportImage(const QString& path) {
       showError(tr("Export image"), message);
     emit exportFinished(ok, message);
   });
-  connect(job, &QThread::finished, job, &QObject::deleteLater);
+  connect(job, &ExportJob::finished, job, &QObject::deleteLater);
   job->start();
 }
 
@@ -376,22 +376,21 @@ void Session::loadDepthMap(const QString& path, const DepthFileOptions& options)
 void Session::readDepthMapAsync(const QString& path, const DepthFileOptions& options,
                                 bool undoable) {
   const quint64 serial = photo_serial_;
-  auto result = std::make_shared<Result<ImageF>>();
-  QThread* reader = QThread::create(
-      [path, options, result] { *result = readDepthFile(path.toStdString(), options); });
-  connect(reader, &QThread::finished, this, [this, reader, result, path, options, serial, undoable] {
-    reader->deleteLater();
-    if (serial != photo_serial_) return;  // another photo opened meanwhile
-    if (!*result) {
-      const QString message = QString::fromStdString(result->status.message);
-      showError(tr("Load depth map"), message);
-      emit depthMapLoaded(false, message);
-      return;
-    }
-    applyDepthMap(path, options, std::make_shared<const ImageF>(std::move(*result->value)),
-                  undoable);
-  });
-  reader->start();
+  runInBackground(
+      this, [path, options](JobContext&) { return readDepthFile(path.toStdString(), options); },
+      [this, path, options, serial, undoable](JobOutcome<Result<ImageF>> outcome) {
+        if (serial != photo_serial_) return;  // another photo opened meanwhile
+        if (!outcome.value || !*outcome.value) {
+          const QString message = outcome.value
+                                      ? QString::fromStdString(outcome.value->status.message)
+                                      : tr("%1: %2").arg(path, outcome.error);
+          showError(tr("Load depth map"), message);
+          emit depthMapLoaded(false, message);
+          return;
+        }
+        applyDepthMap(path, options,
+                      std::make_shared<const ImageF>(std::move(*outcome.value->value)), undoable);
+      });
 }
 
 void Session::applyDepthMap(const QString& path, const DepthFileOptions& options,
@@ -423,21 +422,22 @@ void Session::applyDepthMap(const QString& path, const DepthFileOptions& options
 }
 
 void Session::openCloud(const QString& path) {
-  auto result = std::make_shared<Result<LoadedCloud>>();
-  QThread* reader = QThread::create([path, result] { *result = CloudView::load(path); });
-  connect(reader, &QThread::finished, this, [this, reader, result] {
-    reader->deleteLater();
-    if (!*result) {
-      showError(tr("Open point cloud"), QString::fromStdString(result->status.message));
-      return;
-    }
-    emit statusMessage(tr("Loaded %1 (%2 points)")
-                           .arg(QFileInfo(result->value->path).fileName())
-                           .arg(result->value->cloud->size()));
-    emit cloudLoaded(*result->value);
-  });
   emit statusMessage(tr("Loading %1…").arg(QFileInfo(path).fileName()));
-  reader->start();
+  runInBackground(
+      this, [path](JobContext&) { return CloudView::load(path); },
+      [this, path](JobOutcome<Result<LoadedCloud>> outcome) {
+        if (!outcome.value || !*outcome.value) {
+          showError(tr("Open point cloud"),
+                    outcome.value ? QString::fromStdString(outcome.value->status.message)
+                                  : tr("%1: %2").arg(path, outcome.error));
+          return;
+        }
+        const LoadedCloud& cloud = *outcome.value->value;
+        emit statusMessage(tr("Loaded %1 (%2 points)")
+                               .arg(QFileInfo(cloud.path).fileName())
+                               .arg(cloud.cloud->size()));
+        emit cloudLoaded(cloud);
+      });
 }
 
 void Session::openCloudDialog() {

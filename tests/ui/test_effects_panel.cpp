@@ -10,10 +10,14 @@
 #include "ui/image_convert.h"
 #include "ui/panels/effects_panel.h"
 
+#include <QElapsedTimer>
+#include <QSemaphore>
 #include <QSignalSpy>
 #include <QtTest/QtTest>
 
+#include <atomic>
 #include <cmath>
+#include <memory>
 
 using namespace artcam;
 using namespace artcam::ui;
@@ -88,6 +92,48 @@ class TestEffectsPanel : public QObject {
     QVERIFY(panel.setParameter("far", 10.0));
     QVERIFY(waitForGeneration(panel, panel.requestedGeneration()));
     QVERIFY2(panel.status().contains("cannot render"), qPrintable(panel.status()));
+  }
+
+  // The GUI thread never waits for a render: with every render blocked on a gate the test holds
+  // shut, parameter changes and the throttle's request still return at once (a wait would last
+  // until the render's own 30 s give-up), and once the gate opens the last change is shown.
+  void neverWaitsForARender() {
+    Document doc;
+    doc.reset(test::syntheticPhoto());
+    EffectsPanel panel(&doc);
+    panel.setEffect("colour-shift");
+    auto gate = std::make_shared<QSemaphore>();
+    auto started = std::make_shared<std::atomic<int>>(0);
+    panel.renderWorker()->setRender(
+        [gate, started](const EffectRequest& r, const std::function<bool()>& keep_going) {
+          ++*started;
+          QElapsedTimer waited;
+          waited.start();
+          while (!gate->tryAcquire(1, 5)) {
+            if (!keep_going() || waited.elapsed() > 30000) return EffectResult{};
+          }
+          QImage image(4, 4, QImage::Format_RGBA8888);
+          image.fill(QColor::fromRgbF(static_cast<float>(r.values.at("s-red")[0]), 0.0f, 0.0f));
+          return EffectResult{image, QStringLiteral("s-red %1").arg(r.values.at("s-red")[0])};
+        });
+    QTRY_VERIFY_WITH_TIMEOUT(started->load() >= 1, 20000);  // the first render is stuck
+    const int renders_before = started->load();
+    qint64 slowest_ms = 0;
+    QElapsedTimer clock;
+    for (int i = 1; i <= 30; ++i) {
+      clock.start();
+      QVERIFY(panel.setParameter("s-red", 0.01 * i));
+      if (i % 10 == 0) QTest::qWait(120);  // the throttle fires: a new request, no join
+      slowest_ms = std::max(slowest_ms, clock.elapsed());
+    }
+    QVERIFY2(slowest_ms < 5000, qPrintable(QString("a setter took %1 ms").arg(slowest_ms)));
+    // Newer requests cancelled the stuck renders and started their own.
+    QTRY_VERIFY_WITH_TIMEOUT(started->load() > renders_before, 20000);
+    QCOMPARE(panel.previewGeneration(), quint64{0});  // nothing shown while the gate is shut
+    gate->release(1000);
+    QVERIFY(waitForGeneration(panel, panel.requestedGeneration()));
+    QCOMPARE(panel.status(), QStringLiteral("s-red 0.3"));
+    QCOMPARE(panel.preview().pixelColor(1, 1).red(), QColor::fromRgbF(0.3f, 0.0f, 0.0f).red());
   }
 
   void paintedDepthReachesThePanelInTheStudio() {

@@ -160,6 +160,7 @@ class TestPairTool : public QObject {
     }
     const QPoint from = test::widgetPoint(*canvas_, doc_->pairs()[2].source);
     test::drag(canvas_.get(), from, from + QPoint(-12, 17));
+    QTRY_VERIFY(!doc_->fitPending());  // a drag's moves fit in the worker
     record();
     pushTogglePairsEnabled(doc_.get(), {1});
     record();

@@ -47,6 +47,7 @@ class TestPreview : public QObject {
 
     const QPoint from = test::widgetPoint(canvas, doc.pairs()[4].target);
     test::drag(&canvas, from, from + QPoint(25, 15));
+    QTRY_VERIFY(!doc.fitPending());  // a drag's moves fit in the worker; then the preview
     QVERIFY(waitForNewest(preview));
     QVERIFY(preview.imageGeneration() > first_generation);
     QVERIFY(preview.image() != first);

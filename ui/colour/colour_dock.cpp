@@ -177,9 +177,7 @@ ColourDock::ColourDock(Document* document, QWidget* parent)
   refreshReport();
 }
 
-ColourDock::~ColourDock() {
-  if (loader_) loader_->wait();
-}
+ColourDock::~ColourDock() = default;  // the loader is a child: it cancels its read, no wait
 
 void ColourDock::attachToSession(Session* session) {
   Session::ProjectPart part;
@@ -256,7 +254,7 @@ void ColourDock::startReferenceLoad(const QString& path, bool undoable) {
     emit statusMessage(message_);
     emit referenceLoaded(false, message);
   });
-  connect(loader, &QThread::finished, loader, &QObject::deleteLater);
+  connect(loader, &ImageLoader::finished, loader, &QObject::deleteLater);
   loader->start();
 }
 

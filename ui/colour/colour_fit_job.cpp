@@ -1,15 +1,13 @@
 #include "ui/colour/colour_fit_job.h"
 
-#include <QMetaObject>
-
-#include <exception>
+#include <string>
 
 namespace artcam::ui {
 
 ColourFitJob::ColourFitJob(QObject* parent) : QObject(parent) {}
 
 ColourFitJob::~ColourFitJob() {
-  if (thread_.joinable()) thread_.join();
+  if (job_) job_->cancel();
 }
 
 void ColourFitJob::start(std::vector<PointMatch> samples, ColourFitOptions options, quint64 tag) {
@@ -22,23 +20,19 @@ void ColourFitJob::start(std::vector<PointMatch> samples, ColourFitOptions optio
 }
 
 void ColourFitJob::launch(Request request) {
-  if (thread_.joinable()) thread_.join();  // finished already: its result was delivered
   running_ = true;
-  thread_ = std::thread([this, r = std::move(request)] {
-    ColourFitSummary summary;
-    try {
-      summary = fitColourSamples(r.samples, r.options);
-    } catch (const std::exception& e) {
-      summary = ColourFitSummary{};
-      summary.status = Status::failure(std::string("Colour fit failed: ") + e.what());
-    } catch (...) {
-      summary = ColourFitSummary{};
-      summary.status = Status::failure("Colour fit failed: unknown error");
-    }
-    const quint64 tag = r.tag;
-    QMetaObject::invokeMethod(
-        this, [this, summary, tag] { onDone(summary, tag); }, Qt::QueuedConnection);
-  });
+  const quint64 tag = request.tag;
+  job_ = runInBackground(
+      this,
+      [r = std::move(request)](JobContext&) { return fitColourSamples(r.samples, r.options); },
+      [this, tag](JobOutcome<ColourFitSummary> outcome) {
+        ColourFitSummary summary;
+        if (outcome.value)
+          summary = std::move(*outcome.value);
+        else
+          summary.status = Status::failure("Colour fit failed: " + outcome.error.toStdString());
+        onDone(summary, tag);
+      });
 }
 
 void ColourFitJob::onDone(const ColourFitSummary& summary, quint64 tag) {

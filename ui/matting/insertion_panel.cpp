@@ -3,6 +3,7 @@
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "core/io/artcam_file.h"
+#include "ui/background_job.h"
 #include "ui/document.h"
 #include "ui/matting/board_view.h"
 #include "ui/matting/insertion_model.h"
@@ -21,7 +22,6 @@
 #include <QPushButton>
 #include <QSignalBlocker>
 #include <QSpinBox>
-#include <QThread>
 #include <QVBoxLayout>
 
 #include <algorithm>
@@ -33,27 +33,16 @@ namespace artcam::ui {
 
 namespace {
 
-// Runs `work` on a short-lived thread owned by `owner` (which waits for it when destroyed)
-// and hands its value to `done` on the owner's thread. Exceptions become failed Results.
+// Runs `work` as a one-shot job of background_job.h and hands its Result to `done` on the
+// owner's thread (not at all once the owner is gone); an exception becomes a failed Result.
 template <class T, class Work, class Done>
 void runOffThread(QObject* owner, Work work, Done done) {
-  auto result = std::make_shared<std::optional<Result<T>>>();
-  QThread* thread = QThread::create([result, work = std::move(work)]() mutable {
-    try {
-      *result = work();
-    } catch (const std::exception& e) {
-      *result = Result<T>::failure(e.what());
-    } catch (...) {
-      *result = Result<T>::failure("unknown error");
-    }
-  });
-  thread->setParent(owner);
-  QObject::connect(thread, &QThread::finished, owner,
-                   [thread, result, done = std::move(done)]() mutable {
-                     done(std::move(**result));
-                     thread->deleteLater();
-                   });
-  thread->start();
+  runInBackground(
+      owner, [work = std::move(work)](JobContext&) mutable -> Result<T> { return work(); },
+      [done = std::move(done)](JobOutcome<Result<T>> outcome) mutable {
+        done(outcome.value ? std::move(*outcome.value)
+                           : Result<T>::failure(outcome.error.toStdString()));
+      });
 }
 
 QPushButton* button(const QString& text, const QString& tip, QWidget* parent) {
@@ -196,9 +185,7 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   showFit();
 }
 
-InsertionPanel::~InsertionPanel() {
-  for (QThread* t : findChildren<QThread*>(Qt::FindDirectChildrenOnly)) t->wait();
-}
+InsertionPanel::~InsertionPanel() = default;  // jobs in flight are cancelled, never waited for
 
 QString InsertionPanel::reportText() const { return report_->toPlainText(); }
 QString InsertionPanel::statusText() const { return status_->text(); }

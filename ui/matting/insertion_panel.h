@@ -30,7 +30,7 @@ class InsertionPanel : public QWidget {
 
  public:
   InsertionPanel(InsertionModel* model, InsertionPreview* preview, QWidget* parent = nullptr);
-  ~InsertionPanel() override;  // waits for file reads in flight
+  ~InsertionPanel() override;  // cancels file jobs in flight (background_job.h); never waits
 
   void setInteractive(bool interactive) { interactive_ = interactive; }
   BoardView* boardView() const { return board_view_; }

@@ -2,36 +2,16 @@
 
 #include "core/pipeline/render.h"
 #include "ui/document.h"
-#include "ui/image_convert.h"
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
-#include <QMetaObject>
 #include <QTimer>
 #include <QVBoxLayout>
 
-#include <cmath>
-
 namespace artcam::ui {
-
-namespace {
-
-constexpr int kThumbnailSide = 384;
-
-// Far at the top, near at the bottom, log-spaced from 1 to 100: a ground plane seen level.
-ImageF standInDepth(int w, int h) {
-  ImageF depth(w, h, 1);
-  for (int y = 0; y < h; ++y) {
-    const float d = static_cast<float>(std::pow(100.0, 1.0 - (y + 0.5) / h));
-    for (int x = 0; x < w; ++x) depth.pixel(x, y)[0] = d;
-  }
-  return depth;
-}
-
-}  // namespace
 
 EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
     : QWidget(parent),
@@ -54,6 +34,7 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
   throttle_->setSingleShot(true);
   throttle_->setInterval(80);
   connect(throttle_, &QTimer::timeout, this, &EffectsPanel::startRender);
+  connect(&worker_, &EffectsRenderWorker::rendered, this, &EffectsPanel::deliver);
   connect(effect_box_, &QComboBox::currentTextChanged, this, [this] {
     rebuildParameters();
     schedule();
@@ -63,11 +44,8 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
   schedule();
 }
 
-EffectsPanel::~EffectsPanel() {
-  alive_->store(false);
-  ++generation_;  // cancels the running render at its next band
-  joinWorker();
-}
+// worker_ cancels its render in flight and joins: the panel goes at shutdown only.
+EffectsPanel::~EffectsPanel() = default;
 
 QString EffectsPanel::effect() const { return effect_box_->currentText(); }
 
@@ -130,55 +108,15 @@ void EffectsPanel::schedule() {
   throttle_->start();
 }
 
-void EffectsPanel::joinWorker() {
-  if (worker_.joinable()) worker_.join();
-}
-
 void EffectsPanel::startRender() {
   const PhotoPtr photo = document_->photo();
   if (!photo || photo->preview.empty()) return;
-  // One worker at a time: the previous one sees the newer generation and stops between bands.
-  joinWorker();
-  const quint64 generation = generation_.load();
-  const ImageF source = boxDownscale(photo->preview, kThumbnailSide);
-  const FrameSize frame{source.width, source.height};
-  ImageF depth;
-  QString depth_note;
-  if (depth_ && !depth_->empty()) {
-    depth = *depth_;  // any size: the renderer reads it at the same place (attributed.h)
-  } else {
-    depth = standInDepth(frame.width, frame.height);
-    depth_note = tr("no depth painted: a ramp stands in (far at the top)");
-  }
-  const std::string name = effect().toStdString();
-  const EffectValues values = parameters();
-  std::shared_ptr<std::atomic<bool>> alive = alive_;
-  worker_ = std::thread([this, alive, generation, source, depth, frame, name, values, depth_note] {
-    QImage image;
-    QString message;
-    try {
-      const Artcam camera = buildEffect(name, values, frame);
-      RenderOptions options;
-      options.warp.progress = [this, generation](double) { return generation_.load() == generation; };
-      RenderSummary summary;
-      const ImageF out = artcam::render(RenderInputs::of(source, &depth), camera, options, &summary);
-      if (summary.cancelled) return;
-      image = qimageFromLinear(out);
-      message = QString("%1, %2 ms").arg(QString::fromStdString(summary.describe()))
-                    .arg(summary.render_ms, 0, 'f', 1);
-      if (findEffect(name)->needs_depth && !depth_note.isEmpty()) message += "; " + depth_note;
-    } catch (const std::exception& e) {
-      message = tr("cannot render: %1").arg(QString::fromUtf8(e.what()));  // caught at the boundary
-    }
-    if (!alive->load()) return;
-    QMetaObject::invokeMethod(
-        this, [this, generation, image, message] { deliver(generation, image, message); },
-        Qt::QueuedConnection);
-  });
+  // The newest request replaces any pending one and cancels the one rendering; no waiting.
+  worker_.request({photo, depth_, effect().toStdString(), parameters(), generation_});
 }
 
-void EffectsPanel::deliver(quint64 generation, QImage image, QString message) {
-  if (generation != generation_.load()) return;  // stale: a newer request is on its way
+void EffectsPanel::deliver(quint64 generation, const QImage& image, const QString& message) {
+  if (generation != generation_) return;  // stale: a newer request is on its way
   status_label_->setText(message);
   if (!image.isNull()) {
     preview_ = image;

@@ -3,10 +3,10 @@
 // parameter rows are made from the effect's row of the table: one spin box per number (a row of
 // N for a vector parameter), its range, default and unit (as the suffix) from the table.
 //
-// Rendering runs off the GUI thread (STYLE: never block the GUI on a render): every change
-// stamps a new generation, a trailing 80 ms timer coalesces slider drags, and a worker thread
-// renders the newest request; an older one is cancelled between bands (its progress hook sees
-// a newer generation) and its result dropped. Results come back by queued call as a QImage.
+// Rendering runs off the GUI thread and nothing here waits for it: every change stamps a new
+// generation, a trailing 80 ms timer coalesces slider drags, and the EffectsRenderWorker (the
+// newest-request worker) renders the newest request; an older one is cancelled between bands
+// and a result of an older generation is dropped. Results come back by queued signal.
 //
 // Depth: the image given to setDepth (1 channel, or the 2-channel form of core/depth/
 // depth_raster.h, any size) — e.g. the studio's painted planes rasterised; otherwise a stand-in
@@ -17,15 +17,14 @@
 
 #include "core/effects/effect_table.h"
 #include "core/model/image.h"
+#include "ui/panels/effects_render_worker.h"
 
 #include <QImage>
 #include <QWidget>
 
-#include <atomic>
 #include <map>
 #include <memory>
 #include <string>
-#include <thread>
 
 class QComboBox;
 class QFormLayout;
@@ -57,8 +56,10 @@ class EffectsPanel : public QWidget {
   // The last rendered preview and the generation it belongs to.
   const QImage& preview() const { return preview_; }
   quint64 previewGeneration() const { return shown_generation_; }
-  quint64 requestedGeneration() const { return generation_.load(); }
+  quint64 requestedGeneration() const { return generation_; }
   QString status() const;
+  // The renderer thread (tests replace its render function before the first request).
+  EffectsRenderWorker* renderWorker() { return &worker_; }
 
  signals:
   void previewReady(quint64 generation);
@@ -67,8 +68,7 @@ class EffectsPanel : public QWidget {
   void rebuildParameters();
   void schedule();
   void startRender();
-  void deliver(quint64 generation, QImage image, QString message);
-  void joinWorker();
+  void deliver(quint64 generation, const QImage& image, const QString& message);
 
   Document* document_;
   QComboBox* effect_box_;
@@ -79,11 +79,9 @@ class EffectsPanel : public QWidget {
   std::map<std::string, std::vector<QDoubleSpinBox*>> spins_;
   QImage preview_;
   std::shared_ptr<const ImageF> depth_;
-  std::atomic<quint64> generation_{0};
+  quint64 generation_ = 0;  // GUI thread only
   quint64 shown_generation_ = 0;
-  std::thread worker_;
-  // Lets a finished worker's queued delivery find out the panel is gone.
-  std::shared_ptr<std::atomic<bool>> alive_ = std::make_shared<std::atomic<bool>>(true);
+  EffectsRenderWorker worker_;
 };
 
 }  // namespace artcam::ui
