@@ -6,8 +6,13 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
 #include <utility>
+#include <vector>
 
 namespace artcam {
 namespace {
@@ -197,6 +202,192 @@ std::pair<Camera, Camera> commonBlocks(const Camera& a, const Camera& b) {
   return {a, b};
 }
 
+
+// Where b reads depth only in its depth output, in one stage, from the depth block alone (depth
+// of field's σ² = h(d)), that output can be re-expressed on another variable.
+bool depthOutputReadsDepthAlone(const Camera& b) {
+  const int block = b.layout().find(BlockKind::Depth);
+  if (block < 0 || b.stages().size() != 1) return false;
+  const int o = b.layout().offsets[static_cast<size_t>(block)];
+  const auto& q = b.stages()[0].q;
+  for (int i = 0; i < b.dimension(); ++i) {
+    const Eigen::MatrixXd& m = q[static_cast<size_t>(i)];
+    for (int r = 0; r < b.dimension(); ++r)
+      for (int c = 0; c < b.dimension(); ++c) {
+        const bool depth_entry = r >= o && r <= o + 1 && c >= o && c <= o + 1;
+        const bool depth_output = i == o || i == o + 1;
+        if (m(r, c) != 0.0 && depth_output != depth_entry) return false;
+      }
+  }
+  return true;
+}
+
+double depthOut(const Camera& camera, double d) {
+  const int block = camera.layout().find(BlockKind::Depth);
+  return probe(camera, d)(camera.layout().offsets[static_cast<size_t>(block)]);
+}
+
+// A depth output l = g(d) normalised as aerial perspective's is (g = 0 at its near depth, 1 at
+// its far depth, increasing between), found by scanning depths from 1e-4 to 1e6 and bisecting.
+std::optional<std::pair<double, double>> unitInterval(const Camera& a) {
+  constexpr int kSamples = 4001;
+  std::optional<double> near, far;
+  double previous_d = 0, previous_g = std::numeric_limits<double>::quiet_NaN();
+  for (int j = 0; j < kSamples && !far; ++j) {
+    const double d = std::pow(10.0, -4.0 + 10.0 * j / (kSamples - 1));
+    const double g = depthOut(a, d);
+    if (!std::isfinite(g)) {
+      near.reset();
+    } else if (std::isfinite(previous_g)) {
+      if (!near && previous_g < 0.0 && g >= 0.0) near = previous_d;
+      if (near && g < previous_g) near.reset();  // not increasing: start again
+      if (near && previous_g < 1.0 && g >= 1.0) far = d;
+    }
+    previous_d = d;
+    previous_g = g;
+  }
+  if (!near || !far) return std::nullopt;
+  return std::make_pair(*near, *far);
+}
+
+// g⁻¹(l) on [lo, hi] by bisection (g increasing there).
+double inverseDepth(const Camera& a, double l, double lo, double hi) {
+  for (int k = 0; k < 80; ++k) {
+    const double mid = std::sqrt(lo * hi);
+    (depthOut(a, mid) < l ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+// A ratio of quadratics on (l, 1): N(l)/D(l), each a 2×2 symmetric tensor.
+struct DepthRatio {
+  Eigen::Matrix2d numerator, denominator;
+  double value(double l) const {
+    const Eigen::Vector2d v(l, 1.0);
+    return v.dot(numerator * v) / v.dot(denominator * v);
+  }
+};
+
+// N/D ≈ y on the samples: linearised least squares re-weighted by the denominator
+// (Sanathanan–Koerner), as aerial perspective fits its log depth, each row also weighted by how
+// much an error in y matters (`importance`: the slope of what is computed from y); D normalised
+// by its constant term. Empty when the denominator vanishes on a sample.
+std::optional<DepthRatio> fitRatio(const std::vector<double>& ls, const std::vector<double>& ys,
+                                   const std::vector<double>& importance) {
+  const int n = static_cast<int>(ls.size());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(5);  // n2, n1, n0, e2, e1 (e0 = 1)
+  std::vector<double> weight(ls.size(), 1.0);
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    Eigen::MatrixXd m(n, 5);
+    Eigen::VectorXd rhs(n);
+    for (int k = 0; k < n; ++k) {
+      const double l = ls[size_t(k)], y = ys[size_t(k)];
+      const double w = weight[size_t(k)] * importance[size_t(k)];
+      m.row(k) << w * l * l, w * l, w, -w * y * l * l, -w * y * l;
+      rhs(k) = w * y;
+    }
+    x = m.colPivHouseholderQr().solve(rhs);
+    for (int k = 0; k < n; ++k) {
+      const double l = ls[size_t(k)];
+      const double den = x(3) * l * l + x(4) * l + 1.0;
+      if (!(std::abs(den) > 1e-12)) return std::nullopt;
+      weight[size_t(k)] = 1.0 / std::abs(den);
+    }
+  }
+  DepthRatio r;
+  r.numerator << x(0), x(1) / 2, x(1) / 2, x(2);
+  r.denominator << x(3), x(4) / 2, x(4) / 2, 1.0;
+  return r;
+}
+
+// The bridge from first's depth output l = g(d) back to a variable second can read exactly: the
+// depth d = g⁻¹(l) or the inverse depth m = 1/g⁻¹(l), fitted as a ratio of quadratics in (l, 1)
+// over [0, 1]; whichever gives second's output the smaller error. Second's depth output, a ratio
+// of quadratics in (d, 1), is one in (m, 1) too (d = 1/m: the tensors' d·d and 1·1 entries swap
+// and the common 1/m² cancels), so the fit is the only approximation. The depth of field's thin
+// lens is polynomial in m, its linear model in d.
+struct DepthBridge {
+  DepthRatio ratio;     // l → the bridged variable
+  bool inverse = true;  // the variable is the inverse depth m (else the depth d itself)
+  double max_error = 0;  // of second's depth output through the bridge, over l in [0, 1]
+  double scale = 0;      // the largest |second's depth output| there
+};
+
+// The depth block's two tensors of `stage` as they act on (m, 1) instead of (d, 1).
+void onInverseDepth(Stage& stage, int o) {
+  for (Eigen::MatrixXd& q : stage.q) {
+    std::swap(q(o, o), q(o + 1, o + 1));
+  }
+}
+
+std::optional<DepthBridge> bridgeDepth(const Camera& a, const Camera& b) {
+  const auto interval = unitInterval(a);
+  if (!interval) return std::nullopt;
+  const auto depth_at = [&](double l) { return inverseDepth(a, l, interval->first, interval->second); };
+  constexpr int kFit = 129, kCheck = 1001;
+  std::vector<double> ls, ds, ms;
+  for (int k = 0; k < kFit; ++k) {
+    ls.push_back(static_cast<double>(k) / (kFit - 1));
+    ds.push_back(depth_at(ls.back()));
+    ms.push_back(1.0 / ds.back());
+  }
+  std::optional<DepthBridge> best;
+  for (const bool inverse : {true, false}) {
+    // Errors of the bridged variable weighted by the slope of second's output there, so the fit
+    // minimises (to first order) the error of that output; a floor keeps flat parts fitted.
+    const std::vector<double>& vs = inverse ? ms : ds;
+    std::vector<double> slope(vs.size());
+    double steepest = 0;
+    for (size_t k = 0; k < vs.size(); ++k) {
+      const double v = vs[k], step = 1e-6 * std::abs(v);
+      const auto out = [&](double x) { return depthOut(b, inverse ? 1.0 / x : x); };
+      slope[k] = std::abs(out(v + step) - out(v - step)) / (2 * step);
+      steepest = std::max(steepest, slope[k]);
+    }
+    for (double& w : slope) w = std::max(w, 1e-3 * steepest);
+    const std::optional<DepthRatio> fit = fitRatio(ls, vs, slope);
+    if (!fit) continue;
+    DepthBridge bridge{*fit, inverse, 0.0, 0.0};
+    bool pole = false;
+    for (int k = 0; k < kCheck && !pole; ++k) {
+      const double l = static_cast<double>(k) / (kCheck - 1);
+      const Eigen::Vector2d v(l, 1.0);
+      const double value = fit->value(l);
+      pole = !(v.dot(fit->denominator * v) > 0.0) || !(value > 0.0);
+      const double exact = depthOut(b, depth_at(l));
+      const double through = depthOut(b, inverse ? 1.0 / value : value);
+      bridge.max_error = std::max(bridge.max_error, std::abs(through - exact));
+      bridge.scale = std::max(bridge.scale, std::abs(exact));
+    }
+    if (!pole && (!best || bridge.max_error < best->max_error)) best = bridge;
+  }
+  return best;
+}
+
+// first, then the bridge stage (depth l → m, everything else passed on), then second with its
+// depth output read on (m, 1).
+Result<Camera> composeThroughBridge(const Camera& a, const Camera& b, const DepthBridge& bridge,
+                                    CompositionSummary* summary) {
+  Camera stage = Camera::identity(a.blocks(), a.targetSize(), a.targetSize());
+  const int o = a.layout().offsets[static_cast<size_t>(a.layout().find(BlockKind::Depth))];
+  Eigen::MatrixXd& num = stage.stages()[0].q[static_cast<size_t>(o)];
+  Eigen::MatrixXd& den = stage.stages()[0].q[static_cast<size_t>(o + 1)];
+  num.setZero();
+  den.setZero();
+  num.block(o, o, 2, 2) = bridge.ratio.numerator;
+  den.block(o, o, 2, 2) = bridge.ratio.denominator;
+  Camera second = b;
+  const int ob = b.layout().offsets[static_cast<size_t>(b.layout().find(BlockKind::Depth))];
+  if (bridge.inverse) onInverseDepth(second.stages()[0], ob);
+  auto first_and_bridge = composeCameras(a, stage);
+  if (!first_and_bridge) return first_and_bridge;
+  return composeCameras(*first_and_bridge, second, summary);
+}
+
+// The largest error of the refit allowed, relative to the largest value of the depth output
+// over the first camera's depth range: σ then stays within ½ % of its exact value.
+constexpr double kRefitTolerance = 1e-2;
+
 bool positionOnlyImage(const Artcam& c) {
   return c.layers.size() == 1 && !c.pieces && c.blocks().size() == 1 &&
          c.blocks()[0].kind == BlockKind::Position && c.blocks()[0].size == 3 &&
@@ -219,12 +410,6 @@ Result<Artcam> composeArtcams(const Artcam& first, const Artcam& second, std::st
   if (n1 > 1 && n2 > 1 && n1 != n2)
     return R::failure("layered cameras compose layer by layer and need as many layers (" +
                       std::to_string(n1) + " and " + std::to_string(n2) + ")");
-  for (const Camera& a : first.layers)
-    for (const Camera& b : second.layers)
-      if (changesDepth(a) && readsDepth(b))
-        return R::failure("the first camera outputs something else than the depth it read (e.g. "
-                          "aerial perspective's log depth) and the second reads depth: composed, "
-                          "it would read the wrong quantity");
   Artcam out;
   out.depth_output = second.depth_output;
   std::string text;
@@ -232,10 +417,36 @@ Result<Artcam> composeArtcams(const Artcam& first, const Artcam& second, std::st
   for (size_t k = 0; k < n; ++k) {
     CompositionSummary summary;
     const auto [a, b] = commonBlocks(first.layers[n1 > 1 ? k : 0], second.layers[n2 > 1 ? k : 0]);
-    auto c = composeCameras(a, b, &summary);
+    std::string refit_note;
+    std::optional<DepthBridge> bridge;
+    if (changesDepth(a) && readsDepth(b)) {
+      // The chain would feed b first's depth output (aerial perspective's log depth l) where b
+      // expects a depth. When b reads depth only in its depth output (depth of field's σ²),
+      // that output is re-expressed on l by a fitted ratio of quadratics, as the paper fits
+      // aerial perspective's log; otherwise the composition cannot be one camera.
+      const std::optional<DepthBridge> fit =
+          depthOutputReadsDepthAlone(b) ? bridgeDepth(a, b) : std::nullopt;
+      if (!fit)
+        return R::failure("the first camera outputs something else than the depth it read (e.g. "
+                          "aerial perspective's log depth) and the second reads depth in a way "
+                          "that cannot be re-expressed on it: composed, it would read the wrong "
+                          "quantity");
+      if (fit->max_error > kRefitTolerance * fit->scale)
+        return R::failure("the second camera's depth output bridged from the first's depth "
+                          "output is off by " + std::to_string(fit->max_error) + " (of " +
+                          std::to_string(fit->scale) + "): too far to be one camera");
+      bridge = fit;
+      char note[160];
+      std::snprintf(note, sizeof note,
+                    "; depth bridged from the first camera's depth output by a fitted %s "
+                    "(largest error of the depth output %.3g of %.3g)",
+                    fit->inverse ? "inverse depth" : "depth", fit->max_error, fit->scale);
+      refit_note = note;
+    }
+    auto c = bridge ? composeThroughBridge(a, b, *bridge, &summary) : composeCameras(a, b, &summary);
     if (!c) return R::failure((n > 1 ? "layer " + std::to_string(k + 1) + ": " : "") + c.status.message);
     out.layers.push_back(std::move(*c));
-    if (k == 0) text = summary.description;
+    if (k == 0) text = summary.description + refit_note;
   }
   if (first.pieces) {
     PiecewiseCamera pieces = *first.pieces;

@@ -47,10 +47,15 @@ namespace artcam {
 //   layers' colours and each layer selects its own colour channel, so second_j(first_k(·))
 //   vanishes for j ≠ k and the sum of the pairwise compositions is the whole composition.
 // - Depth: a chain feeds first's depth output to second's depth input. That is right when first
-//   passes depth on unchanged, or when second does not read depth; otherwise (aerial
-//   perspective outputs a log depth, depth of field outputs a blur variance) the second camera
-//   would read something else than a depth, and composition is refused with that reason. The
-//   result's depth output means what second's does.
+//   passes depth on unchanged, or when second does not read depth. When first outputs another
+//   quantity l = g(d) (aerial perspective's log depth, 0 at its near and 1 at its far depth) and
+//   second reads depth only in its depth output h(d) (depth of field's blur variance), a bridge
+//   stage maps l to the inverse depth m = 1/g⁻¹(l), fitted as a ratio of quadratics in (l, 1)
+//   over [0, 1], and h is read exactly on (m, 1) — the paper's Fig 3 bottom right as one
+//   camera, accurate to 1 % of the largest h (else refused, with the error).
+//   Anything else that would read the wrong quantity is refused with that reason. Depth of field
+//   must come last (its output is a blur variance, not a depth). The result's depth output
+//   means what second's does.
 // - Patches: a piecewise first composes each patch (and its single-camera fit) with a
 //   single-layer position-only second; a piecewise second is refused (its patches are
 //   rectangles of its own source, which first's map would bend).

@@ -257,6 +257,58 @@ class TestCliCameraKinds : public QObject {
     for (int c = 0; c < 3; ++c) QVERIFY2(std::abs(centre[c] - 0.4f) < 1e-3, qPrintable(QString::number(centre[c])));
   }
 
+  void aerialThenDepthOfFieldIsOneCamera() {
+    // The paper's Fig 3 bottom right: aerial perspective then depth of field, composed into one
+    // camera, renders as the two warps one after the other (up to the re-fitted σ², ½ %).
+    ImageF photo(kW, kH, 3), depth(kW, kH, 1);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        for (int c = 0; c < 3; ++c)
+          photo.pixel(x, y)[c] = ((x / 7 + y / 5 + c) % 3) ? 0.8f : 0.1f;  // edges to blur
+        depth.pixel(x, y)[0] = static_cast<float>(std::pow(60.0, 1.0 - (y + 0.5) / kH));
+      }
+    QVERIFY(writeImage(path("texture.exr").toStdString(), photo).ok);
+    QVERIFY(writeImage(path("ramp.exr").toStdString(), depth).ok);
+    QCOMPARE(artcamCli({"preset", "aerial-perspective", "--near", "1", "--far", "60", "-o",
+                        path("ap.artcam"), "--overwrite"}).exit_code, 0);
+    QCOMPARE(artcamCli({"preset", "depth-of-field", "--focus", "3", "--blur", "0.01", "-o",
+                        path("dof.artcam"), "--overwrite"}).exit_code, 0);
+    const auto composed = artcamCli({"compose", path("ap.artcam"), path("dof.artcam"), "-o",
+                                     path("fig3.artcam"), "--json"});
+    QVERIFY2(composed.exit_code == 0, qPrintable(composed.err));
+    const QJsonObject info = infoJson(path("fig3.artcam"));
+    QCOMPARE(info["depth_output"].toString(), QString("blur-variance"));
+    const auto warp = [&](const QString& in, const QString& cam, const QString& out) {
+      return artcamCli({"warp", in, cam, "-o", out, "--depth", path("ramp.exr"), "-q", "--overwrite"});
+    };
+    QCOMPARE(warp(path("texture.exr"), path("ap.artcam"), path("hazed.exr")).exit_code, 0);
+    QCOMPARE(warp(path("hazed.exr"), path("dof.artcam"), path("two-steps.exr")).exit_code, 0);
+    const auto one = warp(path("texture.exr"), path("fig3.artcam"), path("one-camera.exr"));
+    QVERIFY2(one.exit_code == 0, qPrintable(one.err));
+    const auto a = readImage(path("two-steps.exr").toStdString());
+    const auto b = readImage(path("one-camera.exr").toStdString());
+    QVERIFY(a.ok() && b.ok());
+    QCOMPARE(a->image.width, b->image.width);
+    double sum = 0, worst = 0;
+    long long n = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const double d = std::abs(a->image.pixel(x, y)[c] - b->image.pixel(x, y)[c]);
+          sum += d;
+          worst = std::max(worst, d);
+          ++n;
+        }
+    QVERIFY2(sum / n < 1e-3 && worst < 3e-2,
+             qPrintable(QString("mean %1, max %2").arg(sum / n).arg(worst)));
+    // And it does blur: far from the identity of the hazed image alone.
+    const auto hazed = readImage(path("hazed.exr").toStdString());
+    double blurred = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) blurred += std::abs(hazed->image.pixel(x, y)[0] - b->image.pixel(x, y)[0]);
+    QVERIFY(blurred / (kW * kH) > 1e-2);
+  }
+
   void invalidPatchesAreRefusedEverywhere() {
     // Patch 1 given patch 0's rectangle: they overlap.
     auto camera = readArtcam(path("piecewise.artcam").toStdString());

@@ -10,6 +10,8 @@
 
 #include <QtTest/QtTest>
 
+#include <cmath>
+
 using namespace artcam;
 
 namespace {
@@ -138,13 +140,40 @@ class TestArtcam : public QObject {
       const Eigen::VectorXd x = (Eigen::VectorXd(7) << 0.3, -0.2, 1, 0.2, 0.5, 0.7, 1).finished();
       QVERIFY((twice->layers[l].evaluate(x) - expected->evaluate(x)).norm() < 1e-12);
     }
-    // Aerial perspective outputs a log depth; depth of field would read it as a depth.
-    const Artcam aerial(aerialPerspectiveCamera({}, kFrame, kFrame));
-    Artcam dof(depthOfFieldCamera({2.0, 0.01}, kFrame, kFrame));
+    // Aerial perspective outputs a log depth: a fitted inverse depth bridges it to depth of
+    // field's σ², so the paper's Fig 3 bottom right is one camera. Against the closed forms at
+    // depths across the aerial range: colour exactly aerial perspective's, σ² = k²(d − f)²/d²
+    // within 1 % of its largest value.
+    AerialParams ap;
+    ap.near = 1.0;
+    ap.far = 50.0;
+    const Artcam aerial(aerialPerspectiveCamera(ap, kFrame, kFrame));
+    const double focus = 4.0, blur = 0.02;
+    Artcam dof(depthOfFieldCamera({focus, blur}, kFrame, kFrame));
     dof.depth_output = DepthOutput::BlurVariance;
-    const auto refused = composeArtcams(aerial, dof);
-    QVERIFY(!refused.ok());
-    QVERIFY(refused.status.message.find("depth") != std::string::npos);
+    std::string note;
+    const auto fig3 = composeArtcams(aerial, dof, &note);
+    QVERIFY2(fig3.ok(), fig3.status.message.c_str());
+    QCOMPARE(fig3->depth_output, DepthOutput::BlurVariance);
+    QVERIFY(note.find("bridged") != std::string::npos);
+    double largest = 0, worst = 0;
+    for (int j = 0; j <= 40; ++j) {
+      const double d = ap.near * std::pow(ap.far / ap.near, j / 40.0);
+      Eigen::VectorXd x(9);
+      x << 0.2, -0.1, 1, 0.3 * 0.8, 0.5 * 0.8, 0.7 * 0.8, 0.8, d, 1;
+      const Eigen::VectorXd composed = fig3->main().evaluate(x);
+      const Eigen::VectorXd hazed = aerial.main().evaluate(x);
+      QVERIFY((composed.segment(3, 4) - hazed.segment(3, 4)).norm() < 1e-9);
+      const double sigma2 = blur * blur * (d - focus) * (d - focus) / (d * d);
+      largest = std::max(largest, sigma2);
+      worst = std::max(worst, std::abs(composed(7) - sigma2));
+    }
+    QVERIFY2(worst <= 0.01 * largest, qPrintable(QString("σ² off by %1 of %2").arg(worst).arg(largest)));
+    // Aerial perspective twice: the second reads depth in its colour too, which no re-fit of a
+    // depth output carries: refused, saying why.
+    const auto twice_aerial = composeArtcams(aerial, aerial);
+    QVERIFY(!twice_aerial.ok());
+    QVERIFY(twice_aerial.status.message.find("depth") != std::string::npos);
     // Depth of field first: its output is no depth at all.
     QVERIFY(!composeArtcams(dof, aerial).ok());
     // A lens before depth of field passes depth on: composed, and the blur variance kept.
