@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Installs what a desktop needs besides the two programs (desktop entry, icons, AppStream
 # metainfo, MIME types, manual pages) and configures CPack's Debian package, so that
 # `cmake --install` and `cpack -G DEB` lay down the same files (packaging/build-deb.sh).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Builds the Debian package artcam-studio_<version>_<arch>.deb: the project without its tests in
 # build-deb/ (RelWithDebInfo, the default of build.sh, so ccache reuses its objects; cpack strips
 # the binaries), then `cpack -G DEB`, which installs the two programs with

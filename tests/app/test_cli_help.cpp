@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `artcam --help` and every `artcam COMMAND --help` are complete: each option a command's parser
 // accepts is named on its help page and in the manual page docs/man/artcam.1, and each page
 // carries an example. The expected options are not taken from the help text (that is what is
