@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # Every source file of the project opens with its licence, `SPDX-License-Identifier: Apache-2.0`
-# as a comment on the first line (the second after a `#!` line): C++ sources and headers, CMake
-# files, shell and Python scripts. Data files, images, JSON, Markdown and the fuzz corpora carry
+# as a comment on the first line (the second after a `#!` or zsh's `#compdef` line, which must
+# come first): C++ sources and headers, CMake files, shell and Python scripts, the completions. Data files, images, JSON, Markdown and the fuzz corpora carry
 # none (resources/README.md names the assets' licences).
 # Usage: bash packaging/check-spdx.sh          lists the files without the line; fails if any
 #        bash packaging/check-spdx.sh --fix    inserts the line into those files and nothing else
@@ -17,12 +17,13 @@ id="SPDX-License-Identifier: Apache-2.0"
 cd "$root"
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   mapfile -t files < <(git ls-files -- core ui app tests fuzz packaging cmake resources \
-    CMakeLists.txt | grep -E '(\.(h|cpp|cmake|sh|py)|(^|/)CMakeLists\.txt)$' | grep -v '^fuzz/corpus/')
+    CMakeLists.txt | grep -E '(\.(h|cpp|cmake|sh|bash|py)|(^|/)CMakeLists\.txt|^packaging/completions/.*)$' |
+    grep -v '^fuzz/corpus/')
 else
   mapfile -t files < <(find core ui app tests fuzz packaging cmake resources CMakeLists.txt \
     -path fuzz/corpus -prune -o -type f \
-    \( -name '*.h' -o -name '*.cpp' -o -name '*.cmake' -o -name '*.sh' -o -name '*.py' \
-       -o -name CMakeLists.txt \) -print | sort)
+    \( -name '*.h' -o -name '*.cpp' -o -name '*.cmake' -o -name '*.sh' -o -name '*.bash' \
+       -o -name '*.py' -o -name CMakeLists.txt -o -path 'packaging/completions/*' \) -print | sort)
 fi
 [[ ${#files[@]} -gt 0 ]] || { echo "check-spdx: no source files found under $root" >&2; exit 1; }
 
@@ -31,7 +32,9 @@ for f in "${files[@]}"; do
   [[ -f "$f" ]] || continue  # deleted in the work tree, not yet in the index
   first="$(head -n 1 "$f")"
   line="$first"
-  [[ "$first" == '#!'* ]] && line="$(sed -n 2p "$f")"
+  header=0
+  [[ "$first" == '#!'* || "$first" == '#compdef '* ]] && header=1
+  [[ $header -eq 1 ]] && line="$(sed -n 2p "$f")"
   case "$f" in
     *.h|*.cpp) want="// $id" ;;
     *) want="# $id" ;;
@@ -40,7 +43,7 @@ for f in "${files[@]}"; do
   missing+=("$f")
   if [[ $fix -eq 1 ]]; then
     # One line inserted and nothing else changed, so the edit merges cleanly with other work.
-    if [[ "$first" == '#!'* ]]; then
+    if [[ $header -eq 1 ]]; then
       sed -i "1a $want" "$f"
     else
       sed -i "1i $want" "$f"
