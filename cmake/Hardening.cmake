@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 # Hardening for the project's own targets, the set Debian's dpkg-buildflags gives packages
-# ("hardening=+all" minus what does not apply): stack protector, fortified libc calls, full
-# RELRO with immediate binding, and position-independent executables (ASLR).
+# with "hardening=+all": stack protector, fortified libc calls, full RELRO with immediate
+# binding, position-independent executables (ASLR), stack-clash probes and CET branch markers.
 #
 # artcam_hardening is an INTERFACE library carried by artcam_warnings, which every target of
 # the project links (core, ui, app, tests, fuzz), so a new target is hardened without a CMake
@@ -22,6 +22,18 @@ set(CMAKE_POSITION_INDEPENDENT_CODE ON)
 add_library(artcam_hardening INTERFACE)
 target_compile_options(artcam_hardening INTERFACE -fstack-protector-strong)
 target_link_options(artcam_hardening INTERFACE LINKER:-z,relro,-z,now)
+
+# The two further flags of dpkg-buildflags' hardening on amd64, where the compiler has them:
+# stack-clash probes (a large alloca or frame cannot jump over the guard page) and CET's
+# indirect-branch and return markers (-fcf-protection is x86 only, hence the check).
+include(CheckCXXCompilerFlag)
+foreach(_flag -fstack-clash-protection -fcf-protection)
+  string(MAKE_C_IDENTIFIER "ARTCAM_HAS${_flag}" _var)
+  check_cxx_compiler_flag(${_flag} ${_var})
+  if(${_var})
+    target_compile_options(artcam_hardening INTERFACE ${_flag})
+  endif()
+endforeach()
 
 # _FORTIFY_SOURCE needs optimisation (glibc warns at -O0, and -Werror turns that into a
 # failure), so it is on only in the optimised configurations. Not in the sanitizer and fuzzing
