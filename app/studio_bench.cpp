@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam-studio-bench: the studio's responsiveness (a benchmark, not a test; run it on an
 // otherwise idle machine and quote the load). Two modes, both printing key=value lines:
 //

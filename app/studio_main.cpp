@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam-studio: the GUI. Thin: application setup and optional files to open; the work is in
 // ui/ (MainWindow) and core/.
 #include "ui/document.h"

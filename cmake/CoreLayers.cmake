@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # The engine's layers, lowest first. A file in core/<layer>/ may include its own layer and the
 # layers before it, never one after it: the order is what keeps core free of include cycles
 # (docs/architecture.md explains what lives where). Configuring fails on a violation.

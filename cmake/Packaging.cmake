@@ -1,5 +1,7 @@
+# SPDX-License-Identifier: Apache-2.0
 # Installs what a desktop needs besides the two programs (desktop entry, icons, AppStream
-# metainfo, MIME types, manual pages) and configures CPack's Debian package, so that
+# metainfo, MIME types, manual pages, shell completions, Debian's copyright and changelog) and
+# configures CPack's Debian package, so that
 # `cmake --install` and `cpack -G DEB` lay down the same files (packaging/build-deb.sh).
 # Relative destinations: cpack installs under /usr, `cmake --install` under CMAKE_INSTALL_PREFIX.
 include(GNUInstallDirs)
@@ -33,6 +35,12 @@ install(FILES ${PROJECT_SOURCE_DIR}/resources/coffee.png ${PROJECT_SOURCE_DIR}/r
   ${PROJECT_SOURCE_DIR}/resources/sample.artcamproj ${PROJECT_SOURCE_DIR}/resources/sample-matches.csv
   DESTINATION ${CMAKE_INSTALL_DATADIR}/artcam-studio/examples)
 
+# Shell completions, where bash-completion and zsh look for them (loaded on first use of artcam).
+install(FILES ${PROJECT_SOURCE_DIR}/packaging/completions/artcam.bash
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions RENAME artcam)
+install(FILES ${PROJECT_SOURCE_DIR}/packaging/completions/_artcam
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)
+
 # Manual pages, compressed as Debian policy asks (gzip -9n: no name or time stamp inside, so
 # the package is reproducible).
 find_program(ARTCAM_GZIP gzip REQUIRED)
@@ -48,6 +56,29 @@ foreach(_page IN LISTS _artcam_man_pages)
 endforeach()
 add_custom_target(artcam_man ALL DEPENDS ${_artcam_man_outputs})
 install(FILES ${_artcam_man_outputs} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+
+# Debian's per-package documents: the machine-readable copyright file (DEP-5: Apache-2.0 for
+# the project, CC0-1.0 for the sample photo) and the packaging changelog, gzip -9n like the
+# manual pages. The package revision is the changelog's: its first entry must name
+# <PROJECT_VERSION>-<CPACK_DEBIAN_PACKAGE_RELEASE>, checked here so a version bump cannot leave
+# it behind.
+set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
+set(_artcam_doc_dir ${CMAKE_INSTALL_DATADIR}/doc/artcam-studio)
+set(_artcam_debian_dir ${PROJECT_SOURCE_DIR}/packaging/debian)
+file(STRINGS ${_artcam_debian_dir}/changelog _artcam_changelog_top LIMIT_COUNT 1)
+set(_artcam_deb_version ${PROJECT_VERSION}-${CPACK_DEBIAN_PACKAGE_RELEASE})
+if(NOT _artcam_changelog_top MATCHES "^artcam-studio \\(${_artcam_deb_version}\\) ")
+  message(FATAL_ERROR "packaging/debian/changelog: the first entry is \"${_artcam_changelog_top}\"; "
+                      "the package is artcam-studio ${_artcam_deb_version}: add an entry for it")
+endif()
+install(FILES ${_artcam_debian_dir}/copyright DESTINATION ${_artcam_doc_dir})
+set(_artcam_changelog ${PROJECT_BINARY_DIR}/debian/changelog.Debian)
+add_custom_command(OUTPUT ${_artcam_changelog}.gz
+  COMMAND ${CMAKE_COMMAND} -E copy ${_artcam_debian_dir}/changelog ${_artcam_changelog}
+  COMMAND ${ARTCAM_GZIP} -9nf ${_artcam_changelog}
+  DEPENDS ${_artcam_debian_dir}/changelog VERBATIM)
+add_custom_target(artcam_debian_changelog ALL DEPENDS ${_artcam_changelog}.gz)
+install(FILES ${_artcam_changelog}.gz DESTINATION ${_artcam_doc_dir})
 
 # The Debian package: one package with both programs; dpkg-shlibdeps derives Depends from the
 # installed binaries' shared libraries (Qt, OpenImageIO, libstdc++ ...).
@@ -67,7 +98,7 @@ and artistic deformations. The package holds the artcam-studio GUI and the
 artcam command-line tool.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_STRIP_FILES ON)  # RelWithDebInfo binaries carry debug info the package does not need
-set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # artcam-studio_<version>_<arch>.deb
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # artcam-studio_<version>-<release>_<arch>.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "qt6-wayland")
@@ -80,6 +111,7 @@ if(ARTCAM_BUILD_TESTS)
   add_test(NAME packaging/desktop_files
     COMMAND bash ${PROJECT_SOURCE_DIR}/packaging/check-desktop-files.sh)
   add_test(NAME packaging/man_pages COMMAND bash ${PROJECT_SOURCE_DIR}/packaging/check-man-pages.sh)
+  add_test(NAME packaging/spdx COMMAND bash ${PROJECT_SOURCE_DIR}/packaging/check-spdx.sh)
   add_test(NAME app/cli_version COMMAND artcam --version)
   set_tests_properties(app/cli_version PROPERTIES
     PASS_REGULAR_EXPRESSION "^artcam ${PROJECT_VERSION}\n$")

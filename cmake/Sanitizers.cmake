@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Sanitizer and fuzzing builds. Both instrument EVERY target of the build
 # (core, ui, app, tests), so each gets its own build directory:
 #

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: the .artcam reader (core/io/artcam_file.h): layers, outputs, patches.
 // A file that parses must also write back and parse again (the writer refuses nothing the
 // reader accepted).

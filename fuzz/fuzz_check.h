@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What every fuzz target checks beyond "no crash, no hang, no huge allocation" (which libFuzzer
 // and the sanitizers watch): a refusal is ONE line that starts with the name the reader was
 // given, so a user sees which file is bad (README, "Errors"). A violation aborts, which

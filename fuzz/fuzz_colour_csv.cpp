@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: the colour-sample CSV reader (core/io/matches_csv.h), linear and sRGB-encoded
 // (sRGB when the input's size is odd, as the replay test decides).
 #include "core/io/matches_csv.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: the match-list CSV reader (core/io/matches_csv.h), 2D and 3D: 3D when the
 // text names src_z (as the replay test tests/core/io/test_hostile_inputs.cpp decides), so one
 // corpus covers both headers.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: the .artcam reader on piecewise files (core/io/artcam_file.h), from the
 // piecewise corpus.
 #include "core/io/artcam_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: the PLY reader (core/io/ply.h), ASCII and binary.
 #include "core/io/ply.h"
 #include "fuzz/fuzz_check.h"

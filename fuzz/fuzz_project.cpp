@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer target: the studio's project reader (ui/project_file.h; Qt JSON, so this target is
 // built from ui/project_file.cpp alone with Qt Core, without the rest of the GUI).
 #include "fuzz/fuzz_check.h"

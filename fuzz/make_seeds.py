@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Writes the hand-made seeds of fuzz/corpus/<target>/ (seed-*) and the known nasty inputs
 (nasty-*): valid files of every shape each reader takes, made here from resources/ and from
 the grammars in core/io/*.h, plus inputs that once crashed, hung or allocated too much.

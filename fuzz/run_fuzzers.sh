@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Long fuzzing runs (README, "Hostile input, fuzzing and sanitizers").
 #   fuzz/run_fuzzers.sh BUILD_DIR SECONDS [TARGET…]     (default: every target)
 # Needs a build configured with ARTCAM_FUZZ=ON (clang). Each target fuzzes for SECONDS from the

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # artcam batch against the same warps one after the other: N photos of
 # W×H RGB8 JPEG → RGBA8 TIFF. Prints both wall times, their ratio and the batch's peak RSS
 # beside the pipeline's bound (2 inputs + 2 outputs in flight) and one warp's peak.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Peak memory of a big-image warp: a W×H RGB8 photo (default
 # 30000×20000, 600 Mpix) warped through resources/sample.artcam into a TIFF, measured with
 # /usr/bin/time -v, against the sizes of the input and output pixels. Target: input + output +

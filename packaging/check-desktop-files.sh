@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Validates the desktop integration in packaging/desktop/: the .desktop entry
 # (desktop-file-validate), the AppStream metainfo (appstreamcli validate --no-net), the MIME XML
 # (compiled by update-mime-database into a scratch database), and that they agree with each

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs a built .deb on a fresh Debian 12 (a debootstrap minbase chroot, removed afterwards)
 # and runs both programs there: shows that the package's Depends pull everything it needs.
 # Needs root, debootstrap and the network to a Debian mirror; takes a few minutes and ~1.2 GB

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Formats every manual page in docs/man/ with groff's man macros and all warnings on
 # (-ww); any diagnostic fails. Usage: bash packaging/check-man-pages.sh
 set -euo pipefail

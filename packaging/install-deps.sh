@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs what ARTcam Studio needs to build and run on Debian 12, from Debian's packages.
 # Skips apt entirely when everything is already there. Run as root (or with sudo available).
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Renders the hicolor PNG sizes of the studio's icon from its hand-written SVG (rsvg-convert,
 # Debian package librsvg2-bin). The PNGs are committed so a build needs no SVG renderer; run this
 # after editing packaging/desktop/icons/org.artcam.Studio.svg.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Command (a) of the README: install dependencies, build, and run the main job on the bundled
 # sample: warp resources/coffee.png through resources/sample.artcam with the CLI (and open the
 # studio on the sample when a display is available and the studio is built).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Takes the README's Colour dock screenshot under Xvfb (Debian packages xvfb and imagemagick):
 # the bundled coffee photo, a reference made from it by the CLI through a warm linear colour
 # map (artcam fit --block colour on samples of a known 3×3 matrix, then artcam warp: the

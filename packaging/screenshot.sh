@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Takes the README's screenshot: the real main window on the bundled sample project, under Xvfb
 # (Debian packages xvfb and imagemagick). Usage: bash packaging/screenshot.sh [OUT.png] [PROJECT]
 # (STUDIO names the binary, SETTLE the seconds the window gets before the shot; other

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Autosave and crash recovery. Every `interval` the modified document is
 // written as a project to a RECOVERY file (atomically, on a worker thread: the GUI thread never
 // blocks on file I/O); a clean save or close removes it. A recovery file left behind means the

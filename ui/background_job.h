@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The studio's one helper for one-shot off-thread jobs: loads, fits, writes, exports. (Live
 // previews that a newer request supersedes use the other shape, the newest-request worker of
 // newest_request_slot.h.)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/canvas.h"
 
 #include "ui/depth_overlay.h"

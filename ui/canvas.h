@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The editing canvas: paints the photo and the pairs (arrows source → target, coloured by
 // residual green → red), owns the view transform (zoom, pan) and forwards every other pointer
 // and key event to the active tool.

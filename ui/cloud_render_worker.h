@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 3D view's renderer, shaped like RenderWorker (after Qt's Mandelbrot
 // example): one pending request slot where the newest wins, std::atomic restart/abort flags
 // polled between row bands through the renderers' progress hooks, a coarse pass (1/4 size)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/cloud_view.h"
 
 #include "core/render/attributed.h"

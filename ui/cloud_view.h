@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 3D view of a point cloud: orbit by dragging (left button: yaw and
 // pitch about the cloud's centre), zoom by the wheel (distance to the centre), a 3D effect of
 // the paper's Fig 1 chosen from a list, and the document's current image camera applied live

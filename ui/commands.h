@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every document edit is a QUndoCommand (after Qt's undoframework example). Commands
 // store old and new values, never deltas, so undo restores state bit-exactly; the document
 // refits from that state. Drags push one MovePairsCommand per mouse move and merge them

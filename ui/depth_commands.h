@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Undo commands for depth planes (every edit is a QUndoCommand storing old and new
 // values). Mask edits store only the rectangle a stroke or polygon touched, before and after:
 // a full mask is a byte per photo pixel, too much to copy per step.

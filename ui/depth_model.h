@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The depth part of the document: painted regions ("depth layers"), each given
 // depth at three clicked points (a plane in inverse depth, core/depth/inverse_depth_plane.h),
 // and an optional depth map file underneath them all. Owned by Document; changed only through

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The depth overlay on the canvas: the document's depth (depth_model.h) rasterised at a reduced
 // size and coloured by a perceptual ramp in INVERSE depth (near = warm red, far = deep blue;
 // inverse depth because that is what the planes are affine in, and it spreads near detail),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The model every panel shares: the photo, the point pairs, the model class, the camera and
 // its fit. Panels read it and listen to its signals; they change it only through the
 // QUndoCommands of commands.h (every document edit is a command), which call the

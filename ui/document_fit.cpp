@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/document_fit.h"
 
 #include "ui/colour/colour_stage.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The document's camera as a pure function of its fit inputs (photo frame, pairs, model class,
 // hand-made camera, colour block), so it can run on the GUI thread for discrete edits and in
 // the FitWorker for a drag's mouse moves and give bit-identical results either way. Counts the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/export_job.h"
 
 #include "core/io/image_io.h"

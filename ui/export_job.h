@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Full-resolution export of the warped photo, a one-shot job of background_job.h: the render on
 // the original pixels with progress and cancel (polled between tiles), then writeImage with the
 // photo's format and metadata (atomic). The outcome comes back on the GUI thread as done();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/fit_status.h"
 
 #include "core/model/structure.h"

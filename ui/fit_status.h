@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Status bar contents: model in use, RMS / max residual, preview render time, load progress.
 // Listens to the document and the preview controller; MainWindow just places it.
 #pragma once

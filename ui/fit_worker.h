@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fits the document's camera off the GUI thread for a drag's mouse moves: the newest-request
 // worker (newest_request_slot.h, after Qt's Mandelbrot example). One thread; a request made
 // while a fit runs replaces the pending one, so a fast drag fits only the newest pairs. A fit

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Conversions between the engine's ImageF (linear light, premultiplied alpha) and
 // what Qt paints (8-bit sRGB QImage). Only the GUI needs them, so they live in ui/, not core/.
 #pragma once

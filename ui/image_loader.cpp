@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/image_loader.h"
 
 namespace artcam::ui {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Loads a photo off the GUI thread, a one-shot job of background_job.h: readImage, then the
 // preview and display copies (photo.h). Progress and the result arrive on the GUI thread as
 // signals; exceptions are caught by the job helper and arrive as failed(). One loader per file;

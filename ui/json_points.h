@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 2D points in the studio's JSON files (projects and their parts): `[x, y]`, numbers written
 // round-trip exactly by QJsonDocument. One place for the reader's rules (two finite numbers).
 #pragma once

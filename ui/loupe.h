@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The loupe: a magnified, nearest-neighbour view of the photo around the
 // cursor, drawn in a corner of the canvas away from the cursor while a tool places or drags a
 // point, with a crosshair on the exact sub-pixel cursor position, so points can be placed to a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The main window assembles only: it creates the document, canvas, panels, preview
 // and session, lays them out in docks, makes the menus, toolbars and shortcuts, and wires
 // signals. Editing logic lives in the tools, commands and document; file logic in Session.

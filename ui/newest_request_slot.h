@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The request half of the studio's newest-request workers (after Qt's Mandelbrot example),
 // shared by the preview, 3D view, insertion, effects and fit workers: one pending slot where the
 // newest request wins, atomic restart/abort flags the job in flight polls between tiles, and

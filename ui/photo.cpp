@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/photo.h"
 
 #include "ui/image_convert.h"

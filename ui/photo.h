@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A loaded photograph and the two reduced copies the GUI needs. Immutable once made (shared
 // between the GUI thread and the render worker through shared_ptr<const Photo>).
 //

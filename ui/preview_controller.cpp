@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/preview_controller.h"
 
 #include "core/pipeline/render.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Connects the document to the RenderWorker: every camera or photo change becomes a render
 // request with a new generation stamp; results older than the newest delivered one are
 // dropped, so the preview only ever moves forward.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shows the warped preview next to the photo: side by side, overlaid with adjustable opacity,
 // or split by a slider (photo left of it, warped right). Reads images only from the document
 // (photo) and the PreviewController (warped); never renders itself.

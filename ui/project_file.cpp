@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/project_file.h"
 
 #include "core/io/artcam_file.h"

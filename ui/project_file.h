@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The project file: JSON with the photo path, the pairs (photo pixels), the model,
 // an optional hand-made camera (as .artcam JSON) and the view state, so a session reopens as
 // it was. Saved atomically through QSaveFile (written aside, then renamed).

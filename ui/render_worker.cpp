@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/render_worker.h"
 
 #include "core/pipeline/render.h"

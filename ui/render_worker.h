@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live preview renderer (after Qt's Mandelbrot example): one thread, one pending
 // request slot where the newest request wins, std::atomic restart/abort flags polled between
 // tiles through WarpOptions::progress, a coarse pass (1/4 size) before the full preview while

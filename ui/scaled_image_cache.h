@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Draws a large image minified into a rectangle through a copy scaled to that rectangle's size
 // (smooth; made once per image and size), so a repaint — one per mouse move of a drag — copies
 // pixels instead of filtering the 4096-px display copy again (about 10 ms per paint on the

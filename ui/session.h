@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // File operations of one editing session: open photo (off the GUI thread, with progress),
 // open/save project (atomic), import/export .artcam, export the warped image (worker with a
 // cancellable progress dialog), recent files, and the save prompt on close. Errors are shown

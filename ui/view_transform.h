@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The one object that owns widget ↔ image coordinates for a canvas (after Krita's
 // KisCoordinatesConverter). Image coordinates are photo PIXELS with (0, 0) the top-left corner
 // of the top-left pixel, as in the engine; widget coordinates are logical widget pixels.

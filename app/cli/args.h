@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A small command-line parser: positional arguments and --options (with or without a value).
 // Usage errors throw UsageError, which the dispatcher prints in at most three lines: the error,
 // its hint ("did you mean --filter?") if any, and "see 'artcam CMD --help'".

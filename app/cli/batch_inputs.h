@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam batch's list of work: inputs (files, or frame sequences written as a printf-style
 // pattern "frame_%04d.png") and the output each one goes to.
 #pragma once

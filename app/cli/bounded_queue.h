@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A hand-over queue between two pipeline stages (artcam batch) with a fixed capacity, so
 // the images in flight stay bounded. One producer, one consumer. The producer waits for
 // space BEFORE it makes the next item (waitForSpace), so with capacity 1 a stage holds at most

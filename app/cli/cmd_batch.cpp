@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam batch: many photos (or a frame sequence) through one camera.
 // Three stages overlap across files — decode (a thread), render (this thread, itself on all
 // cores), encode (a thread) — joined by BoundedQueues of capacity 1, so about two inputs and

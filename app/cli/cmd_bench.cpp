@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam bench render: speed and position error of every render kernel and filter.
 // A benchmark, not a test: figures are medians of repeated renders on a photo-sized image made
 // in code; the error is the distance (source pixels) between the fused kernel's source

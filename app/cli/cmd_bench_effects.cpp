@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam bench effects: time against error for the effect renderers.
 // - Depth of field: the fast blur stack against the exact per-pixel Gaussian (depth_of_field.h)
 //   over blur strengths: PSNR on a crop (the exact blur costs O(σ²) per pixel), the time of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam bench fit: time against error for every fitting method. A benchmark, not a
 // test: medians of repeated fits on matches made in code from a known rational camera, the
 // error measured against that true map on a dense grid (target pixels).

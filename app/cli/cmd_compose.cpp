@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam compose: one camera from a sequence of cameras (chains of stages; the paper's §5),
 // layer by layer for layered cameras, patch by patch for a piecewise first camera.
 #include "app/cli/args.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam fit: matches CSV → .artcam (paper §4).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"

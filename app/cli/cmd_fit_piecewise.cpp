@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam fit --piecewise: one camera per patch, split until every patch's max error is under
 // --max-error (core/piecewise/piecewise_fit.h).
 #include "app/cli/args.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam info: what a camera file holds, for every camera kind: blocks, structure, frames,
 // layers, patches, outputs, tensors and the fit report. A file that is not a camera is named
 // for what it looks like.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam insert: a graphic rendered into a reflection or refraction and composited over the
 // photo (the paper's §5, Figs 7 and 8).
 #include "app/cli/args.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam map: source pixels → target pixels through any camera, exact to %.17g.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam preset: cameras made from a few numbers (the paper's Fig 1 set by "explicitly setting
 // numbers"), and the project's sample clouds.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam render: a point cloud through a 3D ARTcam, then a projecting view camera, into an
 // image (z-buffered splats) or, with -o *.ply, the moved cloud itself.
 #include "app/cli/args.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam sample: the bundled environment-matting samples, made in code by ray tracing
 // (the paper's Figs 7 and 8): a photo, its calibration-grid matches and a graphic to insert.
 #include "app/cli/args.h"

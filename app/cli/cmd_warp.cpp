@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam warp: image → image through any camera (core/pipeline/render.h). The stages
 // (decode, render, encode) are warp_job.h's, shared with artcam batch.
 #include "app/cli/args.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The artcam subcommands. Each takes the arguments after its name, prints its results on
 // stdout, and reports a failure by throwing: UsageError (exit 2; the error, a hint and where the
 // help page is, args.h) or CommandError (exit 1): one line naming the file, the place and the

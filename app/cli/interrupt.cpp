@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "app/cli/interrupt.h"
 
 #include "core/io/atomic_file.h"

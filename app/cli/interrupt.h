@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ctrl-C and kill for long CLI jobs, which stop without leaving partial
 // files. SIGINT/SIGTERM handlers are installed once for every command (dispatch.cpp):
 // - by default a signal unlinks the temporaries of saves in flight (core/io/atomic_file.h;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam: the command line of ARTcam Studio. Subcommands live in their own files.
 #include "app/cli/commands.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The rule every artcam command that writes files follows before it starts work:
 //   - an output is never one of the command's own inputs, even with --overwrite (the same file
 //     by identity, std::filesystem::equivalent: symlinks, hard links and ./.. spellings

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Progress of long CLI jobs on stderr: every long CLI job shows progress.
 // On a terminal: one line redrawn in place at most 10 times a second,
 //   [##########----------]  12/40 files  38.2 Mpix/s  ETA 0:42

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The warp of one image split into its three stages, shared by `artcam warp` (one after the
 // other) and `artcam batch` (a pipeline that overlaps them across files):
 //   decodeForWarp → renderForWarp → encodeWarp.

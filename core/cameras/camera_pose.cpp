@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/cameras/camera_pose.h"
 
 #include "core/model/frames.h"

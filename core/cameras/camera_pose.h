@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where a camera stands in object space, and the helpers that build object-space tensors.
 //
 // Conventions:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 3D effects of the paper's Fig 1 as object-space ARTcams: each maps a cloud point
 // (X, Y, Z, 1) [and its colour (a·r, a·g, a·b, a)] to a moved point (X', Y', Z', 1) [and colour],
 // so it is applied before a projecting camera (projective_cameras.h, glc.h) renders the cloud.

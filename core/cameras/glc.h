@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // General linear cameras [YM04] as object-space ARTcams.
 //
 // A GLC is fixed by three generator rays, each given in two-plane form: it crosses the plane

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The classical cameras as object-space ARTcams (the paper's §1: the RTcam "subsumes the linear
 // camera and many non-linear cameras as special cases", proven in [HCS*07]).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Cloud rendering in two passes: (1) every point through the chain, in parallel chunks, into a
 // flat splat list; (2) splats binned by bands of image rows, each band drawn by one worker in
 // point order, so no two threads touch a pixel and ties resolve the same way every run.

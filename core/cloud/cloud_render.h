@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Object-space rendering: forward map, project, z-buffered splat.
 //
 // A cloud goes through a chain: zero or more 3D ARTcams (effects_3d.h, fitted object cameras),

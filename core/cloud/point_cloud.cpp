@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Cloud statistics. The spacing estimate uses a uniform grid filled by counting sort, which is
 // deterministic, linear and needs no per-cell allocations even for millions of points.
 #include "core/cloud/point_cloud.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A coloured point cloud in object space (the paper's Fig 1 works on one).
 //
 // Conventions (docs/architecture.md, "The model"):

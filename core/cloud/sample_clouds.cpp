@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/cloud/sample_clouds.h"
 
 #include "core/colour/transfer.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Clouds made by the project: the sample of the paper's Fig 1 (a coloured 3×3×3 cube of cubes,
 // written to resources/cube.ply by `artcam preset cube-cloud`) and test fixtures.
 #pragma once

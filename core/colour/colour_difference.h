@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colour differences as people see them: linear-light RGB → CIE XYZ → CIELAB → CIEDE2000.
 //
 // Conventions:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colour transforms fitted from colour samples, the candidates of colour
 // calibration by model selection (the paper's §4.1 and [LH07]), simplest first:
 //

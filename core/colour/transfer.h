@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Transfer functions between stored (encoded) values and linear light (colour is
 // linear inside the engine). Exact formulas, in double:
 // - sRGB (IEC 61966-2-1): v <= 0.04045 ? v / 12.92 : ((v + 0.055) / 1.055)^2.4

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/depth/depth_raster.h"
 
 #include "core/util/parallel.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Depth planes → a per-pixel depth image (the depth block `(d, 1)`), for the effects
 // (depth of field, aerial perspective: the paper's §3) and the studio's overlay.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/depth/inverse_depth_plane.h"
 
 #include <Eigen/Dense>

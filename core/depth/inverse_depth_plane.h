@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A scene plane given by depth at three clicked points. The paper (§3, aerial perspective and
 // depth of field) lets the user set scene depth "under the assumption that it is built from
 // planar surfaces". Under a pinhole, a world plane's INVERSE depth is affine in the image:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A painted region of a photo: one coverage byte per photo pixel (0 = outside, 255 = inside),
 // so brushes can have soft edges. Pixel (x, y) covers [x, x+1)×[y, y+1); its centre is
 // (x + 0.5, y + 0.5), as everywhere in the engine. Positions passed here are photo PIXELS in

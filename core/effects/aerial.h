@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Aerial perspective (the paper's §3): contrast falls with the logarithm of distance, towards
 // a haze colour. Built as a two-stage chain over [position 3 | colour 4 | depth 2]
 // (a chain keeps each stage one quadratic form, so each stays linear to fit):

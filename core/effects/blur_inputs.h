@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The input contract shared by the two depth-of-field blurs (depth_of_field.h): premultiplied
 // RGBA and a 1-channel σ image of the same size. A broken contract throws.
 #pragma once

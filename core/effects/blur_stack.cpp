@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fast depth-of-field blur (depth_of_field.h, stackBlur): a stack of halo-masked Gaussian
 // levels σ_1 < σ_2 < … (ratio `level_ratio`), each pixel blending its two bracketing levels.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Chromatic aberration, both ways of the paper's Fig 4 (§3), as layered image cameras
 // (attributed.h renderLayers: one camera per colour layer, colours summed).
 //

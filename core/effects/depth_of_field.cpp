@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/effects/depth_of_field.h"
 
 #include "core/effects/blur_inputs.h"

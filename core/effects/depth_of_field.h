@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Depth of field (the paper's §3): a spatially varying Gaussian whose sigma is a
 // camera stage of depth.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The image effects, one table: what `artcam preset NAME`, `artcam preset list`, `artcam preset
 // --help`, the manual page and the studio's effects panel offer, and the builder that makes each
 // effect's camera. A row holds the effect's name, a one-line summary, its parameters (name,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image-space (2D) position cameras for the presets: RTcams over (u, v, 1) in the normalised
 // frame of `frame` (frames.h: the larger side spans [-1, 1], v down), source = target frame.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Solvers in CONDITIONED coordinates (normalize.h) for a position block of n = d + 1 elements
 // (d = 2 image, 3 object space). Each builds its constraint matrix and solves it; the caller
 // undoes the conditioning. A null space of more than one dimension is reported, never papered

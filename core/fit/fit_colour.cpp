@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/fit/fit_colour.h"
 
 #include "core/colour/colour_difference.h"

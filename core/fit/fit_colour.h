@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colour calibration (the paper's §4.1): fit a colour
 // transform to colour-sample pairs, choosing its complexity by held-out error ("colour
 // constancy by model selection", [LH07]), and report CIEDE2000 ΔE per sample and overall.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fitting an image camera (2D position block, n = 3) to point matches: the paper's §4 DLT
 // with conditioning on both sides, and the model ladder.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Conditioning for the DLT, on both sides of the matches: a similarity that moves a
 // point set's centroid to the origin and its RMS distance from it to √d (d = 2 for image
 // positions, 3 for object space or colour). Building the design matrix from conditioned points

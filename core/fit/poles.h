@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Poles: the denominator x Q_n xᵀ of an image camera must keep one sign over the
 // whole source frame, or the map runs to infinity between the pixels. The denominator is a
 // quadratic polynomial in (u, v), so its extremes over the frame rectangle are found exactly

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Levenberg–Marquardt refinement of an image camera's reprojection error: the
 // algebraic DLT minimises |D r|, which weighs matches by their denominators; the geometric
 // error is what a user sees. Works in the normalised frames on the 18 upper-triangle entries

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/fit/robust.h"
 
 #include "core/model/frames.h"

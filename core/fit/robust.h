@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Robust fitting: MSAC over minimal sets with local optimisation (LO-RANSAC). Hand-
 // clicked pairs include a wrong click now and then; detector matches include many. Each
 // iteration fits the model exactly to a random minimal set (9 pairs for the quadratic), scores

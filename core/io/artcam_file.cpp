@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // .artcam reading and writing. Reading walks the JSON with its path in hand so every refusal
 // names the field (RFC 6901 pointer); the Camera constructor then checks the model itself.
 // Doubles survive bit-exactly: nlohmann writes the shortest string that reads back to the same

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The .artcam file: JSON, versioned, the one reader and the one writer of the camera value
 // (core/model/artcam.h). Numbers are written so they read back bit-exactly.
 //

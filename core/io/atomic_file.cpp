@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Atomic saves: POSIX rename(2) within one folder replaces the target in one step, so a reader
 // sees either the old file or the complete new one, never a partial write. The temporary keeps
 // the target's extension because image writers pick their format from it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Atomic saves: write to a temporary file in the target's folder, flush, then
 // rename over the target. On any failure the temporary is removed and the target untouched.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/io/depth_file.h"
 
 #include "core/io/image_input.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Depth images for the depth block (`(d, 1)`): THE reader of depth and
 // disparity map files, for the CLI (artcam warp --depth) and the studio (a map under the
 // painted planes, depth_raster.h).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Opening an image file for reading (io room only: it exposes OpenImageIO): the checks every
 // reader makes before decoding, so readImage (float) and readStoredImage (the file's own pixel
 // type) refuse the same files with the same one-line messages.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Images through OpenImageIO 2.4, converted to the engine's linear, premultiplied ImageF.
 //
 // Decisions (see also image_io.h):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Images through OpenImageIO: every format it reads and writes (PNG, JPEG, TIFF 8/16-bit, EXR).
 //
 // Inside the engine pixels are ImageF: float, linear light, premultiplied alpha

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // writeImage (declared in image_io.h): ImageF (linear, premultiplied) -> any OIIO format,
 // atomically. The decisions are listed in image_io.h.
 #include "core/io/atomic_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Small text helpers shared by the io room's .cpp files (not part of the engine's API).
 // A Status message is one line (status.h), so multi-line library messages are folded.
 #pragma once

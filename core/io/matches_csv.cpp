@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Strict CSV for match and point lists: numbers parse with std::from_chars (correctly rounded,
 // locale-free, the whole field or nothing), so a typo is reported instead of read as 0. Blank
 // lines and lines starting with '#' are skipped; CRLF and a UTF-8 BOM are tolerated.

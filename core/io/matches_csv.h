@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CSV inputs of the CLI: match lists with the header `src_x,src_y,dst_x,dst_y`
 // (pixels; 3D: src_x,src_y,src_z,dst_x,dst_y,dst_z), colour samples with the header
 // `src_r,src_g,src_b,dst_r,dst_g,dst_b`, and point lists `x,y` (a header line is allowed).

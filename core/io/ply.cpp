@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PLY reading (see ply.h for the decisions; writing is in ply_write.cpp). The reader works on the
 // whole file in memory: one read, then a header pass that checks every count against the bytes that
 // follow, then one pass over the vertices. Numbers parse with std::from_chars (locale-free, exact).

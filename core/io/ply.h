@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PLY point clouds (Stanford polygon format), read and written without a library: Debian has
 // no small, well-kept PLY reader that fits, and the subset a point cloud needs is small.
 //

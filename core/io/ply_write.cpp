@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PLY writing (see ply.h): binary little endian by default, uchar sRGB colours from linear
 // premultiplied ones, numbers in ASCII as the shortest text that reads back exactly.
 #include "core/io/ply.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stored-type image read/write through OpenImageIO 2.4 (stored_image.h). Like image_io.cpp,
 // files are opened with "oiio:UnassociatedAlpha" = 1 so OIIO hands over the stored values and
 // we premultiply ourselves; writes go through a band of rows so no whole-image copy is made.

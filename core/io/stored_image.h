@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Images in the pixel type their file stores:
 // 8-bit and 16-bit files stay 8/16-bit in memory, half/float files become float, so a 24 Mpix
 // JPEG costs 72 MB instead of the 288 MB of a float copy (image_io.h's ImageF path).

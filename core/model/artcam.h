@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The camera value: everything one `.artcam` file holds, and what every command, renderer and
 // studio panel takes. One type, so a reader cannot keep half of a camera and a renderer cannot
 // forget a part of it.

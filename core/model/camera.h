@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The ARTcam model: blocks, symmetric tensors, stages, evaluation (paper eq 3, 5).
 //
 // Conventions (docs/architecture.md, "The model"):

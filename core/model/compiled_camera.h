@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A camera compiled for evaluating millions of points: eq 3 as a list of non-zero terms
 // z_i += q·x_a·x_b per stage (symmetric pairs merged), on fixed-size stack arrays, then eq 5
 // (every block divided by its homogeneous element) exactly as Camera::divideBlocks and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Composition of cameras; see compose.h for the three outcomes and why.
 #include "core/model/compose.h"
 

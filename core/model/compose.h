@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Composition of cameras into one (the paper's §5: a canonical view → table
 // homography → reflection becomes one camera).
 //

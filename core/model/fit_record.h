@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plain data shared by fitting, files and the GUI: point matches and the report of a fit.
 // Positions are in PIXELS of the source and target frames for image cameras (centres at
 // i + 0.5), object units for 3D; colours are linear RGB in [0, 1].

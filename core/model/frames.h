@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frames and frame changes (docs/architecture.md, "Frames and pixels").
 //
 // - Pixel centres are at i + 0.5; (0, 0) is the top-left corner of the top-left pixel, y down.

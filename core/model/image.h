@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The engine's image: interleaved float, LINEAR light, PREMULTIPLIED alpha when there is an
 // alpha channel (colour is linear inside the engine; alpha is the homogeneous
 // weight). Pixel (x, y) covers [x, x+1)×[y, y+1); its centre is (x + 0.5, y + 0.5).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Typed, strided views of interleaved images, so the warp reads 8-bit, 16-bit and float pixels
 // where they lie instead of converting a whole photo to float first (288 MB for 24 Mpix).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Piecewise cameras (the paper's §5: refraction through a glass needed
 // 6 + 16 patches). One camera per rectangular patch of the SOURCE image, all stored in the
 // same normalised frames (the whole source and target sizes), so a patch is just a camera and

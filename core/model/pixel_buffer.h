@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Memory for whole images: zero-filled bytes, aligned to 2 MiB and, on Linux, advised
 // to live on transparent huge pages before the first touch.
 //

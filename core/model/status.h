@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Expected failures (a degenerate fit, an unreadable file) are values, not exceptions
 // (docs/architecture.md, "Errors"): a Status carries one line a user can act on, naming the
 // file, the place (line, JSON path) and the cause. Broken contracts still throw.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Structure analysis: which blocks of each Q_i are zero, and what class the geometry is.
 // Run once per camera; renderers pick the cheapest exact kernel from it, so
 // a scene never pays for what its camera does not need.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checkerboard corner snapping; see corner_snap.h.
 #include "core/piecewise/corner_snap.h"
 

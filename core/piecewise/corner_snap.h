@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Snapping a click to a calibration-grid corner (the grid matches are clicked, and
 // a click snaps to a grid corner where the image has one).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Quadtree fitting of piecewise cameras; see piecewise_fit.h.
 #include "core/piecewise/piecewise_fit.h"
 

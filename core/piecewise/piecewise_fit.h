@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fitting a piecewise camera (one step beyond the quadratic; paper §5): split the region the
 // matches cover into patches, fit one camera per patch, and subdivide a patch (quadtree) until
 // its max error is below a threshold in pixels.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Mesh warp through a piecewise camera; see piecewise_render.h.
 #include "core/piecewise/piecewise_render.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rendering through a piecewise camera without seams: a mesh warp.
 //
 // Per-patch gather would need every patch's inverse and a rule for pixels whose preimage

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bundled sample scenes for environment matting; see sample_scenes.h.
 #include "core/piecewise/sample_scenes.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scenes made in code for environment matting (the paper's Figs 7 and 8): pinhole
 // photos of a mirrored sphere resting on a floor that carries a graphic, and of a glass of
 // water in front of a backdrop carrying it, ray traced exactly. For a photo pixel the tracer

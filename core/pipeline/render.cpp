@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/pipeline/render.h"
 
 #include "core/effects/depth_of_field.h"

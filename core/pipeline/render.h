@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The render front door: one call that renders a photo (and its depth) through any camera value
 // (core/model/artcam.h). The studio's preview and export, `artcam warp`, `batch`, `insert` and
 // the effects panel all come through here, so a camera renders the same everywhere.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Attributed rendering (attributed.h): the colour-only and gather paths, the path choice and
 // layers; the splat path is splat.cpp.
 #include "core/render/attributed.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rendering ARTcams that change colour or depth: three strategies chosen from the structure
 // analysis (structure.h), plus layered cameras. Callers go through core/pipeline/render.h.
 //

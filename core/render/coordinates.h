@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Source positions for spans of output pixels: the coordinate half of the fused warp.
 // No per-pixel map is ever stored: the warp asks for one span of at most kSpanPixels output
 // pixels, samples it while the positions are in L1, and moves on.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Inverse position maps for the gather warp: for every output pixel centre
 // (x + 0.5, y + 0.5) of a row, the source point in source pixels, or "no preimage".
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/render/inverse_seed.h"
 
 #include "core/fit/fit_image.h"

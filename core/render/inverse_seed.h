@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The approximate inverse camera that seeds the per-pixel Newton of the rational kernel
 // (an inverse camera fitted to the forward map).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/render/mip_pyramid.h"
 
 #include "core/model/structure.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A mip pyramid of a source photo for previews: built once per photo,
 // so a screen-sized preview of a 24-megapixel photo samples a level near its own resolution
 // instead of aliasing through (or supersampling) the full-size image.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 2D position map of a camera in PIXEL frames, for renderers.
 //
 // Conventions: pixel centres at i + 0.5 (frames.h). A camera stores its tensors in normalised

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reconstruction filters for the gather warp.
 //
 // Conventions: pixel (i, j) covers [i, i+1)×[j, j+1) and its value sits at its centre

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/render/span_sampler.h"
 
 #include "core/render/span_sampler_avx2.h"

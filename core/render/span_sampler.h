@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sampling half of the fused warp: reconstruct a span of output pixels from their
 // source positions, reading 8-bit, 16-bit or float pixels in place (image_view.h).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // AVX2 kernels of the 8-bit sampler (span_sampler.cpp only; SIMD where it pays).
 //
 // Runtime dispatch only: these functions carry __attribute__((target("avx2"))), the rest of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // AVX-512 (BW + VBMI) bilinear for 8-bit RGB (span_sampler.cpp only; SIMD where it
 // pays). Runtime dispatch only, as span_sampler_avx2.h: these functions carry a target
 // attribute, span_sampler.cpp picks them when the CPU reports avx512bw, avx512vl and

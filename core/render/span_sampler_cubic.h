@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The interior of the 8-bit bicubic sampler (span_sampler.cpp only; SIMD where it
 // pays): a pixel whose 4 × 4 taps are all inside the source, in float, rows first:
 //   V_i = ((wy0 p0i + wy1 p1i) + wy2 p2i) + wy3 p3i   (tap column i, each channel),

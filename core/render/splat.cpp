@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The forward mesh splat (splat.h).
 #include "core/render/splat.h"
 

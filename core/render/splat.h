@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Forward (splat) rendering for ARTcams whose positions depend on colour or depth (pc/cp
 // coupling into the position outputs, e.g. the paper's eq 8/9 colour shift): the gather warp
 // cannot invert them.

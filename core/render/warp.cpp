@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fused gather warp: pick the cheapest exact kernel once per camera
 // from the structure analysis, then fill bands of output rows in parallel, one span of
 // kSpanPixels at a time: source positions (coordinates.h) straight into the sampler

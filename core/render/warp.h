@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Gather warp of an image through a position camera: each output pixel looks up its source
 // point through the inverse map, and positions are made and sampled in one pass (fused).
 //

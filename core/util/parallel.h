@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Splitting a render into bands of rows over worker threads, so a render uses every core, with a
 // cancel hook polled between bands, after OpenImageIO's parallel_image + cancel callback.
 #pragma once

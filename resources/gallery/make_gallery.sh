@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Renders the paper's Fig 1 panels (and the view cameras) from resources/cube.ply with the CLI.
 # usage: resources/gallery/make_gallery.sh path/to/artcam   (run from the repository root)
 set -eu

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Remakes the environment-matting samples and the README's before/after images with
 # the CLI: ray-traced photos, their calibration-grid matches, the emblem, and the insertions.
 # usage: resources/insertion/make_insertion.sh path/to/artcam   (run from the repository root;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Files for the CLI process tests (batch, interruption, kill recovery): photos made in code,
 // polling a folder while a process runs, and the hidden temporaries of atomic saves.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Running the public `artcam` CLI as a process from the app tests (ARTCAM_CLI_PATH is defined
 // for every test under tests/app/).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The public CLI, run as a process: outputs, exit codes, one-line errors, no partial files.
 #include "core/fit/fit_image.h"
 #include "core/io/artcam_file.h"

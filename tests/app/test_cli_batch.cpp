@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // artcam batch, run as a process: every input warped as artcam warp warps it, a failed file
 // does not stop the rest, inputs are never overwritten by default, frame patterns, and
 // Ctrl-C (SIGINT) leaves only finished outputs and exit status 130.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every camera kind through every command: single, chained, layered, attributed and piecewise
 // cameras are read by info, map, warp and compose alike, and agree: warp puts a marked source
 // pixel where map says it goes (the brightness centroid of a small white dot, which a smooth

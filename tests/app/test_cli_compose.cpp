@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `artcam compose`, run as a process: a homography then a rational camera become one camera
 // that maps pixels as the two files do one after the other (read back and evaluated here).
 #include "core/io/artcam_file.h"

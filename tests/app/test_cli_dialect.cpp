@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The command line speaks one dialect: sizes WxH (preset --size also W,H, as before); every
 // command that writes refuses an existing output without --overwrite (alias --force) and never
 // writes over one of its own inputs, whatever the path's spelling (symlink, hard link, ./..);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The effect presets through the public CLI (artcam preset … ; artcam warp … --depth FILE), run
 // as processes on the bundled photo. Expectations are the effects' neutral settings, which must
 // give back the photo (to 8-bit rounding): zero colour shift, aerial perspective at the near

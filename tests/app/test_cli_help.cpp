@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `artcam --help` and every `artcam COMMAND --help` are complete: each option a command's parser
 // accepts is named on its help page and in the manual page docs/man/artcam.1, and each page
 // carries an example. The expected options are not taken from the help text (that is what is
@@ -6,48 +7,22 @@
 // added to a parser without documentation fails here.
 #include "core/effects/effect_table.h"
 #include "tests/app/cli_run.h"
+#include "tests/app/cli_sources.h"
 
 #include <QtTest/QtTest>
 
 #include <QDir>
-#include <QFile>
 #include <QRegularExpression>
 #include <QSet>
 
 using artcam::test::artcamCli;
+using artcam::test::commandsFromDispatch;
+using artcam::test::kCliDir;
+using artcam::test::mentionsOption;
+using artcam::test::optionsInSource;
+using artcam::test::readText;
 
 namespace {
-
-const QString kCliDir = QStringLiteral(ARTCAM_SOURCE_DIR "/app/cli");
-
-QString readText(const QString& path) {
-  QFile f(path);
-  if (!f.open(QIODevice::ReadOnly)) return {};
-  return QString::fromUtf8(f.readAll());
-}
-
-// Command names from the dispatcher's table: {"name", "summary", kNameUsage, nameCommand}.
-QStringList commandsFromDispatch() {
-  static const QRegularExpression row(
-      QStringLiteral("\\{\"([a-z][a-z-]*)\",\\s*\"[^\"]*\",\\s*k\\w+Usage,"));
-  QStringList names;
-  for (auto it = row.globalMatch(readText(kCliDir + "/dispatch.cpp")); it.hasNext();)
-    names << it.next().captured(1);
-  return names;
-}
-
-// Long and short option names of every OptionSpec literal in a source file.
-QStringList optionsInSource(const QString& path) {
-  static const QRegularExpression spec(
-      QStringLiteral("\\{\"(--[a-z0-9][a-z0-9-]*)\",\\s*\"(-[A-Za-z0-9])?\",\\s*(true|false)\\}"));
-  QStringList options;
-  for (auto it = spec.globalMatch(readText(path)); it.hasNext();) {
-    const QRegularExpressionMatch m = it.next();
-    options << m.captured(1);
-    if (!m.captured(2).isEmpty()) options << m.captured(2);
-  }
-  return options;
-}
 
 // One help page and the options it must document: cmd_<command>.cpp is checked against
 // `artcam <command> --help`, cmd_<command>_<sub>.cpp against `artcam <command> <sub> --help`
@@ -80,14 +55,6 @@ QList<HelpPage> helpPages(const QStringList& commands) {
 // The manual page's text as a reader sees it: roff's "\-" is a plain hyphen-minus.
 QString manPageText() {
   return readText(QStringLiteral(ARTCAM_SOURCE_DIR "/docs/man/artcam.1")).replace("\\-", "-");
-}
-
-bool mentionsOption(const QString& text, const QString& option) {
-  // Whole option names only: "--size" must not be satisfied by "--target-size" or "--sizes".
-  const QRegularExpression word(QStringLiteral("(^|[^A-Za-z0-9-])") +
-                                QRegularExpression::escape(option) +
-                                QStringLiteral("($|[^A-Za-z0-9-])"));
-  return word.match(text).hasMatch();
 }
 
 }  // namespace

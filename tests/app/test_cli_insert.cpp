@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `artcam sample` and `artcam insert`, run as processes: the ray-traced sample's grid matches
 // fit, the graphic lands inside the reflection and nowhere else, a saved piecewise camera
 // gives the same result, and bad input leaves no output behind.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Progress and Ctrl-C for the long CLI jobs other than warp and batch (every long CLI
 // job shows progress and can be interrupted without leaving partial files): render, insert,
 // sample and fit accept --quiet; with stderr not a terminal (a pipe, as here) they write no

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `artcam warp` on hostile photos (the readers' side is tests/core/io/test_hostile_images.cpp):
 // truncated, empty, a giant header, not an image, a directory. Each run must exit with status 1,
 // print one error line naming the photo (libpng's own line aside), and leave no output (nor a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Recovery after `artcam warp` is SIGKILLed mid-save: the file being
 // replaced stays whole and unchanged, the killed writer's temporary is never taken for an
 // input or output, and the next save to that name removes it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers shared by the test executables: seeded randomness, fixtures made in code.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Autosave and crash recovery: an autosave writes a recovery file (atomically, off the GUI
 // thread); a later session is offered it (the prompt is injected: no modal dialog) and
 // accepting restores the exact state, marked modified; declining or an older recovery keeps

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The studio's one-shot job helper (ui/background_job.h): the work runs off the GUI thread and
 // its value comes back on it; any exception in the work reaches the GUI as a one-line message,
 // never as a crash; cancel() is seen by a polling job; progress arrives in order; a receiver

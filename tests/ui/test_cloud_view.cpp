@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 3D view: a PLY loads off the GUI thread; dragging orbits (yaw/pitch change and a newer
 // render arrives from the worker, equal to a direct render of the orbit's own pinhole, built
 // here from the orbit formula); the wheel zooms (the cloud covers more pixels); the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colour calibration in the studio: patches picked on two synthetic
 // photos whose colours differ by a known 3×3 matrix M (made in code), the fit run off the GUI
 // thread recovering M, undo/redo of every sample edit, the preview and the export showing the

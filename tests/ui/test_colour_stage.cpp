@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // withColourBlock (ui/colour/colour_stage.h): the studio's camera = geometry + fitted colour
 // block. Checked by evaluating points: positions as the geometry alone gives them (one and two
 // stages), colours as the 3×3 matrix applied by hand, an existing colour block replaced (not

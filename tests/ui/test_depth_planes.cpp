@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Depth planes in the studio: brush, eraser and polygon strokes on the canvas become one undo
 // step each and undo restores the mask exactly; three clicked depth points give the plane
 // (checked against the affine interpolation of their inverse depths, computed here); typed

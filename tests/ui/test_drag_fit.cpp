@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A drag of one point among 300 pairs: the GUI thread only records the mouse moves; the fits
 // run in the document's FitWorker (counted by thread, not timed), the camera settles on the
 // same fit a direct fitImageCamera of the dropped pairs gives, and undo refits at once.

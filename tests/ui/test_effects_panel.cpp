@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The effects panel: every parameter change renders off the GUI thread, the newest request
 // wins, and what it shows equals a direct render of the same effect on the same thumbnail.
 #include "core/effects/effect_table.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The effects table (core/effects/effect_table.h) walked through both front ends. For every
 // effect, every parameter (each component of a vector) is set to a value other than its default
 // through the CLI (`artcam preset NAME --PARAM V … --size W,H`) and through the studio's Effects

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Replays the project-file fuzz corpus (fuzz/corpus/project/: seeds and nasty inputs, see
 // fuzz/fuzz_project.cpp) through readProject: every file parses or is refused with one line
 // naming the file and the cause; the nasty ones for the reason they were kept. The depth masks

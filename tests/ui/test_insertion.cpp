@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Insertion mode: the bundled ray-traced mirror-sphere sample opened through
 // the panel's API; the piecewise fit arrives from the worker within the threshold with more
 // than one patch (residuals recomputed here against the sample's exact corner positions); the

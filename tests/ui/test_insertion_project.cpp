@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Insertion mode's state survives a project save and reopen (grid matches, region, board,
 // squares, max error, graphic and its placement), reopening adds no undo step, and a broken
 // "insertion" part is named by its JSON path.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The studio killed mid-edit loses no work: artcam-studio opens a photo, an
 // undoable edit imports a camera with 20 matches (hidden test hook in app/studio_main.cpp),
 // the autosave runs on a short interval (ARTCAM_AUTOSAVE_INTERVAL_MS), and the process is

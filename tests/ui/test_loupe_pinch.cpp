@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pinch zoom (touchpad native zoom gestures and touch-screen QPinchGesture, synthetic events)
 // keeps the image point under the gesture fixed; the loupe shows while a point is placed or
 // dragged and its pixels are the photo's, magnified about the exact cursor position.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The assembled window: opens the sample photo off the GUI thread, shows the fit and render
 // figures in the status bar, zoom shortcuts, modified marker, and a clean shutdown with a
 // render in flight.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pair tool on the canvas: clicked pairs become a fitted camera; select, drag, delete,
 // rubber band; undo/redo restores the exact document state.
 #include "tests/ui/ui_fixtures.h"

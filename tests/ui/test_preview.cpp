@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live preview: edits reach the RenderWorker with rising generations, the newest request
 // wins, the final image equals a direct warpImage render, and the worker stops mid-render.
 #include "core/render/warp.h"

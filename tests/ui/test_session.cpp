@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Files: project save/open round trip (atomic, exact pairs), photo loading off the GUI
 // thread, .artcam export/import, full-resolution export, and the pairs table editing both ways.
 #include "core/io/image_io.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tensor panel: typed entries become symmetric edits as undo commands; presets.
 #include "core/model/structure.h"
 #include "tests/ui/ui_fixtures.h"

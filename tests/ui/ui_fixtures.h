@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fixtures for the UI tests, made in code: a synthetic photo, pair sets, event helpers.
 #pragma once
 

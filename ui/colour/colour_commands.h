@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The colour dock's undo commands (every edit a QUndoCommand storing old and new
 // values, never deltas, so undo restores the state bit-exactly):
 // - SetColourSamplesCommand: the whole ColourSampleState before and after (add, delete, move,

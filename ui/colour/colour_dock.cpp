@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/colour/colour_dock.h"
 
 #include "core/colour/colour_difference.h"

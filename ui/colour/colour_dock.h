@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Colour dock: colour calibration from patches picked on two
 // photos. Open a reference photo; click a patch on the source view (the document's photo)
 // and the matching patch on the reference view, in either order (a half pair waits in

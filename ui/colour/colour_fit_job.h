@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Runs core's fitColourSamples off the GUI thread (the GUI never waits for a fit; the
 // quadratic candidate with K-fold selection and MSAC can take a while on many samples), as a
 // one-shot job of background_job.h. One fit at a time; a request made while one runs waits in

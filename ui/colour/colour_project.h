@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The colour samples in a project file (Project::parts["colour"]) and their CSV export.
 //
 //   { "radius": 4, "reference": "/abs/reference.tif",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/colour/colour_samples.h"
 
 #include "ui/document.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colour samples picked on two photos: a patch of the SOURCE photo
 // (the document's photo, the one the camera recolours) and the matching patch of a REFERENCE
 // photo (how that surface should look). A patch's colour is the mean over a square of side

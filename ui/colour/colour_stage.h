@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Putting a fitted colour block into a studio camera (eq 6/7).
 //
 // The studio's geometry comes from point pairs (or a hand-made camera) and its colour from

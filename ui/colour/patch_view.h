@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A photo shown whole (fitted into the widget, aspect kept) with the colour samples' patches
 // drawn as squares; the colour dock has one for the source photo and one for the reference.
 // It owns its widget ↔ photo-pixel transform and forwards presses, drags and releases as

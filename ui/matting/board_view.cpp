@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/matting/board_view.h"
 
 #include "ui/matting/insertion_model.h"

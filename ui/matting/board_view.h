@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The canonical calibration board in a small widget: its squares, its interior corners (a
 // dot per corner, filled when the corner already has a match in the photo) and the selected
 // corner, which the next photo click with the grid tool is matched to. Clicking near a corner

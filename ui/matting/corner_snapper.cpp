@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The studio's corner snap: core's checkerboard X-corner finder, searching as far as a click
 // can be off (kSnapRadiusWidgetPx on screen, so zooming in narrows it to the corner the user
 // means where reflected squares are only a few photo pixels wide).

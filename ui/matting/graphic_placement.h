@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where the graphic sits on the board's canonical view (board pixels). By default it fills the
 // whole view (stretched to it, as `artcam insert` does); a placement puts it at `origin` with
 // `width` board pixels and its own aspect ratio, transparent elsewhere.

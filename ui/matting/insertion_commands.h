@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The one undo command of Insertion mode (every edit a QUndoCommand storing old and new
 // values, never deltas): the whole InsertionState before and after, so undo restores it
 // bit-exactly. A state is small (a few hundred matches, a shared graphic pointer).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ui/matting/insertion_model.h"
 
 #include "ui/document.h"

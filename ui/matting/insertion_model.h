@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The state of the studio's Insertion mode (the paper's §5, Figs 7 and 8):
 // calibration-grid matches from the canonical board to the photo, the marked reflecting or
 // refracting region, the board's canonical size and squares, the fit's max error and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What Insertion mode draws over the canvas's photo, in widget coordinates: the live
 // composite (the graphic through the piecewise camera over the photo), the per-patch error
 // map, the marked region and the grid matches. Painted by the grid and region tools

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Insertion dock panel: the graphic to insert (loaded off the GUI
 // thread), the board's canonical size and squares, grid matches imported from / exported to
 // CSV (`src_x,src_y,dst_x,dst_y`: board pixels → photo pixels, as `artcam sample` writes

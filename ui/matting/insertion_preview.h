@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Keeps the Insertion fit and preview current: after every change of the insertion state or
 // the photo it stamps a request with a new generation and hands it to the InsertionWorker
 // (newest wins); results older than what is shown are dropped. The GUI thread never waits

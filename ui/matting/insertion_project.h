@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Insertion mode's state in a project file (Project::parts["insertion"]): grid matches,
 // region, board, squares, max error, the graphic's path and placement. The graphic's pixels
 // are not stored: the file is read again when the project opens.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Assembles Insertion mode into the main window (so MainWindow needs one line for it): the
 // model, the fit/preview worker, the dock panel, the "Insertion" menu with the grid and region
 // tools, and the canvas repaints. Holds no editing logic of its own.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Insertion worker (the RenderWorker pattern: one thread, one pending request slot where
 // the newest request wins, std::atomic restart/abort flags, results by queued signals stamped
 // with the request's generation). A request carries the grid matches, the graphic, the photo

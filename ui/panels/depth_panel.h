@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The depth panel: the list of depth planes (add, remove, rename, choose the
 // active one), the brush settings (radius, hardness) and the depth given to the next clicked
 // point, the active plane's three depth points (depth typed here), the plane's status, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The effects panel: pick one of the image effects (core/effects/
 // effect_table.h), set its parameters, and see it live on the photo's preview copy. The
 // parameter rows are made from the effect's row of the table: one spin box per number (a row of

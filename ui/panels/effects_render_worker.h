@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The effects panel's renderer: the newest-request worker (newest_request_slot.h, after Qt's
 // Mandelbrot example, like RenderWorker). One thread; a request made while one renders
 // replaces the pending one and cancels the running pass between bands (its progress hook sees

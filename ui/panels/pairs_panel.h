@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pairs table: one row per pair (enabled, source x/y, target x/y, residual), edited both
 // ways: typing a coordinate or toggling the check box pushes an undo command; canvas edits
 // and selection show up here through the document's signals. A banner says how many more

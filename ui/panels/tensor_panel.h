@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tensor panel: every entry of every Q_i of the camera, one table per output element,
 // rows and columns labelled by block element (Q_i is symmetric N×N over the
 // blocks of x). Typing an entry sets Q_i(r, c) and Q_i(c, r) — storage is symmetric — and

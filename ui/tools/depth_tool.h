@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The depth tool, in one of four modes on the active depth layer:
 // - Brush / Eraser: press and drag paints (erases) the layer's mask with the settings' radius
 //   and hardness; the stroke paints live and becomes ONE undo command on release.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The depth tool's settings, shared by the tool on the canvas and the depth panel's controls
 // (view state: neither undoable nor saved). Radius is in photo pixels.
 #pragma once

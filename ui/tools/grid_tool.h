@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The grid tool of Insertion mode: a click in the photo places the match of the board corner
 // selected in the board view (ui/matting/board_view.h). The click is snapped to the nearest
 // checkerboard X-corner (core/piecewise/corner_snap.h; Shift-click: no snap), becomes one undo

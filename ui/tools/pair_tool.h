@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The pair tool: click a source point, then its target, to add a pair. On existing points:
 // click selects (Shift toggles), drag moves the grabbed endpoint of every selected pair (one
 // merged undo step per drag), a drag on empty space selects with a rubber band, Delete removes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The region tool of Insertion mode: click the corners of a polygon around the reflecting or
 // refracting object; Enter, a double click or a click on the first corner closes it and makes
 // it the region (one undo step) — the composite is limited to it. Backspace drops the last

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A canvas tool (after Krita's KoToolBase): the canvas owns no editing logic, it only
 // forwards pointer and key events here. Positions arrive in widget coordinates; tools convert
 // them with the canvas's ViewTransform. Pan and zoom are the canvas's own and never reach tools.

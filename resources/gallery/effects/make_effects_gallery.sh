@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # Renders the image effects on the bundled photo with the CLI (artcam preset + artcam warp).
 # usage: resources/gallery/effects/make_effects_gallery.sh path/to/artcam   (from the repo root)
 # The depth of coffee.png is a stand-in made here with oiiotool: the table seen from above, a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Fig 1 effects as tensors, point by point against their closed forms (effects_3d.h).
 #include "core/cameras/effects_3d.h"
 #include "core/cameras/projective_cameras.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The camera family against its ray definitions: for random poses and points, the image point
 // that the TENSOR gives (Camera::evaluate, eq 3/5) must be the image point whose ray (written
 // from the geometry) passes through the point, to 1e-9 relative, and the other way round; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The paper's Fig 1, measured on the sample cloud resources/cube.ply (the 3×3×3 cube of cubes
 // written by `artcam preset cube-of-cubes`): each effect does what the caption says, in
 // numbers taken from the moved cloud and from renders.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Cloud rendering: the compiled evaluator agrees with the model, dense clouds render without
 // holes on a transparent background, the z-buffer keeps the nearest point whatever the thread
 // count, splats follow distance, points behind the camera are dropped, RGB layers split.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CIEDE2000 against the published test data of Sharma, Wu & Dalal (Color Res. Appl. 30(1),
 // 2005, Table 1: all 34 pairs, dE00 to 4 decimals), an independent source; CIELAB of sRGB
 // primaries against published values.

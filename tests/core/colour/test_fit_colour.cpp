@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Colour calibration: synthetic colour transforms recovered from samples
 // (noise-free to round-off, noisy to what the noise allows), the ladder picking the simplest
 // adequate model, root-polynomial never stored, outliers rejected by the robust fit, refusals

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // core/depth: painted regions, planes in inverse depth from three points, the depth raster and
 // depth map files. Plane depths are checked against a closed form made here: a world plane seen
 // by a pinhole, intersected with the ray through each pixel centre.

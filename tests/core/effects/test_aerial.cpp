@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Aerial perspective (aerial.h) against the closed-form log model of the paper's §3:
 // c' = c·(1 − t·l*) + t·l*·a·haze with l* = ln(d/near)/ln(far/near), per pixel in double.
 #include "core/effects/aerial.h"

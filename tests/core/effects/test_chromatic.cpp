@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Chromatic aberration both ways (chromatic.h, the paper's Fig 4): the three-RTcam layers
 // against a per-channel inverse and bilinear read written here; the eq 8/9 ARTcam's point map
 // against its closed form y = p·(1 + s_k·r_k).

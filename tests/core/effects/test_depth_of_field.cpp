@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Depth of field (depth_of_field.h): the σ² stage against its closed form (thin lens, linear
 // and between); the exact blur against a per-pixel double-precision Gaussian written here; the
 // fast stack against the exact blur (PSNR); the halo rule: a sharp foreground must not bleed into

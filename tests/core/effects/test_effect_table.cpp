@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The effects table (effect_table.h): its rows are consistent (defaults inside ranges, known
 // units, needs-depth exactly when the camera has a depth block), every parameter reaches the
 // camera, values outside a range are refused naming the parameter, and the camera value has

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fitting image cameras (paper §4): exact recovery, the ladder, refusals.
 #include "core/fit/fit_image.h"
 #include "core/model/frames.h"

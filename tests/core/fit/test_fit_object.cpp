@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fitting object-space cameras (n = 4): the paper's §4 with 40 unknowns, 3 rows per match.
 #include "core/fit/dlt.h"
 #include "core/fit/fit_image.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // On real-lens cases the default fit (algebraic DLT, LM refinement, pole
 // retries) comes within a few percent of the best a rational quadratic can do for that lens.
 // "The best" is estimated independently of the default pipeline's start: LM from many starts

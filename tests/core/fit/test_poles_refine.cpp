@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Poles over the frame (exact, checked against dense sampling), LM refinement guarantees, and
 // real lens distortions (the models lensfun documents: poly3, poly5, ptlens) in both directions.
 #include "core/fit/fit_image.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Robust fitting: 10 % and 30 % gross outliers among 200 noisy matches.
 #include "core/fit/fit_image.h"
 #include "core/fit/robust.h"

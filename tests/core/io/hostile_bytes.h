@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Crafted bytes of image files that lie about their size (for the hostile-input tests of the
 // readers and of `artcam warp`): valid up to the lie, so the reader gets as far as the size.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The .artcam fields of attributed cameras (artcam_file.h): layers and depth_output round-trip
 // bit-exactly, the first layer stays the top-level camera, bad fields are named by JSON path.
 #include "core/effects/chromatic.h"

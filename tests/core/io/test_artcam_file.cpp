@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // .artcam files: bit-exact round trips (random and edge doubles), and every refusal names the
 // file and the JSON path or line of the problem.
 #include "core/io/artcam_file.h"

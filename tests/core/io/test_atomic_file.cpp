@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Atomic saves: the target is replaced whole or not at all, and no temporary is left behind.
 #include "core/io/atomic_file.h"
 

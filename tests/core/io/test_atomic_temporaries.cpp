@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The temporaries of atomic saves: removeLiveTemporaries (what the
 // CLI's SIGINT handler calls) unlinks a save in flight and leaves the target as it was, stale
 // temporaries of a process that is gone are removed by the next save to that name while a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Depth files (depth_file.h): 16-bit counts with a scale, float EXR as stored, disparity with a
 // baseline·focal factor or inverse depth, holes as 0, the summary, errors naming the file.
 // Fixtures written here with OIIO.

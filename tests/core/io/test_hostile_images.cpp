@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hostile image files through every reader entry point (openImageInput, readImage,
 // readStoredImage): truncated PNG/JPEG/TIFF, empty and zero-sized files, 1×1 images, headers
 // that claim giant sizes (bytes crafted here), unsupported formats, a directory. Each must be

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Replays every input of the checked-in fuzz corpus (fuzz/corpus/<reader>/: seeds made from
 // resources/ and the grammars, plus every nasty input the fuzzers found) through the file
 // readers of the normal build. Each must parse or be refused with ONE line that names the file

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Images: round trips through PNG 8-bit, TIFF 16-bit and EXR float; sRGB decoding against the
 // formula; alpha premultiplied inside, unassociated in PNG; metadata carried over; refusals
 // that name the file and leave nothing behind. Fixtures are written with OIIO directly.

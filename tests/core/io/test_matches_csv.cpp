@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CSV match and point lists: exact numbers, tolerated noise (comments, CRLF, BOM, spaces) and
 // refusals that name the file, the line and the cause.
 #include "core/io/matches_csv.h"

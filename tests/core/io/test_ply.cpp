@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PLY point clouds: exact round trips in all three encodings, hand-written files with skipped
 // properties and elements, and refusals that name the file, the header line or vertex and the
 // cause (including lying counts, which must fail before any allocation).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The camera value (core/model/artcam.h): its kind and its invariants, checked by
 // validateArtcam on read, write and render. Each refusal names the part at fault.
 #include "core/io/artcam_file.h"

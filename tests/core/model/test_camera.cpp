@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The model: eq 3/5 evaluation, RTcam ⊂ ARTcam, eq 8/9, frame changes, chains.
 #include "core/model/camera.h"
 #include "core/model/frames.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Composition: compose(first, second) must map every pixel where second(first(·)) does,
 // evaluated independently through the two cameras one after the other.
 #include "core/model/compose.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Structure analysis: zero blocks and the geometry ladder identity ⊂ … ⊂ rational.
 #include "core/model/structure.h"
 #include "tests/support/test_support.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Corner snapping against boards whose corners are known exactly: an analytic checkerboard
 // under a rotation and scale, and the ray-traced mirror-sphere sample (its grid corners found
 // by Newton on the tracer). Flat areas and straight edges must not snap.

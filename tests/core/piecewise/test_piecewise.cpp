@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Piecewise cameras against a ray-traced mirror sphere: exact matches from the
 // tracer, the quadtree fit must bring every match under the threshold, the seams must agree,
 // the mesh render of an inserted graphic must match the ray-traced image of it, and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The render front door (core/pipeline/render.h): the output-frame rule, the path chosen for
 // each camera kind, agreement with the renderers it dispatches to, alpha only where needed.
 #include "core/effects/aerial.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The bundled photo as linear float, read with OpenImageIO directly so render tests do not
 // depend on core/io's decoding.
 #pragma once

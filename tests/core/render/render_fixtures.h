@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fixtures shared by the render tests, made in code: images, cameras from matrices, and a
 // plain reference bilinear filter that does not use the renderer's sampler.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Attributed rendering (attributed.h, splat.h) against evaluations written here in double
 // precision: closed-form colour maps, the inverse homography solved by hand, a bilinear sampler
 // of the test's own, and a Newton solve of the eq 8/9 map. Splat and gather are compared on a

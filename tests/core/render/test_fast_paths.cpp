@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The render's fast paths against independent answers:
 // - the AVX2 8-bit samplers (nearest and bilinear: span_sampler_avx2.h; bicubic:
 //   span_sampler_cubic.h) are bit-identical to the portable scalar code, borders, invalid

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fused warp: forward differences re-anchored per span stay within 1e-6 px; every
 // kernel's source positions agree with the exact double-precision inverse to 1/256 px; the seed
 // check leaves Newton to few pixels; typed pixel formats agree with the float path; whole-pixel

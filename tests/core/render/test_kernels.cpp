@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The kernel ladder (the cheapest exact kernel per camera class): every exact kernel agrees
 // with the general rational path on the same camera; poles and folds give transparency, never
 // NaN, and the right sheet of the map where there is a choice (checked against closed forms).

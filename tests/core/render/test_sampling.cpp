@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Filters (sampling.h): pixel centres at i + 0.5, exact reproduction where the theory says so,
 // transparent outside the source.
 #include "core/render/sampling.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The AVX-512 8-bit RGB bilinear (span_sampler_avx512.h) against the portable scalar code and
 // the AVX2 clone, on the spans a warp actually produces: smooth runs of positions, where a
 // group of sixteen reads one 64-byte window per source row. Its cases, each bit-identical to

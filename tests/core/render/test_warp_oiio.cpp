@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Acceptance: a homography warp of the bundled photo agrees with OpenImageIO's
 // ImageBufAlgo::warp, the reference implementation of the same pixel conventions.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A rational-camera warp of the bundled photo checked pixel by pixel against an independent
 // evaluation written here: the camera's own eq 3/5 evaluation (Camera::evaluateHomogeneous,
 // not the renderer's pixel tensors), solved for each sampled output pixel by Newton with a

@@ -1,0 +1,91 @@
+# SPDX-License-Identifier: Apache-2.0
+# bash completion for artcam(1), installed as /usr/share/bash-completion/completions/artcam.
+# Completes the commands, bench's sub-commands, each command's options, preset names and a
+# preset's parameters. The option lists mirror the parsers' OptionSpec lists in
+# app/cli/cmd_<command>*.cpp; tests/app/test_cli_completions.cpp fails when one is missing here
+# or in _artcam (zsh). Preset names and parameters are asked of `artcam preset list` at
+# completion time, so they follow the effects table without an edit here. Plain bash: it needs
+# neither the bash-completion package's helpers nor a particular bash-completion version.
+
+_artcam_commands="fit map warp batch info bench render preset compose insert sample"
+
+# The options of one page: a command, or bench's sub-command ("bench fit").
+_artcam_options() {
+  case "$1" in
+    fit) echo "--output -o --size --target-size --model --dim --no-refine --robust --threshold
+               --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
+               --quiet -q" ;;
+    map) echo "--json" ;;
+    warp) echo "--output -o --size --filter --threads --stats --json --overwrite --force --quiet
+                -q --depth --depth-scale --disparity" ;;
+    batch) echo "--output -o --suffix --format --first --size --filter --threads --overwrite
+                 --force --json --quiet -q" ;;
+    info) echo "--json" ;;
+    "bench render") echo "--size --reps --threads --plot --peer --only --filter --no-e2e
+                          --overwrite --force" ;;
+    "bench fit") echo "--counts --noise --plot --seconds --methods --colour --overwrite --force" ;;
+    "bench effects") echo "--size --crop --sigmas --reps --threads --image --ratio --shrink-from
+                           --only" ;;
+    render) echo "--output -o --view --eye --at --fov --size --layers --point-size --splat-scale
+                  --threads --stats --json --overwrite --force --quiet -q" ;;
+    preset) echo "--output -o --overwrite --force --size" ;;
+    compose) echo "--output -o --force --overwrite --json" ;;
+    insert) echo "--output -o --matches --camera --canonical --max-error --save-camera
+                  --mesh-step --overwrite --force --quiet -q" ;;
+    sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;
+  esac
+}
+
+# Preset names (lines of `artcam preset list` that start with two spaces and a name), or with a
+# name, that preset's parameters as options (its "param=default" words).
+_artcam_presets() {
+  "$1" preset list 2>/dev/null | awk -v want="$2" '
+    /^  [^ ]/ { name = $1; if (want == "") print name; next }
+    want != "" && name == want {
+      for (i = 1; i <= NF; i++) if (split($i, kv, "=") == 2) print "--" kv[1]
+    }'
+}
+
+_artcam() {
+  local cur="${COMP_WORDS[COMP_CWORD]}"
+  local artcam="${COMP_WORDS[0]}"
+  COMPREPLY=()
+  if [[ $COMP_CWORD -eq 1 ]]; then
+    COMPREPLY=($(compgen -W "$_artcam_commands help --help -h --version" -- "$cur"))
+    return 0
+  fi
+  local command="${COMP_WORDS[1]}" page="${COMP_WORDS[1]}"
+  case "$command" in
+    bench)
+      if [[ $COMP_CWORD -eq 2 && "$cur" != -* ]]; then
+        COMPREPLY=($(compgen -W "render fit effects" -- "$cur"))
+        return 0
+      fi
+      case "${COMP_WORDS[2]}" in
+        fit|effects) page="bench ${COMP_WORDS[2]}" ;;
+        *) page="bench render" ;;  # bench without a sub-command is bench render
+      esac
+      ;;
+    preset)
+      if [[ $COMP_CWORD -eq 2 && "$cur" != -* ]]; then
+        COMPREPLY=($(compgen -W "list $(_artcam_presets "$artcam")" -- "$cur"))
+        return 0
+      fi
+      ;;
+  esac
+  if [[ "$cur" == -* ]]; then
+    local options
+    options="$(_artcam_options "$page") --help -h"
+    [[ "$command" == preset && $COMP_CWORD -gt 2 ]] &&
+      options+=" $(_artcam_presets "$artcam" "${COMP_WORDS[2]}")"
+    # An effect's size=WxH parameter is also the static --size: offer each name once.
+    COMPREPLY=($(compgen -W "$(printf '%s\n' $options | sort -u)" -- "$cur"))
+    return 0
+  fi
+  # Operands and option values are files (cameras, photos, CSV, outputs) or free text.
+  compopt -o filenames 2>/dev/null
+  COMPREPLY=($(compgen -f -- "$cur"))
+  return 0
+}
+
+complete -F _artcam artcam
