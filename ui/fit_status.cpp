@@ -3,6 +3,7 @@
 
 #include "core/model/structure.h"
 #include "ui/document.h"
+#include "ui/fit_explanation.h"
 #include "ui/preview_controller.h"
 
 #include <QHBoxLayout>
@@ -65,7 +66,9 @@ void FitStatus::updateFit() {
     const QString chosen = QString::fromStdString(fit.record.model);
     model_->setText(document_->model() == ModelClass::Auto ? tr("Model: auto → %1").arg(chosen)
                                                            : tr("Model: %1").arg(chosen));
-    model_->setToolTip(QString::fromStdString(fit.record.reason));
+    // The reason and every model's error, as in the Pairs panel.
+    model_->setToolTip(QStringLiteral("<p>%1</p>%2").arg(fitReasonText(fit.record).toHtmlEscaped(),
+                                                         modelScoresHtml(fit.record)));
   } else {
     model_->setText(tr("Model: none (identity)"));
   }

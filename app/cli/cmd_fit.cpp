@@ -256,6 +256,14 @@ int fitCommand(const std::vector<std::string>& argv) {
         jr["pole_margin"] = fit.record.pole_margin;
       }
       if (options.robust) jr["inliers"] = fit.record.inliers;
+      // Each rung of the ladder as the choice scored it (-1: not computable).
+      if (!fit.record.criterion.empty()) jr["criterion"] = fit.record.criterion;
+      for (const ModelScore& m : fit.record.models)
+        jr["models"].push_back({{"model", m.model},
+                                {"rms_px", m.rms_px},
+                                {"held_out_rms_px", m.held_out_rms_px},
+                                {"criterion", m.criterion},
+                                {"note", m.note}});
       std::printf("%s\n", j.dump().c_str());
     } else {
       std::printf("%s\n", fit.report().c_str());

@@ -387,60 +387,252 @@ double heldOutError(ModelClass model, const Problem& pb, const FitOptions& optio
   return std::sqrt(sum / m);
 }
 
-// The ladder: the simplest model whose held-out error a richer one does not beat
-// by more than options.auto_improvement; an exactly determined richer model (no held-out check
-// possible) wins only where the validated ones do not fit exactly.
-ModelFit fitAuto(const Problem& pb, const FitOptions& options, ModelClass& chosen,
-                 std::string& reason, double& held_out) {
-  struct Candidate {
-    ModelClass model;
-    ModelFit fit;
-    double held_out;
-    double train_rms;
+// Free parameters of a model class (the tensors up to scale): 2D translation 2, similarity 4,
+// affine 6, homography 8, quadratic 17 (three 3×3 symmetric tensors, 18 entries, less scale).
+int parameterCount(ModelClass model, int dimension) {
+  const int n = dimension + 1;
+  switch (model) {
+    case ModelClass::Translation: return dimension;
+    case ModelClass::Similarity: return 4;
+    case ModelClass::Affine: return dimension * n;
+    case ModelClass::Homography: return n * n - 1;
+    case ModelClass::Quadratic:
+    case ModelClass::Auto: return n * n * (n + 1) / 2 - 1;
+  }
+  return 0;
+}
+
+// One rung of the ladder as the choice sees it.
+struct Candidate {
+  ModelClass model = ModelClass::Auto;
+  ModelFit fit;
+  double train_rms = -1.0;  // target units
+  double rss = 0.0;         // target units², summed over the matches
+  double held_out = std::numeric_limits<double>::quiet_NaN();
+  bool held_out_trusted = false;
+  double aic = std::numeric_limits<double>::quiet_NaN();
+  std::string note;  // empty: eligible
+  bool eligible() const { return fit.status.ok && note.empty(); }
+};
+
+// The source points' convex hull (stored frame), counter-clockwise (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> convexHull(const Points& src) {
+  std::vector<Eigen::Vector2d> p;
+  for (Eigen::Index k = 0; k < src.cols(); ++k) p.emplace_back(src(0, k), src(1, k));
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
   };
-  std::vector<Candidate> candidates;
-  std::string rejected;
-  ModelFit first_failure;
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k > 0 ? k - 1 : 0);
+  return hull;
+}
+
+bool insideHull(const std::vector<Eigen::Vector2d>& hull, const Eigen::Vector2d& x) {
+  if (hull.size() < 3) return false;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const Eigen::Vector2d a = hull[i], b = hull[(i + 1) % hull.size()];
+    if ((b - a).x() * (x - a).y() - (b - a).y() * (x - a).x() < 0) return false;
+  }
+  return true;
+}
+
+// How far two maps part between the pairs versus at them (target units): the largest distance
+// on a 25×25 grid inside the pairs' convex hull, and at the pairs. An exactly determined fit
+// passes through every pair whatever it does between them; a fit that bends far more between
+// the pairs than it differs from the next-simpler model at them is guessing there.
+std::pair<double, double> divergence(const Camera& rich, const Camera& simple, const Problem& pb) {
+  const auto distance = [&](const Eigen::VectorXd& x) {
+    const auto a = mapStored(rich, x), b = mapStored(simple, x);
+    return a && b ? (*a - *b).norm() * pb.target_units_per_stored_unit
+                  : std::numeric_limits<double>::infinity();
+  };
+  double at_pairs = 0.0;
+  for (int k = 0; k < pb.size(); ++k) at_pairs = std::max(at_pairs, distance(pb.src.col(k)));
+  const std::vector<Eigen::Vector2d> hull = convexHull(pb.src);
+  const Eigen::Vector2d lo = pb.src.rowwise().minCoeff(), hi = pb.src.rowwise().maxCoeff();
+  double between = at_pairs;
+  constexpr int kGrid = 25;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const Eigen::Vector2d x(lo.x() + (hi.x() - lo.x()) * (i + 0.5) / kGrid,
+                              lo.y() + (hi.y() - lo.y()) * (j + 0.5) / kGrid);
+      if (insideHull(hull, x)) between = std::max(between, distance(x));
+    }
+  return {between, at_pairs};
+}
+
+// Fits every rung of the ladder and scores it two ways (see chooseModel).
+std::vector<Candidate> scoreLadder(const Problem& pb, const FitOptions& options) {
+  std::vector<Candidate> out;
+  const int m = pb.size();
+  const int folds = m > 5000 ? 3 : std::min(m, 10);
+  const int train_size = m - (m + folds - 1) / folds;
   for (ModelClass model : pb.ladder) {
-    ModelFit f = fitModel(model, pb, options);
-    if (!f.status) {
-      if (first_failure.status) first_failure = f;
-      if (pb.size() >= minimumMatches(model, pb.dimension))
-        rejected += std::string(rejected.empty() ? "" : "; ") + std::string(modelClassName(model)) +
-                    ": " + f.status.message;
+    Candidate c;
+    c.model = model;
+    c.fit = fitModel(model, pb, options);
+    if (!c.fit.status) {
+      out.push_back(std::move(c));
       continue;
     }
-    const double train = rms(residuals(f.camera, pb));
-    const double held = heldOutError(model, pb, options);
-    candidates.push_back({model, std::move(f), held, train});
-  }
-  if (candidates.empty()) return first_failure;
-  double best = std::numeric_limits<double>::infinity();
-  for (const Candidate& c : candidates)
-    if (!std::isnan(c.held_out)) best = std::min(best, std::max(c.held_out, kExactError));
-  const Candidate* pick = nullptr;
-  for (const Candidate& c : candidates)
-    if (!std::isnan(c.held_out) &&
-        std::max(c.held_out, kExactError) * options.auto_improvement <= best) {
-      pick = &c;
-      break;
+    for (double e : residuals(c.fit.camera, pb)) c.rss += e * e;
+    c.train_rms = std::sqrt(c.rss / m);
+    if (options.diagnostics || options.model == ModelClass::Auto) {
+      c.held_out = heldOutError(model, pb, options);
+      // Leave-one-out of a model that needs nearly every pair mostly measures extrapolation
+      // to the pair left out: trusted only when each fold trains on twice the minimum.
+      c.held_out_trusted =
+          !std::isnan(c.held_out) && train_size >= 2 * minimumMatches(model, pb.dimension);
     }
-  for (const Candidate& c : candidates) {
-    const bool exact_unvalidated = std::isnan(c.held_out) && c.train_rms <= kExactError;
-    if (exact_unvalidated && (!pick || (c.model > pick->model && pick->train_rms > kExactError)))
-      pick = &c;
+    out.push_back(std::move(c));
   }
-  if (!pick) pick = &candidates.back();
-  chosen = pick->model;
-  held_out = pick->held_out;
-  std::ostringstream why;
-  why << "auto chose " << modelClassName(chosen) << "; held-out RMS:";
+  return out;
+}
+
+// The noise floor of the information criterion, in target units: the clicking precision for
+// images; for object space (units unknown) a thousandth of the targets' RMS spread.
+double noiseFloor(const Problem& pb, const FitOptions& options) {
+  if (pb.dimension == 2) return options.click_sigma_px;
+  const Eigen::VectorXd mean = pb.dst.rowwise().mean();
+  const double spread = std::sqrt((pb.dst.colwise() - mean).squaredNorm() / std::max(1, pb.size()));
+  return std::max(1e-3 * spread, 1e-12);
+}
+
+struct Choice {
+  const Candidate* pick = nullptr;
+  std::string criterion;  // "held-out" or "aic"
+  std::string reason;
+};
+
+// Many matches: every rung's held-out error is trusted, and auto takes the simplest model
+// whose held-out error is within options.auto_improvement of the best one.
+// Few matches: leave-one-out cannot test a model that needs nearly every pair (the quadratic
+// needs 9 matches; with 9 it has one residual degree of freedom). Then the models are compared
+// by an information criterion with the noise known to be a click's precision σ (Mallows' Cp,
+// AIC with known variance): AIC = Σ r² / σ² + 2k, k the free parameters. The small-sample AICc
+// would be infinite for the quadratic on nine pairs (n − k − 1 = 0), and the estimated variance
+// of an exact fit is zero (−∞ log-likelihood), so σ is fixed, not estimated. A richer model thus
+// must remove more than 2σ² of squared residual per parameter it adds: a homography with
+// half-pixel clicks keeps its residual near σ² per degree of freedom and stays a homography; a
+// bulge the homography misses by pixels becomes the quadratic. A fit is not eligible when it
+// bends between the pairs (divergence) more than three times as far as it departs from the
+// next-simpler eligible model at the pairs (plus 3σ): the exact fit of a few pairs can be wild.
+Choice chooseModel(std::vector<Candidate>& candidates, const Problem& pb,
+                   const FitOptions& options) {
+  Choice choice;
+  const double sigma = noiseFloor(pb, options);
+  bool all_trusted = true;
+  int fitted = 0;
   for (const Candidate& c : candidates)
-    why << " " << modelClassName(c.model) << " "
-        << (std::isnan(c.held_out) ? std::string("n/a (exactly determined)") : fmt(c.held_out));
-  if (!rejected.empty()) why << "; not determined: " << rejected;
-  reason = why.str();
-  return pick->fit;
+    if (c.fit.status) {
+      ++fitted;
+      all_trusted = all_trusted && c.held_out_trusted;
+    }
+  if (fitted == 0) return choice;
+  std::ostringstream why;
+  if (all_trusted) {
+    choice.criterion = "held-out";
+    double best = std::numeric_limits<double>::infinity();
+    const Candidate* best_c = nullptr;
+    for (const Candidate& c : candidates)
+      if (c.eligible() && std::max(c.held_out, kExactError) < best) {
+        best = std::max(c.held_out, kExactError);
+        best_c = &c;
+      }
+    for (const Candidate& c : candidates)
+      if (c.eligible() && std::max(c.held_out, kExactError) * options.auto_improvement <= best) {
+        choice.pick = &c;
+        break;
+      }
+    if (!choice.pick) return choice;
+    why << modelClassName(choice.pick->model) << " by held-out error (" << pb.size()
+        << " matches): " << fmt(choice.pick->held_out);
+    if (best_c != choice.pick)
+      why << " is within " << fmt(100.0 * (1.0 / options.auto_improvement - 1.0)) << " % of "
+          << modelClassName(best_c->model) << " " << fmt(best_c->held_out);
+    else
+      why << " is the lowest";
+    if (choice.pick != &candidates.back())
+      for (const Candidate& c : candidates)
+        if (c.fit.status && c.model > choice.pick->model) {
+          why << "; " << modelClassName(c.model) << " " << fmt(c.held_out);
+          break;
+        }
+  } else {
+    choice.criterion = "aic";
+    const Candidate* simpler = nullptr;
+    for (Candidate& c : candidates) {
+      if (!c.fit.status) continue;
+      c.aic = c.rss / (sigma * sigma) + 2.0 * parameterCount(c.model, pb.dimension);
+      if (simpler && pb.dimension == 2) {
+        const auto [between, at_pairs] = divergence(c.fit.camera, simpler->fit.camera, pb);
+        if (!(between <= 3.0 * at_pairs + 3.0 * sigma))
+          c.note = "bends between the pairs: " + fmt(between) + " px from the " +
+                   std::string(modelClassName(simpler->model)) + " map inside the pairs vs " +
+                   fmt(at_pairs) + " px at them";
+      }
+      if (c.eligible()) {
+        simpler = &c;
+        if (!choice.pick || c.aic < choice.pick->aic) choice.pick = &c;
+      }
+    }
+    if (!choice.pick) return choice;
+    // The deciding comparison: the pick against its best-scoring eligible rival.
+    const Candidate* rival = nullptr;
+    for (const Candidate& c : candidates)
+      if (c.eligible() && &c != choice.pick && (!rival || c.aic < rival->aic)) rival = &c;
+    why << modelClassName(choice.pick->model) << " by information criterion (AIC, clicks σ "
+        << fmt(sigma) << (pb.dimension == 2 ? " px" : " units") << ", " << pb.size()
+        << " matches, too few to validate every model held-out): " << fmt(choice.pick->aic)
+        << " (RMS " << fmt(choice.pick->train_rms) << ")";
+    if (rival)
+      why << " vs " << modelClassName(rival->model) << " " << fmt(rival->aic) << " (RMS "
+          << fmt(rival->train_rms) << ")";
+  }
+  why << "; held-out RMS:";
+  for (const Candidate& c : candidates)
+    if (c.fit.status)
+      why << " " << modelClassName(c.model) << " "
+          << (std::isnan(c.held_out) ? std::string("n/a") : fmt(c.held_out));
+  for (const Candidate& c : candidates)
+    if (c.fit.status && !c.note.empty()) why << "; " << modelClassName(c.model) << " " << c.note;
+  choice.reason = why.str();
+  return choice;
+}
+
+std::vector<ModelScore> scoresOf(const std::vector<Candidate>& candidates, const Problem& pb,
+                                 bool held_out_criterion) {
+  std::vector<ModelScore> out;
+  for (const Candidate& c : candidates) {
+    ModelScore s;
+    s.model = std::string(modelClassName(c.model));
+    if (c.fit.status) {
+      s.rms_px = c.train_rms;
+      if (!std::isnan(c.held_out)) s.held_out_rms_px = c.held_out;
+      const double v = held_out_criterion ? c.held_out : c.aic;
+      if (std::isfinite(v)) s.criterion = v;
+      s.note = c.note;
+    } else {
+      s.note = pb.size() < minimumMatches(c.model, pb.dimension)
+                   ? "needs " + std::to_string(minimumMatches(c.model, pb.dimension)) + " matches"
+                   : c.fit.status.message;
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 FitSummary solve(const Problem& pb, const FitOptions& options) {
@@ -448,11 +640,46 @@ FitSummary solve(const Problem& pb, const FitOptions& options) {
   ModelClass chosen = options.model;
   ModelFit fit;
   double held_out = std::numeric_limits<double>::quiet_NaN();
+  const bool in_ladder =
+      std::find(pb.ladder.begin(), pb.ladder.end(), options.model) != pb.ladder.end();
+  // Auto scores the whole ladder; a named model does too (for the report) while that is cheap.
+  constexpr int kScoreNamedUpTo = 300;
+  const bool score = options.model == ModelClass::Auto ||
+                     (in_ladder && options.diagnostics && pb.size() <= kScoreNamedUpTo);
+  std::vector<Candidate> candidates;
+  Choice choice;
+  if (score) {
+    candidates = scoreLadder(pb, options);
+    choice = chooseModel(candidates, pb, options);
+    summary.record.models = scoresOf(candidates, pb, choice.criterion == "held-out");
+    summary.record.criterion = choice.criterion;
+  }
   if (options.model == ModelClass::Auto) {
-    fit = fitAuto(pb, options, chosen, summary.record.reason, held_out);
-  } else if (std::find(pb.ladder.begin(), pb.ladder.end(), options.model) == pb.ladder.end()) {
+    if (!choice.pick) {
+      for (const Candidate& c : candidates)
+        if (!c.fit.status) {
+          summary.status = c.fit.status;
+          return summary;
+        }
+      summary.status = Status::failure("no model of the ladder fitted these matches");
+      return summary;
+    }
+    fit = choice.pick->fit;
+    chosen = choice.pick->model;
+    held_out = choice.pick->held_out;
+    summary.record.reason = "auto chose " + choice.reason;
+  } else if (!in_ladder) {
     fit.status = Status::failure("the " + std::string(modelClassName(options.model)) +
                                  " model is not available in " + std::to_string(pb.dimension) + "D");
+  } else if (score) {
+    for (const Candidate& c : candidates)
+      if (c.model == options.model) {
+        fit = c.fit;
+        held_out = c.held_out;
+      }
+    summary.record.reason = std::string(modelClassName(options.model)) + " chosen by hand";
+    if (choice.pick)
+      summary.record.reason += "; auto would choose " + choice.reason;
   } else {
     fit = fitModel(options.model, pb, options);
     if (fit.status && options.diagnostics && pb.size() <= 2000)

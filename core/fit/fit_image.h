@@ -31,8 +31,12 @@ struct FitOptions {
   ModelClass model = ModelClass::Auto;
   // Skip the conditioning step (for the raw-DLT benchmark only).
   bool condition = true;
-  // Auto: a richer model must lower the held-out error by this factor to be chosen.
-  double auto_improvement = 0.9;
+  // Auto with many matches (every model's held-out error trusted): a richer model must lower
+  // the held-out error by this factor to be chosen, so auto stays within 2 % of the best.
+  double auto_improvement = 0.98;
+  // Auto with few matches: the noise level of the information criterion, a click's precision
+  // in target pixels (fit_image.cpp, chooseModel).
+  double click_sigma_px = 1.0;
   // Levenberg–Marquardt on the reprojection error after the DLT (quadratic models; refine.h),
   // then a few seeded restarts near the result in case LM stopped in a local minimum (kept only
   // when better on all matches and pole-free; fit_image.cpp, restartNearby).

@@ -224,6 +224,24 @@ FitRecord fitAt(const Json& j, const std::string& path) {
         refuse(path + "/inliers", "expected whole numbers ≥ 0");
       fit.inliers.push_back(static_cast<int>(v));
     }
+  // The scored ladder (files before it was written lack it).
+  if (j.contains("criterion")) fit.criterion = stringAt(j["criterion"], path + "/criterion");
+  if (j.contains("models")) {
+    arrayAt(j["models"], path + "/models", "model scores");
+    for (size_t k = 0; k < j["models"].size(); ++k) {
+      const Json& e = j["models"][k];
+      const std::string at = path + "/models/" + std::to_string(k);
+      objectAt(e, at);
+      ModelScore score;
+      score.model = stringAt(field(e, at, "model"), at + "/model");
+      if (e.contains("rms_px")) score.rms_px = numberAt(e["rms_px"], at + "/rms_px");
+      if (e.contains("held_out_rms_px"))
+        score.held_out_rms_px = numberAt(e["held_out_rms_px"], at + "/held_out_rms_px");
+      if (e.contains("criterion")) score.criterion = numberAt(e["criterion"], at + "/criterion");
+      if (e.contains("note")) score.note = stringAt(e["note"], at + "/note");
+      fit.models.push_back(std::move(score));
+    }
+  }
   return fit;
 }
 
@@ -463,6 +481,22 @@ struct Builder {
         root["fit"]["pole_margin"] = number(f.pole_margin, "/fit/pole_margin");
       }
       if (!f.inliers.empty()) root["fit"]["inliers"] = f.inliers;
+      if (!f.criterion.empty()) root["fit"]["criterion"] = f.criterion;
+      if (!f.models.empty()) {
+        Json models = Json::array();
+        for (size_t k = 0; k < f.models.size(); ++k) {
+          const ModelScore& score = f.models[k];
+          const std::string at = "/fit/models/" + std::to_string(k);
+          Json e = {{"model", score.model}};
+          if (score.rms_px >= 0) e["rms_px"] = number(score.rms_px, at + "/rms_px");
+          if (score.held_out_rms_px >= 0)
+            e["held_out_rms_px"] = number(score.held_out_rms_px, at + "/held_out_rms_px");
+          if (score.criterion >= 0) e["criterion"] = number(score.criterion, at + "/criterion");
+          if (!score.note.empty()) e["note"] = score.note;
+          models.push_back(std::move(e));
+        }
+        root["fit"]["models"] = std::move(models);
+      }
     }
     if (d.pieces) {
       root["support_margin_px"] = number(d.pieces->support_margin_px, "/support_margin_px");

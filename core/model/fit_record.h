@@ -17,6 +17,15 @@ struct PointMatch {
   bool enabled = true;
 };
 
+// One rung of the model ladder as the fit saw it, so a reader can check the choice.
+struct ModelScore {
+  std::string model;
+  double rms_px = -1.0;           // residual on all enabled matches; -1: the model did not fit
+  double held_out_rms_px = -1.0;  // K-fold / leave-one-out; -1: not computable
+  double criterion = -1.0;        // the value the choice compared (FitRecord::criterion); -1: none
+  std::string note;               // why it was not eligible, empty when it was
+};
+
 struct FitRecord {
   std::string model;                 // "translation", "similarity", "affine", "homography", "quadratic"
   int matches = 0;                   // enabled matches used
@@ -31,6 +40,10 @@ struct FitRecord {
   bool pole_free = true;             // the denominator keeps one sign over the source frame
   double pole_margin = 1.0;          // min |denominator| / max |denominator| over the frame
   std::vector<int> inliers;          // robust fits: indices (into the enabled matches) kept
+  // The ladder as scored (auto, and named models with diagnostics), simplest first, and what
+  // the scores are: "aic" (information criterion, px²-scaled) or "held-out" (RMS px).
+  std::vector<ModelScore> models;
+  std::string criterion;
 };
 
 }  // namespace artcam

@@ -3,13 +3,16 @@
 
 #include "ui/commands.h"
 #include "ui/document.h"
+#include "ui/fit_explanation.h"
 
+#include <QButtonGroup>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QItemSelectionModel>
 #include <QLabel>
 #include <QPushButton>
 #include <QTableView>
+#include <QToolButton>
 #include <QVBoxLayout>
 
 #include <cmath>
@@ -126,7 +129,10 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
       document_(document),
       model_(new PairsTableModel(document, this)),
       table_(new QTableView(this)),
-      banner_(new QLabel(this)) {
+      banner_(new QLabel(this)),
+      models_(new QButtonGroup(this)),
+      scores_(new QLabel(this)),
+      reason_(new QLabel(this)) {
   table_->setModel(model_);
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::ExtendedSelection);
@@ -143,11 +149,49 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
   buttons->addWidget(remove);
   buttons->addWidget(toggle);
   buttons->addStretch(1);
+  // One click per model, ids are ModelClass values; the change is the Model menu's undo step.
+  auto* selector = new QHBoxLayout;
+  selector->setSpacing(1);
+  const std::pair<ModelClass, QString> choices[] = {
+      {ModelClass::Auto, tr("Auto")},          {ModelClass::Translation, tr("Transl.")},
+      {ModelClass::Similarity, tr("Simil.")},  {ModelClass::Affine, tr("Affine")},
+      {ModelClass::Homography, tr("Homog.")},  {ModelClass::Quadratic, tr("Quadr.")}};
+  for (const auto& [m, label] : choices) {
+    auto* b = new QToolButton(this);
+    b->setText(label);
+    b->setCheckable(true);
+    b->setToolTip(m == ModelClass::Auto
+                      ? tr("Auto: the simplest model the pairs support (the reason is below)")
+                      : tr("Fit the %1 model").arg(QString::fromUtf8(modelClassName(m).data(),
+                                                     static_cast<qsizetype>(modelClassName(m).size()))));
+    models_->addButton(b, static_cast<int>(m));
+    selector->addWidget(b);
+  }
+  selector->addStretch(1);
+  models_->setExclusive(true);
+  scores_->setTextFormat(Qt::RichText);
+  reason_->setWordWrap(true);
+  reason_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  QFont small = reason_->font();
+  small.setPointSizeF(small.pointSizeF() * 0.9);
+  reason_->setFont(small);
+  scores_->setFont(small);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 2, 2, 2);
   layout->addWidget(banner_);
   layout->addWidget(table_, 1);
   layout->addLayout(buttons);
+  layout->addLayout(selector);
+  layout->addWidget(scores_);
+  layout->addWidget(reason_);
+
+  connect(models_, &QButtonGroup::idClicked, this, [this](int id) {
+    const auto chosen = static_cast<ModelClass>(id);
+    if (document_->model() != chosen)
+      document_->undoStack()->push(new SetModelCommand(document_, chosen));
+  });
+  connect(document_, &Document::modelChanged, this, &PairsPanel::updateExplanation);
+  connect(document_, &Document::cameraChanged, this, &PairsPanel::updateExplanation);
 
   connect(remove, &QPushButton::clicked, this, [this] { pushDeleteSelection(document_); });
   connect(toggle, &QPushButton::clicked, this,
@@ -158,9 +202,24 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
   connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this,
           &PairsPanel::selectionToDocument);
   updateBanner();
+  updateExplanation();
 }
 
 QString PairsPanel::bannerText() const { return banner_->text(); }
+QAbstractButton* PairsPanel::modelButton(ModelClass model) const {
+  return models_->button(static_cast<int>(model));
+}
+QString PairsPanel::modelScoresText() const { return scores_->text(); }
+QString PairsPanel::reasonText() const { return reason_->text(); }
+
+void PairsPanel::updateExplanation() {
+  if (QAbstractButton* b = modelButton(document_->model())) b->setChecked(true);
+  const bool shown = document_->photo() && !document_->manualCamera() && document_->fit().status.ok;
+  scores_->setText(shown ? modelScoresHtml(document_->fit().record) : QString());
+  reason_->setText(shown ? fitReasonText(document_->fit().record) : QString());
+  scores_->setVisible(!scores_->text().isEmpty());
+  reason_->setVisible(!reason_->text().isEmpty());
+}
 
 void PairsPanel::updateBanner() {
   QString text;

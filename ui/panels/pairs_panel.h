@@ -2,12 +2,18 @@
 // The pairs table: one row per pair (enabled, source x/y, target x/y, residual), edited both
 // ways: typing a coordinate or toggling the check box pushes an undo command; canvas edits
 // and selection show up here through the document's signals. A banner says how many more
-// pairs the chosen model needs while it is underdetermined, or why the fit failed.
+// pairs the chosen model needs while it is underdetermined, or why the fit failed. Under the
+// table, a one-click model selector (the same undoable model change as the Model menu) and why
+// the fit has its model: each model's error and the fit's reason (fit_explanation.h).
 #pragma once
+
+#include "core/fit/fit_image.h"
 
 #include <QAbstractTableModel>
 #include <QWidget>
 
+class QAbstractButton;
+class QButtonGroup;
 class QLabel;
 class QTableView;
 
@@ -42,9 +48,13 @@ class PairsPanel : public QWidget {
 
   QTableView* table() const { return table_; }
   QString bannerText() const;
+  QAbstractButton* modelButton(ModelClass model) const;
+  QString modelScoresText() const;  // the per-model table (rich text)
+  QString reasonText() const;
 
  private:
   void updateBanner();
+  void updateExplanation();
   void selectionFromDocument();
   void selectionToDocument();
 
@@ -52,6 +62,9 @@ class PairsPanel : public QWidget {
   PairsTableModel* model_;
   QTableView* table_;
   QLabel* banner_;
+  QButtonGroup* models_;
+  QLabel* scores_;
+  QLabel* reason_;
   bool syncing_ = false;
 };
 

@@ -77,6 +77,9 @@ Artcam richDocument() {
   fit.residuals_px = awkwardDoubles(400);
   fit.singular_values = {1e-17, 2.5e-9, 0.75};
   fit.reason = "held-out error 0.2 px lower than homography; \"quoted\" \\ and ü";
+  fit.criterion = "aic";
+  fit.models = {{"homography", 3.25, 4.5, 120.75, ""},
+                {"quadratic", 0.1234567890123, -1.0, 34.5, "bends between the pairs"}};
   document.fit = fit;
   return document;
 }
@@ -178,6 +181,14 @@ class TestArtcamFile : public QObject {
     QVERIFY(read->fit.has_value());
     QCOMPARE(read->fit->model, original.fit->model);
     QCOMPARE(read->fit->reason, original.fit->reason);
+    QCOMPARE(read->fit->criterion, std::string("aic"));
+    QCOMPARE(read->fit->models.size(), size_t{2});
+    QCOMPARE(read->fit->models[0].model, std::string("homography"));
+    QCOMPARE(read->fit->models[0].held_out_rms_px, 4.5);
+    QCOMPARE(read->fit->models[1].held_out_rms_px, -1.0);  // not computable: not written
+    QVERIFY(sameBits(read->fit->models[1].rms_px, 0.1234567890123));
+    QCOMPARE(read->fit->models[1].criterion, 34.5);
+    QCOMPARE(read->fit->models[1].note, std::string("bends between the pairs"));
     QCOMPARE(read->fit->matches, original.fit->matches);
     QVERIFY(sameBits(read->fit->rms_px, original.fit->rms_px));
     QCOMPARE(read->fit->residuals_px.size(), original.fit->residuals_px.size());
