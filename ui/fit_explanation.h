@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Why the fit chose its model, for people: the per-model scores of the fit record as a compact
 // table, and the record's one-line reason. Shared by the Pairs panel and the status tooltip so
 // both say the same thing.

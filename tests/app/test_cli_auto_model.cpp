@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `artcam fit` under auto on the paper's nine-point drawing (Fig 5): nine clicked pairs of a
 // bulge give the quadratic camera, and --json says why with every model's error.
 #include "core/model/frames.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Pairs panel says why the fit has its model: nine clicked pairs of a bulge give the
 // quadratic camera under auto (the paper's nine-point drawing, Fig 5), the panel lists every
 // model's error and the reason, and one click on "homography" refits as a homography (an undo

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Auto's choice of model (fit_image.cpp, chooseModel) against the map the pairs were made from:
 // a few clicked pairs of a bulge give the quadratic camera (the paper's nine-point drawing,
 // Fig 5), a noisy homography stays a homography, a shift stays a translation; with many
