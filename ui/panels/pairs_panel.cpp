@@ -132,7 +132,11 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
       banner_(new QLabel(this)),
       models_(new QButtonGroup(this)),
       scores_(new QLabel(this)),
-      reason_(new QLabel(this)) {
+      reason_(new QLabel(this)),
+      explanation_timer_(new QTimer(this)) {
+  explanation_timer_->setSingleShot(true);
+  explanation_timer_->setInterval(kExplanationMs);
+  connect(explanation_timer_, &QTimer::timeout, this, &PairsPanel::updateExplanation);
   table_->setModel(model_);
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::ExtendedSelection);
@@ -191,7 +195,7 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
       document_->undoStack()->push(new SetModelCommand(document_, chosen));
   });
   connect(document_, &Document::modelChanged, this, &PairsPanel::updateExplanation);
-  connect(document_, &Document::cameraChanged, this, &PairsPanel::updateExplanation);
+  connect(document_, &Document::cameraChanged, this, &PairsPanel::scheduleExplanation);
 
   connect(remove, &QPushButton::clicked, this, [this] { pushDeleteSelection(document_); });
   connect(toggle, &QPushButton::clicked, this,
@@ -209,10 +213,22 @@ QString PairsPanel::bannerText() const { return banner_->text(); }
 QAbstractButton* PairsPanel::modelButton(ModelClass model) const {
   return models_->button(static_cast<int>(model));
 }
-QString PairsPanel::modelScoresText() const { return scores_->text(); }
-QString PairsPanel::reasonText() const { return reason_->text(); }
+// Readers see the newest fit: a scheduled update is done first.
+QString PairsPanel::modelScoresText() const {
+  if (explanation_timer_->isActive()) const_cast<PairsPanel*>(this)->updateExplanation();
+  return scores_->text();
+}
+QString PairsPanel::reasonText() const {
+  if (explanation_timer_->isActive()) const_cast<PairsPanel*>(this)->updateExplanation();
+  return reason_->text();
+}
+
+void PairsPanel::scheduleExplanation() {
+  if (!explanation_timer_->isActive()) explanation_timer_->start();
+}
 
 void PairsPanel::updateExplanation() {
+  explanation_timer_->stop();
   if (QAbstractButton* b = modelButton(document_->model())) b->setChecked(true);
   const bool shown = document_->photo() && !document_->manualCamera() && document_->fit().status.ok;
   scores_->setText(shown ? modelScoresHtml(document_->fit().record) : QString());

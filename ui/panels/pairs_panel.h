@@ -10,6 +10,7 @@
 #include "core/fit/fit_image.h"
 
 #include <QAbstractTableModel>
+#include <QTimer>
 #include <QWidget>
 
 class QAbstractButton;
@@ -55,6 +56,10 @@ class PairsPanel : public QWidget {
  private:
   void updateBanner();
   void updateExplanation();
+  // The explanation follows fit results at most every kExplanationMs: rich-text labels re-lay out
+  // the dock, and during a drag a fit result arrives on every mouse move.
+  void scheduleExplanation();
+  static constexpr int kExplanationMs = 100;
   void selectionFromDocument();
   void selectionToDocument();
 
@@ -65,6 +70,7 @@ class PairsPanel : public QWidget {
   QButtonGroup* models_;
   QLabel* scores_;
   QLabel* reason_;
+  QTimer* explanation_timer_;
   bool syncing_ = false;
 };
 
