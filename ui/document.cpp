@@ -70,11 +70,7 @@ void Document::setPairs(const std::vector<int>& indices, const std::vector<Pair>
       fit_worker_ = std::make_unique<FitWorker>([this](FittedCamera fitted, quint64 revision) {
         onWorkerFit(std::move(fitted), revision);
       });
-    FitInputs inputs = fitInputs();
-    inputs.quick = true;
-    if (inputs.model == ModelClass::Auto && fit_.status.ok)
-      if (const auto chosen = modelClassFromName(fit_.record.model)) inputs.model = *chosen;
-    fit_worker_->request({std::move(inputs), edit_revision_});
+    fit_worker_->request({fitInputs(), edit_revision_});
     emit pairsChanged();
     return;
   }

@@ -63,11 +63,6 @@ FittedCamera fitDocumentCamera(const FitInputs& in) {
     } else {
       FitOptions options;
       options.model = in.model;
-      if (in.quick) {
-        options.diagnostics = false;
-        options.restarts = 0;
-        options.refine = false;  // the conditioned DLT alone; LM at the release
-      }
       out.fit = fitImageCamera(in.matches, f, f, options);
       if (out.fit.status.ok) out.camera = out.fit.camera;
     }

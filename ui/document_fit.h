@@ -23,10 +23,6 @@ struct FitInputs {
   ModelClass model = ModelClass::Auto;
   std::optional<Camera> manual_camera;
   std::optional<Camera> colour_block;
-  // A drag's move: fit `model` alone (the one Auto chose before the drag), without scoring the
-  // ladder, diagnostics, LM refinement or restarts; the release refits in full and says why again.
-  // (Auto with held-out folds of every model and LM took ~200 ms a move for 300 pairs.)
-  bool quick = false;
 };
 
 struct FittedCamera {
