@@ -317,18 +317,16 @@ class TestCliCameraKinds : public QObject {
     std::ifstream in(path("piecewise.artcam").toStdString());
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const PatchRect r0 = camera->pieces->patches[0].rect;
-    const PatchRect r1 = camera->pieces->patches[1].rect;
     const auto rectText = [](const PatchRect& r) {
       return "\"rect\": [" + std::to_string(r.x0) + ", " + std::to_string(r.y0) + ", " +
              std::to_string(r.x1) + ", " + std::to_string(r.y1) + "]";
     };
-    // Rewrite through the writer's own JSON: parse, change, dump (nlohmann keeps the rest).
+    // The file's text with the second "rect" replaced by the first's.
     const size_t first = text.find("\"rect\"");
     const size_t second = text.find("\"rect\"", first + 1);
     QVERIFY(first != std::string::npos && second != std::string::npos);
     const size_t end = text.find(']', second);
     text.replace(second, end + 1 - second, rectText(r0));
-    Q_UNUSED(r1);
     const QString bad = path("overlap.artcam");
     std::ofstream(bad.toStdString()) << text;
     const QList<QStringList> commands = {
