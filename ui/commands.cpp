@@ -74,7 +74,7 @@ SetModelCommand::SetModelCommand(Document* document, ModelClass model)
 void SetModelCommand::redo() { document_->setModel(after_); }
 void SetModelCommand::undo() { document_->setModel(before_); }
 
-SetCameraCommand::SetCameraCommand(Document* document, std::optional<Camera> camera,
+SetCameraCommand::SetCameraCommand(Document* document, std::optional<Artcam> camera,
                                    const QString& text, int merge_key)
     : document_(document),
       before_(document->manualCamera()),
@@ -89,6 +89,23 @@ void SetCameraCommand::undo() { document_->setManualCamera(before_); }
 bool SetCameraCommand::mergeWith(const QUndoCommand* other) {
   const auto* o = dynamic_cast<const SetCameraCommand*>(other);
   if (!o || o->merge_key_ != merge_key_) return false;
+  after_ = o->after_;
+  return true;
+}
+
+SetEffectsCommand::SetEffectsCommand(Document* document, std::vector<EffectStep> effects,
+                                     const QString& text, int gesture)
+    : document_(document), before_(document->effects()), after_(std::move(effects)),
+      gesture_(gesture) {
+  setText(text);
+}
+
+void SetEffectsCommand::redo() { document_->setEffects(after_); }
+void SetEffectsCommand::undo() { document_->setEffects(before_); }
+
+bool SetEffectsCommand::mergeWith(const QUndoCommand* other) {
+  const auto* o = dynamic_cast<const SetEffectsCommand*>(other);
+  if (!o || o->gesture_ != gesture_) return false;
   after_ = o->after_;
   return true;
 }

@@ -15,7 +15,7 @@
 
 namespace artcam::ui {
 
-enum CommandId { kMovePairsId = 1001 };
+enum CommandId { kMovePairsId = 1001, kEditEffectsId = 1002 };
 
 class AddPairCommand : public QUndoCommand {
  public:
@@ -77,7 +77,7 @@ class SetModelCommand : public QUndoCommand {
 // entry in a row merge.
 class SetCameraCommand : public QUndoCommand {
  public:
-  SetCameraCommand(Document* document, std::optional<Camera> camera, const QString& text,
+  SetCameraCommand(Document* document, std::optional<Artcam> camera, const QString& text,
                    int merge_key = 0);
   void redo() override;
   void undo() override;
@@ -86,9 +86,27 @@ class SetCameraCommand : public QUndoCommand {
 
  private:
   Document* document_;
-  std::optional<Camera> before_;
-  std::optional<Camera> after_;
+  std::optional<Artcam> before_;
+  std::optional<Artcam> after_;
   int merge_key_;
+};
+
+// Replaces the effect stack (add, remove, reorder, a parameter edit). Parameter edits of one
+// spin-box gesture share a non-zero `gesture` and merge into one undo step.
+class SetEffectsCommand : public QUndoCommand {
+ public:
+  SetEffectsCommand(Document* document, std::vector<EffectStep> effects, const QString& text,
+                    int gesture = 0);
+  void redo() override;
+  void undo() override;
+  int id() const override { return gesture_ != 0 ? kEditEffectsId : -1; }
+  bool mergeWith(const QUndoCommand* other) override;
+
+ private:
+  Document* document_;
+  std::vector<EffectStep> before_;
+  std::vector<EffectStep> after_;
+  int gesture_;
 };
 
 // Helpers the tools and panels use so they never build commands by hand.

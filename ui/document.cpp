@@ -4,32 +4,42 @@
 #include "ui/fit_worker.h"
 
 #include <algorithm>
+#include <exception>
 
 namespace artcam::ui {
 
-Document::Document(QObject* parent) : QObject(parent) { camera_ = identityImageCamera({}); }
+Document::Document(QObject* parent) : QObject(parent) {
+  camera_ = identityImageCamera({});
+  assemble();
+  // Effects that read depth join the camera when the first depth appears and leave it when the
+  // last goes; other depth edits change only the raster the renderers read.
+  connect(&depth_, &DepthModel::depthChanged, this, &Document::onDepthChanged);
+}
 
 Document::~Document() = default;
 
 FrameSize Document::frame() const { return photo_ ? photo_->size() : FrameSize{}; }
 
 void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
-                     std::optional<Camera> manual_camera) {
+                     std::optional<Artcam> manual_camera, std::vector<EffectStep> effects) {
   undo_stack_.clear();
   photo_ = std::move(photo);
   pairs_ = std::move(pairs);
   model_ = model;
   manual_camera_ = std::move(manual_camera);
+  effects_ = std::move(effects);
   colour_block_.reset();
   selection_.clear();
-  refit();
   depth_.reset(frame());
+  has_depth_ = depth_.hasDepth();
+  refit();
   undo_stack_.setClean();
   emit photoChanged();
   emit pairCountChanged();
   emit pairsChanged();
   emit modelChanged();
   emit selectionChanged();
+  emit effectsChanged();
   emit cameraChanged();
 }
 
@@ -100,7 +110,21 @@ void Document::setModel(ModelClass model) {
   emit cameraChanged();
 }
 
-void Document::setManualCamera(std::optional<Camera> camera) {
+void Document::setEffects(std::vector<EffectStep> effects) {
+  effects_ = std::move(effects);
+  assemble();
+  emit effectsChanged();
+  emit cameraChanged();
+}
+
+void Document::onDepthChanged() {
+  if (depth_.hasDepth() == has_depth_) return;
+  has_depth_ = depth_.hasDepth();
+  assemble();
+  emit cameraChanged();
+}
+
+void Document::setManualCamera(std::optional<Artcam> camera) {
   manual_camera_ = std::move(camera);
   refit();
   emit pairsChanged();
@@ -134,13 +158,28 @@ void Document::setSelection(std::vector<int> indices) {
 }
 
 FitInputs Document::fitInputs() const {
-  return {frame(), matches(), model_, manual_camera_, colour_block_};
+  std::optional<Camera> manual;
+  if (manual_camera_) manual = manual_camera_->main();
+  return {frame(), matches(), model_, manual, colour_block_};
 }
 
 void Document::applyFit(FittedCamera fitted) {
   fit_ = std::move(fitted.fit);
   camera_ = std::move(fitted.camera);
   residual_by_pair_ = std::move(fitted.residual_by_pair);
+  assemble();
+}
+
+void Document::assemble() {
+  std::string base_note;
+  Artcam base(camera_);
+  try {
+    base = documentBase(manual_camera_, camera_, colour_block_, &base_note);
+  } catch (const std::exception& e) {
+    base_note = std::string("the colour block could not be added to every layer: ") + e.what();
+  }
+  whole_ = assembleDocumentArtcam(base, effects_, frame(), has_depth_);
+  if (!base_note.empty()) whole_.note = base_note + (whole_.note.empty() ? "" : "; " + whole_.note);
 }
 
 // Discrete edits refit on the GUI thread (a small SVD for a few pairs, and camera() is then

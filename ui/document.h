@@ -57,7 +57,8 @@ class Document : public QObject {
   // Replaces everything: photo, pairs, model; clears the colour block and the undo stack and
   // marks clean.
   void reset(PhotoPtr photo, std::vector<Pair> pairs = {}, ModelClass model = ModelClass::Auto,
-             std::optional<Camera> manual_camera = std::nullopt);
+             std::optional<Artcam> manual_camera = std::nullopt,
+             std::vector<EffectStep> effects = {});
 
   // --- pairs: raw mutators for commands.h ---
   const std::vector<Pair>& pairs() const { return pairs_; }
@@ -84,18 +85,30 @@ class Document : public QObject {
   // --- model and camera ---
   ModelClass model() const { return model_; }
   void setModel(ModelClass model);
-  // A camera set by hand (tensor edits, .artcam import) replaces the fitted one until cleared.
-  const std::optional<Camera>& manualCamera() const { return manual_camera_; }
-  void setManualCamera(std::optional<Camera> camera);
+  // A camera set by hand (tensor edits, .artcam import of any kind) replaces the fitted one
+  // until cleared. Its first layer is the geometry camera() shows and the tensor panel edits;
+  // its other layers, patches and depth output are kept (core/project/document_camera.h).
+  const std::optional<Artcam>& manualCamera() const { return manual_camera_; }
+  void setManualCamera(std::optional<Artcam> camera);
   const FitSummary& fit() const { return fit_; }
   // The fitted colour block (ui/colour: a colourCamera, identity geometry) or none. When set,
-  // camera() carries it in its last stage's colour outputs (colour/colour_stage.h), so the
+  // camera() carries it in its last stage's colour outputs (core/colour/colour_stage.h), so the
   // preview, the export and .artcam files show the colour change.
   const std::optional<Camera>& colourBlock() const { return colour_block_; }
   void setColourBlock(std::optional<Camera> colour);
   // Manual camera, else the fitted one, else identity (too few or degenerate pairs); with the
   // colour block when there is one.
   const Camera& camera() const { return camera_; }
+  // The effect stack: effects of the effects table applied in order after the geometry and
+  // colour, reading the depth of depth() (SetEffectsCommand edits it).
+  const std::vector<EffectStep>& effects() const { return effects_; }
+  void setEffects(std::vector<EffectStep> effects);
+  // The whole camera the preview, the export, Export Camera and the project render: camera()
+  // (or the whole camera set by hand), then the effects that could be applied.
+  // core/project/document_camera.h makes it, the same function `artcam export` calls.
+  const Artcam& artcam() const { return whole_.camera; }
+  // Why an effect is left out of artcam() (it reads depth and there is none, …); "" if none.
+  const std::string& artcamNote() const { return whole_.note; }
   // Enabled pairs still missing before the chosen model is determined (0 when enough).
   int pairsNeeded() const;
   // Residual (target px) of pair `index` under the current fit; negative if unknown.
@@ -114,6 +127,7 @@ class Document : public QObject {
   void pairCountChanged();  // rows added or removed (tables reset)
   void modelChanged();
   void cameraChanged();  // after every refit, even if the camera came out equal
+  void effectsChanged();  // the effect stack changed (cameraChanged follows)
   void selectionChanged();
 
  private:
@@ -121,14 +135,19 @@ class Document : public QObject {
   FitInputs fitInputs() const;
   void applyFit(FittedCamera fitted);
   void onWorkerFit(FittedCamera fitted, quint64 revision);
+  void assemble();  // whole_ from camera_, the manual camera, the colour block and the effects
+  void onDepthChanged();
 
   QUndoStack undo_stack_;
   DepthModel depth_;
   PhotoPtr photo_;
   std::vector<Pair> pairs_;
   ModelClass model_ = ModelClass::Auto;
-  std::optional<Camera> manual_camera_;
+  std::optional<Artcam> manual_camera_;
   std::optional<Camera> colour_block_;
+  std::vector<EffectStep> effects_;
+  DocumentArtcam whole_;
+  bool has_depth_ = false;  // depth_.hasDepth() when whole_ was assembled
   FitSummary fit_;
   Camera camera_;
   std::vector<double> residual_by_pair_;

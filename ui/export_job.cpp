@@ -16,10 +16,12 @@ struct ExportOutcome {
 
 }  // namespace
 
-ExportJob::ExportJob(PhotoPtr photo, Camera camera, QString path, QObject* parent)
+ExportJob::ExportJob(PhotoPtr photo, Artcam camera, QString path, ExportOptions options,
+                     QObject* parent)
     : QObject(parent),
       photo_(std::move(photo)),
       camera_(std::move(camera)),
+      options_(std::move(options)),
       path_(std::move(path)) {}
 
 ExportJob::~ExportJob() { cancel(); }
@@ -28,12 +30,10 @@ void ExportJob::cancel() {
   if (job_) job_->cancel();
 }
 
-ImageF ExportJob::render(const ImageF& photo, const ImageF* depth, const Camera& camera,
-                         const std::function<bool(double)>& progress, RenderSummary* summary) {
-  RenderOptions options;
-  options.warp.filter = Filter::Bicubic;
-  options.warp.progress = progress;
-  return artcam::render(RenderInputs::of(photo, depth), Artcam(camera), options, summary);
+ImageF ExportJob::render(const ImageF& photo, const ImageF* depth, const Artcam& camera,
+                         const ExportOptions& options, const std::function<bool(double)>& progress,
+                         RenderSummary* summary) {
+  return renderExport(photo, depth, camera, options, progress, summary);
 }
 
 void ExportJob::start() {
@@ -41,15 +41,17 @@ void ExportJob::start() {
   // Everything the work reads is copied or shared here: the job never touches this object.
   job_ = runInBackground(
       this,
-      [photo = photo_, camera = camera_, path = path_, depth = depth_](JobContext& job) {
+      [photo = photo_, camera = camera_, path = path_, depth = depth_,
+       options = options_](JobContext& job) {
         RenderSummary summary;
         const ImageF out = render(
-            photo->full.image, depth.get(), camera,
+            photo->full.image, depth.get(), camera, options,
             [&job](double f) { return job.progress(f * 0.95); },  // the rest is writing
             &summary);
         if (summary.cancelled || job.cancelled())
           return ExportOutcome{false, tr("Export cancelled.")};
-        const Status status = writeImage(path.toStdString(), out, &photo->full.info);
+        const Status status =
+            writeImage(path.toStdString(), out, &photo->full.info, options.write);
         if (!status) return ExportOutcome{false, QString::fromStdString(status.message)};
         job.setProgress(1.0);
         return ExportOutcome{true, tr("Exported %1 (%2, %3 ms)")

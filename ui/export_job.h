@@ -8,7 +8,7 @@
 // fitted colour block is in the exported file as it is in the preview.
 #pragma once
 
-#include "core/model/camera.h"
+#include "core/project/project_render.h"
 #include "core/pipeline/render.h"
 #include "ui/background_job.h"
 #include "ui/photo.h"
@@ -26,7 +26,8 @@ class ExportJob : public QObject {
   Q_OBJECT
 
  public:
-  ExportJob(PhotoPtr photo, Camera camera, QString path, QObject* parent = nullptr);
+  ExportJob(PhotoPtr photo, Artcam camera, QString path, ExportOptions options = {},
+            QObject* parent = nullptr);
   ~ExportJob() override;  // cancels the render; never waits for it
 
   // The depth block's input for cameras that read depth (before start()).
@@ -35,10 +36,11 @@ class ExportJob : public QObject {
   void start();
   void cancel();
 
-  // The render of an export, the one place that calls the renderer: full resolution, bicubic,
-  // `progress` polled between tiles (false cancels; summary->cancelled then).
-  static ImageF render(const ImageF& photo, const ImageF* depth, const Camera& camera,
-                       const std::function<bool(double)>& progress, RenderSummary* summary);
+  // The render of an export: core's renderExport (core/project/project_render.h), the function
+  // `artcam export` calls too. `progress` is polled between tiles (false cancels).
+  static ImageF render(const ImageF& photo, const ImageF* depth, const Artcam& camera,
+                       const ExportOptions& options, const std::function<bool(double)>& progress,
+                       RenderSummary* summary);
 
  signals:
   void progressChanged(int percent);
@@ -49,7 +51,8 @@ class ExportJob : public QObject {
 
  private:
   PhotoPtr photo_;
-  Camera camera_;
+  Artcam camera_;
+  ExportOptions options_;
   QString path_;
   std::shared_ptr<const ImageF> depth_;
   QPointer<BackgroundJob> job_;

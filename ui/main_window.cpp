@@ -93,14 +93,6 @@ MainWindow::MainWindow(QWidget* parent)
   auto* effects_panel = new EffectsPanel(document_, this);
   effects_dock->setWidget(effects_panel);
   tabifyDockWidget(depth_dock, effects_dock);
-  // The effects read the painted depth: the overlay's raster (≤ 512 px, throttled), so it is
-  // rasterised once per change; the panel previews on a thumbnail and reads depth at any size.
-  connect(depth_overlay_, &DepthOverlay::changed, effects_panel, [this, effects_panel] {
-    if (depth_overlay_->raster() != effects_depth_) {
-      effects_depth_ = depth_overlay_->raster();
-      effects_panel->setDepth(effects_depth_);
-    }
-  });
   auto* colour_dock = new QDockWidget(tr("Colour"), this);
   colour_dock->setObjectName("colourDock");
   colour_dock_ = new ColourDock(document_, this);
@@ -175,6 +167,8 @@ void MainWindow::createMenus() {
   QAction* export_image = file->addAction(tr("&Export Warped Image…"), QKeySequence(tr("Ctrl+E")),
                                           session_, &Session::exportImageDialog);
   file->addSeparator();
+  file->addAction(tr("Export Dep&th Map (EXR)…"), session_, &Session::exportDepthMapDialog)
+      ->setToolTip(tr("The painted depth planes over the depth map, as float depth (0: none)"));
   file->addAction(tr("Load &Depth Map…"), QKeySequence(tr("Ctrl+Shift+L")), this, [this] {
     session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
   })->setToolTip(tr("A float EXR/TIFF or 16-bit PNG depth map under the painted planes"));

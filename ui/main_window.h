@@ -67,7 +67,6 @@ class MainWindow : public QMainWindow {
   Session* session_;
   DepthToolSettings* depth_settings_;
   DepthOverlay* depth_overlay_;
-  std::shared_ptr<const ImageF> effects_depth_;  // the raster last given to the effects panel
   DepthPanel* depth_panel_;
   CloudView* cloud_view_;
   ColourDock* colour_dock_ = nullptr;

@@ -6,6 +6,7 @@
 
 namespace artcam::ui {
 
+
 PreviewController::PreviewController(Document* document, QObject* parent)
     : QObject(parent), document_(document) {
   connect(document_, &Document::cameraChanged, this, &PreviewController::schedule);
@@ -24,7 +25,7 @@ PreviewController::~PreviewController() { worker_.shutdown(); }
 void PreviewController::setDepth(std::shared_ptr<const ImageF> depth) {
   if (depth == depth_) return;
   depth_ = std::move(depth);
-  if (document_->camera().layout().find(BlockKind::Depth) >= 0) schedule();
+  if (readsDepth(document_->artcam())) schedule();
 }
 
 void PreviewController::schedule() {
@@ -45,10 +46,10 @@ void PreviewController::schedule() {
   }
   RenderRequest request;
   request.source = source_;
-  request.camera = document_->camera();
+  request.camera = document_->artcam();
   // Colour (or depth) changing cameras render from the float preview copy at its own size, so
   // a colour-only camera takes core's no-resampling path; geometry-only ones use the pyramid.
-  const bool attributed = needsLinearPhoto(Artcam(request.camera));
+  const bool attributed = needsLinearPhoto(request.camera);
   // The pyramid aliases the photo, which keeps the levels' base image alive.
   if (photo->pyramid && !attributed)
     request.pyramid = std::shared_ptr<const StoredMipPyramid>(photo, photo->pyramid.get());

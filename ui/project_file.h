@@ -1,27 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
-// The project file: JSON with the photo path, the pairs (photo pixels), the model,
-// an optional hand-made camera (as .artcam JSON) and the view state, so a session reopens as
-// it was. Saved atomically through QSaveFile (written aside, then renamed).
+// The studio's side of the project file: core's reader and writer (core/project/studio_project.h,
+// the one that `artcam export` uses too) with the studio's types — QString paths, the document's
+// pairs and depth layers, and the view state and mode parts as Qt JSON. Saved atomically.
 //
-//   { "format": "artcam-studio-project", "version": 1,
-//     "photo": "relative/or/absolute/path.png",
-//     "model": "auto",
-//     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],
-//     "camera": { ….artcam document… },          // optional: camera set by hand
-//     "view": { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5 },
-//     "depth": {                                    // optional: depth planes and map (v2)
-//       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
-//                    "anchors": [ {"pixel": [x, y], "depth": z}, … ] }, … ],
-//       "map": {"path": "depth.exr", "scale": 1, "inverse": false} } }
-//
-// Versions: a project with depth data is written as version 2, one without as version 1, so an
-// older studio (which reads up to 1) refuses a project whose depth it would silently drop, and
-// still opens every project it can represent fully. This reader takes 1 and 2. Masks are
-// run-length bytes (core/depth/region_mask.h) in base64.
+// The view state ("view") is read here, because only the studio uses it:
+//   { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5 }
+// Values no studio writes are refused rather than turned into a broken view.
 #pragma once
 
 #include "core/fit/fit_image.h"
 #include "core/model/status.h"
+#include "core/project/studio_project.h"
 #include "ui/document.h"
 
 #include <QPointF>
@@ -32,10 +21,6 @@
 #include <vector>
 
 namespace artcam::ui {
-
-inline constexpr int kProjectFormatVersion = 2;      // the newest this code reads and writes
-inline constexpr int kProjectVersionWithoutDepth = 1;  // written when there is no depth data
-inline constexpr char kProjectExtension[] = "artcamproj";
 
 struct ViewState {
   double scale = 0.0;  // 0: fit to window
@@ -54,7 +39,8 @@ struct Project {
   QString photo_path;  // absolute once read
   std::vector<Pair> pairs;
   ModelClass model = ModelClass::Auto;
-  std::optional<Camera> manual_camera;
+  std::optional<Artcam> manual_camera;
+  std::vector<EffectStep> effects;
   ViewState view;
   std::vector<DepthPlaneLayer> depth_layers;
   std::optional<DepthMapRef> depth_map;

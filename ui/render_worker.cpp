@@ -27,7 +27,7 @@ WarpOptions RenderWorker::passOptions(int width, int height) {
 // preview copy and is encoded for display.
 QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& options,
                                 WarpSummary* summary) {
-  const Artcam camera(job.camera);
+  const Artcam& camera = job.camera;
   RenderInputs inputs;
   if (job.pyramid) {
     inputs.photo = job.pyramid->level(0);

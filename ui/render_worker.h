@@ -12,7 +12,7 @@
 // the 8-bit pyramid path, which is what makes a drag's preview fast.
 #pragma once
 
-#include "core/model/camera.h"
+#include "core/model/artcam.h"
 #include "core/model/image.h"
 #include "core/render/mip_pyramid.h"
 #include "core/render/warp.h"
@@ -34,7 +34,7 @@ struct RenderRequest {
   std::shared_ptr<const ImageF> source;  // the downscaled preview source
   // Depth block input for cameras that read depth (core/depth/depth_raster.h form, any size).
   std::shared_ptr<const ImageF> depth;
-  Camera camera;
+  Artcam camera;  // the document's whole camera
   int width = 0;  // full-pass output size (the coarse pass is a quarter of it)
   int height = 0;
   quint64 generation = 0;

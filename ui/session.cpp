@@ -150,6 +150,7 @@ std::optional<Project> Session::currentProject() const {
   p.pairs = document_->pairs();
   p.model = document_->model();
   p.manual_camera = document_->manualCamera();
+  p.effects = document_->effects();
   if (view_state_) p.view = view_state_();
   p.depth_layers = document_->depth()->layers();
   if (const auto& map = document_->depth()->map()) p.depth_map = DepthMapRef{map->path, map->options};
@@ -177,9 +178,10 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
     if (pending_project_) {
       Project p = std::move(*pending_project_);
       pending_project_.reset();
-      std::optional<Camera> manual = p.manual_camera;
+      std::optional<Artcam> manual = p.manual_camera;
       if (manual) manual->setFrames(photo->size(), photo->size());
-      document_->reset(photo, std::move(p.pairs), p.model, std::move(manual));
+      document_->reset(photo, std::move(p.pairs), p.model, std::move(manual),
+                       std::move(p.effects));
       // Masks are the photo's size; a photo that changed size since the save cannot take them.
       QStringList dropped;
       for (size_t i = 0; i < p.depth_layers.size(); ++i) {
@@ -268,24 +270,33 @@ void Session::importArtcam(const QString& path) {
     showError(tr("Import camera"), QString::fromStdString(doc.status.message));
     return;
   }
+  // Every kind is taken: the geometry (the first layer) becomes editable in the Tensors panel,
+  // every other part (colour and depth blocks, layers, patches, depth output) is kept as it is.
+  // What cannot warp a photo at all is refused with the reason.
   const Camera& cam = doc->main();
-  if (doc->kind() != ArtcamKind::Single && doc->kind() != ArtcamKind::Chained) {
+  if (cam.layout().find(BlockKind::Position) < 0 || cam.blocks()[0] != Block{BlockKind::Position, 3}) {
     showError(tr("Import camera"),
-              tr("%1: a %2 camera cannot be edited here (only image position cameras can).")
-                  .arg(path)
-                  .arg(QString::fromUtf8(std::string(artcamKindName(doc->kind())).c_str())));
+              tr("%1: this camera does not take image positions (its first block is not an "
+                 "image position (u, v, w)), so it cannot warp a photo; render it with artcam "
+                 "render instead.")
+                  .arg(path));
     return;
   }
-  if (cam.blocks().size() != 1 || cam.blocks()[0] != Block{BlockKind::Position, 3}) {
+  if (doc->isPiecewise() && (cam.sourceSize().width != photo->size().width ||
+                             cam.sourceSize().height != photo->size().height)) {
     showError(tr("Import camera"),
-              tr("%1: only image position cameras can be edited here (this one has %2 blocks).")
+              tr("%1: its patches were cut for a %2×%3 photo; this photo is %4×%5.")
                   .arg(path)
-                  .arg(cam.blocks().size()));
+                  .arg(cam.sourceSize().width)
+                  .arg(cam.sourceSize().height)
+                  .arg(photo->size().width)
+                  .arg(photo->size().height));
     return;
   }
   QUndoStack* stack = document_->undoStack();
   stack->beginMacro(tr("Import %1").arg(QFileInfo(path).fileName()));
-  if (!doc->matches.empty() && cam.sourceSize().isImage()) {
+  const bool geometry_only = doc->kind() == ArtcamKind::Single || doc->kind() == ArtcamKind::Chained;
+  if (geometry_only && !doc->matches.empty() && cam.sourceSize().isImage()) {
     // Matches are pixels of the camera's frames: rescale to this photo's pixels.
     const double sx = static_cast<double>(photo->size().width) / cam.sourceSize().width;
     const double sy = static_cast<double>(photo->size().height) / cam.sourceSize().height;
@@ -302,18 +313,25 @@ void Session::importArtcam(const QString& path) {
     }
     stack->push(new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
   } else {
-    Camera c = cam;
+    Artcam c = std::move(*doc.value);
+    c.matches.clear();
+    c.fit.reset();
     c.setFrames(photo->size(), photo->size());
     stack->push(new SetCameraCommand(document_, std::move(c), tr("Set camera")));
   }
   stack->endMacro();
-  emit statusMessage(tr("Imported %1").arg(path));
+  emit statusMessage(tr("Imported %1 (%2 camera)")
+                         .arg(path, QString::fromUtf8(std::string(artcamKindName(
+                                                          document_->artcam().kind())).c_str())));
 }
 
 bool Session::exportArtcam(const QString& path) {
-  Artcam doc(document_->camera());
+  // The whole camera the preview and the export render: geometry, colour block and effects.
+  Artcam doc = document_->artcam();
   doc.matches = document_->matches();
-  if (!document_->manualCamera() && document_->fit().status.ok) doc.fit = document_->fit().record;
+  // The fit record describes the camera only when the camera is the fitted one.
+  if (!document_->manualCamera() && document_->fit().status.ok && document_->effects().empty())
+    doc.fit = document_->fit().record;
   const Status status = writeArtcam(path.toStdString(), doc);
   if (!status) {
     showError(tr("Export camera"), QString::fromStdString(status.message));
@@ -332,10 +350,10 @@ void Session::exportImage(const QString& path) {
     showError(tr("Export image"), tr("An export is already running."));
     return;
   }
-  auto* job = new ExportJob(document_->photo(), document_->camera(), path, this);
+  auto* job = new ExportJob(document_->photo(), document_->artcam(), path, export_options_, this);
   // A camera with a depth block reads the painted depth (rasterised here: the depth model lives
   // on the GUI thread; only such cameras pay for it).
-  if (document_->camera().layout().find(BlockKind::Depth) >= 0)
+  if (readsDepth(document_->artcam()))
     job->setDepth(std::make_shared<const ImageF>(document_->depth()->rasterise()));
   export_job_ = job;
   QProgressDialog* dialog = nullptr;
@@ -358,6 +376,34 @@ void Session::exportImage(const QString& path) {
   });
   connect(job, &ExportJob::finished, job, &QObject::deleteLater);
   job->start();
+}
+
+bool Session::exportDepthMap(const QString& path) {
+  if (!document_->photo() || !document_->depth()->hasDepth()) {
+    showError(tr("Export depth map"),
+              tr("No depth to export: paint a depth plane and give it three depths, or load a "
+                 "depth map."));
+    return false;
+  }
+  WriteImageOptions options;
+  options.pixel_type = "float";
+  const ImageF depth = depthMapImage(document_->depth()->rasterise());
+  const Status status = writeImage(path.toStdString(), depth, nullptr, options);
+  if (!status) {
+    showError(tr("Export depth map"), QString::fromStdString(status.message));
+    return false;
+  }
+  emit statusMessage(tr("Exported the depth map to %1").arg(path));
+  return true;
+}
+
+void Session::exportDepthMapDialog() {
+  if (!document_->photo()) return;
+  const QFileInfo info(document_->photo()->path);
+  const QString suggestion = info.absoluteDir().filePath(info.completeBaseName() + "_depth.exr");
+  const QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export depth map"),
+                                                    suggestion, tr("OpenEXR (*.exr)"));
+  if (!path.isEmpty()) exportDepthMap(path);
 }
 
 void Session::cancelExport() {

@@ -70,6 +70,12 @@ class Session : public QObject {
   void importArtcam(const QString& path);
   bool exportArtcam(const QString& path);
   void exportImage(const QString& path);
+  // Writes the document's depth (painted planes over the map) at the photo's size as a float
+  // EXR of depth, 0 where there is none (what Load Depth Map and artcam --depth read back).
+  bool exportDepthMap(const QString& path);
+  // Crop or fill, JPEG quality, bit depth and size of the next exports (the export dialog's).
+  const ExportOptions& exportOptions() const { return export_options_; }
+  void setExportOptions(const ExportOptions& options) { export_options_ = options; }
   // Stops a running export at its next tile (the progress dialog's Cancel does the same).
   void cancelExport();
   // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.
@@ -91,6 +97,7 @@ class Session : public QObject {
   void importArtcamDialog();
   void exportArtcamDialog();
   void exportImageDialog();
+  void exportDepthMapDialog();
   void loadDepthMapDialog(double scale, bool inverse);
   void openCloudDialog();
   // Asks to save unsaved changes; false when the user cancelled.
@@ -121,6 +128,7 @@ class Session : public QObject {
   std::function<ViewState()> view_state_;
   std::vector<ProjectPart> parts_;
   bool interactive_ = true;
+  ExportOptions export_options_;
   QString project_path_;
   QPointer<ImageLoader> loader_;
   std::optional<Project> pending_project_;

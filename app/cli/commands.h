@@ -35,6 +35,7 @@ int presetCommand(const std::vector<std::string>& args);
 int composeCommand(const std::vector<std::string>& args);
 int insertCommand(const std::vector<std::string>& args);
 int sampleCommand(const std::vector<std::string>& args);
+int exportCommand(const std::vector<std::string>& args);  // artcam export: a studio project
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
@@ -50,6 +51,7 @@ std::string presetHelp();
 extern const char* const kComposeUsage;
 extern const char* const kInsertUsage;
 extern const char* const kSampleUsage;
+extern const char* const kExportUsage;
 
 int run(int argc, char** argv);
 

@@ -20,6 +20,8 @@ const Command kCommands[] = {
     {"render", "render a point cloud through 3D and view cameras", kRenderUsage, renderCommand},
     {"preset", "write a preset camera or the sample cloud", kPresetUsage, presetCommand},
     {"compose", "one camera from a sequence of cameras", kComposeUsage, composeCommand},
+    {"export", "render a saved studio project as the studio exports it", kExportUsage,
+     exportCommand},
     {"insert", "render a graphic into a reflection or refraction", kInsertUsage, insertCommand},
     {"sample", "ray trace a sample photo and grid matches for insert", kSampleUsage, sampleCommand},
 };

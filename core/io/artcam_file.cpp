@@ -6,6 +6,7 @@
 #include "core/io/artcam_file.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/io_text.h"
 
 #include <nlohmann/json.hpp>
 
@@ -551,44 +552,14 @@ void emit(const Json& j, int indent, std::string& out) {
 
 // Deeper nesting than any .artcam needs is refused before parsing: readers that embed a
 // document (piecewise patches, projects) re-serialise parts of the tree recursively, and a
-// few hundred kilobytes of "[[[[" would overflow the stack there. Brackets inside strings
-// do not count. Returns the byte offset where the limit is crossed, or npos.
+// few hundred kilobytes of "[[[[" would overflow the stack there.
 constexpr int kMaxJsonDepth = 64;
-
-size_t tooDeepAt(std::string_view text) {
-  int depth = 0;
-  bool in_string = false, escaped = false;
-  for (size_t k = 0; k < text.size(); ++k) {
-    const char c = text[k];
-    if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxJsonDepth) return k;
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-  return std::string_view::npos;
-}
-
-// "line L, column C" of the byte nlohmann stopped at (1-based, counted in bytes).
-std::string positionOf(std::string_view text, size_t byte) {
-  const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
-  size_t line = 1, line_start = 0;
-  for (size_t k = 0; k < end; ++k)
-    if (text[k] == '\n') ++line, line_start = k + 1;
-  return "line " + std::to_string(line) + ", column " + std::to_string(end - line_start + 1);
-}
 
 }  // namespace
 
 Result<Artcam> parseArtcam(std::string_view text, const std::string& name) {
-  if (const size_t deep = tooDeepAt(text); deep != std::string_view::npos)
-    return Result<Artcam>::failure(name + ": " + positionOf(text, deep + 1) +
+  if (const size_t deep = io_text::jsonTooDeepAt(text, kMaxJsonDepth); deep != std::string_view::npos)
+    return Result<Artcam>::failure(name + ": " + io_text::jsonPositionOf(text, deep + 1) +
                                            ": nested deeper than " + std::to_string(kMaxJsonDepth) +
                                            " levels (not an ARTcam file)");
   Json root;
@@ -601,7 +572,7 @@ Result<Artcam> parseArtcam(std::string_view text, const std::string& name) {
       cause = cause.substr(at);
     else if (const size_t colon = cause.find(": "); colon != std::string::npos)
       cause = cause.substr(colon + 2);
-    return Result<Artcam>::failure(name + ": " + positionOf(text, e.byte) +
+    return Result<Artcam>::failure(name + ": " + io_text::jsonPositionOf(text, e.byte) +
                                            ": invalid JSON: " + cause);
   } catch (const Json::out_of_range& e) {
     // An overflowing literal ("number overflow parsing '1e999'"): nlohmann gives no position,
@@ -612,7 +583,7 @@ Result<Artcam> parseArtcam(std::string_view text, const std::string& name) {
     const std::string literal = open < close ? what.substr(open + 1, close - open - 1) : "";
     const size_t at = literal.empty() ? std::string_view::npos : text.find(literal);
     return Result<Artcam>::failure(
-        name + ": " + (at == std::string_view::npos ? "" : positionOf(text, at + 1) + ": ") +
+        name + ": " + (at == std::string_view::npos ? "" : io_text::jsonPositionOf(text, at + 1) + ": ") +
         "not a finite number: " + (literal.empty() ? what : literal));
   } catch (const Json::exception& e) {
     return Result<Artcam>::failure(name + ": invalid JSON: " + e.what());

@@ -36,6 +36,12 @@ void Artcam::setFrames(FrameSize source_size, FrameSize target_size) {
   }
 }
 
+bool readsDepth(const Artcam& camera) {
+  for (const Block& b : camera.blocks())
+    if (b.kind == BlockKind::Depth) return true;
+  return false;
+}
+
 ArtcamKind Artcam::kind() const {
   if (pieces) return ArtcamKind::Piecewise;
   if (layers.size() > 1) return ArtcamKind::Layered;

@@ -71,6 +71,9 @@ struct Artcam {
   ArtcamKind kind() const;
 };
 
+// Whether the camera has a depth block: its renders read a depth image (RenderInputs::depth).
+bool readsDepth(const Artcam& camera);
+
 // The invariants above; the message names the part ("layer 2: …", "patch 3: rect …").
 Status validateArtcam(const Artcam& camera);
 

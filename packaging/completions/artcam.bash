@@ -7,7 +7,7 @@
 # completion time, so they follow the effects table without an edit here. Plain bash: it needs
 # neither the bash-completion package's helpers nor a particular bash-completion version.
 
-_artcam_commands="fit map warp batch info bench render preset compose insert sample"
+_artcam_commands="fit map warp batch info bench render preset compose export insert sample"
 
 # The options of one page: a command, or bench's sub-command ("bench fit").
 _artcam_options() {
@@ -30,6 +30,8 @@ _artcam_options() {
                   --threads --stats --json --overwrite --force --quiet -q" ;;
     preset) echo "--output -o --overwrite --force --size" ;;
     compose) echo "--output -o --force --overwrite --json" ;;
+    export) echo "--output -o --camera-out --depth-out --size --quality --bit-depth --crop-valid
+                  --fill --json --overwrite --force --quiet -q" ;;
     insert) echo "--output -o --matches --camera --canonical --max-error --save-camera
                   --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;

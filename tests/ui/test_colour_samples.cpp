@@ -12,7 +12,7 @@
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_dock.h"
 #include "ui/colour/colour_project.h"
-#include "ui/colour/colour_stage.h"
+#include "core/colour/colour_stage.h"
 #include "ui/colour/patch_view.h"
 #include "ui/commands.h"
 #include "ui/document.h"
@@ -301,7 +301,7 @@ class TestColourSamples : public QObject {
 
     // The export renders the full-resolution photo through the same block.
     const QString path = dir_.filePath("colour.png");
-    ExportJob job(doc.photo(), doc.camera(), path);
+    ExportJob job(doc.photo(), doc.artcam(), path);
     QSignalSpy done(&job, &ExportJob::done);
     job.start();
     QVERIFY(done.wait(60000));

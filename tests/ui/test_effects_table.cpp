@@ -4,19 +4,15 @@
 // through the CLI (`artcam preset NAME --PARAM V … --size W,H`) and through the studio's Effects
 // panel (offscreen, typing into the spin boxes it made from the table), and both cameras are
 // compared with the table's builder called directly: the same layers, tensors, frames and depth
-// output. The panel's preview is also compared with a direct render of the builder's camera,
-// so its render call is known to use the same camera.
+// output. The panel edits the document's effect stack, so its entry is checked too.
 #include "core/effects/effect_table.h"
-#include "core/pipeline/render.h"
 #include "core/io/artcam_file.h"
 #include "tests/app/cli_run.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/document.h"
-#include "ui/image_convert.h"
 #include "ui/panels/effects_panel.h"
 
 #include <QDoubleSpinBox>
-#include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
 
@@ -68,20 +64,6 @@ QString differences(const Artcam& got, const Artcam& want) {
   return differences(got.layers, want.layers, depthOutputName(got.depth_output), want.depth_output);
 }
 
-bool waitForGeneration(EffectsPanel& panel, quint64 generation) {
-  QSignalSpy spy(&panel, &EffectsPanel::previewReady);
-  for (int i = 0; i < 300 && panel.previewGeneration() < generation; ++i) spy.wait(100);
-  return panel.previewGeneration() == generation;
-}
-
-// 0.5 at the top to 20 at the bottom: both sides of the chosen focus and haze depths.
-ImageF depthRamp(int w, int h) {
-  ImageF depth(w, h, 1);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) depth.pixel(x, y)[0] = static_cast<float>(0.5 + 19.5 * (y + 0.5) / h);
-  return depth;
-}
-
 }  // namespace
 
 class TestEffectsTable : public QObject {
@@ -115,14 +97,12 @@ class TestEffectsTable : public QObject {
     Document doc;
     doc.reset(artcam::ui::test::syntheticPhoto());
     EffectsPanel panel(&doc);
-    const ImageF thumb = boxDownscale(doc.photo()->preview, 384);
-    const FrameSize frame{thumb.width, thumb.height};
-    const auto depth = std::make_shared<const ImageF>(depthRamp(thumb.width, thumb.height));
-    panel.setDepth(depth);
+    const FrameSize frame = doc.frame();
     for (const EffectSpec& effect : effectSpecs()) {
       const QString name = QString::fromStdString(effect.name);
-      panel.setEffect(name);
-      QCOMPARE(panel.effect(), name);
+      QVERIFY2(panel.addEffect(name), qPrintable(name));
+      const int entry = static_cast<int>(doc.effects().size()) - 1;
+      QCOMPARE(panel.selectedIndex(), entry);
       const EffectValues values = otherValues(effect);
       for (const EffectParam& p : effect.params)
         for (int i = 0; i < p.size(); ++i) {
@@ -137,15 +117,15 @@ class TestEffectsTable : public QObject {
           spin->setValue(values.at(p.name)[static_cast<size_t>(i)]);
         }
       QVERIFY2(panel.parameters() == values, qPrintable(name));
+      // The document's stack holds what was typed, and its camera is the builder's.
+      const EffectStep& step = doc.effects()[static_cast<size_t>(entry)];
+      QCOMPARE(QString::fromStdString(step.effect), name);
+      QVERIFY2(step.values == values, qPrintable(name));
       const Artcam want = effect.build(values, frame);
-      const QString diff = differences(buildEffect(effect.name, panel.parameters(), frame), want);
+      const QString diff = differences(buildEffect(step.effect, step.values, frame), want);
       QVERIFY2(diff.isEmpty(), qPrintable(name + ": " + diff));
-      // What the panel shows is that camera rendered on its thumbnail with the given depth.
-      QVERIFY2(waitForGeneration(panel, panel.requestedGeneration()), qPrintable(name));
-      QVERIFY2(!panel.status().contains("cannot"), qPrintable(name + ": " + panel.status()));
-      const QImage expected = qimageFromLinear(render(RenderInputs::of(thumb, depth.get()), want));
-      QVERIFY2(panel.preview() == expected, qPrintable(name + ": preview differs"));
     }
+    QCOMPARE(doc.effects().size(), effectSpecs().size());
   }
 };
 

@@ -87,7 +87,7 @@ class TestPreview : public QObject {
       QSignalSpy spy(worker.get(), &RenderWorker::rendered);
       RenderRequest r;
       r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
-      r.camera = doc.camera();
+      r.camera = doc.artcam();
       r.width = 2048;
       r.height = 2048;
       r.generation = 1;
@@ -118,7 +118,7 @@ class TestPreview : public QObject {
             });
     RenderRequest r;
     r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
-    r.camera = doc.camera();
+    r.camera = doc.artcam();
     r.width = photo->preview.width;
     r.height = photo->preview.height;
     r.generation = 1;
@@ -149,7 +149,7 @@ class TestPreview : public QObject {
     for (quint64 g = 1; g <= 50; ++g) {
       RenderRequest r;
       r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
-      r.camera = doc.camera();
+      r.camera = doc.artcam();
       r.width = photo->preview.width;
       r.height = photo->preview.height;
       r.generation = g;

@@ -8,7 +8,7 @@
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_fit_job.h"
 #include "ui/colour/colour_project.h"
-#include "ui/colour/colour_stage.h"
+#include "core/colour/colour_stage.h"
 #include "ui/colour/patch_view.h"
 #include "ui/document.h"
 #include "ui/image_loader.h"

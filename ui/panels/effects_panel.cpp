@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/panels/effects_panel.h"
 
-#include "core/pipeline/render.h"
+#include "ui/commands.h"
 #include "ui/document.h"
 
 #include <QComboBox>
@@ -9,7 +9,8 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
-#include <QTimer>
+#include <QListWidget>
+#include <QPushButton>
 #include <QVBoxLayout>
 
 namespace artcam::ui {
@@ -17,40 +18,102 @@ namespace artcam::ui {
 EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
     : QWidget(parent),
       document_(document),
-      effect_box_(new QComboBox(this)),
+      add_box_(new QComboBox(this)),
+      list_(new QListWidget(this)),
       form_(new QFormLayout),
-      image_label_(new QLabel(this)),
-      status_label_(new QLabel(this)),
-      throttle_(new QTimer(this)) {
-  for (const EffectSpec& spec : effectSpecs())
-    effect_box_->addItem(QString::fromStdString(spec.name));
-  image_label_->setMinimumSize(160, 120);
-  image_label_->setAlignment(Qt::AlignCenter);
+      status_label_(new QLabel(this)) {
+  for (const EffectSpec& spec : effectSpecs()) {
+    add_box_->addItem(QString::fromStdString(spec.name));
+    add_box_->setItemData(add_box_->count() - 1, QString::fromStdString(spec.summary),
+                          Qt::ToolTipRole);
+  }
+  auto* add = new QPushButton(tr("Add"), this);
+  add->setToolTip(tr("Add the effect to the end of the stack (applied after the others)"));
+  auto* remove = new QPushButton(tr("Remove"), this);
+  auto* up = new QPushButton(tr("Up"), this);
+  auto* down = new QPushButton(tr("Down"), this);
+  auto* add_row = new QHBoxLayout;
+  add_row->addWidget(add_box_, 1);
+  add_row->addWidget(add);
+  auto* edit_row = new QHBoxLayout;
+  edit_row->addWidget(remove);
+  edit_row->addWidget(up);
+  edit_row->addWidget(down);
+  list_->setMaximumHeight(120);
+  list_->setToolTip(tr("The effect stack, applied top to bottom after the geometry and colour"));
   status_label_->setWordWrap(true);
   auto* layout = new QVBoxLayout(this);
-  layout->addWidget(effect_box_);
+  layout->addLayout(add_row);
+  layout->addWidget(list_);
+  layout->addLayout(edit_row);
   layout->addLayout(form_);
-  layout->addWidget(image_label_, 1);
   layout->addWidget(status_label_);
-  throttle_->setSingleShot(true);
-  throttle_->setInterval(80);
-  connect(throttle_, &QTimer::timeout, this, &EffectsPanel::startRender);
-  connect(&worker_, &EffectsRenderWorker::rendered, this, &EffectsPanel::deliver);
-  connect(effect_box_, &QComboBox::currentTextChanged, this, [this] {
-    rebuildParameters();
-    schedule();
+  layout->addStretch(1);
+  connect(add, &QPushButton::clicked, this, [this] { addEffect(add_box_->currentText()); });
+  connect(remove, &QPushButton::clicked, this, &EffectsPanel::removeSelected);
+  connect(up, &QPushButton::clicked, this, [this] { moveSelected(-1); });
+  connect(down, &QPushButton::clicked, this, [this] { moveSelected(+1); });
+  connect(list_, &QListWidget::currentRowChanged, this, [this] {
+    if (!updating_) rebuildParameters();
   });
-  connect(document_, &Document::photoChanged, this, &EffectsPanel::schedule);
-  rebuildParameters();
-  schedule();
+  connect(document_, &Document::effectsChanged, this, &EffectsPanel::rebuildList);
+  // The status follows the camera: an effect reading depth joins when depth appears.
+  connect(document_, &Document::cameraChanged, this, [this] { status_label_->setText(status()); });
+  rebuildList();
 }
 
-// worker_ cancels its render in flight and joins: the panel goes at shutdown only.
 EffectsPanel::~EffectsPanel() = default;
 
-QString EffectsPanel::effect() const { return effect_box_->currentText(); }
+bool EffectsPanel::addEffect(const QString& name) {
+  const EffectSpec* spec = findEffect(name.toStdString());
+  if (!spec) return false;
+  EffectStep step{spec->name, {}};
+  for (const EffectParam& p : spec->params) step.values[p.name] = p.value;
+  std::vector<EffectStep> effects = document_->effects();
+  effects.push_back(std::move(step));
+  const int index = static_cast<int>(effects.size()) - 1;
+  document_->undoStack()->push(
+      new SetEffectsCommand(document_, std::move(effects), tr("Add effect %1").arg(name)));
+  setSelectedIndex(index);
+  return true;
+}
 
-void EffectsPanel::setEffect(const QString& name) { effect_box_->setCurrentText(name); }
+void EffectsPanel::removeSelected() {
+  const int i = selectedIndex();
+  if (i < 0) return;
+  std::vector<EffectStep> effects = document_->effects();
+  const QString name = QString::fromStdString(effects[static_cast<size_t>(i)].effect);
+  effects.erase(effects.begin() + i);
+  document_->undoStack()->push(
+      new SetEffectsCommand(document_, std::move(effects), tr("Remove effect %1").arg(name)));
+  setSelectedIndex(std::min(i, static_cast<int>(document_->effects().size()) - 1));
+}
+
+void EffectsPanel::moveSelected(int delta) {
+  const int i = selectedIndex();
+  const int j = i + delta;
+  std::vector<EffectStep> effects = document_->effects();
+  if (i < 0 || j < 0 || j >= static_cast<int>(effects.size())) return;
+  std::swap(effects[static_cast<size_t>(i)], effects[static_cast<size_t>(j)]);
+  document_->undoStack()->push(new SetEffectsCommand(
+      document_, std::move(effects),
+      tr("Move effect %1").arg(QString::fromStdString(effects[static_cast<size_t>(j)].effect))));
+  setSelectedIndex(j);
+}
+
+int EffectsPanel::selectedIndex() const {
+  const int row = list_->currentRow();
+  return row >= 0 && row < static_cast<int>(document_->effects().size()) ? row : -1;
+}
+
+void EffectsPanel::setSelectedIndex(int index) { list_->setCurrentRow(index); }
+
+EffectValues EffectsPanel::parameters() const {
+  EffectValues values;
+  for (const auto& [name, spins] : spins_)
+    for (const QDoubleSpinBox* spin : spins) values[name].push_back(spin->value());
+  return values;
+}
 
 bool EffectsPanel::setParameter(const QString& name, double value) {
   return setParameter(name, std::vector<double>{value});
@@ -63,68 +126,101 @@ bool EffectsPanel::setParameter(const QString& name, const std::vector<double>& 
   return true;
 }
 
-EffectValues EffectsPanel::parameters() const {
-  EffectValues values;
-  for (const auto& [name, spins] : spins_)
-    for (const QDoubleSpinBox* spin : spins) values[name].push_back(spin->value());
-  return values;
+QString EffectsPanel::status() const {
+  const auto& effects = document_->effects();
+  if (effects.empty()) return tr("No effects. Pick one and press Add.");
+  const std::string& note = document_->artcamNote();
+  if (note.empty()) return tr("%n effect(s) applied to the result.", nullptr,
+                              static_cast<int>(effects.size()));
+  return QString::fromStdString(note);
 }
 
-void EffectsPanel::setDepth(std::shared_ptr<const ImageF> depth) {
-  depth_ = std::move(depth);
-  schedule();
+void EffectsPanel::rebuildList() {
+  const int keep = list_->currentRow();
+  updating_ = true;
+  list_->clear();
+  const auto& effects = document_->effects();
+  for (size_t i = 0; i < effects.size(); ++i)
+    list_->addItem(QString("%1. %2").arg(i + 1).arg(QString::fromStdString(effects[i].effect)));
+  list_->setCurrentRow(std::min(keep < 0 ? 0 : keep, static_cast<int>(effects.size()) - 1));
+  updating_ = false;
+  rebuildParameters();
+  status_label_->setText(status());
 }
-
-QString EffectsPanel::status() const { return status_label_->text(); }
 
 void EffectsPanel::rebuildParameters() {
+  const int index = selectedIndex();
+  const EffectStep* step =
+      index >= 0 ? &document_->effects()[static_cast<size_t>(index)] : nullptr;
+  // Same entry and effect: only the values change (an undo, or this panel's own edit), so the
+  // spin boxes stay and keep their focus.
+  if (step && index == built_for_ && step->effect == built_effect_) {
+    updating_ = true;
+    for (const auto& [name, spins] : spins_) {
+      const auto it = step->values.find(name);
+      if (it == step->values.end()) continue;
+      for (size_t i = 0; i < spins.size() && i < it->second.size(); ++i)
+        if (spins[i]->value() != it->second[i]) spins[i]->setValue(it->second[i]);
+    }
+    updating_ = false;
+    return;
+  }
   while (form_->rowCount() > 0) form_->removeRow(0);
   spins_.clear();
-  const EffectSpec* spec = findEffect(effect().toStdString());
+  built_for_ = index;
+  built_effect_ = step ? step->effect : std::string();
+  const EffectSpec* spec = step ? findEffect(step->effect) : nullptr;
   if (!spec) return;
+  updating_ = true;
   for (const EffectParam& p : spec->params) {
     // A vector parameter (the haze colour) is one row of spin boxes, one per component.
     auto* row = new QHBoxLayout;
-    const QString tip = QString::fromStdString(p.meaning + "; " + rangeText(p) + ", default " + defaultText(p));
+    const QString tip = QString::fromStdString(p.meaning + "; " + rangeText(p) + ", default " +
+                                               defaultText(p));
+    const auto given = step->values.find(p.name);
     for (int i = 0; i < p.size(); ++i) {
       auto* spin = new QDoubleSpinBox(this);
-      spin->setObjectName(QString::fromStdString(p.size() == 1 ? p.name : p.name + "[" + std::to_string(i) + "]"));
+      spin->setObjectName(QString::fromStdString(
+          p.size() == 1 ? p.name : p.name + "[" + std::to_string(i) + "]"));
       spin->setDecimals(4);  // the table's ranges and defaults are multiples of 0.0001
       spin->setRange(p.min, p.max);
       spin->setSingleStep((p.max - p.min) / 100.0);
-      spin->setValue(p.value[static_cast<size_t>(i)]);
+      const bool has = given != step->values.end() && given->second.size() == p.value.size();
+      spin->setValue(has ? given->second[static_cast<size_t>(i)] : p.value[static_cast<size_t>(i)]);
       if (!p.unit.empty()) spin->setSuffix(QString::fromStdString(" " + p.unit));
       spin->setToolTip(tip);
-      connect(spin, &QDoubleSpinBox::valueChanged, this, &EffectsPanel::schedule);
+      const std::string name = p.name;
+      connect(spin, &QDoubleSpinBox::valueChanged, this, [this, name] { onSpinChanged(name); });
       row->addWidget(spin);
       spins_[p.name].push_back(spin);
     }
     form_->addRow(QString::fromStdString(p.name), row);
   }
+  updating_ = false;
   setToolTip(QString::fromStdString(spec->summary));
 }
 
-void EffectsPanel::schedule() {
-  ++generation_;
-  throttle_->start();
-}
-
-void EffectsPanel::startRender() {
-  const PhotoPtr photo = document_->photo();
-  if (!photo || photo->preview.empty()) return;
-  // The newest request replaces any pending one and cancels the one rendering; no waiting.
-  worker_.request({photo, depth_, effect().toStdString(), parameters(), generation_});
-}
-
-void EffectsPanel::deliver(quint64 generation, const QImage& image, const QString& message) {
-  if (generation != generation_) return;  // stale: a newer request is on its way
-  status_label_->setText(message);
-  if (!image.isNull()) {
-    preview_ = image;
-    image_label_->setPixmap(QPixmap::fromImage(image));
-  }
-  shown_generation_ = generation;
-  emit previewReady(generation);
+void EffectsPanel::onSpinChanged(const std::string& name) {
+  if (updating_) return;
+  const int index = selectedIndex();
+  if (index < 0) return;
+  std::vector<EffectStep> effects = document_->effects();
+  EffectStep& step = effects[static_cast<size_t>(index)];
+  std::vector<double> value;
+  for (const QDoubleSpinBox* spin : spins_.at(name)) value.push_back(spin->value());
+  if (step.values[name] == value) return;
+  step.values[name] = std::move(value);
+  // Edits of one parameter of one entry in a row are one undo step (a spin-box drag).
+  QUndoStack* stack = document_->undoStack();
+  if (name != gesture_param_ || index != gesture_entry_ || stack->index() != gesture_stack_index_)
+    ++gesture_;
+  gesture_param_ = name;
+  gesture_entry_ = index;
+  stack->push(new SetEffectsCommand(
+      document_, std::move(effects),
+      tr("Set %1 %2").arg(QString::fromStdString(step.effect), QString::fromStdString(name)),
+      gesture_));
+  gesture_stack_index_ = stack->index();
 }
 
 }  // namespace artcam::ui

@@ -1,37 +1,33 @@
 // SPDX-License-Identifier: Apache-2.0
-// The effects panel: pick one of the image effects (core/effects/
-// effect_table.h), set its parameters, and see it live on the photo's preview copy. The
-// parameter rows are made from the effect's row of the table: one spin box per number (a row of
-// N for a vector parameter), its range, default and unit (as the suffix) from the table.
+// The effects panel: the document's effect stack (Document::effects, core/project/
+// document_camera.h). Add any effect of the one effects table (core/effects/effect_table.h),
+// remove or reorder entries, and set the selected entry's parameters. The parameter rows are
+// made from the effect's row of the table: one spin box per number (a row of N for a vector
+// parameter), its range, default and unit (as the suffix).
 //
-// Rendering runs off the GUI thread and nothing here waits for it: every change stamps a new
-// generation, a trailing 80 ms timer coalesces slider drags, and the EffectsRenderWorker (the
-// newest-request worker) renders the newest request; an older one is cancelled between bands
-// and a result of an older generation is dropped. Results come back by queued signal.
-//
-// Depth: the image given to setDepth (1 channel, or the 2-channel form of core/depth/
-// depth_raster.h, any size) — e.g. the studio's painted planes rasterised; otherwise a stand-in
-// ramp, far at the top (1 … 100 log-spaced), which the status line says. The panel previews an
-// effect on its own and does not change the document (the main preview renders the document's
-// camera, colour and depth blocks included, through core's attributed renderer).
+// Decisions:
+// - The panel renders nothing itself: the stack is part of the document's camera, so the main
+//   canvas preview, the export, Export Camera and the saved project all show it — one render
+//   path, no second thumbnail that could disagree with the export.
+// - Every change is an undo command (SetEffectsCommand); the spin-box edits of one entry's
+//   parameter in a row merge into one step, so a slider-like drag undoes at once.
+// - The status line says which effects are in the camera and, for one left out, why (an
+//   effect that reads depth waits for painted planes with three depths or a depth map).
 #pragma once
 
 #include "core/effects/effect_table.h"
-#include "core/model/image.h"
-#include "ui/panels/effects_render_worker.h"
 
-#include <QImage>
 #include <QWidget>
 
 #include <map>
-#include <memory>
 #include <string>
+#include <vector>
 
 class QComboBox;
 class QFormLayout;
 class QLabel;
+class QListWidget;
 class QDoubleSpinBox;
-class QTimer;
 
 namespace artcam::ui {
 
@@ -44,45 +40,40 @@ class EffectsPanel : public QWidget {
   explicit EffectsPanel(Document* document, QWidget* parent = nullptr);
   ~EffectsPanel() override;
 
-  QString effect() const;
-  void setEffect(const QString& name);
-  // Sets a parameter's spin boxes (as if typed); false for an unknown name or a vector of the
-  // wrong size. The spin boxes are named NAME, or NAME[i] for a vector's component i.
+  // Appends effect `name` with the table's defaults and selects it; false for an unknown name.
+  bool addEffect(const QString& name);
+  void removeSelected();
+  void moveSelected(int delta);  // -1 up, +1 down
+  int selectedIndex() const;     // -1: none
+  void setSelectedIndex(int index);
+
+  // The selected entry's parameters as its spin boxes show them. The spin boxes are named NAME,
+  // or NAME[i] for a vector's component i; setParameter types into them (false for an unknown
+  // name or a vector of the wrong size).
+  EffectValues parameters() const;
   bool setParameter(const QString& name, double value);
   bool setParameter(const QString& name, const std::vector<double>& value);
-  EffectValues parameters() const;
-  // The depth the effects read; null: the stand-in ramp.
-  void setDepth(std::shared_ptr<const ImageF> depth);
 
-  // The last rendered preview and the generation it belongs to.
-  const QImage& preview() const { return preview_; }
-  quint64 previewGeneration() const { return shown_generation_; }
-  quint64 requestedGeneration() const { return generation_; }
   QString status() const;
-  // The renderer thread (tests replace its render function before the first request).
-  EffectsRenderWorker* renderWorker() { return &worker_; }
-
- signals:
-  void previewReady(quint64 generation);
 
  private:
+  void rebuildList();
   void rebuildParameters();
-  void schedule();
-  void startRender();
-  void deliver(quint64 generation, const QImage& image, const QString& message);
+  void onSpinChanged(const std::string& name);
 
   Document* document_;
-  QComboBox* effect_box_;
+  QComboBox* add_box_;
+  QListWidget* list_;
   QFormLayout* form_;
-  QLabel* image_label_;
   QLabel* status_label_;
-  QTimer* throttle_;
   std::map<std::string, std::vector<QDoubleSpinBox*>> spins_;
-  QImage preview_;
-  std::shared_ptr<const ImageF> depth_;
-  quint64 generation_ = 0;  // GUI thread only
-  quint64 shown_generation_ = 0;
-  EffectsRenderWorker worker_;
+  int built_for_ = -1;  // the stack entry the spin boxes were made for
+  std::string built_effect_;
+  int gesture_ = 0;     // merge key of the running parameter edit
+  std::string gesture_param_;
+  int gesture_entry_ = -1;
+  int gesture_stack_index_ = -1;  // the undo stack's index after the gesture's last push
+  bool updating_ = false;
 };
 
 }  // namespace artcam::ui

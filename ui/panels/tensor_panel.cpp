@@ -71,7 +71,9 @@ TensorPanel::TensorPanel(Document* document, QWidget* parent)
       document_(document),
       stage_box_(new QComboBox(this)),
       preset_box_(new QComboBox(this)),
-      tables_layout_(new QVBoxLayout) {
+      tables_layout_(new QVBoxLayout),
+      summary_label_(new QLabel(this)) {
+  summary_label_->setWordWrap(true);
   preset_box_->addItem(tr("Identity"), "identity");
   preset_box_->addItem(tr("Barrel"), "barrel");
   preset_box_->addItem(tr("Pincushion"), "pincushion");
@@ -93,6 +95,7 @@ TensorPanel::TensorPanel(Document* document, QWidget* parent)
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 2, 2, 2);
   layout->addLayout(top);
+  layout->addWidget(summary_label_);
   layout->addWidget(scroll, 1);
 
   connect(apply, &QPushButton::clicked, this,
@@ -107,7 +110,31 @@ TensorPanel::TensorPanel(Document* document, QWidget* parent)
   rebuild();
 }
 
+QString TensorPanel::summary() const {
+  const Artcam& whole = document_->artcam();
+  QStringList blocks;
+  for (const Block& b : whole.blocks()) {
+    const std::string_view n = blockKindName(b.kind);
+    blocks << QString::fromUtf8(n.data(), static_cast<qsizetype>(n.size()));
+  }
+  const std::string_view kind = artcamKindName(whole.kind());
+  QString text = tr("Whole camera: %1, %n layer(s), blocks %2", nullptr,
+                    static_cast<int>(whole.layers.size()))
+                     .arg(QString::fromUtf8(kind.data(), static_cast<qsizetype>(kind.size())),
+                          blocks.join(" | "));
+  if (whole.isPiecewise())
+    text += tr(", %1 patches").arg(whole.pieces->patches.size());
+  if (whole.depth_output == DepthOutput::BlurVariance) text += tr(", depth output: blur variance");
+  QStringList effects;
+  for (const EffectStep& e : document_->effects()) effects << QString::fromStdString(e.effect);
+  if (!effects.isEmpty()) text += tr("; effects: %1").arg(effects.join(" → "));
+  text += tr(". The tables edit the geometry (layer 1)");
+  if (document_->manualCamera()) text += tr(", set by hand");
+  return text + ".";
+}
+
 void TensorPanel::rebuild() {
+  summary_label_->setText(summary());
   const Camera& cam = document_->camera();
   const int n = cam.dimension();
   const int stages = static_cast<int>(cam.stages().size());
@@ -187,8 +214,12 @@ void TensorPanel::setEntry(int stage, int element, int row, int col, double valu
   if (m(row, col) == value && m(col, row) == value) return;
   m(row, col) = value;
   m(col, row) = value;  // symmetric storage (eq 10)
+  // Only the geometry (the first layer) is edited here; a whole camera set by hand keeps its
+  // other layers, patches and depth output.
+  Artcam whole = document_->manualCamera() ? *document_->manualCamera() : Artcam(cam);
+  whole.main() = std::move(cam);
   document_->undoStack()->push(new SetCameraCommand(
-      document_, std::move(cam),
+      document_, std::move(whole),
       tr("Set Q%1(%2, %3) = %4").arg(element + 1).arg(row + 1).arg(col + 1).arg(value),
       kTensorEditMergeBase));
 }
@@ -205,7 +236,7 @@ void TensorPanel::applyPreset(const QString& name) {
     cam = radialCamera(kPresetStrength, f);
   if (!cam) return;
   document_->undoStack()->push(
-      new SetCameraCommand(document_, std::move(cam), tr("Preset: %1").arg(name)));
+      new SetCameraCommand(document_, Artcam(std::move(*cam)), tr("Preset: %1").arg(name)));
 }
 
 }  // namespace artcam::ui

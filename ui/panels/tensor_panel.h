@@ -13,6 +13,7 @@
 #include <vector>
 
 class QComboBox;
+class QLabel;
 class QTableWidget;
 class QVBoxLayout;
 
@@ -38,6 +39,9 @@ class TensorPanel : public QWidget {
   // Sets entry (row, col) of Q_element in `stage` through an undo command.
   void setEntry(int stage, int element, int row, int col, double value);
   void applyPreset(const QString& name);  // "identity", "barrel", "pincushion"
+  // One line on the whole camera: its kind, layers, blocks, depth output and effects; the
+  // tables below edit the geometry (the first layer), every other part is kept as it is.
+  QString summary() const;
 
  private:
   void rebuild();
@@ -47,6 +51,7 @@ class TensorPanel : public QWidget {
   QComboBox* stage_box_;
   QComboBox* preset_box_;
   QVBoxLayout* tables_layout_;
+  QLabel* summary_label_;
   std::vector<QTableWidget*> tables_;
   int built_dimension_ = -1;
   int built_stages_ = -1;

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ui/colour/colour_stage.h"
+#include "core/colour/colour_stage.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
-namespace artcam::ui {
+namespace artcam {
 namespace {
 
 bool isColourCamera(const Camera& c) {
@@ -92,4 +92,4 @@ bool applyColourCamera(const Camera& colour, const double rgb[3], double out[3])
   return std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2]);
 }
 
-}  // namespace artcam::ui
+}  // namespace artcam

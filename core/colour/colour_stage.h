@@ -12,7 +12,7 @@
 
 #include "core/model/camera.h"
 
-namespace artcam::ui {
+namespace artcam {
 
 // `base` with the colour outputs of its LAST stage replaced by those of `colour` (eq 6/7: the
 // cc and pc parts of the colour tensors); earlier stages keep their colour outputs, or pass
@@ -26,4 +26,4 @@ Camera withColourBlock(const Camera& base, const Camera& colour);
 // finite or its weight is not positive (out of the map's domain).
 bool applyColourCamera(const Camera& colour, const double rgb[3], double out[3]);
 
-}  // namespace artcam::ui
+}  // namespace artcam

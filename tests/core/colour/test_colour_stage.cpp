@@ -1,18 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// withColourBlock (ui/colour/colour_stage.h): the studio's camera = geometry + fitted colour
+// withColourBlock (core/colour/colour_stage.h): the studio's camera = geometry + fitted colour
 // block. Checked by evaluating points: positions as the geometry alone gives them (one and two
 // stages), colours as the 3×3 matrix applied by hand, an existing colour block replaced (not
 // composed), and refusals for cameras it cannot join.
 #include "core/colour/colour_map.h"
 #include "core/model/camera.h"
-#include "ui/colour/colour_stage.h"
+#include "core/colour/colour_stage.h"
 
 #include <QtTest/QtTest>
 
 #include <stdexcept>
 
 using namespace artcam;
-using namespace artcam::ui;
 
 namespace {
 

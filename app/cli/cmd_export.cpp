@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: Apache-2.0
+// artcam export: a saved studio project rendered headless, through the functions the studio's
+// File ▸ Export uses (core/project/project_render.h), so the file is the one the studio writes.
+#include "app/cli/args.h"
+#include "app/cli/commands.h"
+#include "app/cli/interrupt.h"
+#include "app/cli/outputs.h"
+#include "app/cli/progress.h"
+
+#include "core/io/artcam_file.h"
+#include "core/project/project_render.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+namespace artcam::cli {
+
+const char* const kExportUsage =
+    "usage: artcam export PROJECT.artcamproj -o OUT [--camera-out CAM.artcam]\n"
+    "                     [--depth-out DEPTH.exr] [--size WxH] [--quality N]\n"
+    "                     [--bit-depth 8|16|half|float] [--crop-valid | --fill R,G,B[,A]]\n"
+    "                     [--json] [--quiet] [--overwrite]\n\n"
+    "Renders a project saved by ARTcam Studio at the photo's full resolution, exactly as the\n"
+    "studio's File > Export Warped Image does: the camera fitted from the project's point pairs\n"
+    "with its model (or the camera set by hand), the colour block of the Colour panel, then the\n"
+    "effect stack in order, reading the depth of the painted planes and the depth map. An effect\n"
+    "that cannot be applied (it reads depth and the project has none) is left out, and a warning\n"
+    "on stderr says which and why, as the studio's status line does.\n"
+    "OUT keeps the photo's pixel type and metadata unless --bit-depth says otherwise; it is\n"
+    "written atomically, and an existing file is refused unless --overwrite. No output may be\n"
+    "the project, its photo or its depth map.\n\n"
+    "options:\n"
+    "  -o, --output OUT       the rendered image (required)\n"
+    "  --camera-out CAM       also write the whole camera it rendered with (.artcam)\n"
+    "  --depth-out DEPTH      also write the depth it read: float EXR, depth per pixel, 0 where\n"
+    "                         there is none (what artcam warp --depth reads)\n"
+    "  --size WxH             output size in pixels (default: the photo's size; one side 0: by\n"
+    "                         aspect)\n"
+    "  --quality N            JPEG quality 1-100 (default 95)\n"
+    "  --bit-depth B          8, 16, half or float (default: the photo's)\n"
+    "  --crop-valid           crop to the largest rectangle whose every pixel has a preimage\n"
+    "  --fill R,G,B[,A]       linear colour under pixels without a preimage (default: none,\n"
+    "                         they stay transparent)\n"
+    "  --json                 the result as one JSON object on stdout\n"
+    "  --overwrite            replace existing outputs (--force is the same)\n"
+    "  -q, --quiet            no progress bar on stderr (shown only on a terminal)\n\n"
+    "Examples:\n"
+    "  artcam export resources/depth-effects.artcamproj -o hazy.jpg --quality 92\n"
+    "  artcam export trip.artcamproj -o out.tif --bit-depth 16 --crop-valid \\\n"
+    "      --camera-out trip.artcam --depth-out trip-depth.exr\n";
+
+namespace {
+
+std::string pixelTypeFor(const std::string& bit_depth) {
+  if (bit_depth == "8") return "uint8";
+  if (bit_depth == "16") return "uint16";
+  if (bit_depth == "half" || bit_depth == "float") return bit_depth;
+  throw UsageError("--bit-depth expects 8, 16, half or float, not \"" + bit_depth + "\"");
+}
+
+std::array<float, 4> parseFill(const std::string& text) {
+  std::vector<float> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      size_t used = 0;
+      const float f = std::stof(item, &used);
+      if (used != item.size() || !(f >= 0.0f && f <= 1.0f)) throw std::invalid_argument(item);
+      v.push_back(f);
+    } catch (const std::exception&) {
+      throw UsageError("--fill expects 3 or 4 comma-separated numbers from 0 to 1, not \"" + text +
+                       "\"");
+    }
+  }
+  if (v.size() != 3 && v.size() != 4)
+    throw UsageError("--fill expects 3 or 4 comma-separated numbers from 0 to 1, not \"" + text +
+                     "\"");
+  return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0f};
+}
+
+}  // namespace
+
+int exportCommand(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--output", "-o", true},
+                         {"--camera-out", "", true},
+                         {"--depth-out", "", true},
+                         {"--size", "", true},
+                         {"--quality", "", true},
+                         {"--bit-depth", "", true},
+                         {"--crop-valid", "", false},
+                         {"--fill", "", true},
+                         {"--json", "", false},
+                         {"--overwrite", "", false},
+                         {"--force", "", false},
+                         {"--quiet", "-q", false}});
+  args.expectPositional(1, "PROJECT.artcamproj");
+  const auto output = args.value("--output");
+  if (!output) throw UsageError("missing -o OUT");
+  ExportOptions options;
+  if (const auto size = args.value("--size")) {
+    const FrameSize s = parseSize(*size, "--size");
+    options.width = s.width;
+    options.height = s.height;
+  }
+  if (const auto quality = args.value("--quality")) {
+    try {
+      size_t used = 0;
+      options.write.jpeg_quality = std::stoi(*quality, &used);
+      if (used != quality->size()) throw std::invalid_argument(*quality);
+    } catch (const std::exception&) {
+      throw UsageError("--quality expects a whole number from 1 to 100");
+    }
+    if (options.write.jpeg_quality < 1 || options.write.jpeg_quality > 100)
+      throw UsageError("--quality expects a whole number from 1 to 100");
+  }
+  if (const auto bits = args.value("--bit-depth")) options.write.pixel_type = pixelTypeFor(*bits);
+  options.crop_to_valid = args.has("--crop-valid");
+  if (const auto fill = args.value("--fill")) {
+    if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");
+    options.fill = parseFill(*fill);
+  }
+
+  const std::string& project_path = args.positional()[0];
+  Result<StudioProject> project = readStudioProject(project_path);
+  if (!project) throw CommandError(project.status.message);
+  std::vector<std::string> outputs = {*output};
+  const auto camera_out = args.value("--camera-out");
+  const auto depth_out = args.value("--depth-out");
+  if (camera_out) outputs.push_back(*camera_out);
+  if (depth_out) outputs.push_back(*depth_out);
+  for (size_t i = 0; i < outputs.size(); ++i)
+    for (size_t k = i + 1; k < outputs.size(); ++k)
+      if (outputs[i] == outputs[k] || isSameFile(outputs[i], outputs[k]))
+        throw UsageError("two outputs name the same file: " + outputs[i]);
+  std::vector<std::string> inputs = {project_path, project->photo_path};
+  if (project->depth_map) inputs.push_back(project->depth_map->path);
+  checkOutputs(args, outputs, inputs);
+
+  const CooperativeInterrupt interrupt;
+  ProgressBar bar(0, args.has("--quiet"));
+  Result<ProjectScene> scene = loadProjectScene(*project, project_path);
+  if (!scene) throw CommandError(scene.status.message);
+  if (!scene->camera.note.empty())
+    std::fprintf(stderr, "artcam export: warning: %s\n", scene->camera.note.c_str());
+  if (depth_out && scene->depth.empty())
+    throw CommandError(project_path + ": --depth-out: the project has no depth (no plane with "
+                                      "three depths, no depth map)");
+  const bool reads_depth = readsDepth(scene->camera.camera);
+  RenderSummary summary;
+  ImageF out;
+  try {
+    out = renderExport(scene->photo.image, reads_depth ? &scene->depth : nullptr,
+                       scene->camera.camera, options,
+                       cancelOnInterrupt([&bar](double done) { bar.stage("rendering", done); }),
+                       &summary);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(project_path + ": " + e.what());
+  }
+  if (summary.cancelled || interruptRequested()) {
+    bar.finish();
+    std::fprintf(stderr, "artcam export: interrupted; %s not written\n", output->c_str());
+    return interruptExitCode();
+  }
+  options.write.progress = cancelOnInterrupt([&bar](double done) { bar.stage("writing", done); });
+  if (const Status s = writeImage(*output, out, &scene->photo.info, options.write); !s)
+    throw CommandError(s.message);
+  bar.finish();
+  if (camera_out)
+    if (const Status s = writeArtcam(*camera_out, scene->camera.camera); !s)
+      throw CommandError(s.message);
+  if (depth_out) {
+    WriteImageOptions depth_options;
+    depth_options.pixel_type = "float";
+    if (const Status s = writeImage(*depth_out, depthMapImage(scene->depth), nullptr, depth_options);
+        !s)
+      throw CommandError(s.message);
+  }
+  const std::string description = summary.describe();
+  if (args.has("--json")) {
+    nlohmann::json j = {{"output", *output},
+                        {"width", out.width},
+                        {"height", out.height},
+                        {"description", description},
+                        {"render_ms", summary.render_ms},
+                        {"camera", std::string(artcamKindName(scene->camera.camera.kind()))},
+                        {"effects_applied", scene->camera.applied.size()},
+                        {"effects", project->effects.size()}};
+    if (!scene->camera.note.empty()) j["warning"] = scene->camera.note;
+    if (camera_out) j["camera_out"] = *camera_out;
+    if (depth_out) j["depth_out"] = *depth_out;
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), out.width, out.height,
+                description.c_str());
+  }
+  return 0;
+}
+
+}  // namespace artcam::cli

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: Apache-2.0
+// A saved project rendered headless, and the export render the studio's File ▸ Export uses: one
+// function for both, so `artcam export PROJECT` writes the pixels the studio writes.
+//
+// Export options follow what image editors offer on export: an explicit size, JPEG quality and
+// bit depth (passed to core/io/image_io.h), and what to do with pixels the camera leaves
+// without a preimage: keep them transparent (the default), fill them with a colour, or crop the
+// picture to the largest rectangle whose every pixel is valid (as Hugin's "crop to valid area").
+#pragma once
+
+#include "core/io/image_io.h"
+#include "core/pipeline/render.h"
+#include "core/project/document_camera.h"
+#include "core/project/studio_project.h"
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace artcam {
+
+struct ExportOptions {
+  int width = 0;   // 0×0: the output-frame rule (render.h); one side 0: the other by aspect
+  int height = 0;
+  bool crop_to_valid = false;
+  // Linear RGB(A) colour under pixels without a preimage; none: they stay transparent.
+  std::optional<std::array<float, 4>> fill;
+  WriteImageOptions write;  // pixel type (bit depth), JPEG quality
+};
+
+// Pixel rectangle [x0, x1) × [y0, y1).
+struct ValidRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+};
+// The largest-area axis-aligned rectangle of pixels whose alpha (the last channel) is ≥ 0.999;
+// empty (0×0) when there is none.
+ValidRect largestValidRect(const ImageF& image);
+
+// The export render: full resolution from the linear photo, bicubic, then fill or crop.
+// `progress` (may be empty) is polled between tiles; false cancels (summary->cancelled).
+ImageF renderExport(const ImageF& photo, const ImageF* depth, const Artcam& camera,
+                    const ExportOptions& options, const std::function<bool(double)>& progress,
+                    RenderSummary* summary);
+
+// A project with everything its render reads: the photo, the camera made from its pairs,
+// colour block and effect stack, and the depth of its planes and map at the photo's size.
+struct ProjectScene {
+  LoadedImage photo;
+  DocumentFit fit;
+  DocumentArtcam camera;
+  ImageF depth;  // (coverage·z, coverage) at the photo's size; empty: no depth
+};
+
+// Reads the photo and the depth map the project names. Messages name the file that failed.
+Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where);
+
+// The painted planes (with three anchors each) over the map, at the photo's size; `has_depth`
+// says whether any pixel got a depth. The studio's depth model makes the same raster.
+ImageF rasteriseProjectDepth(const std::vector<ProjectDepthLayer>& layers, FrameSize photo,
+                             const ImageF* map, bool* has_depth);
+
+// A depth raster (coverage·z, coverage) as a depth map file holds it: 1 channel of depth z,
+// 0 where there is none (core/io/depth_file.h reads it back). Write it as float EXR.
+ImageF depthMapImage(const ImageF& raster);
+
+}  // namespace artcam

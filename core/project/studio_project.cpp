@@ -1,0 +1,382 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/project/studio_project.h"
+
+#include "core/io/artcam_file.h"
+#include "core/io/atomic_file.h"
+#include "core/io/io_text.h"
+#include "core/util/base64.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace artcam {
+namespace {
+
+using Json = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+// Unwinds from deep inside the reader; becomes a Result at the API boundary.
+struct Refusal {
+  std::string message;  // "<json path>: <cause>"
+};
+
+[[noreturn]] void refuse(const std::string& path, const std::string& cause) {
+  throw Refusal{path + ": " + cause};
+}
+
+// A value quoted for a one-line message: JSON-escaped and cut, so a "\n" in a string cannot
+// split the message.
+std::string describe(const Json& j) {
+  if (j.is_object()) return "an object";
+  if (j.is_array()) return "an array";
+  std::string text = j.dump(-1, ' ', false, Json::error_handler_t::replace);
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return text;
+}
+
+double finiteNumber(const Json& j, const std::string& path, const char* what = "a number") {
+  if (!j.is_number()) refuse(path, std::string("expected ") + what + ", found " + describe(j));
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) refuse(path, "not a finite number");
+  return v;
+}
+
+Eigen::Vector2d pointAt(const Json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number())
+    refuse(path, "expected [x, y]");
+  return {finiteNumber(j[0], path), finiteNumber(j[1], path)};
+}
+
+std::string stringAt(const Json& j, const std::string& path) {
+  if (!j.is_string()) refuse(path, "expected a string, found " + describe(j));
+  return j.get<std::string>();
+}
+
+const Json& objectAt(const Json& j, const std::string& path) {
+  if (!j.is_object()) refuse(path, "expected an object, found " + describe(j));
+  return j;
+}
+
+const Json& arrayAt(const Json& j, const std::string& path) {
+  if (!j.is_array()) refuse(path, "expected an array, found " + describe(j));
+  return j;
+}
+
+// A depth mask larger than this is refused before it is allocated: 2^30 pixels is beyond any
+// photo the studio edits, and a few bytes of runs must not be able to ask for gigabytes.
+constexpr std::uint64_t kMaxMaskPixels = std::uint64_t{1} << 30;
+
+// Pixels the run bytes cover, read with region_mask.h's grammar (a value byte, then the run
+// length as a little-endian base-128 varint) without allocating; nullopt when malformed.
+std::optional<std::uint64_t> pixelsCoveredByRuns(const std::vector<uint8_t>& runs) {
+  std::uint64_t covered = 0;
+  size_t i = 0;
+  while (i < runs.size()) {
+    ++i;  // the value byte
+    std::uint64_t run = 0;
+    for (int shift = 0;; shift += 7) {
+      if (i >= runs.size() || shift > 35) return std::nullopt;
+      const uint8_t b = runs[i++];
+      run |= static_cast<std::uint64_t>(b & 0x7f) << shift;
+      if (!(b & 0x80)) break;
+    }
+    covered += run;  // at most 2^42 per run: no overflow for any file that fits in memory
+  }
+  return covered;
+}
+
+std::string pathForFile(const std::string& path, const std::string& project_path) {
+  std::error_code ec;
+  const fs::path base = fs::absolute(fs::path(project_path), ec).parent_path();
+  const fs::path relative = fs::path(path).lexically_relative(base);
+  if (relative.empty() || *relative.begin() == "..") return path;
+  return relative.generic_string();
+}
+
+std::string pathFromFile(const std::string& path, const std::string& project_path) {
+  const fs::path p(path);
+  if (p.is_absolute()) return path;
+  std::error_code ec;
+  const fs::path base = fs::absolute(fs::path(project_path), ec).parent_path();
+  return (base / p).lexically_normal().string();
+}
+
+ProjectDepthLayer depthLayerAt(const Json& o, const std::string& where) {
+  objectAt(o, where);
+  ProjectDepthLayer l;
+  if (o.contains("name")) l.name = stringAt(o["name"], where + "/name");
+  const Json& size = o.contains("size") ? o["size"] : Json();
+  if (!size.is_array() || size.size() != 2 || !size[0].is_number_integer() ||
+      !size[1].is_number_integer())
+    refuse(where + "/size", "expected [width, height]");
+  const long long width = size[0].get<long long>(), height = size[1].get<long long>();
+  if (width < 0 || height < 0 || width > (1 << 30) || height > (1 << 30))
+    refuse(where + "/size", "expected [width, height] of whole numbers ≥ 0");
+  const auto pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  if (pixels > kMaxMaskPixels)
+    refuse(where + "/size", std::to_string(width) + "x" + std::to_string(height) +
+                                " is larger than the 2^30-pixel limit of a mask");
+  const std::string text = o.contains("mask") ? stringAt(o["mask"], where + "/mask") : "";
+  const auto runs = decodeBase64(text);
+  if (!runs) refuse(where + "/mask", "not base64");
+  const auto covered = pixelsCoveredByRuns(*runs);
+  if (!covered) refuse(where + "/mask", "truncated or malformed run lengths");
+  if (pixels > 0 && *covered != pixels)
+    refuse(where + "/mask", "runs cover " + std::to_string(*covered) + " of " +
+                                std::to_string(pixels) + " pixels");
+  Result<RegionMask> mask = decodeMaskRuns(*runs, static_cast<int>(width),
+                                           static_cast<int>(height), where + "/mask");
+  if (!mask) throw Refusal{mask.status.message};
+  l.mask = std::move(*mask.value);
+  if (o.contains("anchors")) {
+    const Json& anchors = arrayAt(o["anchors"], where + "/anchors");
+    if (anchors.size() > static_cast<size_t>(kMaxDepthAnchors))
+      refuse(where + "/anchors", "at most 3 depth points");
+    for (size_t k = 0; k < anchors.size(); ++k) {
+      const std::string at = where + "/anchors/" + std::to_string(k);
+      const Json& a = objectAt(anchors[k], at);
+      const Eigen::Vector2d pixel = pointAt(a.contains("pixel") ? a["pixel"] : Json(), at + "/pixel");
+      const double z = a.contains("depth") && a["depth"].is_number() ? a["depth"].get<double>() : -1;
+      if (!(z > 0.0) || !std::isfinite(z))
+        refuse(at + "/depth", "expected a number greater than 0");
+      l.anchors.push_back({pixel, z});
+    }
+  }
+  return l;
+}
+
+EffectStep effectStepAt(const Json& o, const std::string& where) {
+  objectAt(o, where);
+  EffectStep step;
+  step.effect = stringAt(o.contains("effect") ? o["effect"] : Json(), where + "/effect");
+  const EffectSpec* spec = findEffect(step.effect);
+  if (!spec) refuse(where + "/effect", "unknown effect " + describe(o["effect"]));
+  if (!o.contains("params")) return step;
+  const Json& params = objectAt(o["params"], where + "/params");
+  for (const auto& [name, value] : params.items()) {
+    const std::string at = where + "/params/" + name;
+    const EffectParam* param = findParam(*spec, name);
+    if (!param) refuse(at, "not a parameter of " + step.effect);
+    std::vector<double> numbers;
+    if (value.is_number()) {
+      numbers.push_back(finiteNumber(value, at));
+    } else {
+      const Json& array = arrayAt(value, at);
+      for (size_t k = 0; k < array.size(); ++k)
+        numbers.push_back(finiteNumber(array[k], at + "/" + std::to_string(k)));
+    }
+    if (const std::string problem = checkEffectValue(*param, numbers); !problem.empty())
+      refuse(at, problem);
+    step.values[name] = std::move(numbers);
+  }
+  return step;
+}
+
+Artcam cameraAt(const Json& j, const std::string& file, const std::string& where) {
+  objectAt(j, where);
+  Result<Artcam> camera = parseArtcam(j.dump(), file + ": " + where);
+  if (!camera) throw Refusal{camera.status.message.substr(file.size() + 2)};
+  return std::move(*camera.value);
+}
+
+StudioProject projectAt(const Json& root, const std::string& file,
+                        const std::string& project_path) {
+  objectAt(root, "/");
+  if (!root.contains("format") || root["format"] != "artcam-studio-project")
+    refuse("/format", "not an ARTcam Studio project");
+  if (!root.contains("version") || !root["version"].is_number_integer())
+    refuse("/version", "missing or not a number");
+  const long long version = root["version"].get<long long>();
+  if (version < 1) refuse("/version", "missing or not a number");
+  if (version > kProjectFormatVersion)
+    throw Refusal{"written by a newer ARTcam Studio (project version " + std::to_string(version) +
+                  "; this one reads up to " + std::to_string(kProjectFormatVersion) + ")"};
+  StudioProject p;
+  const std::string photo = root.contains("photo") ? stringAt(root["photo"], "/photo") : "";
+  if (photo.empty()) refuse("/photo", "missing photo path");
+  p.photo_path = pathFromFile(photo, project_path);
+  if (root.contains("model")) {
+    const std::string name = stringAt(root["model"], "/model");
+    const auto model = modelClassFromName(name);
+    if (!model) refuse("/model", "unknown model " + describe(root["model"]));
+    p.model = *model;
+  }
+  if (root.contains("pairs")) {
+    const Json& pairs = arrayAt(root["pairs"], "/pairs");
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      const std::string where = "/pairs/" + std::to_string(i);
+      const Json& o = objectAt(pairs[i], where);
+      PointMatch m;
+      m.source = pointAt(o.contains("source") ? o["source"] : Json(), where + "/source");
+      m.target = pointAt(o.contains("target") ? o["target"] : Json(), where + "/target");
+      if (o.contains("enabled")) {
+        if (!o["enabled"].is_boolean()) refuse(where + "/enabled", "expected true or false");
+        m.enabled = o["enabled"].get<bool>();
+      }
+      p.pairs.push_back(std::move(m));
+    }
+  }
+  if (root.contains("camera")) p.manual_camera = cameraAt(root["camera"], file, "/camera");
+  if (root.contains("effects")) {
+    const Json& effects = arrayAt(root["effects"], "/effects");
+    for (size_t i = 0; i < effects.size(); ++i)
+      p.effects.push_back(effectStepAt(effects[i], "/effects/" + std::to_string(i)));
+  }
+  if (root.contains("view")) p.view_json = objectAt(root["view"], "/view").dump();
+  if (root.contains("parts")) p.parts_json = objectAt(root["parts"], "/parts").dump();
+  if (root.contains("depth")) {
+    const Json& depth = objectAt(root["depth"], "/depth");
+    if (depth.contains("layers")) {
+      const Json& layers = arrayAt(depth["layers"], "/depth/layers");
+      for (size_t i = 0; i < layers.size(); ++i)
+        p.depth_layers.push_back(depthLayerAt(layers[i], "/depth/layers/" + std::to_string(i)));
+    }
+    if (depth.contains("map")) {
+      const Json& m = objectAt(depth["map"], "/depth/map");
+      ProjectDepthMap ref;
+      const std::string path = m.contains("path") ? stringAt(m["path"], "/depth/map/path") : "";
+      if (path.empty()) refuse("/depth/map/path", "missing");
+      ref.path = pathFromFile(path, project_path);
+      if (m.contains("scale")) {
+        ref.options.scale = finiteNumber(m["scale"], "/depth/map/scale");
+        if (!(ref.options.scale > 0.0))
+          refuse("/depth/map/scale", "expected a number greater than 0");
+      }
+      if (m.contains("inverse")) {
+        if (!m["inverse"].is_boolean()) refuse("/depth/map/inverse", "expected true or false");
+        ref.options.inverse = m["inverse"].get<bool>();
+      }
+      p.depth_map = ref;
+    }
+  }
+  return p;
+}
+
+Json pointJson(const Eigen::VectorXd& p) { return Json::array({p.x(), p.y()}); }
+
+}  // namespace
+
+Result<std::optional<Camera>> projectColourBlock(const StudioProject& project,
+                                                 const std::string& where) {
+  using R = Result<std::optional<Camera>>;
+  if (project.parts_json.empty()) return R::success(std::nullopt);
+  const Json parts = Json::parse(project.parts_json, nullptr, false);
+  if (!parts.is_object() || !parts.contains("colour") || !parts["colour"].is_object() ||
+      !parts["colour"].contains("colour_block"))
+    return R::success(std::nullopt);
+  try {
+    const Artcam block = cameraAt(parts["colour"]["colour_block"], where,
+                                  "/parts/colour/colour_block");
+    if (block.layers.size() != 1 || block.pieces)
+      return R::failure(where + ": /parts/colour/colour_block: expected one camera, found a " +
+                        std::string(artcamKindName(block.kind())) + " camera");
+    return R::success(block.main());
+  } catch (const Refusal& refusal) {
+    return R::failure(where + ": " + refusal.message);
+  }
+}
+
+Result<StudioProject> parseStudioProject(std::string_view text, const std::string& project_path) {
+  const std::string file = fs::path(project_path).filename().string();
+  // A little deeper than a camera may nest, so an embedded camera's own check names its place.
+  constexpr int kMaxProjectDepth = 64 + 4;
+  if (const size_t deep = io_text::jsonTooDeepAt(text, kMaxProjectDepth);
+      deep != std::string_view::npos)
+    return Result<StudioProject>::failure(
+        file + ": " + io_text::jsonPositionOf(text, deep + 1) + ": nested deeper than " +
+        std::to_string(kMaxProjectDepth) + " levels (not an ARTcam Studio project)");
+  Json root;
+  try {
+    root = Json::parse(text.begin(), text.end());
+  } catch (const Json::exception& e) {
+    std::string cause = e.what();
+    // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep its line and column.
+    if (const size_t at = cause.find("] "); at != std::string::npos) cause = cause.substr(at + 2);
+    return Result<StudioProject>::failure(file + ": not valid JSON: " + cause);
+  }
+  try {
+    return Result<StudioProject>::success(projectAt(root, file, project_path));
+  } catch (const Refusal& refusal) {
+    return Result<StudioProject>::failure(file + ": " + refusal.message);
+  } catch (const Json::exception& e) {
+    return Result<StudioProject>::failure(file + ": unreadable: " + e.what());
+  }
+}
+
+Result<StudioProject> readStudioProject(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return Result<StudioProject>::failure(path + ": cannot read: no such file or not readable");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return Result<StudioProject>::failure(path + ": cannot read: I/O error");
+  return parseStudioProject(text.str(), path);
+}
+
+std::string studioProjectToJson(const StudioProject& project, const std::string& project_path) {
+  Json root;
+  root["format"] = "artcam-studio-project";
+  const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
+  const int version = !project.effects.empty()                         ? 3
+                      : has_depth || !project.parts_json.empty()       ? 2
+                                                                       : 1;
+  root["version"] = version;
+  if (!project.parts_json.empty()) root["parts"] = Json::parse(project.parts_json);
+  root["photo"] = pathForFile(project.photo_path, project_path);
+  root["model"] = std::string(modelClassName(project.model));
+  Json pairs = Json::array();
+  for (const PointMatch& m : project.pairs)
+    pairs.push_back({{"source", pointJson(m.source)},
+                     {"target", pointJson(m.target)},
+                     {"enabled", m.enabled}});
+  root["pairs"] = pairs;
+  if (project.manual_camera) root["camera"] = Json::parse(toArtcamJson(*project.manual_camera));
+  if (!project.effects.empty()) {
+    Json effects = Json::array();
+    for (const EffectStep& step : project.effects) {
+      Json params = Json::object();
+      for (const auto& [name, values] : step.values) params[name] = values;
+      effects.push_back({{"effect", step.effect}, {"params", params}});
+    }
+    root["effects"] = effects;
+  }
+  if (!project.view_json.empty()) root["view"] = Json::parse(project.view_json);
+  if (has_depth) {
+    Json depth;
+    Json layers = Json::array();
+    for (const ProjectDepthLayer& l : project.depth_layers) {
+      Json anchors = Json::array();
+      for (const DepthAnchor& a : l.anchors)
+        anchors.push_back({{"pixel", Json::array({a.pixel.x(), a.pixel.y()})}, {"depth", a.depth}});
+      layers.push_back({{"name", l.name},
+                        {"size", Json::array({l.mask.width(), l.mask.height()})},
+                        {"mask", encodeBase64(encodeMaskRuns(l.mask))},
+                        {"anchors", anchors}});
+    }
+    depth["layers"] = layers;
+    if (project.depth_map)
+      depth["map"] = {{"path", pathForFile(project.depth_map->path, project_path)},
+                      {"scale", project.depth_map->options.scale},
+                      {"inverse", project.depth_map->options.inverse}};
+    root["depth"] = depth;
+  }
+  // nlohmann writes the shortest decimal that reads back to the same double.
+  return root.dump(2) + "\n";
+}
+
+Status writeStudioProject(const std::string& path, const StudioProject& project) {
+  std::string text;
+  try {
+    text = studioProjectToJson(project, path);
+  } catch (const std::exception& e) {
+    return Status::failure(path + ": cannot write: " + e.what());
+  }
+  return writeTextAtomically(path, text);
+}
+
+}  // namespace artcam

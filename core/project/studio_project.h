@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: Apache-2.0
+// The studio's project file (.artcamproj) as a value, with its one reader and writer: what
+// artcam-studio saves and reopens and what `artcam export` renders headless, so both read a
+// project the same way.
+//
+//   { "format": "artcam-studio-project", "version": 3,
+//     "photo": "relative/or/absolute/path.png",
+//     "model": "auto",
+//     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],   // photo pixels
+//     "camera": { ….artcam document… },          // optional: camera set by hand (any kind)
+//     "effects": [ {"effect": "aerial-perspective", "params": {"near": [1], …}}, … ],  // v3
+//     "view": { … },                                // the studio's view state (opaque here)
+//     "depth": {                                    // optional: depth planes and map (v2)
+//       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
+//                    "anchors": [ {"pixel": [x, y], "depth": z}, … ] }, … ],
+//       "map": {"path": "depth.exr", "scale": 1, "inverse": false} },
+//     "parts": { "colour": {…, "colour_block": {….artcam…}}, "insertion": {…} } }   // (v2)
+//
+// Versions: a file is written with the lowest version that holds everything in it (1: pairs
+// and view; 2: depth or parts; 3: an effect stack), so an older studio refuses a project whose
+// new parts it would silently drop and still opens every project it can represent fully. This
+// reader takes 1 to 3.
+//
+// Decisions:
+// - The view state and the studio modes' parts are kept as JSON text: they belong to the
+//   studio (ui/project_file.h reads them), and a headless reader must carry them through
+//   unchanged. The one part core reads is the colour block (parts/colour/colour_block), because
+//   it is part of the camera the project renders.
+// - Paths are stored relative to the project's folder when the file lies beneath it, and are
+//   absolute once read.
+// - Every refusal is one line naming the file and the JSON path ("p.artcamproj: /pairs/3/source:
+//   expected [x, y]"). Sizes that would allocate are checked before allocating (a depth mask's
+//   size against its run bytes).
+#pragma once
+
+#include "core/depth/inverse_depth_plane.h"
+#include "core/depth/region_mask.h"
+#include "core/effects/effect_table.h"
+#include "core/fit/fit_image.h"
+#include "core/io/depth_file.h"
+#include "core/model/artcam.h"
+#include "core/model/status.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+inline constexpr int kProjectFormatVersion = 3;  // the newest this code reads and writes
+inline constexpr int kMaxDepthAnchors = 3;        // a plane in inverse depth needs three
+inline constexpr char kProjectExtension[] = "artcamproj";
+
+struct ProjectDepthLayer {
+  std::string name;
+  RegionMask mask;                   // the photo's size
+  std::vector<DepthAnchor> anchors;  // up to kMaxDepthAnchors
+  bool operator==(const ProjectDepthLayer&) const = default;
+};
+
+struct ProjectDepthMap {
+  std::string path;  // absolute once read
+  DepthFileOptions options;
+};
+
+// One entry of the effect stack: an effect of the effects table with every parameter it was
+// given (missing ones take the table's defaults when the camera is built).
+struct EffectStep {
+  std::string effect;
+  EffectValues values;
+  bool operator==(const EffectStep&) const = default;
+};
+
+struct StudioProject {
+  std::string photo_path;  // absolute once read
+  std::vector<PointMatch> pairs;  // photo pixels, 2D
+  ModelClass model = ModelClass::Auto;
+  std::optional<Artcam> manual_camera;
+  std::vector<EffectStep> effects;  // applied in order after the geometry and colour
+  std::vector<ProjectDepthLayer> depth_layers;
+  std::optional<ProjectDepthMap> depth_map;
+  std::string view_json;   // the "view" object as JSON text; empty: none
+  std::string parts_json;  // the "parts" object as JSON text; empty: none
+};
+
+// The colour block the project's colour part holds (parts/colour/colour_block), if any.
+// `where` names the file in messages.
+Result<std::optional<Camera>> projectColourBlock(const StudioProject& project,
+                                                 const std::string& where);
+
+// `project_path` places relative paths and names the file in messages.
+Result<StudioProject> parseStudioProject(std::string_view text, const std::string& project_path);
+Result<StudioProject> readStudioProject(const std::string& path);
+std::string studioProjectToJson(const StudioProject& project, const std::string& project_path);
+// Atomic (core/io/atomic_file.h): the old file stays whole until the new one is complete.
+Status writeStudioProject(const std::string& path, const StudioProject& project);
+
+}  // namespace artcam
