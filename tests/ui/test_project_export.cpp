@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: Apache-2.0
+// What the user sees is what they get: the bundled project resources/depth-effects.artcamproj
+// (coffee.png, two painted depth planes, aerial perspective then depth of field) opened in the
+// studio shows a preview that matches its full-resolution export scaled down; saved and reopened
+// it exports the same pixels; and `artcam export` on the saved file writes those pixels too.
+#include "core/io/image_io.h"
+#include "tests/app/cli_run.h"
+#include "tests/ui/ui_fixtures.h"
+#include "ui/depth_model.h"
+#include "ui/document.h"
+#include "ui/export_job.h"
+#include "ui/image_convert.h"
+#include "ui/main_window.h"
+#include "ui/preview_controller.h"
+#include "ui/session.h"
+
+#include <QFile>
+#include <QTemporaryDir>
+#include <QtTest/QtTest>
+
+#include <cmath>
+#include <memory>
+
+using namespace artcam;
+using namespace artcam::ui;
+
+namespace {
+
+double meanDifference(const QImage& a, const QImage& b) {
+  const QImage x = a.convertToFormat(QImage::Format_RGBA8888);
+  const QImage y = b.convertToFormat(QImage::Format_RGBA8888);
+  double sum = 0.0;
+  for (int r = 0; r < x.height(); ++r) {
+    const uchar* p = x.constScanLine(r);
+    const uchar* q = y.constScanLine(r);
+    for (int c = 0; c < x.width() * 4; ++c)
+      if (c % 4 != 3) sum += std::abs(int(p[c]) - int(q[c]));
+  }
+  return sum / (3.0 * x.width() * x.height());
+}
+
+// Opens `path` in the window and waits for the photo, the depth planes and a final preview of
+// the whole camera (the depth reaches the preview through the overlay's throttled raster).
+bool openAndSettle(MainWindow& window, const QString& path) {
+  window.session()->setInteractive(false);
+  window.session()->openProject(path);
+  Document* doc = window.document();
+  if (!QTest::qWaitFor([doc] { return doc->photo() && doc->depth()->layerCount() == 2; }, 30000))
+    return false;
+  if (!QTest::qWaitFor([doc] { return readsDepth(doc->artcam()); }, 10000)) return false;
+  QTest::qWait(200);  // past the overlay's 40 ms throttle: the preview has its depth
+  return artcam::ui::test::waitForNewestPreview(*window.preview());
+}
+
+ImageF exportNow(const Document& doc) {
+  const ImageF depth = doc.depth()->rasterise();
+  RenderSummary summary;
+  return ExportJob::render(doc.photo()->full.image, &depth, doc.artcam(), {}, {}, &summary);
+}
+
+}  // namespace
+
+class TestProjectExport : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(dir_.isValid());
+    for (const char* f : {"coffee.png", "depth-effects.artcamproj"})
+      QVERIFY(QFile::copy(QString(ARTCAM_RESOURCES_DIR) + "/" + f, dir_.filePath(f)));
+  }
+
+  void previewMatchesTheExport() {
+    MainWindow window;
+    QVERIFY(openAndSettle(window, dir_.filePath("depth-effects.artcamproj")));
+    Document* doc = window.document();
+    QVERIFY2(doc->artcamNote().empty(), doc->artcamNote().c_str());
+    QCOMPARE(doc->effects().size(), size_t{2});
+    const QImage preview = window.preview()->image();
+    const ImageF full = exportNow(*doc);
+    QCOMPARE(full.width, 600);
+    const QImage scaled = qimageFromLinear(boxDownscale(full, std::max(preview.width(), preview.height())));
+    QCOMPARE(scaled.size(), preview.size());
+    const double off = meanDifference(scaled, preview);
+    // Without the effects the picture is far from it: the comparison can tell.
+    const QImage photo = qimageFromLinear(boxDownscale(doc->photo()->full.image, scaled.width()));
+    const double plain = meanDifference(photo, preview);
+    qInfo("preview vs downscaled export: %.2f codes; vs the plain photo: %.2f", off, plain);
+    QVERIFY2(off < 3.0, qPrintable(QString("preview vs export: %1 codes").arg(off)));
+    QVERIFY2(plain > 4 * off + 2.0, qPrintable(QString("photo vs preview: %1 codes").arg(plain)));
+  }
+
+  void saveReopenExportGivesTheSamePixels() {
+    ImageF first;
+    const QString saved = dir_.filePath("saved.artcamproj");
+    {
+      MainWindow window;
+      QVERIFY(openAndSettle(window, dir_.filePath("depth-effects.artcamproj")));
+      first = exportNow(*window.document());
+      QVERIFY(window.session()->saveProjectTo(saved));
+    }
+    MainWindow again;
+    QVERIFY(openAndSettle(again, saved));
+    const ImageF second = exportNow(*again.document());
+    QVERIFY(second.data == first.data);
+
+    // The command line renders the saved project to the same pixels (float EXR: no rounding).
+    const QString out = dir_.filePath("cli.exr");
+    const artcam::test::CliRun r = artcam::test::artcamCli(
+        {"export", saved, "-o", out, "--bit-depth", "float", "--depth-out", dir_.filePath("d.exr"),
+         "--camera-out", dir_.filePath("c.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    const Result<LoadedImage> cli = readImage(out.toStdString());
+    QVERIFY2(cli.ok(), cli.status.message.c_str());
+    QCOMPARE(cli->image.width, first.width);
+    QCOMPARE(cli->image.channels, first.channels);
+    double worst = 0.0;
+    for (size_t i = 0; i < first.data.size(); ++i)
+      worst = std::max(worst, static_cast<double>(std::abs(cli->image.data[i] - first.data[i])));
+    QVERIFY2(worst < 1e-6, qPrintable(QString("CLI differs by %1").arg(worst)));
+    // The depth it wrote is the painted depth: the cup plane's 0.8 at the cup's centre.
+    const Result<LoadedImage> depth = readImage(dir_.filePath("d.exr").toStdString());
+    QVERIFY(depth.ok());
+    QVERIFY(std::abs(depth->image.pixel(290, 140)[0] - 0.8f) < 1e-5f);
+  }
+
+ private:
+  QTemporaryDir dir_;
+};
+
+QTEST_MAIN(TestProjectExport)
+#include "test_project_export.moc"
