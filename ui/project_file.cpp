@@ -192,6 +192,11 @@ QByteArray projectToJson(const Project& project, const QString& project_path) {
   view["centre"] = QJsonArray{project.view.centre.x(), project.view.centre.y()};
   view["preview_mode"] = project.view.preview_mode;
   view["opacity"] = project.view.opacity;
+  const CanvasViewState& c = project.view.canvas;
+  view["canvas"] = QJsonObject{{"mode", canvasViewModeName(c.mode)},
+                               {"compare_mode", canvasViewModeName(c.compare_mode)},
+                               {"split", c.split},
+                               {"onion_opacity", c.onion_opacity}};
   root["view"] = view;
   if (has_depth) root["depth"] = depthToJson(project, project_path);
   // QJson writes doubles with enough digits to read back exactly (shortest round-trip form).
@@ -257,6 +262,32 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
                                     std::to_string(static_cast<int>(PreviewMode::WarpedOnly)));
   if (!(p.view.opacity >= 0.0 && p.view.opacity <= 1.0))
     return Result<Project>::failure(name + ": /view/opacity: expected a number from 0 to 1");
+  // Projects written before the canvas showed the result have no "canvas": the defaults.
+  if (view.contains("canvas")) {
+    const QJsonObject c = view["canvas"].toObject();
+    CanvasViewState& s = p.view.canvas;
+    const std::pair<const char*, CanvasViewMode*> modes[] = {{"mode", &s.mode},
+                                                             {"compare_mode", &s.compare_mode}};
+    for (const auto& [key, field] : modes) {
+      if (!c.contains(QLatin1String(key))) continue;
+      const auto mode = canvasViewModeFromName(str(c[QLatin1String(key)].toString()));
+      if (!mode)
+        return Result<Project>::failure(name + ": /view/canvas/" + key +
+                                        ": expected photo, result, split or onion");
+      *field = *mode;
+    }
+    // `\` returns from the photo to compare_mode, so it is one of the result views.
+    if (s.compare_mode == CanvasViewMode::Photo)
+      return Result<Project>::failure(name +
+                                      ": /view/canvas/compare_mode: expected result, split or onion");
+    s.split = c["split"].toDouble(s.split);
+    s.onion_opacity = c["onion_opacity"].toDouble(s.onion_opacity);
+    if (!(s.split >= 0.0 && s.split <= 1.0))
+      return Result<Project>::failure(name + ": /view/canvas/split: expected a number from 0 to 1");
+    if (!(s.onion_opacity >= 0.0 && s.onion_opacity <= 1.0))
+      return Result<Project>::failure(name +
+                                      ": /view/canvas/onion_opacity: expected a number from 0 to 1");
+  }
   if (root.contains("parts")) {
     if (!root["parts"].isObject())
       return Result<Project>::failure(name + ": /parts: expected an object of named parts");

@@ -8,7 +8,9 @@
 //     "model": "auto",
 //     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],
 //     "camera": { ….artcam document… },          // optional: camera set by hand
-//     "view": { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5 },
+//     "view": { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5,
+//               "canvas": {"mode": "result", "compare_mode": "result", "split": 0.5,
+//                          "onion_opacity": 0.5} },  // canvas: optional, defaults as shown
 //     "depth": {                                    // optional: depth planes and map (v2)
 //       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
 //                    "anchors": [ {"pixel": [x, y], "depth": z}, … ] }, … ],
@@ -22,6 +24,7 @@
 
 #include "core/fit/fit_image.h"
 #include "core/model/status.h"
+#include "ui/canvas_view_mode.h"
 #include "ui/document.h"
 
 #include <QPointF>
@@ -40,8 +43,9 @@ inline constexpr char kProjectExtension[] = "artcamproj";
 struct ViewState {
   double scale = 0.0;  // 0: fit to window
   QPointF centre;
-  int preview_mode = 0;
+  int preview_mode = 0;  // the Preview dock's (preview_view.h)
   double opacity = 0.5;
+  CanvasViewState canvas;  // the main canvas's photo/result mode
 };
 
 // The depth map file a project refers to (loaded by the session, off the GUI thread).
