@@ -54,7 +54,7 @@ void addCanvasViewActions(QMainWindow* window, Canvas* canvas, QMenu* view_menu)
   toggle->setToolTip(Canvas::tr("Photo ↔ the last result view (\\)"));
   QObject::connect(toggle, &QAction::triggered, canvas, &Canvas::toggleBeforeAfter);
 
-  auto* label = new QLabel(Canvas::tr(" Onion "), bar);
+  auto* label = new QLabel(Canvas::tr(" Onion opacity "), bar);
   auto* slider = new QSlider(Qt::Horizontal, bar);
   slider->setObjectName("onionOpacitySlider");
   slider->setRange(0, 100);

@@ -70,8 +70,10 @@ MainWindow::MainWindow(QWidget* parent)
   cloud_dock->setWidget(cloud_view_);
   tabifyDockWidget(preview_dock, cloud_dock);
   // The canvas shows the result (Result, Split, Onion), so the thumbnail dock is optional: hidden
-  // by default, in View ▸ docks.
+  // by default, in View ▸ docks. Its tab-mate, the 3D view, would then fill the place while empty:
+  // it is hidden too until a cloud is opened (below) or it is asked for in the View menu.
   preview_dock->hide();
+  cloud_dock->hide();
   connect(session_, &Session::cloudLoaded, this, [this, cloud_dock](const LoadedCloud& cloud) {
     cloud_view_->setCloud(cloud);
     cloud_dock->show();
