@@ -146,6 +146,7 @@ class Canvas : public QWidget {
   // the new photo's render on cameraChanged, which Document emits after photoChanged.
   quint64 photo_generation_floor_ = 0;
   bool dragging_divider_ = false;
+  QMetaObject::Connection camera_connection_;  // the "updating" badge's repaint
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
   bool loupe_enabled_ = true;

@@ -34,14 +34,17 @@ void paintChecker(QPainter& painter, const QRectF& r) {
 
 void Canvas::setPreview(PreviewController* preview) {
   if (preview_) disconnect(preview_, nullptr, this, nullptr);
+  disconnect(camera_connection_);
   preview_ = preview;
   // Whatever the controller holds now is taken to be of the current document.
   photo_generation_floor_ = 0;
   if (preview_) {
-    connect(preview_, &PreviewController::previewChanged, this, qOverload<>(&QWidget::update));
-    // The "updating" badge follows requests as well as results.
-    connect(document_, &Document::cameraChanged, this, qOverload<>(&QWidget::update),
-            Qt::UniqueConnection);
+    // A result, or a request that makes the badge say "updating": repaint only if it shows.
+    const auto update_if_result_shown = [this] {
+      if (shownMode() != CanvasViewMode::Photo) update();
+    };
+    connect(preview_, &PreviewController::previewChanged, this, update_if_result_shown);
+    camera_connection_ = connect(document_, &Document::cameraChanged, this, update_if_result_shown);
   }
   update();
 }
@@ -147,10 +150,12 @@ void Canvas::paintResult(QPainter& painter, const QRectF& image_rect) {
   const QImage* result = resultImage();
   if (!result) return;
   // The preview may be smaller than the photo: its own scale decides smooth vs nearest, by the
-  // photo's rule (smooth when minifying, nearest when magnifying).
+  // photo's rule (smooth when minifying, nearest when magnifying so pixels show), except that a
+  // coarse pass (¼ size, while a slow final renders) is always smoothed: its pixels mean nothing.
   const double result_scale = image_rect.width() / result->width();
   painter.save();
-  painter.setRenderHint(QPainter::SmoothPixmapTransform, result_scale < 1.0);
+  painter.setRenderHint(QPainter::SmoothPixmapTransform,
+                        result_scale < 1.0 || !preview_->imageIsFinal());
   result_cache_.draw(painter, image_rect, *result);
   painter.restore();
 }
@@ -181,8 +186,12 @@ void Canvas::paintViewBadge(QPainter& painter, const QRectF& image_rect) {
       text = view_state_.mode != CanvasViewMode::Photo ? tr("Photo (this tool edits the photo)")
                                                        : tr("Photo");
       break;
-    case CanvasViewMode::Result: text = tr("Result"); break;
-    case CanvasViewMode::Split: text = tr("Photo | Result"); break;
+    case CanvasViewMode::Result:
+      text = tr("Result");
+      break;
+    case CanvasViewMode::Split:
+      text = tr("Photo | Result");
+      break;
     case CanvasViewMode::Onion:
       text = tr("Result over photo, %1 %").arg(std::lround(view_state_.onion_opacity * 100));
       break;

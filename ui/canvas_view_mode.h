@@ -53,10 +53,14 @@ inline double clampedFraction(double f) { return std::isnan(f) ? 0.5 : std::clam
 // Names used in project files ("view": {"canvas": {"mode": "result", …}}).
 inline const char* canvasViewModeName(CanvasViewMode m) {
   switch (m) {
-    case CanvasViewMode::Photo: return "photo";
-    case CanvasViewMode::Result: return "result";
-    case CanvasViewMode::Split: return "split";
-    case CanvasViewMode::Onion: return "onion";
+    case CanvasViewMode::Photo:
+      return "photo";
+    case CanvasViewMode::Result:
+      return "result";
+    case CanvasViewMode::Split:
+      return "split";
+    case CanvasViewMode::Onion:
+      return "onion";
   }
   return "result";
 }

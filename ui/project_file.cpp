@@ -278,15 +278,15 @@ Result<Project> parseProject(const QByteArray& json, const QString& project_path
     }
     // `\` returns from the photo to compare_mode, so it is one of the result views.
     if (s.compare_mode == CanvasViewMode::Photo)
-      return Result<Project>::failure(name +
-                                      ": /view/canvas/compare_mode: expected result, split or onion");
+      return Result<Project>::failure(
+          name + ": /view/canvas/compare_mode: expected result, split or onion");
     s.split = c["split"].toDouble(s.split);
     s.onion_opacity = c["onion_opacity"].toDouble(s.onion_opacity);
     if (!(s.split >= 0.0 && s.split <= 1.0))
       return Result<Project>::failure(name + ": /view/canvas/split: expected a number from 0 to 1");
     if (!(s.onion_opacity >= 0.0 && s.onion_opacity <= 1.0))
-      return Result<Project>::failure(name +
-                                      ": /view/canvas/onion_opacity: expected a number from 0 to 1");
+      return Result<Project>::failure(
+          name + ": /view/canvas/onion_opacity: expected a number from 0 to 1");
   }
   if (root.contains("parts")) {
     if (!root["parts"].isObject())

@@ -36,10 +36,9 @@ constexpr int kW = 320, kH = 240, kBlock = 40;
 // Flat 40-px blocks of fully saturated colours, so sRGB display values are exactly 0 or 255
 // and a translation by whole pixels moves them without any filtering.
 QRgb blockColour(int x, int y) {
-  static const std::array<QRgb, 8> palette = {qRgb(255, 0, 0),   qRgb(0, 255, 0),
-                                               qRgb(0, 0, 255),   qRgb(255, 255, 0),
-                                               qRgb(0, 255, 255), qRgb(255, 0, 255),
-                                               qRgb(255, 255, 255), qRgb(0, 0, 0)};
+  static const std::array<QRgb, 8> palette = {
+      qRgb(255, 0, 0),   qRgb(0, 255, 0),   qRgb(0, 0, 255),     qRgb(255, 255, 0),
+      qRgb(0, 255, 255), qRgb(255, 0, 255), qRgb(255, 255, 255), qRgb(0, 0, 0)};
   return palette[static_cast<size_t>((x / kBlock + 3 * (y / kBlock)) % 8)];
 }
 
@@ -74,7 +73,7 @@ PhotoPtr uniformPhoto(int w, int h) {
 std::vector<Pair> shiftedPairs(const Eigen::Vector2d& d) {
   std::vector<Pair> out;
   for (const Eigen::Vector2d& s : {Eigen::Vector2d(10, 10), Eigen::Vector2d(kW - 10, 10),
-                                  Eigen::Vector2d(10, kH - 10), Eigen::Vector2d(kW - 10, kH - 10)})
+                                   Eigen::Vector2d(10, kH - 10), Eigen::Vector2d(kW - 10, kH - 10)})
     out.push_back({s, s + d, true});
   return out;
 }
@@ -188,13 +187,16 @@ class TestCanvasResult : public QObject {
     shown.save(QDir::temp().filePath("artcam_canvas_result.png"));  // for a look by hand
     for (const QPointF& p : samplePoints(d)) {
       // The result at p is the photo at p − d (a translation camera moves content by d).
-      const QRgb expected = blockColour(static_cast<int>(p.x() - d.x()), static_cast<int>(p.y() - d.y()));
+      const QRgb expected =
+          blockColour(static_cast<int>(p.x() - d.x()), static_cast<int>(p.y() - d.y()));
       const QRgb got = canvasPixel(shown, rig.canvas, p);
       QVERIFY2(near(got, expected), qPrintable(QString("result at (%1, %2): %3, expected %4")
-                                                   .arg(p.x()).arg(p.y()).arg(rgb(got), rgb(expected))));
+                                                   .arg(p.x())
+                                                   .arg(p.y())
+                                                   .arg(rgb(got), rgb(expected))));
       const QRgb controller = resultPixel(rig.preview.image(), p, kW, kH);
-      QVERIFY2(near(got, controller), qPrintable(QString("canvas %1, controller %2")
-                                                     .arg(rgb(got), rgb(controller))));
+      QVERIFY2(near(got, controller),
+               qPrintable(QString("canvas %1, controller %2").arg(rgb(got), rgb(controller))));
       // The photo at p has another colour, so the comparison tells the two pictures apart.
       QVERIFY(!near(blockColour(static_cast<int>(p.x()), static_cast<int>(p.y())), expected));
     }
@@ -227,8 +229,8 @@ class TestCanvasResult : public QObject {
     for (const QPointF& p : samplePoints(d)) {
       const QRgb a = blockColour(static_cast<int>(p.x()), static_cast<int>(p.y()));
       const QRgb b = blockColour(static_cast<int>(p.x() - d.x()), static_cast<int>(p.y() - d.y()));
-      const QRgb mix = qRgb((qRed(a) + qRed(b)) / 2, (qGreen(a) + qGreen(b)) / 2,
-                            (qBlue(a) + qBlue(b)) / 2);
+      const QRgb mix =
+          qRgb((qRed(a) + qRed(b)) / 2, (qGreen(a) + qGreen(b)) / 2, (qBlue(a) + qBlue(b)) / 2);
       QVERIFY2(near(canvasPixel(shown, rig.canvas, p), mix, 3),
                qPrintable(rgb(canvasPixel(shown, rig.canvas, p)) + " vs " + rgb(mix)));
     }
@@ -245,8 +247,8 @@ class TestCanvasResult : public QObject {
     // the photo). grab() paints without running the event loop, so no result arrives meanwhile.
     const Eigen::Vector2d d2(-16, 8);
     std::vector<int> all = {0, 1, 2, 3};
-    rig.doc.undoStack()->push(new MovePairsCommand(&rig.doc, all, rig.doc.pairs(),
-                                                   shiftedPairs(d2), 0, "shift"));
+    rig.doc.undoStack()->push(
+        new MovePairsCommand(&rig.doc, all, rig.doc.pairs(), shiftedPairs(d2), 0, "shift"));
     QVERIFY(rig.preview.requestedGeneration() > rig.preview.imageGeneration());
     QImage shown = rig.canvas.grab().toImage();
     for (const QPointF& p : samplePoints(d))
@@ -255,8 +257,9 @@ class TestCanvasResult : public QObject {
     QVERIFY(test::waitForNewestPreview(rig.preview));
     shown = rig.canvas.grab().toImage();
     for (const QPointF& p : samplePoints(d2))
-      QVERIFY(near(canvasPixel(shown, rig.canvas, p),
-                   blockColour(static_cast<int>(p.x() - d2.x()), static_cast<int>(p.y() - d2.y()))));
+      QVERIFY(
+          near(canvasPixel(shown, rig.canvas, p),
+               blockColour(static_cast<int>(p.x() - d2.x()), static_cast<int>(p.y() - d2.y()))));
 
     // A new photo (white): before its first result the canvas shows neither the
     // old photo's result nor the new photo, only the checkerboard under "Rendering…".
@@ -305,8 +308,9 @@ class TestCanvasResult : public QObject {
     rig.canvas.setViewMode(CanvasViewMode::Photo);
     test::drag(&rig.canvas, s, s + delta);
     QTRY_VERIFY(!rig.doc.fitPending());
-    QVERIFY((rig.doc.pairs()[1].source - before.source -
-             Eigen::Vector2d(delta.x(), delta.y()) / scale).norm() < 1e-9);
+    QVERIFY(
+        (rig.doc.pairs()[1].source - before.source - Eigen::Vector2d(delta.x(), delta.y()) / scale)
+            .norm() < 1e-9);
     QVERIFY(rig.doc.pairs()[1].target == before.target);
     rig.doc.undoStack()->undo();
 
@@ -360,20 +364,21 @@ class TestCanvasResult : public QObject {
     Project p;
     p.photo_path = "/tmp/x.png";
     p.view.canvas = {CanvasViewMode::Photo, CanvasViewMode::Onion, 0.25, 0.75};
-    const Result<Project> back = parseProject(projectToJson(p, "/tmp/a.artcamproj"), "/tmp/a.artcamproj");
+    const Result<Project> back =
+        parseProject(projectToJson(p, "/tmp/a.artcamproj"), "/tmp/a.artcamproj");
     QVERIFY2(back.ok(), back.status.message.c_str());
     QVERIFY(back->view.canvas == p.view.canvas);
-    const Result<Project> old = parseProject(
-        R"({"format":"artcam-studio-project","version":1,"photo":"x.png",)"
-        R"("view":{"scale":1,"centre":[1,2],"preview_mode":2,"opacity":0.5}})",
-        "/tmp/old.artcamproj");
+    const Result<Project> old =
+        parseProject(R"({"format":"artcam-studio-project","version":1,"photo":"x.png",)"
+                     R"("view":{"scale":1,"centre":[1,2],"preview_mode":2,"opacity":0.5}})",
+                     "/tmp/old.artcamproj");
     QVERIFY2(old.ok(), old.status.message.c_str());
     QVERIFY(old->view.canvas == CanvasViewState{});
     QCOMPARE(old->view.canvas.mode, CanvasViewMode::Result);
-    const Result<Project> bad = parseProject(
-        R"({"format":"artcam-studio-project","version":1,"photo":"x.png",)"
-        R"("view":{"canvas":{"mode":"wipe"}}})",
-        "/tmp/bad.artcamproj");
+    const Result<Project> bad =
+        parseProject(R"({"format":"artcam-studio-project","version":1,"photo":"x.png",)"
+                     R"("view":{"canvas":{"mode":"wipe"}}})",
+                     "/tmp/bad.artcamproj");
     QVERIFY(!bad.ok());
     QVERIFY(QString::fromStdString(bad.status.message).contains("/view/canvas/mode"));
 
