@@ -156,7 +156,9 @@ void Canvas::userMovedView() {
 
 void Canvas::onPhotoChanged() {
   if (tool_) tool_->cancel();
-  if (preview_) photo_generation_floor_ = preview_->requestedGeneration();
+  if (preview_ && document_->photo().get() != floor_photo_)
+    photo_generation_floor_ = preview_->requestedGeneration();
+  floor_photo_ = document_->photo().get();
   zoomToFit();
 }
 
@@ -174,7 +176,7 @@ void Canvas::paintEvent(QPaintEvent*) {
   // Smooth when minifying; nearest when magnifying so pixels are visible for precise clicks.
   painter.setRenderHint(QPainter::SmoothPixmapTransform, view_.scale() < 1.0);
   paintPicture(painter, target);
-  paintDepth(painter, target);
+  paintDepthOnPhoto(painter, target);
   painter.setRenderHint(QPainter::Antialiasing, true);
   paintPairs(painter);
   if (tool_) tool_->paint(painter);

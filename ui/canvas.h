@@ -31,6 +31,7 @@
 // - The result shown is always the newest the controller delivered for THIS photo, even while
 //   a newer render is in flight (a badge says "updating"); before the first one arrives the
 //   canvas shows a checkerboard and says so, never the photo in the result's place.
+// - Overlays of photo pixels (the depth overlay) are drawn only where the photo shows.
 // - A canvas without a controller shows the photo only (tests of the tools, other uses).
 #pragma once
 
@@ -128,6 +129,8 @@ class Canvas : public QWidget {
   void paintPicture(QPainter& painter, const QRectF& image_rect);
   void paintResult(QPainter& painter, const QRectF& image_rect);
   void paintViewBadge(QPainter& painter, const QRectF& image_rect);
+  // paintDepth only where the photo shows (depth is of photo pixels).
+  void paintDepthOnPhoto(QPainter& painter, const QRectF& image_rect);
   bool onDividerHandle(const QPointF& widget) const;
   // The picture the loupe magnifies at a widget point (the result or the photo's display).
   const QImage& loupePicture(const QPointF& widget) const;
@@ -145,6 +148,7 @@ class Canvas : public QWidget {
   // Results with a generation above this are of the current photo: the controller schedules
   // the new photo's render on cameraChanged, which Document emits after photoChanged.
   quint64 photo_generation_floor_ = 0;
+  const void* floor_photo_ = nullptr;  // the photo the floor was taken for
   bool dragging_divider_ = false;
   QMetaObject::Connection camera_connection_;  // the "updating" badge's repaint
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans

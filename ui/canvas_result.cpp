@@ -38,6 +38,7 @@ void Canvas::setPreview(PreviewController* preview) {
   preview_ = preview;
   // Whatever the controller holds now is taken to be of the current document.
   photo_generation_floor_ = 0;
+  floor_photo_ = document_->photo().get();
   if (preview_) {
     // A result, or a request that makes the badge say "updating": repaint only if it shows.
     const auto update_if_result_shown = [this] {
@@ -143,6 +144,23 @@ void Canvas::paintPicture(QPainter& painter, const QRectF& image_rect) {
       painter.restore();
       break;
     }
+  }
+}
+
+void Canvas::paintDepthOnPhoto(QPainter& painter, const QRectF& image_rect) {
+  switch (shownMode()) {
+    case CanvasViewMode::Result:
+      return;
+    case CanvasViewMode::Split:
+      painter.save();
+      painter.setClipRect(QRectF(0, 0, dividerX(), height()));
+      paintDepth(painter, image_rect);
+      painter.restore();
+      return;
+    case CanvasViewMode::Photo:
+    case CanvasViewMode::Onion:
+      paintDepth(painter, image_rect);
+      return;
   }
 }
 
