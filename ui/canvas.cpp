@@ -3,6 +3,7 @@
 
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
+#include "ui/preview_controller.h"
 #include "ui/tools/tool.h"
 
 #include <QGestureEvent>
@@ -155,6 +156,9 @@ void Canvas::userMovedView() {
 
 void Canvas::onPhotoChanged() {
   if (tool_) tool_->cancel();
+  if (preview_ && document_->photo().get() != floor_photo_)
+    photo_generation_floor_ = preview_->requestedGeneration();
+  floor_photo_ = document_->photo().get();
   zoomToFit();
 }
 
@@ -171,13 +175,14 @@ void Canvas::paintEvent(QPaintEvent*) {
   const QRectF target = view_.widgetFromImage(QRectF(0, 0, f.width, f.height));
   // Smooth when minifying; nearest when magnifying so pixels are visible for precise clicks.
   painter.setRenderHint(QPainter::SmoothPixmapTransform, view_.scale() < 1.0);
-  display_cache_.draw(painter, target, photo->display);
-  paintDepth(painter, target);
+  paintPicture(painter, target);
+  paintDepthOnPhoto(painter, target);
   painter.setRenderHint(QPainter::Antialiasing, true);
   paintPairs(painter);
   if (tool_) tool_->paint(painter);
+  paintViewBadge(painter, target);
   if (const LoupeGeometry g = loupe(); g.isValid())
-    Loupe::paint(painter, g, photo->display, QSize(f.width, f.height));
+    Loupe::paint(painter, g, loupePicture(cursor_widget_), QSize(f.width, f.height));
 }
 
 void Canvas::paintDepth(QPainter& painter, const QRectF& image_rect) {
@@ -242,6 +247,13 @@ void Canvas::mousePressEvent(QMouseEvent* event) {
     setCursor(Qt::ClosedHandCursor);
     return;
   }
+  // The wipe's divider: its handle, or Alt+drag anywhere, before the tool sees the press.
+  if (event->button() == Qt::LeftButton && shownMode() == CanvasViewMode::Split &&
+      (onDividerHandle(event->position()) || event->modifiers().testFlag(Qt::AltModifier))) {
+    dragging_divider_ = true;
+    setSplit(event->position().x() / std::max(1, width()));
+    return;
+  }
   cursor_widget_ = event->position();
   cursor_inside_ = true;
   if (tool_ && document_->photo()) tool_->mousePress(event);
@@ -256,10 +268,16 @@ void Canvas::mouseMoveEvent(QMouseEvent* event) {
     userMovedView();
     return;
   }
+  if (dragging_divider_) {
+    setSplit(event->position().x() / std::max(1, width()));
+    return;
+  }
   cursor_widget_ = event->position();
   cursor_inside_ = true;
   emit cursorMoved(view_.imageFromWidget(event->position()));
   if (tool_ && document_->photo()) tool_->mouseMove(event);
+  if (event->buttons() == Qt::NoButton && onDividerHandle(event->position()))
+    setCursor(Qt::SplitHCursor);
   if (tool_ && tool_->wantsLoupe()) update();  // the loupe follows the cursor
 }
 
@@ -269,6 +287,10 @@ void Canvas::mouseReleaseEvent(QMouseEvent* event) {
       panning_ = false;
       setCursor(space_down_ ? Qt::OpenHandCursor : Qt::ArrowCursor);
     }
+    return;
+  }
+  if (dragging_divider_) {
+    if (event->button() == Qt::LeftButton) dragging_divider_ = false;
     return;
   }
   if (tool_ && document_->photo()) tool_->mouseRelease(event);

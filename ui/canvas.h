@@ -7,9 +7,35 @@
 // gestures of touchpads, QPinchGesture on touch screens, both about the gesture's centre),
 // zoomToFit (Ctrl+0), zoomActual (Ctrl+1), zoomIn/zoomOut (Ctrl+= / Ctrl+-). Until the user
 // zooms or pans, the view refits on resize. While the tool places or drags a point the loupe
-// (loupe.h) magnifies the photo around the cursor.
+// (loupe.h) magnifies the picture under the cursor.
+//
+// Photo and result (canvas_view_mode.h). Given a PreviewController (setPreview) the canvas shows
+// that controller's image, the one the preview worker renders (there is no second renderer), as
+// Photo, Result, Split (a wipe: photo left of a vertical divider, result right; drag the handle
+// on the divider, or Alt+drag anywhere) or Onion (the result over the photo at an opacity). The
+// result is in the target frame, which is the photo's frame for studio documents, so it is drawn
+// into the photo's image rectangle (scaled up when the preview is smaller than the photo).
+// Decisions:
+// - Result is the default: the warped photo is what is being made; `\` flips to the photo.
+// - Pairs are drawn the same in every mode: each arrow runs from where the feature is in the
+//   photo (source) to where it is asked to be in the result (target). Nothing jumps on `\`.
+// - Each endpoint is edited where its own picture is shown. Targets are result pixels: they
+//   can be placed, grabbed and dragged everywhere. Sources are photo pixels: they are grabbed,
+//   rubber-banded and placed only where the photo shows (Photo, Onion, left of the divider);
+//   over the result a source marker is a reference, since the feature is no longer there. So
+//   a new pair's source is clicked on the photo (`\` or Split), and its target may then be
+//   placed on the result (a pending source survives mode changes).
+// - Tools that edit the photo itself (depth painting, insertion's grid and region) do not work
+//   in the target frame (Tool::worksOnResult false): while one is active the canvas shows the
+//   photo whatever the mode; the mode returns with the pair tool.
+// - The result shown is always the newest the controller delivered for THIS photo, even while
+//   a newer render is in flight (a badge says "updating"); before the first one arrives the
+//   canvas shows a checkerboard and says so, never the photo in the result's place.
+// - Overlays of photo pixels (the depth overlay) are drawn only where the photo shows.
+// - A canvas without a controller shows the photo only (tests of the tools, other uses).
 #pragma once
 
+#include "ui/canvas_view_mode.h"
 #include "ui/loupe.h"
 #include "ui/scaled_image_cache.h"
 #include "ui/view_transform.h"
@@ -23,6 +49,7 @@ namespace artcam::ui {
 
 class DepthOverlay;
 class Document;
+class PreviewController;
 class Tool;
 
 class Canvas : public QWidget {
@@ -38,6 +65,22 @@ class Canvas : public QWidget {
   Tool* tool() const { return tool_.get(); }
   // Draws the depth overlay (when visible) over the photo, with its legend.
   void setDepthOverlay(DepthOverlay* overlay);
+  // The source of the result picture (see the top of this file); null: photo only.
+  void setPreview(PreviewController* preview);
+  PreviewController* preview() const { return preview_; }
+
+  const CanvasViewState& viewState() const { return view_state_; }
+  CanvasViewMode viewMode() const { return view_state_.mode; }
+  // The mode actually drawn: Photo without a controller, without a photo, or while a tool that
+  // edits the photo is active; else viewMode().
+  CanvasViewMode shownMode() const;
+  // Whether the photo is visible at a widget point (Photo, Onion, left of the divider): where
+  // sources may be edited.
+  bool photoVisibleAt(const QPointF& widget) const;
+  // The newest result delivered for the current photo; null before the first one.
+  const QImage* resultImage() const;
+  // The divider's widget x in Split.
+  double dividerX() const;
 
   // Residual (px) drawn fully red; below it the arrow blends from green.
   static constexpr double kRedResidualPx = 4.0;
@@ -55,9 +98,15 @@ class Canvas : public QWidget {
   // Restores a saved view (scale and image point at the centre).
   void setView(double scale, const QPointF& image_centre);
   void setLoupeEnabled(bool enabled);
+  void setViewState(const CanvasViewState& state);
+  void setViewMode(CanvasViewMode mode);
+  void toggleBeforeAfter();  // `\`
+  void setSplit(double fraction);
+  void setOnionOpacity(double opacity);
 
  signals:
   void viewChanged();
+  void viewStateChanged();
   void cursorMoved(const QPointF& image_point);
 
  protected:
@@ -76,6 +125,15 @@ class Canvas : public QWidget {
   void onPhotoChanged();
   void paintPairs(QPainter& painter);
   void paintDepth(QPainter& painter, const QRectF& image_rect);
+  // canvas_result.cpp: the picture of the shown mode, and the Split/Onion controls.
+  void paintPicture(QPainter& painter, const QRectF& image_rect);
+  void paintResult(QPainter& painter, const QRectF& image_rect);
+  void paintViewBadge(QPainter& painter, const QRectF& image_rect);
+  // paintDepth only where the photo shows (depth is of photo pixels).
+  void paintDepthOnPhoto(QPainter& painter, const QRectF& image_rect);
+  bool onDividerHandle(const QPointF& widget) const;
+  // The picture the loupe magnifies at a widget point (the result or the photo's display).
+  const QImage& loupePicture(const QPointF& widget) const;
   void userMovedView();
   void pinchBy(double factor, const QPointF& widget_centre);
 
@@ -84,6 +142,15 @@ class Canvas : public QWidget {
   ScaledImageCache display_cache_;  // the display copy at the current zoom
   std::unique_ptr<Tool> tool_;
   DepthOverlay* depth_overlay_ = nullptr;
+  PreviewController* preview_ = nullptr;
+  CanvasViewState view_state_;
+  ScaledImageCache result_cache_;  // the result at the current zoom
+  // Results with a generation above this are of the current photo: the controller schedules
+  // the new photo's render on cameraChanged, which Document emits after photoChanged.
+  quint64 photo_generation_floor_ = 0;
+  const void* floor_photo_ = nullptr;  // the photo the floor was taken for
+  bool dragging_divider_ = false;
+  QMetaObject::Connection camera_connection_;  // the "updating" badge's repaint
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
   bool loupe_enabled_ = true;

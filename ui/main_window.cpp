@@ -2,6 +2,7 @@
 #include "ui/main_window.h"
 
 #include "ui/canvas.h"
+#include "ui/canvas_view_actions.h"
 #include "ui/cloud_view.h"
 #include "ui/colour/colour_dock.h"
 #include "ui/commands.h"
@@ -56,6 +57,7 @@ MainWindow::MainWindow(QWidget* parent)
       cloud_view_(new CloudView(document_, this)) {
   canvas_->setTool(std::make_unique<PairTool>(canvas_, document_));
   canvas_->setDepthOverlay(depth_overlay_);
+  canvas_->setPreview(preview_);  // the canvas shows the result of the same worker
   setCentralWidget(canvas_);
   setAcceptDrops(true);
 
@@ -67,7 +69,11 @@ MainWindow::MainWindow(QWidget* parent)
   cloud_dock->setObjectName("cloudDock");
   cloud_dock->setWidget(cloud_view_);
   tabifyDockWidget(preview_dock, cloud_dock);
-  preview_dock->raise();
+  // The canvas shows the result (Result, Split, Onion), so the thumbnail dock is optional: hidden
+  // by default, in View ▸ docks. Its tab-mate, the 3D view, would then fill the place while empty:
+  // it is hidden too until a cloud is opened (below) or it is asked for in the View menu.
+  preview_dock->hide();
+  cloud_dock->hide();
   connect(session_, &Session::cloudLoaded, this, [this, cloud_dock](const LoadedCloud& cloud) {
     cloud_view_->setCloud(cloud);
     cloud_dock->show();
@@ -109,9 +115,6 @@ MainWindow::MainWindow(QWidget* parent)
     session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
   });
 
-  // The preview is the point of the session: give it room beside the canvas.
-  resizeDocks({preview_dock}, {560}, Qt::Horizontal);
-  resizeDocks({preview_dock, pairs_dock}, {420, 360}, Qt::Vertical);
   statusBar()->addPermanentWidget(fit_status_);
   connect(session_, &Session::statusMessage, this,
           [this](const QString& m) { statusBar()->showMessage(m, 8000); });
@@ -130,12 +133,14 @@ MainWindow::MainWindow(QWidget* parent)
     v.centre = canvas_->view().centre(QSizeF(canvas_->size()));
     v.preview_mode = static_cast<int>(preview_view_->area()->mode());
     v.opacity = preview_view_->area()->opacity();
+    v.canvas = canvas_->viewState();
     return v;
   });
   connect(session_, &Session::viewStateLoaded, this, [this](const ViewState& v) {
     if (v.scale > 0.0) canvas_->setView(v.scale, v.centre);
     preview_view_->setMode(static_cast<PreviewMode>(v.preview_mode));
     preview_view_->setOpacity(v.opacity);
+    canvas_->setViewState(v.canvas);
   });
 
   colour_dock_->attachToSession(session_);
@@ -206,6 +211,8 @@ void MainWindow::createMenus() {
       {QKeySequence(tr("Ctrl+=")), QKeySequence(tr("Ctrl++")), QKeySequence::ZoomIn});
   QAction* zoom_out = view->addAction(tr("Zoom &Out"), canvas_, &Canvas::zoomOut);
   zoom_out->setShortcuts({QKeySequence(tr("Ctrl+-")), QKeySequence::ZoomOut});
+  view->addSeparator();
+  addCanvasViewActions(this, canvas_, view);
   view->addSeparator();
   for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 

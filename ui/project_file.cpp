@@ -30,6 +30,11 @@ StudioProject toCore(const Project& p) {
   view["centre"] = QJsonArray{p.view.centre.x(), p.view.centre.y()};
   view["preview_mode"] = p.view.preview_mode;
   view["opacity"] = p.view.opacity;
+  const CanvasViewState& canvas = p.view.canvas;
+  view["canvas"] = QJsonObject{{"mode", canvasViewModeName(canvas.mode)},
+                               {"compare_mode", canvasViewModeName(canvas.compare_mode)},
+                               {"split", canvas.split},
+                               {"onion_opacity", canvas.onion_opacity}};
   c.view_json = QJsonDocument(view).toJson(QJsonDocument::Compact).toStdString();
   if (!p.parts.isEmpty())
     c.parts_json = QJsonDocument(p.parts).toJson(QJsonDocument::Compact).toStdString();
@@ -53,6 +58,30 @@ Status readView(const std::string& text, const std::string& name, ViewState& v) 
                            std::to_string(static_cast<int>(PreviewMode::WarpedOnly)));
   if (!(v.opacity >= 0.0 && v.opacity <= 1.0))
     return Status::failure(name + ": /view/opacity: expected a number from 0 to 1");
+  // Projects written before the canvas showed the result have no "canvas": the defaults.
+  if (view.contains("canvas")) {
+    const QJsonObject c = view["canvas"].toObject();
+    CanvasViewState& s = v.canvas;
+    const std::pair<const char*, CanvasViewMode*> modes[] = {{"mode", &s.mode},
+                                                             {"compare_mode", &s.compare_mode}};
+    for (const auto& [key, field] : modes) {
+      if (!c.contains(QLatin1String(key))) continue;
+      const auto mode = canvasViewModeFromName(str(c[QLatin1String(key)].toString()));
+      if (!mode)
+        return Status::failure(name + ": /view/canvas/" + key +
+                               ": expected photo, result, split or onion");
+      *field = *mode;
+    }
+    // `\` returns from the photo to compare_mode, so it is one of the result views.
+    if (s.compare_mode == CanvasViewMode::Photo)
+      return Status::failure(name + ": /view/canvas/compare_mode: expected result, split or onion");
+    s.split = c["split"].toDouble(s.split);
+    s.onion_opacity = c["onion_opacity"].toDouble(s.onion_opacity);
+    if (!(s.split >= 0.0 && s.split <= 1.0))
+      return Status::failure(name + ": /view/canvas/split: expected a number from 0 to 1");
+    if (!(s.onion_opacity >= 0.0 && s.onion_opacity <= 1.0))
+      return Status::failure(name + ": /view/canvas/onion_opacity: expected a number from 0 to 1");
+  }
   return Status::success();
 }
 

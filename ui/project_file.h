@@ -4,13 +4,16 @@
 // pairs and depth layers, and the view state and mode parts as Qt JSON. Saved atomically.
 //
 // The view state ("view") is read here, because only the studio uses it:
-//   { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5 }
+//   { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5,
+//     "canvas": {"mode": "result", "compare_mode": "result", "split": 0.5,
+//                "onion_opacity": 0.5} }     // canvas: optional, defaults as shown
 // Values no studio writes are refused rather than turned into a broken view.
 #pragma once
 
 #include "core/fit/fit_image.h"
 #include "core/model/status.h"
 #include "core/project/studio_project.h"
+#include "ui/canvas_view_mode.h"
 #include "ui/document.h"
 
 #include <QPointF>
@@ -25,8 +28,9 @@ namespace artcam::ui {
 struct ViewState {
   double scale = 0.0;  // 0: fit to window
   QPointF centre;
-  int preview_mode = 0;
+  int preview_mode = 0;  // the Preview dock's (preview_view.h)
   double opacity = 0.5;
+  CanvasViewState canvas;  // the main canvas's photo/result mode
 };
 
 // The depth map file a project refers to (loaded by the session, off the GUI thread).

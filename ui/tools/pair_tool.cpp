@@ -39,7 +39,9 @@ std::optional<PairTool::Hit> PairTool::hitTest(const QPointF& widget) const {
   for (size_t i = 0; i < pairs.size(); ++i) {
     for (Endpoint e : {Endpoint::Source, Endpoint::Target}) {
       const Eigen::Vector2d& p = e == Endpoint::Source ? pairs[i].source : pairs[i].target;
-      const double d = distance(canvas_->view().widgetFromImage(QPointF(p.x(), p.y())), widget);
+      const QPointF at = canvas_->view().widgetFromImage(QPointF(p.x(), p.y()));
+      if (e == Endpoint::Source && !canvas_->photoVisibleAt(at)) continue;  // over the result
+      const double d = distance(at, widget);
       if (d <= best_d) {
         best_d = d;
         best = Hit{static_cast<int>(i), e};
@@ -53,6 +55,7 @@ void PairTool::mousePress(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton) return;
   press_widget_ = event->position();
   cursor_widget_ = press_widget_;
+  source_hint_at_.reset();
   shift_ = event->modifiers().testFlag(Qt::ShiftModifier);
   // While a source waits for its target every click places the target, even on a point.
   const std::optional<Hit> hit = pending_source_ ? std::nullopt : hitTest(press_widget_);
@@ -97,6 +100,8 @@ void PairTool::mouseMove(QMouseEvent* event) {
       dragTo(cursor_widget_);
       break;
     case Gesture::None:
+      if (source_hint_at_ && distance(cursor_widget_, *source_hint_at_) > 60.0)
+        source_hint_at_.reset();
       // Tell the user what a press would do here: grab a point or place one.
       canvas_->setCursor(!pending_source_ && hitTest(cursor_widget_) ? Qt::SizeAllCursor
                                                                      : Qt::CrossCursor);
@@ -126,7 +131,10 @@ void PairTool::mouseRelease(QMouseEvent* event) {
   switch (g) {
     case Gesture::PressedEmpty: {
       const Eigen::Vector2d p = toEigen(imagePoint(cursor_widget_));
-      if (!pending_source_) {
+      if (!pending_source_ && !canvas_->photoVisibleAt(cursor_widget_)) {
+        source_hint_at_ = cursor_widget_;
+        document_->setSelection({});
+      } else if (!pending_source_) {
         pending_source_ = p;
         document_->setSelection({});
       } else {
@@ -147,7 +155,8 @@ void PairTool::mouseRelease(QMouseEvent* event) {
             canvas_->view().widgetFromImage(QPointF(pairs[i].source.x(), pairs[i].source.y()));
         const QPointF t =
             canvas_->view().widgetFromImage(QPointF(pairs[i].target.x(), pairs[i].target.y()));
-        if (band.contains(s) || band.contains(t)) sel.push_back(static_cast<int>(i));
+        if ((band.contains(s) && canvas_->photoVisibleAt(s)) || band.contains(t))
+          sel.push_back(static_cast<int>(i));
       }
       document_->setSelection(sel);
       break;
@@ -183,6 +192,20 @@ void PairTool::paint(QPainter& painter) {
     painter.setPen(QPen(QColor(255, 220, 0), 2.0));
     painter.drawEllipse(s, 5.0, 5.0);
   }
+  if (source_hint_at_) {
+    const QString hint = QCoreApplication::translate(
+        "PairTool", "Sources are placed on the photo: press \\ or use Split");
+    const QRectF box(*source_hint_at_ + QPointF(12, 8),
+                     QSizeF(painter.fontMetrics().horizontalAdvance(hint) + 12,
+                            painter.fontMetrics().height() + 6));
+    painter.save();
+    painter.setPen(Qt::NoPen);
+    painter.setBrush(QColor(0, 0, 0, 170));
+    painter.drawRoundedRect(box, 4, 4);
+    painter.setPen(QColor(255, 220, 0));
+    painter.drawText(box, Qt::AlignCenter, hint);
+    painter.restore();
+  }
   if (gesture_ == Gesture::RubberBand) {
     painter.setPen(QPen(QColor(80, 160, 255), 1.0, Qt::DashLine));
     painter.setBrush(QColor(80, 160, 255, 40));
@@ -193,6 +216,7 @@ void PairTool::paint(QPainter& painter) {
 
 void PairTool::cancel() {
   pending_source_.reset();
+  source_hint_at_.reset();
   gesture_ = Gesture::None;
   canvas_->update();
 }

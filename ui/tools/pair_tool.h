@@ -3,6 +3,11 @@
 // click selects (Shift toggles), drag moves the grabbed endpoint of every selected pair (one
 // merged undo step per drag), a drag on empty space selects with a rubber band, Delete removes
 // the selection, Escape drops a half-made pair.
+//
+// Over the warped result (Canvas::photoVisibleAt false: Result mode, right of the Split
+// divider) only targets are edited, since target pixels are result pixels; sources are grabbed
+// and placed only where the photo shows. A click there that would place a new source places
+// nothing and says where sources go.
 #pragma once
 
 #include "ui/document.h"
@@ -36,6 +41,8 @@ class PairTool : public Tool {
            gesture_ == Gesture::PressedPoint || gesture_ == Gesture::Dragging;
   }
 
+  bool worksOnResult() const override { return true; }
+
   bool hasPendingSource() const { return pending_source_.has_value(); }
 
  private:
@@ -54,6 +61,7 @@ class PairTool : public Tool {
   QPointF cursor_widget_;
   bool shift_ = false;
   std::optional<Eigen::Vector2d> pending_source_;
+  std::optional<QPointF> source_hint_at_;  // widget point of a refused source click
   // Dragging state: grabbed endpoint, the pairs moved and their values at press time.
   Hit grabbed_{-1, Endpoint::Source};
   std::vector<int> drag_indices_;

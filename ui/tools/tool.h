@@ -31,6 +31,9 @@ class Tool {
   virtual void cancel() = 0;
   // Whether a point is being placed or dragged now: the canvas then shows its loupe.
   virtual bool wantsLoupe() const { return false; }
+  // Whether the tool works in the target frame, i.e. on the warped result: then the canvas may
+  // show the result while it is active (canvas.h); tools that edit the photo itself keep false.
+  virtual bool worksOnResult() const { return false; }
 
  protected:
   Canvas* canvas_;
