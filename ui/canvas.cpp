@@ -60,7 +60,24 @@ Canvas::~Canvas() = default;
 void Canvas::setTool(std::unique_ptr<Tool> tool) {
   if (tool_) tool_->cancel();
   tool_ = std::move(tool);
+  applyCursor();
   update();
+  emit toolChanged();
+}
+
+void Canvas::applyCursor() {
+  if (panning_)
+    setCursor(Qt::ClosedHandCursor);
+  else if (space_down_)
+    setCursor(Qt::OpenHandCursor);
+  else
+    setCursor(tool_ ? tool_->cursor() : QCursor(Qt::ArrowCursor));
+}
+
+void Canvas::setSpacePan(bool down) {
+  if (space_down_ == down) return;
+  space_down_ = down;
+  applyCursor();
 }
 
 void Canvas::setDepthOverlay(DepthOverlay* overlay) {
@@ -267,7 +284,7 @@ void Canvas::mouseReleaseEvent(QMouseEvent* event) {
   if (panning_) {
     if (event->button() == Qt::MiddleButton || event->button() == Qt::LeftButton) {
       panning_ = false;
-      setCursor(space_down_ ? Qt::OpenHandCursor : Qt::ArrowCursor);
+      applyCursor();
     }
     return;
   }
@@ -282,9 +299,8 @@ void Canvas::wheelEvent(QWheelEvent* event) {
 }
 
 void Canvas::keyPressEvent(QKeyEvent* event) {
-  if (event->key() == Qt::Key_Space && !event->isAutoRepeat()) {
-    space_down_ = true;
-    if (!panning_) setCursor(Qt::OpenHandCursor);
+  if (event->key() == Qt::Key_Space) {
+    if (!event->isAutoRepeat()) setSpacePan(true);
     return;
   }
   if (tool_ && tool_->keyPress(event)) return;
@@ -292,9 +308,8 @@ void Canvas::keyPressEvent(QKeyEvent* event) {
 }
 
 void Canvas::keyReleaseEvent(QKeyEvent* event) {
-  if (event->key() == Qt::Key_Space && !event->isAutoRepeat()) {
-    space_down_ = false;
-    if (!panning_) setCursor(Qt::ArrowCursor);
+  if (event->key() == Qt::Key_Space) {
+    if (!event->isAutoRepeat()) setSpacePan(false);
     return;
   }
   QWidget::keyReleaseEvent(event);

@@ -36,6 +36,12 @@ class Canvas : public QWidget {
   const ViewTransform& view() const { return view_; }
   void setTool(std::unique_ptr<Tool> tool);
   Tool* tool() const { return tool_.get(); }
+  // Space held: a left drag pans. Set by the canvas's own keys and, while the pointer is over
+  // the canvas, by SpacePanFilter (space_pan.h) whatever widget has the focus.
+  void setSpacePan(bool down);
+  bool isSpacePanning() const { return space_down_; }
+  // The pointer is over the canvas (it tracks moves; cleared when the pointer leaves).
+  bool isPointerInside() const { return cursor_inside_ || underMouse(); }
   // Draws the depth overlay (when visible) over the photo, with its legend.
   void setDepthOverlay(DepthOverlay* overlay);
 
@@ -58,6 +64,7 @@ class Canvas : public QWidget {
 
  signals:
   void viewChanged();
+  void toolChanged();  // setTool made another tool active
   void cursorMoved(const QPointF& image_point);
 
  protected:
@@ -74,6 +81,7 @@ class Canvas : public QWidget {
 
  private:
   void onPhotoChanged();
+  void applyCursor();  // pan hand while panning or Space is held, else the tool's cursor
   void paintPairs(QPainter& painter);
   void paintDepth(QPainter& painter, const QRectF& image_rect);
   void userMovedView();

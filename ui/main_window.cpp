@@ -16,6 +16,7 @@
 #include "ui/preview_controller.h"
 #include "ui/preview_view.h"
 #include "ui/session.h"
+#include "ui/tool_switcher.h"
 #include "ui/tools/depth_tool.h"
 #include "ui/tools/depth_tool_settings.h"
 #include "ui/tools/pair_tool.h"
@@ -28,6 +29,7 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileInfo>
+#include <QLabel>
 #include <QKeySequence>
 #include <QMenu>
 #include <QMenuBar>
@@ -148,7 +150,13 @@ MainWindow::MainWindow(QWidget* parent)
 
   colour_dock_->attachToSession(session_);
   createMenus();
-  (new InsertionStudio(this, canvas_, document_))->attachToSession(session_);  // Insertion dock, menu and tools
+  auto* insertion = new InsertionStudio(this, canvas_, document_);  // Insertion dock, menu and tools
+  insertion->attachToSession(session_);
+  // The Insertion tools are canvas tools like the others: one exclusive group, on the toolbar.
+  for (QAction* a : {insertion->gridToolAction(), insertion->regionToolAction()}) {
+    tool_switcher_->addAction(a);
+    if (auto* bar = findChild<QToolBar*>(QStringLiteral("mainToolBar"))) bar->addAction(a);
+  }
   updateTitle();
   resize(1400, 900);
 }
@@ -278,7 +286,8 @@ void MainWindow::createMenus() {
 }
 
 void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
-  auto* group = new QActionGroup(this);
+  tool_switcher_ = new ToolSwitcher(canvas_, document_, this);
+  statusBar()->insertPermanentWidget(0, tool_switcher_->label());
   struct Entry {
     QString label;
     QString key;
@@ -302,8 +311,7 @@ void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
     a->setCheckable(true);
     a->setShortcut(QKeySequence(e.key));
     a->setToolTip(e.tip);
-    a->setChecked(!e.mode);
-    group->addAction(a);
+    tool_switcher_->addAction(a, /*is_default=*/!e.mode);
     bar->addAction(a);
     const std::optional<DepthToolMode> mode = e.mode;
     connect(a, &QAction::triggered, this, [this, mode] {

@@ -2,6 +2,7 @@
 #include "ui/tools/depth_tool.h"
 
 #include "ui/canvas.h"
+#include "ui/tools/tool_cursor.h"
 #include "ui/depth_commands.h"
 #include "ui/document.h"
 
@@ -266,6 +267,26 @@ void DepthTool::cancel() {
     depth()->setAnchors(depth()->activeLayer(), drag_before_);
     drag_anchor_ = -1;
   }
+}
+
+QString DepthTool::name() const {
+  switch (mode_) {
+    case DepthToolMode::Brush: return tr("Depth brush");
+    case DepthToolMode::Eraser: return tr("Depth eraser");
+    case DepthToolMode::Polygon: return tr("Depth polygon");
+    case DepthToolMode::Points: return tr("Depth points");
+  }
+  return {};
+}
+
+QCursor DepthTool::cursor() const {
+  switch (mode_) {
+    case DepthToolMode::Brush: return toolCursor(QStringLiteral("B"));
+    case DepthToolMode::Eraser: return toolCursor(QStringLiteral("E"));
+    case DepthToolMode::Polygon: return toolCursor(QStringLiteral("G"));
+    case DepthToolMode::Points: return toolCursor(QStringLiteral("D"));
+  }
+  return {};
 }
 
 }  // namespace artcam::ui

@@ -42,6 +42,8 @@ class DepthTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  QString name() const override;
+  QCursor cursor() const override;
   // Depth points and polygon corners are placed precisely.
   bool wantsLoupe() const override {
     return mode_ == DepthToolMode::Points || mode_ == DepthToolMode::Polygon;

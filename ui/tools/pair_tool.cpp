@@ -2,6 +2,7 @@
 #include "ui/tools/pair_tool.h"
 
 #include "ui/canvas.h"
+#include "ui/tools/tool_cursor.h"
 #include "ui/commands.h"
 
 #include <QCoreApplication>
@@ -196,5 +197,8 @@ void PairTool::cancel() {
   gesture_ = Gesture::None;
   canvas_->update();
 }
+
+QString PairTool::name() const { return QCoreApplication::translate("PairTool", "Pairs"); }
+QCursor PairTool::cursor() const { return toolCursor(QStringLiteral("P")); }
 
 }  // namespace artcam::ui

@@ -30,6 +30,8 @@ class PairTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  QString name() const override;
+  QCursor cursor() const override;
   // Placing a target, pressing to place or drag, or dragging.
   bool wantsLoupe() const override {
     return pending_source_.has_value() || gesture_ == Gesture::PressedEmpty ||

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: Apache-2.0
+// The studio's visible state and aids: the active tool shown in the toolbar, the cursor and
+// the status bar, and reset to the pair tool by a new photo.
+#include "tests/ui/ui_fixtures.h"
+#include "ui/canvas.h"
+#include "ui/document.h"
+#include "ui/main_window.h"
+#include "ui/matting/insertion_studio.h"
+#include "ui/session.h"
+#include "ui/tool_switcher.h"
+#include "ui/tools/depth_tool.h"
+#include "ui/tools/grid_tool.h"
+#include "ui/tools/pair_tool.h"
+#include "ui/tools/region_tool.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QLabel>
+#include <QStandardPaths>
+#include <QToolBar>
+#include <QtTest/QtTest>
+
+using namespace artcam;
+using namespace artcam::ui;
+
+namespace {
+
+QImage cursorImage(const QWidget& w) { return w.cursor().pixmap().toImage(); }
+
+}  // namespace
+
+class TestStudioAids : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void initTestCase() { QStandardPaths::setTestModeEnabled(true); }
+
+  void activeToolIsShownAndResetByANewPhoto() {
+    MainWindow window;
+    window.session()->setInteractive(false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.document()->reset(ui::test::syntheticPhoto());
+    auto* studio = window.findChild<InsertionStudio*>();
+    QVERIFY(studio);
+    ToolSwitcher* tools = window.toolSwitcher();
+    QAction* pairs = tools->defaultAction();
+    QVERIFY(pairs && pairs->isChecked());
+    QVERIFY(dynamic_cast<PairTool*>(window.canvas()->tool()));
+    QCOMPARE(tools->label()->text(), QStringLiteral("Tool: Pairs"));
+    const QImage pair_cursor = cursorImage(*window.canvas());
+    QVERIFY(!pair_cursor.isNull());
+
+    // The Insertion tools are in the toolbar and in the same exclusive group.
+    auto* bar = window.findChild<QToolBar*>(QStringLiteral("mainToolBar"));
+    QVERIFY(bar);
+    QVERIFY(bar->actions().contains(studio->gridToolAction()));
+    QVERIFY(bar->actions().contains(studio->regionToolAction()));
+    QVERIFY(bar->actions().contains(pairs));
+    studio->regionToolAction()->trigger();
+    QVERIFY(dynamic_cast<RegionTool*>(window.canvas()->tool()));
+    QVERIFY(studio->regionToolAction()->isChecked());
+    QVERIFY(!pairs->isChecked());
+    QCOMPARE(tools->group()->checkedAction(), studio->regionToolAction());
+    QVERIFY(tools->label()->text().contains("region"));
+    const QImage region_cursor = cursorImage(*window.canvas());
+    QVERIFY(region_cursor != pair_cursor);
+
+    // A depth tool unchecks the Insertion tool; each tool has its own cursor.
+    window.canvas()->setFocus();
+    QTest::keyClick(&window, Qt::Key_B);
+    QVERIFY(dynamic_cast<DepthTool*>(window.canvas()->tool()));
+    QVERIFY(!studio->regionToolAction()->isChecked());
+    QCOMPARE(tools->label()->text(), QStringLiteral("Tool: Depth brush"));
+    const QImage brush_cursor = cursorImage(*window.canvas());
+    QVERIFY(brush_cursor != pair_cursor && brush_cursor != region_cursor);
+
+    // Space shows the pan hand; releasing it brings the tool's cursor back, not an arrow.
+    window.canvas()->setSpacePan(true);
+    QCOMPARE(window.canvas()->cursor().shape(), Qt::OpenHandCursor);
+    window.canvas()->setSpacePan(false);
+    QCOMPARE(cursorImage(*window.canvas()), brush_cursor);
+
+    // A new photo: back to the pair tool, so the first clicks make pairs.
+    studio->gridToolAction()->trigger();
+    QVERIFY(dynamic_cast<GridTool*>(window.canvas()->tool()));
+    window.document()->reset(ui::test::syntheticPhoto(200, 150));
+    QVERIFY(dynamic_cast<PairTool*>(window.canvas()->tool()));
+    QVERIFY(pairs->isChecked());
+    QVERIFY(!studio->gridToolAction()->isChecked());
+    QCOMPARE(tools->label()->text(), QStringLiteral("Tool: Pairs"));
+    const Canvas& canvas = *window.canvas();
+    ui::test::click(window.canvas(), ui::test::widgetPoint(canvas, {50, 50}));
+    QVERIFY(static_cast<PairTool*>(window.canvas()->tool())->hasPendingSource());
+  }
+};
+
+QTEST_MAIN(TestStudioAids)
+#include "test_studio_aids.moc"
