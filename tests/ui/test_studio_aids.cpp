@@ -9,6 +9,7 @@
 #include "ui/session.h"
 #include "ui/tool_switcher.h"
 #include "ui/tools/depth_tool.h"
+#include "ui/tools/depth_tool_settings.h"
 #include "ui/tools/grid_tool.h"
 #include "ui/tools/pair_tool.h"
 #include "ui/tools/region_tool.h"
@@ -26,6 +27,17 @@ using namespace artcam::ui;
 namespace {
 
 QImage cursorImage(const QWidget& w) { return w.cursor().pixmap().toImage(); }
+
+// A photo of two flat colours meeting at x = edge (photo pixels): dark left, light right.
+PhotoPtr twoTonePhoto(int w, int h, int edge) {
+  ImageF img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) img.pixel(x, y)[c] = x < edge ? 0.05f : 0.8f;
+  LoadedImage loaded;
+  loaded.image = std::move(img);
+  return makePhoto(QStringLiteral("two_tone.png"), std::move(loaded));
+}
 
 }  // namespace
 
@@ -92,6 +104,40 @@ class TestStudioAids : public QObject {
     const Canvas& canvas = *window.canvas();
     ui::test::click(window.canvas(), ui::test::widgetPoint(canvas, {50, 50}));
     QVERIFY(static_cast<PairTool*>(window.canvas()->tool())->hasPendingSource());
+  }
+
+  void depthStrokeShowsAtOnceAndStopsAtEdges() {
+    Document doc;
+    DepthToolSettings settings;
+    settings.setRadius(12.0);
+    settings.setHardness(1.0);
+    settings.setEdgeAware(true);
+    Canvas canvas(&doc);
+    canvas.resize(640, 480);
+    canvas.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&canvas));
+    doc.reset(twoTonePhoto(100, 60, 50));
+    canvas.setTool(std::make_unique<DepthTool>(&canvas, &doc, &settings, DepthToolMode::Brush));
+    const QImage before = canvas.grab().toImage();
+    // A stroke down the dark side, its disc reaching 7 px over the edge.
+    ui::test::drag(&canvas, ui::test::widgetPoint(canvas, {45.5, 40.5}),
+                   ui::test::widgetPoint(canvas, {45.5, 20.5}));
+    QCOMPARE(doc.depth()->layerCount(), 1);
+    const RegionMask& mask = doc.depth()->layer(0).mask;
+    QCOMPARE(mask.at(45, 30), uint8_t{255});
+    QCOMPARE(mask.at(40, 30), uint8_t{255});
+    for (int y = 0; y < 60; ++y)
+      for (int x = 50; x < 100; ++x) QCOMPARE(mask.at(x, y), uint8_t{0});
+    // Not a plane yet (no depth points), yet the painted pixels are tinted on the canvas.
+    QVERIFY(!doc.depth()->plane(0));
+    ui::test::sendMouse(&canvas, QEvent::MouseMove, QPoint(5, 5), Qt::NoButton, Qt::NoButton);
+    const QImage after = canvas.grab().toImage();
+    const QPoint painted = ui::test::widgetPoint(canvas, {40.5, 30.5});
+    const QPoint other_side = ui::test::widgetPoint(canvas, {56.5, 30.5});
+    const QColor b = before.pixelColor(painted), a = after.pixelColor(painted);
+    QVERIFY2(a.blue() > b.blue() + 40 && a.green() > b.green() + 40,
+             qPrintable(QString("%1 -> %2").arg(b.name(), a.name())));
+    QCOMPARE(after.pixelColor(other_side), before.pixelColor(other_side));
   }
 };
 

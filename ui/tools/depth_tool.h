@@ -10,6 +10,7 @@
 // Painting with no layer creates one first (same undo macro as the first stroke).
 #pragma once
 
+#include "core/depth/edge_aware_brush.h"
 #include "core/depth/inverse_depth_plane.h"
 #include "core/depth/region_mask.h"
 #include "ui/tools/depth_tool_settings.h"
@@ -55,6 +56,9 @@ class DepthTool : public Tool {
   int ensureLayer();  // the active layer, made if there is none
   BrushOptions brush() const;
   void finishStroke();
+  PixelRect strokeDab(RegionMask* mask, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                      bool first);
+  void paintActiveMask(QPainter& painter) const;
   void closePolygon(bool erase);
   void pressPoints(const QPointF& widget);
   std::optional<int> hitAnchor(const QPointF& widget) const;
@@ -69,6 +73,7 @@ class DepthTool : public Tool {
   PixelRect stroke_rect_;
   Eigen::Vector2d stroke_last_{0, 0};
   bool stroke_made_layer_ = false;
+  std::optional<EdgeAwareOptions> stroke_edges_;  // edge-aware stroke: its reference colour
   // Polygon in progress (photo pixels).
   std::vector<Eigen::Vector2d> polygon_;
   // Depth point drag.
