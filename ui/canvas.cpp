@@ -220,14 +220,18 @@ void Canvas::paintDepth(QPainter& painter, const QRectF& image_rect) {
 
 void Canvas::paintPairs(QPainter& painter) {
   const auto& pairs = document_->pairs();
+  // A hand-set camera was not fitted to the pairs: their residuals would colour good pairs
+  // red, so they are drawn neutral while the banner (manual_camera_banner.h) says why.
+  const bool manual = document_->manualCamera().has_value();
   for (size_t i = 0; i < pairs.size(); ++i) {
     const Pair& p = pairs[i];
     const int index = static_cast<int>(i);
     const QPointF s = view_.widgetFromImage(toQt(p.source));
     const QPointF t = view_.widgetFromImage(toQt(p.target));
     const bool selected = document_->isSelected(index);
-    const QColor colour =
-        p.enabled ? residualColour(document_->residual(index)) : QColor(150, 150, 150);
+    const QColor colour = !p.enabled ? QColor(150, 150, 150)
+                          : manual   ? kUnfittedPairColour
+                                     : residualColour(document_->residual(index));
     if (selected) {
       painter.setPen(QPen(QColor(80, 160, 255), 5.0));
       painter.drawLine(s, t);

@@ -48,6 +48,9 @@ class Canvas : public QWidget {
   // Residual (px) drawn fully red; below it the arrow blends from green.
   static constexpr double kRedResidualPx = 4.0;
   static QColor residualColour(double residual_px);
+  // Pair markers while the camera is set by hand (not fitted to them): a neutral light blue,
+  // neither the residual ramp nor the grey of disabled pairs.
+  static inline const QColor kUnfittedPairColour{150, 190, 230};
 
   bool isLoupeEnabled() const { return loupe_enabled_; }
   // The loupe as it is drawn now (invalid when hidden).

@@ -8,6 +8,7 @@
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
+#include "ui/manual_camera_banner.h"
 #include "ui/matting/insertion_studio.h"
 #include "ui/panels/depth_panel.h"
 #include "ui/panels/effects_panel.h"
@@ -267,6 +268,7 @@ void MainWindow::createMenus() {
             [this, a, chosen] { a->setChecked(document_->model() == chosen); });
   }
   model->addSeparator();
+  new ManualCameraBanner(document_, canvas_);  // over the canvas while the camera is hand-set
   model->addAction(tr("Use &Fitted Camera"), this, [this] {
     if (document_->manualCamera())
       document_->undoStack()->push(

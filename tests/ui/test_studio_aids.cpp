@@ -3,8 +3,11 @@
 // the status bar, and reset to the pair tool by a new photo.
 #include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
+#include "ui/commands.h"
 #include "ui/document.h"
+#include "ui/fit_status.h"
 #include "ui/main_window.h"
+#include "ui/manual_camera_banner.h"
 #include "ui/matting/insertion_studio.h"
 #include "ui/session.h"
 #include "ui/tool_switcher.h"
@@ -17,6 +20,7 @@
 #include <QAction>
 #include <QActionGroup>
 #include <QLabel>
+#include <QPushButton>
 #include <QStandardPaths>
 #include <QToolBar>
 #include <QtTest/QtTest>
@@ -138,6 +142,44 @@ class TestStudioAids : public QObject {
     QVERIFY2(a.blue() > b.blue() + 40 && a.green() > b.green() + 40,
              qPrintable(QString("%1 -> %2").arg(b.name(), a.name())));
     QCOMPARE(after.pixelColor(other_side), before.pixelColor(other_side));
+  }
+
+  void handSetCameraShowsABannerAndNeutralMarkers() {
+    MainWindow window;
+    window.session()->setInteractive(false);
+    // No photo: the status bar names no model (nothing is fitted).
+    QVERIFY(window.fitStatus()->modelText().isEmpty());
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    Document* doc = window.document();
+    doc->reset(ui::test::syntheticPhoto());
+    for (const Pair& p : ui::test::ninePairs()) doc->undoStack()->push(new AddPairCommand(doc, p));
+    auto* banner = window.findChild<ManualCameraBanner*>();
+    QVERIFY(banner);
+    QVERIFY(!banner->isVisibleTo(window.canvas()));
+    Canvas* canvas = window.canvas();
+    const QPoint target = ui::test::widgetPoint(*canvas, doc->pairs()[4].target);
+    QVERIFY(canvas->grab().toImage().pixelColor(target) != Canvas::kUnfittedPairColour);
+
+    // The identity set by hand: every pair is several pixels off it.
+    doc->undoStack()->push(
+        new SetCameraCommand(doc, identityImageCamera(doc->frame()), QStringLiteral("Edit")));
+    QVERIFY(doc->residual(4) > Canvas::kRedResidualPx);
+    QVERIFY(banner->isVisibleTo(canvas));
+    QVERIFY(banner->text().contains("Camera set by hand"));
+    QCOMPARE(banner->y(), 0);
+    QCOMPARE(banner->width(), canvas->width());
+    QCOMPARE(canvas->grab().toImage().pixelColor(target), Canvas::kUnfittedPairColour);
+    QVERIFY(window.fitStatus()->residualText().contains("not fitted"));
+
+    // Fit again: one undo step back to the fit.
+    banner->fitAgainButton()->click();
+    QVERIFY(!doc->manualCamera());
+    QVERIFY(!banner->isVisibleTo(canvas));
+    QVERIFY(doc->residual(4) < 1.0);
+    doc->undoStack()->undo();
+    QVERIFY(doc->manualCamera());
+    QVERIFY(banner->isVisibleTo(canvas));
   }
 };
 
