@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/canvas.h"
 
+#include "ui/canvas_annotations.h"
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
+#include "ui/grid_overlay.h"
 #include "ui/tools/tool.h"
 
 #include <QGestureEvent>
@@ -190,8 +192,10 @@ void Canvas::paintEvent(QPaintEvent*) {
   painter.setRenderHint(QPainter::SmoothPixmapTransform, view_.scale() < 1.0);
   display_cache_.draw(painter, target, photo->display);
   paintDepth(painter, target);
+  if (grid_visible_) paintGridOverlay(painter, target);
   painter.setRenderHint(QPainter::Antialiasing, true);
   paintPairs(painter);
+  paintResidualAids(painter);
   if (tool_) tool_->paint(painter);
   if (const LoupeGeometry g = loupe(); g.isValid())
     Loupe::paint(painter, g, photo->display, QSize(f.width, f.height));
@@ -247,9 +251,26 @@ void Canvas::paintPairs(QPainter& painter) {
     painter.setPen(QPen(Qt::black, 1.0));
     painter.drawRect(QRectF(t.x() - 3.5, t.y() - 3.5, 7, 7));
     painter.setBrush(Qt::NoBrush);
-    painter.setPen(Qt::white);
-    painter.drawText(s + QPointF(6, -6), QString::number(index + 1));
+    drawHaloText(painter, s + QPointF(6, -6), QString::number(index + 1), Qt::white,
+                 QColor(0, 0, 0, 220));
   }
+}
+
+void Canvas::paintResidualAids(QPainter& painter) {
+  // Only while the pairs are fitted: a hand-set camera draws them neutral (no ramp to explain).
+  if (document_->pairs().empty() || document_->manualCamera()) return;
+  if (residuals_magnified_) paintMagnifiedResiduals(painter, view_, *document_);
+  paintResidualLegend(painter, size());
+}
+
+void Canvas::setGridVisible(bool visible) {
+  grid_visible_ = visible;
+  update();
+}
+
+void Canvas::setResidualsMagnified(bool magnified) {
+  residuals_magnified_ = magnified;
+  update();
 }
 
 void Canvas::resizeEvent(QResizeEvent*) {

@@ -53,6 +53,8 @@ class Canvas : public QWidget {
   static inline const QColor kUnfittedPairColour{150, 190, 230};
 
   bool isLoupeEnabled() const { return loupe_enabled_; }
+  bool isGridVisible() const { return grid_visible_; }
+  bool areResidualsMagnified() const { return residuals_magnified_; }
   // The loupe as it is drawn now (invalid when hidden).
   LoupeGeometry loupe() const;
 
@@ -64,6 +66,10 @@ class Canvas : public QWidget {
   // Restores a saved view (scale and image point at the centre).
   void setView(double scale, const QPointF& image_centre);
   void setLoupeEnabled(bool enabled);
+  // Guides over the picture (grid_overlay.h).
+  void setGridVisible(bool visible);
+  // The residual vectors from fitted to clicked targets, ×10 (canvas_annotations.h).
+  void setResidualsMagnified(bool magnified);
 
  signals:
   void viewChanged();
@@ -87,6 +93,7 @@ class Canvas : public QWidget {
   void applyCursor();  // pan hand while panning or Space is held, else the tool's cursor
   void paintPairs(QPainter& painter);
   void paintDepth(QPainter& painter, const QRectF& image_rect);
+  void paintResidualAids(QPainter& painter);  // the legend and magnified residuals
   void userMovedView();
   void pinchBy(double factor, const QPointF& widget_centre);
 
@@ -98,6 +105,8 @@ class Canvas : public QWidget {
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
   bool loupe_enabled_ = true;
+  bool grid_visible_ = false;
+  bool residuals_magnified_ = false;
   bool cursor_inside_ = false;
   QPointF cursor_widget_;
   bool panning_ = false;

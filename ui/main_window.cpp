@@ -236,6 +236,19 @@ void MainWindow::createMenus() {
   view->addAction(tr("&Reset 3D View"), QKeySequence(tr("Ctrl+Shift+R")), cloud_view_,
                   &CloudView::resetView)
       ->setToolTip(tr("Back to the default orbit of the point cloud"));
+  QAction* grid = view->addAction(tr("Show &Grid"));
+  grid->setCheckable(true);
+  grid->setChecked(canvas_->isGridVisible());
+  grid->setShortcut(QKeySequence(tr("Ctrl+'")));
+  grid->setToolTip(tr("Rule-of-thirds lines and a grid of eighths over the picture"));
+  connect(grid, &QAction::toggled, canvas_, &Canvas::setGridVisible);
+  QAction* magnify = view->addAction(tr("&Magnify Residuals ×10"));
+  magnify->setCheckable(true);
+  magnify->setChecked(canvas_->areResidualsMagnified());
+  magnify->setShortcut(QKeySequence(tr("Ctrl+Shift+M")));
+  magnify->setToolTip(tr("Draw each pair's miss, from where the fit sends its source to the "
+                         "clicked target, ten times longer"));
+  connect(magnify, &QAction::toggled, canvas_, &Canvas::setResidualsMagnified);
   QAction* overlay = view->addAction(tr("Show &Depth Overlay"));
   overlay->setCheckable(true);
   overlay->setChecked(depth_overlay_->isVisible());

@@ -3,6 +3,7 @@
 // the status bar, and reset to the pair tool by a new photo.
 #include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
+#include "ui/canvas_annotations.h"
 #include "ui/commands.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
@@ -31,6 +32,20 @@ using namespace artcam::ui;
 namespace {
 
 QImage cursorImage(const QWidget& w) { return w.cursor().pixmap().toImage(); }
+
+// A flat photo of one grey level.
+PhotoPtr flatPhoto(int w, int h, float level) {
+  ImageF img(w, h, 3);
+  for (float& v : img.data) v = level;
+  LoadedImage loaded;
+  loaded.image = std::move(img);
+  return makePhoto(QStringLiteral("flat.png"), std::move(loaded));
+}
+
+bool near(const QColor& a, const QColor& b, int tolerance) {
+  return std::abs(a.red() - b.red()) <= tolerance && std::abs(a.green() - b.green()) <= tolerance &&
+         std::abs(a.blue() - b.blue()) <= tolerance;
+}
 
 // A photo of two flat colours meeting at x = edge (photo pixels): dark left, light right.
 PhotoPtr twoTonePhoto(int w, int h, int edge) {
@@ -180,6 +195,87 @@ class TestStudioAids : public QObject {
     doc->undoStack()->undo();
     QVERIFY(doc->manualCamera());
     QVERIFY(banner->isVisibleTo(canvas));
+  }
+
+  void gridOverlayDrawsThirdsOverThePicture() {
+    Document doc;
+    Canvas canvas(&doc);
+    canvas.resize(640, 480);
+    canvas.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&canvas));
+    doc.reset(flatPhoto(300, 200, 0.5f));
+    const QImage off = canvas.grab().toImage();
+    canvas.setGridVisible(true);
+    const QImage on = canvas.grab().toImage();
+    // The picture's rectangle, computed from the view; the thirds at 1/3 and 2/3 of it.
+    const QRectF r = canvas.view().widgetFromImage(QRectF(0, 0, 300, 200));
+    const int x_third = static_cast<int>(std::floor(r.left() + r.width() / 3));
+    const int y_mid_cell = static_cast<int>(r.top() + r.height() / 16);  // half an eighth down
+    const int y_third = static_cast<int>(std::floor(r.top() + 2 * r.height() / 3));
+    const int x_mid_cell = static_cast<int>(r.left() + r.width() / 16);
+    QVERIFY(on.pixelColor(x_third, y_mid_cell) != off.pixelColor(x_third, y_mid_cell));
+    QVERIFY(on.pixelColor(x_mid_cell, y_third) != off.pixelColor(x_mid_cell, y_third));
+    // Inside a cell, away from every line, the picture is unchanged; outside it too.
+    QCOMPARE(on.pixelColor(x_mid_cell, y_mid_cell), off.pixelColor(x_mid_cell, y_mid_cell));
+    QCOMPARE(on.pixelColor(2, 2), off.pixelColor(2, 2));
+  }
+
+  void residualLegendAndMagnifiedVectors() {
+    Document doc;
+    Canvas canvas(&doc);
+    canvas.resize(640, 480);
+    canvas.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&canvas));
+    // A translation fitted to two pairs moved by 10 and 14 px: t = 12 px (least squares), so
+    // the residual vectors, clicked − fitted target, are (−2, 0) and (+2, 0).
+    Pair a, b;
+    a.source = {100, 100};
+    a.target = {110, 100};
+    b.source = {200, 160};
+    b.target = {214, 160};
+    doc.reset(flatPhoto(320, 240, 0.2f), {a, b}, ModelClass::Translation);
+    QVERIFY(std::abs(doc.residual(0) - 2.0) < 1e-6);
+    const QImage plain = canvas.grab().toImage();
+    // The legend: green at its left end, red at its right (the marker ramp's ends by hand:
+    // (0, 220, 40) at 0 px and (255, 0, 40) at ≥ 4 px).
+    const QRectF bar = residualLegendBar(canvas.size());
+    const int cy = static_cast<int>(bar.center().y());
+    QVERIFY(near(plain.pixelColor(static_cast<int>(bar.left()) + 1, cy), QColor(0, 220, 40), 16));
+    QVERIFY(near(plain.pixelColor(static_cast<int>(bar.right()) - 2, cy), QColor(255, 0, 40), 16));
+    // Magnified ×10: pair 1's vector runs from its fitted target (112, 100) to 112 − 20 = 92.
+    canvas.setResidualsMagnified(true);
+    const QImage magnified = canvas.grab().toImage();
+    const QPoint on_vector = ui::test::widgetPoint(canvas, {95, 100});
+    const QPoint beyond = ui::test::widgetPoint(canvas, {88, 100});
+    QVERIFY(plain.pixelColor(on_vector) == plain.pixelColor(beyond));  // empty photo there
+    const QColor v = magnified.pixelColor(on_vector);
+    QVERIFY2(near(v, Canvas::residualColour(2.0), 40), qPrintable(v.name()));
+    QCOMPARE(magnified.pixelColor(beyond), plain.pixelColor(beyond));
+    // No pairs, no legend.
+    doc.reset(flatPhoto(320, 240, 0.2f));
+    const QImage empty = canvas.grab().toImage();
+    QCOMPARE(empty.pixelColor(static_cast<int>(bar.right()) - 2, cy),
+             empty.pixelColor(static_cast<int>(bar.right()) - 2, cy - 40));
+  }
+
+  void pairLabelsHaveAHalo() {
+    Document doc;
+    Canvas canvas(&doc);
+    canvas.resize(640, 480);
+    canvas.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&canvas));
+    Pair p;
+    p.source = {160, 120};
+    p.target = {140, 140};  // down-left: the arrow stays away from the label
+    doc.reset(flatPhoto(320, 240, 1.0f), {p}, ModelClass::Translation);
+    const QImage img = canvas.grab().toImage();
+    // White text on a white photo shows only through its dark halo.
+    const QPointF s = canvas.view().widgetFromImage(QPointF(160, 120));
+    int dark = 0;
+    for (int y = static_cast<int>(s.y()) - 20; y < static_cast<int>(s.y()) - 8; ++y)
+      for (int x = static_cast<int>(s.x()) + 7; x < static_cast<int>(s.x()) + 20; ++x)
+        dark += img.pixelColor(x, y).lightness() < 80;
+    QVERIFY2(dark >= 10, qPrintable(QString::number(dark)));
   }
 };
 
