@@ -8,6 +8,7 @@
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
+#include "ui/help_dialogs.h"
 #include "ui/manual_camera_banner.h"
 #include "ui/matting/insertion_studio.h"
 #include "ui/panels/depth_panel.h"
@@ -17,6 +18,7 @@
 #include "ui/preview_controller.h"
 #include "ui/preview_view.h"
 #include "ui/session.h"
+#include "ui/space_pan.h"
 #include "ui/tool_switcher.h"
 #include "ui/tools/depth_tool.h"
 #include "ui/tools/depth_tool_settings.h"
@@ -144,7 +146,10 @@ MainWindow::MainWindow(QWidget* parent)
     return v;
   });
   connect(session_, &Session::viewStateLoaded, this, [this](const ViewState& v) {
-    if (v.scale > 0.0) canvas_->setView(v.scale, v.centre);
+    // A reopened project fits the picture to the window: the saved scale and centre were for
+    // the window of the last session (another screen, another dock layout) and often showed a
+    // corner of the photo. They stay in the file (ViewState) for readers that want them.
+    canvas_->zoomToFit();
     preview_view_->setMode(static_cast<PreviewMode>(v.preview_mode));
     preview_view_->setOpacity(v.opacity);
   });
@@ -198,7 +203,10 @@ void MainWindow::createMenus() {
   QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
   undo->setShortcut(QKeySequence::Undo);
   QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
-  redo->setShortcut(QKeySequence::Redo);
+  // Ctrl+Y redoes on every platform too (the standard binding is Ctrl+Shift+Z off Windows).
+  QList<QKeySequence> redo_keys = QKeySequence::keyBindings(QKeySequence::Redo);
+  if (!redo_keys.contains(QKeySequence(tr("Ctrl+Y")))) redo_keys << QKeySequence(tr("Ctrl+Y"));
+  redo->setShortcuts(redo_keys);
   edit->addAction(undo);
   edit->addAction(redo);
   edit->addSeparator();
@@ -289,6 +297,14 @@ void MainWindow::createMenus() {
   });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&Quick Start"), QKeySequence::HelpContents, this,
+                  [this] { makeQuickStartDialog(this)->show(); })
+      ->setToolTip(tr("The workflow in five steps"));
+  help->addAction(tr("&Keyboard Shortcuts"), QKeySequence(tr("Ctrl+/")), this,
+                  [this] { makeShortcutsDialog(this)->show(); })
+      ->setToolTip(tr("Every shortcut of the studio, read from its actions"));
+  help->addSeparator();
+  new SpacePanFilter(canvas_);  // Space+drag pans over the canvas whatever has the focus
   help->addAction(tr("&About ARTcam Studio"), this, [this] {
     QMessageBox::about(
         this, tr("About ARTcam Studio"),

@@ -7,9 +7,11 @@
 #include "ui/commands.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
+#include "ui/help_dialogs.h"
 #include "ui/main_window.h"
 #include "ui/manual_camera_banner.h"
 #include "ui/matting/insertion_studio.h"
+#include "ui/panels/pairs_panel.h"
 #include "ui/session.h"
 #include "ui/tool_switcher.h"
 #include "ui/tools/depth_tool.h"
@@ -22,7 +24,10 @@
 #include <QActionGroup>
 #include <QLabel>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QStandardPaths>
+#include <QTableView>
+#include <QTableWidget>
 #include <QToolBar>
 #include <QtTest/QtTest>
 
@@ -276,6 +281,94 @@ class TestStudioAids : public QObject {
       for (int x = static_cast<int>(s.x()) + 7; x < static_cast<int>(s.x()) + 20; ++x)
         dark += img.pixelColor(x, y).lightness() < 80;
     QVERIFY2(dark >= 10, qPrintable(QString::number(dark)));
+  }
+
+  void shortcutTableListsEveryShortcut() {
+    MainWindow window;
+    auto* extra = new QAction(QStringLiteral("&Late Action"), &window);
+    extra->setShortcut(QKeySequence(QStringLiteral("Ctrl+Alt+J")));
+    std::unique_ptr<QTableWidget> table(makeShortcutTable(&window));
+    QMultiMap<QString, QString> rows;  // action text → its shortcuts cell
+    for (int r = 0; r < table->rowCount(); ++r)
+      rows.insert(table->item(r, 0)->text(), table->item(r, 1)->text());
+    int with_shortcut = 0;
+    for (const QAction* a : window.findChildren<QAction*>()) {
+      if (a->shortcuts().isEmpty()) continue;
+      ++with_shortcut;
+      const QString text = a->text().remove(QRegularExpression(QStringLiteral("&(?!&)")));
+      QVERIFY2(rows.contains(text), qPrintable(text));
+      for (const QKeySequence& k : a->shortcuts()) {
+        const QString key = k.toString(QKeySequence::NativeText);
+        bool found = false;
+        for (const QString& cell : rows.values(text)) found = found || cell.contains(key);
+        QVERIFY2(found, qPrintable(text + ": " + key));
+      }
+    }
+    QCOMPARE(table->rowCount(), with_shortcut);
+    QVERIFY(rows.contains(QStringLiteral("Late Action")));
+    // The ones this part added, by hand.
+    QVERIFY(rows.value(QStringLiteral("Redo")).contains(QStringLiteral("Ctrl+Y")));
+    QVERIFY(rows.value(QStringLiteral("Show Grid")).contains(QStringLiteral("Ctrl+'")));
+    QVERIFY(rows.contains(QStringLiteral("Keyboard Shortcuts")));
+    QVERIFY(rows.contains(QStringLiteral("Quick Start")));
+    QVERIFY(quickStartHtml().contains(QStringLiteral("Open a photo")));
+  }
+
+  void ctrlYRedoesAndSpacePansOverTheCanvas() {
+    MainWindow window;
+    window.session()->setInteractive(false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    Document* doc = window.document();
+    doc->reset(ui::test::syntheticPhoto());
+    for (const Pair& p : ui::test::ninePairs()) doc->undoStack()->push(new AddPairCommand(doc, p));
+    doc->undoStack()->undo();
+    QCOMPARE(doc->pairs().size(), size_t{8});
+    window.canvas()->setFocus();
+    QTest::keyClick(&window, Qt::Key_Y, Qt::ControlModifier);
+    QCOMPARE(doc->pairs().size(), size_t{9});
+
+    // The pairs table has the focus, on the first pair's cells; the pointer is over the canvas.
+    Canvas* canvas = window.canvas();
+    QTableView* table = window.pairsPanel()->table();
+    table->setFocus();
+    table->setCurrentIndex(table->model()->index(0, 0));
+    const QPoint at(canvas->width() / 2, canvas->height() / 2);
+    ui::test::sendMouse(canvas, QEvent::MouseMove, at, Qt::NoButton, Qt::NoButton);
+    QTest::keyPress(table, Qt::Key_Space);
+    QVERIFY(canvas->isSpacePanning());
+    const QPointF before = canvas->view().widgetFromImage(QPointF(100, 100));
+    ui::test::drag(canvas, at, at + QPoint(40, -25));
+    const QPointF after = canvas->view().widgetFromImage(QPointF(100, 100));
+    QCOMPARE(after - before, QPointF(40, -25));
+    QTest::keyRelease(table, Qt::Key_Space);
+    QVERIFY(!canvas->isSpacePanning());
+    for (const Pair& p : doc->pairs()) QVERIFY(p.enabled);  // the table did not toggle one
+    QCOMPARE(doc->pairs().size(), size_t{9});               // and the drag made no pair
+
+    // Pointer elsewhere: Space is the table's again.
+    QEvent leave(QEvent::Leave);
+    QCoreApplication::sendEvent(canvas, &leave);
+    QTest::keyPress(table, Qt::Key_Space);
+    QVERIFY(!canvas->isSpacePanning());
+    QTest::keyRelease(table, Qt::Key_Space);
+  }
+
+  void reopeningAProjectFitsTheView() {
+    MainWindow window;
+    window.session()->setInteractive(false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.document()->reset(ui::test::syntheticPhoto());
+    ViewState saved;
+    saved.scale = 7.5;
+    saved.centre = QPointF(20, 30);
+    emit window.session()->viewStateLoaded(saved);
+    ViewTransform fitted;
+    fitted.fit(QSizeF(window.canvas()->size()), QSizeF(320, 240));
+    QCOMPARE(window.canvas()->view().scale(), fitted.scale());
+    QCOMPARE(window.canvas()->view().widgetFromImage(QPointF(160, 120)),
+             fitted.widgetFromImage(QPointF(160, 120)));
   }
 };
 
