@@ -8,6 +8,10 @@
 //   depth; with three placed, a click replaces the nearest one; dragging a point moves it
 //   (one undo step per drag). Depth values are edited in the depth panel.
 // Painting with no layer creates one first (same undo macro as the first stroke).
+// With the settings' edge-aware switch, a stroke paints only what its first pixel's colour
+// reaches inside each dab (core/depth/edge_aware_brush.h). While the tool is active the
+// active layer's mask is tinted over the photo (depth_mask_tint.h), so strokes show before
+// the plane has its three depths.
 #pragma once
 
 #include "core/depth/edge_aware_brush.h"
