@@ -36,6 +36,31 @@ AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera)
   position_ = layout.offsets[p];
   if (const int c = layout.find(BlockKind::Colour); c >= 0) colour_ = layout.offsets[c];
   if (const int d = layout.find(BlockKind::Depth); d >= 0) depth_ = layout.offsets[d];
+  if (depth_ >= 0 && colour_ >= 0) {
+    const int n = layout.dimension;
+    std::vector<bool> tainted(static_cast<size_t>(n), false);
+    tainted[static_cast<size_t>(depth_)] = tainted[static_cast<size_t>(depth_ + 1)] = true;
+    for (const Stage& stage : camera.stages()) {
+      std::vector<bool> next(static_cast<size_t>(n), false);
+      for (int i = 0; i < n; ++i)
+        for (int r = 0; r < n && !next[static_cast<size_t>(i)]; ++r)
+          for (int c = 0; c < n; ++c)
+            if ((tainted[static_cast<size_t>(r)] || tainted[static_cast<size_t>(c)]) &&
+                stage.q[static_cast<size_t>(i)](r, c) != 0.0) {
+              next[static_cast<size_t>(i)] = true;
+              break;
+            }
+      // eq 5: each block is divided by its own weight (colour premultiplied again by alpha).
+      for (size_t b = 0; b < layout.blocks.size(); ++b) {
+        const int off = layout.offsets[b], size = layout.blocks[b].size;
+        bool any = false;
+        for (int k = off; k < off + size; ++k) any = any || next[static_cast<size_t>(k)];
+        for (int k = off; k < off + size; ++k) next[static_cast<size_t>(k)] = any;
+      }
+      tainted = std::move(next);
+    }
+    colour_reads_depth_ = tainted[static_cast<size_t>(colour_)];
+  }
 }
 
 void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, double depth,
@@ -83,26 +108,41 @@ void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, dou
   }
 }
 
-double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double sy) {
+DepthSample sampleDepthCoverage(const ImageF& depth, FrameSize source_px, double sx, double sy) {
   // The depth image may have another size than the source: read it at the same place.
   const double fx = sx * depth.width / source_px.width - 0.5;
   const double fy = sy * depth.height / source_px.height - 0.5;
-  if (!std::isfinite(fx) || !std::isfinite(fy)) return 0.0;
+  if (!std::isfinite(fx) || !std::isfinite(fy)) return {0.0, 0.0};
   const double x0 = std::floor(fx), y0 = std::floor(fy);
   const double tx = fx - x0, ty = fy - y0;
-  double value = 0.0, weight = 0.0;
+  double value = 0.0, weight = 0.0, inside = 0.0;
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i) {
       const double xi = x0 + i, yj = y0 + j;
       if (xi < 0 || yj < 0 || xi >= depth.width || yj >= depth.height) continue;
       const double w = (i ? tx : 1 - tx) * (j ? ty : 1 - ty);
       const float* p = depth.pixel(static_cast<int>(xi), static_cast<int>(yj));
-      // 2 channels: (coverage·d, coverage), the homogeneous depth block (depth_raster.h).
-      const double cover = depth.channels >= 2 ? p[1] : 1.0;
-      value += w * p[0];
+      // 2 channels: (coverage·d, coverage), the homogeneous depth block (depth_raster.h);
+      // 1 channel: a depth, or a hole (0, negative, non-finite: depth_file.h's "no depth").
+      double cover = 1.0, covered_depth = p[0];
+      if (depth.channels >= 2) {
+        cover = std::isfinite(p[1]) && std::isfinite(p[0]) ? std::clamp<double>(p[1], 0.0, 1.0)
+                                                           : 0.0;
+        covered_depth = cover > 0.0 ? p[0] : 0.0;
+      } else if (!(p[0] > 0.0f) || !std::isfinite(p[0])) {
+        cover = 0.0;
+        covered_depth = 0.0;
+      }
+      value += w * covered_depth;
       weight += w * cover;
+      inside += w;
     }
-  return weight > 1e-12 ? value / weight : 0.0;
+  if (!(weight > 1e-12)) return {0.0, 0.0};
+  return {value / weight, std::min(1.0, weight / inside)};
+}
+
+double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double sy) {
+  return sampleDepthCoverage(depth, source_px, sx, sy).depth;
 }
 
 ImageF rgbaFromImage(const ImageF& source) {
@@ -154,6 +194,21 @@ AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure&
 
 namespace {
 
+// sampleDepthCoverage's rule for pixels without depth (attributed.h): `untouched` is the
+// sampled colour the camera was given.
+void keepWithoutDepth(const AttributeEvaluator& eval, double coverage, const float* untouched,
+                      float* colour, float* depth) {
+  if (!eval.readsDepth() || coverage >= 1.0) return;
+  if (coverage <= 0.0) {
+    if (depth) *depth = 0.0f;
+    if (eval.colourReadsDepth()) std::copy(untouched, untouched + 4, colour);
+    return;
+  }
+  if (!eval.colourReadsDepth()) return;
+  const auto c = static_cast<float>(coverage);
+  for (int k = 0; k < 4; ++k) colour[k] = c * colour[k] + (1.0f - c) * untouched[k];
+}
+
 void writeOutput(const AttributeEvaluator::Output& o, float* colour, float* depth) {
   if (!o.attributes_valid || !(o.rgba[3] > 0.0f)) {
     std::fill(colour, colour + 4, 0.0f);
@@ -186,9 +241,12 @@ bool colourOnly(const ImageF& rgba, const ImageF* depth, const AttributeEvaluato
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < rgba.width; ++x) {
         const Eigen::Vector2d n = normalizedFromPixel(px, {x + 0.5, y + 0.5});
-        const double d = depth ? sampleDepth(*depth, px, x + 0.5, y + 0.5) : 0.0;
-        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d, o);
-        writeOutput(o, out.colour.pixel(x, y), out.depth.empty() ? nullptr : out.depth.pixel(x, y));
+        const DepthSample d =
+            depth ? sampleDepthCoverage(*depth, px, x + 0.5, y + 0.5) : DepthSample{};
+        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d.depth, o);
+        float* d_out = out.depth.empty() ? nullptr : out.depth.pixel(x, y);
+        writeOutput(o, out.colour.pixel(x, y), d_out);
+        keepWithoutDepth(eval, d.coverage, rgba.pixel(x, y), out.colour.pixel(x, y), d_out);
       }
   });
 }
@@ -231,9 +289,11 @@ bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
           sampler.sample(sx[i], sy[i], sample);
           if (!(sample[3] > 0.0f)) continue;
           const Eigen::Vector2d s = normalizedFromPixel(source_px, {sx[i], sy[i]});
-          const double d = depth ? sampleDepth(*depth, source_px, sx[i], sy[i]) : 0.0;
-          eval.evaluate(s.x(), s.y(), sample, d, o);
+          const DepthSample d =
+              depth ? sampleDepthCoverage(*depth, source_px, sx[i], sy[i]) : DepthSample{};
+          eval.evaluate(s.x(), s.y(), sample, d.depth, o);
           writeOutput(o, colour, d_out);
+          keepWithoutDepth(eval, d.coverage, sample, colour, d_out);
         }
       }
     }
