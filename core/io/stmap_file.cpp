@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/io/stmap_file.h"
+
+#include "core/io/atomic_file.h"
+#include "core/io/image_input.h"
+#include "core/io/io_text.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace artcam {
+
+namespace {
+
+constexpr const char* kConventionAttribute = "artcam:convention";
+constexpr const char* kSourceWidthAttribute = "artcam:source_width";
+constexpr const char* kSourceHeightAttribute = "artcam:source_height";
+
+int channelNamed(const OIIO::ImageSpec& spec, const std::string& name) {
+  for (int c = 0; c < spec.nchannels; ++c)
+    if (io_text::lower(std::string(spec.channel_name(c))) == name) return c;
+  return -1;
+}
+
+}  // namespace
+
+std::string_view stmapConventionName(StmapConvention convention) {
+  return convention == StmapConvention::OpenCv ? "opencv" : "stmap";
+}
+
+std::optional<StmapConvention> stmapConventionFromName(std::string_view name) {
+  if (name == "stmap") return StmapConvention::StMap;
+  if (name == "opencv") return StmapConvention::OpenCv;
+  return std::nullopt;
+}
+
+Status writeStmap(const std::string& path, const PositionMap& map, StmapConvention convention) {
+  const int width = map.target_px.width, height = map.target_px.height;
+  const bool st = convention == StmapConvention::StMap;
+  const int channels = st ? 4 : 2;
+  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
+  // 32-bit float, never half: half keeps 11 bits, a third of a pixel at 2000 px.
+  spec.channelnames = st ? std::vector<std::string>{"R", "G", "B", "A"}
+                         : std::vector<std::string>{"R", "G"};
+  spec.alpha_channel = st ? 3 : -1;
+  spec.attribute("compression", "zip");
+  spec.attribute(kConventionAttribute, std::string(stmapConventionName(convention)));
+  spec.attribute(kSourceWidthAttribute, map.source_px.width);
+  spec.attribute(kSourceHeightAttribute, map.source_px.height);
+  std::vector<float> pixels(static_cast<size_t>(width) * static_cast<size_t>(height) *
+                            static_cast<size_t>(channels));
+  const double w = map.source_px.width, h = map.source_px.height;
+  for (size_t k = 0; k < map.valid.size(); ++k) {
+    float* p = &pixels[k * static_cast<size_t>(channels)];
+    const double x = map.x_px[k], y = map.y_px[k];
+    if (st) {
+      // Zeros where there is no preimage: alpha 0 says so, and R = G = 0 keeps the map finite.
+      if (map.valid[k]) {
+        p[0] = static_cast<float>(x / w);
+        p[1] = static_cast<float>(1.0 - y / h);
+        p[3] = 1.0f;
+      }
+    } else {
+      p[0] = map.valid[k] ? static_cast<float>(x - 0.5) : -1.0f;
+      p[1] = map.valid[k] ? static_cast<float>(y - 0.5) : -1.0f;
+    }
+  }
+  return writeAtomically(path, [&](const std::string& temp) {
+    auto failure = [&](const std::string& message) {
+      return Status::failure(path + ": cannot write the map: " +
+                             io_text::replaceAll(io_text::oneLine(message), temp, path));
+    };
+    auto out = OIIO::ImageOutput::create(temp);
+    if (!out) return failure(OIIO::geterror());
+    // Float maps with named channels and header attributes: OpenEXR is what every tool reads.
+    if (out->format_name() != std::string("openexr"))
+      return Status::failure(path + ": an ST map is written as OpenEXR (name it .exr)");
+    if (!out->open(temp, spec)) return failure(out->geterror());
+    if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) {
+      const std::string message = out->geterror();
+      out->close();
+      return failure(message);
+    }
+    if (!out->close()) return failure(out->geterror());
+    return Status::success();
+  });
+}
+
+Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSampleOptions& options) {
+  using R = Result<StmapSamples>;
+  auto opened = io_input::openImageInput(path);
+  if (!opened) return R::failure(opened.status.message);
+  OIIO::ImageInput& in = **opened;
+  const OIIO::ImageSpec spec = in.spec();
+  StmapSamples samples;
+  samples.map_px = {spec.width, spec.height};
+  const std::string convention_name = spec.get_string_attribute(kConventionAttribute, "stmap");
+  const auto convention = stmapConventionFromName(convention_name);
+  if (!convention)
+    return R::failure(path + ": unknown " + kConventionAttribute + " \"" + convention_name +
+                      "\" (stmap or opencv)");
+  samples.convention = *convention;
+  const int r = channelNamed(spec, "r"), g = channelNamed(spec, "g");
+  if (r < 0 || g < 0) {
+    std::string names;
+    for (int c = 0; c < spec.nchannels; ++c) names += std::string(c ? ", " : "") + std::string(spec.channel_name(c));
+    return R::failure(path + ": not an ST map: it needs channels R and G (s and t), it has " +
+                      names);
+  }
+  // Only the StMap convention marks missing pixels with alpha; an OpenCv map uses −1.
+  const int a = samples.convention == StmapConvention::StMap ? channelNamed(spec, "a") : -1;
+  samples.has_alpha = a >= 0;
+  if (options.source_px) {
+    samples.source_px = *options.source_px;
+  } else {
+    const int sw = spec.get_int_attribute(kSourceWidthAttribute, 0);
+    const int sh = spec.get_int_attribute(kSourceHeightAttribute, 0);
+    samples.source_px = sw > 0 && sh > 0 ? FrameSize{sw, sh} : samples.map_px;
+  }
+  const long long pixels = static_cast<long long>(spec.width) * spec.height;
+  if (pixels > (1LL << 28)) return R::failure(path + ": the map is too large");
+  int step = options.step;
+  if (step <= 0) {
+    step = 1;
+    while ((static_cast<long long>(spec.width + step - 1) / step) *
+               ((spec.height + step - 1) / step) >
+           options.max_matches)
+      ++step;
+  }
+  samples.step = step;
+  std::vector<float> values(static_cast<size_t>(pixels) * static_cast<size_t>(spec.nchannels));
+  if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
+    return R::failure(path + ": cannot read: " + io_text::oneLine(in.geterror()));
+  if (const Status s = io_input::decodeProblems(in, path); !s) return R::failure(s.message);
+  const double w = samples.source_px.width, h = samples.source_px.height;
+  // The grid starts half a step in, so it is centred on the map.
+  for (int j = step / 2; j < spec.height; j += step) {
+    for (int i = step / 2; i < spec.width; i += step) {
+      const float* p = &values[(static_cast<size_t>(j) * static_cast<size_t>(spec.width) +
+                                static_cast<size_t>(i)) *
+                               static_cast<size_t>(spec.nchannels)];
+      const double s = p[r], t = p[g];
+      if (!std::isfinite(s) || !std::isfinite(t)) continue;
+      if (a >= 0 && !(p[a] > 0.0f)) continue;
+      Eigen::Vector2d source;
+      if (samples.convention == StmapConvention::StMap) {
+        source = {s * w, (1.0 - t) * h};
+      } else {
+        if (s == -1.0 && t == -1.0) continue;
+        source = {s + 0.5, t + 0.5};
+      }
+      PointMatch m;
+      m.source = source;
+      m.target = Eigen::Vector2d(i + 0.5, j + 0.5);
+      samples.matches.push_back(std::move(m));
+    }
+  }
+  if (samples.matches.empty())
+    return R::failure(path + ": no pixel of the map has a source position (alpha is 0 " +
+                      "everywhere on the sampling grid)");
+  return R::success(std::move(samples));
+}
+
+}  // namespace artcam
