@@ -28,8 +28,7 @@ const char* const kExportMapUsage =
     "      flip_t reads it as it is; Nuke's STMap node with UV channels rgb.\n"
     "  --convention opencv: cv::remap's map_x, map_y in channels R and G (pixel centres at\n"
     "      integers: map_x = x - 0.5, map_y = y - 0.5), -1 in both where there is no preimage.\n"
-    "      cv::imread(MAP.exr, cv::IMREAD_UNCHANGED) gives B, G, R order: map_x is channel 2,\n"
-    "      map_y channel 1.\n"
+    "      Read them by name; OpenCV's own readers order colour channels B, G, R.\n"
     "The header keeps artcam:convention and the source size (artcam:source_width,\n"
     "artcam:source_height), which artcam fit --stmap reads back.\n"
     "A piecewise or layered camera (chromatic aberration), or one whose positions depend on\n"
@@ -67,8 +66,9 @@ int exportMapCommand(const std::vector<std::string>& argv) {
   const auto camera = readArtcam(path);
   if (!camera) throw CommandError(camera.status.message);
   if (camera->pieces)
-    throw CommandError(path + ": a piecewise camera has one map per patch; export-map needs a "
-                              "single camera");
+    throw CommandError(path +
+                       ": a piecewise camera has one map per patch; export-map needs a "
+                       "single camera");
   if (camera->layers.size() > 1)
     throw CommandError(path + ": a layered camera (" + std::to_string(camera->layers.size()) +
                        " layers) moves each layer differently; export-map needs one layer");
@@ -83,12 +83,10 @@ int exportMapCommand(const std::vector<std::string>& argv) {
   }
   if (const Status s = writeStmap(*output, map, *convention); !s) throw CommandError(s.message);
   if (args.has("--json")) {
-    const nlohmann::json j = {{"output", *output},
-                              {"width", size.width},
-                              {"height", size.height},
-                              {"convention", std::string(stmapConventionName(*convention))},
-                              {"kernel", map.kernel},
-                              {"invalid_pixels", map.invalid_pixels}};
+    const nlohmann::json j = {
+        {"output", *output},     {"width", size.width},
+        {"height", size.height}, {"convention", std::string(stmapConventionName(*convention))},
+        {"kernel", map.kernel},  {"invalid_pixels", map.invalid_pixels}};
     std::printf("%s\n", j.dump().c_str());
   } else {
     std::printf("%s map %dx%d (%s kernel), %lld pixels without a preimage\nwrote %s\n",

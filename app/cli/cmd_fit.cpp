@@ -329,35 +329,40 @@ int fitStmapCommand(const Args& args, const std::string& map_path) {
   if (!output) throw UsageError("missing -o CAM.artcam");
   for (const char* option : {"--target-size", "--dim", "--block", "--srgb"})
     if (args.has(option))
-      throw UsageError(std::string(option) + " does not apply to --stmap (the map is the target "
+      throw UsageError(std::string(option) +
+                       " does not apply to --stmap (the map is the target "
                        "frame of an image camera)");
   checkOutputs(args, {*output}, {map_path});
   StmapSampleOptions options;
-  if (const auto size_text = args.value("--size")) options.source_px = parseSize(*size_text, "--size");
+  if (const auto size_text = args.value("--size"))
+    options.source_px = parseSize(*size_text, "--size");
   const auto samples = readStmapSamples(map_path, options);
   if (!samples) throw CommandError(samples.status.message);
   if (!args.has("--json"))
-    std::printf("%s: %zu samples (every %d px) of a %dx%d %s map, source %dx%d\n",
-                 map_path.c_str(), samples->matches.size(), samples->step, samples->map_px.width,
-                 samples->map_px.height, std::string(stmapConventionName(samples->convention)).c_str(),
-                 samples->source_px.width, samples->source_px.height);
+    std::printf("%s: %zu samples (every %d px) of a %dx%d %s map, source %dx%d\n", map_path.c_str(),
+                samples->matches.size(), samples->step, samples->map_px.width,
+                samples->map_px.height,
+                std::string(stmapConventionName(samples->convention)).c_str(),
+                samples->source_px.width, samples->source_px.height);
   const MatchInput input{map_path, [&samples] { return samples->matches; }};
   if (args.has("--piecewise")) {
     // Patches tile the source frame; samples that read from outside it (a barrel map's corners)
     // hold no photo and would stretch the patches past the frame, so they are left out here.
     // The single camera keeps them: they constrain its shape.
-    const MatchInput inside{map_path, [&samples, &map_path] {
-      std::vector<PointMatch> kept;
-      for (const PointMatch& m : samples->matches)
-        if (m.source.x() >= 0 && m.source.y() >= 0 && m.source.x() <= samples->source_px.width &&
-            m.source.y() <= samples->source_px.height)
-          kept.push_back(m);
-      if (kept.empty())
-        throw CommandError(map_path + ": every sample of the map reads from outside the " +
-                           std::to_string(samples->source_px.width) + "x" +
-                           std::to_string(samples->source_px.height) + " source frame");
-      return kept;
-    }};
+    const MatchInput inside{
+        map_path, [&samples, &map_path] {
+          std::vector<PointMatch> kept;
+          for (const PointMatch& m : samples->matches)
+            if (m.source.x() >= 0 && m.source.y() >= 0 &&
+                m.source.x() <= samples->source_px.width &&
+                m.source.y() <= samples->source_px.height)
+              kept.push_back(m);
+          if (kept.empty())
+            throw CommandError(map_path + ": every sample of the map reads from outside the " +
+                               std::to_string(samples->source_px.width) + "x" +
+                               std::to_string(samples->source_px.height) + " source frame");
+          return kept;
+        }};
     return fitPiecewiseCommand(args, *output, samples->source_px, samples->map_px, inside);
   }
   return fitPositionCommand(args, *output, samples->source_px, samples->map_px, 2, input);

@@ -42,8 +42,8 @@ Status writeStmap(const std::string& path, const PositionMap& map, StmapConventi
   const int channels = st ? 4 : 2;
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
   // 32-bit float, never half: half keeps 11 bits, a third of a pixel at 2000 px.
-  spec.channelnames = st ? std::vector<std::string>{"R", "G", "B", "A"}
-                         : std::vector<std::string>{"R", "G"};
+  spec.channelnames =
+      st ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"R", "G"};
   spec.alpha_channel = st ? 3 : -1;
   spec.attribute("compression", "zip");
   spec.attribute(kConventionAttribute, std::string(stmapConventionName(convention)));
@@ -105,7 +105,8 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
   const int r = channelNamed(spec, "r"), g = channelNamed(spec, "g");
   if (r < 0 || g < 0) {
     std::string names;
-    for (int c = 0; c < spec.nchannels; ++c) names += std::string(c ? ", " : "") + std::string(spec.channel_name(c));
+    for (int c = 0; c < spec.nchannels; ++c)
+      names += std::string(c ? ", " : "") + std::string(spec.channel_name(c));
     return R::failure(path + ": not an ST map: it needs channels R and G (s and t), it has " +
                       names);
   }

@@ -8,13 +8,14 @@
 // - StMap (Nuke, Fusion, Resolve, OIIO st_warp): channels R, G, B, A, 32-bit float.
 //   R = x / W, G = 1 − y / H (W × H the source size; t counts up from the bottom edge),
 //   B = 0, A = 1 where the pixel has a preimage, else R = G = A = 0. st_warp samples the source
-//   at (s·W, (1 − t)·H) when its flip_t is on, which is this convention; Nuke's STMap node flips
-//   t itself.
+//   at (s·W, (1 − t)·H) when its flip_t is on, which is this convention; Nuke measures y from
+//   the bottom edge, so its STMap node reads t as it is.
 // - OpenCv (cv::remap): channels R = map_x, G = map_y, 32-bit float, in cv::remap's pixels,
 //   whose centres are at integers: map_x = x − 0.5, map_y = y − 0.5; −1 in both where the pixel
 //   has no preimage (outside every source image, so remap leaves it to its border mode).
-//   cv::imread(path, cv::IMREAD_UNCHANGED) returns channels in B, G, R order, so map_y is
-//   channel 1 and map_x channel 2 there.
+//   Named R and G (not map_x, map_y) so readers that know only colour channels load them;
+//   OpenCV orders colour channels B, G, R, so read them by name (OpenImageIO) or mind that
+//   order. Only OpenImageIO reading is tested here.
 // Both files carry the header attributes "artcam:convention" ("stmap" or "opencv") and
 // "artcam:source_width" / "artcam:source_height", which the reader uses when present: an
 // ST map is normalised, so its source size is not otherwise in it.
@@ -61,6 +62,7 @@ struct StmapSamples {
 // an alpha channel, not −1 for OpenCv maps, finite values). Refuses, in one line naming the
 // file, a map without R and G channels, an unknown convention attribute, or one with no
 // usable pixel on the grid.
-Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSampleOptions& options = {});
+Result<StmapSamples> readStmapSamples(const std::string& path,
+                                      const StmapSampleOptions& options = {});
 
 }  // namespace artcam

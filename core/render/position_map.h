@@ -34,8 +34,8 @@ struct PositionMapOptions {
 };
 
 struct PositionMap {
-  FrameSize source_px;  // the frame the positions are in
-  FrameSize target_px;  // the map's size: one entry per output pixel, row-major
+  FrameSize source_px;               // the frame the positions are in
+  FrameSize target_px;               // the map's size: one entry per output pixel, row-major
   std::vector<float> x_px, y_px;     // source position of output pixel (i, j); 0 where invalid
   std::vector<unsigned char> valid;  // 1: has a preimage
   std::string kernel;                // the coordinate kernel used ("homography", "rational", …)
