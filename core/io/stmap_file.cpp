@@ -95,7 +95,10 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
   OIIO::ImageInput& in = **opened;
   const OIIO::ImageSpec spec = in.spec();
   StmapSamples samples;
-  samples.map_px = {spec.width, spec.height};
+  // The frame is the display window (an EXR's data window may be larger, overscan, or smaller).
+  samples.map_px = spec.full_width > 0 && spec.full_height > 0
+                       ? FrameSize{spec.full_width, spec.full_height}
+                       : FrameSize{spec.width, spec.height};
   const std::string convention_name = spec.get_string_attribute(kConventionAttribute, "stmap");
   const auto convention = stmapConventionFromName(convention_name);
   if (!convention)
@@ -120,8 +123,12 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
     const int sh = spec.get_int_attribute(kSourceHeightAttribute, 0);
     samples.source_px = sw > 0 && sh > 0 ? FrameSize{sw, sh} : samples.map_px;
   }
-  const long long pixels = static_cast<long long>(spec.width) * spec.height;
-  if (pixels > (1LL << 28)) return R::failure(path + ": the map is too large");
+  // Rows are read one at a time, only those on the grid: a map's memory never grows with its
+  // height, and a hostile header cannot ask for gigabytes.
+  if (spec.width > (1 << 20) || spec.height > (1 << 20) || spec.nchannels > 64)
+    return R::failure(path + ": the map is too large (" + std::to_string(spec.width) + "x" +
+                      std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) +
+                      " channels)");
   int step = options.step;
   if (step <= 0) {
     step = 1;
@@ -131,17 +138,20 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
       ++step;
   }
   samples.step = step;
-  std::vector<float> values(static_cast<size_t>(pixels) * static_cast<size_t>(spec.nchannels));
-  if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
-    return R::failure(path + ": cannot read: " + io_text::oneLine(in.geterror()));
-  if (const Status s = io_input::decodeProblems(in, path); !s) return R::failure(s.message);
   const double w = samples.source_px.width, h = samples.source_px.height;
+  // Pixel (i, j) of the data window is display pixel (x0 + i, y0 + j): an overscan map's
+  // pixels outside the display window are matches too, with targets outside the frame.
+  const int x0 = spec.x - spec.full_x, y0 = spec.y - spec.full_y;
+  const size_t channels = static_cast<size_t>(spec.nchannels);
+  std::vector<float> row(static_cast<size_t>(spec.width) * channels);
   // The grid starts half a step in, so it is centred on the map.
   for (int j = step / 2; j < spec.height; j += step) {
+    if (!in.read_scanlines(0, 0, spec.y + j, spec.y + j + 1, spec.z, 0, spec.nchannels,
+                           OIIO::TypeDesc::FLOAT, row.data()))
+      return R::failure(path + ": cannot read row " + std::to_string(j) + ": " +
+                        io_text::oneLine(in.geterror()));
     for (int i = step / 2; i < spec.width; i += step) {
-      const float* p = &values[(static_cast<size_t>(j) * static_cast<size_t>(spec.width) +
-                                static_cast<size_t>(i)) *
-                               static_cast<size_t>(spec.nchannels)];
+      const float* p = &row[static_cast<size_t>(i) * channels];
       const double s = p[r], t = p[g];
       if (!std::isfinite(s) || !std::isfinite(t)) continue;
       if (a >= 0 && !(p[a] > 0.0f)) continue;
@@ -154,10 +164,11 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
       }
       PointMatch m;
       m.source = source;
-      m.target = Eigen::Vector2d(i + 0.5, j + 0.5);
+      m.target = Eigen::Vector2d(x0 + i + 0.5, y0 + j + 0.5);
       samples.matches.push_back(std::move(m));
     }
   }
+  if (const Status st = io_input::decodeProblems(in, path); !st) return R::failure(st.message);
   if (samples.matches.empty())
     return R::failure(path + ": no pixel of the map has a source position (alpha is 0 " +
                       "everywhere on the sampling grid)");

@@ -50,7 +50,7 @@ struct StmapSampleOptions {
 
 struct StmapSamples {
   std::vector<PointMatch> matches;  // source (x, y) px → target pixel centre (i + 0.5, j + 0.5)
-  FrameSize map_px;                 // the map's size: the target frame
+  FrameSize map_px;  // the target frame: the map's display window (EXR), else its size
   FrameSize source_px;
   StmapConvention convention = StmapConvention::StMap;
   int step = 1;
@@ -58,10 +58,11 @@ struct StmapSamples {
 };
 
 // Reads an ST map (either convention, from the artcam:convention attribute; StMap when absent)
-// and samples it every `step` pixels, keeping pixels with a preimage (alpha > 0 where there is
-// an alpha channel, not −1 for OpenCv maps, finite values). Refuses, in one line naming the
-// file, a map without R and G channels, an unknown convention attribute, or one with no
-// usable pixel on the grid.
+// and samples its data window every `step` pixels (targets in display-window pixels, so an
+// overscan map's border samples have targets outside the frame), keeping pixels with a preimage
+// (alpha > 0 where there is an alpha channel, not −1 for OpenCv maps, finite values). Refuses, in
+// one line naming the file, a map without R and G channels, an unknown convention attribute, or one
+// with no usable pixel on the grid.
 Result<StmapSamples> readStmapSamples(const std::string& path,
                                       const StmapSampleOptions& options = {});
 

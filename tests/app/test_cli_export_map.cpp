@@ -353,21 +353,37 @@ class TestCliExportMap : public QObject {
 
   // A map made elsewhere: RGB without alpha and without artcam's header, as Nuke writes one,
   // filled here from the formula R = x / W, G = 1 - y / H of a known homography (source twice the
-  // map's size, given with --size). The fitted camera must be that homography.
+  // map's size, given with --size). The fitted camera must be that homography. The overscan row
+  // has a data window 8 px larger than the display window on every side, as Nuke writes maps
+  // with a bounding box: targets are display-window pixels.
+  void fitsAForeignMapWithoutAlpha_data() {
+    QTest::addColumn<int>("overscan");
+    QTest::newRow("display window") << 0;
+    QTest::newRow("overscan") << 8;
+  }
   void fitsAForeignMapWithoutAlpha() {
+    QFETCH(int, overscan);
     constexpr int mw = 320, mh = 240, sw = 640, sh = 480;
     Eigen::Matrix3d source_from_target;
     source_from_target << 1.9, 0.1, 20.0,  //
         -0.05, 2.05, 8.0,                  //
         1.0e-4, -2.0e-4, 1.0;
-    const QString map_path = path("foreign.exr");
+    const QString map_path = path(QString("foreign-%1.exr").arg(overscan));
     {
-      OIIO::ImageSpec spec(mw, mh, 3, OIIO::TypeDesc::FLOAT);
-      std::vector<float> pixels(static_cast<size_t>(mw) * mh * 3);
-      for (int j = 0; j < mh; ++j)
-        for (int i = 0; i < mw; ++i) {
-          const Eigen::Vector3d s = source_from_target * Eigen::Vector3d(i + 0.5, j + 0.5, 1.0);
-          float* p = &pixels[(static_cast<size_t>(j) * mw + static_cast<size_t>(i)) * 3];
+      const int dw = mw + 2 * overscan, dh = mh + 2 * overscan;
+      OIIO::ImageSpec spec(dw, dh, 3, OIIO::TypeDesc::FLOAT);
+      spec.x = spec.y = -overscan;
+      spec.full_x = spec.full_y = 0;
+      spec.full_width = mw;
+      spec.full_height = mh;
+      std::vector<float> pixels(static_cast<size_t>(dw) * static_cast<size_t>(dh) * 3);
+      for (int j = 0; j < dh; ++j)
+        for (int i = 0; i < dw; ++i) {
+          const Eigen::Vector3d s =
+              source_from_target * Eigen::Vector3d(i - overscan + 0.5, j - overscan + 0.5, 1.0);
+          float* p =
+              &pixels[(static_cast<size_t>(j) * static_cast<size_t>(dw) + static_cast<size_t>(i)) *
+                      3];
           p[0] = static_cast<float>(s.x() / s.z() / sw);
           p[1] = static_cast<float>(1.0 - s.y() / s.z() / sh);
           p[2] = 0.0f;
@@ -376,7 +392,7 @@ class TestCliExportMap : public QObject {
       QVERIFY(out && out->open(map_path.toStdString(), spec) &&
               out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
     }
-    const QString fitted_path = path("foreign.artcam");
+    const QString fitted_path = path(QString("foreign-%1.artcam").arg(overscan));
     const Run r = artcamCli({"fit", "--stmap", map_path, "--size", "640x480", "--model",
                              "homography", "-o", fitted_path, "-q"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
