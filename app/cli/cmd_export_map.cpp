@@ -34,7 +34,7 @@ const char* const kExportMapUsage =
     "A piecewise or layered camera (chromatic aberration), or one whose positions depend on\n"
     "colour or depth, has no single map and is refused.\n\n"
     "options:\n"
-    "  --size WxH      the map's size, the output frame (required)\n"
+    "  --size WxH      the map's size, the output frame (required; at most 2^27 pixels)\n"
     "  -o/--output     the map file (required, .exr; written atomically); an existing one is\n"
     "                  refused unless --overwrite (--force is the same)\n"
     "  --convention    stmap (default) or opencv\n"
@@ -57,6 +57,10 @@ int exportMapCommand(const std::vector<std::string>& argv) {
   const auto size_text = args.value("--size");
   if (!size_text) throw UsageError("missing --size WxH (the map's size, the output frame)");
   const FrameSize size = parseSize(*size_text, "--size");
+  // The map is held in memory (9 bytes a pixel) before it is written: 2^27 pixels (e.g.
+  // 16384x8192) is about 1.2 GB, past any plate a compositor warps.
+  if (static_cast<long long>(size.width) * size.height > (1LL << 27))
+    throw UsageError("--size " + *size_text + " is too large for a map (at most 2^27 pixels)");
   const std::string convention_name = args.valueOr("--convention", "stmap");
   const auto convention = stmapConventionFromName(convention_name);
   if (!convention)

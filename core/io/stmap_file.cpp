@@ -49,24 +49,32 @@ Status writeStmap(const std::string& path, const PositionMap& map, StmapConventi
   spec.attribute(kConventionAttribute, std::string(stmapConventionName(convention)));
   spec.attribute(kSourceWidthAttribute, map.source_px.width);
   spec.attribute(kSourceHeightAttribute, map.source_px.height);
-  std::vector<float> pixels(static_cast<size_t>(width) * static_cast<size_t>(height) *
-                            static_cast<size_t>(channels));
   const double w = map.source_px.width, h = map.source_px.height;
-  for (size_t k = 0; k < map.valid.size(); ++k) {
-    float* p = &pixels[k * static_cast<size_t>(channels)];
-    const double x = map.x_px[k], y = map.y_px[k];
-    if (st) {
-      // Zeros where there is no preimage: alpha 0 says so, and R = G = 0 keeps the map finite.
-      if (map.valid[k]) {
-        p[0] = static_cast<float>(x / w);
-        p[1] = static_cast<float>(1.0 - y / h);
-        p[3] = 1.0f;
+  // Rows are converted and written in bands, so the file costs no second copy of the map.
+  constexpr int kBand = 64;
+  std::vector<float> band(static_cast<size_t>(width) * kBand * static_cast<size_t>(channels));
+  const auto fillBand = [&](int y0, int y1) {
+    std::fill(band.begin(), band.end(), 0.0f);
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t k = map.index(x, y);
+        float* p = &band[(static_cast<size_t>(y - y0) * static_cast<size_t>(width) +
+                          static_cast<size_t>(x)) *
+                         static_cast<size_t>(channels)];
+        const double sx = map.x_px[k], sy = map.y_px[k];
+        if (st) {
+          // Zeros where there is no preimage: alpha 0 says so, and R = G = 0 keeps it finite.
+          if (map.valid[k]) {
+            p[0] = static_cast<float>(sx / w);
+            p[1] = static_cast<float>(1.0 - sy / h);
+            p[3] = 1.0f;
+          }
+        } else {
+          p[0] = map.valid[k] ? static_cast<float>(sx - 0.5) : -1.0f;
+          p[1] = map.valid[k] ? static_cast<float>(sy - 0.5) : -1.0f;
+        }
       }
-    } else {
-      p[0] = map.valid[k] ? static_cast<float>(x - 0.5) : -1.0f;
-      p[1] = map.valid[k] ? static_cast<float>(y - 0.5) : -1.0f;
-    }
-  }
+  };
   return writeAtomically(path, [&](const std::string& temp) {
     auto failure = [&](const std::string& message) {
       return Status::failure(path + ": cannot write the map: " +
@@ -78,10 +86,14 @@ Status writeStmap(const std::string& path, const PositionMap& map, StmapConventi
     if (out->format_name() != std::string("openexr"))
       return Status::failure(path + ": an ST map is written as OpenEXR (name it .exr)");
     if (!out->open(temp, spec)) return failure(out->geterror());
-    if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) {
-      const std::string message = out->geterror();
-      out->close();
-      return failure(message);
+    for (int y0 = 0; y0 < height; y0 += kBand) {
+      const int y1 = std::min(height, y0 + kBand);
+      fillBand(y0, y1);
+      if (!out->write_scanlines(y0, y1, 0, OIIO::TypeDesc::FLOAT, band.data())) {
+        const std::string message = out->geterror();
+        out->close();
+        return failure(message);
+      }
     }
     if (!out->close()) return failure(out->geterror());
     return Status::success();
