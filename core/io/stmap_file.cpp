@@ -160,7 +160,7 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
   for (int j = step / 2; j < spec.height; j += step) {
     if (!in.read_scanlines(0, 0, spec.y + j, spec.y + j + 1, spec.z, 0, spec.nchannels,
                            OIIO::TypeDesc::FLOAT, row.data()))
-      return R::failure(path + ": cannot read row " + std::to_string(j) + ": " +
+      return R::failure(path + ": cannot read: row " + std::to_string(spec.y + j) + ": " +
                         io_text::oneLine(in.geterror()));
     for (int i = step / 2; i < spec.width; i += step) {
       const float* p = &row[static_cast<size_t>(i) * channels];
