@@ -69,6 +69,7 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   next_depth_->setDecimals(3);
   next_depth_->setValue(settings_->nextDepth());
   next_depth_->setToolTip(tr("Depth given to the next depth point you click (any unit)"));
+  next_depth_->setObjectName(QStringLiteral("nextDepth"));
   form->addRow(tr("Radius"), radius_);
   form->addRow(tr("Hardness"), hardness_);
   form->addRow(tr("Next depth"), next_depth_);
@@ -139,10 +140,16 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
           &DepthToolSettings::setNextDepth);
   connect(settings_, &DepthToolSettings::changed, this, [this] {
     // Shown, not fed back: the boxes round (one decimal) and must not round the settings.
+    // A box is set only when it shows another value: setValue re-formats the text, so the echo
+    // of a box's own keystroke would turn a typed "1" into "1.000" with the cursor after the 1,
+    // and the ".5" typed next would be refused (typing 1.5 gave 1).
+    const auto update_box = [](QDoubleSpinBox* box, double value) {
+      if (box->valueFromText(box->textFromValue(value)) != box->value()) box->setValue(value);
+    };
     const QSignalBlocker b1(radius_), b2(hardness_), b3(next_depth_);
-    radius_->setValue(settings_->radius());
+    update_box(radius_, settings_->radius());
     hardness_->setValue(static_cast<int>(std::lround(settings_->hardness() * 100)));
-    next_depth_->setValue(settings_->nextDepth());
+    update_box(next_depth_, settings_->nextDepth());
   });
   connect(anchors_, &QTableWidget::cellChanged, this, &DepthPanel::onAnchorEdited);
   connect(show, &QCheckBox::toggled, overlay_, &DepthOverlay::setVisible);
