@@ -1,21 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
-// libFuzzer target: the studio's project reader (ui/project_file.h; Qt JSON, so this target is
-// built from ui/project_file.cpp alone with Qt Core, without the rest of the GUI).
+// libFuzzer target: the project file's one reader (core/project/studio_project.h), which the
+// studio and `artcam export` both use.
+#include "core/project/studio_project.h"
 #include "fuzz/fuzz_check.h"
-#include "ui/project_file.h"
-
-#include <QByteArray>
-#include <QString>
 
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace artcam;
-  const QByteArray json(reinterpret_cast<const char*>(data), static_cast<qsizetype>(size));
-  // parseProject names the file by its file name; relative paths resolve against its folder.
-  const Result<ui::Project> parsed =
-      ui::parseProject(json, QStringLiteral("/nonexistent/fuzz-input.artcamproj"));
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  // The reader names the file by its file name; relative paths resolve against its folder.
+  const Result<StudioProject> parsed =
+      parseStudioProject(text, "/nonexistent/fuzz-input.artcamproj");
   if (!parsed) fuzz::checkRefusal(parsed.status.message, "fuzz-input.artcamproj");
   return 0;
 }

@@ -9,6 +9,7 @@
 #include "ui/depth_commands.h"
 #include "ui/document.h"
 #include "ui/export_job.h"
+#include "ui/export_options_dialog.h"
 #include "ui/image_loader.h"
 
 #include <QCoreApplication>
@@ -554,7 +555,12 @@ void Session::exportImageDialog() {
       info.absoluteDir().filePath(info.completeBaseName() + "_warped." + info.suffix());
   const QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export warped image"),
                                                     suggestion, photoFilter());
-  if (!path.isEmpty()) exportImage(path);
+  if (path.isEmpty()) return;
+  const std::optional<ExportOptions> options =
+      ExportOptionsDialog::ask(export_options_, path, dialog_parent_);
+  if (!options) return;
+  export_options_ = *options;
+  exportImage(path);
 }
 
 bool Session::maybeSave() {

@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // Files: project save/open round trip (atomic, exact pairs), photo loading off the GUI
 // thread, .artcam export/import, full-resolution export, and the pairs table editing both ways.
+#include "core/effects/effect_table.h"
+#include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
+#include "ui/depth_commands.h"
+#include "ui/depth_model.h"
+#include "ui/panels/tensor_panel.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/commands.h"
 #include "ui/document.h"
@@ -146,6 +151,87 @@ class TestSession : public QObject {
     QVERIFY(back.ok());
     QCOMPARE(back->image.width, 320);
     QCOMPARE(back->image.height, 240);
+  }
+
+  void importTakesEveryKindAndKeepsIt() {
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    doc.reset(test::syntheticPhoto());
+    TensorPanel tensors(&doc);
+    // Chromatic aberration: three layers, one per colour (the paper's Fig 4), made for another
+    // frame size: it is scaled to the photo and every layer is kept.
+    const QString ca = dir_.filePath("ca.artcam");
+    QVERIFY(writeArtcam(ca.toStdString(), buildEffect("chromatic-aberration", {}, {600, 400})).ok);
+    session.importArtcam(ca);
+    QVERIFY(doc.manualCamera());
+    QCOMPARE(doc.artcam().kind(), ArtcamKind::Layered);
+    QCOMPARE(doc.artcam().layers.size(), size_t{3});
+    QCOMPARE(doc.artcam().sourceSize(), (FrameSize{320, 240}));
+    QVERIFY2(tensors.summary().contains("layered") && tensors.summary().contains("3 layers"),
+             qPrintable(tensors.summary()));
+    // A tensor edit changes the geometry (layer 1) and keeps the other layers.
+    tensors.setEntry(0, 0, 0, 0, 0.5);
+    QCOMPARE(doc.artcam().layers.size(), size_t{3});
+    // Saved and reopened, the project keeps the whole camera.
+    const QString project = dir_.filePath("ca.artcamproj");
+    const auto p = session.currentProject();
+    QVERIFY(p);
+    QVERIFY(writeProject(project, *p).ok);
+    const auto back = readProject(project);
+    QVERIFY2(back.ok(), back.status.message.c_str());
+    QVERIFY(back->manual_camera);
+    QCOMPARE(back->manual_camera->layers.size(), size_t{3});
+    // An attributed camera (aerial perspective reads depth): its colour and depth blocks stay.
+    const QString ap = dir_.filePath("ap.artcam");
+    QVERIFY(writeArtcam(ap.toStdString(), buildEffect("aerial-perspective", {}, {320, 240})).ok);
+    session.importArtcam(ap);
+    QCOMPARE(doc.artcam().kind(), ArtcamKind::Attributed);
+    QVERIFY(readsDepth(doc.artcam()));
+    QVERIFY2(tensors.summary().contains("depth"), qPrintable(tensors.summary()));
+    doc.undoStack()->undo();
+    QCOMPARE(doc.artcam().kind(), ArtcamKind::Layered);
+  }
+
+  void depthMapAndExportOptions() {
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    doc.reset(test::syntheticPhoto());
+    const QString depth_path = dir_.filePath("depth.exr");
+    QVERIFY(!session.exportDepthMap(depth_path));  // nothing painted yet
+    QVERIFY(!QFile::exists(depth_path));
+    // A plane over the left half at depth 3 everywhere (three anchors at one depth).
+    DepthPlaneLayer layer = doc.depth()->makeLayer();
+    layer.mask.fillPolygon({{0, 0}, {160, 0}, {160, 240}, {0, 240}});
+    layer.anchors = {{{10.5, 10.5}, 3.0}, {{150.5, 10.5}, 3.0}, {{10.5, 230.5}, 3.0}};
+    doc.undoStack()->push(new AddDepthLayerCommand(doc.depth(), layer));
+    QVERIFY(session.exportDepthMap(depth_path));
+    const Result<LoadedImage> depth = readImage(depth_path.toStdString());
+    QVERIFY2(depth.ok(), depth.status.message.c_str());
+    QCOMPARE(depth->image.channels, 1);
+    QCOMPARE(depth->info.pixel_type, std::string("float"));
+    QVERIFY(std::abs(depth->image.pixel(40, 120)[0] - 3.0f) < 1e-5f);
+    QCOMPARE(depth->image.pixel(280, 120)[0], 0.0f);  // no depth on the right: 0
+
+    // Crop to the valid area: a barrel lens pulls the frame's edges in, so the valid picture is
+    // smaller than the photo, and opaque (no alpha written).
+    const QString lens = dir_.filePath("barrel.artcam");
+    QVERIFY(writeArtcam(lens.toStdString(), buildEffect("barrel", {}, {320, 240})).ok);
+    session.importArtcam(lens);
+    ExportOptions options;
+    options.crop_to_valid = true;
+    session.setExportOptions(options);
+    QSignalSpy finished(&session, &Session::exportFinished);
+    const QString out = dir_.filePath("cropped.png");
+    session.exportImage(out);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.size(), 1, 60000);
+    QVERIFY2(finished.front().at(0).toBool(), qPrintable(finished.front().at(1).toString()));
+    const Result<LoadedImage> back = readImage(out.toStdString());
+    QVERIFY(back.ok());
+    QVERIFY2(back->image.width < 320 && back->image.height < 240 && back->image.width > 200,
+             qPrintable(QString("%1x%2").arg(back->image.width).arg(back->image.height)));
+    QCOMPARE(back->image.channels, 3);
   }
 
   void exportCanBeCancelled() {

@@ -130,8 +130,9 @@ QString EffectsPanel::status() const {
   const auto& effects = document_->effects();
   if (effects.empty()) return tr("No effects. Pick one and press Add.");
   const std::string& note = document_->artcamNote();
-  if (note.empty()) return tr("%n effect(s) applied to the result.", nullptr,
-                              static_cast<int>(effects.size()));
+  if (note.empty())
+    return effects.size() == 1 ? tr("1 effect applied to the result.")
+                               : tr("%1 effects applied to the result.").arg(effects.size());
   return QString::fromStdString(note);
 }
 

@@ -118,10 +118,12 @@ QString TensorPanel::summary() const {
     blocks << QString::fromUtf8(n.data(), static_cast<qsizetype>(n.size()));
   }
   const std::string_view kind = artcamKindName(whole.kind());
-  QString text = tr("Whole camera: %1, %n layer(s), blocks %2", nullptr,
-                    static_cast<int>(whole.layers.size()))
-                     .arg(QString::fromUtf8(kind.data(), static_cast<qsizetype>(kind.size())),
-                          blocks.join(" | "));
+  const int layers = static_cast<int>(whole.layers.size());
+  const QString kind_text = QString::fromUtf8(kind.data(), static_cast<qsizetype>(kind.size()));
+  QString text = layers == 1 ? tr("Whole camera: %1, 1 layer, blocks %2")
+                                   .arg(kind_text, blocks.join(" | "))
+                             : tr("Whole camera: %1, %2 layers, blocks %3")
+                                   .arg(kind_text, QString::number(layers), blocks.join(" | "));
   if (whole.isPiecewise())
     text += tr(", %1 patches").arg(whole.pieces->patches.size());
   if (whole.depth_output == DepthOutput::BlurVariance) text += tr(", depth output: blur variance");

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: Apache-2.0
+// artcam export on the bundled project and on damaged ones: the camera and depth it writes are
+// the project's (two effects, depth of field last: a blur-variance camera; the painted depths),
+// options are checked, and every refusal is one or two lines naming the file and the cause,
+// with no output left behind and no input touched.
+#include "core/io/artcam_file.h"
+#include "core/io/image_io.h"
+#include "tests/app/cli_run.h"
+#include "tests/support/test_support.h"
+
+#include <QtTest/QtTest>
+
+#include <QCryptographicHash>
+#include <QFile>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTemporaryDir>
+
+using namespace artcam;
+using artcam::test::artcamCli;
+using Run = artcam::test::CliRun;
+
+namespace {
+
+QByteArray hashOf(const QString& path) {
+  QFile f(path);
+  if (!f.open(QIODevice::ReadOnly)) return {};
+  return QCryptographicHash::hash(f.readAll(), QCryptographicHash::Sha256);
+}
+
+}  // namespace
+
+class TestCliExport : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(dir_.isValid());
+    for (const char* f : {"coffee.png", "depth-effects.artcamproj"})
+      QVERIFY(QFile::copy(QString(ARTCAM_RESOURCES_DIR) + "/" + f, dir_.filePath(f)));
+    project_ = dir_.filePath("depth-effects.artcamproj");
+  }
+
+  void rendersTheProjectWithItsCameraAndDepth() {
+    const QString out = dir_.filePath("out.jpg");
+    const Run r = artcamCli({"export", project_, "-o", out, "--quality", "90", "--json", "-q",
+                             "--camera-out", dir_.filePath("cam.artcam"), "--depth-out",
+                             dir_.filePath("depth.exr")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    const QJsonObject j = QJsonDocument::fromJson(r.out.toUtf8()).object();
+    QCOMPARE(j["width"].toInt(), 600);
+    QCOMPARE(j["height"].toInt(), 400);
+    QCOMPARE(j["effects"].toInt(), 2);
+    QCOMPARE(j["effects_applied"].toInt(), 2);
+    QVERIFY2(j["description"].toString().contains("depth-of-field blur"), qPrintable(r.out));
+    const auto cam = readArtcam(dir_.filePath("cam.artcam").toStdString());
+    QVERIFY2(cam.ok(), cam.status.message.c_str());
+    QCOMPARE(cam->depth_output, DepthOutput::BlurVariance);  // depth of field came last
+    QVERIFY(readsDepth(*cam));
+    // The table plane: 0.6 at the bottom row's anchors, 2.5 at the top anchor; the cup: 0.8.
+    const auto depth = readImage(dir_.filePath("depth.exr").toStdString());
+    QVERIFY(depth.ok());
+    QVERIFY(std::abs(depth->image.pixel(20, 390)[0] - 0.6f) < 1e-4f);
+    QVERIFY(std::abs(depth->image.pixel(300, 5)[0] - 2.5f) < 1e-3f);
+    QVERIFY(std::abs(depth->image.pixel(290, 140)[0] - 0.8f) < 1e-5f);
+    const auto image = readImage(out.toStdString());
+    QVERIFY(image.ok());
+    QCOMPARE(image->info.format_name, std::string("jpeg"));
+    // The far table is hazed towards the haze colour (brighter and bluer than the photo), the
+    // cup at 0.8 much less: aerial perspective reached the output.
+    const auto photo = readImage(dir_.filePath("coffee.png").toStdString());
+    QVERIFY(photo.ok());
+    const float* far_out = image->image.pixel(560, 20);
+    const float* far_in = photo->image.pixel(560, 20);
+    QVERIFY2(far_out[2] > far_in[2] + 0.05f, qPrintable(QString("%1 vs %2").arg(far_out[2]).arg(far_in[2])));
+  }
+
+  void refusesBadInputWithoutWriting() {
+    const QByteArray before = hashOf(project_);
+    const QString out = dir_.filePath("never.png");
+    struct Case {
+      QStringList args;
+      int exit;
+      QString says;
+    };
+    const QString missing = dir_.filePath("missing.artcamproj");
+    const QString broken = dir_.filePath("broken.artcamproj");
+    {
+      QFile f(broken);
+      QVERIFY(f.open(QIODevice::WriteOnly));
+      f.write(R"({"format":"artcam-studio-project","version":3,"photo":"coffee.png",)"
+              R"("effects":[{"effect":"depth-of-field","params":{"focus":[-1]}}]})");
+    }
+    const QString no_photo = dir_.filePath("nophoto.artcamproj");
+    {
+      QFile f(no_photo);
+      QVERIFY(f.open(QIODevice::WriteOnly));
+      f.write(R"({"format":"artcam-studio-project","version":1,"photo":"gone.png"})");
+    }
+    const Case cases[] = {
+        {{"export", project_}, 2, "missing -o OUT"},
+        {{"export", project_, "-o", out, "--quality", "0"}, 2, "--quality expects a whole number from 1 to 100"},
+        {{"export", project_, "-o", out, "--bit-depth", "12"}, 2, "--bit-depth expects 8, 16, half or float"},
+        {{"export", project_, "-o", out, "--crop-valid", "--fill", "0,0,0"}, 2, "exclude each other"},
+        {{"export", project_, "-o", out, "--fill", "1,2"}, 2, "--fill expects 3 or 4"},
+        {{"export", missing, "-o", out}, 1, "missing.artcamproj: cannot read"},
+        {{"export", broken, "-o", out}, 1, "broken.artcamproj: /effects/0/params/focus: focus = -1 is outside its range"},
+        {{"export", no_photo, "-o", out}, 1, "nophoto.artcamproj: photo:"},
+        {{"export", no_photo, "-o", out, "--depth-out", out}, 2, "two outputs name the same file"},
+        {{"export", project_, "-o", dir_.filePath("coffee.png"), "--overwrite"}, 1, "refusing to overwrite the input"},
+        {{"export", project_, "-o", project_, "--overwrite"}, 1, "refusing to overwrite the input"},
+    };
+    for (const Case& c : cases) {
+      const Run r = artcamCli(c.args);
+      const QString what = c.args.join(' ') + " -> " + r.err;
+      QVERIFY2(r.exit_code == c.exit, qPrintable(what));
+      QVERIFY2(r.err.contains(c.says), qPrintable(what));
+      QVERIFY2(r.err.trimmed().count('\n') <= 2, qPrintable(what));
+      QVERIFY2(!QFile::exists(out), qPrintable(what));
+    }
+    QCOMPARE(hashOf(project_), before);
+    QVERIFY(!hashOf(dir_.filePath("coffee.png")).isEmpty());
+  }
+
+  void cropAndFillChangeTheOutput() {
+    // A project whose camera is a barrel lens (set by hand): its corners have no preimage.
+    const QString lens = dir_.filePath("lens.artcamproj");
+    const Run preset = artcamCli({"preset", "barrel", "--k", "-0.3", "--size", "600x400", "-o",
+                                  dir_.filePath("barrel.artcam")});
+    QVERIFY2(preset.exit_code == 0, qPrintable(preset.err));
+    QFile cam(dir_.filePath("barrel.artcam"));
+    QVERIFY(cam.open(QIODevice::ReadOnly));
+    QFile f(lens);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(R"({"format":"artcam-studio-project","version":1,"photo":"coffee.png","camera":)" +
+            cam.readAll() + "}");
+    f.close();
+    const Run crop = artcamCli({"export", lens, "-o", dir_.filePath("crop.png"), "--json", "-q", "--crop-valid"});
+    QVERIFY2(crop.exit_code == 0, qPrintable(crop.err));
+    const QJsonObject j = QJsonDocument::fromJson(crop.out.toUtf8()).object();
+    QVERIFY2(j["width"].toInt() < 600 && j["height"].toInt() < 400, qPrintable(crop.out));
+    const Run fill = artcamCli({"export", lens, "-o", dir_.filePath("fill.png"), "-q", "--fill", "1,0,0"});
+    QVERIFY2(fill.exit_code == 0, qPrintable(fill.err));
+    const auto filled = readImage(dir_.filePath("fill.png").toStdString());
+    QVERIFY(filled.ok());
+    QCOMPARE(filled->image.channels, 3);  // opaque after the fill
+    const float* corner = filled->image.pixel(0, 0);
+    QVERIFY2(corner[0] > 0.99f && corner[1] < 0.01f, "the corner is not the fill colour");
+  }
+
+ private:
+  QTemporaryDir dir_;
+  QString project_;
+};
+
+QTEST_GUILESS_MAIN(TestCliExport)
+#include "test_cli_export.moc"

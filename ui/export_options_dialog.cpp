@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "ui/export_options_dialog.h"
+
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QPushButton>
+#include <QRadioButton>
+#include <QSpinBox>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+namespace artcam::ui {
+namespace {
+
+float linearFromSrgb(double c) {
+  return static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+double srgbFromLinear(double c) {
+  return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+}  // namespace
+
+ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QString& path,
+                                         QWidget* parent)
+    : QDialog(parent),
+      base_(current),
+      keep_(new QRadioButton(tr("Keep transparent"), this)),
+      fill_(new QRadioButton(tr("Fill with"), this)),
+      crop_(new QRadioButton(tr("Crop to the valid area"), this)),
+      fill_colour_(new QPushButton(this)),
+      colour_(Qt::black),
+      quality_(new QSpinBox(this)),
+      bit_depth_(new QComboBox(this)) {
+  setWindowTitle(tr("Export options"));
+  setObjectName("exportOptionsDialog");
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  const bool jpeg = suffix == "jpg" || suffix == "jpeg";
+  if (current.fill)
+    colour_ = QColor::fromRgbF(srgbFromLinear((*current.fill)[0]), srgbFromLinear((*current.fill)[1]),
+                               srgbFromLinear((*current.fill)[2]));
+  (current.crop_to_valid ? crop_ : current.fill ? fill_ : keep_)->setChecked(true);
+  crop_->setToolTip(tr("The largest rectangle in which every pixel has a preimage in the photo"));
+  keep_->setToolTip(tr("Pixels without a preimage stay transparent (black in formats without alpha)"));
+  connect(fill_colour_, &QPushButton::clicked, this, [this] {
+    const QColor c = QColorDialog::getColor(colour_, this, tr("Fill colour"));
+    if (!c.isValid()) return;
+    colour_ = c;
+    fill_->setChecked(true);
+    updateFillButton();
+  });
+  updateFillButton();
+  auto* fill_row = new QHBoxLayout;
+  fill_row->addWidget(fill_);
+  fill_row->addWidget(fill_colour_);
+  fill_row->addStretch(1);
+  quality_->setRange(1, 100);
+  quality_->setValue(current.write.jpeg_quality);
+  quality_->setEnabled(jpeg);
+  quality_->setToolTip(tr("JPEG quality (95 keeps fine detail; 85 is a common web setting)"));
+  bit_depth_->addItem(tr("Same as the photo"), QString());
+  bit_depth_->addItem(tr("8 bits"), QString("uint8"));
+  if (!jpeg) {
+    bit_depth_->addItem(tr("16 bits"), QString("uint16"));
+    bit_depth_->addItem(tr("16-bit float (half)"), QString("half"));
+    bit_depth_->addItem(tr("32-bit float"), QString("float"));
+  }
+  const int at = bit_depth_->findData(QString::fromStdString(current.write.pixel_type));
+  bit_depth_->setCurrentIndex(at < 0 ? 0 : at);
+  auto* form = new QFormLayout;
+  form->addRow(tr("Pixels outside the photo"), keep_);
+  form->addRow(QString(), fill_row);
+  form->addRow(QString(), crop_);
+  form->addRow(tr("JPEG quality"), quality_);
+  form->addRow(tr("Bit depth"), bit_depth_);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
+  connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(form);
+  layout->addWidget(buttons);
+}
+
+void ExportOptionsDialog::updateFillButton() {
+  fill_colour_->setText(colour_.name());
+  fill_colour_->setStyleSheet(QString("background-color: %1").arg(colour_.name()));
+}
+
+ExportOptions ExportOptionsDialog::options() const {
+  ExportOptions o = base_;
+  o.crop_to_valid = crop_->isChecked();
+  o.fill.reset();
+  if (fill_->isChecked())
+    o.fill = std::array<float, 4>{linearFromSrgb(colour_.redF()), linearFromSrgb(colour_.greenF()),
+                                  linearFromSrgb(colour_.blueF()), 1.0f};
+  if (quality_->isEnabled()) o.write.jpeg_quality = quality_->value();
+  o.write.pixel_type = bit_depth_->currentData().toString().toStdString();
+  return o;
+}
+
+std::optional<ExportOptions> ExportOptionsDialog::ask(const ExportOptions& current,
+                                                      const QString& path, QWidget* parent) {
+  ExportOptionsDialog dialog(current, path, parent);
+  if (dialog.exec() != QDialog::Accepted) return std::nullopt;
+  return dialog.options();
+}
+
+}  // namespace artcam::ui

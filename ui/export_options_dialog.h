@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: Apache-2.0
+// The export options image editors offer after the file name: what to do with pixels the camera
+// leaves without a preimage (keep them transparent, fill them with a colour, or crop to the
+// largest rectangle of valid pixels, as Hugin's "crop to valid area"), the JPEG quality and the
+// bit depth. The choices persist for the session's next exports (Session::exportOptions).
+#pragma once
+
+#include "core/project/project_render.h"
+
+#include <QDialog>
+
+#include <optional>
+
+class QCheckBox;
+class QComboBox;
+class QPushButton;
+class QRadioButton;
+class QSpinBox;
+
+namespace artcam::ui {
+
+class ExportOptionsDialog : public QDialog {
+  Q_OBJECT
+
+ public:
+  // `path` decides which options apply (quality only for JPEG, 16-bit not for JPEG).
+  ExportOptionsDialog(const ExportOptions& current, const QString& path, QWidget* parent = nullptr);
+  ExportOptions options() const;
+
+  // Shows the dialog; nullopt when cancelled.
+  static std::optional<ExportOptions> ask(const ExportOptions& current, const QString& path,
+                                          QWidget* parent);
+
+ private:
+  void updateFillButton();
+
+  ExportOptions base_;
+  QRadioButton* keep_;
+  QRadioButton* fill_;
+  QRadioButton* crop_;
+  QPushButton* fill_colour_;
+  QColor colour_;
+  QSpinBox* quality_;
+  QComboBox* bit_depth_;
+};
+
+}  // namespace artcam::ui
