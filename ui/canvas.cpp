@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/canvas.h"
 
+#include "ui/canvas_annotations.h"
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
+#include "ui/grid_overlay.h"
 #include "ui/preview_controller.h"
 #include "ui/tools/tool.h"
 
@@ -61,7 +63,24 @@ Canvas::~Canvas() = default;
 void Canvas::setTool(std::unique_ptr<Tool> tool) {
   if (tool_) tool_->cancel();
   tool_ = std::move(tool);
+  applyCursor();
   update();
+  emit toolChanged();
+}
+
+void Canvas::applyCursor() {
+  if (panning_)
+    setCursor(Qt::ClosedHandCursor);
+  else if (space_down_)
+    setCursor(Qt::OpenHandCursor);
+  else
+    setCursor(tool_ ? tool_->cursor() : QCursor(Qt::ArrowCursor));
+}
+
+void Canvas::setSpacePan(bool down) {
+  if (space_down_ == down) return;
+  space_down_ = down;
+  applyCursor();
 }
 
 void Canvas::setDepthOverlay(DepthOverlay* overlay) {
@@ -177,8 +196,10 @@ void Canvas::paintEvent(QPaintEvent*) {
   painter.setRenderHint(QPainter::SmoothPixmapTransform, view_.scale() < 1.0);
   paintPicture(painter, target);
   paintDepthOnPhoto(painter, target);
+  if (grid_visible_) paintGridOverlay(painter, target);
   painter.setRenderHint(QPainter::Antialiasing, true);
   paintPairs(painter);
+  paintResidualAids(painter);
   if (tool_) tool_->paint(painter);
   paintViewBadge(painter, target);
   if (const LoupeGeometry g = loupe(); g.isValid())
@@ -208,14 +229,18 @@ void Canvas::paintDepth(QPainter& painter, const QRectF& image_rect) {
 
 void Canvas::paintPairs(QPainter& painter) {
   const auto& pairs = document_->pairs();
+  // A hand-set camera was not fitted to the pairs: their residuals would colour good pairs
+  // red, so they are drawn neutral while the banner (manual_camera_banner.h) says why.
+  const bool manual = document_->manualCamera().has_value();
   for (size_t i = 0; i < pairs.size(); ++i) {
     const Pair& p = pairs[i];
     const int index = static_cast<int>(i);
     const QPointF s = view_.widgetFromImage(toQt(p.source));
     const QPointF t = view_.widgetFromImage(toQt(p.target));
     const bool selected = document_->isSelected(index);
-    const QColor colour =
-        p.enabled ? residualColour(document_->residual(index)) : QColor(150, 150, 150);
+    const QColor colour = !p.enabled ? QColor(150, 150, 150)
+                          : manual   ? kUnfittedPairColour
+                                     : residualColour(document_->residual(index));
     if (selected) {
       painter.setPen(QPen(QColor(80, 160, 255), 5.0));
       painter.drawLine(s, t);
@@ -231,9 +256,26 @@ void Canvas::paintPairs(QPainter& painter) {
     painter.setPen(QPen(Qt::black, 1.0));
     painter.drawRect(QRectF(t.x() - 3.5, t.y() - 3.5, 7, 7));
     painter.setBrush(Qt::NoBrush);
-    painter.setPen(Qt::white);
-    painter.drawText(s + QPointF(6, -6), QString::number(index + 1));
+    drawHaloText(painter, s + QPointF(6, -6), QString::number(index + 1), Qt::white,
+                 QColor(0, 0, 0, 220));
   }
+}
+
+void Canvas::paintResidualAids(QPainter& painter) {
+  // Only while the pairs are fitted: a hand-set camera draws them neutral (no ramp to explain).
+  if (document_->pairs().empty() || document_->manualCamera()) return;
+  if (residuals_magnified_) paintMagnifiedResiduals(painter, view_, *document_);
+  paintResidualLegend(painter, size());
+}
+
+void Canvas::setGridVisible(bool visible) {
+  grid_visible_ = visible;
+  update();
+}
+
+void Canvas::setResidualsMagnified(bool magnified) {
+  residuals_magnified_ = magnified;
+  update();
 }
 
 void Canvas::resizeEvent(QResizeEvent*) {
@@ -285,7 +327,7 @@ void Canvas::mouseReleaseEvent(QMouseEvent* event) {
   if (panning_) {
     if (event->button() == Qt::MiddleButton || event->button() == Qt::LeftButton) {
       panning_ = false;
-      setCursor(space_down_ ? Qt::OpenHandCursor : Qt::ArrowCursor);
+      applyCursor();
     }
     return;
   }
@@ -304,9 +346,8 @@ void Canvas::wheelEvent(QWheelEvent* event) {
 }
 
 void Canvas::keyPressEvent(QKeyEvent* event) {
-  if (event->key() == Qt::Key_Space && !event->isAutoRepeat()) {
-    space_down_ = true;
-    if (!panning_) setCursor(Qt::OpenHandCursor);
+  if (event->key() == Qt::Key_Space) {
+    if (!event->isAutoRepeat()) setSpacePan(true);
     return;
   }
   if (tool_ && tool_->keyPress(event)) return;
@@ -314,9 +355,8 @@ void Canvas::keyPressEvent(QKeyEvent* event) {
 }
 
 void Canvas::keyReleaseEvent(QKeyEvent* event) {
-  if (event->key() == Qt::Key_Space && !event->isAutoRepeat()) {
-    space_down_ = false;
-    if (!panning_) setCursor(Qt::ArrowCursor);
+  if (event->key() == Qt::Key_Space) {
+    if (!event->isAutoRepeat()) setSpacePan(false);
     return;
   }
   QWidget::keyReleaseEvent(event);

@@ -63,6 +63,12 @@ class Canvas : public QWidget {
   const ViewTransform& view() const { return view_; }
   void setTool(std::unique_ptr<Tool> tool);
   Tool* tool() const { return tool_.get(); }
+  // Space held: a left drag pans. Set by the canvas's own keys and, while the pointer is over
+  // the canvas, by SpacePanFilter (space_pan.h) whatever widget has the focus.
+  void setSpacePan(bool down);
+  bool isSpacePanning() const { return space_down_; }
+  // The pointer is over the canvas (it tracks moves; cleared when the pointer leaves).
+  bool isPointerInside() const { return cursor_inside_ || underMouse(); }
   // Draws the depth overlay (when visible) over the photo, with its legend.
   void setDepthOverlay(DepthOverlay* overlay);
   // The source of the result picture (see the top of this file); null: photo only.
@@ -77,6 +83,11 @@ class Canvas : public QWidget {
   // Whether the photo is visible at a widget point (Photo, Onion, left of the divider): where
   // sources may be edited.
   bool photoVisibleAt(const QPointF& widget) const;
+  // Whether sources may be placed and dragged at a widget point: where the photo shows, and
+  // anywhere while the result's geometry is the identity (no pairs fitted yet, only colour
+  // effects): its pixels are then the photo's, so a fresh photo takes its first clicks in
+  // Result mode too.
+  bool sourcesEditableAt(const QPointF& widget) const;
   // The newest result delivered for the current photo; null before the first one.
   const QImage* resultImage() const;
   // The divider's widget x in Split.
@@ -85,8 +96,13 @@ class Canvas : public QWidget {
   // Residual (px) drawn fully red; below it the arrow blends from green.
   static constexpr double kRedResidualPx = 4.0;
   static QColor residualColour(double residual_px);
+  // Pair markers while the camera is set by hand (not fitted to them): a neutral light blue,
+  // neither the residual ramp nor the grey of disabled pairs.
+  static inline const QColor kUnfittedPairColour{150, 190, 230};
 
   bool isLoupeEnabled() const { return loupe_enabled_; }
+  bool isGridVisible() const { return grid_visible_; }
+  bool areResidualsMagnified() const { return residuals_magnified_; }
   // The loupe as it is drawn now (invalid when hidden).
   LoupeGeometry loupe() const;
 
@@ -103,10 +119,15 @@ class Canvas : public QWidget {
   void toggleBeforeAfter();  // `\`
   void setSplit(double fraction);
   void setOnionOpacity(double opacity);
+  // Guides over the picture (grid_overlay.h).
+  void setGridVisible(bool visible);
+  // The residual vectors from fitted to clicked targets, ×10 (canvas_annotations.h).
+  void setResidualsMagnified(bool magnified);
 
  signals:
   void viewChanged();
   void viewStateChanged();
+  void toolChanged();  // setTool made another tool active
   void cursorMoved(const QPointF& image_point);
 
  protected:
@@ -123,6 +144,7 @@ class Canvas : public QWidget {
 
  private:
   void onPhotoChanged();
+  void applyCursor();  // pan hand while panning or Space is held, else the tool's cursor
   void paintPairs(QPainter& painter);
   void paintDepth(QPainter& painter, const QRectF& image_rect);
   // canvas_result.cpp: the picture of the shown mode, and the Split/Onion controls.
@@ -134,6 +156,7 @@ class Canvas : public QWidget {
   bool onDividerHandle(const QPointF& widget) const;
   // The picture the loupe magnifies at a widget point (the result or the photo's display).
   const QImage& loupePicture(const QPointF& widget) const;
+  void paintResidualAids(QPainter& painter);  // the legend and magnified residuals
   void userMovedView();
   void pinchBy(double factor, const QPointF& widget_centre);
 
@@ -154,6 +177,8 @@ class Canvas : public QWidget {
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
   bool loupe_enabled_ = true;
+  bool grid_visible_ = false;
+  bool residuals_magnified_ = false;
   bool cursor_inside_ = false;
   QPointF cursor_widget_;
   bool panning_ = false;

@@ -10,6 +10,7 @@
 #include <QPixmap>
 
 #include <cmath>
+#include <utility>
 
 namespace artcam::ui {
 namespace {
@@ -65,6 +66,29 @@ bool Canvas::photoVisibleAt(const QPointF& widget) const {
       return false;
     case CanvasViewMode::Split:
       return widget.x() < dividerX();
+  }
+  return true;
+}
+
+bool Canvas::sourcesEditableAt(const QPointF& widget) const {
+  if (photoVisibleAt(widget)) return true;
+  // The geometry is the identity when the first layer maps the frame's corners and centre to
+  // themselves (normalised frame, colour grey, depth 1: position outputs read no attribute then).
+  const Camera& c = document_->artcam().main();
+  const BlockLayout& l = c.layout();
+  if (document_->artcam().isPiecewise() || l.blocks.empty() || l.blocks[0].size != 3) return false;
+  for (const auto& [u, v] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}, {0.0, 0.0}}) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(c.dimension());
+    x[0] = u;
+    x[1] = v;
+    x[2] = 1.0;
+    for (size_t b = 1; b < l.blocks.size(); ++b) {
+      const int o = l.offsets[b];
+      if (l.blocks[b].kind == BlockKind::Colour) x.segment(o, 4) << 0.5, 0.5, 0.5, 1.0;
+      if (l.blocks[b].kind == BlockKind::Depth) x.segment(o, 2) << 1.0, 1.0;
+    }
+    const Eigen::VectorXd y = c.evaluate(x);
+    if (!(std::abs(y[0] - u) < 1e-9 && std::abs(y[1] - v) < 1e-9)) return false;
   }
   return true;
 }

@@ -57,6 +57,14 @@ void FitStatus::setCursorPosition(const QPointF& p) {
 
 void FitStatus::updateFit() {
   const FitSummary& fit = document_->fit();
+  if (!document_->photo()) {
+    // Nothing is fitted before there is a photo: no model to name, no figures.
+    model_->setText(QString());
+    model_->setToolTip(QString());
+    residual_->setText(QString());
+    residual_->setToolTip(QString());
+    return;
+  }
   if (document_->manualCamera()) {
     model_->setText(
         tr("Camera: set by hand (%1)")
@@ -76,9 +84,17 @@ void FitStatus::updateFit() {
     residual_->setText(tr("RMS %1 px · max %2 px")
                            .arg(fit.record.rms_px, 0, 'f', 2)
                            .arg(fit.record.max_px, 0, 'f', 2));
+  else if (document_->manualCamera() && !document_->pairs().empty())
+    residual_->setText(tr("Pairs not fitted (markers neutral)"));
   else
     residual_->setText(QString());
-  residual_->setToolTip(QString::fromStdString(fit.status.ok ? fit.report() : fit.status.message));
+  if (document_->manualCamera())
+    residual_->setToolTip(tr("The camera is set by hand, not fitted to the pairs, so their "
+                             "markers are drawn neutral instead of by residual; Fit again "
+                             "(over the canvas) or Model ▸ Use Fitted Camera fits them again"));
+  else
+    residual_->setToolTip(
+        QString::fromStdString(fit.status.ok ? fit.report() : fit.status.message));
 }
 
 void FitStatus::updateRender() {

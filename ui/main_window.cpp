@@ -9,6 +9,8 @@
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
+#include "ui/help_dialogs.h"
+#include "ui/manual_camera_banner.h"
 #include "ui/matting/insertion_studio.h"
 #include "ui/panels/depth_panel.h"
 #include "ui/panels/effects_panel.h"
@@ -17,6 +19,8 @@
 #include "ui/preview_controller.h"
 #include "ui/preview_view.h"
 #include "ui/session.h"
+#include "ui/space_pan.h"
+#include "ui/tool_switcher.h"
 #include "ui/tools/depth_tool.h"
 #include "ui/tools/depth_tool_settings.h"
 #include "ui/tools/pair_tool.h"
@@ -29,6 +33,7 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileInfo>
+#include <QLabel>
 #include <QKeySequence>
 #include <QMenu>
 #include <QMenuBar>
@@ -137,7 +142,10 @@ MainWindow::MainWindow(QWidget* parent)
     return v;
   });
   connect(session_, &Session::viewStateLoaded, this, [this](const ViewState& v) {
-    if (v.scale > 0.0) canvas_->setView(v.scale, v.centre);
+    // A reopened project fits the picture to the window: the saved scale and centre were for
+    // the window of the last session (another screen, another dock layout) and often showed a
+    // corner of the photo. They stay in the file (ViewState) for readers that want them.
+    canvas_->zoomToFit();
     preview_view_->setMode(static_cast<PreviewMode>(v.preview_mode));
     preview_view_->setOpacity(v.opacity);
     canvas_->setViewState(v.canvas);
@@ -145,7 +153,13 @@ MainWindow::MainWindow(QWidget* parent)
 
   colour_dock_->attachToSession(session_);
   createMenus();
-  (new InsertionStudio(this, canvas_, document_))->attachToSession(session_);  // Insertion dock, menu and tools
+  auto* insertion = new InsertionStudio(this, canvas_, document_);  // Insertion dock, menu and tools
+  insertion->attachToSession(session_);
+  // The Insertion tools are canvas tools like the others: one exclusive group, on the toolbar.
+  for (QAction* a : {insertion->gridToolAction(), insertion->regionToolAction()}) {
+    tool_switcher_->addAction(a);
+    if (auto* bar = findChild<QToolBar*>(QStringLiteral("mainToolBar"))) bar->addAction(a);
+  }
   updateTitle();
   resize(1400, 900);
 }
@@ -188,7 +202,10 @@ void MainWindow::createMenus() {
   QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
   undo->setShortcut(QKeySequence::Undo);
   QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
-  redo->setShortcut(QKeySequence::Redo);
+  // Ctrl+Y redoes on every platform too (the standard binding is Ctrl+Shift+Z off Windows).
+  QList<QKeySequence> redo_keys = QKeySequence::keyBindings(QKeySequence::Redo);
+  if (!redo_keys.contains(QKeySequence(tr("Ctrl+Y")))) redo_keys << QKeySequence(tr("Ctrl+Y"));
+  redo->setShortcuts(redo_keys);
   edit->addAction(undo);
   edit->addAction(redo);
   edit->addSeparator();
@@ -228,6 +245,19 @@ void MainWindow::createMenus() {
   view->addAction(tr("&Reset 3D View"), QKeySequence(tr("Ctrl+Shift+R")), cloud_view_,
                   &CloudView::resetView)
       ->setToolTip(tr("Back to the default orbit of the point cloud"));
+  QAction* grid = view->addAction(tr("Show &Grid"));
+  grid->setCheckable(true);
+  grid->setChecked(canvas_->isGridVisible());
+  grid->setShortcut(QKeySequence(tr("Ctrl+'")));
+  grid->setToolTip(tr("Rule-of-thirds lines and a grid of eighths over the picture"));
+  connect(grid, &QAction::toggled, canvas_, &Canvas::setGridVisible);
+  QAction* magnify = view->addAction(tr("&Magnify Residuals ×10"));
+  magnify->setCheckable(true);
+  magnify->setChecked(canvas_->areResidualsMagnified());
+  magnify->setShortcut(QKeySequence(tr("Ctrl+Shift+M")));
+  magnify->setToolTip(tr("Draw each pair's miss, from where the fit sends its source to the "
+                         "clicked target, ten times longer"));
+  connect(magnify, &QAction::toggled, canvas_, &Canvas::setResidualsMagnified);
   QAction* overlay = view->addAction(tr("Show &Depth Overlay"));
   overlay->setCheckable(true);
   overlay->setChecked(depth_overlay_->isVisible());
@@ -260,6 +290,7 @@ void MainWindow::createMenus() {
             [this, a, chosen] { a->setChecked(document_->model() == chosen); });
   }
   model->addSeparator();
+  new ManualCameraBanner(document_, canvas_);  // over the canvas while the camera is hand-set
   model->addAction(tr("Use &Fitted Camera"), this, [this] {
     if (document_->manualCamera())
       document_->undoStack()->push(
@@ -267,6 +298,14 @@ void MainWindow::createMenus() {
   });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&Quick Start"), QKeySequence::HelpContents, this,
+                  [this] { makeQuickStartDialog(this)->show(); })
+      ->setToolTip(tr("The workflow in five steps"));
+  help->addAction(tr("&Keyboard Shortcuts"), QKeySequence(tr("Ctrl+/")), this,
+                  [this] { makeShortcutsDialog(this)->show(); })
+      ->setToolTip(tr("Every shortcut of the studio, read from its actions"));
+  help->addSeparator();
+  new SpacePanFilter(canvas_);  // Space+drag pans over the canvas whatever has the focus
   help->addAction(tr("&About ARTcam Studio"), this, [this] {
     QMessageBox::about(
         this, tr("About ARTcam Studio"),
@@ -279,7 +318,8 @@ void MainWindow::createMenus() {
 }
 
 void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
-  auto* group = new QActionGroup(this);
+  tool_switcher_ = new ToolSwitcher(canvas_, document_, this);
+  statusBar()->insertPermanentWidget(0, tool_switcher_->label());
   struct Entry {
     QString label;
     QString key;
@@ -303,8 +343,7 @@ void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
     a->setCheckable(true);
     a->setShortcut(QKeySequence(e.key));
     a->setToolTip(e.tip);
-    a->setChecked(!e.mode);
-    group->addAction(a);
+    tool_switcher_->addAction(a, /*is_default=*/!e.mode);
     bar->addAction(a);
     const std::optional<DepthToolMode> mode = e.mode;
     connect(a, &QAction::triggered, this, [this, mode] {

@@ -26,6 +26,7 @@ class PairsPanel;
 class PreviewController;
 class PreviewView;
 class Session;
+class ToolSwitcher;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -46,6 +47,7 @@ class MainWindow : public QMainWindow {
   ColourDock* colourDock() const { return colour_dock_; }
   DepthOverlay* depthOverlay() const { return depth_overlay_; }
   DepthToolSettings* depthToolSettings() const { return depth_settings_; }
+  ToolSwitcher* toolSwitcher() const { return tool_switcher_; }
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -71,6 +73,7 @@ class MainWindow : public QMainWindow {
   CloudView* cloud_view_;
   ColourDock* colour_dock_ = nullptr;
   QMenu* recent_menu_ = nullptr;
+  ToolSwitcher* tool_switcher_ = nullptr;
 };
 
 }  // namespace artcam::ui

@@ -36,16 +36,22 @@ PixelRect RegionMask::clip(const PixelRect& r) const {
   return c.empty() ? PixelRect{} : c;
 }
 
-PixelRect RegionMask::stamp(const Eigen::Vector2d& centre, const BrushOptions& brush) {
+PixelRect RegionMask::dabRect(const Eigen::Vector2d& centre, double r) const {
+  if (!(r > 0.0) || !centre.allFinite()) return {};
+  return clip({static_cast<int>(std::floor(centre.x() - r - 0.5)),
+               static_cast<int>(std::floor(centre.y() - r - 0.5)),
+               static_cast<int>(std::ceil(centre.x() + r + 0.5)),
+               static_cast<int>(std::ceil(centre.y() + r + 0.5))});
+}
+
+PixelRect RegionMask::stamp(const Eigen::Vector2d& centre, const BrushOptions& brush,
+                            const DabLimit* limit) {
   const double r = brush.radius;
   if (!(r > 0.0) || !centre.allFinite()) return {};
-  // Pixels whose centres can lie within r of `centre`.
-  const PixelRect rect = clip({static_cast<int>(std::floor(centre.x() - r - 0.5)),
-                               static_cast<int>(std::floor(centre.y() - r - 0.5)),
-                               static_cast<int>(std::ceil(centre.x() + r + 0.5)),
-                               static_cast<int>(std::ceil(centre.y() + r + 0.5))});
+  const PixelRect rect = dabRect(centre, r);
   for (int y = rect.y0; y < rect.y1; ++y)
     for (int x = rect.x0; x < rect.x1; ++x) {
+      if (limit && !limit->allows(x, y)) continue;
       const double d = std::hypot(x + 0.5 - centre.x(), y + 0.5 - centre.y());
       const double a = dabProfile(d, r, brush.hardness);
       if (a <= 0.0) continue;

@@ -35,6 +35,18 @@ struct PixelRect {
   bool operator==(const PixelRect&) const = default;
 };
 
+// The pixels one dab may change: `allowed` holds a byte per pixel of `rect`, row by row,
+// non-zero where the dab may paint (edge_aware_brush.h makes it).
+struct DabLimit {
+  PixelRect rect;
+  std::vector<uint8_t> allowed;
+  bool allows(int x, int y) const {
+    if (x < rect.x0 || y < rect.y0 || x >= rect.x1 || y >= rect.y1) return false;
+    return allowed[static_cast<size_t>(y - rect.y0) * static_cast<size_t>(rect.width()) +
+                   static_cast<size_t>(x - rect.x0)] != 0;
+  }
+};
+
 struct BrushOptions {
   double radius = 20.0;   // photo pixels
   double hardness = 0.7;  // [0, 1]: share of the radius that is fully opaque
@@ -55,7 +67,12 @@ class RegionMask {
   bool operator==(const RegionMask&) const = default;
 
   // One dab centred at `centre`. Returns the pixels it may have changed (clipped).
-  PixelRect stamp(const Eigen::Vector2d& centre, const BrushOptions& brush);
+  // With `limit`, only the pixels it allows.
+  PixelRect stamp(const Eigen::Vector2d& centre, const BrushOptions& brush,
+                  const DabLimit* limit = nullptr);
+  // The pixels a dab of `radius` at `centre` may touch (pixel centres within the radius can
+  // lie only there), clipped to the mask.
+  PixelRect dabRect(const Eigen::Vector2d& centre, double radius) const;
   // Dabs from `from` to `to` every quarter radius (at least every pixel), `from` excluded:
   // a stroke is stamp(first) then segment(previous, next) per mouse move.
   PixelRect segment(const Eigen::Vector2d& from, const Eigen::Vector2d& to,

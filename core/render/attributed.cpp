@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace artcam {
 
@@ -36,6 +37,31 @@ AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera)
   position_ = layout.offsets[p];
   if (const int c = layout.find(BlockKind::Colour); c >= 0) colour_ = layout.offsets[c];
   if (const int d = layout.find(BlockKind::Depth); d >= 0) depth_ = layout.offsets[d];
+  if (depth_ >= 0 && colour_ >= 0) {
+    const int n = layout.dimension;
+    std::vector<bool> tainted(static_cast<size_t>(n), false);
+    tainted[static_cast<size_t>(depth_)] = tainted[static_cast<size_t>(depth_ + 1)] = true;
+    for (const Stage& stage : camera.stages()) {
+      std::vector<bool> next(static_cast<size_t>(n), false);
+      for (int i = 0; i < n; ++i)
+        for (int r = 0; r < n && !next[static_cast<size_t>(i)]; ++r)
+          for (int c = 0; c < n; ++c)
+            if ((tainted[static_cast<size_t>(r)] || tainted[static_cast<size_t>(c)]) &&
+                stage.q[static_cast<size_t>(i)](r, c) != 0.0) {
+              next[static_cast<size_t>(i)] = true;
+              break;
+            }
+      // eq 5: each block is divided by its own weight (colour premultiplied again by alpha).
+      for (size_t b = 0; b < layout.blocks.size(); ++b) {
+        const int off = layout.offsets[b], size = layout.blocks[b].size;
+        bool any = false;
+        for (int k = off; k < off + size; ++k) any = any || next[static_cast<size_t>(k)];
+        for (int k = off; k < off + size; ++k) next[static_cast<size_t>(k)] = any;
+      }
+      tainted = std::move(next);
+    }
+    colour_reads_depth_ = tainted[static_cast<size_t>(colour_)];
+  }
 }
 
 void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, double depth,
@@ -83,26 +109,41 @@ void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, dou
   }
 }
 
-double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double sy) {
+DepthSample sampleDepthCoverage(const ImageF& depth, FrameSize source_px, double sx, double sy) {
   // The depth image may have another size than the source: read it at the same place.
   const double fx = sx * depth.width / source_px.width - 0.5;
   const double fy = sy * depth.height / source_px.height - 0.5;
-  if (!std::isfinite(fx) || !std::isfinite(fy)) return 0.0;
+  if (!std::isfinite(fx) || !std::isfinite(fy)) return {0.0, 0.0};
   const double x0 = std::floor(fx), y0 = std::floor(fy);
   const double tx = fx - x0, ty = fy - y0;
-  double value = 0.0, weight = 0.0;
+  double value = 0.0, weight = 0.0, inside = 0.0;
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i) {
       const double xi = x0 + i, yj = y0 + j;
       if (xi < 0 || yj < 0 || xi >= depth.width || yj >= depth.height) continue;
       const double w = (i ? tx : 1 - tx) * (j ? ty : 1 - ty);
       const float* p = depth.pixel(static_cast<int>(xi), static_cast<int>(yj));
-      // 2 channels: (coverage·d, coverage), the homogeneous depth block (depth_raster.h).
-      const double cover = depth.channels >= 2 ? p[1] : 1.0;
-      value += w * p[0];
+      // 2 channels: (coverage·d, coverage), the homogeneous depth block (depth_raster.h);
+      // 1 channel: a depth, or a hole (0, negative, non-finite: depth_file.h's "no depth").
+      double cover = 1.0, covered_depth = p[0];
+      if (depth.channels >= 2) {
+        cover = std::isfinite(p[1]) && std::isfinite(p[0]) ? std::clamp<double>(p[1], 0.0, 1.0)
+                                                           : 0.0;
+        covered_depth = cover > 0.0 ? p[0] : 0.0;
+      } else if (!(p[0] > 0.0f) || !std::isfinite(p[0])) {
+        cover = 0.0;
+        covered_depth = 0.0;
+      }
+      value += w * covered_depth;
       weight += w * cover;
+      inside += w;
     }
-  return weight > 1e-12 ? value / weight : 0.0;
+  if (!(weight > 1e-12)) return {0.0, 0.0};
+  return {value / weight, std::min(1.0, weight / inside)};
+}
+
+double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double sy) {
+  return sampleDepthCoverage(depth, source_px, sx, sy).depth;
 }
 
 ImageF rgbaFromImage(const ImageF& source) {
@@ -154,6 +195,21 @@ AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure&
 
 namespace {
 
+// sampleDepthCoverage's rule for pixels without depth (attributed.h): `untouched` is the
+// sampled colour the camera was given.
+void keepWithoutDepth(const AttributeEvaluator& eval, double coverage, const float* untouched,
+                      float* colour, float* depth) {
+  if (!eval.readsDepth() || coverage >= 1.0) return;
+  if (coverage <= 0.0) {
+    if (depth) *depth = 0.0f;
+    if (eval.colourReadsDepth()) std::copy(untouched, untouched + 4, colour);
+    return;
+  }
+  if (!eval.colourReadsDepth()) return;
+  const auto c = static_cast<float>(coverage);
+  for (int k = 0; k < 4; ++k) colour[k] = c * colour[k] + (1.0f - c) * untouched[k];
+}
+
 void writeOutput(const AttributeEvaluator::Output& o, float* colour, float* depth) {
   if (!o.attributes_valid || !(o.rgba[3] > 0.0f)) {
     std::fill(colour, colour + 4, 0.0f);
@@ -186,9 +242,12 @@ bool colourOnly(const ImageF& rgba, const ImageF* depth, const AttributeEvaluato
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < rgba.width; ++x) {
         const Eigen::Vector2d n = normalizedFromPixel(px, {x + 0.5, y + 0.5});
-        const double d = depth ? sampleDepth(*depth, px, x + 0.5, y + 0.5) : 0.0;
-        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d, o);
-        writeOutput(o, out.colour.pixel(x, y), out.depth.empty() ? nullptr : out.depth.pixel(x, y));
+        const DepthSample d =
+            depth ? sampleDepthCoverage(*depth, px, x + 0.5, y + 0.5) : DepthSample{};
+        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d.depth, o);
+        float* d_out = out.depth.empty() ? nullptr : out.depth.pixel(x, y);
+        writeOutput(o, out.colour.pixel(x, y), d_out);
+        keepWithoutDepth(eval, d.coverage, rgba.pixel(x, y), out.colour.pixel(x, y), d_out);
       }
   });
 }
@@ -231,9 +290,11 @@ bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
           sampler.sample(sx[i], sy[i], sample);
           if (!(sample[3] > 0.0f)) continue;
           const Eigen::Vector2d s = normalizedFromPixel(source_px, {sx[i], sy[i]});
-          const double d = depth ? sampleDepth(*depth, source_px, sx[i], sy[i]) : 0.0;
-          eval.evaluate(s.x(), s.y(), sample, d, o);
+          const DepthSample d =
+              depth ? sampleDepthCoverage(*depth, source_px, sx[i], sy[i]) : DepthSample{};
+          eval.evaluate(s.x(), s.y(), sample, d.depth, o);
           writeOutput(o, colour, d_out);
+          keepWithoutDepth(eval, d.coverage, sample, colour, d_out);
         }
       }
     }
@@ -322,6 +383,19 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
   AttributedImage total;
   double ms = 0.0;
   std::string kernels;
+  // While the layers arrive, total.colour holds the sum of the layers' UNpremultiplied colours
+  // in channels 0..2 and the smallest coverage so far in channel 3; best_alpha the largest, for
+  // the depth. A layer's premultiplied colour s with coverage a adds s/a (nothing where a = 0,
+  // which makes the smallest coverage 0 anyway).
+  std::vector<float> best_alpha;
+  auto add = [](float* t, const float* s, bool first) {
+    const float a = s[3];
+    for (int k = 0; k < 3; ++k) {
+      const float u = a > 0.0f ? s[k] / a : 0.0f;
+      t[k] = first ? u : t[k] + u;
+    }
+    t[3] = first ? a : std::min(t[3], a);
+  };
   for (size_t l = 0; l < layers.size(); ++l) {
     AttributedOptions lo = options;
     if (options.warp.progress) {
@@ -336,6 +410,13 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
     kernels += (l ? "+" : "") + report.kernel;
     if (l == 0) {
       total = std::move(layer);
+      const size_t n = static_cast<size_t>(total.colour.width) * static_cast<size_t>(total.colour.height);
+      best_alpha.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        float* t = total.colour.data.data() + 4 * i;
+        best_alpha[i] = t[3];
+        add(t, t, true);
+      }
       continue;
     }
     if (layer.colour.width != total.colour.width || layer.colour.height != total.colour.height)
@@ -344,12 +425,17 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
     for (size_t i = 0; i < n; ++i) {
       float* t = total.colour.data.data() + 4 * i;
       const float* s = layer.colour.data.data() + 4 * i;
-      for (int k = 0; k < 3; ++k) t[k] += s[k];
-      if (s[3] > t[3]) {
-        t[3] = s[3];
+      add(t, s, false);
+      if (s[3] > best_alpha[i]) {
+        best_alpha[i] = s[3];
         if (!total.depth.empty() && !layer.depth.empty()) total.depth.data[i] = layer.depth.data[i];
       }
     }
+  }
+  // Back to premultiplied at the smallest coverage.
+  for (size_t i = 0; i < best_alpha.size(); ++i) {
+    float* t = total.colour.data.data() + 4 * i;
+    for (int k = 0; k < 3; ++k) t[k] *= t[3];
   }
   report.kernel = kernels;
   report.render_ms = ms;

@@ -87,8 +87,13 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
                                  const AttributedOptions& options = {},
                                  AttributedSummary* summary = nullptr);
 
-// Every layer rendered as above and combined (sum of colours, largest alpha, depth of the
-// layer with the largest alpha). All layers must share the output size.
+// Every layer rendered as above and combined: the picture is the sum of the layers' colours
+// (each layer carries its own colour channel, the paper's Fig 4), and a pixel is covered only as
+// far as EVERY layer covers it: alpha is the smallest layer coverage, and each layer's colour is
+// taken at that alpha (unpremultiplied by its own coverage, premultiplied by the smallest). So
+// where one layer shrinks away from the frame's edge the pixel becomes transparent instead of
+// keeping the other layers' channels as a frame of the complementary colour. The depth is that
+// of the layer with the largest alpha. All layers must share the output size.
 AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
                              const std::vector<Camera>& layers,
                              const AttributedOptions& options = {},
@@ -101,6 +106,9 @@ class AttributeEvaluator {
   explicit AttributeEvaluator(const Camera& camera);
 
   bool readsDepth() const { return depth_ >= 0; }
+  // Whether the colour outputs depend on the depth input (through any stage: a depth-coupled
+  // element taints its whole block at each re-homogenisation). Aerial perspective's do.
+  bool colourReadsDepth() const { return colour_reads_depth_; }
   bool hasColour() const { return colour_ >= 0; }
 
   struct Output {
@@ -118,11 +126,28 @@ class AttributeEvaluator {
  private:
   CompiledCamera compiled_;
   int position_ = -1, colour_ = -1, depth_ = -1;  // element offsets, -1: no such block
+  bool colour_reads_depth_ = false;
 };
 
 // The depth image read at source pixel point (sx, sy) given in pixels of a source of size
-// `source_px` (bilinear, as the sampler reads colour); NaN-free: 0 where nothing covers.
+// `source_px` (bilinear, as the sampler reads colour); NaN-free: depth 0 where nothing covers.
+// Coverage is the bilinear mix of the texels' coverage (the 2-channel form's second channel;
+// for a 1-channel image 1 where the depth is positive and finite, 0 in holes, depth_file.h's
+// "no depth"), over the texels inside the image; depth is the covered texels' mean.
+struct DepthSample {
+  double depth = 0.0;
+  double coverage = 1.0;
+};
+DepthSample sampleDepthCoverage(const ImageF& depth, FrameSize source_px, double sx, double sy);
 double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double sy);
+
+// Pixels without depth are untouched: where the depth input's coverage c is 0 a pixel keeps
+// its sampled colour (and depth output 0, "none"), as a camera that reads depth has nothing to
+// act on there — aerial perspective must not haze the sky nobody gave a depth; where
+// 0 < c < 1 the colour is c·(camera's colour) + (1 − c)·(sampled colour), so a soft mask edge
+// fades the effect in without a seam. Applied on the colour-only and gather paths, to cameras
+// whose colour reads depth (colourReadsDepth); the depth output's c = 0 rule to every camera
+// that reads depth (a blur variance of 0 leaves the pixel sharp).
 
 // The source as 4-channel premultiplied RGBA float (alpha channel 3).
 ImageF rgbaFromImage(const ImageF& source);

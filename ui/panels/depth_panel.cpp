@@ -72,6 +72,29 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   next_depth_->setObjectName(QStringLiteral("nextDepth"));
   form->addRow(tr("Radius"), radius_);
   form->addRow(tr("Hardness"), hardness_);
+  auto* edges = new QCheckBox(tr("Stop at colour edges"), this);
+  edges->setObjectName(QStringLiteral("edgeAwareBrush"));
+  edges->setChecked(settings_->edgeAware());
+  edges->setToolTip(tr("Edge-aware brush: a stroke paints only pixels of the brush connected to "
+                       "where it began through similar colours, so it does not spill over edges"));
+  auto* tolerance = new QDoubleSpinBox(this);
+  tolerance->setObjectName(QStringLiteral("edgeTolerance"));
+  tolerance->setRange(0.0, 2.0);
+  tolerance->setDecimals(2);
+  tolerance->setSingleStep(0.02);
+  tolerance->setValue(settings_->edgeTolerance());
+  tolerance->setToolTip(tr("How far a colour may be from the stroke's first pixel (linear RGB "
+                           "distance) and still be painted"));
+  form->addRow(edges);
+  form->addRow(tr("Edge tolerance"), tolerance);
+  connect(edges, &QCheckBox::toggled, settings_, &DepthToolSettings::setEdgeAware);
+  connect(tolerance, &QDoubleSpinBox::valueChanged, settings_,
+          &DepthToolSettings::setEdgeTolerance);
+  connect(settings_, &DepthToolSettings::changed, this, [this, edges, tolerance] {
+    const QSignalBlocker b1(edges), b2(tolerance);
+    edges->setChecked(settings_->edgeAware());
+    tolerance->setValue(settings_->edgeTolerance());
+  });
   form->addRow(tr("Next depth"), next_depth_);
   layout->addLayout(form);
 

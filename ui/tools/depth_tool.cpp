@@ -2,6 +2,8 @@
 #include "ui/tools/depth_tool.h"
 
 #include "ui/canvas.h"
+#include "ui/depth_mask_tint.h"
+#include "ui/tools/tool_cursor.h"
 #include "ui/depth_commands.h"
 #include "ui/document.h"
 
@@ -11,6 +13,7 @@
 #include <QPainter>
 #include <QPainterPath>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -19,6 +22,10 @@ namespace {
 
 QString tr(const char* text) { return QCoreApplication::translate("DepthTool", text); }
 QPointF toQt(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
+// The active mask's tint: cyan, away from the overlay's red→blue depth ramp; reduced to at
+// most this many pixels on its long side (a tint needs no more), so it costs < 1 ms a repaint.
+const QColor kMaskTint(40, 220, 255);
+constexpr int kMaskTintMaxSide = 512;
 
 }  // namespace
 
@@ -56,7 +63,14 @@ void DepthTool::mousePress(QMouseEvent* event) {
       stroke_layer_ = ensureLayer();
       RegionMask* mask = depth()->maskForStroke(stroke_layer_);
       stroke_before_ = *mask;
-      stroke_rect_ = mask->stamp(p, brush());
+      stroke_edges_.reset();
+      if (settings_->edgeAware() && document_->photo()) {
+        const ImageF& photo = document_->photo()->full.image;
+        const int px = static_cast<int>(std::floor(p.x())), py = static_cast<int>(std::floor(p.y()));
+        if (px >= 0 && py >= 0 && px < photo.width && py < photo.height)
+          stroke_edges_ = EdgeAwareOptions{photoColourAt(photo, px, py), settings_->edgeTolerance()};
+      }
+      stroke_rect_ = strokeDab(mask, p, p, /*first=*/true);
       stroke_last_ = p;
       depth()->maskEdited(stroke_layer_, stroke_rect_);
       break;
@@ -125,7 +139,7 @@ void DepthTool::mouseMove(QMouseEvent* event) {
   const Eigen::Vector2d p = imagePoint(event->position());
   if (stroke_layer_ >= 0 && event->buttons().testFlag(Qt::LeftButton)) {
     RegionMask* mask = depth()->maskForStroke(stroke_layer_);
-    const PixelRect r = mask->segment(stroke_last_, p, brush());
+    const PixelRect r = strokeDab(mask, stroke_last_, p, /*first=*/false);
     stroke_last_ = p;
     stroke_rect_ = stroke_rect_.united(r);
     depth()->maskEdited(stroke_layer_, r);
@@ -156,6 +170,15 @@ void DepthTool::mouseRelease(QMouseEvent* event) {
   canvas_->update();
 }
 
+PixelRect DepthTool::strokeDab(RegionMask* mask, const Eigen::Vector2d& from,
+                               const Eigen::Vector2d& to, bool first) {
+  const ImageF* photo = document_->photo() ? &document_->photo()->full.image : nullptr;
+  if (stroke_edges_ && photo && photo->width == mask->width() && photo->height == mask->height())
+    return first ? stampEdgeAware(*mask, *photo, to, brush(), *stroke_edges_)
+                 : segmentEdgeAware(*mask, *photo, from, to, brush(), *stroke_edges_);
+  return first ? mask->stamp(to, brush()) : mask->segment(from, to, brush());
+}
+
 void DepthTool::finishStroke() {
   const int layer = stroke_layer_;
   stroke_layer_ = -1;
@@ -173,6 +196,7 @@ void DepthTool::finishStroke() {
   stroke_made_layer_ = false;
   stroke_before_ = RegionMask();
   stroke_rect_ = {};
+  stroke_edges_.reset();
 }
 
 void DepthTool::closePolygon(bool erase) {
@@ -213,8 +237,25 @@ bool DepthTool::keyPress(QKeyEvent* event) {
   return true;
 }
 
+void DepthTool::paintActiveMask(QPainter& painter) const {
+  const int layer = depth()->activeLayer();
+  if (layer < 0 || !document_->photo()) return;
+  const RegionMask& mask = depth()->layer(layer).mask;
+  if (mask.empty()) return;
+  // A tint of the active plane's mask, so a stroke shows at once, before the plane has the
+  // three depths the depth overlay needs.
+  const QRectF rect = canvas_->view().widgetFromImage(QRectF(0, 0, mask.width(), mask.height()));
+  const int side = static_cast<int>(std::ceil(std::max(rect.width(), rect.height())));
+  const QImage tint = maskTint(mask, kMaskTint, std::clamp(side, 1, kMaskTintMaxSide));
+  painter.save();
+  painter.setRenderHint(QPainter::SmoothPixmapTransform, true);
+  painter.drawImage(rect, tint);
+  painter.restore();
+}
+
 void DepthTool::paint(QPainter& painter) {
   const ViewTransform& view = canvas_->view();
+  paintActiveMask(painter);
   // Depth points of the active layer: numbered diamonds.
   if (const int layer = depth()->activeLayer(); layer >= 0) {
     const auto& anchors = depth()->layer(layer).anchors;
@@ -266,6 +307,26 @@ void DepthTool::cancel() {
     depth()->setAnchors(depth()->activeLayer(), drag_before_);
     drag_anchor_ = -1;
   }
+}
+
+QString DepthTool::name() const {
+  switch (mode_) {
+    case DepthToolMode::Brush: return tr("Depth brush");
+    case DepthToolMode::Eraser: return tr("Depth eraser");
+    case DepthToolMode::Polygon: return tr("Depth polygon");
+    case DepthToolMode::Points: return tr("Depth points");
+  }
+  return {};
+}
+
+QCursor DepthTool::cursor() const {
+  switch (mode_) {
+    case DepthToolMode::Brush: return toolCursor(QStringLiteral("B"));
+    case DepthToolMode::Eraser: return toolCursor(QStringLiteral("E"));
+    case DepthToolMode::Polygon: return toolCursor(QStringLiteral("G"));
+    case DepthToolMode::Points: return toolCursor(QStringLiteral("D"));
+  }
+  return {};
 }
 
 }  // namespace artcam::ui

@@ -8,8 +8,13 @@
 //   depth; with three placed, a click replaces the nearest one; dragging a point moves it
 //   (one undo step per drag). Depth values are edited in the depth panel.
 // Painting with no layer creates one first (same undo macro as the first stroke).
+// With the settings' edge-aware switch, a stroke paints only what its first pixel's colour
+// reaches inside each dab (core/depth/edge_aware_brush.h). While the tool is active the
+// active layer's mask is tinted over the photo (depth_mask_tint.h), so strokes show before
+// the plane has its three depths.
 #pragma once
 
+#include "core/depth/edge_aware_brush.h"
 #include "core/depth/inverse_depth_plane.h"
 #include "core/depth/region_mask.h"
 #include "ui/tools/depth_tool_settings.h"
@@ -42,6 +47,8 @@ class DepthTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  QString name() const override;
+  QCursor cursor() const override;
   // Depth points and polygon corners are placed precisely.
   bool wantsLoupe() const override {
     return mode_ == DepthToolMode::Points || mode_ == DepthToolMode::Polygon;
@@ -53,6 +60,9 @@ class DepthTool : public Tool {
   int ensureLayer();  // the active layer, made if there is none
   BrushOptions brush() const;
   void finishStroke();
+  PixelRect strokeDab(RegionMask* mask, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                      bool first);
+  void paintActiveMask(QPainter& painter) const;
   void closePolygon(bool erase);
   void pressPoints(const QPointF& widget);
   std::optional<int> hitAnchor(const QPointF& widget) const;
@@ -67,6 +77,7 @@ class DepthTool : public Tool {
   PixelRect stroke_rect_;
   Eigen::Vector2d stroke_last_{0, 0};
   bool stroke_made_layer_ = false;
+  std::optional<EdgeAwareOptions> stroke_edges_;  // edge-aware stroke: its reference colour
   // Polygon in progress (photo pixels).
   std::vector<Eigen::Vector2d> polygon_;
   // Depth point drag.

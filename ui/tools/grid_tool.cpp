@@ -2,6 +2,7 @@
 #include "ui/tools/grid_tool.h"
 
 #include "ui/canvas.h"
+#include "ui/tools/tool_cursor.h"
 #include "ui/document.h"
 #include "ui/matting/insertion_model.h"
 #include "ui/matting/insertion_overlay.h"
@@ -142,5 +143,8 @@ void GridTool::cancel() {
   dragging_ = false;
   model_->setSelectedMatch(-1);
 }
+
+QString GridTool::name() const { return QCoreApplication::translate("GridTool", "Grid corners"); }
+QCursor GridTool::cursor() const { return toolCursor(QStringLiteral("C")); }
 
 }  // namespace artcam::ui

@@ -43,6 +43,8 @@ class GridTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  QString name() const override;
+  QCursor cursor() const override;
   bool wantsLoupe() const override { return dragging_; }
 
   // Places the selected corner's match at a photo point (snapped within search_radius_px

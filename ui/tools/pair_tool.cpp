@@ -2,6 +2,7 @@
 #include "ui/tools/pair_tool.h"
 
 #include "ui/canvas.h"
+#include "ui/tools/tool_cursor.h"
 #include "ui/commands.h"
 
 #include <QCoreApplication>
@@ -40,7 +41,7 @@ std::optional<PairTool::Hit> PairTool::hitTest(const QPointF& widget) const {
     for (Endpoint e : {Endpoint::Source, Endpoint::Target}) {
       const Eigen::Vector2d& p = e == Endpoint::Source ? pairs[i].source : pairs[i].target;
       const QPointF at = canvas_->view().widgetFromImage(QPointF(p.x(), p.y()));
-      if (e == Endpoint::Source && !canvas_->photoVisibleAt(at)) continue;  // over the result
+      if (e == Endpoint::Source && !canvas_->sourcesEditableAt(at)) continue;  // over the result
       const double d = distance(at, widget);
       if (d <= best_d) {
         best_d = d;
@@ -131,7 +132,7 @@ void PairTool::mouseRelease(QMouseEvent* event) {
   switch (g) {
     case Gesture::PressedEmpty: {
       const Eigen::Vector2d p = toEigen(imagePoint(cursor_widget_));
-      if (!pending_source_ && !canvas_->photoVisibleAt(cursor_widget_)) {
+      if (!pending_source_ && !canvas_->sourcesEditableAt(cursor_widget_)) {
         source_hint_at_ = cursor_widget_;
         document_->setSelection({});
       } else if (!pending_source_) {
@@ -155,7 +156,7 @@ void PairTool::mouseRelease(QMouseEvent* event) {
             canvas_->view().widgetFromImage(QPointF(pairs[i].source.x(), pairs[i].source.y()));
         const QPointF t =
             canvas_->view().widgetFromImage(QPointF(pairs[i].target.x(), pairs[i].target.y()));
-        if ((band.contains(s) && canvas_->photoVisibleAt(s)) || band.contains(t))
+        if ((band.contains(s) && canvas_->sourcesEditableAt(s)) || band.contains(t))
           sel.push_back(static_cast<int>(i));
       }
       document_->setSelection(sel);
@@ -220,5 +221,8 @@ void PairTool::cancel() {
   gesture_ = Gesture::None;
   canvas_->update();
 }
+
+QString PairTool::name() const { return QCoreApplication::translate("PairTool", "Pairs"); }
+QCursor PairTool::cursor() const { return toolCursor(QStringLiteral("P")); }
 
 }  // namespace artcam::ui

@@ -4,10 +4,12 @@
 // merged undo step per drag), a drag on empty space selects with a rubber band, Delete removes
 // the selection, Escape drops a half-made pair.
 //
-// Over the warped result (Canvas::photoVisibleAt false: Result mode, right of the Split
-// divider) only targets are edited, since target pixels are result pixels; sources are grabbed
-// and placed only where the photo shows. A click there that would place a new source places
-// nothing and says where sources go.
+// Over the warped result (Canvas::sourcesEditableAt false: Result mode, right of the Split
+// divider, once the result's geometry is not the identity) only targets are edited, since target
+// pixels are result pixels; sources are grabbed and placed only where the photo shows. A click
+// there that would place a new source places nothing and says where sources go. While the
+// geometry is the identity (a fresh photo) the result's pixels are the photo's, so sources are
+// placed on it too.
 #pragma once
 
 #include "ui/document.h"
@@ -35,6 +37,8 @@ class PairTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  QString name() const override;
+  QCursor cursor() const override;
   // Placing a target, pressing to place or drag, or dragging.
   bool wantsLoupe() const override {
     return pending_source_.has_value() || gesture_ == Gesture::PressedEmpty ||

@@ -2,6 +2,7 @@
 #include "ui/tools/region_tool.h"
 
 #include "ui/canvas.h"
+#include "ui/tools/tool_cursor.h"
 #include "ui/document.h"
 #include "ui/matting/insertion_model.h"
 #include "ui/matting/insertion_overlay.h"
@@ -101,5 +102,8 @@ void RegionTool::paint(QPainter& painter) {
 }
 
 void RegionTool::cancel() { pending_.clear(); }
+
+QString RegionTool::name() const { return QCoreApplication::translate("RegionTool", "Insertion region"); }
+QCursor RegionTool::cursor() const { return toolCursor(QStringLiteral("R")); }
 
 }  // namespace artcam::ui

@@ -30,6 +30,8 @@ class RegionTool : public Tool {
   bool keyPress(QKeyEvent* event) override;
   void paint(QPainter& painter) override;
   void cancel() override;
+  QString name() const override;
+  QCursor cursor() const override;
 
   const std::vector<Eigen::Vector2d>& pending() const { return pending_; }
   // Makes the pending polygon the region (when it has 3 corners or more).

@@ -4,6 +4,9 @@
 // them with the canvas's ViewTransform. Pan and zoom are the canvas's own and never reach tools.
 #pragma once
 
+#include <QCursor>
+#include <QString>
+
 class QKeyEvent;
 class QMouseEvent;
 class QPainter;
@@ -34,6 +37,11 @@ class Tool {
   // Whether the tool works in the target frame, i.e. on the warped result: then the canvas may
   // show the result while it is active (canvas.h); tools that edit the photo itself keep false.
   virtual bool worksOnResult() const { return false; }
+  // What the status bar names as the active tool, and the cursor the canvas shows while it is
+  // active (tool_cursor.h: a crosshair tagged with the tool's key), so the tool in use is
+  // always visible where the user looks.
+  virtual QString name() const { return QString(); }
+  virtual QCursor cursor() const { return QCursor(Qt::CrossCursor); }
 
  protected:
   Canvas* canvas_;
