@@ -179,6 +179,11 @@ class TestDepthPlanes : public QObject {
     }
     rig.settings.setNextDepth(3.0);  // set elsewhere ([ ] or a test): the box follows
     QCOMPARE(next_depth->value(), 3.0);
+    auto* tolerance = panel.findChild<QDoubleSpinBox*>("edgeTolerance");
+    QVERIFY(tolerance);
+    tolerance->selectAll();
+    QTest::keyClicks(tolerance, "0.15");
+    QCOMPARE(rig.settings.edgeTolerance(), 0.15);
 
     // Typing a depth in the panel is an undoable edit and moves the plane.
     QTableWidget* table = panel.anchorTable();

@@ -25,6 +25,17 @@
 
 namespace artcam::ui {
 
+namespace {
+
+// Shows a setting in its box only when the box shows another value: setValue re-formats the
+// text, so the settings' echo of a box's own keystroke would turn a typed "1" into "1.000" with
+// the cursor after the 1, and the ".5" typed next would be refused (typing 1.5 gave 1).
+void showInBox(QDoubleSpinBox* box, double value) {
+  if (box->valueFromText(box->textFromValue(value)) != box->value()) box->setValue(value);
+}
+
+}  // namespace
+
 DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOverlay* overlay,
                        QWidget* parent)
     : QWidget(parent),
@@ -93,7 +104,7 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   connect(settings_, &DepthToolSettings::changed, this, [this, edges, tolerance] {
     const QSignalBlocker b1(edges), b2(tolerance);
     edges->setChecked(settings_->edgeAware());
-    tolerance->setValue(settings_->edgeTolerance());
+    showInBox(tolerance, settings_->edgeTolerance());
   });
   form->addRow(tr("Next depth"), next_depth_);
   layout->addLayout(form);
@@ -163,16 +174,10 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
           &DepthToolSettings::setNextDepth);
   connect(settings_, &DepthToolSettings::changed, this, [this] {
     // Shown, not fed back: the boxes round (one decimal) and must not round the settings.
-    // A box is set only when it shows another value: setValue re-formats the text, so the echo
-    // of a box's own keystroke would turn a typed "1" into "1.000" with the cursor after the 1,
-    // and the ".5" typed next would be refused (typing 1.5 gave 1).
-    const auto update_box = [](QDoubleSpinBox* box, double value) {
-      if (box->valueFromText(box->textFromValue(value)) != box->value()) box->setValue(value);
-    };
     const QSignalBlocker b1(radius_), b2(hardness_), b3(next_depth_);
-    update_box(radius_, settings_->radius());
+    showInBox(radius_, settings_->radius());
     hardness_->setValue(static_cast<int>(std::lround(settings_->hardness() * 100)));
-    update_box(next_depth_, settings_->nextDepth());
+    showInBox(next_depth_, settings_->nextDepth());
   });
   connect(anchors_, &QTableWidget::cellChanged, this, &DepthPanel::onAnchorEdited);
   connect(show, &QCheckBox::toggled, overlay_, &DepthOverlay::setVisible);
