@@ -18,6 +18,7 @@
 
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QLabel>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -169,6 +170,10 @@ class TestDepthPlanes : public QObject {
     // must not re-format the text under the cursor: "1.5" once came out as 1).
     auto* next_depth = panel.findChild<QDoubleSpinBox*>("nextDepth");
     QVERIFY(next_depth);
+    bool has_mnemonic = false;  // Alt+N focuses it
+    for (const QLabel* label : panel.findChildren<QLabel*>())
+      has_mnemonic = has_mnemonic || (label->buddy() == next_depth && label->text().contains("&N"));
+    QVERIFY(has_mnemonic);
     for (const auto& [typed, value] : {std::pair{"1.5", 1.5}, std::pair{"0.75", 0.75},
                                        std::pair{"40", 40.0}, std::pair{"2.125", 2.125}}) {
       next_depth->selectAll();

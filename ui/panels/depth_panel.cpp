@@ -106,7 +106,9 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
     edges->setChecked(settings_->edgeAware());
     showInBox(tolerance, settings_->edgeTolerance());
   });
-  form->addRow(tr("Next depth"), next_depth_);
+  // Alt+N reaches the field from anywhere in the window while the panel shows: a depth is typed
+  // before each clicked point, between clicks on the canvas.
+  form->addRow(tr("&Next depth"), next_depth_);
   layout->addLayout(form);
 
   // The active plane's depth points.
