@@ -379,9 +379,12 @@ set_next_depth 2
 click_photo 150 250
 click_photo 430 250
 click_photo 290 150
-# The overlay is on by default (View > Show Depth Overlay, Shift+D); Shift+D turns it off, and
-# on again for the shot.
-shot depth-overlay "both planes with the depth overlay (red near, blue far) and its legend"
+shot depth-plane2 "plane 2 with its three depth points (a depth tool tints the active plane cyan)"
+# The overlay is on by default (View > Show Depth Overlay, Shift+D) and drawn where the photo
+# shows; with the pair tool in the Photo view no depth tool's tint covers it. Shift+D hides it.
+menu t p
+key alt+1
+shot depth-overlay "both planes under the depth overlay (red near, blue far) and its legend"
 key shift+d
 shot depth-overlay-off "Shift+D: the overlay hidden"
 key shift+d
@@ -400,7 +403,6 @@ for initial in a d; do
   sleep 0.3
   key alt+a
 done
-menu t p
 key alt+2
 shot effects "the result with the bulge, aerial perspective and depth of field (Effects dock)"
 
