@@ -293,12 +293,22 @@ set_next_depth() {  # the Depth panel's "Next depth" spin box: the depth of the 
 
 log "studio-session: $studio_bin on a copy of $(basename "$photo_src")" \
   "(${photo_w}x${photo_h}), display $DISPLAY, output $outdir"
+# A display that answers already belongs to another X server: driving it would click on someone
+# else's screen, so the session refuses it (and checks the new server's size after the start).
+if xdotool getdisplaygeometry >/dev/null 2>&1; then
+  log "display $DISPLAY is in use by another X server; name a free one with DISPLAY_NUMBER"
+  exit 1
+fi
 Xvfb "$DISPLAY" -screen 0 "${screen_w}x${screen_h}x24" -nolisten tcp >"$home/xvfb.log" 2>&1 &
 xvfb_pid=$!
 for _ in $(seq 1 50); do
   xdotool getdisplaygeometry >/dev/null 2>&1 && break
   sleep 0.2
 done
+if [[ "$(xdotool getdisplaygeometry 2>/dev/null)" != "$screen_w $screen_h" ]]; then
+  log "Xvfb did not start on $DISPLAY: $(tail -n 1 "$home/xvfb.log")"
+  exit 1
+fi
 
 # 1. The studio on the photo's copy.
 step "start the studio on files/coffee.png"
@@ -307,8 +317,8 @@ shot start "the photo loaded (Result view of the identity camera)"
 calibrate
 
 # 2. Nine pairs of a bulge u' = u / (1 - k r^2) (normalised frame: centre 0, half the longer
-# side 1), on a 3x3 grid jittered so no three sources line up. Sources can only be placed where
-# the canvas shows the photo, so the pairs are clicked in the Photo view (Alt+1).
+# side 1), on a 3x3 grid jittered so no three sources line up. Sources are placed where the
+# canvas shows the photo, so the pairs are clicked in the Photo view (Alt+1).
 step "nine source->target pairs of a bulge (k = 0.12), clicked in the Photo view (Alt+1)"
 key alt+1
 pairs="$(awk -v w="$photo_w" -v h="$photo_h" 'BEGIN {
