@@ -4,7 +4,9 @@
 // type) refuse the same files with the same one-line messages.
 #pragma once
 
+#include "core/io/image_io.h"
 #include "core/io/io_text.h"
+#include "core/colour/transfer.h"
 #include "core/model/status.h"
 
 #include <OpenImageIO/imageio.h>
@@ -31,5 +33,18 @@ inline int keptChannels(const OIIO::ImageSpec& spec) { return spec.nchannels < 4
 inline int keptAlpha(const OIIO::ImageSpec& spec) {
   return spec.alpha_channel >= 0 && spec.alpha_channel < keptChannels(spec) ? spec.alpha_channel : -1;
 }
+
+// The file's EXIF orientation (orientation.h), 1..8; 1 when it has none.
+inline int storedOrientation(const OIIO::ImageSpec& spec) {
+  const int value = spec.get_int_attribute("Orientation", 1);
+  return value >= 1 && value <= 8 ? value : 1;
+}
+
+// What both readers record about a file they decoded: format, pixel type, transfer, the spec
+// turned upright (the upright size, Orientation 1), the orientation it was turned from, a
+// JPEG's estimated quality and the EXIF, IPTC and XMP exiv2 reads.
+ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
+                        const std::string& path, const std::string& pixel_type,
+                        const Transfer& transfer);
 
 }  // namespace artcam::io_input
