@@ -10,6 +10,9 @@
 //   1 top / left, 2 top / right, 3 bottom / right, 4 bottom / left,
 //   5 left / top, 6 right / top, 7 right / bottom, 8 left / bottom.
 // Values outside 1..8 are taken as 1 (as most viewers do).
+// The turn is done here rather than with OpenImageIO's ImageBufAlgo::reorient: OpenImageIO 2.4
+// swaps 5 and 7 (transverses 5, transposes 7), and reorient works on an ImageBuf copy while
+// the stored-type reader turns its own pixel buffer (one extra buffer, not two).
 #pragma once
 
 #include <cstddef>
