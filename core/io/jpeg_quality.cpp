@@ -13,9 +13,9 @@ namespace {
 
 // The standard luminance table (ITU T.81 Annex K), in zig-zag order as DQT stores it.
 constexpr std::array<int, 64> kLuminanceZigZag = {
-    16, 11, 12, 14, 12, 10, 16, 14, 13, 14, 18, 17, 16, 19, 24, 40,
-    26, 24, 22, 22, 24, 49, 35, 37, 29, 40, 58, 51, 61, 60, 57, 51,
-    56, 55, 64, 72, 92, 78, 64, 68, 87, 69, 55, 56, 80, 109, 81, 87,
+    16, 11, 12,  14,  12,  10, 16, 14,  13,  14,  18,  17,  16, 19,  24,  40,
+    26, 24, 22,  22,  24,  49, 35, 37,  29,  40,  58,  51,  61, 60,  57,  51,
+    56, 55, 64,  72,  92,  78, 64, 68,  87,  69,  55,  56,  80, 109, 81,  87,
     95, 98, 103, 104, 103, 62, 77, 113, 121, 112, 100, 120, 92, 101, 103, 99};
 
 // libjpeg's jpeg_quality_scaling and jpeg_add_quant_table with force_baseline.
@@ -30,7 +30,8 @@ int nearestQuality(const std::array<int, 64>& table) {
   long best_error = std::numeric_limits<long>::max();
   for (int q = 1; q <= 100; ++q) {
     long error = 0;
-    for (size_t i = 0; i < 64; ++i) error += std::labs(scaledEntry(kLuminanceZigZag[i], q) - table[i]);
+    for (size_t i = 0; i < 64; ++i)
+      error += std::labs(scaledEntry(kLuminanceZigZag[i], q) - table[i]);
     if (error < best_error) best_error = error, best = q;
   }
   return best;
@@ -49,8 +50,8 @@ int estimateJpegQuality(const std::string& path) {
   for (int segments = 0; segments < 1000; ++segments) {
     int marker = byte();
     if (marker != 0xFF) return 0;
-    while (marker == 0xFF) marker = byte();  // fill bytes
-    if (marker < 0 || marker == 0xD9 || marker == 0xDA) return 0;  // EOI, SOS, EOF
+    while (marker == 0xFF) marker = byte();                              // fill bytes
+    if (marker < 0 || marker == 0xD9 || marker == 0xDA) return 0;        // EOI, SOS, EOF
     if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) continue;  // no length
     const int high = byte(), low = byte();
     if (high < 0 || low < 0) return 0;

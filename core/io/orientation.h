@@ -26,7 +26,7 @@ bool orientationSwapsAxes(int orientation);
 
 // Copies the stored raster (`width` x `height` pixels of `pixel_bytes` each) into `upright`
 // (height x width pixels for 5..8, else width x height). The two must not overlap.
-void reorientPixels(const void* stored, int width, int height, size_t pixel_bytes,
-                    int orientation, void* upright);
+void reorientPixels(const void* stored, int width, int height, size_t pixel_bytes, int orientation,
+                    void* upright);
 
 }  // namespace artcam

@@ -36,16 +36,32 @@ std::unique_lock<std::mutex> exiv2Lock() {
 
 // TIFF tags that describe the raster, not the photo: the written file has its own.
 bool isStructureTag(const std::string& key) {
-  static const std::set<std::string> kTags{
-      "Exif.Image.NewSubfileType", "Exif.Image.SubfileType", "Exif.Image.ImageWidth",
-      "Exif.Image.ImageLength", "Exif.Image.BitsPerSample", "Exif.Image.Compression",
-      "Exif.Image.PhotometricInterpretation", "Exif.Image.FillOrder", "Exif.Image.StripOffsets",
-      "Exif.Image.SamplesPerPixel", "Exif.Image.RowsPerStrip", "Exif.Image.StripByteCounts",
-      "Exif.Image.PlanarConfiguration", "Exif.Image.Predictor", "Exif.Image.TileWidth",
-      "Exif.Image.TileLength", "Exif.Image.TileOffsets", "Exif.Image.TileByteCounts",
-      "Exif.Image.SubIFDs", "Exif.Image.ExtraSamples", "Exif.Image.SampleFormat",
-      "Exif.Image.JPEGTables", "Exif.Image.InterColorProfile", "Exif.Image.XMLPacket",
-      "Exif.Image.IPTCNAA", "Exif.Image.ImageResources"};
+  static const std::set<std::string> kTags{"Exif.Image.NewSubfileType",
+                                           "Exif.Image.SubfileType",
+                                           "Exif.Image.ImageWidth",
+                                           "Exif.Image.ImageLength",
+                                           "Exif.Image.BitsPerSample",
+                                           "Exif.Image.Compression",
+                                           "Exif.Image.PhotometricInterpretation",
+                                           "Exif.Image.FillOrder",
+                                           "Exif.Image.StripOffsets",
+                                           "Exif.Image.SamplesPerPixel",
+                                           "Exif.Image.RowsPerStrip",
+                                           "Exif.Image.StripByteCounts",
+                                           "Exif.Image.PlanarConfiguration",
+                                           "Exif.Image.Predictor",
+                                           "Exif.Image.TileWidth",
+                                           "Exif.Image.TileLength",
+                                           "Exif.Image.TileOffsets",
+                                           "Exif.Image.TileByteCounts",
+                                           "Exif.Image.SubIFDs",
+                                           "Exif.Image.ExtraSamples",
+                                           "Exif.Image.SampleFormat",
+                                           "Exif.Image.JPEGTables",
+                                           "Exif.Image.InterColorProfile",
+                                           "Exif.Image.XMLPacket",
+                                           "Exif.Image.IPTCNAA",
+                                           "Exif.Image.ImageResources"};
   return kTags.count(key) > 0;
 }
 

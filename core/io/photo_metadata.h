@@ -33,7 +33,7 @@ struct PhotoMetadata;  // exiv2's Exif and IPTC data and the XMP packet as read
 std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path);
 
 struct MetadataUpdate {
-  int width = 0;   // the written file's size in pixels
+  int width = 0;  // the written file's size in pixels
   int height = 0;
   bool same_transfer = true;  // false: the colour-space tags are removed
 };

@@ -67,8 +67,7 @@ class TestCliPhotoMetadata : public QObject {
     xmp["Xmp.xmp.Rating"] = 5;
     xmp["Xmp.tiff.Orientation"] = "6";
     addXmp(path("portrait.jpg").toStdString(), xmp);
-    const Camera identity =
-        Camera::identity({Block{BlockKind::Position, 3}}, {kW, kH}, {kW, kH});
+    const Camera identity = Camera::identity({Block{BlockKind::Position, 3}}, {kW, kH}, {kW, kH});
     QVERIFY(writeArtcam(path("identity.artcam").toStdString(), Artcam(identity)).ok);
     QVERIFY(writeOriented(path("reference61.jpg").toStdString(), upright_, 1, 61));
   }
@@ -98,8 +97,8 @@ class TestCliPhotoMetadata : public QObject {
   // Without --quality a JPEG keeps its quantisation tables; with it, they are libjpeg's own
   // for that quality (a JPEG OpenImageIO wrote at 61).
   void qualityIsTheInputsUnlessGiven() {
-    const Run kept = artcamCli({"warp", path("portrait.jpg"), path("identity.artcam"), "-o",
-                                path("kept.jpg"), "-q"});
+    const Run kept = artcamCli(
+        {"warp", path("portrait.jpg"), path("identity.artcam"), "-o", path("kept.jpg"), "-q"});
     QVERIFY2(kept.exit_code == 0, qPrintable(kept.err));
     QCOMPARE(jpegQuantisationTables(path("kept.jpg").toStdString()),
              jpegQuantisationTables(path("portrait.jpg").toStdString()));

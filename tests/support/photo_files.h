@@ -21,8 +21,8 @@ namespace artcam::test {
 // quadrant keeps its colour through JPEG, and any turn or mirror moves them.
 inline OIIO::ImageBuf quadrantPhoto(int width, int height) {
   OIIO::ImageBuf photo(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8));
-  const float colours[4][3] = {{0.9f, 0.1f, 0.1f}, {0.1f, 0.8f, 0.1f}, {0.1f, 0.1f, 0.9f},
-                               {0.9f, 0.9f, 0.9f}};
+  const float colours[4][3] = {
+      {0.9f, 0.1f, 0.1f}, {0.1f, 0.8f, 0.1f}, {0.1f, 0.1f, 0.9f}, {0.9f, 0.9f, 0.9f}};
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       photo.setpixel(x, y, colours[(y < height / 2 ? 0 : 2) + (x < width / 2 ? 0 : 1)], 3);
@@ -35,14 +35,22 @@ inline OIIO::ImageBuf quadrantPhoto(int width, int height) {
 inline OIIO::ImageBuf storedFor(const OIIO::ImageBuf& upright, int o) {
   namespace A = OIIO::ImageBufAlgo;
   switch (o) {
-    case 2: return A::flop(upright);
-    case 3: return A::rotate180(upright);
-    case 4: return A::flip(upright);
-    case 5: return A::transpose(upright);
-    case 6: return A::rotate270(upright);
-    case 7: return A::flop(A::rotate270(upright));
-    case 8: return A::rotate90(upright);
-    default: return upright;
+    case 2:
+      return A::flop(upright);
+    case 3:
+      return A::rotate180(upright);
+    case 4:
+      return A::flip(upright);
+    case 5:
+      return A::transpose(upright);
+    case 6:
+      return A::rotate270(upright);
+    case 7:
+      return A::flop(A::rotate270(upright));
+    case 8:
+      return A::rotate90(upright);
+    default:
+      return upright;
   }
 }
 

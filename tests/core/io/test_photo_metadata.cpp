@@ -65,7 +65,8 @@ class TestPhotoMetadata : public QObject {
       const Exiv2Read out = readWithExiv2(path(name));
       QCOMPARE(xmpText(out, "Xmp.dc.rights"), std::string("lang=\"x-default\" (c) The Tester"));
       QCOMPARE(xmpText(out, "Xmp.xmp.Rating"), std::string("3"));
-      QCOMPARE(xmpText(out, "Xmp.xmpRights.UsageTerms"), std::string("lang=\"x-default\" Ask first"));
+      QCOMPARE(xmpText(out, "Xmp.xmpRights.UsageTerms"),
+               std::string("lang=\"x-default\" Ask first"));
       QCOMPARE(xmpText(out, "Xmp.edits.history"), std::string("exposure +0.3; crop"));
       QCOMPARE(out.xmp_packet, source_packet_);  // no stale field in it: byte for byte
       QCOMPARE(exifText(out, "Exif.Image.Make"), std::string("TestCam"));

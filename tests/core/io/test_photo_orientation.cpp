@@ -99,7 +99,8 @@ class TestPhotoOrientation : public QObject {
     const int kW = 32, kH = 48;  // upright portrait
     const OIIO::ImageBuf upright = quadrantPhoto(kW, kH);
     QVERIFY(writeOriented(path("six.jpg"), storedFor(upright, 6), 6));
-    QCOMPARE(readWithExiv2(path("six.jpg")).exif.findKey(Exiv2::ExifKey("Exif.Image.Orientation"))
+    QCOMPARE(readWithExiv2(path("six.jpg"))
+                 .exif.findKey(Exiv2::ExifKey("Exif.Image.Orientation"))
                  ->toLong(),
              6L);
 
@@ -139,8 +140,7 @@ class TestPhotoOrientation : public QObject {
     QCOMPARE(kept->width, kW);
     QCOMPARE(kept->height, kH);
     QVERIFY(writeStoredImage(path("kept.jpg"), kept->view(), &kept->info).ok);
-    QCOMPARE(exifText(readWithExiv2(path("kept.jpg")), "Exif.Image.Orientation"),
-             std::string("1"));
+    QCOMPARE(exifText(readWithExiv2(path("kept.jpg")), "Exif.Image.Orientation"), std::string("1"));
     const auto kept_again = readImage(path("kept.jpg"));
     QVERIFY(kept_again);
     QCOMPARE(kept_again->image.width, kW);
