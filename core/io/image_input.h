@@ -34,17 +34,18 @@ inline int keptAlpha(const OIIO::ImageSpec& spec) {
   return spec.alpha_channel >= 0 && spec.alpha_channel < keptChannels(spec) ? spec.alpha_channel : -1;
 }
 
-// The file's EXIF orientation (orientation.h), 1..8; 1 when it has none.
-inline int storedOrientation(const OIIO::ImageSpec& spec) {
-  const int value = spec.get_int_attribute("Orientation", 1);
-  return value >= 1 && value <= 8 ? value : 1;
-}
+// The orientation a reader turns the raster upright from (orientation.h), 1..8: exiv2's
+// photoOrientation (EXIF first, then XMP, as the photo conventions and most viewers order
+// them; OpenImageIO 2.4 lets an XMP value override EXIF, and misses some XMP-only ones), else
+// what OpenImageIO reports (other formats' own fields), else 1.
+int storedOrientation(const OIIO::ImageSpec& spec, const PhotoMetadata* metadata);
 
 // What both readers record about a file they decoded: format, pixel type, transfer, the spec
 // turned upright (the upright size, Orientation 1), the orientation it was turned from, a
-// JPEG's estimated quality and the EXIF, IPTC and XMP exiv2 reads.
+// JPEG's estimated quality and `metadata` (readPhotoMetadata's).
 ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
                         const std::string& path, const std::string& pixel_type,
-                        const Transfer& transfer);
+                        const Transfer& transfer, int orientation,
+                        std::shared_ptr<const PhotoMetadata> metadata);
 
 }  // namespace artcam::io_input

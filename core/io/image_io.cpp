@@ -16,6 +16,7 @@
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
 #include "core/io/orientation.h"
+#include "core/io/photo_metadata.h"
 #include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -164,7 +165,9 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   in->close();
 
   // Upright, as the photo is shown (orientation.h): a second buffer for a moment, once per read.
-  if (const int orientation = io_input::storedOrientation(spec); orientation != 1) {
+  std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
+  const int orientation = io_input::storedOrientation(spec, metadata.get());
+  if (orientation != 1) {
     const bool swap = orientationSwapsAxes(orientation);
     ImageF upright(swap ? image.height : image.width, swap ? image.width : image.height,
                    image.channels, image.alpha_channel);
@@ -173,7 +176,8 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
                    upright.data.data());
     image = std::move(upright);
   }
-  loaded.info = io_input::describeImage(*in, spec, path, pixel_type, transfer);
+  loaded.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
+                                       std::move(metadata));
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));
 }

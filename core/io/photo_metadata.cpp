@@ -150,6 +150,21 @@ std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path) 
   }
 }
 
+int photoOrientation(const PhotoMetadata& metadata) {
+  const auto lock = exiv2Lock();
+  try {
+    const auto exif = metadata.exif.findKey(Exiv2::ExifKey("Exif.Image.Orientation"));
+    if (exif != metadata.exif.end() && exif->count() > 0) return static_cast<int>(exif->toLong());
+    if (metadata.xmp_packet.empty()) return 0;
+    Exiv2::XmpData xmp;
+    if (Exiv2::XmpParser::decode(xmp, metadata.xmp_packet) != 0) return 0;
+    const auto at = xmp.findKey(Exiv2::XmpKey("Xmp.tiff.Orientation"));
+    return at == xmp.end() || at->count() == 0 ? 0 : static_cast<int>(at->toLong());
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
+
 Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,
                           const MetadataUpdate& update, const std::string& shown_path) {
   const auto lock = exiv2Lock();

@@ -32,6 +32,10 @@ struct PhotoMetadata;  // exiv2's Exif and IPTC data and the XMP packet as read
 // Null when `path` has no EXIF, IPTC or XMP, or exiv2 does not read its format or its metadata.
 std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path);
 
+// The photo's orientation as the Metadata Working Group orders it: the EXIF tag
+// (Exif.Image.Orientation; a TIFF's own tag), else XMP's tiff:Orientation, else 0 (none).
+int photoOrientation(const PhotoMetadata& metadata);
+
 struct MetadataUpdate {
   int width = 0;  // the written file's size in pixels
   int height = 0;

@@ -198,7 +198,9 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   // Upright here too (orientation.h), so `artcam warp`'s stored path and the float path render
   // the same photo. The turn needs a second buffer of the input's size for a moment; a warp
   // holds input + output anyway, so the peak grows only when the output is smaller.
-  if (const int orientation = io_input::storedOrientation(spec); orientation != 1) {
+  std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
+  const int orientation = io_input::storedOrientation(spec, metadata.get());
+  if (orientation != 1) {
     const bool swap = orientationSwapsAxes(orientation);
     StoredImage upright;
     try {
@@ -214,7 +216,8 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
                    orientation, upright.bytes.data());
     image = std::move(upright);
   }
-  image.info = io_input::describeImage(*in, spec, path, pixel_type, transfer);
+  image.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
+                                       std::move(metadata));
   if (options.progress) options.progress(1.0);
   return R::success(std::move(image));
 }

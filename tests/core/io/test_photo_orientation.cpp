@@ -147,6 +147,37 @@ class TestPhotoOrientation : public QObject {
     QVERIFY(quadrantsMatch(kept_again->image));
   }
 
+  // EXIF first: an XMP tiff:Orientation (OpenImageIO 2.4 lets it override EXIF, and misses it
+  // alone) counts only where the file has no EXIF orientation.
+  void exifOrientationWinsOverXmp() {
+    const OIIO::ImageBuf landscape = quadrantPhoto(48, 32);
+    Exiv2::XmpData xmp;
+    xmp["Xmp.tiff.Orientation"] = "6";
+    QVERIFY(writeOriented(path("exif1.jpg"), landscape, 1));
+    addXmp(path("exif1.jpg"), xmp);
+    const auto exif_one = readImage(path("exif1.jpg"));
+    QVERIFY(exif_one);
+    QCOMPARE(exif_one->image.width, 48);
+    QCOMPARE(exif_one->info.stored_orientation, 1);
+
+    QVERIFY(writeOriented(path("xmp-only.jpg"), landscape, 1));
+    {
+      auto image = Exiv2::ImageFactory::open(path("xmp-only.jpg"));
+      image->readMetadata();
+      Exiv2::ExifData exif = image->exifData();
+      exif.erase(exif.findKey(Exiv2::ExifKey("Exif.Image.Orientation")));
+      image->setExifData(exif);
+      image->setXmpData(xmp);
+      image->writeMetadata();
+    }
+    QCOMPARE(exifText(readWithExiv2(path("xmp-only.jpg")), "Exif.Image.Orientation"),
+             std::string("(none)"));
+    const auto xmp_six = readImage(path("xmp-only.jpg"));
+    QVERIFY(xmp_six);
+    QCOMPARE(xmp_six->image.width, 32);
+    QCOMPARE(xmp_six->info.stored_orientation, 6);
+  }
+
   // Out-of-range tags are taken as 1 (what viewers do), not refused.
   void invalidOrientationIsTakenAsOne() {
     QCOMPARE(validOrientation(0), 1);
