@@ -95,7 +95,7 @@ put("piecewise", "nasty-deep-camera.artcam",
 
 # ---- match CSV (2D unless the header names src_z) ----
 put("matches_csv", "seed-sample.csv", resource("sample-matches.csv"))
-put("matches_csv", "seed-3d.csv", "src_x,src_y,src_z,dst_x,dst_y,dst_z\n1,2,3,4,5,6\n-1e-300,+2.5,0,1e300,5,6\n")
+put("matches_csv", "seed-3d.csv", "src_x,src_y,src_z,dst_x,dst_y,dst_z\n1,2,3,4,5,6\n-1e-300,+2.5,0,1e9,5,6\n")
 put("matches_csv", "seed-enabled.csv",
     "\ufeffSRC_X,src_y,dst_x,dst_y,enabled\r\n# a comment\r\n\r\n 1 , 2 ,3,4,1\r\n5,6,7,8,false\r\n9,10,11,12,true")
 put("matches_csv", "nasty-out-of-range.csv", "src_x,src_y,dst_x,dst_y\n1e999,2,3,4\n")

@@ -9,8 +9,10 @@ packages=(build-essential cmake ninja-build ccache pkg-config
   libexiv2-dev
   # Validators of the desktop files and manual pages (CTest packaging/*); file is for cpack's DEB.
   desktop-file-utils appstream shared-mime-info libxml2-utils groff-base file)
-# --with-display adds what the screenshot/demo path needs to show a window without a screen.
-if [[ "${1:-}" == "--with-display" ]]; then packages+=(xvfb xauth); fi
+# --with-display adds what the screenshot/demo path needs to show a window without a screen, and
+# what packaging/studio-session.sh drives it with (xdotool) and shoots and compares it with
+# (imagemagick: import, convert, compare).
+if [[ "${1:-}" == "--with-display" ]]; then packages+=(xvfb xauth xdotool imagemagick); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -2,6 +2,7 @@
 #include "ui/preview_controller.h"
 
 #include "core/pipeline/render.h"
+#include "ui/depth_model.h"
 #include "ui/document.h"
 
 namespace artcam::ui {
@@ -47,6 +48,11 @@ void PreviewController::schedule() {
   RenderRequest request;
   request.source = source_;
   request.camera = document_->artcam();
+  // A camera that reads depth waits for the depth raster while the document has depth: the
+  // raster comes through the overlay's throttled update a moment after the camera (opening a
+  // project sets both), and a pass without it fails with "this camera reads depth", shown in the
+  // status bar though the next pass succeeds. setDepth schedules again when the raster arrives.
+  if (!depth_ && readsDepth(request.camera) && document_->depth()->hasDepth()) return;
   // Colour (or depth) changing cameras render from the float preview copy at its own size, so
   // a colour-only camera takes core's no-resampling path; geometry-only ones use the pyramid.
   const bool attributed = needsLinearPhoto(request.camera);

@@ -407,16 +407,20 @@ int benchCommand(const std::vector<std::string>& argv) {
   int reps = 5;
   std::vector<int> thread_counts;
   try {
-    reps = std::max(1, std::stoi(args.valueOr("--reps", "5")));
+    reps = std::stoi(args.valueOr("--reps", "5"));
     std::string list = args.valueOr("--threads", "1,2");
     for (size_t p = 0; p < list.size();) {
       const size_t comma = list.find(',', p);
-      thread_counts.push_back(std::max(1, std::stoi(list.substr(p, comma - p))));
+      thread_counts.push_back(std::stoi(list.substr(p, comma - p)));
       p = comma == std::string::npos ? list.size() : comma + 1;
     }
   } catch (const std::exception&) {
     throw UsageError("--reps and --threads expect whole numbers (--threads 1,2)");
   }
+  // Refused, not clamped: a benchmark of other settings than asked would be silently wrong.
+  if (reps < 1) throw UsageError("--reps expects a whole number ≥ 1");
+  for (const int t : thread_counts)
+    if (t < 1) throw UsageError("--threads expects whole numbers ≥ 1 (--threads 1,2)");
 
   // Whole images live on huge pages where the kernel allows (pixel_buffer.h), as in `artcam warp`.
   const PixelBuffer pixels = makeImage(size.width, size.height);

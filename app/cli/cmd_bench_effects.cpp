@@ -178,14 +178,38 @@ int benchEffectsCommand(const std::vector<std::string>& argv) {
                          {"--shrink-from", "", true},
                          {"--only", "", true}});
   const FrameSize size = parseSize(args.valueOr("--size", "6000x4000"), "--size");
-  const int crop_side = std::stoi(args.valueOr("--crop", "384"));
-  const int reps = std::max(1, std::stoi(args.valueOr("--reps", "3")));
+  // Whole numbers at least `min`, refused (never clamped) otherwise, naming the option.
+  const auto whole = [&args](const char* option, const char* fallback, int min) {
+    const std::string text = args.valueOr(option, fallback);
+    try {
+      size_t used = 0;
+      const int v = std::stoi(text, &used);
+      if (used == text.size() && v >= min) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(std::string(option) + " expects a whole number ≥ " + std::to_string(min) +
+                     ", not \"" + text + "\"");
+  };
+  const int crop_side = whole("--crop", "384", 8);
+  const int reps = whole("--reps", "3", 1);
   const std::vector<double> sigmas = parseList(args.valueOr("--sigmas", "2,4,8,16"), "--sigmas");
   const std::string path = args.valueOr("--image", "resources/coffee.png");
   BlurOptions blur;
-  blur.threads = args.has("--threads") ? std::stoi(*args.value("--threads")) : 0;
-  if (args.has("--ratio")) blur.level_ratio = std::stod(*args.value("--ratio"));
-  if (args.has("--shrink-from")) blur.shrink_from_sigma = std::stod(*args.value("--shrink-from"));
+  blur.threads = whole("--threads", "0", 0);
+  const auto positive = [&args](const char* option, double fallback) {
+    if (!args.has(option)) return fallback;
+    const std::string text = *args.value(option);
+    try {
+      size_t used = 0;
+      const double v = std::stod(text, &used);
+      if (used == text.size() && v > 0.0 && std::isfinite(v)) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(std::string(option) + " expects a number > 0, not \"" + text + "\"");
+  };
+  blur.level_ratio = positive("--ratio", blur.level_ratio);
+  if (!(blur.level_ratio > 1.0)) throw UsageError("--ratio expects a number > 1");
+  blur.shrink_from_sigma = positive("--shrink-from", blur.shrink_from_sigma);
 
   const auto photo = readImage(path);
   if (!photo) throw CommandError(photo.status.message);

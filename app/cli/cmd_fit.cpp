@@ -2,6 +2,7 @@
 // artcam fit: matches CSV → .artcam (paper §4).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/fit_input.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/colour/colour_map.h"
@@ -9,6 +10,7 @@
 #include "core/fit/fit_image.h"
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
+#include "core/io/stmap_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +24,7 @@ const char* const kFitUsage =
     "                  [--no-refine] [--robust [--threshold PX]] [--allow-poles]\n"
     "       artcam fit --piecewise MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
     "                  [--max-error PX] [--model quadratic|homography|affine] [--json]\n"
+    "       artcam fit --stmap MAP.exr -o CAM.artcam [--size WxH] [--piecewise] [--model …]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
     "       artcam fit --block colour SAMPLES.csv -o CAM.artcam --size WxH [--srgb]\n"
     "                  [--model auto|linear|affine|quadratic]\n"
@@ -47,6 +50,13 @@ const char* const kFitUsage =
     "single_rms_px, single_max_px, patch_list: [{rect: [x0, y0, x1, y1], model, matches,\n"
     "rms_px, max_px, within_tolerance}], output}. The file holds\n"
     "the single camera at its top level and the patches beside it (artcam insert reads them).\n"
+    "--stmap MAP.exr fits the camera to an ST map made elsewhere (a Nuke lens-distortion STMap,\n"
+    "or artcam export-map's): the map is sampled on a grid (every Nth pixel, at most 4000\n"
+    "samples) where alpha > 0, each sample a match from its source position to its pixel\n"
+    "centre, and fitted as MATCHES.csv would be (also with --piecewise). The map is the target\n"
+    "frame; the source size is --size, else the map's artcam:source_width/height, else the\n"
+    "map's own size. R = x / W, G = 1 - y / H; a map with artcam:convention opencv holds\n"
+    "cv::remap pixels (-1: none). Maps without R and G channels are refused.\n"
     "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
     "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n"
     "--block colour fits the colour block to colour samples: SAMPLES.csv has the header\n"
@@ -62,10 +72,11 @@ const char* const kFitUsage =
     "-q/--quiet shows no progress bar (drawn on stderr only when it is a terminal).\n\n"
     "Examples:\n"
     "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
-    "  artcam fit matches.csv -o mirror.artcam --size 640x480 --piecewise --max-error 0.3\n";
+    "  artcam fit matches.csv -o mirror.artcam --size 640x480 --piecewise --max-error 0.3\n"
+    "  artcam fit --stmap lens-undistort.exr -o lens.artcam\n";
 
 int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize source,
-                        FrameSize target);  // cmd_fit_piecewise.cpp
+                        FrameSize target, const MatchInput& input);  // cmd_fit_piecewise.cpp
 
 namespace {
 
@@ -158,6 +169,11 @@ int fitColourCommand(const Args& args, const std::string& output) {
   });
 }
 
+int fitPositionCommand(const Args& args, const std::string& output, FrameSize source,
+                       FrameSize target, int dimension, const MatchInput& input);
+MatchInput csvInput(const std::string& csv, int dimension);
+int fitStmapCommand(const Args& args, const std::string& map_path);
+
 }  // namespace
 
 int fitCommand(const std::vector<std::string>& argv) {
@@ -177,7 +193,10 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--max-error", "", true},
                          {"--overwrite", "", false},
                          {"--force", "", false},
+                         {"--stmap", "", true},
                          {"--quiet", "-q", false}});
+  const auto stmap = args.value("--stmap");
+  if (stmap) return fitStmapCommand(args, *stmap);
   args.expectPositional(1, "MATCHES.csv");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
@@ -199,8 +218,16 @@ int fitCommand(const std::vector<std::string>& argv) {
   }
   if (args.has("--piecewise")) {
     if (dimension != 2) throw UsageError("--piecewise fits image cameras (--dim 2)");
-    return fitPiecewiseCommand(args, *output, source, target);
+    return fitPiecewiseCommand(args, *output, source, target, csvInput(args.positional()[0], 2));
   }
+  return fitPositionCommand(args, *output, source, target, dimension,
+                            csvInput(args.positional()[0], dimension));
+}
+
+namespace {
+
+int fitPositionCommand(const Args& args, const std::string& output, FrameSize source,
+                       FrameSize target, int dimension, const MatchInput& input) {
   if (args.has("--max-error")) throw UsageError("--max-error goes with --piecewise");
   FitOptions options;
   const std::string model_name = args.valueOr("--model", "auto");
@@ -223,20 +250,19 @@ int fitCommand(const std::vector<std::string>& argv) {
   // No core hook here (the robust fit's RANSAC included): the bar names the stage and Ctrl-C
   // exits at once, the handler removing the atomic writer's temporary (interrupt.h).
   return runJobStages("fit", args.has("--quiet"), [&](JobStages& job) {
-    const std::string& csv = args.positional()[0];
+    const std::string& csv = input.name;
     job.stage("reading");
-    const auto matches = readMatchesCsv(csv, dimension);
-    if (!matches) throw CommandError(matches.status.message);
+    const std::vector<PointMatch> matches = input.read();
     job.stage(options.robust ? "fitting (robust)" : "fitting");
-    const FitSummary fit = dimension == 2 ? fitImageCamera(*matches, source, target, options)
-                                          : fitObjectCamera(*matches, options);
+    const FitSummary fit = dimension == 2 ? fitImageCamera(matches, source, target, options)
+                                          : fitObjectCamera(matches, options);
     if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
     job.stage("writing");
     Artcam doc(fit.camera);
-    doc.matches = *matches;
+    doc.matches = matches;
     doc.fit = fit.record;
-    if (const Status s = writeArtcam(*output, doc); !s) throw CommandError(s.message);
+    if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
 
     if (args.has("--json")) {
@@ -247,7 +273,7 @@ int fitCommand(const std::vector<std::string>& argv) {
                           {"residuals_px", fit.record.residuals_px},
                           {"singular_values", fit.record.singular_values},
                           {"reason", fit.record.reason},
-                          {"output", *output}};
+                          {"output", output}};
       nlohmann::json& jr = j;
       if (fit.record.held_out_rms_px >= 0) jr["held_out_rms_px"] = fit.record.held_out_rms_px;
       if (fit.record.algebraic_rms_px >= 0) jr["algebraic_rms_px"] = fit.record.algebraic_rms_px;
@@ -280,10 +306,68 @@ int fitCommand(const std::vector<std::string>& argv) {
         for (int k : fit.record.inliers) std::printf(" %d", k + 1);
         std::printf("\n");
       }
-      std::printf("wrote %s\n", output->c_str());
+      std::printf("wrote %s\n", output.c_str());
     }
     return 0;
   });
 }
+
+MatchInput csvInput(const std::string& csv, int dimension) {
+  return {csv, [csv, dimension] {
+            auto matches = readMatchesCsv(csv, dimension);
+            if (!matches) throw CommandError(matches.status.message);
+            return std::move(*matches);
+          }};
+}
+
+// fit --stmap: the map is read before the fit starts, since its header says the frame sizes.
+int fitStmapCommand(const Args& args, const std::string& map_path) {
+  if (!args.positional().empty())
+    throw UsageError("unexpected argument " + args.positional()[0] +
+                     ": with --stmap the map is the matches");
+  const auto output = args.value("--output");
+  if (!output) throw UsageError("missing -o CAM.artcam");
+  for (const char* option : {"--target-size", "--dim", "--block", "--srgb"})
+    if (args.has(option))
+      throw UsageError(std::string(option) +
+                       " does not apply to --stmap (the map is the target "
+                       "frame of an image camera)");
+  checkOutputs(args, {*output}, {map_path});
+  StmapSampleOptions options;
+  if (const auto size_text = args.value("--size"))
+    options.source_px = parseSize(*size_text, "--size");
+  const auto samples = readStmapSamples(map_path, options);
+  if (!samples) throw CommandError(samples.status.message);
+  if (!args.has("--json"))
+    std::printf("%s: %zu samples (every %d px) of a %dx%d %s map, source %dx%d\n", map_path.c_str(),
+                samples->matches.size(), samples->step, samples->map_px.width,
+                samples->map_px.height,
+                std::string(stmapConventionName(samples->convention)).c_str(),
+                samples->source_px.width, samples->source_px.height);
+  const MatchInput input{map_path, [&samples] { return samples->matches; }};
+  if (args.has("--piecewise")) {
+    // Patches tile the source frame; samples that read from outside it (a barrel map's corners)
+    // hold no photo and would stretch the patches past the frame, so they are left out here.
+    // The single camera keeps them: they constrain its shape.
+    const MatchInput inside{
+        map_path, [&samples, &map_path] {
+          std::vector<PointMatch> kept;
+          for (const PointMatch& m : samples->matches)
+            if (m.source.x() >= 0 && m.source.y() >= 0 &&
+                m.source.x() <= samples->source_px.width &&
+                m.source.y() <= samples->source_px.height)
+              kept.push_back(m);
+          if (kept.empty())
+            throw CommandError(map_path + ": every sample of the map reads from outside the " +
+                               std::to_string(samples->source_px.width) + "x" +
+                               std::to_string(samples->source_px.height) + " source frame");
+          return kept;
+        }};
+    return fitPiecewiseCommand(args, *output, samples->source_px, samples->map_px, inside);
+  }
+  return fitPositionCommand(args, *output, samples->source_px, samples->map_px, 2, input);
+}
+
+}  // namespace
 
 }  // namespace artcam::cli

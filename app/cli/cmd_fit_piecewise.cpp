@@ -3,9 +3,9 @@
 // --max-error (core/piecewise/piecewise_fit.h).
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/fit_input.h"
 #include "app/cli/progress.h"
 #include "core/fit/fit_image.h"
-#include "core/io/matches_csv.h"
 #include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_fit.h"
 
@@ -16,7 +16,7 @@
 namespace artcam::cli {
 
 int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize source,
-                        FrameSize target) {
+                        FrameSize target, const MatchInput& input) {
   if (args.has("--robust") || args.has("--allow-poles"))
     throw UsageError("--robust and --allow-poles do not apply to --piecewise");
   PiecewiseOptions options;
@@ -38,12 +38,11 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
   // Nothing here has a progress hook in core: the bar names the stage, and Ctrl-C exits at once
   // (the atomic writer's temporary is removed by the handler, interrupt.h).
   return runJobStages("fit", args.has("--quiet"), [&](JobStages& job) {
-    const std::string& csv = args.positional()[0];
+    const std::string& csv = input.name;
     job.stage("reading");
-    const auto matches = readMatchesCsv(csv, 2);
-    if (!matches) throw CommandError(matches.status.message);
+    const std::vector<PointMatch> matches = input.read();
     job.stage("fitting patches");
-    const PiecewiseSummary fit = fitPiecewise(*matches, source, target, options);
+    const PiecewiseSummary fit = fitPiecewise(matches, source, target, options);
     if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
     // The file's top level is the best single camera, so plain readers still get one; when no
@@ -51,9 +50,9 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
     job.stage("fitting the single camera");
     FitOptions single_options;
     single_options.diagnostics = false;
-    const FitSummary single = fitImageCamera(*matches, source, target, single_options);
+    const FitSummary single = fitImageCamera(matches, source, target, single_options);
     Artcam doc(single.status ? single.camera : fit.camera.patches.front().camera);
-    doc.matches = *matches;
+    doc.matches = matches;
     if (single.status) doc.fit = single.record;
     doc.pieces = fit.camera;
     job.stage("writing");

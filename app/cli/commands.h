@@ -36,6 +36,7 @@ int composeCommand(const std::vector<std::string>& args);
 int insertCommand(const std::vector<std::string>& args);
 int sampleCommand(const std::vector<std::string>& args);
 int exportCommand(const std::vector<std::string>& args);  // artcam export: a studio project
+int exportMapCommand(const std::vector<std::string>& args);  // artcam export-map: an ST map
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
@@ -52,6 +53,7 @@ extern const char* const kComposeUsage;
 extern const char* const kInsertUsage;
 extern const char* const kSampleUsage;
 extern const char* const kExportUsage;
+extern const char* const kExportMapUsage;
 
 int run(int argc, char** argv);
 

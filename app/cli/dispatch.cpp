@@ -22,6 +22,8 @@ const Command kCommands[] = {
     {"compose", "one camera from a sequence of cameras", kComposeUsage, composeCommand},
     {"export", "render a saved studio project as the studio exports it", kExportUsage,
      exportCommand},
+    {"export-map", "write a camera's inverse map as an ST map (Nuke, OpenCV)", kExportMapUsage,
+     exportMapCommand},
     {"insert", "render a graphic into a reflection or refraction", kInsertUsage, insertCommand},
     {"sample", "ray trace a sample photo and grid matches for insert", kSampleUsage, sampleCommand},
 };
@@ -32,7 +34,7 @@ void printHelp() {
       "Tensor cameras (every output coordinate a ratio of quadratic forms of the input).\n\n"
       "usage: artcam <command> [options]   (artcam <command> --help for details)\n\n"
       "commands:\n");
-  for (const Command& c : kCommands) std::printf("  %-8s %s\n", c.name, c.summary);
+  for (const Command& c : kCommands) std::printf("  %-10s %s\n", c.name, c.summary);
   std::printf(
       "\nPixels: centres at i + 0.5, (0, 0) the top-left corner, y down. Cameras are stored\n"
       "in normalised frames, so a camera made on a preview applies to the full-size photo.\n"

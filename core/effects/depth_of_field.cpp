@@ -12,12 +12,16 @@
 namespace artcam {
 
 Camera depthOfFieldCamera(const DepthOfFieldParams& p, FrameSize source, FrameSize target) {
-  if (!(p.focus > 0.0) || !std::isfinite(p.focus))
-    throw std::invalid_argument("depth of field: the focus depth must be positive");
+  if (!(p.focus >= 0.0) || !std::isfinite(p.focus))
+    throw std::invalid_argument("depth of field: the focus depth must be ≥ 0");
   if (!(p.blur >= 0.0) || !std::isfinite(p.blur))
     throw std::invalid_argument("depth of field: blur must be a number ≥ 0");
   if (!(p.thin_lens >= 0.0 && p.thin_lens <= 1.0))
     throw std::invalid_argument("depth of field: thin-lens must be between 0 (linear) and 1");
+  if (p.focus == 0.0 && p.thin_lens != 0.0)
+    throw std::invalid_argument(
+        "depth of field: focus 0 (blur proportional to depth) needs thin-lens 0; a thin lens "
+        "focused at depth 0 blurs everything alike");
   constexpr int kW = 2, kD = 7, kDh = 8, kN = 9;
   const auto e = [](int i) { return Eigen::VectorXd::Unit(kN, i); };
   Stage stage;
@@ -32,6 +36,8 @@ Camera depthOfFieldCamera(const DepthOfFieldParams& p, FrameSize source, FrameSi
   den(kD, kD) = g * g;
   den(kD, kDh) = den(kDh, kD) = g * fh;
   den(kDh, kDh) = fh * fh;
+  // Focus 0 (γ = 0): σ = k·d, the paper's blur proportional to depth; the denominator is d_h².
+  if (p.focus == 0.0) den(kDh, kDh) = 1.0;
   stage.q.push_back(num);
   stage.q.push_back(den);
   return Camera(

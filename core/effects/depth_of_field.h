@@ -12,7 +12,10 @@
 //   focus depth f, k at infinity, k·(f/d − 1) in front (proportional to |1/f − 1/d|);
 // - γ = 0, linear: σ = k·|d − f|/f, proportional to the distance from the focal plane, with the
 //   thin lens's slope k/f at the focus but growing without bound behind it;
-// - between, the denominator blends the two (still positive for d > 0).
+// - between, the denominator blends the two (still positive for d > 0);
+// - f = 0 with γ = 0: σ = k·d, blur proportional to depth — the paper's own form (the
+//   denominator is then d_h² = 1, and k is σ per depth unit). A thin lens focused at 0 would
+//   blur every depth alike, so f = 0 requires γ = 0.
 // A pixel without depth (d = 0, a hole of the depth file) gets σ = k/(1 − γ): the thin lens's
 // 0/0 is not finite and the renderer leaves it sharp.
 // In output pixels σ_px = √σ² · max(w, h)/2.
@@ -39,7 +42,7 @@
 namespace artcam {
 
 struct DepthOfFieldParams {
-  double focus = 2.0;  // depth in focus, f (same unit as the depth image)
+  double focus = 2.0;  // depth in focus, f (same unit as the depth image); 0: σ = k·d (γ = 0)
   double blur = 0.01;  // k: σ at infinite depth (thin lens), normalised units (× max(w, h)/2 px)
   double thin_lens = 1.0;  // γ in [0, 1]: 1 thin lens σ ∝ |d − f|/d, 0 linear σ ∝ |d − f|/f
 };

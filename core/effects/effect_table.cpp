@@ -103,8 +103,10 @@ const std::vector<EffectSpec>& effectSpecs() {
         {"far", "depth of full strength", {100.0}, 0.02, 1e5, "depth units"}},
        true, aerialPerspective},
       {"depth-of-field",
-       "Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)) (§3)",
-       {{"focus", "depth in focus", {2.0}, 0.01, 1e4, "depth units"},
+       "Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)); focus 0 with "
+       "thin-lens 0: sigma = blur·d, proportional to depth (§3)",
+       {{"focus", "depth in focus (0: blur proportional to depth, with thin-lens 0)", {2.0}, 0.0,
+         1e4, "depth units"},
         {"blur", "sigma at infinite depth", {0.01}, 0.0, 0.1, "norm"},
         {"thin-lens", "1 thin lens (/d), 0 linear (/focus)", {1.0}, 0.0, 1.0, ""}},
        true, depthOfField},

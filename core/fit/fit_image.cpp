@@ -552,6 +552,8 @@ Choice chooseModel(std::vector<Candidate>& candidates, const Problem& pb,
         best = std::max(c.held_out, kExactError);
         best_c = &c;
       }
+    // No finite held-out error (an overflowing match): no model can be judged, none is picked.
+    if (!best_c) return choice;
     for (const Candidate& c : candidates)
       if (c.eligible() && std::max(c.held_out, kExactError) * options.auto_improvement <= best) {
         choice.pick = &c;

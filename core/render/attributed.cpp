@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace artcam {
 
@@ -382,6 +383,19 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
   AttributedImage total;
   double ms = 0.0;
   std::string kernels;
+  // While the layers arrive, total.colour holds the sum of the layers' UNpremultiplied colours
+  // in channels 0..2 and the smallest coverage so far in channel 3; best_alpha the largest, for
+  // the depth. A layer's premultiplied colour s with coverage a adds s/a (nothing where a = 0,
+  // which makes the smallest coverage 0 anyway).
+  std::vector<float> best_alpha;
+  auto add = [](float* t, const float* s, bool first) {
+    const float a = s[3];
+    for (int k = 0; k < 3; ++k) {
+      const float u = a > 0.0f ? s[k] / a : 0.0f;
+      t[k] = first ? u : t[k] + u;
+    }
+    t[3] = first ? a : std::min(t[3], a);
+  };
   for (size_t l = 0; l < layers.size(); ++l) {
     AttributedOptions lo = options;
     if (options.warp.progress) {
@@ -396,6 +410,13 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
     kernels += (l ? "+" : "") + report.kernel;
     if (l == 0) {
       total = std::move(layer);
+      const size_t n = static_cast<size_t>(total.colour.width) * static_cast<size_t>(total.colour.height);
+      best_alpha.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        float* t = total.colour.data.data() + 4 * i;
+        best_alpha[i] = t[3];
+        add(t, t, true);
+      }
       continue;
     }
     if (layer.colour.width != total.colour.width || layer.colour.height != total.colour.height)
@@ -404,12 +425,17 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
     for (size_t i = 0; i < n; ++i) {
       float* t = total.colour.data.data() + 4 * i;
       const float* s = layer.colour.data.data() + 4 * i;
-      for (int k = 0; k < 3; ++k) t[k] += s[k];
-      if (s[3] > t[3]) {
-        t[3] = s[3];
+      add(t, s, false);
+      if (s[3] > best_alpha[i]) {
+        best_alpha[i] = s[3];
         if (!total.depth.empty() && !layer.depth.empty()) total.depth.data[i] = layer.depth.data[i];
       }
     }
+  }
+  // Back to premultiplied at the smallest coverage.
+  for (size_t i = 0; i < best_alpha.size(); ++i) {
+    float* t = total.colour.data.data() + 4 * i;
+    for (int k = 0; k < 3; ++k) t[k] *= t[3];
   }
   report.kernel = kernels;
   report.render_ms = ms;

@@ -87,8 +87,13 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
                                  const AttributedOptions& options = {},
                                  AttributedSummary* summary = nullptr);
 
-// Every layer rendered as above and combined (sum of colours, largest alpha, depth of the
-// layer with the largest alpha). All layers must share the output size.
+// Every layer rendered as above and combined: the picture is the sum of the layers' colours
+// (each layer carries its own colour channel, the paper's Fig 4), and a pixel is covered only as
+// far as EVERY layer covers it: alpha is the smallest layer coverage, and each layer's colour is
+// taken at that alpha (unpremultiplied by its own coverage, premultiplied by the smallest). So
+// where one layer shrinks away from the frame's edge the pixel becomes transparent instead of
+// keeping the other layers' channels as a frame of the complementary colour. The depth is that
+// of the layer with the largest alpha. All layers must share the output size.
 AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
                              const std::vector<Camera>& layers,
                              const AttributedOptions& options = {},

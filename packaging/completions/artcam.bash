@@ -7,14 +7,15 @@
 # completion time, so they follow the effects table without an edit here. Plain bash: it needs
 # neither the bash-completion package's helpers nor a particular bash-completion version.
 
-_artcam_commands="fit map warp batch info bench render preset compose export insert sample"
+_artcam_commands="fit map warp batch info bench render preset compose export export-map insert
+                  sample"
 
 # The options of one page: a command, or bench's sub-command ("bench fit").
 _artcam_options() {
   case "$1" in
     fit) echo "--output -o --size --target-size --model --dim --no-refine --robust --threshold
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
-               --quiet -q" ;;
+               --quiet -q --stmap" ;;
     map) echo "--json" ;;
     warp) echo "--output -o --size --filter --threads --quality --bit-depth --stats --json
                 --overwrite --force --quiet -q --depth --depth-scale --disparity" ;;
@@ -32,6 +33,7 @@ _artcam_options() {
     compose) echo "--output -o --force --overwrite --json" ;;
     export) echo "--output -o --camera-out --depth-out --size --quality --bit-depth --crop-valid
                   --fill --json --overwrite --force --quiet -q" ;;
+    export-map) echo "--output -o --size --convention --json --overwrite --force" ;;
     insert) echo "--output -o --matches --camera --canonical --max-error --save-camera
                   --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;

@@ -31,6 +31,23 @@ inline QStringList commandsFromDispatch() {
   return names;
 }
 
+// The source file stem of a command: "export-map" → "cmd_export_map".
+inline QString commandStem(const QString& command) {
+  return QStringLiteral("cmd_") + QString(command).replace('-', '_');
+}
+
+// Whether `base` (a cmd_*.cpp name without ".cpp") belongs to `command`: its own file, or a
+// part cmd_<command>_<part> — unless that name is another command's own file (cmd_export_map
+// is export-map's, not a part of export).
+inline bool isSourceOf(const QString& base, const QString& command, const QStringList& commands) {
+  const QString stem = commandStem(command);
+  if (base == stem) return true;
+  if (!base.startsWith(stem + '_')) return false;
+  for (const QString& other : commands)
+    if (other != command && commandStem(other) == base) return false;
+  return true;
+}
+
 // Long and short option names of every OptionSpec literal in a source file.
 inline QStringList optionsInSource(const QString& path) {
   static const QRegularExpression spec(

@@ -38,12 +38,13 @@ struct Page {
 QList<Page> pagesFromSources() {
   QList<Page> pages;
   const QStringList files = QDir(kCliDir).entryList({QStringLiteral("cmd_*.cpp")}, QDir::Files);
-  for (const QString& command : commandsFromDispatch()) {
-    const QString stem = QStringLiteral("cmd_") + QString(command).replace('-', '_');
+  const QStringList commands = commandsFromDispatch();
+  for (const QString& command : commands) {
+    const QString stem = artcam::test::commandStem(command);
     Page own{{command}, {}};
     for (const QString& file : files) {
       const QString base = file.chopped(4);  // without ".cpp"
-      if (base != stem && !base.startsWith(stem + '_')) continue;
+      if (!artcam::test::isSourceOf(base, command, commands)) continue;
       const QStringList options = optionsInSource(kCliDir + '/' + file);
       if (command == QStringLiteral("bench"))
         pages.append({{command, base == stem ? QStringLiteral("render") : base.mid(stem.size() + 1)},

@@ -37,14 +37,12 @@ QList<HelpPage> helpPages(const QStringList& commands) {
   QList<HelpPage> pages;
   const QStringList sources = QDir(kCliDir).entryList({QStringLiteral("cmd_*.cpp")}, QDir::Files);
   for (const QString& command : commands) {
-    const QString stem = QStringLiteral("cmd_") + QString(command).replace('-', '_');
+    const QString stem = artcam::test::commandStem(command);
     for (const QString& file : sources) {
       const QString base = file.chopped(4);  // without ".cpp"
+      if (!artcam::test::isSourceOf(base, command, commands)) continue;
       QStringList invocation{command};
-      if (base != stem) {
-        if (!base.startsWith(stem + '_')) continue;
-        invocation << base.mid(stem.size() + 1);
-      }
+      if (base != stem) invocation << base.mid(stem.size() + 1);
       pages.append(
           {invocation << QStringLiteral("--help"), file, optionsInSource(kCliDir + '/' + file)});
     }

@@ -87,6 +87,34 @@ class TestAutoModelPanel : public QObject {
     QCOMPARE(doc.fit().record.model, std::string("quadratic"));
     QVERIFY(panel.modelButton(ModelClass::Auto)->isChecked());
   }
+
+  // A model's note is one long table cell (four clicked pairs: the homography's pole, with its
+  // position). The scores wrap it: unwrapped, the panel's minimum width grew by the whole note
+  // and the Pairs dock widened mid-session, shrinking the canvas under the user's next click.
+  void aLongModelNoteWrapsInsteadOfWideningThePanel() {
+    Document doc;
+    PairsPanel panel(&doc);
+    doc.reset(test::syntheticPhoto(600, 400));
+    const int empty_width = panel.minimumSizeHint().width();
+    std::vector<Pair> pairs;
+    for (const auto& [s, t] : std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>{
+             {{127.42, 79.33}, {116.63, 71.91}},
+             {{317.53, 95.51}, {318.20, 94.16}},
+             {{436.18, 108.31}, {440.90, 104.94}},
+             {{148.31, 194.61}, {142.92, 194.61}}}) {
+      Pair p;
+      p.source = s;
+      p.target = t;
+      pairs.push_back(p);
+    }
+    doc.reset(test::syntheticPhoto(600, 400), pairs);
+    QVERIFY(doc.fit().status.ok);
+    QVERIFY2(panel.modelScoresText().contains("pole"), qPrintable(panel.modelScoresText()));
+    QVERIFY2(panel.minimumSizeHint().width() <= std::max(empty_width, 420),
+             qPrintable(QString("minimum width %1 (empty panel: %2)")
+                            .arg(panel.minimumSizeHint().width())
+                            .arg(empty_width)));
+  }
 };
 
 QTEST_MAIN(TestAutoModelPanel)

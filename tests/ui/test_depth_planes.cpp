@@ -16,7 +16,9 @@
 #include "ui/tools/depth_tool.h"
 #include "ui/tools/depth_tool_settings.h"
 
+#include <QDoubleSpinBox>
 #include <QFile>
+#include <QLabel>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -163,6 +165,30 @@ class TestDepthPlanes : public QObject {
         const double truth = inverse > 1.0 / max_depth ? 1.0 / inverse : max_depth;
         QVERIFY2(std::abs(*z - truth) < 1e-5 * truth, qPrintable(QString("%1 vs %2").arg(*z).arg(truth)));
       }
+
+    // The next depth is typed key by key as a user types it (the panel's echo of each keystroke
+    // must not re-format the text under the cursor: "1.5" once came out as 1).
+    auto* next_depth = panel.findChild<QDoubleSpinBox*>("nextDepth");
+    QVERIFY(next_depth);
+    bool has_mnemonic = false;  // Alt+N focuses it
+    for (const QLabel* label : panel.findChildren<QLabel*>())
+      has_mnemonic = has_mnemonic || (label->buddy() == next_depth && label->text().contains("&N"));
+    QVERIFY(has_mnemonic);
+    for (const auto& [typed, value] : {std::pair{"1.5", 1.5}, std::pair{"0.75", 0.75},
+                                       std::pair{"40", 40.0}, std::pair{"2.125", 2.125}}) {
+      next_depth->selectAll();
+      QTest::keyClicks(next_depth, typed);
+      QCOMPARE(rig.settings.nextDepth(), value);
+      QTest::keyClick(next_depth, Qt::Key_Tab);
+      QCOMPARE(rig.settings.nextDepth(), value);
+    }
+    rig.settings.setNextDepth(3.0);  // set elsewhere ([ ] or a test): the box follows
+    QCOMPARE(next_depth->value(), 3.0);
+    auto* tolerance = panel.findChild<QDoubleSpinBox*>("edgeTolerance");
+    QVERIFY(tolerance);
+    tolerance->selectAll();
+    QTest::keyClicks(tolerance, "0.15");
+    QCOMPARE(rig.settings.edgeTolerance(), 0.15);
 
     // Typing a depth in the panel is an undoable edit and moves the plane.
     QTableWidget* table = panel.anchorTable();

@@ -25,6 +25,17 @@
 
 namespace artcam::ui {
 
+namespace {
+
+// Shows a setting in its box only when the box shows another value: setValue re-formats the
+// text, so the settings' echo of a box's own keystroke would turn a typed "1" into "1.000" with
+// the cursor after the 1, and the ".5" typed next would be refused (typing 1.5 gave 1).
+void showInBox(QDoubleSpinBox* box, double value) {
+  if (box->valueFromText(box->textFromValue(value)) != box->value()) box->setValue(value);
+}
+
+}  // namespace
+
 DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOverlay* overlay,
                        QWidget* parent)
     : QWidget(parent),
@@ -69,6 +80,7 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   next_depth_->setDecimals(3);
   next_depth_->setValue(settings_->nextDepth());
   next_depth_->setToolTip(tr("Depth given to the next depth point you click (any unit)"));
+  next_depth_->setObjectName(QStringLiteral("nextDepth"));
   form->addRow(tr("Radius"), radius_);
   form->addRow(tr("Hardness"), hardness_);
   auto* edges = new QCheckBox(tr("Stop at colour edges"), this);
@@ -92,9 +104,11 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   connect(settings_, &DepthToolSettings::changed, this, [this, edges, tolerance] {
     const QSignalBlocker b1(edges), b2(tolerance);
     edges->setChecked(settings_->edgeAware());
-    tolerance->setValue(settings_->edgeTolerance());
+    showInBox(tolerance, settings_->edgeTolerance());
   });
-  form->addRow(tr("Next depth"), next_depth_);
+  // Alt+N reaches the field from anywhere in the window while the panel shows: a depth is typed
+  // before each clicked point, between clicks on the canvas.
+  form->addRow(tr("&Next depth"), next_depth_);
   layout->addLayout(form);
 
   // The active plane's depth points.
@@ -163,9 +177,9 @@ DepthPanel::DepthPanel(Document* document, DepthToolSettings* settings, DepthOve
   connect(settings_, &DepthToolSettings::changed, this, [this] {
     // Shown, not fed back: the boxes round (one decimal) and must not round the settings.
     const QSignalBlocker b1(radius_), b2(hardness_), b3(next_depth_);
-    radius_->setValue(settings_->radius());
+    showInBox(radius_, settings_->radius());
     hardness_->setValue(static_cast<int>(std::lround(settings_->hardness() * 100)));
-    next_depth_->setValue(settings_->nextDepth());
+    showInBox(next_depth_, settings_->nextDepth());
   });
   connect(anchors_, &QTableWidget::cellChanged, this, &DepthPanel::onAnchorEdited);
   connect(show, &QCheckBox::toggled, overlay_, &DepthOverlay::setVisible);

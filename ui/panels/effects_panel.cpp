@@ -27,7 +27,7 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
     add_box_->setItemData(add_box_->count() - 1, QString::fromStdString(spec.summary),
                           Qt::ToolTipRole);
   }
-  auto* add = new QPushButton(tr("Add"), this);
+  auto* add = new QPushButton(tr("&Add"), this);  // Alt+A: pick in the list, add by keyboard
   add->setToolTip(tr("Add the effect to the end of the stack (applied after the others)"));
   auto* remove = new QPushButton(tr("Remove"), this);
   auto* up = new QPushButton(tr("Up"), this);

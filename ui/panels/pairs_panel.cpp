@@ -174,6 +174,9 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
   selector->addStretch(1);
   models_->setExclusive(true);
   scores_->setTextFormat(Qt::RichText);
+  // Wrapped like the reason: a model's note (a pole's position, say) is one long table cell, and
+  // unwrapped it widened the dock mid-session, shrinking the canvas under the user's clicks.
+  scores_->setWordWrap(true);
   reason_->setWordWrap(true);
   reason_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   QFont small = reason_->font();

@@ -63,6 +63,37 @@ class TestChromatic : public QObject {
     QVERIFY2(worst < 1e-4, qPrintable(QString("max error %1").arg(worst)));
   }
 
+  // A layer that shrinks (blue, scale −0.06) leaves a border its channel never reaches. The
+  // layers' coverage combines as the smallest: on a grey photo no pixel comes out as a
+  // coloured frame (red and green without blue), border pixels are transparent, and inside the
+  // frame the grey is exact.
+  void shrinkingLayerLeavesNoColouredFrame() {
+    const FrameSize size{60, 40};
+    RgbShiftParams p;
+    p.scale = {0.04, 0.0, -0.06};
+    const std::vector<Camera> layers = rgbShiftLayers(p, size, size);
+    ImageF grey(size.width, size.height, 3);
+    for (float& v : grey.data) v = 0.5f;
+    const AttributedImage out = renderLayers(grey, nullptr, layers);
+    int transparent = 0;
+    for (int y = 0; y < size.height; ++y)
+      for (int x = 0; x < size.width; ++x) {
+        const float* c = out.colour.pixel(x, y);
+        if (c[3] <= 0.0f) {
+          ++transparent;
+          QVERIFY(c[0] == 0.0f && c[1] == 0.0f && c[2] == 0.0f);
+          continue;
+        }
+        // Unpremultiplied, every channel is the photo's grey: no channel missing.
+        for (int k = 0; k < 3; ++k)
+          QVERIFY2(std::abs(c[k] / c[3] - 0.5f) < 1e-4f,
+                   qPrintable(QString("(%1, %2) channel %3: %4 at alpha %5")
+                                  .arg(x).arg(y).arg(k).arg(c[k]).arg(c[3])));
+      }
+    // Blue shrinks by 6 %: about 3 % of each side (1.8 and 1.2 px) has no blue: transparent.
+    QVERIFY2(transparent > size.width + size.height, qPrintable(QString::number(transparent)));
+  }
+
   // eq 8/9 through the model's evaluation (not the renderer) for random points and colours.
   void colourShiftIsEq8And9() {
     const FrameSize size{100, 80};

@@ -4,6 +4,7 @@
 // fast stack against the exact blur (PSNR); the halo rule: a sharp foreground must not bleed into
 // the blurred background beyond a threshold, and without the rule it would (so the test can fail).
 #include "core/effects/depth_of_field.h"
+#include "core/effects/effect_table.h"
 #include "core/render/attributed.h"
 #include "tests/core/render/photo_fixture.h"
 #include "tests/support/test_support.h"
@@ -102,6 +103,31 @@ class TestDepthOfField : public QObject {
     QVERIFY(std::abs(std::sqrt(variance(0.0, f + e)) - std::sqrt(variance(1.0, f + e))) <
             1e-3 * k * e / f);
     QVERIFY_THROWS_EXCEPTION(std::invalid_argument, depthOfFieldCamera({f, k, 1.5}, size, size));
+  }
+
+  // The paper's §3 form, blur proportional to depth: focus 0 with the linear model gives
+  // σ = k·d exactly (σ² = k²d²), sharp only where there is no depth; a thin lens focused at 0
+  // is refused, since it would blur every depth alike.
+  void blurProportionalToDepth() {
+    const FrameSize size{64, 48};
+    const double k = 0.004;
+    const Camera cam = depthOfFieldCamera({0.0, k, 0.0}, size, size);
+    for (const double d : {0.0, 0.5, 1.0, 7.25, 40.0}) {
+      Eigen::VectorXd x(9);
+      x << 0.3, 0.1, 1, 0.2, 0.3, 0.4, 1, d, 1;
+      const double v = cam.evaluate(x)[7];
+      QVERIFY2(std::abs(v - k * k * d * d) <= 1e-15 * (1 + d * d), qPrintable(QString::number(d)));
+    }
+    // Through the effects table and the pixel conversion: σ_px = k·d·max(w, h)/2.
+    const Artcam effect = buildEffect("depth-of-field", {{"focus", {0.0}}, {"thin-lens", {0.0}},
+                                                         {"blur", {k}}}, size);
+    QCOMPARE(effect.depth_output, DepthOutput::BlurVariance);
+    ImageF variance(size.width, size.height, 1);
+    for (float& v : variance.data) v = static_cast<float>(k * k * 10.0 * 10.0);  // depth 10
+    QVERIFY(std::abs(sigmaPixelsFromVariance(variance).data[0] - k * 10.0 * 32.0) < 1e-4);
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, depthOfFieldCamera({0.0, k, 1.0}, size, size));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                             buildEffect("depth-of-field", {{"focus", {0.0}}}, size));
   }
 
   void exactBlurMatchesDirectGaussian() {

@@ -213,6 +213,20 @@ class TestAutoModel : public QObject {
 
   // The per-model record: every rung of the ladder with its residual RMS (checked against the
   // model fitted by name), the criterion values, and the chosen model's own.
+  // Matches that overflow every model's held-out error (a value of 1e300 reached the fit from
+  // a caller that did not read it through the CSV reader) leave Auto without a judgeable model:
+  // the fit says so instead of picking through a missing best (it crashed once).
+  void overflowingMatchesPickNothingAndSaySo() {
+    std::vector<PointMatch> m;
+    for (int i = 0; i < 5; ++i)
+      m.push_back({Eigen::Vector2d(10.0 + 40 * i, 10.0 + 15 * (i % 3)),
+                   Eigen::Vector2d(11.0 + 40 * i, 12.0 + 15 * (i % 3)), true});
+    m[3].target = Eigen::Vector2d(1e300, 99.0);
+    const FitSummary fit = fitImageCamera(m, {200, 200}, {200, 200}, FitOptions{});
+    QVERIFY(!fit.status.ok || std::isfinite(fit.record.rms_px));
+    if (!fit.status.ok) QVERIFY(!fit.status.message.empty());
+  }
+
   void theRecordListsEveryModel() {
     std::mt19937_64 rng(11);
     const auto pairs = clickedPairs(bulge(0.1), 3, 3, 0.5, rng);

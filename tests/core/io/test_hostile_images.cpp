@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // Hostile image files through every reader entry point (openImageInput, readImage,
-// readStoredImage): truncated PNG/JPEG/TIFF, empty and zero-sized files, 1×1 images, headers
+// readStoredImage, and the ST map reader readStmapSamples): truncated PNG/JPEG/TIFF, empty and zero-sized files, 1×1 images, headers
 // that claim giant sizes (bytes crafted here), unsupported formats, a directory. Each must be
 // read correctly or refused with one line naming the file — never a crash or a giant
 // allocation (the giant headers would ask for 30 GB and 2 GB; the ASan build makes such an
 // allocation fail the test). `artcam warp` on the same files is tests/app/test_hostile_warp.cpp.
 #include "core/io/image_input.h"
 #include "core/io/image_io.h"
+#include "core/io/stmap_file.h"
 #include "core/io/stored_image.h"
 #include "tests/core/io/hostile_bytes.h"
 
@@ -55,7 +56,8 @@ class TestHostileImages : public QObject {
     const std::string prefix = file + ": cannot read: ";
     const std::string messages[] = {io_input::openImageInput(file).status.message,
                                     readImage(file).status.message,
-                                    readStoredImage(file).status.message};
+                                    readStoredImage(file).status.message,
+                                    readStmapSamples(file).status.message};
     for (const std::string& m : messages) {
       QVERIFY2(m.rfind(prefix, 0) == 0, (file + " gave: \"" + m + "\"").c_str());
       QVERIFY2(m.find('\n') == std::string::npos, m.c_str());

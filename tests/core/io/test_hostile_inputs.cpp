@@ -164,7 +164,7 @@ class TestHostileInputs : public QObject {
     row("matches_csv", "nasty-out-of-range.csv", ":2: column 1 (src_x): out of range for a double");
     row("matches_csv", "nasty-inf.csv", ":2: column 1 (src_x): not a finite number");
     row("matches_csv", "nasty-commas.csv", ":2: expected 4 numbers, found 5001");
-    row("colour_csv", "nasty-srgb-huge.csv", ": sample 1, column 1 (src_r): sRGB value");
+    row("colour_csv", "nasty-srgb-huge.csv", ":2: column 1 (src_r): \"1e308\" is beyond any coordinate");
     row("ply", "nasty-trillion-vertices.ply", "claims 1000000000000 entries");
     row("ply", "nasty-count-overflow.ply",
         "claims 18446744073709551615 entries (at least 2^64 bytes)");

@@ -79,6 +79,10 @@ class TestMatchesCsv : public QObject {
              QString("matches.csv:2: column 3 (dst_x): not a finite number: \"inf\""));
     QCOMPARE(refusal(header + "1,2,3,1e999\n"),
              QString("matches.csv:2: column 4 (dst_y): out of range for a double: \"1e999\""));
+    // A finite but absurd value is refused at its row (a fit would overflow far from it).
+    QCOMPARE(refusal(header + "1,2,3,4\n100,100,1e300,99\n"),
+             QString("matches.csv:3: column 3 (dst_x): \"1e300\" is beyond any coordinate or "
+                     "colour (|value| > 1e9)"));
     QCOMPARE(refusal(header + "1,2.5px,3,4\n"),
              QString("matches.csv:2: column 2 (src_y): not a number: \"2.5px\""));
     QCOMPARE(refusal(header + "1,,3,4\n"), QString("matches.csv:2: column 2 (src_y): empty"));

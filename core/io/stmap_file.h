@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: Apache-2.0
+// ST maps: a camera's inverse map as a float EXR other tools warp with (Nuke's STMap node,
+// Fusion's and Resolve's STMap tools, OpenImageIO's ImageBufAlgo::st_warp, OpenCV's cv::remap),
+// and the reader that turns a map made elsewhere back into point matches for the fit.
+//
+// Conventions. Output pixel (i, j) of the map holds the SOURCE position (x, y) it reads, in
+// source pixels with centres at i + 0.5 and y down (frames.h):
+// - StMap (Nuke, Fusion, Resolve, OIIO st_warp): channels R, G, B, A, 32-bit float.
+//   R = x / W, G = 1 − y / H (W × H the source size; t counts up from the bottom edge),
+//   B = 0, A = 1 where the pixel has a preimage, else R = G = A = 0. st_warp samples the source
+//   at (s·W, (1 − t)·H) when its flip_t is on, which is this convention; Nuke measures y from
+//   the bottom edge, so its STMap node reads t as it is.
+// - OpenCv (cv::remap): channels R = map_x, G = map_y, 32-bit float, in cv::remap's pixels,
+//   whose centres are at integers: map_x = x − 0.5, map_y = y − 0.5; −1 in both where the pixel
+//   has no preimage (outside every source image, so remap leaves it to its border mode).
+//   Named R and G (not map_x, map_y) so readers that know only colour channels load them;
+//   OpenCV orders colour channels B, G, R, so read them by name (OpenImageIO) or mind that
+//   order. Only OpenImageIO reading is tested here.
+// Both files carry the header attributes "artcam:convention" ("stmap" or "opencv") and
+// "artcam:source_width" / "artcam:source_height", which the reader uses when present: an
+// ST map is normalised, so its source size is not otherwise in it.
+#pragma once
+
+#include "core/model/fit_record.h"
+#include "core/model/status.h"
+#include "core/render/position_map.h"
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace artcam {
+
+enum class StmapConvention { StMap, OpenCv };
+std::string_view stmapConventionName(StmapConvention convention);  // "stmap", "opencv"
+std::optional<StmapConvention> stmapConventionFromName(std::string_view name);
+
+// Writes atomically; errors name the file and the cause.
+Status writeStmap(const std::string& path, const PositionMap& map, StmapConvention convention);
+
+struct StmapSampleOptions {
+  // Grid step in map pixels; 0 picks the smallest step that keeps at most max_matches samples.
+  int step = 0;
+  int max_matches = 4000;
+  // The source size the map's normalised positions are scaled by; empty: the file's
+  // artcam:source_width/height, else the map's own size (a lens map of one plate).
+  std::optional<FrameSize> source_px;
+};
+
+struct StmapSamples {
+  std::vector<PointMatch> matches;  // source (x, y) px → target pixel centre (i + 0.5, j + 0.5)
+  FrameSize map_px;  // the target frame: the map's display window (EXR), else its size
+  FrameSize source_px;
+  StmapConvention convention = StmapConvention::StMap;
+  int step = 1;
+  bool has_alpha = false;
+};
+
+// Reads an ST map (either convention, from the artcam:convention attribute; StMap when absent)
+// and samples its data window every `step` pixels (targets in display-window pixels, so an
+// overscan map's border samples have targets outside the frame), keeping pixels with a preimage
+// (alpha > 0 where there is an alpha channel, not −1 for OpenCv maps, finite values). Refuses, in
+// one line naming the file, a map without R and G channels, an unknown convention attribute, or one
+// with no usable pixel on the grid.
+Result<StmapSamples> readStmapSamples(const std::string& path,
+                                      const StmapSampleOptions& options = {});
+
+}  // namespace artcam
