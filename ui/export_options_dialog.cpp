@@ -60,7 +60,7 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
   fill_row->addWidget(fill_colour_);
   fill_row->addStretch(1);
   quality_->setRange(1, 100);
-  quality_->setValue(current.write.jpeg_quality);
+  quality_->setValue(current.write.jpeg_quality.value_or(95));
   quality_->setEnabled(jpeg);
   quality_->setToolTip(tr("JPEG quality (95 keeps fine detail; 85 is a common web setting)"));
   bit_depth_->addItem(tr("Same as the photo"), QString());

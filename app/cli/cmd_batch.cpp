@@ -31,8 +31,10 @@ namespace artcam::cli {
 const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
+    "                    [--quality N] [--bit-depth 8|16|half|float]\n"
     "                    [--overwrite] [--json] [--quiet]\n\n"
-    "Warps every IN through the camera into DIR (created if missing), as artcam warp does,\n"
+    "Warps every IN through the camera into DIR (created if missing), as artcam warp does\n"
+    "(upright, with IN's metadata, quality and pixel type unless --quality or --bit-depth),\n"
     "under IN's name, with --suffix added to the name and --format EXT as the extension\n"
     "(format) if given. An IN written as a printf-style pattern, e.g. frames/f_%04d.png, is a\n"
     "frame sequence: numbers from --first N (default 0, or 1 when there is no frame 0) up to\n"
@@ -56,6 +58,10 @@ const char* const kBatchUsage =
     "  --size WxH           output size in pixels (default: the target frame scaled to IN)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
     "  --threads N          render threads (default 0: all cores)\n"
+    "  --quality N          JPEG quality 1-100 (default: each IN's when it and its output\n"
+    "                       are JPEG, else 95)\n"
+    "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
+    "                       IN's)\n"
     "  --overwrite          replace outputs that exist (--force is the same); never an input\n"
     "  --json               the results as one JSON object on stdout (above)\n"
     "  -q, --quiet          no progress and no per-file lines (errors and summary only)\n\n"
@@ -100,6 +106,8 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--size", "", true},
                          {"--filter", "", true},
                          {"--threads", "", true},
+                         {"--quality", "", true},
+                         {"--bit-depth", "", true},
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--json", "", false},
@@ -181,7 +189,8 @@ int batchCommand(const std::vector<std::string>& argv) {
     for (size_t i = 0; i < items.size() && !interruptRequested(); ++i) {
       if (!decoded.waitForSpace()) break;
       if (!guarded(i, [&] {
-            decoded.push({i, decodeForWarp(camera, items[i].input, items[i].output, no_report)});
+            decoded.push({i, decodeForWarp(camera, request, items[i].input, items[i].output,
+                                           no_report)});
           }))
         bar.itemDone(0.0, "");
     }
@@ -192,7 +201,7 @@ int batchCommand(const std::vector<std::string>& argv) {
       if (interruptRequested()) break;
       const double mpix = static_cast<double>(item->image.width) * item->image.height / 1e6;
       const BatchItem& names = items[item->index];
-      if (guarded(item->index, [&] { encodeWarp(item->image, no_report); })) {
+      if (guarded(item->index, [&] { encodeWarp(item->image, request, no_report); })) {
         tally.written.fetch_add(1);
         results[item->index] = {"written", "", item->image.width, item->image.height,
                                 item->image.render_ms, item->image.description};

@@ -6,6 +6,7 @@
 #include "app/cli/interrupt.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/write_args.h"
 
 #include "core/io/artcam_file.h"
 #include "core/project/project_render.h"
@@ -40,7 +41,8 @@ const char* const kExportUsage =
     "                         there is none (what artcam warp --depth reads)\n"
     "  --size WxH             output size in pixels (default: the photo's size; one side 0: by\n"
     "                         aspect)\n"
-    "  --quality N            JPEG quality 1-100 (default 95)\n"
+    "  --quality N            JPEG quality 1-100 (default: the photo's when it is a JPEG,\n"
+    "                         else 95)\n"
     "  --bit-depth B          8, 16, half or float (default: the photo's)\n"
     "  --crop-valid           crop to the largest rectangle whose every pixel has a preimage\n"
     "  --fill R,G,B[,A]       linear colour under pixels without a preimage (default: none,\n"
@@ -54,13 +56,6 @@ const char* const kExportUsage =
     "      --camera-out trip.artcam --depth-out trip-depth.exr\n";
 
 namespace {
-
-std::string pixelTypeFor(const std::string& bit_depth) {
-  if (bit_depth == "8") return "uint8";
-  if (bit_depth == "16") return "uint16";
-  if (bit_depth == "half" || bit_depth == "float") return bit_depth;
-  throw UsageError("--bit-depth expects 8, 16, half or float, not \"" + bit_depth + "\"");
-}
 
 std::array<float, 4> parseFill(const std::string& text) {
   std::vector<float> v;
@@ -107,18 +102,7 @@ int exportCommand(const std::vector<std::string>& argv) {
     options.width = s.width;
     options.height = s.height;
   }
-  if (const auto quality = args.value("--quality")) {
-    try {
-      size_t used = 0;
-      options.write.jpeg_quality = std::stoi(*quality, &used);
-      if (used != quality->size()) throw std::invalid_argument(*quality);
-    } catch (const std::exception&) {
-      throw UsageError("--quality expects a whole number from 1 to 100");
-    }
-    if (options.write.jpeg_quality < 1 || options.write.jpeg_quality > 100)
-      throw UsageError("--quality expects a whole number from 1 to 100");
-  }
-  if (const auto bits = args.value("--bit-depth")) options.write.pixel_type = pixelTypeFor(*bits);
+  parseWriteOptions(args, options.write);
   options.crop_to_valid = args.has("--crop-valid");
   if (const auto fill = args.value("--fill")) {
     if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");

@@ -17,7 +17,8 @@ namespace artcam::cli {
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--threads N] [--stats] [--json] [--quiet] [--overwrite]\n"
+    "                   [--threads N] [--quality N] [--bit-depth 8|16|half|float]\n"
+    "                   [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
     "Output frame: the camera's target frame scaled per axis by IN's size over the camera's\n"
@@ -27,10 +28,15 @@ const char* const kWarpUsage =
     "warning names both sizes. --size WxH overrides the rule.\n"
     "Channels: IN's channels are kept; an alpha channel is added only where some pixel has no\n"
     "preimage (transparent; black in formats without alpha) or IN had alpha.\n"
-    "OUT keeps IN's pixel type and metadata. Where OUT's format stores IN's kind of sample\n"
-    "(8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and writes the stored\n"
-    "values in place (no float copy: peak memory about input + output), interpolating them in\n"
-    "the file's own encoding as OpenCV's remap does; otherwise it renders in linear float.\n"
+    "IN is read upright: an EXIF orientation (a portrait photo stored sideways) is applied\n"
+    "first, and OUT is written upright with orientation 1.\n"
+    "OUT keeps IN's pixel type (unless --bit-depth), JPEG quality (unless --quality) and\n"
+    "metadata: EXIF, IPTC and the XMP packet as IN has them, with the pixel size updated and the\n"
+    "EXIF thumbnail removed. Where OUT's format stores IN's kind of sample and --bit-depth\n"
+    "does not change it (8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and\n"
+    "writes the stored values in place (no float copy: peak memory about input + output),\n"
+    "interpolating them in the file's own encoding as OpenCV's remap does; otherwise it\n"
+    "renders in linear float.\n"
     "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130). An OUT that\n"
     "exists is refused unless --overwrite; OUT is never IN, the camera or the depth file.\n"
     "--stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr (the render alone, without\n"
@@ -47,6 +53,10 @@ const char* const kWarpUsage =
     "  --size WxH           output size in pixels (default: the target frame scaled as above)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
     "  --threads N          worker threads (default 0: all cores)\n"
+    "  --quality N          JPEG quality 1-100 (default: IN's when IN and OUT are JPEG, else\n"
+    "                       95)\n"
+    "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
+    "                       IN's)\n"
     "  --stats              print render_ms and mpix_per_s on stderr\n"
     "  --json               the result (and --stats) as one JSON object on stdout\n"
     "  --overwrite          replace OUT if it exists (--force is the same); never IN\n"
@@ -64,6 +74,8 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--size", "", true},
                          {"--filter", "", true},
                          {"--threads", "", true},
+                         {"--quality", "", true},
+                         {"--bit-depth", "", true},
                          {"--stats", "", false},
                          {"--json", "", false},
                          {"--overwrite", "", false},
@@ -89,9 +101,9 @@ int warpCommand(const std::vector<std::string>& argv) {
     return cancelOnInterrupt([&bar, name](double done) { bar.stage(name, done); });
   };
   try {
-    DecodedInput decoded = decodeForWarp(camera, input, *output, stage("reading"));
+    DecodedInput decoded = decodeForWarp(camera, request, input, *output, stage("reading"));
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
-    encodeWarp(rendered, stage("writing"));
+    encodeWarp(rendered, request, stage("writing"));
     bar.finish();
     const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
     const double mpix_per_s = rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0;

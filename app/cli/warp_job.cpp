@@ -72,6 +72,7 @@ WarpRequest parseWarpRequest(const Args& args) {
     std::printf("depth %s: %dx%d, %g..%g, %lld holes\n", path->c_str(), request.depth->width,
                 request.depth->height, summary.min_depth, summary.max_depth, summary.holes);
   }
+  parseWriteOptions(args, request.write);
   request.stats = args.has("--stats");
   return request;
 }
@@ -90,8 +91,9 @@ double DecodedInput::megapixels() const {
   return 0.0;
 }
 
-DecodedInput decodeForWarp(const WarpCameraFile& camera, const std::string& input,
-                           const std::string& output, const Progress& progress) {
+DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& request,
+                           const std::string& input, const std::string& output,
+                           const Progress& progress) {
   DecodedInput decoded{input, output, std::nullopt, std::nullopt};
   ReadImageOptions read;
   read.progress = progress;
@@ -101,7 +103,10 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const std::string& inpu
   if (!camera.linear) {
     const auto type = readStoredPixelType(input);
     if (!type) throw CommandError(type.status.message);
-    if (storedWriteKeepsEncoding(output, *type)) {
+    const std::string& asked = request.write.pixel_type;
+    const bool same_type = asked.empty() || (asked == "uint8" && *type == PixelType::UInt8) ||
+                           (asked == "uint16" && *type == PixelType::UInt16);
+    if (same_type && storedWriteKeepsEncoding(output, *type)) {
       auto stored = readStoredImage(input, read);
       if (!stored) throw CommandError(stored.status.message);
       decoded.stored = std::move(*stored.value);
@@ -169,8 +174,8 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
   return out;
 }
 
-void encodeWarp(RenderedOutput& output, const Progress& progress) {
-  WriteImageOptions options;
+void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress) {
+  WriteImageOptions options = request.write;
   options.progress = progress;
   const Status s = output.stored
                        ? writeStoredImage(output.output, std::as_const(*output.stored).view(),

@@ -16,6 +16,7 @@
 #pragma once
 
 #include "app/cli/args.h"
+#include "app/cli/write_args.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
@@ -38,11 +39,12 @@ WarpCameraFile loadWarpCamera(const std::string& path);
 struct WarpRequest {
   RenderOptions options;  // filter, threads; width × height 0: the output-frame rule per input
   std::optional<ImageF> depth;  // --depth FILE, read once for every input
+  WriteImageOptions write;      // --quality, --bit-depth (write_args.h); progress unset
   bool stats = false;
 };
 
-// --size WxH, --filter, --threads (and the attributed renderer's --depth, --depth-scale,
-// --disparity when `args` has them): the options warp and batch share.
+// --size WxH, --filter, --threads, --quality, --bit-depth (and the attributed renderer's
+// --depth, --depth-scale, --disparity when `args` has them): the options warp and batch share.
 WarpRequest parseWarpRequest(const Args& args);
 
 using Progress = std::function<bool(double)>;
@@ -54,8 +56,11 @@ struct DecodedInput {
   std::optional<LoadedImage> loaded;  // linear float (re-encoding, piecewise, attributed)
   double megapixels() const;
 };
-DecodedInput decodeForWarp(const WarpCameraFile& camera, const std::string& input,
-                           const std::string& output, const Progress& progress);
+// The stored-type path is taken only where it writes what was asked: the output format keeps
+// the input's kind of sample and --bit-depth, if given, is the input's integer type.
+DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& request,
+                           const std::string& input, const std::string& output,
+                           const Progress& progress);
 
 struct RenderedOutput {
   std::string output;
@@ -72,6 +77,6 @@ struct RenderedOutput {
 RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
                              const WarpRequest& request, const Progress& progress);
 
-void encodeWarp(RenderedOutput& output, const Progress& progress);
+void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress);
 
 }  // namespace artcam::cli

@@ -2,10 +2,15 @@
 #include "core/io/image_input.h"
 
 #include "core/io/io_text.h"
+#include "core/io/jpeg_quality.h"
+#include "core/io/orientation.h"
+#include "core/io/photo_metadata.h"
 
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <system_error>
+#include <utility>
 
 namespace artcam::io_input {
 
@@ -47,6 +52,38 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
                       std::to_string(static_cast<long long>(file_bytes)) +
                       " bytes (corrupt or truncated)");
   return R::success(std::move(in));
+}
+
+int storedOrientation(const OIIO::ImageSpec& spec, const PhotoMetadata* metadata) {
+  if (metadata)
+    if (const int tagged = photoOrientation(*metadata); tagged != 0)
+      return validOrientation(tagged);
+  return validOrientation(spec.get_int_attribute("Orientation", 1));
+}
+
+ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
+                        const std::string& path, const std::string& pixel_type,
+                        const Transfer& transfer, int orientation,
+                        std::shared_ptr<const PhotoMetadata> metadata) {
+  ImageInfo info;
+  info.path = path;
+  info.format_name = in.format_name();
+  info.pixel_type = pixel_type;
+  info.srgb = transfer.kind == Transfer::Kind::Srgb;
+  info.colour_space = transfer.colourSpaceName();
+  info.stored_orientation = orientation;
+  auto upright = std::make_shared<OIIO::ImageSpec>(spec);
+  if (orientationSwapsAxes(info.stored_orientation)) {
+    std::swap(upright->width, upright->height);
+    std::swap(upright->full_width, upright->full_height);
+    std::swap(upright->x, upright->y);
+    std::swap(upright->full_x, upright->full_y);
+  }
+  if (orientation != 1 || spec.find_attribute("Orientation")) upright->attribute("Orientation", 1);
+  info.spec = std::move(upright);
+  if (info.format_name == "jpeg") info.jpeg_quality = estimateJpegQuality(path);
+  info.metadata = std::move(metadata);
+  return info;
 }
 
 }  // namespace artcam::io_input

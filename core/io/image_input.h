@@ -4,7 +4,9 @@
 // type) refuse the same files with the same one-line messages.
 #pragma once
 
+#include "core/io/image_io.h"
 #include "core/io/io_text.h"
+#include "core/colour/transfer.h"
 #include "core/model/status.h"
 
 #include <OpenImageIO/imageio.h>
@@ -31,5 +33,19 @@ inline int keptChannels(const OIIO::ImageSpec& spec) { return spec.nchannels < 4
 inline int keptAlpha(const OIIO::ImageSpec& spec) {
   return spec.alpha_channel >= 0 && spec.alpha_channel < keptChannels(spec) ? spec.alpha_channel : -1;
 }
+
+// The orientation a reader turns the raster upright from (orientation.h), 1..8: exiv2's
+// photoOrientation (EXIF first, then XMP, as the photo conventions and most viewers order
+// them; OpenImageIO 2.4 lets an XMP value override EXIF, and misses some XMP-only ones), else
+// what OpenImageIO reports (other formats' own fields), else 1.
+int storedOrientation(const OIIO::ImageSpec& spec, const PhotoMetadata* metadata);
+
+// What both readers record about a file they decoded: format, pixel type, transfer, the spec
+// turned upright (the upright size, Orientation 1), the orientation it was turned from, a
+// JPEG's estimated quality and `metadata` (readPhotoMetadata's).
+ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
+                        const std::string& path, const std::string& pixel_type,
+                        const Transfer& transfer, int orientation,
+                        std::shared_ptr<const PhotoMetadata> metadata);
 
 }  // namespace artcam::io_input

@@ -15,6 +15,8 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
+#include "core/io/orientation.h"
+#include "core/io/photo_metadata.h"
 #include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -162,12 +164,20 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   if (!associated) premultiply(image);
   in->close();
 
-  loaded.info.path = path;
-  loaded.info.format_name = in->format_name();
-  loaded.info.pixel_type = pixel_type;
-  loaded.info.srgb = transfer.kind == Transfer::Kind::Srgb;
-  loaded.info.colour_space = transfer.colourSpaceName();
-  loaded.info.spec = std::make_shared<const OIIO::ImageSpec>(spec);
+  // Upright, as the photo is shown (orientation.h): a second buffer for a moment, once per read.
+  std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
+  const int orientation = io_input::storedOrientation(spec, metadata.get());
+  if (orientation != 1) {
+    const bool swap = orientationSwapsAxes(orientation);
+    ImageF upright(swap ? image.height : image.width, swap ? image.width : image.height,
+                   image.channels, image.alpha_channel);
+    reorientPixels(image.data.data(), image.width, image.height,
+                   sizeof(float) * static_cast<size_t>(image.channels), orientation,
+                   upright.data.data());
+    image = std::move(upright);
+  }
+  loaded.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
+                                       std::move(metadata));
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));
 }

@@ -23,7 +23,12 @@
 // - Metadata of `like` is carried over except what no longer applies: "oiio:*" and other
 //   format-private attributes ("tiff:*", "png:*", "openexr:*", …), thumbnails, Exif pixel
 //   dimensions, compression settings unless the format is the same, and the ICC profile and
-//   Exif:ColorSpace unless the transfer is the same.
+//   Exif:ColorSpace unless the transfer is the same. Then exiv2 writes `like`'s EXIF, IPTC and
+//   XMP packet as read into the temporary, before the rename (photo_metadata.h).
+// - Orientation: readImage honours the file's EXIF orientation and hands over the upright
+//   photo (orientation.h); what is written is upright and says Orientation 1.
+// - JPEG quality: WriteImageOptions::jpeg_quality, else `like`'s estimated quality when both
+//   are JPEG (a photo keeps its compression), else 95.
 #pragma once
 
 #include "core/model/image.h"
@@ -31,9 +36,12 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace artcam {
+
+struct PhotoMetadata;  // photo_metadata.h
 
 // What a file said about itself, kept so export can write the same format and metadata.
 // Opaque to callers: holds an OpenImageIO ImageSpec without exposing OIIO in this header.
@@ -45,6 +53,11 @@ struct ImageInfo {
   std::string
       colour_space;  // transfer decoded on read: "sRGB", "Linear", "Rec709", "GammaCorrected2.2"
   std::shared_ptr<const void> spec;  // OIIO::ImageSpec of the file (metadata to carry over)
+  // The EXIF orientation the stored raster was turned upright from (orientation.h); the image
+  // handed over is upright and `spec` says Orientation 1.
+  int stored_orientation = 1;
+  int jpeg_quality = 0;  // a JPEG's estimated quality (jpeg_quality.h); 0: not JPEG, unknown
+  std::shared_ptr<const PhotoMetadata> metadata;  // EXIF, IPTC, XMP as read; null: none
 };
 
 struct LoadedImage {
@@ -63,11 +76,16 @@ struct WriteImageOptions {
   // Empty: the input's pixel type if `like` is given, else the format's natural one
   // (uint8 for PNG/JPEG, half for EXR). Else "uint8", "uint16", "half" or "float".
   std::string pixel_type;
-  int jpeg_quality = 95;
+  // 1..100. Empty: `like`'s quality when it is a JPEG too (ImageInfo::jpeg_quality), else 95.
+  std::optional<int> jpeg_quality;
   // Fraction of rows written, between bands; return false to cancel (the write then fails with
   // "cancelled" and no file is left: the save is atomic).
   std::function<bool(double)> progress = {};
 };
+
+// The JPEG quality a write uses: options.jpeg_quality clamped to 1..100, else `like`'s estimate
+// when `like` is a JPEG, else 95.
+int jpegQualityFor(const WriteImageOptions& options, const ImageInfo* like);
 
 // `like` (may be null) supplies metadata and the default pixel type.
 Status writeImage(const std::string& path, const ImageF& image, const ImageInfo* like = nullptr,

@@ -4,6 +4,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_io.h"
 #include "core/io/io_text.h"
+#include "core/io/photo_metadata.h"
 #include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -91,6 +92,12 @@ std::vector<T> quantise(const std::vector<float>& values) {
 
 }  // namespace
 
+int jpegQualityFor(const WriteImageOptions& options, const ImageInfo* like) {
+  if (options.jpeg_quality) return std::clamp(*options.jpeg_quality, 1, 100);
+  if (like && like->format_name == "jpeg" && like->jpeg_quality > 0) return like->jpeg_quality;
+  return 95;
+}
+
 Status writeImage(const std::string& path, const ImageF& image, const ImageInfo* like,
                   const WriteImageOptions& options) {
   const std::string fail = path + ": cannot write: ";
@@ -155,7 +162,7 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   if (format == "jpeg") {
-    const int quality = std::clamp(options.jpeg_quality, 1, 100);
+    const int quality = jpegQualityFor(options, like);
     spec.attribute("CompressionQuality", quality);
     spec.attribute("Compression", "jpeg:" + std::to_string(quality));
   }
@@ -219,6 +226,11 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       return failure(message);
     }
     if (!out->close()) return failure(out->geterror());
+    if (like && like->metadata) {
+      const bool same_transfer = like_transfer && *like_transfer == transfer;
+      return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, same_transfer},
+                                path);
+    }
     return Status::success();
   });
 }

@@ -7,6 +7,8 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
+#include "core/io/orientation.h"
+#include "core/io/photo_metadata.h"
 #include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -193,12 +195,29 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
       case PixelType::Float: premultiplyRows<float>(image); break;
     }
   }
-  image.info.path = path;
-  image.info.format_name = in->format_name();
-  image.info.pixel_type = pixel_type;
-  image.info.srgb = transfer.kind == Transfer::Kind::Srgb;
-  image.info.colour_space = transfer.colourSpaceName();
-  image.info.spec = std::make_shared<const OIIO::ImageSpec>(spec);
+  // Upright here too (orientation.h), so `artcam warp`'s stored path and the float path render
+  // the same photo. The turn needs a second buffer of the input's size for a moment; a warp
+  // holds input + output anyway, so the peak grows only when the output is smaller.
+  std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
+  const int orientation = io_input::storedOrientation(spec, metadata.get());
+  if (orientation != 1) {
+    const bool swap = orientationSwapsAxes(orientation);
+    StoredImage upright;
+    try {
+      upright = makeStoredImage(swap ? image.height : image.width,
+                                swap ? image.width : image.height, channels, alpha, type);
+    } catch (const std::bad_alloc&) {
+      return R::failure(path + ": cannot read: not enough memory to turn " +
+                        std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                        " pixels upright");
+    }
+    reorientPixels(image.bytes.data(), image.width, image.height,
+                   static_cast<size_t>(channels) * static_cast<size_t>(pixelTypeSize(type)),
+                   orientation, upright.bytes.data());
+    image = std::move(upright);
+  }
+  image.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
+                                       std::move(metadata));
   if (options.progress) options.progress(1.0);
   return R::success(std::move(image));
 }
@@ -247,6 +266,14 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
     return Status::failure(fail + "the " + format + " format cannot store these " +
                            (image.type == PixelType::Float ? "float" : "integer") +
                            " samples without re-encoding them");
+  // This path writes the samples it holds; another pixel type goes through writeImage.
+  const char* held = image.type == PixelType::UInt8    ? "uint8"
+                     : image.type == PixelType::UInt16 ? "uint16"
+                     : like && like->pixel_type == "half" ? "half"
+                                                          : "float";
+  if (!options.pixel_type.empty() && options.pixel_type != held)
+    return Status::failure(fail + "the stored-type writer cannot change " + held + " samples to " +
+                           options.pixel_type);
   constexpr int kJpegMaxSide = 65500;  // libjpeg's limit; OIIO 2.4 would exit() past it
   if (format == "jpeg" && (image.width > kJpegMaxSide || image.height > kJpegMaxSide))
     return Status::failure(fail + "JPEG stores at most 65500 pixels per side");
@@ -281,7 +308,7 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
   spec.attribute("oiio:ColorSpace", colour_space);
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   if (format == "jpeg") {
-    const int quality = std::clamp(options.jpeg_quality, 1, 100);
+    const int quality = jpegQualityFor(options, like);
     spec.attribute("CompressionQuality", quality);
     spec.attribute("Compression", "jpeg:" + std::to_string(quality));
   }
@@ -340,6 +367,9 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
       return failure(message);
     }
     if (!out->close()) return failure(out->geterror());
+    // The transfer is the input's (see above), so the colour-space tags still hold.
+    if (like && like->metadata)
+      return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, true}, path);
     return Status::success();
   });
 }

@@ -17,10 +17,10 @@ _artcam_options() {
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
                --quiet -q --stmap" ;;
     map) echo "--json" ;;
-    warp) echo "--output -o --size --filter --threads --stats --json --overwrite --force --quiet
-                -q --depth --depth-scale --disparity" ;;
-    batch) echo "--output -o --suffix --format --first --size --filter --threads --overwrite
-                 --force --json --quiet -q" ;;
+    warp) echo "--output -o --size --filter --threads --quality --bit-depth --stats --json
+                --overwrite --force --quiet -q --depth --depth-scale --disparity" ;;
+    batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
+                 --bit-depth --overwrite --force --json --quiet -q" ;;
     info) echo "--json" ;;
     "bench render") echo "--size --reps --threads --plot --peer --only --filter --no-e2e
                           --overwrite --force" ;;

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "app/cli/write_args.h"
+
+#include <exception>
+#include <stdexcept>
+
+namespace artcam::cli {
+
+std::string pixelTypeForBitDepth(const std::string& bit_depth) {
+  if (bit_depth == "8") return "uint8";
+  if (bit_depth == "16") return "uint16";
+  if (bit_depth == "half" || bit_depth == "float") return bit_depth;
+  throw UsageError("--bit-depth expects 8, 16, half or float, not \"" + bit_depth + "\"");
+}
+
+void parseWriteOptions(const Args& args, WriteImageOptions& options) {
+  if (const auto quality = args.value("--quality")) {
+    int value = 0;
+    try {
+      size_t used = 0;
+      value = std::stoi(*quality, &used);
+      if (used != quality->size()) throw std::invalid_argument(*quality);
+    } catch (const std::exception&) {
+      throw UsageError("--quality expects a whole number from 1 to 100, not \"" + *quality + "\"");
+    }
+    if (value < 1 || value > 100)
+      throw UsageError("--quality expects a whole number from 1 to 100, not \"" + *quality + "\"");
+    options.jpeg_quality = value;
+  }
+  if (const auto bits = args.value("--bit-depth")) options.pixel_type = pixelTypeForBitDepth(*bits);
+}
+
+}  // namespace artcam::cli

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: Apache-2.0
+// --quality N and --bit-depth 8|16|half|float: how the commands that write a photo (export,
+// warp, batch) encode it. One parser, so the three accept and refuse the same spellings.
+#pragma once
+
+#include "app/cli/args.h"
+#include "core/io/image_io.h"
+
+#include <string>
+
+namespace artcam::cli {
+
+// The pixel type named by a --bit-depth value ("8" → "uint8", "16" → "uint16", "half",
+// "float"); throws UsageError for anything else.
+std::string pixelTypeForBitDepth(const std::string& bit_depth);
+
+// Sets options.jpeg_quality from --quality (a whole number 1..100; absent: left empty, so the
+// writer keeps a JPEG input's quality, else 95) and options.pixel_type from --bit-depth
+// (absent: left empty, the input's). Throws UsageError naming the option.
+void parseWriteOptions(const Args& args, WriteImageOptions& options);
+
+}  // namespace artcam::cli

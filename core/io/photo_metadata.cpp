@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/io/photo_metadata.h"
+
+#include "core/io/io_text.h"
+
+#include <exiv2/exiv2.hpp>
+
+#include <cstdint>
+#include <exception>
+#include <mutex>
+#include <set>
+
+namespace artcam {
+
+struct PhotoMetadata {
+  Exiv2::ExifData exif;
+  Exiv2::IptcData iptc;
+  std::string xmp_packet;
+};
+
+namespace {
+
+// Holds the one lock of every exiv2 call; initialises the XMP toolkit and mutes exiv2's
+// warnings on stderr (a command's output stays its own) the first time.
+std::unique_lock<std::mutex> exiv2Lock() {
+  static std::mutex mutex;
+  std::unique_lock<std::mutex> lock(mutex);
+  static const bool initialised = [] {
+    Exiv2::LogMsg::setLevel(Exiv2::LogMsg::mute);
+    Exiv2::XmpParser::initialize();
+    return true;
+  }();
+  (void)initialised;
+  return lock;
+}
+
+// TIFF tags that describe the raster, not the photo: the written file has its own.
+bool isStructureTag(const std::string& key) {
+  static const std::set<std::string> kTags{"Exif.Image.NewSubfileType",
+                                           "Exif.Image.SubfileType",
+                                           "Exif.Image.ImageWidth",
+                                           "Exif.Image.ImageLength",
+                                           "Exif.Image.BitsPerSample",
+                                           "Exif.Image.Compression",
+                                           "Exif.Image.PhotometricInterpretation",
+                                           "Exif.Image.FillOrder",
+                                           "Exif.Image.StripOffsets",
+                                           "Exif.Image.SamplesPerPixel",
+                                           "Exif.Image.RowsPerStrip",
+                                           "Exif.Image.StripByteCounts",
+                                           "Exif.Image.PlanarConfiguration",
+                                           "Exif.Image.Predictor",
+                                           "Exif.Image.TileWidth",
+                                           "Exif.Image.TileLength",
+                                           "Exif.Image.TileOffsets",
+                                           "Exif.Image.TileByteCounts",
+                                           "Exif.Image.SubIFDs",
+                                           "Exif.Image.ExtraSamples",
+                                           "Exif.Image.SampleFormat",
+                                           "Exif.Image.JPEGTables",
+                                           "Exif.Image.InterColorProfile",
+                                           "Exif.Image.XMLPacket",
+                                           "Exif.Image.IPTCNAA",
+                                           "Exif.Image.ImageResources"};
+  return kTags.count(key) > 0;
+}
+
+void setIfPresent(Exiv2::ExifData& exif, const char* key, std::uint32_t value) {
+  // Assigned as LONG: a SHORT field could not hold a size over 65535.
+  if (exif.findKey(Exiv2::ExifKey(key)) != exif.end()) exif[key] = value;
+}
+
+void eraseKey(Exiv2::ExifData& exif, const char* key) {
+  auto at = exif.findKey(Exiv2::ExifKey(key));
+  if (at != exif.end()) exif.erase(at);
+}
+
+Exiv2::ExifData updatedExif(const PhotoMetadata& metadata, const MetadataUpdate& update,
+                            const Exiv2::ExifData& written) {
+  Exiv2::ExifData exif;
+  for (const Exiv2::Exifdatum& d : metadata.exif)
+    if (!isStructureTag(d.key()) && d.groupName().rfind("Thumbnail", 0) != 0) exif.add(d);
+  // The written file's own raster tags (a TIFF's; exiv2 keeps them in any case).
+  for (const Exiv2::Exifdatum& d : written)
+    if (isStructureTag(d.key()) && d.key() != "Exif.Image.XMLPacket" &&
+        d.key() != "Exif.Image.IPTCNAA" && d.key() != "Exif.Image.ImageResources")
+      exif.add(d);
+  Exiv2::ExifThumb(exif).erase();
+  setIfPresent(exif, "Exif.Image.Orientation", 1);
+  setIfPresent(exif, "Exif.Photo.PixelXDimension", static_cast<std::uint32_t>(update.width));
+  setIfPresent(exif, "Exif.Photo.PixelYDimension", static_cast<std::uint32_t>(update.height));
+  if (!update.same_transfer) {
+    eraseKey(exif, "Exif.Photo.ColorSpace");
+    eraseKey(exif, "Exif.Iop.InteroperabilityIndex");
+  }
+  return exif;
+}
+
+// The packet with its stale fields updated, or `packet` itself (changed false) when none is
+// stale or it does not parse: then it is copied byte for byte.
+std::string updatedXmpPacket(const std::string& packet, const MetadataUpdate& update,
+                             bool& changed) {
+  changed = false;
+  if (packet.empty()) return packet;
+  Exiv2::XmpData xmp;
+  if (Exiv2::XmpParser::decode(xmp, packet) != 0) return packet;  // unparsed: verbatim
+  const std::pair<const char*, std::string> fields[] = {
+      {"Xmp.tiff.Orientation", "1"},
+      {"Xmp.exif.PixelXDimension", std::to_string(update.width)},
+      {"Xmp.exif.PixelYDimension", std::to_string(update.height)},
+      {"Xmp.tiff.ImageWidth", std::to_string(update.width)},
+      {"Xmp.tiff.ImageLength", std::to_string(update.height)}};
+  for (const auto& [key, value] : fields) {
+    auto at = xmp.findKey(Exiv2::XmpKey(key));
+    if (at == xmp.end() || at->toString() == value) continue;
+    at->setValue(value);
+    changed = true;
+  }
+  if (!update.same_transfer) {
+    auto at = xmp.findKey(Exiv2::XmpKey("Xmp.exif.ColorSpace"));
+    if (at != xmp.end()) xmp.erase(at), changed = true;
+  }
+  if (!changed) return packet;
+  std::string out;
+  if (Exiv2::XmpParser::encode(out, xmp, Exiv2::XmpParser::useCompactFormat) != 0) {
+    changed = false;
+    return packet;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path) {
+  const auto lock = exiv2Lock();
+  try {
+    if (Exiv2::ImageFactory::getType(path) == Exiv2::ImageType::none) return nullptr;
+    auto image = Exiv2::ImageFactory::open(path);
+    if (!image.get()) return nullptr;
+    image->readMetadata();
+    auto metadata = std::make_shared<PhotoMetadata>();
+    metadata->exif = image->exifData();
+    metadata->iptc = image->iptcData();
+    metadata->xmp_packet = image->xmpPacket();
+    if (metadata->exif.empty() && metadata->iptc.empty() && metadata->xmp_packet.empty())
+      return nullptr;
+    return metadata;
+  } catch (const std::exception&) {
+    return nullptr;  // metadata exiv2 cannot parse is left behind, the pixels are not
+  }
+}
+
+int photoOrientation(const PhotoMetadata& metadata) {
+  const auto lock = exiv2Lock();
+  try {
+    const auto exif = metadata.exif.findKey(Exiv2::ExifKey("Exif.Image.Orientation"));
+    if (exif != metadata.exif.end() && exif->count() > 0) return static_cast<int>(exif->toLong());
+    if (metadata.xmp_packet.empty()) return 0;
+    Exiv2::XmpData xmp;
+    if (Exiv2::XmpParser::decode(xmp, metadata.xmp_packet) != 0) return 0;
+    const auto at = xmp.findKey(Exiv2::XmpKey("Xmp.tiff.Orientation"));
+    return at == xmp.end() || at->count() == 0 ? 0 : static_cast<int>(at->toLong());
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
+
+Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,
+                          const MetadataUpdate& update, const std::string& shown_path) {
+  const auto lock = exiv2Lock();
+  try {
+    const int type = Exiv2::ImageFactory::getType(file);
+    if (type == Exiv2::ImageType::none) return Status::success();
+    auto image = Exiv2::ImageFactory::open(file);
+    if (!image.get()) return Status::success();
+    image->readMetadata();  // the written file's own: ICC profile, a TIFF's raster tags
+    if (Exiv2::ImageFactory::checkMode(type, Exiv2::mdExif) & Exiv2::amWrite)
+      image->setExifData(updatedExif(metadata, update, image->exifData()));
+    if (Exiv2::ImageFactory::checkMode(type, Exiv2::mdIptc) & Exiv2::amWrite)
+      image->setIptcData(metadata.iptc);
+    if (Exiv2::ImageFactory::checkMode(type, Exiv2::mdXmp) & Exiv2::amWrite &&
+        !metadata.xmp_packet.empty()) {
+      bool changed = false;
+      const std::string packet = updatedXmpPacket(metadata.xmp_packet, update, changed);
+      image->setXmpPacket(packet);
+      image->writeXmpFromPacket(true);  // as read, not re-serialised from XmpData
+    }
+    image->writeMetadata();
+    return Status::success();
+  } catch (const std::exception& e) {
+    return Status::failure(shown_path + ": cannot write the metadata: " +
+                           io_text::replaceAll(io_text::oneLine(e.what()), file, shown_path));
+  }
+}
+
+}  // namespace artcam

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: Apache-2.0
+// A photo's EXIF, IPTC and XMP carried to the files made from it, through exiv2.
+//
+// OpenImageIO carries only the metadata it parses into attributes (it drops the XMP packet:
+// ratings, usage terms, Lightroom and darktable edits), so the readers keep the blocks exactly
+// as exiv2 read them (ImageInfo::metadata) and the writers put them into the written file
+// before it is renamed into place (atomic_file.h): a reader never sees the pixels without them.
+//
+// Decisions:
+// - Verbatim except what no longer describes the written file: Exif and XMP orientation become
+//   1 (the readers hand over the upright photo, orientation.h), pixel dimensions become the
+//   written size, the EXIF thumbnail is removed (it shows the unwarped photo), the colour-space
+//   tags (Exif ColorSpace, interoperability index) are removed when the transfer changed, and a
+//   TIFF source's image-structure tags (size, strips, compression) give way to the written
+//   file's own. The XMP packet is copied byte for byte unless it holds one of those fields.
+// - Formats exiv2 cannot write (OpenEXR, HDR, BMP…) keep what OpenImageIO carried.
+// - A source whose metadata exiv2 cannot read is written without it (as before); a failure to
+//   write metadata into a format exiv2 supports fails the save (no file is left).
+// - exiv2 0.27's XMP toolkit is not thread-safe: every exiv2 call here holds one mutex (batch
+//   reads and writes on two threads).
+#pragma once
+
+#include "core/model/status.h"
+
+#include <memory>
+#include <string>
+
+namespace artcam {
+
+struct PhotoMetadata;  // exiv2's Exif and IPTC data and the XMP packet as read
+
+// Null when `path` has no EXIF, IPTC or XMP, or exiv2 does not read its format or its metadata.
+std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path);
+
+// The photo's orientation as the Metadata Working Group orders it: the EXIF tag
+// (Exif.Image.Orientation; a TIFF's own tag), else XMP's tiff:Orientation, else 0 (none).
+int photoOrientation(const PhotoMetadata& metadata);
+
+struct MetadataUpdate {
+  int width = 0;  // the written file's size in pixels
+  int height = 0;
+  bool same_transfer = true;  // false: the colour-space tags are removed
+};
+
+// Writes `metadata` into the finished image file `file` (an atomic save's temporary); errors
+// name `shown_path`, the file the user asked for. Success without writing when exiv2 cannot
+// write `file`'s format.
+Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,
+                          const MetadataUpdate& update, const std::string& shown_path);
+
+}  // namespace artcam
