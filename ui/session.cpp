@@ -556,8 +556,12 @@ void Session::exportImageDialog() {
   const QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export warped image"),
                                                     suggestion, photoFilter());
   if (path.isEmpty()) return;
+  // The dialog offers the photo's own JPEG quality until the user picks one (as a write does).
+  ExportOptions current = export_options_;
+  if (!current.write.jpeg_quality && document_->photo()->full.info.jpeg_quality > 0)
+    current.write.jpeg_quality = document_->photo()->full.info.jpeg_quality;
   const std::optional<ExportOptions> options =
-      ExportOptionsDialog::ask(export_options_, path, dialog_parent_);
+      ExportOptionsDialog::ask(current, path, dialog_parent_);
   if (!options) return;
   export_options_ = *options;
   exportImage(path);
