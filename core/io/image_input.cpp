@@ -6,13 +6,31 @@
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <memory>
 #include <system_error>
 #include <utility>
 
+#include <unistd.h>
+
 namespace artcam::io_input {
+
+double memoryBudgetBytes() {
+  if (const char* text = std::getenv("ARTCAM_MAX_MEMORY_MB"); text && *text) {
+    char* end = nullptr;
+    const double mb = std::strtod(text, &end);
+    if (end && *end == '\0' && mb > 0.0 && std::isfinite(mb)) return mb * 1024.0 * 1024.0;
+  }
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return 4.0 * 1024.0 * 1024.0 * 1024.0;  // unknown: 4 GiB
+  return 0.5 * static_cast<double>(pages) * static_cast<double>(page);
+}
 
 Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
   using R = Result<OIIO::ImageInput::unique_ptr>;
@@ -51,6 +69,26 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
                       " MB decoded) but the file holds only " +
                       std::to_string(static_cast<long long>(file_bytes)) +
                       " bytes (corrupt or truncated)");
+  // The padding above cannot buy memory: whatever the file's size, the photo as the engine holds
+  // it (float, at least the 4 channels of a render) must fit the memory budget, checked here from
+  // the header before any pixel is allocated.
+  const double float_bytes = static_cast<double>(spec.width) * static_cast<double>(spec.height) *
+                             std::max(4.0, static_cast<double>(spec.nchannels)) * 4.0;
+  const double budget = memoryBudgetBytes();
+  if (float_bytes > budget) {
+    const auto gib = [](double b) {
+      char text[32];
+      if (b < 1024.0 * 1024.0 * 1024.0)
+        std::snprintf(text, sizeof text, "%.1f MiB", b / (1024.0 * 1024.0));
+      else
+        std::snprintf(text, sizeof text, "%.1f GiB", b / (1024.0 * 1024.0 * 1024.0));
+      return std::string(text);
+    };
+    return R::failure(path + ": cannot read: " + std::to_string(spec.width) + "x" +
+                      std::to_string(spec.height) + " pixels need " + gib(float_bytes) +
+                      " as float, more than the memory budget of " + gib(budget) +
+                      " (half this machine's memory; ARTCAM_MAX_MEMORY_MB sets it)");
+  }
   return R::success(std::move(in));
 }
 

@@ -16,8 +16,14 @@
 namespace artcam::io_input {
 
 // A regular file OpenImageIO opens, with at least one pixel and channel and not a volume; alpha
-// is asked for unassociated (the readers premultiply themselves).
+// is asked for unassociated (the readers premultiply themselves). Refuses, from the header,
+// sizes no codec could decode from the file's bytes and photos whose float copy would exceed
+// the memory budget.
 Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path);
+
+// The memory one photo may take as float: ARTCAM_MAX_MEMORY_MB when set (> 0), else half of
+// the machine's physical memory.
+double memoryBudgetBytes();
 
 // A decode that returned true may still have met damage: libjpeg fills a truncated JPEG with
 // grey and only warns, which OIIO records as an error. Call after reading; failure names the

@@ -138,6 +138,34 @@ class TestHostileImages : public QObject {
     expectRefusedEverywhere(file, "claims 100000x100000 pixels");
   }
 
+  // Padding defeats a bytes-per-file-byte bound: 100 000 × 100 000 RGB claimed by a file padded
+  // to 8 MB passes it (30 GB decoded < 4096 × 8 MB), but its float copy (160 GB) is far over the
+  // memory budget, which is checked from the header before anything is allocated.
+  void paddedGiantHeaderIsRefusedByTheMemoryBudget() {
+    const std::string file = path("giant-padded.png");
+    spit(file, pngHeaderOnly(100000, 100000) + std::string(8u << 20, '\0'));
+    expectRefusedEverywhere(file, "more than the memory budget");
+  }
+
+  // The budget is a setting: ARTCAM_MAX_MEMORY_MB below a photo's float size refuses it, naming
+  // the size and the budget; without it the same photo reads.
+  void memoryBudgetCanBeSet() {
+    const std::string file = path("budget.png");
+    ImageF img(400, 300, 3);
+    QVERIFY(writeImage(file, img).ok);
+    qputenv("ARTCAM_MAX_MEMORY_MB", "1");
+    const auto refused = readImage(file);
+    const auto refused_stored = readStoredImage(file);
+    qunsetenv("ARTCAM_MAX_MEMORY_MB");
+    QVERIFY(!refused.ok() && !refused_stored.ok());
+    // 400 × 300 × 4 channels × 4 bytes = 1 920 000 bytes = 1.8 MiB.
+    QVERIFY2(refused.status.message.find("400x300 pixels need 1.8 MiB as float, more than the "
+                                         "memory budget of 1.0 MiB") != std::string::npos,
+             refused.status.message.c_str());
+    QVERIFY(readImage(file).ok());
+    QVERIFY(io_input::memoryBudgetBytes() > 256.0 * 1024 * 1024);  // half of any real machine
+  }
+
   // 65 536 × 32 768 = 2^31 grey pixels from a 126-byte file.
   void giantTiffHeaderIsRefusedBeforeAllocating() {
     const std::string file = path("giant.tif");
