@@ -67,6 +67,10 @@ Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& op
       isInteger(static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype)) ? options.scale : 1.0;
   if (!readFirstChannel(in, values))
     return R::failure(path + ": cannot read pixels: " + io_text::oneLine(in.geterror()));
+  // A decoder that reports damage but returns success (a TIFF cut in half) would leave the rest
+  // of the map as holes: refused like the image readers refuse it.
+  if (const Status damage = io_input::decodeProblems(in, path); !damage)
+    return R::failure(damage.message);
 
   const double disparity_factor = options.baseline_focal > 0.0 ? options.baseline_focal
                                   : options.inverse            ? 1.0

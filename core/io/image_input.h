@@ -28,9 +28,20 @@ double memoryBudgetBytes();
 // A decode that returned true may still have met damage: libjpeg fills a truncated JPEG with
 // grey and only warns, which OIIO records as an error. Call after reading; failure names the
 // file and OIIO's message.
+// A damaged file makes one error per strip or scanline: the first is named, the rest counted.
 inline Status decodeProblems(OIIO::ImageInput& in, const std::string& path) {
   if (!in.has_error()) return Status::success();
-  return Status::failure(path + ": cannot read: " + io_text::oneLine(in.geterror()));
+  std::string errors = in.geterror();
+  while (!errors.empty() && errors.back() == '\n') errors.pop_back();
+  const size_t first_end = errors.find('\n');
+  std::string message = io_text::oneLine(errors.substr(0, first_end));
+  if (first_end != std::string::npos) {
+    size_t more = 0;
+    for (size_t at = first_end; at != std::string::npos; at = errors.find('\n', at + 1)) ++more;
+    message += " (and " + std::to_string(more) + " more decoder error" + (more == 1 ? "" : "s") +
+               ": the file is damaged or cut short)";
+  }
+  return Status::failure(path + ": cannot read: " + message);
 }
 
 // Channels a reader keeps (beyond the fourth — EXR depth, masks — they are left behind) and the

@@ -10,6 +10,7 @@
 #include <QtTest/QtTest>
 
 #include <cmath>
+#include <filesystem>
 #include <cstdint>
 #include <vector>
 
@@ -84,6 +85,26 @@ class TestDepthFile : public QObject {
     DepthFileOptions bad;
     bad.scale = 0.0;
     QVERIFY(!readDepthFile(path, bad).ok());
+  }
+
+  // A float TIFF cut in half: the decoder reports damaged strips yet returns success, which
+  // left the lower half of the map as holes. The reader refuses it, naming the file, the first
+  // decoder error and how many more there were.
+  void truncatedMapIsRefused() {
+    QTemporaryDir dir;
+    const std::string path = dir.filePath("z.tif").toStdString();
+    const int w = 400, h = 300;
+    std::vector<float> z(static_cast<size_t>(w) * h);
+    for (size_t i = 0; i < z.size(); ++i) z[i] = 1.0f + static_cast<float>(i % 977) * 0.01f;
+    QVERIFY(writeGrey(path, w, h, z, OIIO::TypeDesc::FLOAT));
+    QVERIFY(readDepthFile(path).ok());
+    const auto size = std::filesystem::file_size(path);
+    std::filesystem::resize_file(path, size / 2);
+    const auto cut = readDepthFile(path);
+    QVERIFY(!cut.ok());
+    QVERIFY2(cut.status.message.rfind(path + ": cannot read", 0) == 0, cut.status.message.c_str());
+    QVERIFY2(cut.status.message.find('\n') == std::string::npos, cut.status.message.c_str());
+    QVERIFY2(cut.status.message.size() < 400, cut.status.message.c_str());
   }
 
   // The one reader's remaining rules (depth_file.h): a float file ignores the count scale;
