@@ -121,6 +121,11 @@ ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
   info.spec = std::move(upright);
   if (info.format_name == "jpeg") info.jpeg_quality = estimateJpegQuality(path);
   info.metadata = std::move(metadata);
+  for (int c = keptChannels(spec); c < spec.nchannels; ++c)
+    info.dropped_channels.push_back(c < static_cast<int>(spec.channelnames.size()) &&
+                                            !spec.channelnames[static_cast<size_t>(c)].empty()
+                                        ? spec.channelnames[static_cast<size_t>(c)]
+                                        : "channel " + std::to_string(c));
   return info;
 }
 

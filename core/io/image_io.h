@@ -38,6 +38,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace artcam {
 
@@ -58,6 +59,9 @@ struct ImageInfo {
   int stored_orientation = 1;
   int jpeg_quality = 0;  // a JPEG's estimated quality (jpeg_quality.h); 0: not JPEG, unknown
   std::shared_ptr<const PhotoMetadata> metadata;  // EXIF, IPTC, XMP as read; null: none
+  // Channels beyond the four a reader keeps (an EXR's Z, AOVs, a fifth TIFF channel), by name:
+  // they are not read, so commands that write the image say they are left out.
+  std::vector<std::string> dropped_channels;
 };
 
 struct LoadedImage {
