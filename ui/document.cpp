@@ -10,6 +10,7 @@ namespace artcam::ui {
 
 Document::Document(QObject* parent) : QObject(parent) {
   camera_ = identityImageCamera({});
+  composeStack();
   assemble();
   // Effects that read depth join the camera when the first depth appears and leave it when the
   // last goes; other depth edits change only the raster the renderers read.
@@ -32,6 +33,7 @@ void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
   selection_.clear();
   depth_.reset(frame());
   has_depth_ = depth_.hasDepth();
+  composeStack();
   refit();
   undo_stack_.setClean();
   emit photoChanged();
@@ -112,6 +114,7 @@ void Document::setModel(ModelClass model) {
 
 void Document::setEffects(std::vector<EffectStep> effects) {
   effects_ = std::move(effects);
+  composeStack();
   assemble();
   emit effectsChanged();
   emit cameraChanged();
@@ -120,6 +123,7 @@ void Document::setEffects(std::vector<EffectStep> effects) {
 void Document::onDepthChanged() {
   if (depth_.hasDepth() == has_depth_) return;
   has_depth_ = depth_.hasDepth();
+  composeStack();
   assemble();
   emit cameraChanged();
 }
@@ -170,6 +174,11 @@ void Document::applyFit(FittedCamera fitted) {
   assemble();
 }
 
+void Document::composeStack() {
+  const FrameSize f = frame().isImage() ? frame() : FrameSize{1, 1};
+  stack_ = composeEffectStack(effects_, f, has_depth_);
+}
+
 void Document::assemble() {
   std::string base_note;
   Artcam base(camera_);
@@ -178,7 +187,8 @@ void Document::assemble() {
   } catch (const std::exception& e) {
     base_note = std::string("the colour block could not be added to every layer: ") + e.what();
   }
-  whole_ = assembleDocumentArtcam(base, effects_, frame(), has_depth_);
+  // Every refit passes here (a drag's worker fits too): only the cheap join with the stack.
+  whole_ = assembleDocumentArtcam(base, stack_);
   if (!base_note.empty()) whole_.note = base_note + (whole_.note.empty() ? "" : "; " + whole_.note);
 }
 

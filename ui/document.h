@@ -135,7 +135,8 @@ class Document : public QObject {
   FitInputs fitInputs() const;
   void applyFit(FittedCamera fitted);
   void onWorkerFit(FittedCamera fitted, quint64 revision);
-  void assemble();  // whole_ from camera_, the manual camera, the colour block and the effects
+  void assemble();  // whole_ from camera_, the manual camera, the colour block and stack_
+  void composeStack();  // stack_ from effects_, the frame and has_depth_ (the costly part)
   void onDepthChanged();
 
   QUndoStack undo_stack_;
@@ -146,6 +147,7 @@ class Document : public QObject {
   std::optional<Artcam> manual_camera_;
   std::optional<Camera> colour_block_;
   std::vector<EffectStep> effects_;
+  EffectStack stack_;  // effects_ composed; remade only when they or has_depth_ change
   DocumentArtcam whole_;
   bool has_depth_ = false;  // depth_.hasDepth() when whole_ was assembled
   FitSummary fit_;

@@ -81,12 +81,9 @@ Artcam documentBase(const std::optional<Artcam>& manual, const Camera& geometry,
   return base;
 }
 
-DocumentArtcam assembleDocumentArtcam(const Artcam& base, const std::vector<EffectStep>& effects,
-                                      FrameSize frame, bool has_depth) {
-  DocumentArtcam out;
-  out.camera = base;
-  // Effects act on the picture the geometry makes: its target frame.
-  const FrameSize effect_frame = base.targetSize().isImage() ? base.targetSize() : frame;
+EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize frame,
+                               bool has_depth) {
+  EffectStack out;
   auto leaveOut = [&out](size_t i, const EffectStep& step, const std::string& why) {
     if (!out.note.empty()) out.note += "; ";
     out.note += "effect " + std::to_string(i + 1) + " (" + step.effect + ") left out: " + why;
@@ -104,20 +101,43 @@ DocumentArtcam assembleDocumentArtcam(const Artcam& base, const std::vector<Effe
       continue;
     }
     try {
-      const Artcam effect = buildEffect(step.effect, step.values, effect_frame);
-      std::string description;
-      Result<Artcam> composed = composeArtcams(out.camera, effect, &description);
-      if (!composed) {
-        leaveOut(i, step, composed.status.message);
-        continue;
+      Artcam effect = buildEffect(step.effect, step.values, frame);
+      if (out.camera) {
+        Result<Artcam> composed = composeArtcams(*out.camera, effect);
+        if (!composed) {
+          leaveOut(i, step, composed.status.message);
+          continue;
+        }
+        effect = std::move(*composed.value);
       }
-      out.camera = std::move(*composed.value);
+      out.camera = std::move(effect);
       out.applied.push_back(static_cast<int>(i));
     } catch (const std::exception& e) {
       leaveOut(i, step, e.what());
     }
   }
   return out;
+}
+
+DocumentArtcam assembleDocumentArtcam(const Artcam& base, const EffectStack& stack) {
+  DocumentArtcam out{base, {}, stack.note};
+  if (!stack.camera) return out;
+  Result<Artcam> composed = composeArtcams(base, *stack.camera);
+  if (!composed) {
+    out.note += std::string(out.note.empty() ? "" : "; ") +
+                "the effects left out: they cannot follow this camera: " + composed.status.message;
+    return out;
+  }
+  out.camera = std::move(*composed.value);
+  out.applied = stack.applied;
+  return out;
+}
+
+DocumentArtcam assembleDocumentArtcam(const Artcam& base, const std::vector<EffectStep>& effects,
+                                      FrameSize frame, bool has_depth) {
+  // Effects act on the picture the geometry makes: its target frame.
+  const FrameSize effect_frame = base.targetSize().isImage() ? base.targetSize() : frame;
+  return assembleDocumentArtcam(base, composeEffectStack(effects, effect_frame, has_depth));
 }
 
 }  // namespace artcam
