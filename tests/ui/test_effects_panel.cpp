@@ -23,20 +23,6 @@ using namespace artcam::ui;
 
 namespace {
 
-// Mean absolute difference per 8-bit channel (RGB) of two images of one size.
-double meanDifference(const QImage& a, const QImage& b) {
-  const QImage x = a.convertToFormat(QImage::Format_RGBA8888);
-  const QImage y = b.convertToFormat(QImage::Format_RGBA8888);
-  double sum = 0.0;
-  for (int r = 0; r < x.height(); ++r) {
-    const uchar* p = x.constScanLine(r);
-    const uchar* q = y.constScanLine(r);
-    for (int c = 0; c < x.width() * 4; ++c)
-      if (c % 4 != 3) sum += std::abs(int(p[c]) - int(q[c]));
-  }
-  return sum / (3.0 * x.width() * x.height());
-}
-
 DepthPlaneLayer wholePhotoPlane(const DepthModel& depth, double near, double far) {
   DepthPlaneLayer layer = depth.makeLayer();
   const double w = depth.frame().width, h = depth.frame().height;
@@ -130,8 +116,8 @@ class TestEffectsPanel : public QObject {
     options.warp = RenderWorker::passOptions(after.width(), after.height());
     const QImage want = qimageFromLinear(render(RenderInputs::of(photo->preview), barrel, options));
     QCOMPARE(after.size(), want.size());
-    const double off = meanDifference(after, want);
-    const double unchanged = meanDifference(before, want);
+    const double off = test::meanDifference(after, want);
+    const double unchanged = test::meanDifference(before, want);
     // The preview samples the photo's 8-bit pyramid, the direct render the float preview copy.
     QVERIFY2(off < 2.5, qPrintable(QString("preview differs from the effect by %1").arg(off)));
     QVERIFY2(unchanged > 4 * off + 1.0, qPrintable(QString("the effect is invisible: %1").arg(unchanged)));

@@ -27,19 +27,6 @@ using namespace artcam::ui;
 
 namespace {
 
-double meanDifference(const QImage& a, const QImage& b) {
-  const QImage x = a.convertToFormat(QImage::Format_RGBA8888);
-  const QImage y = b.convertToFormat(QImage::Format_RGBA8888);
-  double sum = 0.0;
-  for (int r = 0; r < x.height(); ++r) {
-    const uchar* p = x.constScanLine(r);
-    const uchar* q = y.constScanLine(r);
-    for (int c = 0; c < x.width() * 4; ++c)
-      if (c % 4 != 3) sum += std::abs(int(p[c]) - int(q[c]));
-  }
-  return sum / (3.0 * x.width() * x.height());
-}
-
 // Opens `path` in the window and waits for the photo, the depth planes and a final preview of
 // the whole camera (the depth reaches the preview through the overlay's throttled raster).
 bool openAndSettle(MainWindow& window, const QString& path) {
@@ -88,10 +75,10 @@ class TestProjectExport : public QObject {
     QCOMPARE(full.width, 600);
     const QImage scaled = qimageFromLinear(boxDownscale(full, std::max(preview.width(), preview.height())));
     QCOMPARE(scaled.size(), preview.size());
-    const double off = meanDifference(scaled, preview);
+    const double off = artcam::ui::test::meanDifference(scaled, preview);
     // Without the effects the picture is far from it: the comparison can tell.
     const QImage photo = qimageFromLinear(boxDownscale(doc->photo()->full.image, scaled.width()));
-    const double plain = meanDifference(photo, preview);
+    const double plain = artcam::ui::test::meanDifference(photo, preview);
     qInfo("preview vs downscaled export: %.2f codes; vs the plain photo: %.2f", off, plain);
     QVERIFY2(off < 3.0, qPrintable(QString("preview vs export: %1 codes").arg(off)));
     QVERIFY2(plain > 4 * off + 2.0, qPrintable(QString("photo vs preview: %1 codes").arg(plain)));

@@ -97,6 +97,20 @@ inline QImage directPreviewRender(const Document& d) {
   return out;
 }
 
+// Mean absolute difference per 8-bit colour channel (alpha ignored) of two images of one size.
+inline double meanDifference(const QImage& a, const QImage& b) {
+  const QImage x = a.convertToFormat(QImage::Format_RGBA8888);
+  const QImage y = b.convertToFormat(QImage::Format_RGBA8888);
+  double sum = 0.0;
+  for (int r = 0; r < x.height(); ++r) {
+    const uchar* p = x.constScanLine(r);
+    const uchar* q = y.constScanLine(r);
+    for (int c = 0; c < x.width() * 4; ++c)
+      if (c % 4 != 3) sum += std::abs(int(p[c]) - int(q[c]));
+  }
+  return sum / (3.0 * x.width() * x.height());
+}
+
 inline void click(QWidget* w, const QPoint& pos, Qt::KeyboardModifiers mods = Qt::NoModifier) {
   sendMouse(w, QEvent::MouseButtonPress, pos, Qt::LeftButton, Qt::LeftButton, mods);
   sendMouse(w, QEvent::MouseButtonRelease, pos, Qt::LeftButton, Qt::NoButton, mods);
