@@ -4,12 +4,15 @@
 // in code; the error is the distance (source pixels) between the fused kernel's source
 // positions and an exact double-precision inverse (coordinates.h, makeReferenceInverse).
 #include "app/cli/args.h"
+#include "app/cli/bench_suite.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
+#include "core/pipeline/render.h"
 #include "core/render/coordinates.h"
 #include "core/render/mip_pyramid.h"
 #include "core/model/pixel_buffer.h"
@@ -35,7 +38,9 @@ namespace artcam::cli {
 
 const char* const kBenchUsage =
     "usage: artcam bench render [--size WxH] [--reps N] [--threads LIST] [--plot OUT.png]\n"
-    "                           [--peer DIR] [--only KERNEL,…] [--no-e2e] [--overwrite]\n"
+    "                           [--peer DIR] [--only KERNEL,…] [--no-suite] [--no-e2e]\n"
+    "                           [--overwrite]\n"
+    "       artcam bench render --cameras CAM.artcam [CAM.artcam …] [--size WxH] …\n"
     "       artcam bench fit [--counts LIST] [--noise LIST] [--seconds S] [--methods LIST]\n"
     "                        [--plot OUT.png] [--colour] [--overwrite]\n"
     "       artcam bench effects …   (artcam bench effects --help)\n\n"
@@ -48,13 +53,23 @@ const char* const kBenchUsage =
     "where cpu_ms is the process CPU time of the median render (all threads; on a loaded\n"
     "shared machine it stays near the unloaded wall time × threads while ms grows), and the\n"
     "error is the distance of the kernel's source positions from an exact double-precision\n"
-    "inverse on a sample of rows. A memcpy row (source \"memcpy\") gives the copy ceiling.\n"
+    "inverse on a sample of rows, where the exact preimage lies within 2 px of the source\n"
+    "frame (beyond, the output is transparent whatever the position). A memcpy row\n"
+    "(source \"memcpy\") gives the copy ceiling.\n"
+    "Then the camera suite (source \"suite\"), bilinear, through the render front door:\n"
+    "the homography (the yardstick), quadratic fits of a compact zoom's, a wide angle's and\n"
+    "a fisheye's radial distortion, every image preset at its default and a strong setting\n"
+    "(barrel-strong leaves the corners without a preimage), and the fisheye as a piecewise\n"
+    "camera; stderr gives each camera's time as a multiple of the homography's.\n"
     "  --size WxH       image size (default 6000x4000)\n"
     "  --reps N         renders per row, the median is reported (default 5)\n"
     "  --threads LIST   comma-separated thread counts (default 1,2)\n"
     "  --plot OUT.png   a PNG of speed (x, log) against error (y, log), one colour per kernel\n"
     "  --overwrite      replace an existing OUT.png (--force is the same; bench fit too)\n"
     "  --peer DIR       also run DIR/cvwarp (the OpenCV maps + remap peer) on the same image\n"
+    "  --cameras FILE…  time these .artcam files (after the homography yardstick) instead of\n"
+    "                   the kernel rows and the suite, e.g. lenses from `artcam lens camera`\n"
+    "  --no-suite       skip the camera suite\n"
     "  --only LIST      run only the named kernels (default: all)\n"
     "  --filter LIST    run only the named filters: nearest,bilinear,bicubic (default: all)\n"
     "  --no-e2e         skip the last part: `artcam warp`'s path on a JPEG of the image\n"
@@ -164,6 +179,12 @@ PositionError measureError(const Camera& camera, FrameSize size) {
       choice.kernel->span(y, x0, n, sx, sy, valid, row_state);
       for (int i = 0; i < n; ++i) {
         const size_t k = static_cast<size_t>(x0 + i);
+        // Only where the output can show it: an exact preimage within bicubic's reach (2 px)
+        // of the source frame. Beyond, the pixel is transparent whatever position the kernel
+        // gives it, or whether it gives one (inverse_cells.h: empty cells).
+        if (exact_valid[k] && (exact[k].x() < -2.0 || exact[k].y() < -2.0 || exact[k].x() > size.width + 2.0 ||
+                               exact[k].y() > size.height + 2.0))
+          continue;
         if ((valid[i] != 0) != (exact_valid[k] != 0)) ++e.validity_mismatch;
         if (!valid[i] || !exact_valid[k]) continue;
         const double d = std::hypot(sx[i] - exact[k].x(), sy[i] - exact[k].y());
@@ -384,6 +405,103 @@ void endToEndJpeg(const PixelBuffer& pixels, FrameSize size, const Camera& camer
 
 }  // namespace
 
+// The largest position error of an Artcam's geometry against the exact inverse: every layer's
+// camera; negative where there is no figure (piecewise cameras: their mesh warp is measured
+// against each patch by the piecewise tests, not here).
+double suiteError(const Artcam& camera, FrameSize size) {
+  if (camera.isPiecewise()) return -1.0;
+  double worst = 0.0;
+  for (const Camera& layer : camera.layers) {
+    try {
+      worst = std::max(worst, measureError(layer, size).max);
+    } catch (const std::exception&) {
+      return -1.0;
+    }
+  }
+  return worst;
+}
+
+// The camera suite (bench_suite.h) or --cameras files, each rendered through the render front
+// door on the RGB8 image (layered and piecewise cameras from its linear float copy, as every
+// caller does), bilinear, median of `reps`. Returns the rows; prints each, and on stderr each
+// camera's time as a multiple of the homography's.
+std::vector<Row> runSuite(const std::vector<SuiteCamera>& suite, const PixelBuffer& pixels,
+                          FrameSize size, const std::vector<int>& thread_counts, int reps) {
+  std::vector<Row> rows;
+  const ConstImageView src = packedView<const void>(pixels.data(), size.width, size.height, 3, PixelType::UInt8);
+  std::optional<ImageF> linear;
+  std::unique_ptr<PixelBuffer> out8;
+  std::optional<ImageF> outf;
+  std::map<int, double> homography_ms;
+  const double mpix = size.width * static_cast<double>(size.height) / 1e6;
+  for (const SuiteCamera& c : suite) {
+    const bool float_path = needsLinearPhoto(c.camera);
+    if (float_path && !linear) {
+      linear.emplace(size.width, size.height, 4, 3);
+      for (size_t i = 0, n = static_cast<size_t>(size.width) * static_cast<size_t>(size.height); i < n; ++i) {
+        for (int k = 0; k < 3; ++k) {
+          const float v = pixels[i * 3 + static_cast<size_t>(k)] / 255.0f;
+          linear->data[i * 4 + static_cast<size_t>(k)] = v * v;  // near enough to linear for timing
+        }
+        linear->data[i * 4 + 3] = 1.0f;
+      }
+    }
+    const OutputFrame frame = outputFrameFor(c.camera, size);
+    const double err = suiteError(c.camera, size);
+    for (int threads : thread_counts) {
+      RenderOptions o;
+      o.warp.filter = Filter::Bilinear;
+      o.warp.threads = threads;
+      RenderInputs in;
+      in.photo = src;
+      if (float_path) in.linear = &*linear;
+      ImageView out;
+      if (float_path) {
+        if (!outf || outf->width != frame.size.width || outf->height != frame.size.height)
+          outf.emplace(frame.size.width, frame.size.height, 4, 3);
+        out = packedView<void>(outf->data.data(), outf->width, outf->height, 4, PixelType::Float, 3);
+      } else {
+        const size_t bytes = static_cast<size_t>(frame.size.width) * static_cast<size_t>(frame.size.height) * 4;
+        if (!out8 || out8->size() != bytes) out8 = std::make_unique<PixelBuffer>(bytes);
+        out = packedView<void>(out8->data(), frame.size.width, frame.size.height, 4, PixelType::UInt8, 3);
+      }
+      std::vector<double> times, cpu;
+      RenderSummary s;
+      try {
+        render(in, c.camera, o, out, &s);  // warm-up
+        for (int r = 0; r < reps; ++r) {
+          const double c0 = processCpuMs();
+          render(in, c.camera, o, out, &s);
+          cpu.push_back(processCpuMs() - c0);
+          times.push_back(s.render_ms);
+        }
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench: %s: %s\n", c.name.c_str(), e.what());
+        break;
+      }
+      Row row;
+      row.source = "suite";
+      row.kernel = c.name;
+      row.filter = "bilinear";
+      row.threads = threads;
+      row.ms = medianOf(times);
+      row.cpu_ms = medianOf(cpu);
+      row.mpix = mpix / (row.ms / 1000.0);
+      row.max_err = err;
+      printRow(row);
+      rows.push_back(row);
+      if (c.name == "homography") homography_ms[threads] = row.ms;
+      const auto h = homography_ms.find(threads);
+      std::fprintf(stderr, "suite: %-28s %d thr %8.1f ms  %s  max err %s px  (%s, %s)\n", c.name.c_str(),
+                   threads, row.ms,
+                   h == homography_ms.end() ? "" : ("x" + std::to_string(row.ms / h->second).substr(0, 5) + " homography").c_str(),
+                   err < 0 ? "-" : std::to_string(err).c_str(), std::string(renderPathName(s.path)).c_str(),
+                   s.kernel.c_str());
+    }
+  }
+  return rows;
+}
+
 int benchCommand(const std::vector<std::string>& argv) {
   if (!argv.empty() && argv[0] == "fit") return benchFitCommand({argv.begin() + 1, argv.end()});
   if (!argv.empty() && argv[0] == "effects") return benchEffectsCommand({argv.begin() + 1, argv.end()});
@@ -395,9 +513,13 @@ int benchCommand(const std::vector<std::string>& argv) {
                          {"--only", "", true},
                          {"--filter", "", true},
                          {"--no-e2e", "", false},
+                         {"--cameras", "", true},
+                         {"--no-suite", "", false},
                          {"--overwrite", "", false},
                          {"--force", "", false}});
-  args.expectPositional(1, "what to benchmark (render)");
+  // --cameras FILE… : the first file is the option's value, the rest follow as arguments.
+  if (!args.has("--cameras")) args.expectPositional(1, "what to benchmark (render)");
+  else if (args.positional().empty()) throw UsageError("missing what to benchmark (render)");
   if (args.positional()[0] != "render")
     throw UsageError("bench what? \"render\", \"fit\" or \"effects\"",
                      didYouMean(args.positional()[0], {"render", "fit", "effects"}));
@@ -450,7 +572,21 @@ int benchCommand(const std::vector<std::string>& argv) {
   std::vector<Row> rows;
   const std::string only = args.valueOr("--only", "");
   const std::string filters = args.valueOr("--filter", "");
+  // --cameras: those files (after the homography yardstick) instead of the kernel rows and the
+  // built-in suite.
+  const bool files_only = args.has("--cameras");
+  std::vector<SuiteCamera> files;
+  if (files_only) {
+    std::vector<std::string> paths{*args.value("--cameras")};
+    paths.insert(paths.end(), args.positional().begin() + 1, args.positional().end());
+    for (const std::string& path : paths) {
+      Result<Artcam> camera = readArtcam(path);
+      if (!camera) throw CommandError(camera.status.message);
+      files.push_back({std::filesystem::path(path).stem().string(), std::move(*camera)});
+    }
+  }
   for (const Case& c : makeCases(size)) {
+    if (files_only) break;
     if (!only.empty() && ("," + only + ",").find("," + c.name + ",") == std::string::npos) continue;
     const PositionError err = measureError(c.camera, size);
     if (err.validity_mismatch)
@@ -497,7 +633,15 @@ int benchCommand(const std::vector<std::string>& argv) {
       printRow(r);
       rows.push_back(r);
     }
-  if (!args.has("--no-e2e")) endToEndJpeg(pixels, size, makeCases(size)[4].camera);
+  if (files_only || !args.has("--no-suite")) {
+    std::vector<SuiteCamera> suite = benchCameraSuite(size);
+    if (files_only) {
+      suite.resize(1);  // the homography, the yardstick
+      for (SuiteCamera& f : files) suite.push_back(std::move(f));
+    }
+    for (const Row& r : runSuite(suite, pixels, size, thread_counts, reps)) rows.push_back(r);
+  }
+  if (!files_only && !args.has("--no-e2e")) endToEndJpeg(pixels, size, makeCases(size)[4].camera);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   std::fprintf(stderr, "peak_rss_mib=%.1f (image in + out: %.1f MiB)\n", usage.ru_maxrss / 1024.0,

@@ -2,6 +2,7 @@
 #include "core/render/coordinates.h"
 
 #include "core/model/frames.h"
+#include "core/render/inverse_cells.h"
 #include "core/render/inverse_seed.h"
 #include "core/util/parallel.h"
 
@@ -293,205 +294,194 @@ void checkSpanScalar(const CheckInputs& in, double tx0, double ty, const double*
   checkSpanBody(in, tx0, ty, bx, by, qx, qy, passed);
 }
 
-// A certified cell's pixels (RationalKernel::fastSpan): the seed by its closed-form quadratics
-// along the row, n_k(i) = c_k + i (b_k + i a_k) at pixel x0 + i (eq 3), one division per pixel,
-// plus the grid correction, linear along the cell: corr(i) = l + i · slope. kGridPixels lanes
-// from pixel `first`, no branches, so it vectorises.
-struct SeedRow {
-  double a[3], b[3], c[3];
-  double lx, ly, slope_x, slope_y;
-};
-constexpr int kGridPixels = kSpanPixels / 2;  // RationalKernel::kGrid
+// A certified cell's pixels: its patch's cubic along the row (inverse_cells.h),
+// s(u) = c0 + u (c1 + u (c2 + u c3)) at u_j = (j + 0.5) / kCell, in float: c0 is rounded once
+// to float like every position (half an ulp ≤ 2.4e-4 px at 6000 px), the offset from it
+// (≤ a cell's stretch) to ~1e-6 px. No division, no branch.
+constexpr int kCellPixels = InverseCells::kCell;
+static_assert(kSpanPixels % kCellPixels == 0, "a span holds whole cells");
 
-[[gnu::always_inline]] inline void seedCellBody(const SeedRow& r, int first, float* __restrict sx,
-                                                float* __restrict sy) {
-  for (int j = 0; j < kGridPixels; ++j) {
-    const double t = first + j;
-    const double n0 = r.c[0] + t * (r.b[0] + t * r.a[0]);
-    const double n1 = r.c[1] + t * (r.b[1] + t * r.a[1]);
-    const double n2 = r.c[2] + t * (r.b[2] + t * r.a[2]);
-    const double inv = 1.0 / n2;
-    sx[j] = static_cast<float>(n0 * inv + (r.lx + t * r.slope_x));
-    sy[j] = static_cast<float>(n1 * inv + (r.ly + t * r.slope_y));
+struct CellCubicF {
+  float x[4], y[4];
+  explicit CellCubicF(const CellRow& r) {
+    for (int k = 0; k < 4; ++k) {
+      x[k] = static_cast<float>(r.x[k]);
+      y[k] = static_cast<float>(r.y[k]);
+    }
+  }
+};
+
+void cubicCellScalar(const CellCubicF& c, float* sx, float* sy) {
+  for (int j = 0; j < kCellPixels; ++j) {
+    const float u = (static_cast<float>(j) + 0.5f) * (1.0f / kCellPixels);
+    sx[j] = c.x[0] + u * (c.x[1] + u * (c.x[2] + u * c.x[3]));
+    sy[j] = c.y[0] + u * (c.y[1] + u * (c.y[2] + u * c.y[3]));
   }
 }
 
 #if defined(__x86_64__)
-// A certified span (both cells) in float, eight lanes (float offsets relative to
-// the span's origin). Re-anchored at the span's first pixel in double: with
-// n_k(j) = c_k + j (b_k + j a_k) the seed's forms there (eq 3) and s₀ = (c_0, c_1) / c_2,
-//   seed(j) = s₀ + j (β + j α) / (1 + j (γ + j δ)),  β = (b − s₀ b_2) / c_2, α = (a − s₀ a_2) / c_2,
-// γ = b_2 / c_2, δ = a_2 / c_2, exactly; only the offset from s₀ (≤ 64 px plus the lens's
-// stretch) is float, so its rounding is ~64 · 2⁻²⁴ px, and the one rounding of s₀ + offset to
-// float is the half ulp every float position has anyway (≤ 2.4e-4 px at 6000 px). The
-// division is _mm256_rcp_ps and one Newton step (relative error ~2⁻²², ~1e-5 px on the
-// offset). The grid correction is linear along each cell: l_c + j k_c.
-struct SeedSpanF {
-  float base_x, base_y, beta_x, alpha_x, beta_y, alpha_y, gamma, delta;
-  float lx[2], ly[2], kx[2], ky[2];  // per cell
-};
-
-// The seed's part of SeedSpanF from the forms at the span's first pixel; false where float
-// would not be exact enough (as for homographies: the denominator changing by more than 2×
-// over the span, or the seed beyond ±kFloatSpanLimit), and the caller takes the double code.
-bool anchorSpan(const SeedRow& r, SeedSpanF& f) {
-  const double inv = 1.0 / r.c[2];
-  const double s0x = r.c[0] * inv, s0y = r.c[1] * inv;
-  const double t = kSpanPixels - 1;
-  const double ratio = (r.c[2] + t * (r.b[2] + t * r.a[2])) * inv;
-  if (!(ratio >= 0.5 && ratio <= 2.0 && std::abs(s0x) <= kFloatSpanLimit && std::abs(s0y) <= kFloatSpanLimit))
-    return false;
-  f.base_x = static_cast<float>(s0x);
-  f.base_y = static_cast<float>(s0y);
-  f.beta_x = static_cast<float>((r.b[0] - s0x * r.b[2]) * inv);
-  f.alpha_x = static_cast<float>((r.a[0] - s0x * r.a[2]) * inv);
-  f.beta_y = static_cast<float>((r.b[1] - s0y * r.b[2]) * inv);
-  f.alpha_y = static_cast<float>((r.a[1] - s0y * r.a[2]) * inv);
-  f.gamma = static_cast<float>(r.b[2] * inv);
-  f.delta = static_cast<float>(r.a[2] * inv);
-  return true;
-}
-
-__attribute__((target("avx2"))) void seedSpanFloatAvx2(const SeedSpanF& f, float* sx, float* sy) {
-  const __m256 bx = _mm256_set1_ps(f.base_x), by = _mm256_set1_ps(f.base_y);
-  const __m256 betax = _mm256_set1_ps(f.beta_x), alphax = _mm256_set1_ps(f.alpha_x);
-  const __m256 betay = _mm256_set1_ps(f.beta_y), alphay = _mm256_set1_ps(f.alpha_y);
-  const __m256 gamma = _mm256_set1_ps(f.gamma), delta = _mm256_set1_ps(f.delta);
-  const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f), eight = _mm256_set1_ps(8.0f);
+// The same, eight lanes at a time, in the same order of operations (no FMA): bit-identical.
+__attribute__((target("avx2"))) void cubicCellAvx2(const CellCubicF& c, float* sx, float* sy) {
+  const __m256 x0 = _mm256_set1_ps(c.x[0]), x1 = _mm256_set1_ps(c.x[1]), x2 = _mm256_set1_ps(c.x[2]),
+               x3 = _mm256_set1_ps(c.x[3]);
+  const __m256 y0 = _mm256_set1_ps(c.y[0]), y1 = _mm256_set1_ps(c.y[1]), y2 = _mm256_set1_ps(c.y[2]),
+               y3 = _mm256_set1_ps(c.y[3]);
+  const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(1.0f / kCellPixels),
+               eight = _mm256_set1_ps(8.0f);
   __m256 j = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
-  for (int cell = 0; cell < 2; ++cell) {
-    const __m256 lx = _mm256_set1_ps(f.lx[cell]), ly = _mm256_set1_ps(f.ly[cell]);
-    const __m256 kx = _mm256_set1_ps(f.kx[cell]), ky = _mm256_set1_ps(f.ky[cell]);
-    for (int g = 0; g < kGridPixels; g += 8, j = _mm256_add_ps(j, eight)) {
-      const int i = cell * kGridPixels + g;
-      const __m256 d = _mm256_add_ps(one, _mm256_mul_ps(j, _mm256_add_ps(gamma, _mm256_mul_ps(j, delta))));
-      const __m256 r0 = _mm256_rcp_ps(d);
-      const __m256 r = _mm256_mul_ps(r0, _mm256_sub_ps(two, _mm256_mul_ps(d, r0)));
-      const __m256 ox = _mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(betax, _mm256_mul_ps(j, alphax)), r), kx);
-      const __m256 oy = _mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(betay, _mm256_mul_ps(j, alphay)), r), ky);
-      _mm256_storeu_ps(sx + i, _mm256_add_ps(_mm256_add_ps(bx, lx), _mm256_mul_ps(j, ox)));
-      _mm256_storeu_ps(sy + i, _mm256_add_ps(_mm256_add_ps(by, ly), _mm256_mul_ps(j, oy)));
-    }
+  for (int i = 0; i < kCellPixels; i += 8, j = _mm256_add_ps(j, eight)) {
+    const __m256 u = _mm256_mul_ps(_mm256_add_ps(j, half), scale);
+    const __m256 px = _mm256_add_ps(x0, _mm256_mul_ps(u, _mm256_add_ps(x1, _mm256_mul_ps(u, _mm256_add_ps(x2, _mm256_mul_ps(u, x3))))));
+    const __m256 py = _mm256_add_ps(y0, _mm256_mul_ps(u, _mm256_add_ps(y1, _mm256_mul_ps(u, _mm256_add_ps(y2, _mm256_mul_ps(u, y3))))));
+    _mm256_storeu_ps(sx + i, px);
+    _mm256_storeu_ps(sy + i, py);
   }
 }
-
-// The same span sixteen lanes at a time where the CPU has AVX-512F (runtime dispatch, as
-// above): half the instructions of the AVX2 loop, which costs ~20 % of a certified render's
-// CPU. The division is _mm512_rcp14_ps and one Newton step (relative error ~2⁻²⁸, below the
-// AVX2 loop's), and the compiler may fuse products and sums, so the lanes differ from the
-// AVX2 ones in the last bits only; the tests hold both to the same bounds (the scalar double
-// code within 1e-3 px, the exact inverse within 1/256 px) through the dispatch.
-#pragma GCC diagnostic push
-// GCC 12's intrinsics start from _mm512_undefined_*() (a self-initialised variable): a false
-// positive of both warnings.
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-__attribute__((target("avx512f"))) void seedSpanFloatAvx512(const SeedSpanF& f, float* sx, float* sy) {
-  const __m512 bx = _mm512_set1_ps(f.base_x), by = _mm512_set1_ps(f.base_y);
-  const __m512 betax = _mm512_set1_ps(f.beta_x), alphax = _mm512_set1_ps(f.alpha_x);
-  const __m512 betay = _mm512_set1_ps(f.beta_y), alphay = _mm512_set1_ps(f.alpha_y);
-  const __m512 gamma = _mm512_set1_ps(f.gamma), delta = _mm512_set1_ps(f.delta);
-  const __m512 one = _mm512_set1_ps(1.0f), two = _mm512_set1_ps(2.0f), sixteen = _mm512_set1_ps(16.0f);
-  __m512 j = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  for (int cell = 0; cell < 2; ++cell) {
-    const __m512 lx = _mm512_set1_ps(f.lx[cell]), ly = _mm512_set1_ps(f.ly[cell]);
-    const __m512 kx = _mm512_set1_ps(f.kx[cell]), ky = _mm512_set1_ps(f.ky[cell]);
-    const __m512 base_x = _mm512_add_ps(bx, lx), base_y = _mm512_add_ps(by, ly);
-    for (int g = 0; g < kGridPixels; g += 16, j = _mm512_add_ps(j, sixteen)) {
-      const int i = cell * kGridPixels + g;
-      const __m512 d = _mm512_add_ps(one, _mm512_mul_ps(j, _mm512_add_ps(gamma, _mm512_mul_ps(j, delta))));
-      const __m512 r0 = _mm512_rcp14_ps(d);
-      const __m512 r = _mm512_mul_ps(r0, _mm512_sub_ps(two, _mm512_mul_ps(d, r0)));
-      const __m512 ox = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(betax, _mm512_mul_ps(j, alphax)), r), kx);
-      const __m512 oy = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(betay, _mm512_mul_ps(j, alphay)), r), ky);
-      _mm512_storeu_ps(sx + i, _mm512_add_ps(base_x, _mm512_mul_ps(j, ox)));
-      _mm512_storeu_ps(sy + i, _mm512_add_ps(base_y, _mm512_mul_ps(j, oy)));
-    }
-  }
-}
-#pragma GCC diagnostic pop
-
-bool cpuHasAvx512f() {
-  static const bool has = __builtin_cpu_supports("avx512f");
-  return has;
-}
-
 #endif
 
-void seedCell(const SeedRow& r, int first, float* sx, float* sy) { seedCellBody(r, first, sx, sy); }
+// The patch in double at pixel j of the cell (the per-pixel path's start).
+Eigen::Vector2d cubicAt(const CellRow& r, int j) {
+  const double u = (j + 0.5) / kCellPixels;
+  return {r.x[0] + u * (r.x[1] + u * (r.x[2] + u * r.x[3])),
+          r.y[0] + u * (r.y[1] + u * (r.y[2] + u * r.y[3]))};
+}
 
 class RationalKernel final : public CoordinateKernel {
  public:
   RationalKernel(RationalMap forward, std::optional<RationalMap> seed, FrameSize source_px,
                  FrameSize target_px, const CoordinateOptions& options, int threads)
       : newton_(std::move(forward), source_px, options.residual_tolerance_px),
+        seed_(std::move(seed)),
         seed_tolerance_(options.seed_tolerance_px),
-        certify_tolerance_(options.certify_tolerance_px),
-        scalar_only_(options.scalar_only),
-        avx512_(options.allow_avx512) {
-    if (seed && seed->stageCount() == 1) seed_q_ = seed->stage(0);
-    for (const Eigen::Matrix3d& q : seed_q_) seed_forms_.emplace_back(q);
+        scalar_only_(options.scalar_only) {
+    if (seed_ && seed_->stageCount() == 1) seed_q_ = seed_->stage(0);
     if (newton_.forward().stageCount() == 1)
       for (const Eigen::Matrix3d& q : newton_.forward().stage(0)) forward_q_.emplace_back(q);
-    buildCorrectionGrid(target_px, threads);
-    certifyCells(threads);
+    InverseCellsOptions co;
+    // 0 turns certification off: every pixel takes the per-pixel path (tests compare).
+    co.certify_tolerance_px = options.certify_tolerance_px > 0.0 ? options.certify_tolerance_px : -1.0;
+    co.threads = threads;
+    cells_.emplace(newton_, seed_ ? &*seed_ : nullptr, source_px, target_px, co);
   }
 
   int span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
            RowState& state) const override {
+    const InverseCells& cells = *cells_;
+    const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
+    const int first = x0 / kCellPixels, count = (n + kCellPixels - 1) / kCellPixels;
+    bool all_certified = true, all_empty = true;
+    for (int k = 0; k < count; ++k) {
+      const InverseCells::Kind kind = cells.kind(std::min(first + k, cells.cellsWide() - 1), cy);
+      all_certified = all_certified && kind == InverseCells::kCertified;
+      all_empty = all_empty && kind == InverseCells::kEmpty;
+    }
+    if (all_empty) {
+      std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(0));
+      state.run = 0;
+      return 0;
+    }
+    if (!all_certified) return mixedSpan(y, x0, n, sx, sy, valid, state);
+    for (int k = 0; k < count; ++k) certifiedCell(first + k, y, sx + k * kCellPixels, sy + k * kCellPixels);
+    std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
+    // The row state as if these pixels had been solved (their solutions are these positions).
+    const auto at = [&](int j) {
+      return j >= 0 ? Eigen::Vector2d(sx[j], sy[j])
+                    : j == -1 ? state.previous : j == -2 ? state.before_previous : state.third;
+    };
+    const Eigen::Vector2d p1 = at(n - 1), p2 = at(n - 2), p3 = at(n - 3);
+    state.previous = p1;
+    state.before_previous = p2;
+    state.third = p3;
+    state.seed_offset = Eigen::Vector2d::Zero();
+    state.run += n;
+    return 0;
+  }
+
+  bool sourceJacobian(const Eigen::Vector2d&, const Eigen::Vector2d& s,
+                      Eigen::Matrix2d& j) const override {
+    Eigen::Vector2d f;
+    Eigen::Matrix2d jf;
+    if (!newton_.forward().evaluate(s, f, &jf)) return false;
+    const double det = jf.determinant();
+    if (!(std::abs(det) > 0.0)) return false;
+    j = jf.inverse();
+    return j.allFinite();
+  }
+
+  double certifiedShare() const override { return cells_->certifiedShare(); }
+
+ private:
+  static constexpr int kQuickIterations = 8;
+  static constexpr int kMaxIterations = 30;
+
+  void certifiedCell(int cx, int y, float* sx, float* sy) const {
+    CellRow r;
+    cells_->row(cx, y, r);
+    const CellCubicF c(r);
+#if defined(__x86_64__)
+    if (!scalar_only_ && cpuHasAvx2()) return cubicCellAvx2(c, sx, sy);
+#endif
+    cubicCellScalar(c, sx, sy);
+  }
+
+  // A span with cells of different kinds: certified cells take their patch, empty cells and
+  // uncovered blocks are transparent, the rest is checked per pixel from the best start.
+  int mixedSpan(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
+                RowState& state) const {
+    const InverseCells& cells = *cells_;
     const double ty = y + 0.5;
-    // The grid correction: bilinear in y once per cell, then linear in x along the cell.
-    const int gj = std::min(static_cast<int>(ty / kGrid), grid_h_ - 2);
-    const double fy = ty / kGrid - gj;
-    if (spanCertified(x0, n, gj)) return fastSpan(y, x0, n, gj, fy, sx, sy, valid, state);
-    double corr_x[kSpanPixels], corr_y[kSpanPixels];
-    for (int c0 = 0; c0 < n; c0 += kGrid) {
-      const int gi = (x0 + c0) / kGrid, c1 = std::min(n, c0 + kGrid);
-      Eigen::Vector2d left(0, 0), slope(0, 0);
-      if (gi + 1 < grid_w_ && cellValid(gi, gj)) {
-        left = (1 - fy) * node(gi, gj) + fy * node(gi, gj + 1);
-        const Eigen::Vector2d right = (1 - fy) * node(gi + 1, gj) + fy * node(gi + 1, gj + 1);
-        slope = (right - left) / kGrid;
-        left -= slope * (gi * kGrid);  // so that correction(tx) = left + slope · tx
-      }
-      for (int i = c0; i < c1; ++i) {
-        corr_x[i] = left.x() + slope.x() * (x0 + i + 0.5);
-        corr_y[i] = left.y() + slope.y() * (x0 + i + 0.5);
-      }
-    }
-    // Pass 1, every pixel independent (plain arrays the compiler may vectorise): the seed by
-    // forward differences, the grid correction, and the one-evaluation check.
+    const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
+    enum : unsigned char { kCheck = 0, kDirect = 1, kSkip = 2 };
     double bx[kSpanPixels], by[kSpanPixels], qx[kSpanPixels], qy[kSpanPixels];
-    unsigned char have[kSpanPixels], passed[kSpanPixels];
-    if (!seed_q_.empty()) {
-      // Forward differences (two adds a pixel) in locals the compiler keeps in registers.
-      const RowQuadratics seed_row(seed_q_, y, x0);
-      double n0 = seed_row.numerator(0), n1 = seed_row.numerator(1), n2 = seed_row.numerator(2);
-      double d0 = seed_row.delta(0), d1 = seed_row.delta(1), d2 = seed_row.delta(2);
-      const double s0 = seed_row.second(0), s1 = seed_row.second(1), s2 = seed_row.second(2);
-      for (int i = 0; i < n; ++i) {
-        bx[i] = n0 / n2;
-        by[i] = n1 / n2;
-        n0 += d0;
-        n1 += d1;
-        n2 += d2;
-        d0 += s0;
-        d1 += s1;
-        d2 += s2;
+    unsigned char mode[kSpanPixels], have[kSpanPixels], passed[kSpanPixels];
+    bool need_seed = false;
+    for (int c0 = 0; c0 < n; c0 += kCellPixels) {
+      const int cx = std::min((x0 + c0) / kCellPixels, cells.cellsWide() - 1);
+      const int c1 = std::min(n, c0 + kCellPixels);
+      const InverseCells::Kind kind = cells.kind(cx, cy);
+      if (kind == InverseCells::kEmpty) {
+        for (int i = c0; i < c1; ++i) mode[i] = kSkip, have[i] = 0, bx[i] = by[i] = 0.0;
+        continue;
       }
-    } else {
-      for (int i = 0; i < n; ++i) {
-        bx[i] = x0 + i + 0.5;
-        by[i] = ty;
+      const bool patch = cells.hasPatch(cx, cy);
+      CellRow r{};
+      if (patch) cells.row(cx, y, r);
+      for (int i = c0; i < c1; ++i) {
+        mode[i] = kind == InverseCells::kCertified ? kDirect : cells.covered(x0 + i, y) ? kCheck : kSkip;
+        if (patch) {
+          const Eigen::Vector2d s = cubicAt(r, i - c0);
+          bx[i] = s.x();
+          by[i] = s.y();
+        } else {
+          bx[i] = by[i] = std::numeric_limits<double>::quiet_NaN();
+          need_seed = need_seed || mode[i] == kCheck;
+        }
       }
     }
-    for (int i = 0; i < n; ++i) {
-      bx[i] += corr_x[i];
-      by[i] += corr_y[i];
-      have[i] = std::isfinite(bx[i]) && std::isfinite(by[i]);
+    if (need_seed) {
+      // Forward differences of the fitted inverse seed (two adds a pixel) where no patch is.
+      if (!seed_q_.empty()) {
+        const RowQuadratics seed_row(seed_q_, y, x0);
+        double n0 = seed_row.numerator(0), n1 = seed_row.numerator(1), n2 = seed_row.numerator(2);
+        double d0 = seed_row.delta(0), d1 = seed_row.delta(1), d2 = seed_row.delta(2);
+        const double s0 = seed_row.second(0), s1 = seed_row.second(1), s2 = seed_row.second(2);
+        for (int i = 0; i < n; ++i) {
+          if (std::isnan(bx[i]) && mode[i] == kCheck) {
+            bx[i] = n0 / n2;
+            by[i] = n1 / n2;
+          }
+          n0 += d0, n1 += d1, n2 += d2;
+          d0 += s0, d1 += s1, d2 += s2;
+        }
+      } else {
+        for (int i = 0; i < n; ++i)
+          if (std::isnan(bx[i]) && mode[i] == kCheck) bx[i] = x0 + i + 0.5, by[i] = ty;
+      }
     }
+    for (int i = 0; i < n; ++i) have[i] = mode[i] != kSkip && std::isfinite(bx[i]) && std::isfinite(by[i]);
     if (forward_q_.size() == 3) {
-      for (int i = n; i < kSpanPixels; ++i) bx[i] = by[i] = 0.0;  // the kernel runs all lanes
+      for (int i = 0; i < kSpanPixels; ++i)
+        if (i >= n || !have[i]) bx[i] = by[i] = 0.0;  // the kernel runs all lanes
       std::int64_t accepted[kSpanPixels];
       const CheckInputs in{forward_q_[0], forward_q_[1], forward_q_[2],
                            (newton_.centre().denominator_signs & 1u) != 0,
@@ -500,14 +490,17 @@ class RationalKernel final : public CoordinateKernel {
       for (int i = 0; i < n; ++i) passed[i] = have[i] && accepted[i] != 0;
     } else {
       for (int i = 0; i < n; ++i) {
-        Eigen::Vector2d q;
-        passed[i] = have[i] && check(Eigen::Vector2d(x0 + i + 0.5, ty), Eigen::Vector2d(bx[i], by[i]), q);
+        Eigen::Vector2d q(0, 0);
+        passed[i] = have[i] && mode[i] == kCheck &&
+                    check(Eigen::Vector2d(x0 + i + 0.5, ty), Eigen::Vector2d(bx[i], by[i]), q);
         qx[i] = q.x();
         qy[i] = q.y();
       }
     }
+    for (int i = 0; i < n; ++i)
+      if (mode[i] == kDirect) passed[i] = 1, qx[i] = bx[i], qy[i] = by[i];
 
-    // Pass 2, in order along the row: the pixels the seed missed try the extrapolation of
+    // Pass 2, in order along the row: the pixels the start missed try the extrapolation of
     // their solved neighbours, then Newton. The row state is brought up to date only where a
     // pixel needs it and at the end (solutions live in qx, qy meanwhile).
     const RowState before = state;
@@ -523,6 +516,12 @@ class RationalKernel final : public CoordinateKernel {
         valid[i] = 1;
         last_base = i;
         ++run;
+        continue;
+      }
+      if (mode[i] == kSkip) {
+        valid[i] = 0;
+        sx[i] = sy[i] = 0.0f;
+        run = 0;
         continue;
       }
       const Eigen::Vector2d t(x0 + i + 0.5, ty);
@@ -566,25 +565,6 @@ class RationalKernel final : public CoordinateKernel {
     return newton_count;
   }
 
-  bool sourceJacobian(const Eigen::Vector2d&, const Eigen::Vector2d& s,
-                      Eigen::Matrix2d& j) const override {
-    Eigen::Vector2d f;
-    Eigen::Matrix2d jf;
-    if (!newton_.forward().evaluate(s, f, &jf)) return false;
-    const double det = jf.determinant();
-    if (!(std::abs(det) > 0.0)) return false;
-    j = jf.inverse();
-    return j.allFinite();
-  }
-
- private:
-  static constexpr int kQuickIterations = 8;
-  static constexpr int kMaxIterations = 30;
-  // Correction-grid spacing (output pixels): bilinear interpolation of the seed's error
-  // misses by spacing²/8 · its curvature; 64 px measured ~1/256 px on the peer's mild lens
-  // (half the pixels failing the check), 32 px a quarter of that. A divisor of kSpanPixels.
-  static constexpr int kGrid = kSpanPixels / 2;
-
   // The forward map and its Jacobian (eq 1, 2); the one-stage case inline, chains generic.
   bool forward(const Eigen::Vector2d& s, Eigen::Vector2d& f, Eigen::Matrix2d& j,
                unsigned& signs) const {
@@ -602,7 +582,7 @@ class RationalKernel final : public CoordinateKernel {
     return std::isfinite(fx) && std::isfinite(fy);
   }
 
-  // The seed check: one forward evaluation, the Newton step it implies, and the pole and fold
+  // The check: one forward evaluation, the Newton step it implies, and the pole and fold
   // tests of inverse.h at the start.
   bool check(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& s) const {
     Eigen::Vector2d f;
@@ -621,211 +601,15 @@ class RationalKernel final : public CoordinateKernel {
     return true;
   }
 
-  Eigen::Vector2d seedAt(const Eigen::Vector2d& t, bool& ok) const {
-    ok = true;
-    if (seed_q_.empty()) return t;
-    const Quadratic q0(seed_q_[0]), q1(seed_q_[1]), q2(seed_q_[2]);
-    const double den = q2.value(t.x(), t.y());
-    const Eigen::Vector2d s = Eigen::Vector2d(q0.value(t.x(), t.y()), q1.value(t.x(), t.y())) / den;
-    ok = s.allFinite();
-    return s;
-  }
-
-  // The exact inverse minus the seed at nodes every kGrid output pixels (including the
-  // far edge); a node with no preimage makes its cells fall back to the seed alone.
-  void buildCorrectionGrid(FrameSize target_px, int threads) {
-    grid_w_ = target_px.width / kGrid + 2;
-    grid_h_ = target_px.height / kGrid + 2;
-    nodes_.assign(static_cast<size_t>(grid_w_) * static_cast<size_t>(grid_h_), Eigen::Vector2d::Zero());
-    node_valid_.assign(nodes_.size(), 0);
-    ParallelOptions po;
-    po.threads = threads;
-    po.band_rows = 4;
-    parallelForRows(grid_h_, po, [&](int j0, int j1) {
-      for (int j = j0; j < j1; ++j)
-        for (int i = 0; i < grid_w_; ++i) {
-          const Eigen::Vector2d t(i * kGrid, j * kGrid);
-          bool seeded = false;
-          const Eigen::Vector2d base = seedAt(t, seeded);
-          const size_t k = static_cast<size_t>(j) * static_cast<size_t>(grid_w_) + static_cast<size_t>(i);
-          // The seed's error changes little from node to node: the left neighbour's correction
-          // added to the seed starts Newton a step or two closer than the seed alone.
-          Eigen::Vector2d s;
-          bool ok = seeded && i > 0 && node_valid_[k - 1] && newton_.solve(t, base + nodes_[k - 1], s, kMaxIterations);
-          if (!ok) ok = seeded && newton_.solve(t, base, s, kMaxIterations);
-          if (!ok) ok = newton_.solveFromCentre(t, s, kMaxIterations);
-          if (ok && seeded) {
-            nodes_[k] = s - base;
-            node_valid_[k] = 1;
-          }
-        }
-    });
-  }
-
-  // Cells where seed + bilinear correction is trusted without the per-pixel check. The error
-  // of bilinear interpolation in a cell of side G is about G²/8 (|d_uu| + |d_vv|) for the
-  // interpolated function d = exact − seed; two independent estimates of it must both stay
-  // within certify_tolerance_: the second differences of d over the neighbouring nodes, and
-  // the actual miss at the cell centre (where a quadratic's interpolation error peaks) against
-  // an exact Newton solution there. Cells touching a node without a preimage never qualify,
-  // nor do cells where the centre's solution fails (poles, folds: inverse.h's tests).
-  void certifyCells(int threads) {
-    const int cw = grid_w_ - 1, ch = grid_h_ - 1;
-    cell_fast_.assign(static_cast<size_t>(cw) * static_cast<size_t>(ch), 0);
-    if (seed_q_.empty() || !(certify_tolerance_ > 0.0)) return;
-    const auto valid_at = [&](int i, int j) {
-      return i >= 0 && j >= 0 && i < grid_w_ && j < grid_h_ &&
-             node_valid_[static_cast<size_t>(j) * static_cast<size_t>(grid_w_) + static_cast<size_t>(i)] != 0;
-    };
-    // |second difference| of d at node (i, j) along one axis; one-sided at the grid's edge.
-    const auto second = [&](int i, int j, int di, int dj) {
-      int ci = i, cj = j;
-      if (!valid_at(i - di, j - dj)) ci += di, cj += dj;
-      else if (!valid_at(i + di, j + dj)) ci -= di, cj -= dj;
-      if (!valid_at(ci - di, cj - dj) || !valid_at(ci, cj) || !valid_at(ci + di, cj + dj))
-        return std::numeric_limits<double>::infinity();
-      const Eigen::Vector2d d2 = node(ci - di, cj - dj) - 2.0 * node(ci, cj) + node(ci + di, cj + dj);
-      return d2.cwiseAbs().maxCoeff();
-    };
-    ParallelOptions po;
-    po.threads = threads;
-    po.band_rows = 4;
-    parallelForRows(ch, po, [&](int j0, int j1) {
-      for (int j = j0; j < j1; ++j)
-        for (int i = 0; i < cw; ++i) {
-          if (!cellValid(i, j)) continue;
-          double curvature = 0.0;
-          for (int b = 0; b < 2; ++b)
-            for (int a = 0; a < 2; ++a)
-              curvature = std::max(curvature, second(i + a, j + b, 1, 0) + second(i + a, j + b, 0, 1));
-          if (!(curvature / 8.0 <= certify_tolerance_)) continue;
-          const Eigen::Vector2d t((i + 0.5) * kGrid, (j + 0.5) * kGrid);
-          bool seeded = false;
-          const Eigen::Vector2d base = seedAt(t, seeded);
-          if (!seeded) continue;
-          const Eigen::Vector2d predicted =
-              base + 0.25 * (node(i, j) + node(i + 1, j) + node(i, j + 1) + node(i + 1, j + 1));
-          // Its miss, by the one Newton step from it (as the seed check does): exact to
-          // curvature · step², ~1e-6 px at the tolerance, for one forward evaluation instead of
-          // a converged Newton solve (half the kernel's set-up time).
-          Eigen::Vector2d f;
-          Eigen::Matrix2d jf;
-          unsigned signs = 0;
-          if (!forward(predicted, f, jf, signs)) continue;
-          const double det = jf.determinant();
-          if (signs != newton_.centre().denominator_signs || (det > 0.0) != newton_.centre().det_positive)
-            continue;
-          const Eigen::Vector2d r = f - t;
-          const Eigen::Vector2d step((jf(1, 1) * r.x() - jf(0, 1) * r.y()) / det,
-                                     (jf(0, 0) * r.y() - jf(1, 0) * r.x()) / det);
-          if (!(step.cwiseAbs().maxCoeff() <= certify_tolerance_)) continue;
-          cell_fast_[static_cast<size_t>(j) * static_cast<size_t>(cw) + static_cast<size_t>(i)] = 1;
-        }
-    });
-  }
-
-  double certifiedShare() const override {
-    if (cell_fast_.empty()) return 0.0;
-    long long fast = 0;
-    for (unsigned char c : cell_fast_) fast += c;
-    return static_cast<double>(fast) / static_cast<double>(cell_fast_.size());
-  }
-
-  bool spanCertified(int x0, int n, int gj) const {
-    if (cell_fast_.empty()) return false;
-    const int cw = grid_w_ - 1;
-    for (int gi = x0 / kGrid; gi <= (x0 + n - 1) / kGrid; ++gi)
-      if (gi >= cw || !cell_fast_[static_cast<size_t>(gj) * static_cast<size_t>(cw) + static_cast<size_t>(gi)])
-        return false;
-    return true;
-  }
-
-  // A span whose cells are all certified: seed + correction per cell, unchecked. Writes whole
-  // cells (up to kSpanPixels entries of sx, sy, valid, past n at the row's end).
-  int fastSpan(int y, int x0, int n, int gj, double fy, float* sx, float* sy, unsigned char* valid,
-               RowState& state) const {
-    // The seed's quadratic forms along row y, in the pixel offset i from x0 (rational_map.h).
-    const double v = y + 0.5, u0 = x0 + 0.5;
-    SeedRow r;
-    for (int k = 0; k < 3; ++k) {
-      const Quadratic& q = seed_forms_[static_cast<size_t>(k)];
-      r.c[k] = q.value(u0, v);
-      r.b[k] = q.du(u0, v);
-      r.a[k] = q.a;
-    }
-    // The correction, bilinear in the cell at pixel c0: linear along the row, from the nodes
-    // (gi, gj): corr(i) = left + slope · (u − gi · kGrid) at u = x0 + i + 0.5.
-    const auto correction = [&](int c0) {
-      const int gi = (x0 + c0) / kGrid;
-      const Eigen::Vector2d left = (1 - fy) * node(gi, gj) + fy * node(gi, gj + 1);
-      const Eigen::Vector2d right = (1 - fy) * node(gi + 1, gj) + fy * node(gi + 1, gj + 1);
-      const Eigen::Vector2d slope = (right - left) / kGrid;
-      const Eigen::Vector2d at_x0 = left + slope * (u0 - gi * kGrid);
-      r.lx = at_x0.x();
-      r.ly = at_x0.y();
-      r.slope_x = slope.x();
-      r.slope_y = slope.y();
-    };
-    bool done = false;
-#if defined(__x86_64__)
-    SeedSpanF f{};
-    if (!scalar_only_ && cpuHasAvx2() && anchorSpan(r, f)) {
-      for (int c0 = 0, cell = 0; c0 < n; c0 += kGrid, ++cell) {
-        correction(c0);
-        for (int c = cell; c < 2; ++c) {  // a span's missing second cell copies the first
-          f.lx[c] = static_cast<float>(r.lx);
-          f.ly[c] = static_cast<float>(r.ly);
-          f.kx[c] = static_cast<float>(r.slope_x);
-          f.ky[c] = static_cast<float>(r.slope_y);
-        }
-      }
-      if (avx512_ && cpuHasAvx512f()) seedSpanFloatAvx512(f, sx, sy);
-      else seedSpanFloatAvx2(f, sx, sy);
-      done = true;
-    }
-#endif
-    for (int c0 = 0; c0 < n && !done; c0 += kGrid) {
-      correction(c0);
-      seedCell(r, c0, sx + c0, sy + c0);
-    }
-    std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
-    // The row state as if these pixels had been solved (their solutions are these positions).
-    const auto at = [&](int j) {
-      return j >= 0 ? Eigen::Vector2d(sx[j], sy[j])
-                    : j == -1 ? state.previous : j == -2 ? state.before_previous : state.third;
-    };
-    const Eigen::Vector2d p1 = at(n - 1), p2 = at(n - 2), p3 = at(n - 3);
-    state.previous = p1;
-    state.before_previous = p2;
-    state.third = p3;
-    state.seed_offset = Eigen::Vector2d::Zero();
-    state.run += n;
-    return 0;
-  }
-
-  const Eigen::Vector2d& node(int i, int j) const {
-    return nodes_[static_cast<size_t>(j) * static_cast<size_t>(grid_w_) + static_cast<size_t>(i)];
-  }
-  bool cellValid(int i, int j) const {
-    const auto at = [&](int a, int b) {
-      return node_valid_[static_cast<size_t>(b) * static_cast<size_t>(grid_w_) + static_cast<size_t>(a)] != 0;
-    };
-    return at(i, j) && at(i + 1, j) && at(i, j + 1) && at(i + 1, j + 1);
-  }
-
   NewtonInverse newton_;
+  std::optional<RationalMap> seed_;
   std::vector<Eigen::Matrix3d> seed_q_;
-  std::vector<Quadratic> seed_forms_;  // seed_q_ as n = a u² + b uv + …, for fastSpan
   std::vector<Quadratic> forward_q_;
   double seed_tolerance_;
-  double certify_tolerance_;
   bool scalar_only_;
-  bool avx512_;
-  int grid_w_ = 0, grid_h_ = 0;
-  std::vector<Eigen::Vector2d> nodes_;
-  std::vector<unsigned char> node_valid_;
-  std::vector<unsigned char> cell_fast_;  // (grid_w_ − 1) × (grid_h_ − 1) cells, certifyCells
+  std::optional<InverseCells> cells_;  // built last: it refers to newton_ and seed_
 };
+
 
 Eigen::Matrix3d pixelHomography(const CameraStructure& structure, FrameSize source_px,
                                 FrameSize target_px) {

@@ -53,7 +53,7 @@ struct CoordinateOptions {
   // The rational kernel's certified cells (source pixels): where the grid's own estimates of
   // the seed + correction error stay within this, pixels take seed + correction unchecked
   // (no forward evaluation, one division). 0 turns certification off (every pixel checked).
-  double certify_tolerance_px = 1.0 / 512.0;
+  double certify_tolerance_px = 1.0 / 4096.0;
   bool fit_inverse_seed = true;
   bool force_rational = false;  // run the rational kernel on projective cameras (tests, bench)
   // Run the portable scalar code where a SIMD clone exists (tests and the benchmark compare).
