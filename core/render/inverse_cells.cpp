@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <chrono>
+#include <cstdlib>
 
 namespace artcam {
 namespace {
@@ -32,6 +35,7 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
                            FrameSize source_px, FrameSize target_px,
                            const InverseCellsOptions& options)
     : newton_(newton), seed_(seed), source_px_(source_px), target_px_(target_px), options_(options) {
+  const auto debug_t0 = std::chrono::steady_clock::now();
   cells_w_ = std::max(1, (target_px.width + kCell - 1) / kCell);
   cells_h_ = std::max(1, (target_px.height + kCell - 1) / kCell);
   nodes_w_ = cells_w_ + 1;
@@ -39,14 +43,11 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
   blocks_w_ = std::max(1, (target_px.width + kBlock - 1) / kBlock);
   blocks_h_ = std::max(1, (target_px.height + kBlock - 1) / kBlock);
   nodes_.assign(static_cast<size_t>(nodes_w_) * static_cast<size_t>(nodes_h_), Node{});
+  // Coverage first: the nodes of cells no part of the source frame reaches are never solved
+  // (beyond a fold, a node without a preimage costs every Newton start in turn).
+  buildCoverage(options.threads);
   solveNodes(options.threads);
   crossDerivatives();
-
-  // The reach grows with the source pixels one output pixel spans (minifying filters' taps).
-  double scale = 1.0;
-  for (const Node& n : nodes_)
-    if (n.valid) scale = std::max({scale, n.su.cwiseAbs().maxCoeff() / kCell, n.sv.cwiseAbs().maxCoeff() / kCell});
-  reach_px_ = options.reach_px + 4.0 * std::min(scale, 64.0);
 
   kinds_.assign(static_cast<size_t>(cells_w_) * static_cast<size_t>(cells_h_), kOpen);
   ParallelOptions po;
@@ -54,17 +55,20 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
   po.band_rows = 2;
   parallelForRows(cells_h_, po, [&](int j0, int j1) {
     for (int cy = j0; cy < j1; ++cy)
-      for (int cx = 0; cx < cells_w_; ++cx)
-        if (hasPatch(cx, cy) && certify(cx, cy))
-          kinds_[index(cx, cy, cells_w_)] = patchBeyondReach(cx, cy) ? kEmpty : kCertified;
+      for (int cx = 0; cx < cells_w_; ++cx) {
+        Kind& k = kinds_[index(cx, cy, cells_w_)];
+        if (coverage_known_ && !cellCovered(cx, cy)) k = kEmpty;
+        else if (hasPatch(cx, cy) && certify(cx, cy)) k = patchBeyondReach(cx, cy) ? kEmpty : kCertified;
+      }
   });
-  if (std::find(kinds_.begin(), kinds_.end(), kOpen) == kinds_.end()) return;
-  buildCoverage(options.threads);
-  if (!coverage_known_) return;
-  for (int cy = 0; cy < cells_h_; ++cy)
-    for (int cx = 0; cx < cells_w_; ++cx)
-      if (kinds_[index(cx, cy, cells_w_)] == kOpen && !cellCovered(cx, cy))
-        kinds_[index(cx, cy, cells_w_)] = kEmpty;
+  if (getenv("ARTCAM_DEBUG_CELLS")) {
+    long nodes_valid = 0; for (auto& n : nodes_) nodes_valid += n.valid;
+    long open = std::count(kinds_.begin(), kinds_.end(), kOpen), patch_open = 0;
+    for (int cy = 0; cy < cells_h_; ++cy) for (int cx = 0; cx < cells_w_; ++cx) if (kind(cx,cy)==kOpen && hasPatch(cx,cy)) ++patch_open;
+    long cov = 0; for (auto c : covered_) cov += c;
+    fprintf(stderr, "setup %.2f ms ", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - debug_t0).count());
+    fprintf(stderr, "cells %dx%d certified %.3f empty %.3f open %ld (with patch %ld) nodes valid %ld/%zu coverage %d %ld/%zu reach %.1f\n", cells_w_, cells_h_, certifiedShare(), emptyShare(), open, patch_open, nodes_valid, nodes_.size(), coverage_known_, cov, covered_.size(), reach_px_);
+  }
 }
 
 bool InverseCells::solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* start, Node& out) const {
@@ -92,28 +96,39 @@ bool InverseCells::solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* st
 }
 
 void InverseCells::solveNodes(int threads) {
-  // Continuation: each node starts from its neighbour's solution stepped by the neighbour's
-  // derivative, two or three Newton iterations. The first column runs down the frame, then
-  // the rows run across it in parallel.
+  // A node is needed when a cell it bounds may show something.
+  const auto needed = [&](int i, int j) {
+    if (!coverage_known_) return true;
+    for (int cy = std::max(0, j - 1); cy <= std::min(cells_h_ - 1, j); ++cy)
+      for (int cx = std::max(0, i - 1); cx <= std::min(cells_w_ - 1, i); ++cx)
+        if (cellCovered(cx, cy)) return true;
+    return false;
+  };
+  // Continuation: each node starts from the last solved node of its row (or, in the first
+  // column, of the column) stepped by that node's derivative, two or three Newton iterations.
+  // The first column runs down the frame, then the rows run across it in parallel.
+  int last = -1;
   for (int j = 0; j < nodes_h_; ++j) {
+    if (!needed(0, j)) continue;
     const Eigen::Vector2d t(0.0, static_cast<double>(j * kCell));
     Eigen::Vector2d start;
-    const Node* above = j > 0 && node(0, j - 1).valid ? &node(0, j - 1) : nullptr;
-    if (above) start = above->s + above->sv;
-    solveNode(t, above ? &start : nullptr, node(0, j));
+    if (last >= 0) start = node(0, last).s + (j - last) * node(0, last).sv;
+    if (solveNode(t, last >= 0 ? &start : nullptr, node(0, j))) last = j;
   }
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 2;
   parallelForRows(nodes_h_, po, [&](int j0, int j1) {
-    for (int j = j0; j < j1; ++j)
+    for (int j = j0; j < j1; ++j) {
+      int prev = node(0, j).valid ? 0 : -1;
       for (int i = 1; i < nodes_w_; ++i) {
+        if (!needed(i, j)) continue;
         const Eigen::Vector2d t(static_cast<double>(i * kCell), static_cast<double>(j * kCell));
-        const Node& left = node(i - 1, j);
         Eigen::Vector2d start;
-        if (left.valid) start = left.s + left.su;
-        solveNode(t, left.valid ? &start : nullptr, node(i, j));
+        if (prev >= 0) start = node(prev, j).s + (i - prev) * node(prev, j).su;
+        if (solveNode(t, prev >= 0 ? &start : nullptr, node(i, j))) prev = i;
       }
+    }
   });
   // Nodes stay kCell apart past the frame's far edge (up to kCell − 1 pixels beyond it), so
   // every cell has the same parametrisation; the frame's last cell uses part of it.
@@ -228,43 +243,65 @@ bool InverseCells::patchBeyondReach(int cx, int cy) const {
 }
 
 void InverseCells::buildCoverage(int threads) {
-  // The source frame grown by the reach, as a lattice of quads kLattice source pixels apart.
-  constexpr double kLattice = 16.0;
-  const double x0 = -reach_px_, y0 = -reach_px_;
-  const int qw = static_cast<int>(std::ceil((source_px_.width + 2 * reach_px_) / kLattice));
-  const int qh = static_cast<int>(std::ceil((source_px_.height + 2 * reach_px_) / kLattice));
+  // The source frame grown by the largest reach, as a lattice of quads kLattice source pixels
+  // apart, mapped forward with the Jacobian. The reach follows from the inverse's scale
+  // (source pixels per output pixel) in and near the frame: minifying filters reach further.
+  constexpr double kLattice = 32.0;
+  constexpr double kMaxScale = 64.0;
+  const double margin = options_.reach_px + 4.0 * kMaxScale;
+  const int qw = static_cast<int>(std::ceil((source_px_.width + 2 * margin) / kLattice));
+  const int qh = static_cast<int>(std::ceil((source_px_.height + 2 * margin) / kLattice));
   const int pw = qw + 1, ph = qh + 1;
+  const auto at = [&](int i, int j) {
+    return Eigen::Vector2d(-margin + i * kLattice, -margin + j * kLattice);
+  };
   std::vector<Eigen::Vector2d> mapped(static_cast<size_t>(pw) * static_cast<size_t>(ph));
   std::vector<unsigned char> ok(mapped.size(), 0);
+  std::vector<double> band_scale(static_cast<size_t>(ph), 1.0);
   const unsigned centre_signs = newton_.centre().denominator_signs;
+  const double near = 2.0 * kCell;
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 8;
   parallelForRows(ph, po, [&](int j0, int j1) {
     for (int j = j0; j < j1; ++j)
       for (int i = 0; i < pw; ++i) {
-        const Eigen::Vector2d s(std::min(x0 + i * kLattice, source_px_.width + reach_px_),
-                                std::min(y0 + j * kLattice, source_px_.height + reach_px_));
+        const Eigen::Vector2d s = at(i, j);
         Eigen::Vector2d f;
         Eigen::Matrix2d jac;
         unsigned signs = 0;
-        const bool good = newton_.forward().evaluate(s, f, &jac, &signs) && f.allFinite() &&
-                          signs == centre_signs;
+        const bool good = newton_.forward().evaluate(s, f, &jac, &signs) && signs == centre_signs;
         mapped[index(i, j, pw)] = f;
         ok[index(i, j, pw)] = good ? 1 : 0;
+        if (good && s.x() > -near && s.y() > -near && s.x() < source_px_.width + near &&
+            s.y() < source_px_.height + near) {
+          const double det = jac.determinant();
+          const double scale = std::abs(det) > 0.0 ? (jac.inverse()).cwiseAbs().maxCoeff() : kMaxScale;
+          band_scale[static_cast<size_t>(j)] = std::max(band_scale[static_cast<size_t>(j)], std::isfinite(scale) ? scale : kMaxScale);
+        }
       }
   });
-  // A corner beyond a pole curve: that quad's image is unbounded, claim nothing.
-  if (std::find(ok.begin(), ok.end(), 0) != ok.end()) return;
-  covered_.assign(static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_), 0);
+  const double scale = std::min(kMaxScale, *std::max_element(band_scale.begin(), band_scale.end()));
+  reach_px_ = options_.reach_px + 4.0 * scale;
+  std::vector<unsigned char> covered(static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_), 0);
   for (int j = 0; j < qh; ++j)
     for (int i = 0; i < qw; ++i) {
+      // Only quads within the reach of the frame.
+      const Eigen::Vector2d lo_s = at(i, j), hi_s = at(i + 1, j + 1);
+      if (hi_s.x() < -reach_px_ || hi_s.y() < -reach_px_ || lo_s.x() > source_px_.width + reach_px_ ||
+          lo_s.y() > source_px_.height + reach_px_)
+        continue;
+      // A corner beyond a pole curve: the quad's image is unbounded, claim nothing.
+      if (!ok[index(i, j, pw)] || !ok[index(i + 1, j, pw)] || !ok[index(i, j + 1, pw)] || !ok[index(i + 1, j + 1, pw)])
+        return;
       const Eigen::Vector2d& a = mapped[index(i, j, pw)];
       const Eigen::Vector2d& b = mapped[index(i + 1, j, pw)];
       const Eigen::Vector2d& c = mapped[index(i, j + 1, pw)];
       const Eigen::Vector2d& d = mapped[index(i + 1, j + 1, pw)];
       Eigen::Vector2d lo = a.cwiseMin(b).cwiseMin(c).cwiseMin(d);
       Eigen::Vector2d hi = a.cwiseMax(b).cwiseMax(c).cwiseMax(d);
+      // The edges' curvature: a quarter of the quad's size is far beyond the chord's sag of any
+      // map smooth at the lattice's scale (near a pole the corners spread and the box with them).
       const double grow = 2.0 + 0.25 * (hi - lo).maxCoeff();
       lo.array() -= grow;
       hi.array() += grow;
@@ -274,9 +311,10 @@ void InverseCells::buildCoverage(int threads) {
       const int bx1 = std::min(blocks_w_ - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kBlock)));
       const int by1 = std::min(blocks_h_ - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kBlock)));
       for (int by = by0; by <= by1; ++by)
-        std::fill_n(covered_.begin() + static_cast<std::ptrdiff_t>(index(bx0, by, blocks_w_)), bx1 - bx0 + 1,
+        std::fill_n(covered.begin() + static_cast<std::ptrdiff_t>(index(bx0, by, blocks_w_)), bx1 - bx0 + 1,
                     static_cast<unsigned char>(1));
     }
+  covered_ = std::move(covered);
   coverage_known_ = true;
 }
 

@@ -105,6 +105,21 @@ void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const Im
   report.note = "mip level " + std::to_string(level) + (report.note.empty() ? "" : "; " + report.note);
 }
 
+void warpPreview(const StoredMipPyramid& pyramid, const std::vector<Camera>& channel_cameras,
+                 const ImageView& out, const WarpOptions& options, WarpSummary* summary) {
+  if (channel_cameras.empty()) throw std::invalid_argument("warpPreview: no channel cameras");
+  const ConstImageView& base = pyramid.level(0);
+  const double footprint =
+      centreFootprint(channel_cameras.front(), {base.width, base.height}, {out.width, out.height});
+  const int level = pyramid.levelFor(footprint);
+  WarpOptions o = options;
+  o.coordinates.certify_tolerance_px = std::max(o.coordinates.certify_tolerance_px, kPreviewCertifyTolerancePx);
+  WarpSummary local;
+  WarpSummary& report = summary ? *summary : local;
+  warpChannels(pyramid.level(level), channel_cameras, out, o, &report);
+  report.note = "mip level " + std::to_string(level) + (report.note.empty() ? "" : "; " + report.note);
+}
+
 MipPyramid::MipPyramid(ImageF base, int min_size) {
   if (base.empty()) throw std::invalid_argument("a mip pyramid needs a non-empty image");
   levels_.push_back(std::move(base));

@@ -58,6 +58,9 @@ class StoredMipPyramid {
 // warpImage on views; the summary's note names the level.
 void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const ImageView& out,
                  const WarpOptions& options = {}, WarpSummary* summary = nullptr);
+// The same for one camera per colour channel (warpChannels); the level from the first's scale.
+void warpPreview(const StoredMipPyramid& pyramid, const std::vector<Camera>& channel_cameras,
+                 const ImageView& out, const WarpOptions& options = {}, WarpSummary* summary = nullptr);
 
 // Warps through the level that matches the map's scale at the target frame centre (the
 // footprint of one output pixel there, in source pixels). Same contract as warpImage; the

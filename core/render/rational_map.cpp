@@ -27,10 +27,40 @@ RationalMap::RationalMap(const Camera& camera, FrameSize source_px, FrameSize ta
     for (int i = 0; i < 3; ++i) q.emplace_back(st.q[off + i].block(off, off, 3, 3));
     stages_.push_back(std::move(q));
   }
+  if (stages_.size() == 1)
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Matrix3d& m = stages_[0][static_cast<size_t>(i)];
+      single_[i] = {m(0, 0), 2 * m(0, 1), 2 * m(0, 2), m(1, 1), 2 * m(1, 2), m(2, 2)};
+    }
+}
+
+bool RationalMap::evaluateSingle(const Eigen::Vector2d& source, Eigen::Vector2d& target,
+                                 Eigen::Matrix2d* jacobian, unsigned* denominator_signs) const {
+  const double u = source.x(), v = source.y();
+  const Form &f0 = single_[0], &f1 = single_[1], &f2 = single_[2];
+  const auto value = [&](const Form& f) { return (f.a * u + f.b * v + f.c) * u + (f.d * v + f.e) * v + f.f; };
+  const double den = value(f2);
+  if (!(std::abs(den) > 0.0)) return false;
+  const double inv = 1.0 / den;
+  const double x = value(f0) * inv, y = value(f1) * inv;
+  if (!std::isfinite(x) || !std::isfinite(y)) return false;
+  if (jacobian) {
+    // d(n_i / n_3) = (∇n_i − y_i ∇n_3) / n_3 (eq 2).
+    const double du = 2 * f2.a * u + f2.b * v + f2.c, dv = f2.b * u + 2 * f2.d * v + f2.e;
+    Eigen::Matrix2d j;
+    j << (2 * f0.a * u + f0.b * v + f0.c - x * du) * inv, (f0.b * u + 2 * f0.d * v + f0.e - x * dv) * inv,
+        (2 * f1.a * u + f1.b * v + f1.c - y * du) * inv, (f1.b * u + 2 * f1.d * v + f1.e - y * dv) * inv;
+    if (!j.allFinite()) return false;
+    *jacobian = j;
+  }
+  target = Eigen::Vector2d(x, y);
+  if (denominator_signs) *denominator_signs = den < 0.0 ? 1u : 0u;
+  return true;
 }
 
 bool RationalMap::evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& target,
                            Eigen::Matrix2d* jacobian, unsigned* denominator_signs) const {
+  if (stages_.size() == 1) return evaluateSingle(source, target, jacobian, denominator_signs);
   Eigen::Vector2d y = source;
   Eigen::Matrix2d jac = Eigen::Matrix2d::Identity();
   unsigned signs = 0;

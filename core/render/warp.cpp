@@ -130,7 +130,140 @@ int supersampleFactor(const Eigen::Matrix2d& j, int max_factor) {
   return static_cast<int>(std::min<double>(max_factor, std::ceil(side - 1e-9)));
 }
 
+// The footprint varies slowly: one Jacobian per span, at a pixel with a preimage. Returns the
+// supersampling factor and fills jac (row-major d source / d target).
+int spanFootprint(const CoordinateKernel& kernel, int y, int x0, int n, const float* sx, const float* sy,
+                  const unsigned char* valid, int max_ss, float jac[4]) {
+  for (int i = n / 2, tries = 0; tries < n; ++tries, i = (i + 1) % n) {
+    if (!valid[i]) continue;
+    Eigen::Matrix2d j;
+    if (!kernel.sourceJacobian(Eigen::Vector2d(x0 + i + 0.5, y + 0.5), Eigen::Vector2d(sx[i], sy[i]), j))
+      return 1;
+    jac[0] = static_cast<float>(j(0, 0));
+    jac[1] = static_cast<float>(j(0, 1));
+    jac[2] = static_cast<float>(j(1, 0));
+    jac[3] = static_cast<float>(j(1, 1));
+    return supersampleFactor(j, max_ss);
+  }
+  return 1;
+}
+
+void checkOptions(const WarpOptions& options) {
+  if (!(options.coordinates.residual_tolerance_px > 0.0) || !std::isfinite(options.coordinates.residual_tolerance_px))
+    throw std::invalid_argument("warp residual tolerance must be a positive number of pixels");
+  if (!(options.coordinates.seed_tolerance_px > 0.0) || !std::isfinite(options.coordinates.seed_tolerance_px))
+    throw std::invalid_argument("warp seed tolerance must be a positive number of pixels");
+  if (!(options.coordinates.certify_tolerance_px >= 0.0) || !std::isfinite(options.coordinates.certify_tolerance_px))
+    throw std::invalid_argument("warp certify tolerance must be a number of pixels ≥ 0");
+  if (options.threads < 0) throw std::invalid_argument("warp thread count must not be negative");
+}
+
+// Copies sample bytes of one channel, or the least of the channels' alphas, per pixel.
+template <class T>
+void mergeAlpha(const unsigned char* const* spans, int count, int pixel_bytes, int alpha_offset,
+                unsigned char* dst, int n, long long& transparent) {
+  for (int i = 0; i < n; ++i) {
+    T least;
+    std::memcpy(&least, spans[0] + i * pixel_bytes + alpha_offset, sizeof(T));
+    for (int k = 1; k < count; ++k) {
+      T a;
+      std::memcpy(&a, spans[k] + i * pixel_bytes + alpha_offset, sizeof(T));
+      least = a < least ? a : least;
+    }
+    std::memcpy(dst + i * pixel_bytes + alpha_offset, &least, sizeof(T));
+    transparent += !(least > T(0));
+  }
+}
+
 }  // namespace
+
+void warpChannels(const ConstImageView& source, const std::vector<Camera>& channel_cameras,
+                  const ImageView& out, const WarpOptions& options, WarpSummary* summary) {
+  const auto start = std::chrono::steady_clock::now();
+  WarpSummary local;
+  WarpSummary& report = summary ? *summary : local;
+  report = WarpSummary{};
+  checkOptions(options);
+  const int colour_channels = source.alpha_channel >= 0 ? source.channels - 1 : source.channels;
+  const int count = static_cast<int>(channel_cameras.size());
+  if (count < 1 || count > colour_channels || (source.alpha_channel >= 0 && source.alpha_channel != source.channels - 1))
+    throw std::invalid_argument("warpChannels needs one camera per colour channel, at most the photo's " +
+                                std::to_string(colour_channels) + ", and alpha (if any) last");
+  if (out.channels != colour_channels + 1 || out.alpha_channel != colour_channels)
+    throw std::invalid_argument("warpChannels writes the photo's colour channels and alpha (last)");
+  // Each channel's kernel samples into a span of its own, laid out like `out`.
+  const int pixel_bytes = out.pixelBytes();
+  std::vector<std::unique_ptr<CoordinateKernel>> kernels;
+  std::string names;
+  const FrameSize source_px{source.width, source.height}, out_px{out.width, out.height};
+  for (const Camera& camera : channel_cameras) {
+    camera.validate();
+    const CameraStructure structure = analyseStructure(camera);
+    checkCamera(camera, structure);
+    if (structure.degenerate) throw std::invalid_argument("a channel's camera has a zero position denominator");
+    KernelChoice choice = makeCoordinateKernel(camera, structure, source_px, out_px, options.coordinates, options.threads);
+    names += (names.empty() ? "" : "+") + choice.name;
+    if (!choice.note.empty()) report.note += (report.note.empty() ? "" : "; ") + choice.note;
+    kernels.push_back(std::move(choice.kernel));
+  }
+  report.kernel = "per-channel " + names;
+  const int max_ss = std::max(1, options.max_supersample);
+  const int size = pixelTypeSize(out.type);
+  std::atomic<long long> transparent{0}, newton{0};
+  ParallelOptions po;
+  po.threads = options.threads;
+  po.progress = options.progress;
+  po.band_rows = kBandRows;
+  const bool finished = parallelForRows(out_px.height, po, [&](int y0, int y1) {
+    long long band_transparent = 0, band_newton = 0;
+    alignas(32) float sx[kSpanPixels], sy[kSpanPixels];
+    unsigned char valid[kSpanPixels];
+    // One span per channel, in out's layout; each channel's sampler writes its own.
+    std::vector<unsigned char> scratch(static_cast<size_t>(count) * kSpanPixels * static_cast<size_t>(pixel_bytes));
+    std::vector<SpanSampler> band_samplers;
+    for (int k = 0; k < count; ++k) {
+      ImageView span = out;
+      span.data = scratch.data() + static_cast<size_t>(k) * kSpanPixels * static_cast<size_t>(pixel_bytes);
+      span.width = kSpanPixels;
+      span.height = 1;
+      span.row_bytes = static_cast<std::ptrdiff_t>(kSpanPixels) * pixel_bytes;
+      band_samplers.emplace_back(source, span, options.filter, !options.coordinates.scalar_only);
+    }
+    std::vector<RowState> states(static_cast<size_t>(count) * kBandRows);
+    const unsigned char* spans[4];
+    for (int k = 0; k < count; ++k) spans[k] = scratch.data() + static_cast<size_t>(k) * kSpanPixels * static_cast<size_t>(pixel_bytes);
+    for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
+      const int n = std::min(kSpanPixels, out_px.width - x0);
+      for (int y = y0; y < y1; ++y) {
+        for (int k = 0; k < count; ++k) {
+          const CoordinateKernel& kernel = *kernels[static_cast<size_t>(k)];
+          band_newton += kernel.span(y, x0, n, sx, sy, valid, states[static_cast<size_t>(k) * kBandRows + static_cast<size_t>(y - y0)]);
+          int ss = 1;
+          float jac[4] = {1, 0, 0, 1};
+          if (options.antialias) ss = spanFootprint(kernel, y, x0, n, sx, sy, valid, max_ss, jac);
+          band_samplers[static_cast<size_t>(k)].run(0, 0, n, sx, sy, valid, ss, jac);
+        }
+        unsigned char* dst = static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0) * pixel_bytes;
+        // Channel k from span k; channels without a camera of their own from the first span.
+        for (int c = 0; c < colour_channels; ++c) {
+          const unsigned char* from = spans[c < count ? c : 0];
+          for (int i = 0; i < n; ++i)
+            std::memcpy(dst + i * pixel_bytes + c * size, from + i * pixel_bytes + c * size, static_cast<size_t>(size));
+        }
+        const int alpha_offset = colour_channels * size;
+        if (out.type == PixelType::UInt8) mergeAlpha<std::uint8_t>(spans, count, pixel_bytes, alpha_offset, dst, n, band_transparent);
+        else if (out.type == PixelType::UInt16) mergeAlpha<std::uint16_t>(spans, count, pixel_bytes, alpha_offset, dst, n, band_transparent);
+        else mergeAlpha<float>(spans, count, pixel_bytes, alpha_offset, dst, n, band_transparent);
+      }
+    }
+    transparent += band_transparent;
+    newton += band_newton;
+  });
+  report.transparent_pixels = transparent.load();
+  report.newton_pixels = newton.load();
+  report.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  report.cancelled = !finished;
+}
 
 void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
                const WarpOptions& options, WarpSummary* summary) {
@@ -140,13 +273,7 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   report = WarpSummary{};
 
   camera.validate();
-  if (!(options.coordinates.residual_tolerance_px > 0.0) || !std::isfinite(options.coordinates.residual_tolerance_px))
-    throw std::invalid_argument("warp residual tolerance must be a positive number of pixels");
-  if (!(options.coordinates.seed_tolerance_px > 0.0) || !std::isfinite(options.coordinates.seed_tolerance_px))
-    throw std::invalid_argument("warp seed tolerance must be a positive number of pixels");
-  if (!(options.coordinates.certify_tolerance_px >= 0.0) || !std::isfinite(options.coordinates.certify_tolerance_px))
-    throw std::invalid_argument("warp certify tolerance must be a number of pixels ≥ 0");
-  if (options.threads < 0) throw std::invalid_argument("warp thread count must not be negative");
+  checkOptions(options);
   const SpanSampler sampler(source, out, options.filter, !options.coordinates.scalar_only);  // validates both images
   const CameraStructure structure = analyseStructure(camera);
   checkCamera(camera, structure);
@@ -212,22 +339,7 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
           band_newton += kernel.span(y, x0, n, sx, sy, valid, row_state);
           int ss = 1;
           float jac[4] = {1, 0, 0, 1};
-          if (options.antialias) {
-            // The footprint varies slowly: one Jacobian per span, at a pixel with a preimage.
-            for (int i = n / 2, tries = 0; tries < n; ++tries, i = (i + 1) % n) {
-              if (!valid[i]) continue;
-              Eigen::Matrix2d j;
-              if (kernel.sourceJacobian(Eigen::Vector2d(x0 + i + 0.5, y + 0.5),
-                                        Eigen::Vector2d(sx[i], sy[i]), j)) {
-                ss = supersampleFactor(j, max_ss);
-                jac[0] = static_cast<float>(j(0, 0));
-                jac[1] = static_cast<float>(j(0, 1));
-                jac[2] = static_cast<float>(j(1, 0));
-                jac[3] = static_cast<float>(j(1, 1));
-              }
-              break;
-            }
-          }
+          if (options.antialias) ss = spanFootprint(kernel, y, x0, n, sx, sy, valid, max_ss, jac);
           band_transparent += sampler.run(y, x0, n, sx, sy, valid, ss, jac);
         }
       }

@@ -22,6 +22,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 #include <string_view>
 
 namespace artcam {
@@ -93,5 +94,13 @@ ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& 
 // and summary->cancelled is set; the caller discards it.
 void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
                const WarpOptions& options = {}, WarpSummary* summary = nullptr);
+
+// Chromatic aberration the way the paper's Fig 4 builds it, on the photo as stored: channel k
+// (k < channel_cameras.size() ≤ the source's colour channels) through its own position camera,
+// each by the kernel its structure picks; an alpha channel (the source's, or appended) is the
+// least coverage of the channels, so a channel moved inwards leaves no coloured frame. Same
+// views, options and cancel contract as warpImage; summary->kernel joins the kernels' names.
+void warpChannels(const ConstImageView& source, const std::vector<Camera>& channel_cameras,
+                  const ImageView& out, const WarpOptions& options = {}, WarpSummary* summary = nullptr);
 
 }  // namespace artcam

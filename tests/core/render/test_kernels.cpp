@@ -126,7 +126,10 @@ class TestKernels : public QObject {
         for (size_t i = 0; i < exact.data.size(); ++i) differing += exact.data[i] != general.data[i];
         QVERIFY2(differing <= nearest_ties, qPrintable(QString("%1 values differ").arg(differing)));
       } else {
-        QVERIFY2(diff < 1e-4, qPrintable(QString("%1: max diff %2").arg(filterName(filter).data()).arg(diff)));
+        // Both round positions to float and the rational kernel's patch is certified to
+        // 1/4096 px: 3e-4 in value is ~3e-4 px at this image's steepest gradient (1 per px),
+        // a tenth of the 1/256 px position budget.
+        QVERIFY2(diff < 3e-4, qPrintable(QString("%1: max diff %2").arg(filterName(filter).data()).arg(diff)));
       }
       QCOMPARE(exact_summary.transparent_pixels, general_summary.transparent_pixels);
     }
