@@ -11,12 +11,17 @@
 #pragma once
 
 #include "core/model/image.h"
+#include "core/model/image_view.h"
 #include "core/model/piecewise_camera.h"
+#include "core/render/warp.h"
 
 namespace artcam {
 
 struct PiecewiseRenderOptions {
   double mesh_step_px = 4.0;  // source lattice spacing
+  Filter filter = Filter::Bilinear;
+  int threads = 0;            // 0: every core
+  bool allow_simd = true;     // the span sampler's SIMD clones (span_sampler.h)
   // The output size; 0×0: the camera's target frame. Another size scales the target frame to it
   // per axis (the output-frame rule of core/pipeline/render.h).
   FrameSize output;
@@ -34,6 +39,14 @@ struct PiecewiseRenderStats {
 ImageF renderPiecewise(const ImageF& source, const PiecewiseCamera& camera,
                        const PiecewiseRenderOptions& options = {},
                        PiecewiseRenderStats* stats = nullptr);
+
+// The same on typed views, the photo as stored (8-bit, 16-bit or float): `out` gives the size
+// (options.output is ignored) and has the source's type with its channels, or one more (alpha,
+// last) when the source has none, as for warpImage. The mesh is rasterised band by band of
+// output rows into source positions, which the gather warp's span sampler reads: the mesh
+// decides where, the sampler how, so the filters are the warp's.
+void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera, const ImageView& out,
+                     const PiecewiseRenderOptions& options = {}, PiecewiseRenderStats* stats = nullptr);
 
 // Premultiplied "over": top (with alpha) over bottom, in place on bottom. Sizes must agree;
 // bottom's channels other than alpha take top's colour channels in order.

@@ -72,16 +72,66 @@ namespace {
 struct Analysis {
   bool linear = false;       // renders from the linear float photo
   bool attributes = false;   // some layer changes or reads colour/depth
+  // Layers that each pass one colour channel through a position camera (chromatic
+  // aberration, Fig 4): those cameras in channel order, rendered by warpChannels.
+  std::vector<Camera> channels;
 };
+
+// A layer [position 3 | colour 4] whose position forms read position alone and whose colour
+// outputs pass channel k and alpha unchanged (z_k = c_k w, z_A = c_A w, the rest 0): channel
+// k, else −1. Exact comparisons: a camera edited into anything else takes the general path.
+int passedChannel(const Camera& layer) {
+  const std::vector<Block>& blocks = layer.blocks();
+  if (blocks.size() != 2 || blocks[0].kind != BlockKind::Position || blocks[0].size != 3 ||
+      blocks[1].kind != BlockKind::Colour || blocks[1].size != 4 || layer.stages().size() != 1)
+    return -1;
+  constexpr int kW = 2, kR = 3, kA = 6, kN = 7;
+  const Stage& st = layer.stages()[0];
+  if (static_cast<int>(st.q.size()) != kN) return -1;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::MatrixXd rest = st.q[static_cast<size_t>(i)];
+    rest.topLeftCorner(3, 3).setZero();
+    if (!rest.isZero(0.0)) return -1;
+  }
+  const auto unit = [](int i) { return Eigen::VectorXd::Unit(kN, i); };
+  if (st.q[kA] != symmetricOuter(unit(kA), unit(kW))) return -1;
+  int channel = -1;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::MatrixXd& q = st.q[static_cast<size_t>(kR + k)];
+    if (q.isZero(0.0)) continue;
+    if (channel >= 0 || q != symmetricOuter(unit(kR + k), unit(kW))) return -1;
+    channel = k;
+  }
+  return channel;
+}
+
+std::vector<Camera> channelCameras(const Artcam& camera) {
+  if (camera.layers.size() != 3 || camera.pieces || camera.depth_output != DepthOutput::Depth) return {};
+  std::vector<Camera> cameras(3);
+  bool seen[3] = {false, false, false};
+  for (const Camera& layer : camera.layers) {
+    const int k = passedChannel(layer);
+    if (k < 0 || seen[k]) return {};
+    seen[k] = true;
+    const Stage& st = layer.stages()[0];
+    std::vector<Eigen::Matrix3d> q;
+    for (int i = 0; i < 3; ++i) q.emplace_back(st.q[static_cast<size_t>(i)].topLeftCorner(3, 3));
+    cameras[static_cast<size_t>(k)] = Camera::rtcam(q, layer.sourceSize(), layer.targetSize());
+  }
+  return cameras;
+}
 
 Analysis analyse(const Artcam& camera) {
   Analysis a;
+  a.channels = channelCameras(camera);
+  if (!a.channels.empty()) return a;  // the stored photo, per channel
   for (const Camera& layer : camera.layers) {
     const CameraStructure s = analyseStructure(layer);
     a.attributes = a.attributes || s.attributes_change || s.geometry_depends_on_attributes;
   }
-  a.linear = camera.pieces.has_value() || camera.layers.size() > 1 || a.attributes ||
-             camera.depth_output != DepthOutput::Depth;
+  // Patches render from the stored photo like one camera (the mesh feeds the warp's sampler);
+  // with layers, attributes or depth of field they are refused by validateArtcam anyway.
+  a.linear = camera.layers.size() > 1 || a.attributes || camera.depth_output != DepthOutput::Depth;
   return a;
 }
 
@@ -184,19 +234,36 @@ void copyInto(const ImageF& image, const ImageView& out) {
 
 // The geometry kernels on the photo as stored (or the preview's mip level), into `out`.
 void renderGeometry(const ConstImageView& photo, const StoredMipPyramid* pyramid,
-                    const Artcam& camera, const RenderOptions& options, const ImageView& out,
-                    RenderSummary& report) {
+                    const Artcam& camera, const Analysis& analysis, const RenderOptions& options,
+                    const ImageView& out, RenderSummary& report) {
   WarpOptions warp = options.warp;
   warp.width = out.width;
   warp.height = out.height;
   WarpSummary ws;
+  if (camera.pieces) {
+    PiecewiseRenderOptions p;
+    p.mesh_step_px = options.mesh_step_px;
+    p.filter = options.warp.filter;
+    p.threads = options.warp.threads;
+    p.allow_simd = !options.warp.coordinates.scalar_only;
+    report.path = RenderPath::Piecewise;
+    report.kernel = std::to_string(camera.pieces->patches.size()) + " patches";
+    // A preview reads the pyramid level of about the output's scale.
+    const ConstImageView& from = pyramid ? pyramid->level(pyramid->levelFor(static_cast<double>(pyramid->level(0).width) / out.width)) : photo;
+    if (from.empty()) throw std::invalid_argument("render: no photo given");
+    renderPiecewise(from, *camera.pieces, out, p);
+    report.cancelled = options.warp.progress && !options.warp.progress(1.0);
+    return;
+  }
   if (pyramid) {
-    warpPreview(*pyramid, camera.main(), out, warp, &ws);
+    if (analysis.channels.empty()) warpPreview(*pyramid, camera.main(), out, warp, &ws);
+    else warpPreview(*pyramid, analysis.channels, out, warp, &ws);
     report.path = RenderPath::Preview;
   } else {
     if (photo.empty()) throw std::invalid_argument("render: no photo given");
-    warpImage(photo, camera.main(), out, warp, &ws);
-    report.path = RenderPath::Geometry;
+    if (analysis.channels.empty()) warpImage(photo, camera.main(), out, warp, &ws);
+    else warpChannels(photo, analysis.channels, out, warp, &ws);
+    report.path = analysis.channels.empty() ? RenderPath::Geometry : RenderPath::Layered;
   }
   report.kernel = ws.kernel;
   report.note = ws.note;
@@ -223,12 +290,13 @@ void render(const RenderInputs& inputs, const Artcam& camera, const RenderOption
   RenderSummary local;
   RenderSummary& report = startReport(summary, local, camera);
   report.size = {out.width, out.height};
-  if (analyse(camera).linear) {
+  const Analysis analysis = analyse(camera);
+  if (analysis.linear) {
     ImageF image = render(inputs, camera, options, &report);
     if (report.cancelled) return;
     copyInto(image, out);
   } else {
-    renderGeometry(inputs.photo, inputs.pyramid, camera, options, out, report);
+    renderGeometry(inputs.photo, inputs.pyramid, camera, analysis, options, out, report);
   }
   report.render_ms = msSince(start);
 }
@@ -259,7 +327,7 @@ ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOpti
           "render: a float output needs the photo as float (RenderInputs::linear)");
     const int channels = photo.alpha_channel >= 0 ? photo.channels : photo.channels + 1;
     out = ImageF(frame.size.width, frame.size.height, channels, channels - 1);
-    renderGeometry(photo, nullptr, camera, options, viewOf(out), report);
+    renderGeometry(photo, nullptr, camera, analysis, options, viewOf(out), report);
     if (report.cancelled) out = {};
   }
   if (!frame.warning.empty()) report.note = frame.warning + (report.note.empty() ? "" : "; " + report.note);

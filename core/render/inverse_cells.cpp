@@ -8,9 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <chrono>
-#include <cstdlib>
 
 namespace artcam {
 namespace {
@@ -35,7 +32,6 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
                            FrameSize source_px, FrameSize target_px,
                            const InverseCellsOptions& options)
     : newton_(newton), seed_(seed), source_px_(source_px), target_px_(target_px), options_(options) {
-  const auto debug_t0 = std::chrono::steady_clock::now();
   cells_w_ = std::max(1, (target_px.width + kCell - 1) / kCell);
   cells_h_ = std::max(1, (target_px.height + kCell - 1) / kCell);
   nodes_w_ = cells_w_ + 1;
@@ -61,14 +57,6 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
         else if (hasPatch(cx, cy) && certify(cx, cy)) k = patchBeyondReach(cx, cy) ? kEmpty : kCertified;
       }
   });
-  if (getenv("ARTCAM_DEBUG_CELLS")) {
-    long nodes_valid = 0; for (auto& n : nodes_) nodes_valid += n.valid;
-    long open = std::count(kinds_.begin(), kinds_.end(), kOpen), patch_open = 0;
-    for (int cy = 0; cy < cells_h_; ++cy) for (int cx = 0; cx < cells_w_; ++cx) if (kind(cx,cy)==kOpen && hasPatch(cx,cy)) ++patch_open;
-    long cov = 0; for (auto c : covered_) cov += c;
-    fprintf(stderr, "setup %.2f ms ", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - debug_t0).count());
-    fprintf(stderr, "cells %dx%d certified %.3f empty %.3f open %ld (with patch %ld) nodes valid %ld/%zu coverage %d %ld/%zu reach %.1f\n", cells_w_, cells_h_, certifiedShare(), emptyShare(), open, patch_open, nodes_valid, nodes_.size(), coverage_known_, cov, covered_.size(), reach_px_);
-  }
 }
 
 bool InverseCells::solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* start, Node& out) const {

@@ -19,8 +19,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace artcam {
@@ -158,21 +160,42 @@ void checkOptions(const WarpOptions& options) {
   if (options.threads < 0) throw std::invalid_argument("warp thread count must not be negative");
 }
 
-// Copies sample bytes of one channel, or the least of the channels' alphas, per pixel.
+// Channel c's premultiplied sample v_c came with its own alpha a_c; the pixel's alpha is the
+// least of them, a, and the colour is premultiplied by that: v_c · a / a_c (the attributed
+// renderer's layer rule, so no channel shows beyond the others at the frame's edge).
 template <class T>
-void mergeAlpha(const unsigned char* const* spans, int count, int pixel_bytes, int alpha_offset,
-                unsigned char* dst, int n, long long& transparent) {
+T rescale(T v, T a, T a_c) {
+  if constexpr (std::is_floating_point_v<T>) {
+    return a_c > T(0) ? v * (a / a_c) : T(0);
+  } else {
+    if (a_c == 0) return 0;
+    const std::uint64_t num = static_cast<std::uint64_t>(v) * a + a_c / 2;
+    return static_cast<T>(std::min<std::uint64_t>(num / a_c, std::numeric_limits<T>::max()));
+  }
+}
+
+// Out's pixels from the channels' spans: colour channel c from span c (the first span for a
+// channel without a camera), alpha the least of the spans' alphas. Typed, so the compiler
+// keeps the samples in registers instead of calling memcpy per sample.
+template <class T>
+long long mergeChannels(const unsigned char* const* spans, int count, int channels, unsigned char* dst, int n) {
+  const int alpha = channels - 1;
+  long long transparent = 0;
+  const T* from[4];
+  for (int c = 0; c < 4; ++c) from[c] = reinterpret_cast<const T*>(spans[c < count ? c : 0]);
+  T* out = reinterpret_cast<T*>(dst);
   for (int i = 0; i < n; ++i) {
-    T least;
-    std::memcpy(&least, spans[0] + i * pixel_bytes + alpha_offset, sizeof(T));
-    for (int k = 1; k < count; ++k) {
-      T a;
-      std::memcpy(&a, spans[k] + i * pixel_bytes + alpha_offset, sizeof(T));
-      least = a < least ? a : least;
+    const int p = i * channels;
+    T least = from[0][p + alpha];
+    for (int k = 1; k < count; ++k) least = std::min(least, from[k][p + alpha]);
+    for (int c = 0; c < alpha; ++c) {
+      const T a_c = from[c][p + alpha];
+      out[p + c] = a_c == least ? from[c][p + c] : rescale(from[c][p + c], least, a_c);
     }
-    std::memcpy(dst + i * pixel_bytes + alpha_offset, &least, sizeof(T));
+    out[p + alpha] = least;
     transparent += !(least > T(0));
   }
+  return transparent;
 }
 
 }  // namespace
@@ -208,7 +231,6 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
   }
   report.kernel = "per-channel " + names;
   const int max_ss = std::max(1, options.max_supersample);
-  const int size = pixelTypeSize(out.type);
   std::atomic<long long> transparent{0}, newton{0};
   ParallelOptions po;
   po.threads = options.threads;
@@ -230,7 +252,7 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
       band_samplers.emplace_back(source, span, options.filter, !options.coordinates.scalar_only);
     }
     std::vector<RowState> states(static_cast<size_t>(count) * kBandRows);
-    const unsigned char* spans[4];
+    const unsigned char* spans[4] = {nullptr, nullptr, nullptr, nullptr};
     for (int k = 0; k < count; ++k) spans[k] = scratch.data() + static_cast<size_t>(k) * kSpanPixels * static_cast<size_t>(pixel_bytes);
     for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
       const int n = std::min(kSpanPixels, out_px.width - x0);
@@ -244,16 +266,9 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
           band_samplers[static_cast<size_t>(k)].run(0, 0, n, sx, sy, valid, ss, jac);
         }
         unsigned char* dst = static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0) * pixel_bytes;
-        // Channel k from span k; channels without a camera of their own from the first span.
-        for (int c = 0; c < colour_channels; ++c) {
-          const unsigned char* from = spans[c < count ? c : 0];
-          for (int i = 0; i < n; ++i)
-            std::memcpy(dst + i * pixel_bytes + c * size, from + i * pixel_bytes + c * size, static_cast<size_t>(size));
-        }
-        const int alpha_offset = colour_channels * size;
-        if (out.type == PixelType::UInt8) mergeAlpha<std::uint8_t>(spans, count, pixel_bytes, alpha_offset, dst, n, band_transparent);
-        else if (out.type == PixelType::UInt16) mergeAlpha<std::uint16_t>(spans, count, pixel_bytes, alpha_offset, dst, n, band_transparent);
-        else mergeAlpha<float>(spans, count, pixel_bytes, alpha_offset, dst, n, band_transparent);
+        if (out.type == PixelType::UInt8) band_transparent += mergeChannels<std::uint8_t>(spans, count, out.channels, dst, n);
+        else if (out.type == PixelType::UInt16) band_transparent += mergeChannels<std::uint16_t>(spans, count, out.channels, dst, n);
+        else band_transparent += mergeChannels<float>(spans, count, out.channels, dst, n);
       }
     }
     transparent += band_transparent;

@@ -23,7 +23,7 @@ _artcam_options() {
                  --bit-depth --overwrite --force --json --quiet -q" ;;
     info) echo "--json" ;;
     "bench render") echo "--size --reps --threads --plot --peer --only --filter --no-e2e
-                          --overwrite --force" ;;
+                          --no-suite --cameras --overwrite --force" ;;
     "bench fit") echo "--counts --noise --plot --seconds --methods --colour --overwrite --force" ;;
     "bench effects") echo "--size --crop --sigmas --reps --threads --image --ratio --shrink-from
                            --only" ;;
