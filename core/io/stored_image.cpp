@@ -20,7 +20,6 @@
 #include <filesystem>
 #include <functional>
 #include <set>
-#include <string_view>
 
 namespace artcam {
 
@@ -157,14 +156,9 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
 
   // The codec path for JPEG (jpeg_decode.h): libjpeg-turbo straight into the rows, every byte
   // written, so the raster is not zeroed first. OpenImageIO decodes what that path does not take.
-  std::unique_ptr<JpegDecoder> jpeg;
-  if (std::string_view(in->format_name()) == "jpeg" && type == PixelType::UInt8) {
-    auto decoder = JpegDecoder::open(path);
-    if (!decoder) return R::failure(decoder.status.message);
-    if ((*decoder)->supported() && (*decoder)->width() == spec.width &&
-        (*decoder)->height() == spec.height && (*decoder)->channels() == channels)
-      jpeg = std::move(*decoder.value);
-  }
+  auto codec = io_input::jpegCodecPath(*in, spec, path);
+  if (!codec) return R::failure(codec.status.message);
+  std::unique_ptr<JpegDecoder> jpeg = std::move(*codec.value);
 
   StoredImage image;
   // A giant header must not turn into a giant allocation by surprise: size_t arithmetic, and a
