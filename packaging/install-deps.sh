@@ -6,9 +6,11 @@ set -euo pipefail
 
 packages=(build-essential cmake ninja-build ccache pkg-config
   qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
-  libexiv2-dev
+  libexiv2-dev libjpeg62-turbo-dev
   # Validators of the desktop files and manual pages (CTest packaging/*); file is for cpack's DEB.
-  desktop-file-utils appstream shared-mime-info libxml2-utils groff-base file)
+  desktop-file-utils appstream shared-mime-info libxml2-utils groff-base file
+  # djpeg, cjpeg and GNU time for packaging/bench-warp-codec.sh (the codec floor it compares with).
+  libjpeg-turbo-progs time)
 # --with-display adds what the screenshot/demo path needs to show a window without a screen, and
 # what packaging/studio-session.sh drives it with (xdotool) and shoots and compares it with
 # (imagemagick: import, convert, compare).

@@ -362,7 +362,9 @@ void endToEndJpeg(const PixelBuffer& pixels, FrameSize size, const Camera& camer
   if (!stored) throw CommandError(stored.status.message);
   const auto t1 = Clock::now();
   {
-    StoredImage warped = makeStoredImage(size.width, size.height, 3, -1, PixelType::UInt8);
+    // Uninitialised, as `artcam warp` allocates it (warp_job.cpp): the render's threads touch it.
+    StoredImage warped = makeStoredImage(size.width, size.height, 3, -1, PixelType::UInt8,
+                                         PixelBuffer::Init::Uninitialised);
     WarpSummary summary;
     warpImage(std::as_const(*stored).view(), camera, warped.view(), {}, &summary);
     const auto t2 = Clock::now();

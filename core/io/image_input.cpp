@@ -92,6 +92,21 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
   return R::success(std::move(in));
 }
 
+Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
+                                                   const OIIO::ImageSpec& spec,
+                                                   const std::string& path) {
+  using R = Result<std::unique_ptr<JpegDecoder>>;
+  if (std::string(in.format_name()) != "jpeg" || spec.format != OIIO::TypeDesc::UINT8)
+    return R::success(nullptr);
+  auto decoder = JpegDecoder::open(path);
+  if (!decoder) return R::failure(decoder.status.message);
+  const JpegDecoder& d = **decoder;
+  if (!d.supported() || d.width() != spec.width || d.height() != spec.height ||
+      d.channels() != keptChannels(spec))
+    return R::success(nullptr);
+  return decoder;
+}
+
 int storedOrientation(const OIIO::ImageSpec& spec, const PhotoMetadata* metadata) {
   if (metadata)
     if (const int tagged = photoOrientation(*metadata); tagged != 0)

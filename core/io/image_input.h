@@ -6,11 +6,13 @@
 
 #include "core/io/image_io.h"
 #include "core/io/io_text.h"
+#include "core/io/jpeg_decode.h"
 #include "core/colour/transfer.h"
 #include "core/model/status.h"
 
 #include <OpenImageIO/imageio.h>
 
+#include <memory>
 #include <string>
 
 namespace artcam::io_input {
@@ -43,6 +45,14 @@ inline Status decodeProblems(OIIO::ImageInput& in, const std::string& path) {
   }
   return Status::failure(path + ": cannot read: " + message);
 }
+
+// The codec path both readers take for the pixels of `in` (opened by openImageInput): a
+// libjpeg-turbo decoder for an 8-bit grey or YCbCr/RGB JPEG whose raster is what `spec` says
+// (jpeg_decode.h), else null and OpenImageIO decodes. Fails (one line) when libjpeg refuses
+// the header OpenImageIO accepted.
+Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
+                                                   const OIIO::ImageSpec& spec,
+                                                   const std::string& path);
 
 // Channels a reader keeps (beyond the fourth — EXR depth, masks — they are left behind) and the
 // alpha channel among them, or -1.

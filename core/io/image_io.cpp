@@ -141,8 +141,19 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   const bool tables =
       (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
       (!associated || linear);
+  auto codec = io_input::jpegCodecPath(*in, spec, path);
+  if (!codec) return R::failure(codec.status.message);
   try {
-    if (tables && spec.format == OIIO::TypeDesc::UINT8) {
+    if (*codec && tables) {
+      // The codec path (jpeg_decode.h), then the same tables as below.
+      std::vector<std::uint8_t> stored(image.data.size());
+      const Status decoded = (*codec)->decode(
+          stored.data(), static_cast<size_t>(image.width) * static_cast<size_t>(channels),
+          options.progress);
+      codec.value->reset();  // closes the file before the metadata reader opens it
+      if (!decoded) return R::failure(decoded.message);
+      decodeIntegers(stored, transfer, image);
+    } else if (tables && spec.format == OIIO::TypeDesc::UINT8) {
       std::vector<std::uint8_t> stored(image.data.size());
       ok = read(OIIO::TypeDesc::UINT8, stored.data());
       if (ok && !context.cancelled) decodeIntegers(stored, transfer, image);

@@ -7,6 +7,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
+#include "core/io/jpeg_decode.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
 #include "core/colour/transfer.h"
@@ -123,7 +124,8 @@ void unpremultiplyRow(const T* in, T* out, int width, int in_channels, int alpha
 
 }  // namespace
 
-StoredImage makeStoredImage(int width, int height, int channels, int alpha_channel, PixelType type) {
+StoredImage makeStoredImage(int width, int height, int channels, int alpha_channel, PixelType type,
+                            PixelBuffer::Init init) {
   StoredImage image;
   image.width = width;
   image.height = height;
@@ -131,7 +133,8 @@ StoredImage makeStoredImage(int width, int height, int channels, int alpha_chann
   image.alpha_channel = alpha_channel;
   image.type = type;
   image.bytes = PixelBuffer(static_cast<size_t>(width) * static_cast<size_t>(height) *
-                            static_cast<size_t>(channels) * static_cast<size_t>(pixelTypeSize(type)));
+                            static_cast<size_t>(channels) * static_cast<size_t>(pixelTypeSize(type)),
+                            init);
   return image;
 }
 
@@ -151,11 +154,18 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
           .value_or(type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
   const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
 
+  // The codec path for JPEG (jpeg_decode.h): libjpeg-turbo straight into the rows, every byte
+  // written, so the raster is not zeroed first. OpenImageIO decodes what that path does not take.
+  auto codec = io_input::jpegCodecPath(*in, spec, path);
+  if (!codec) return R::failure(codec.status.message);
+  std::unique_ptr<JpegDecoder> jpeg = std::move(*codec.value);
+
   StoredImage image;
   // A giant header must not turn into a giant allocation by surprise: size_t arithmetic, and a
   // clear message when the allocation fails.
   try {
-    image = makeStoredImage(spec.width, spec.height, channels, alpha, type);
+    image = makeStoredImage(spec.width, spec.height, channels, alpha, type,
+                            jpeg ? PixelBuffer::Init::Uninitialised : PixelBuffer::Init::Zeroed);
   } catch (const std::bad_alloc&) {
     return R::failure(path + ": cannot read: not enough memory for " + std::to_string(spec.width) +
                       "x" + std::to_string(spec.height) + " pixels");
@@ -164,7 +174,13 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   const OIIO::ProgressCallback callback = context.callback();
   bool ok = true;
   try {
-    if (spec.tile_width > 0) {
+    if (jpeg) {
+      const Status decoded = jpeg->decode(
+          image.bytes.data(),
+          static_cast<size_t>(image.width) * static_cast<size_t>(channels), options.progress);
+      jpeg.reset();  // closes the file before the metadata reader opens it
+      if (!decoded) return R::failure(decoded.message);
+    } else if (spec.tile_width > 0) {
       ok = in->read_image(0, 0, 0, channels, oiioType(type), image.bytes.data(), OIIO::AutoStride,
                           OIIO::AutoStride, OIIO::AutoStride, callback, &context);
     } else {
@@ -205,7 +221,8 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
     StoredImage upright;
     try {
       upright = makeStoredImage(swap ? image.height : image.width,
-                                swap ? image.width : image.height, channels, alpha, type);
+                                swap ? image.width : image.height, channels, alpha, type,
+                                PixelBuffer::Init::Uninitialised);  // reorientPixels writes all
     } catch (const std::bad_alloc&) {
       return R::failure(path + ": cannot read: not enough memory to turn " +
                         std::to_string(spec.width) + "x" + std::to_string(spec.height) +

@@ -43,8 +43,10 @@ struct StoredImage {
   }
 };
 
-// An empty image of the given shape (zeroed), e.g. the output of a warp.
-StoredImage makeStoredImage(int width, int height, int channels, int alpha_channel, PixelType type);
+// An empty image of the given shape, e.g. the output of a warp: zeroed, or left uninitialised
+// for a producer that writes every byte (pixel_buffer.h says why).
+StoredImage makeStoredImage(int width, int height, int channels, int alpha_channel, PixelType type,
+                            PixelBuffer::Init init = PixelBuffer::Init::Zeroed);
 
 Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options = {});
 // The pixel type readStoredImage would give `path`, from its header alone (choosing between the

@@ -7,6 +7,11 @@
 // 17 000 pages, far more than the TLB holds, and the sampler waits on page walks (measured:
 // most of its time on the source load). 2 MiB pages cut that to ~35. Where the kernel refuses
 // (THP "never"), this is plain aligned memory.
+//
+// Zeroed by default. A buffer its producer overwrites whole (a decoder's raster, a render's
+// output) asks for Uninitialised: zeroing 72 MB first costs a pass and, worse, takes every page
+// fault on the allocating thread; left untouched, the pages are faulted in by whichever threads
+// write them, in parallel and while the data is hot.
 #pragma once
 
 #include <cstddef>
@@ -24,8 +29,9 @@ namespace artcam {
 
 class PixelBuffer {
  public:
+  enum class Init { Zeroed, Uninitialised };
   PixelBuffer() = default;
-  explicit PixelBuffer(std::size_t bytes) : size_(bytes) {
+  explicit PixelBuffer(std::size_t bytes, Init init = Init::Zeroed) : size_(bytes) {
     if (bytes == 0) return;
     constexpr std::size_t kHuge = std::size_t{2} << 20;
     const std::size_t rounded = (bytes + kHuge - 1) / kHuge * kHuge;
@@ -34,7 +40,7 @@ class PixelBuffer {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     madvise(p, rounded, MADV_HUGEPAGE);  // a hint: failure leaves ordinary pages
 #endif
-    std::memset(p, 0, bytes);
+    if (init == Init::Zeroed) std::memset(p, 0, bytes);
     data_.reset(static_cast<std::uint8_t*>(p));
   }
 

@@ -90,6 +90,7 @@ bool needsLinearPhoto(const Artcam& camera);
 // for cameras needing the linear photo `out` must be float RGBA (4 channels, alpha 3).
 // Throws std::invalid_argument naming the cause for a broken contract (a missing input, an
 // invalid camera, a wrong output shape). On cancel `out` is partial and summary->cancelled set.
+// Unless cancelled, every pixel of `out` is written: it may be handed over uninitialised.
 void render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
             const ImageView& out, RenderSummary* summary = nullptr);
 

@@ -9,6 +9,8 @@
 // by span and sampled at once (span_sampler.h): no per-pixel map is stored. Pixels with no
 // preimage (outside the source, folded, beyond the pole curve x Q_n xᵀ = 0) are transparent:
 // all channels 0 and alpha 0. Never NaN. Whole-pixel translations (identity included) copy.
+// Every pixel of the output is written, transparent ones too, so the output may be handed over
+// uninitialised (pixel_buffer.h: its pages are then first touched by the render's threads).
 //
 // Frames: the camera's tensors are normalised, so the source image may be any resolution of
 // the photo the camera was made on, and the output any resolution of its target frame.
