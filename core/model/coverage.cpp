@@ -4,6 +4,7 @@
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -11,7 +12,13 @@
 namespace artcam {
 namespace {
 
-constexpr int kLattice = 49;  // points per side: 48 × 48 cells
+// Points per side: 49 (48 × 48 cells) for ordinary cameras. Each point costs one evaluation per
+// stage, so a long chain gets a coarser lattice (about 2·10^5 stage evaluations in all, at least
+// 5 × 5 points): a file of 3000 stages is checked in milliseconds, not seconds.
+int latticeFor(size_t stages) {
+  const double side = std::sqrt(2e5 / static_cast<double>(std::max<size_t>(stages, 1)));
+  return static_cast<int>(std::clamp(side, 5.0, 49.0));
+}
 
 struct Sample {
   Eigen::Vector2d target = Eigen::Vector2d::Zero();  // normalised target position
@@ -47,18 +54,19 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
   const int offset = layout.offsets[static_cast<size_t>(block)];
   const int weight_index = layout.homogeneousIndex(block);
 
-  std::vector<Sample> samples(kLattice * kLattice);
-  for (int j = 0; j < kLattice; ++j)
-    for (int i = 0; i < kLattice; ++i) {
-      const double t = static_cast<double>(i) / (kLattice - 1);
-      const double u = static_cast<double>(j) / (kLattice - 1);
+  const int lattice = latticeFor(camera.stages().size());
+  std::vector<Sample> samples(static_cast<size_t>(lattice * lattice));
+  for (int j = 0; j < lattice; ++j)
+    for (int i = 0; i < lattice; ++i) {
+      const double t = static_cast<double>(i) / (lattice - 1);
+      const double u = static_cast<double>(j) / (lattice - 1);
       const Eigen::Vector2d pixel = lo_px + Eigen::Vector2d(t, u).cwiseProduct(hi_px - lo_px);
       const Eigen::Vector2d n = normalizedFromPixel(source, pixel);
       x[offset] = n.x();
       x[offset + 1] = n.y();
       x[offset + 2] = 1.0;
       const Eigen::VectorXd z = camera.evaluateHomogeneous(x);
-      Sample& sample = samples[static_cast<size_t>(j * kLattice + i)];
+      Sample& sample = samples[static_cast<size_t>(j * lattice + i)];
       sample.weight = z[weight_index];
       if (std::isfinite(sample.weight) && sample.weight != 0.0) {
         sample.target = Eigen::Vector2d(z[offset], z[offset + 1]) / sample.weight;
@@ -70,12 +78,12 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
   const double half = 0.5 * std::max(target.width, target.height);
   const Eigen::Vector2d extent(0.5 * target.width / half, 0.5 * target.height / half);
   const double min_area = 1e-12 * 4.0 * extent.x() * extent.y();
-  for (int j = 0; j + 1 < kLattice; ++j)
-    for (int i = 0; i + 1 < kLattice; ++i) {
-      const Sample* corner[4] = {&samples[static_cast<size_t>(j * kLattice + i)],
-                                 &samples[static_cast<size_t>(j * kLattice + i + 1)],
-                                 &samples[static_cast<size_t>((j + 1) * kLattice + i + 1)],
-                                 &samples[static_cast<size_t>((j + 1) * kLattice + i)]};
+  for (int j = 0; j + 1 < lattice; ++j)
+    for (int i = 0; i + 1 < lattice; ++i) {
+      const Sample* corner[4] = {&samples[static_cast<size_t>(j * lattice + i)],
+                                 &samples[static_cast<size_t>(j * lattice + i + 1)],
+                                 &samples[static_cast<size_t>((j + 1) * lattice + i + 1)],
+                                 &samples[static_cast<size_t>((j + 1) * lattice + i)]};
       ++c.cells;
       bool positive = false, negative = false, finite = true;
       Eigen::Vector2d box_lo = Eigen::Vector2d::Constant(HUGE_VAL);
@@ -93,7 +101,7 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
                          box_hi.y() >= -extent.y() && box_lo.y() <= extent.y();
       if (positive && negative) {
         if (c.across_pole == 0) {
-          const double t = (i + 0.5) / (kLattice - 1), u = (j + 0.5) / (kLattice - 1);
+          const double t = (i + 0.5) / (lattice - 1), u = (j + 0.5) / (lattice - 1);
           c.pole_pixel = lo_px + Eigen::Vector2d(t, u).cwiseProduct(hi_px - lo_px);
         }
         ++c.across_pole;
