@@ -10,5 +10,10 @@ bash "$root/packaging/build.sh"
 cd "$build"
 QT_QPA_PLATFORM=offscreen ctest --output-on-failure -j"$(nproc)"
 # Then the instrumented jobs: ASan+UBSan, the fuzzers, TSan (packaging/ci-sanitizers.sh says
-# what each builds and runs). ARTCAM_CI_SANITIZERS=0 skips them.
-if [[ "${ARTCAM_CI_SANITIZERS:-1}" != 0 ]]; then bash "$root/packaging/ci-sanitizers.sh"; fi
+# what each builds and runs). ARTCAM_CI_SANITIZERS=0 skips them; a list ("fuzz tsan") picks some.
+case "${ARTCAM_CI_SANITIZERS:-1}" in
+  0) ;;
+  1) bash "$root/packaging/ci-sanitizers.sh" ;;
+  *) read -r -a sanitizer_jobs <<<"$ARTCAM_CI_SANITIZERS"
+     bash "$root/packaging/ci-sanitizers.sh" "${sanitizer_jobs[@]}" ;;
+esac
