@@ -7,6 +7,10 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build ccache pkg-config
   qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
   libexiv2-dev libjpeg62-turbo-dev
+  # The hostile corpus (CTest hostile/corpus) is driven by python3; oiiotool makes its images.
+  python3
+  # CI's fuzzing job (packaging/ci-sanitizers.sh): libFuzzer comes with clang's runtime.
+  clang-14 libclang-rt-14-dev
   # Validators of the desktop files and manual pages (CTest packaging/*); file is for cpack's DEB.
   desktop-file-utils appstream shared-mime-info libxml2-utils groff-base file
   # djpeg, cjpeg and GNU time for packaging/bench-warp-codec.sh (the codec floor it compares with).

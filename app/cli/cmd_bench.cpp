@@ -6,6 +6,7 @@
 #include "app/cli/args.h"
 #include "app/cli/bench_suite.h"
 #include "app/cli/commands.h"
+#include "app/cli/memory.h"
 #include "app/cli/outputs.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
@@ -528,6 +529,7 @@ int benchCommand(const std::vector<std::string>& argv) {
   if (const auto plot = args.value("--plot")) checkOutputs(args, {*plot}, {});
   const FrameSize size = args.has("--size") ? parseSize(*args.value("--size"), "--size")
                                             : FrameSize{6000, 4000};
+  checkImageMemory(size, "--size");
   int reps = 5;
   std::vector<int> thread_counts;
   try {

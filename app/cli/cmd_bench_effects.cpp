@@ -9,6 +9,7 @@
 // code to --size. A benchmark, not a test: no assertions, quote the load with the figures.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/memory.h"
 #include "core/effects/depth_of_field.h"
 #include "core/io/image_io.h"
 #include "core/model/frames.h"
@@ -178,6 +179,7 @@ int benchEffectsCommand(const std::vector<std::string>& argv) {
                          {"--shrink-from", "", true},
                          {"--only", "", true}});
   const FrameSize size = parseSize(args.valueOr("--size", "6000x4000"), "--size");
+  checkImageMemory(size, "--size");
   // Whole numbers at least `min`, refused (never clamped) otherwise, naming the option.
   const auto whole = [&args](const char* option, const char* fallback, int min) {
     const std::string text = args.valueOr(option, fallback);

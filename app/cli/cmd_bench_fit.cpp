@@ -231,7 +231,27 @@ int benchFitCommand(const std::vector<std::string>& argv) {
       parseList(args.valueOr("--counts", "9,30,100,1000,10000,100000"), "--counts");
   const std::vector<double> noises = parseList(args.valueOr("--noise", "0,0.5,2"), "--noise");
   const double seconds = parseList(args.valueOr("--seconds", "0.3"), "--seconds").front();
+  // A run that measures nothing is a usage mistake, not an empty table: every count is a whole
+  // number of matches the quadratic can be fitted to (9) up to a million, noise is a finite
+  // non-negative px, and each row gets a positive time budget of at most an hour.
+  for (double count : counts)
+    if (!(count >= 9 && count <= 1e6) || count != std::floor(count))
+      throw UsageError("--counts expects whole numbers of matches from 9 to 1000000");
+  for (double noise : noises)
+    if (!(noise >= 0 && std::isfinite(noise)))
+      throw UsageError("--noise expects finite numbers ≥ 0 (px)");
+  if (!(seconds > 0 && seconds <= 3600))
+    throw UsageError("--seconds expects a number of seconds above 0, at most 3600");
   const std::string only = args.valueOr("--methods", "raw-dlt,dlt,refine,robust,auto");
+  for (size_t p = 0; p <= only.size();) {
+    const size_t comma = std::min(only.find(',', p), only.size());
+    const std::string name = only.substr(p, comma - p);
+    const std::vector<std::string> known = {"raw-dlt", "dlt", "refine", "robust", "auto"};
+    if (std::find(known.begin(), known.end(), name) == known.end())
+      throw UsageError("--methods: unknown method \"" + name + "\" (raw-dlt, dlt, refine, robust, auto)",
+                       didYouMean(name, known));
+    p = comma + 1;
+  }
   const auto wanted = [&](const std::string& name) {
     return ("," + only + ",").find("," + name + ",") != std::string::npos;
   };

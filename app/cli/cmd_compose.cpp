@@ -61,6 +61,10 @@ int composeCommand(const std::vector<std::string>& argv) {
     steps.push_back({{"camera", inputs[i]}, {"description", description}});
     if (!json) std::printf("%s: %s\n", inputs[i].c_str(), description.c_str());
   }
+  // Two usable cameras can compose into one that renders nothing (the second's pole across the
+  // first's image): refused like such a file would be on read.
+  if (const Status s = validateArtcam(composed); !s)
+    throw CommandError(*output + ": the composed camera is not usable: " + s.message);
   if (const Status s = writeArtcam(*output, composed); !s) throw CommandError(s.message);
   const std::string summary = analyseStructure(composed.main()).summary;
   if (json)

@@ -4,6 +4,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
+#include "app/cli/memory.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "app/cli/write_args.h"
@@ -99,6 +100,7 @@ int exportCommand(const std::vector<std::string>& argv) {
   ExportOptions options;
   if (const auto size = args.value("--size")) {
     const FrameSize s = parseSize(*size, "--size");
+    checkImageMemory(s, "--size");
     options.width = s.width;
     options.height = s.height;
   }

@@ -69,6 +69,8 @@ int exportMapCommand(const std::vector<std::string>& argv) {
 
   const auto camera = readArtcam(path);
   if (!camera) throw CommandError(camera.status.message);
+  for (const std::string& warning : cameraWarnings(*camera))
+    std::fprintf(stderr, "artcam export-map: warning: %s: %s\n", path.c_str(), warning.c_str());
   if (camera->pieces)
     throw CommandError(path +
                        ": a piecewise camera has one map per patch; export-map needs a "

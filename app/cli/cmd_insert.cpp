@@ -119,6 +119,8 @@ int insertCommand(const std::vector<std::string>& argv) {
       const std::string path = *args.value("--camera");
       const auto doc = readArtcam(path);
       if (!doc) throw CommandError(doc.status.message);
+      for (const std::string& warning : cameraWarnings(*doc))
+        std::fprintf(stderr, "artcam insert: warning: %s: %s\n", path.c_str(), warning.c_str());
       if (doc->pieces) {
         camera = *doc->pieces;
       } else {

@@ -3,6 +3,7 @@
 // image (z-buffered splats) or, with -o *.ply, the moved cloud itself.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/memory.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/cloud/cloud_render.h"
@@ -125,6 +126,7 @@ int renderCommand(const std::vector<std::string>& argv) {
   CloudRenderOptions options;
   if (args.has("--size")) {
     const FrameSize size = parseSize(*args.value("--size"), "--size");
+    checkImageMemory(size, "--size");
     options.width = size.width;
     options.height = size.height;
   }

@@ -3,6 +3,7 @@
 // (the paper's Figs 7 and 8): a photo, its calibration-grid matches and a graphic to insert.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/memory.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/io/image_io.h"
@@ -55,6 +56,7 @@ int sampleCommand(const std::vector<std::string>& argv) {
     if (squares < 2 || squares > 256) throw UsageError("--squares must be between 2 and 256");
   }
   const FrameSize size = parseSize(args.valueOr("--size", "640x480"), "--size");
+  checkImageMemory(size, "--size");
   const std::string& name = args.positional()[0];
   if (name != "mirror-sphere" && name != "water-glass")
     throw UsageError("unknown sample \"" + name + "\" (mirror-sphere or water-glass)",

@@ -100,10 +100,15 @@ int warpCommand(const std::vector<std::string>& argv) {
   auto stage = [&](const char* name) {
     return cancelOnInterrupt([&bar, name](double done) { bar.stage(name, done); });
   };
+  // The exit status says what is on disk: once encodeWarp has renamed the output into place the
+  // job is done, and a signal that lands after that (while the summary is printed) no longer
+  // makes it an interrupted run (exit 130 with the new output in place).
+  bool written = false;
   try {
     DecodedInput decoded = decodeForWarp(camera, request, input, *output, stage("reading"));
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
     encodeWarp(rendered, request, stage("writing"));
+    written = true;
     bar.finish();
     const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
     const double mpix_per_s = rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0;
@@ -137,7 +142,7 @@ int warpCommand(const std::vector<std::string>& argv) {
     if (!interruptRequested()) throw;
   }
   bar.finish();
-  if (interruptRequested()) {
+  if (interruptRequested() && !written) {
     std::fprintf(stderr, "artcam warp: interrupted; %s not written\n", output->c_str());
     return interruptExitCode();
   }

@@ -2,9 +2,12 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
+#include "app/cli/memory.h"
 
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <stdexcept>
 #include <string_view>
 
 namespace artcam::cli {
@@ -97,6 +100,13 @@ int run(int argc, char** argv) {
         page += " " + rest.front();
       printUsageError(std::string("artcam ") + c.name, e.what(), e.hint, page);
       return 2;
+    } catch (const std::bad_alloc&) {
+      // An allocation the budget checks did not foresee: the user's words, not the library's.
+      std::fprintf(stderr, "artcam %s: %s\n", c.name, allocationFailureMessage().c_str());
+      return 1;
+    } catch (const std::length_error&) {  // "cannot create std::vector larger than max_size()"
+      std::fprintf(stderr, "artcam %s: %s\n", c.name, allocationFailureMessage().c_str());
+      return 1;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "artcam %s: %s\n", c.name, e.what());
       return 1;

@@ -2,6 +2,7 @@
 #include "app/cli/warp_job.h"
 
 #include "app/cli/commands.h"
+#include "app/cli/memory.h"
 #include "core/io/depth_file.h"
 
 #include <algorithm>
@@ -46,6 +47,7 @@ WarpRequest parseWarpRequest(const Args& args) {
   warp.filter = *filter;
   if (args.has("--size")) {
     const FrameSize size = parseSize(*args.value("--size"), "--size");
+    checkImageMemory(size, "--size");
     warp.width = size.width;
     warp.height = size.height;
   }
@@ -69,6 +71,11 @@ WarpRequest parseWarpRequest(const Args& args) {
     auto read = readDepthFile(*path, depth, &summary);
     if (!read) throw CommandError(read.status.message);
     request.depth = std::move(*read);
+    // A depth map is one channel; an RGB render of depth, or depth with alpha, is read from its
+    // first channel, and a user should know the others were left out.
+    if (summary.channels > 1)
+      std::fprintf(stderr, "warning: %s: %d channels; depth is read from the first channel only\n",
+                   path->c_str(), summary.channels);
     std::printf("depth %s: %dx%d, %g..%g, %lld holes\n", path->c_str(), request.depth->width,
                 request.depth->height, summary.min_depth, summary.max_depth, summary.holes);
   }
@@ -80,6 +87,9 @@ WarpRequest parseWarpRequest(const Args& args) {
 WarpCameraFile loadWarpCamera(const std::string& path) {
   auto camera = readArtcam(path);
   if (!camera) throw CommandError(camera.status.message);
+  // A pole that takes part of the frame renders, with that part transparent: said once, here.
+  for (const std::string& warning : cameraWarnings(*camera))
+    std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warning.c_str());
   WarpCameraFile file{path, std::move(*camera), false};
   file.linear = needsLinearPhoto(file.camera);
   return file;

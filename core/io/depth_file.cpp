@@ -78,6 +78,7 @@ Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& op
   ImageF depth(spec.width, spec.height, 1);
   DepthFileSummary s;
   s.pixel_type = spec.format.c_str();
+  s.channels = spec.nchannels;
   s.min_depth = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < values.size(); ++i) {
     double z = static_cast<double>(values[i]) * scale;

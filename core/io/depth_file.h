@@ -32,6 +32,7 @@ struct DepthFileOptions {
 
 struct DepthFileSummary {
   std::string pixel_type;  // as stored: "uint8", "uint16", "int8", "int16", "half", "float", …
+  int channels = 1;        // in the file; only the first is depth (the caller names the rest)
   long long holes = 0;     // pixels without a usable depth
   double min_depth = 0.0, max_depth = 0.0;  // over the pixels with depth
 };

@@ -5,6 +5,7 @@
 #include "core/io/jpeg_quality.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
+#include "core/util/memory_budget.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,17 +21,7 @@
 
 namespace artcam::io_input {
 
-double memoryBudgetBytes() {
-  if (const char* text = std::getenv("ARTCAM_MAX_MEMORY_MB"); text && *text) {
-    char* end = nullptr;
-    const double mb = std::strtod(text, &end);
-    if (end && *end == '\0' && mb > 0.0 && std::isfinite(mb)) return mb * 1024.0 * 1024.0;
-  }
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return 4.0 * 1024.0 * 1024.0 * 1024.0;  // unknown: 4 GiB
-  return 0.5 * static_cast<double>(pages) * static_cast<double>(page);
-}
+double memoryBudgetBytes() { return artcam::memoryBudgetBytes(); }
 
 Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
   using R = Result<OIIO::ImageInput::unique_ptr>;
@@ -46,7 +37,7 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
   } catch (const std::exception& e) {
     // OIIO 2.4's GIF reader throws std::length_error on a 34-byte file that starts "GIF89a"
     // (tests/core/io/test_hostile_images.cpp); a decoder's exception is a refusal like any other.
-    return R::failure(path + ": cannot read: the decoder failed: " + io_text::oneLine(e.what()));
+    return R::failure(path + ": cannot read: " + io_text::decoderFailure(e));
   }
   if (!in) return R::failure(path + ": cannot read: " + io_text::oneLine(OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();

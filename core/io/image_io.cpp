@@ -31,6 +31,7 @@ namespace artcam {
 
 namespace {
 
+using io_text::decoderFailure;
 using io_text::oneLine;
 
 std::string pixelTypeName(OIIO::TypeDesc type) {
@@ -166,7 +167,7 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
       if (ok && !context.cancelled) decodeFloats(transfer, associated && !linear, image);
     }
   } catch (const std::exception& e) {  // a decoder's exception (see image_input.cpp)
-    return R::failure(path + ": cannot read: the decoder failed: " + oneLine(e.what()));
+    return R::failure(path + ": cannot read: " + decoderFailure(e));
   }
   if (context.cancelled) return R::failure(path + ": cannot read: cancelled");
   if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -14,6 +16,16 @@ inline std::string oneLine(std::string message) {
   for (size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at))
     message.replace(at, 1, "; ");
   return message.empty() ? "unknown error" : message;
+}
+
+// The cause of a decoder's exception in a user's words. The standard library's own texts
+// ("vector::_M_default_append", "std::bad_alloc") say nothing to a user and never reach one: a
+// length error is a size in the file beyond any image, an allocation failure is memory.
+inline std::string decoderFailure(const std::exception& e) {
+  if (dynamic_cast<const std::length_error*>(&e))
+    return "the decoder failed: the file claims a size beyond any image (a corrupt header)";
+  if (dynamic_cast<const std::bad_alloc*>(&e)) return "not enough memory to decode it";
+  return "the decoder failed: " + oneLine(e.what());
 }
 
 inline std::string replaceAll(std::string text, const std::string& from, const std::string& to) {

@@ -274,6 +274,10 @@ Result<PointCloud> parsePly(std::string_view bytes, const std::string& name) {
     if (h.elements[i].name == "vertex") vertex_index = static_cast<int>(i);
   if (vertex_index < 0) return R::failure(name + ": no vertex element in the header");
   const Element& vertex = h.elements[vertex_index];
+  // A cloud of no points renders an empty picture: nothing a user asked for.
+  if (vertex.count == 0)
+    return R::failure(name + ": header line " + std::to_string(vertex.line) +
+                      ": element vertex 0: the cloud has no points");
   std::vector<Role> roles;
   std::array<int, 8> where{};
   where.fill(-1);

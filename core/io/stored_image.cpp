@@ -25,6 +25,7 @@ namespace artcam {
 
 namespace {
 
+using io_text::decoderFailure;
 using io_text::oneLine;
 
 OIIO::TypeDesc oiioType(PixelType t) {
@@ -197,7 +198,7 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
       }
     }
   } catch (const std::exception& e) {  // a decoder's exception (see image_input.cpp)
-    return R::failure(path + ": cannot read: the decoder failed: " + oneLine(e.what()));
+    return R::failure(path + ": cannot read: " + decoderFailure(e));
   }
   if (context.cancelled) return R::failure(path + ": cannot read: cancelled");
   if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/model/artcam.h"
 
+#include "core/model/coverage.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -36,6 +38,23 @@ void Artcam::setFrames(FrameSize source_size, FrameSize target_size) {
   }
 }
 
+std::vector<std::string> cameraWarnings(const Artcam& camera) {
+  std::vector<std::string> warnings;
+  for (size_t i = 0; i < camera.layers.size(); ++i) {
+    const std::string warning = measureCoverage(camera.layers[i]).warning();
+    if (warning.empty()) continue;
+    warnings.push_back((i == 0 ? std::string() : "layer " + std::to_string(i) + ": ") + warning);
+  }
+  if (camera.pieces)
+    for (size_t i = 0; i < camera.pieces->patches.size(); ++i) {
+      const CameraPatch& p = camera.pieces->patches[i];
+      const std::string warning =
+          measureCoverage(p.camera, {p.rect.x0, p.rect.y0}, {p.rect.x1, p.rect.y1}).warning();
+      if (!warning.empty()) warnings.push_back("patch " + std::to_string(i) + ": " + warning);
+    }
+  return warnings;
+}
+
 bool readsDepth(const Artcam& camera) {
   for (const Block& b : camera.blocks())
     if (b.kind == BlockKind::Depth) return true;
@@ -65,7 +84,9 @@ bool hasZeroStage(const Camera& camera) {
   return false;
 }
 
-Status checkCamera(const Camera& camera, const std::string& where) {
+// `rect_px`: the source rectangle the camera answers for (a patch's), else the whole frame.
+Status checkCamera(const Camera& camera, const std::string& where,
+                   const PatchRect* rect_px = nullptr) {
   try {
     camera.validate();
   } catch (const std::invalid_argument& e) {
@@ -74,6 +95,10 @@ Status checkCamera(const Camera& camera, const std::string& where) {
   if (camera.stages().empty()) return Status::failure(where + "no stages");
   if (hasZeroStage(camera))
     return Status::failure(where + "every tensor of a stage is zero (the camera maps nothing)");
+  const Coverage coverage =
+      rect_px ? measureCoverage(camera, {rect_px->x0, rect_px->y0}, {rect_px->x1, rect_px->y1})
+              : measureCoverage(camera);
+  if (const Status s = coverage.status(); !s) return Status::failure(where + s.message);
   return Status::success();
 }
 
@@ -113,7 +138,7 @@ Status checkPieces(const Artcam& camera) {
     if (p.camera.blocks() != main.blocks() || p.camera.sourceSize() != src ||
         p.camera.targetSize() != main.targetSize())
       return Status::failure(where + "/camera: blocks and frames must match the top-level camera's");
-    if (Status s = checkCamera(p.camera, where + "/camera: "); !s) return s;
+    if (Status s = checkCamera(p.camera, where + "/camera: ", &p.rect); !s) return s;
   }
   // Patches tile the source: neighbours share edges, interiors never overlap.
   for (size_t i = 0; i < pieces.patches.size(); ++i)

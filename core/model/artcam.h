@@ -75,6 +75,10 @@ struct Artcam {
 bool readsDepth(const Artcam& camera);
 
 // The invariants above; the message names the part ("layer 2: …", "patch 3: rect …").
+// The file's invariants, and that every camera in it renders something (coverage.h): a camera
+// whose pole crosses the whole frame, or that maps it onto a line, is refused with the reason.
 Status validateArtcam(const Artcam& camera);
+// What validateArtcam lets through but a user should hear: a pole that takes part of the frame.
+std::vector<std::string> cameraWarnings(const Artcam& camera);
 
 }  // namespace artcam

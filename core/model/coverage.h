@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: Apache-2.0
+// What of the source frame an image camera maps somewhere: checked on read (validateArtcam)
+// so a camera that renders nothing is refused with its reason instead of warping every photo
+// to a fully transparent image, and one that loses part of the frame is reported.
+//
+// The position map is sampled on a 49×49 lattice of the source rectangle (coarser for chains of
+// hundreds of stages, down to 5×5; in the normalised frames of frames.h). A lattice cell "covers" when its four
+// mapped corners are finite, span an area (not a line or a point: the shoelace area exceeds
+// 1e-12 of the target frame's), and one of them lands inside the target frame. A camera with
+// no covering cell renders nothing: refused. A sign change of the position block's homogeneous
+// weight between lattice points is a pole inside the rectangle (exact pole checks are the
+// fit's, core/fit/poles.h; this one only has to see a pole that takes a visible share).
+//
+// Skipped for cameras that are not 2D image cameras, and for those whose position depends on
+// colour or depth (which sample values would be made up here).
+#pragma once
+
+#include "core/model/camera.h"
+#include "core/model/status.h"
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace artcam {
+
+struct Coverage {
+  bool checked = false;   // false: the camera is not one the check applies to
+  int cells = 0;          // lattice cells sampled
+  int covering = 0;       // cells that map onto an area inside the target frame
+  int non_finite = 0;     // cells with a corner that maps to no finite point
+  int flat = 0;           // finite cells mapped onto a line or a point
+  int across_pole = 0;    // cells whose corners' weights differ in sign
+  Eigen::Vector2d pole_pixel = Eigen::Vector2d::Zero();  // a source pixel next to the pole
+
+  // Failure when nothing covers, naming the cause: the pole across the whole rectangle, no
+  // finite position, everything onto a line or a point, or everything outside the target.
+  Status status() const;
+  // Non-empty when part of the rectangle is lost to a pole: where, and what share.
+  std::string warning() const;
+};
+
+// Over the source rectangle [x0, x1] × [y0, y1] in pixels.
+Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
+                         const Eigen::Vector2d& hi_px);
+// Over the whole source frame.
+Coverage measureCoverage(const Camera& camera);
+
+}  // namespace artcam

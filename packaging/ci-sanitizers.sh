@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+# CI's instrumented jobs, run by packaging/build-and-test.sh after the normal build and tests:
+#
+#   asan  GCC, ASan + UBSan, -O1: the engine and the CLI; runs the readers' tests (core/io,
+#         core/model/artcam and coverage) and app/hostile_warp with leak checking, and the hostile corpus
+#         (tests/hostile) through the instrumented artcam. Any report fails the job.
+#   fuzz  clang 14, libFuzzer + ASan + UBSan: every reader's fuzzer for ARTCAM_CI_FUZZ_SECONDS
+#         (default 5) from its checked-in corpus. What a fuzzer finds is left in
+#         build-fuzz/fuzz/findings/ and listed; it becomes a regression seed by being copied to
+#         fuzz/corpus/<target>/found-<what>, which the normal build replays on every test run.
+#   tsan  GCC, TSan, -O1: ui/preview, 1 000 rapid edits through the newest-request worker (the
+#         preview's render and fit workers), with cmake/tsan.supp for uninstrumented Qt. Not
+#         ui/background_job: the one-shot jobs run on QThreadPool, whose threads race inside
+#         libQt6Core (memmove between two pooled threads, no frame of ours) in a way no
+#         suppression can single out without hiding our own races; it needs a TSan-built Qt.
+#
+# Which targets, and why so few: CI has two cores and a budget of well under 30 minutes for the
+# whole of .ci/run from a cold cache; the normal build takes about half of that. Each tree builds
+# only what its tests need (README, "Hostile input, fuzzing and sanitizers", has the measured
+# times). The fuzz job leaves out fuzz_project, whose target links the whole engine a second
+# time (ARTCAM_CI_FUZZ_PROJECT=1 adds it); the corpus replay covers the project reader instead.
+#
+# usage: ci-sanitizers.sh [asan] [fuzz] [tsan]   (default: all three)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+jobs="${ARTCAM_CI_JOBS:-$(nproc)}"
+selected=("$@")
+[[ ${#selected[@]} -eq 0 ]] && selected=(asan fuzz tsan)
+flags_o1=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1")
+
+timed() {  # timed NAME COMMAND...: runs it and prints how long it took
+  local name="$1" start
+  shift
+  start=$(date +%s)
+  "$@"
+  echo "ci-sanitizers: $name took $(($(date +%s) - start)) s"
+}
+
+asan() {
+  local build="${ARTCAM_ASAN_DIR:-$root/build-asan}"
+  timed "asan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
+    -DARTCAM_SANITIZE=address,undefined -DARTCAM_BUILD_GUI=OFF >/dev/null
+  local targets=(artcam test_app_hostile_warp)
+  targets+=($(ninja -C "$build" -t targets all | grep -oE '^test_core_io_[a-z0-9_]+' | sort -u))
+  targets+=(test_core_model_artcam test_core_model_coverage)
+  timed "asan build (${#targets[@]} targets)" cmake --build "$build" -j"$jobs" --target "${targets[@]}"
+  # The tests with leak checking: LSan's suppression (cmake/lsan.supp, a leak inside OIIO's PNG
+  # reader) needs the slow unwinder on every malloc.
+  (cd "$build" &&
+    ASAN_OPTIONS="fast_unwind_on_malloc=0:detect_leaks=1:exitcode=86" \
+    LSAN_OPTIONS="suppressions=$root/cmake/lsan.supp:print_suppressions=0" \
+    UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87" \
+    QT_QPA_PLATFORM=offscreen \
+    timed "asan tests" ctest --output-on-failure --no-tests=error -j"$jobs" -R '^(core/io/.*|core/model/(artcam|coverage)|app/hostile_warp)$')
+  # The hostile corpus (about 300 runs of artcam) without leak checking, which would triple its
+  # time: memory errors and undefined behaviour are still fatal; the readers' leaks are the tests'
+  # above, which read the same kinds of files.
+  (cd "$build" &&
+    ASAN_OPTIONS="detect_leaks=0:exitcode=86" \
+    UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87" \
+    ARTCAM_HOSTILE_SANITIZED=1 QT_QPA_PLATFORM=offscreen \
+    timed "asan hostile corpus" ctest --output-on-failure --no-tests=error -R '^hostile/corpus$')
+}
+
+fuzz() {
+  local build="${ARTCAM_FUZZ_DIR:-$root/build-fuzz}"
+  local cxx="${ARTCAM_FUZZ_CXX:-clang++-14}"
+  local names=(artcam piecewise matches_csv colour_csv ply)
+  [[ "${ARTCAM_CI_FUZZ_PROJECT:-0}" == 1 ]] && names+=(project)
+  CXX="$cxx" timed "fuzz configure" cmake -S "$root" -B "$build" -G Ninja \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARTCAM_FUZZ=ON -DARTCAM_BUILD_GUI=OFF \
+    -DARTCAM_BUILD_TESTS=OFF -DARTCAM_FUZZ_SECONDS="${ARTCAM_CI_FUZZ_SECONDS:-5}" >/dev/null
+  timed "fuzz build (${#names[@]} fuzzers)" cmake --build "$build" -j"$jobs" \
+    --target "${names[@]/#/fuzz_}"
+  local pattern
+  pattern="^fuzz/($(IFS='|'; echo "${names[*]}"))$"
+  local status=0
+  # The fuzz tests live in build-fuzz/fuzz (the root enables no tests without ARTCAM_BUILD_TESTS).
+  (cd "$build/fuzz" && timed "fuzz runs" ctest --output-on-failure --no-tests=error -R "$pattern") ||
+    status=$?
+  if compgen -G "$build/fuzz/findings/*" >/dev/null; then
+    echo "ci-sanitizers: the fuzzers found inputs to keep as regression seeds" \
+      "(fuzz/corpus/<target>/found-<what>):"
+    ls -l "$build"/fuzz/findings/
+  fi
+  return "$status"
+}
+
+tsan() {
+  local build="${ARTCAM_TSAN_DIR:-$root/build-tsan}"
+  timed "tsan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
+    -DARTCAM_SANITIZE=thread >/dev/null
+  timed "tsan build" cmake --build "$build" -j"$jobs" --target test_ui_preview
+  # setarch -R: TSan's shadow layout does not fit high-entropy ASLR (Debian 12's kernels).
+  (cd "$build" &&
+    TSAN_OPTIONS="suppressions=$root/cmake/tsan.supp:halt_on_error=1:exitcode=66" \
+    QT_QPA_PLATFORM=offscreen \
+    timed "tsan tests" setarch "$(uname -m)" -R ctest --output-on-failure --no-tests=error \
+      -R '^ui/preview$')
+}
+
+for job in "${selected[@]}"; do
+  case "$job" in
+    asan | fuzz | tsan) "$job" ;;
+    *) echo "ci-sanitizers: unknown job $job (asan, fuzz, tsan)" >&2; exit 2 ;;
+  esac
+done

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: Apache-2.0
+// Coverage (core/model/coverage.h): what of the source frame a camera maps onto an area of the
+// target frame, against hand-computed lattices: the 48 × 48 cells of a 64 × 64 frame are 4/3 px
+// wide, so a pole line at pixel column 25.6 runs through cell column 19 (25.33…26.67 px).
+#include "core/model/coverage.h"
+#include "tests/support/test_support.h"
+
+#include <QtTest/QtTest>
+
+using namespace artcam;
+
+namespace {
+// y = H x with x = (u, v, 1) in the normalised frame: Q_i = sym(e_3 h_iᵀ).
+Camera fromHomography(const Eigen::Matrix3d& h) {
+  Stage stage;
+  const Eigen::Vector3d w(0, 0, 1);
+  for (int i = 0; i < 3; ++i) stage.q.push_back(symmetricOuter(w, h.row(i).transpose()));
+  return Camera({Block{BlockKind::Position, 3}}, {stage}, {64, 64}, {64, 64});
+}
+constexpr int kCells = 48 * 48;
+}  // namespace
+
+class TestCoverage : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void theIdentityCoversEveryCell() {
+    const Coverage c = measureCoverage(fromHomography(Eigen::Matrix3d::Identity()));
+    QVERIFY(c.checked);
+    QCOMPARE(c.cells, kCells);
+    QCOMPARE(c.covering, kCells);
+    QVERIFY(c.status().ok);
+    QVERIFY(c.warning().empty());
+  }
+
+  void aShiftOffTheFrameRendersNothing() {
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+    h(0, 2) = 6.0;  // three frame widths to the right (the normalised frame is 2 wide)
+    const Coverage c = measureCoverage(fromHomography(h));
+    QCOMPARE(c.covering, 0);
+    QVERIFY(!c.status().ok);
+    QVERIFY(c.status().message.find("lands inside the target") != std::string::npos);
+  }
+
+  void aStrongZoomStillCovers() {
+    // 200× about the centre: every mapped cell corner lies outside the target frame, but the
+    // central cells' images span it.
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+    h(0, 0) = h(1, 1) = 200.0;
+    const Coverage c = measureCoverage(fromHomography(h));
+    QVERIFY(c.covering > 0);
+    QVERIFY(c.covering <= 4);  // only the cells touching the centre meet a 1/200 window
+    QVERIFY(c.status().ok);
+  }
+
+  void aPoleLineLosesOneColumnOfCells() {
+    // Denominator u + 0.2: zero at u = -0.2, pixel x = 32 - 0.2·32 = 25.6.
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+    h(2, 0) = 1.0;
+    h(2, 2) = 0.2;
+    const Coverage c = measureCoverage(fromHomography(h));
+    QCOMPARE(c.across_pole, 48);
+    QCOMPARE(c.pole_pixel.x(), 19.5 * 64.0 / 48.0);
+    QVERIFY(c.status().ok);
+    const std::string warning = c.warning();
+    QVERIFY2(warning.find("pole crosses the source frame near pixel (26, ") != std::string::npos,
+             warning.c_str());
+  }
+
+  void everythingOntoALineIsRefused() {
+    // x' = u/u = 1, y' = v/u: the frame collapses onto the line x' = 1. The lattice column at
+    // u = 0 (point 24 of 49) has weight 0: its two neighbouring cell columns have no finite
+    // corner there; every other cell is flat.
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+    h(0, 0) = 1.0;
+    h(1, 1) = 1.0;
+    h(2, 0) = 1.0;
+    const Coverage c = measureCoverage(fromHomography(h));
+    QCOMPARE(c.covering, 0);
+    QCOMPARE(c.non_finite, 2 * 48);
+    QCOMPARE(c.flat, kCells - 2 * 48);
+    QVERIFY(c.status().message.find("onto a line or a point") != std::string::npos);
+  }
+
+  void aZeroDenominatorHasNoFinitePoint() {
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+    h(2, 2) = 0.0;
+    const Coverage c = measureCoverage(fromHomography(h));
+    QCOMPARE(c.non_finite, kCells);
+    QVERIFY(c.status().message.find("no point of the source frame maps to a finite position") !=
+            std::string::npos);
+  }
+
+  void objectSpaceCamerasAreNotChecked() {
+    const Camera c = Camera::identity({Block{BlockKind::Position, 4}}, {}, {});
+    QVERIFY(!measureCoverage(c).checked);
+    QVERIFY(measureCoverage(c).status().ok);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCoverage)
+#include "test_coverage.moc"
