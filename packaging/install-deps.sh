@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(build-essential cmake ninja-build ccache pkg-config
   qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
-  libexiv2-dev
+  libexiv2-dev liblensfun-dev liblensfun-data-v1
   # Validators of the desktop files and manual pages (CTest packaging/*); file is for cpack's DEB.
   desktop-file-utils appstream shared-mime-info libxml2-utils groff-base file)
 # --with-display adds what the screenshot/demo path needs to show a window without a screen, and
