@@ -287,9 +287,11 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   }
 
   // Beyond one camera: patches over the source frame, fitted on a denser grid.
-  // Samples reading up to one grid step outside the frame are kept, so the patches reach the
-  // frame's edge wherever the photo has pixels (a moustache lens reads furthest out between
-  // grid lines); the rectangles are then cut back to the frame, which is all a patch may cover.
+  // The patches tile the region the samples cover. lensfun's map reads furthest out between
+  // grid lines (the middle of an edge for a barrel, off-centre for a moustache), so that
+  // region stops short of the frame's edge by a fraction of a grid step, or passes it: samples
+  // up to a step outside the frame are kept, and the outer edges of the tiling are then put on
+  // the frame's edges, which is all a patch may cover and where the photo has pixels.
   const MapSamples dense = map.sample(size, 2 * options.fit_samples);
   const double step = std::max(size.width, size.height) / (2.0 * options.fit_samples);
   const std::vector<PointMatch> inside = matchesOf(dense, green, step, size);
@@ -298,10 +300,19 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   PiecewiseSummary pieces = fitPiecewise(inside, size, size, piecewise_options);
   if (!pieces.status)
     return failure(s, entry->model + ": no piecewise camera: " + pieces.status.message);
+  PatchRect hull = pieces.camera.patches.front().rect;
+  for (const CameraPatch& p : pieces.camera.patches) {
+    hull.x0 = std::min(hull.x0, p.rect.x0), hull.y0 = std::min(hull.y0, p.rect.y0);
+    hull.x1 = std::max(hull.x1, p.rect.x1), hull.y1 = std::max(hull.y1, p.rect.y1);
+  }
+  const auto snap = [step](double& edge, double outer, double frame_edge) {
+    if (edge == outer && std::abs(edge - frame_edge) <= step) edge = frame_edge;
+  };
   std::vector<CameraPatch> kept;
   for (CameraPatch& p : pieces.camera.patches) {
-    p.rect.x0 = std::max(p.rect.x0, 0.0);
-    p.rect.y0 = std::max(p.rect.y0, 0.0);
+    snap(p.rect.x0, hull.x0, 0.0), snap(p.rect.y0, hull.y0, 0.0);
+    snap(p.rect.x1, hull.x1, size.width), snap(p.rect.y1, hull.y1, size.height);
+    p.rect.x0 = std::max(p.rect.x0, 0.0), p.rect.y0 = std::max(p.rect.y0, 0.0);
     p.rect.x1 = std::min(p.rect.x1, double(size.width));
     p.rect.y1 = std::min(p.rect.y1, double(size.height));
     if (p.rect.x1 > p.rect.x0 && p.rect.y1 > p.rect.y0) kept.push_back(std::move(p));

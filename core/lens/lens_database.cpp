@@ -51,10 +51,14 @@ bool hasAny(T* const* calib) {
 
 std::string haystack(const LensEntry& e) { return lower(e.maker + " " + e.model); }
 
+// Every query word begins a word of the name: "8mm" finds "Samyang 8mm" but not "18mm", and
+// "10-22" finds "10-22mm".
 bool holdsAll(const LensEntry& e, const std::vector<std::string>& ws) {
-  const std::string h = haystack(e);
-  return std::all_of(ws.begin(), ws.end(),
-                     [&](const std::string& w) { return h.find(w) != std::string::npos; });
+  const std::vector<std::string> name = words(e.maker + " " + e.model);
+  return std::all_of(ws.begin(), ws.end(), [&](const std::string& w) {
+    return std::any_of(name.begin(), name.end(),
+                       [&](const std::string& n) { return n.compare(0, w.size(), w) == 0; });
+  });
 }
 
 bool namedExactly(const LensEntry& e, std::string_view name) {

@@ -57,8 +57,9 @@ class LensDatabase {
   const std::vector<LensEntry>& entries() const { return entries_; }
   const lfLens* lens(int index) const;
 
-  // Lenses whose "maker model" holds every word of `text` (case-insensitive; "10-22" and
-  // "f/3.5" are words); an exact model name first, then by maker and model. Empty text: none.
+  // Lenses whose "maker model" has, for every word of `text`, a word beginning with it
+  // (case-insensitive; words split at spaces, so "10-22" finds "10-22mm" and "8mm" does not
+  // find "18mm"); an exact model name first, then by maker and model. Empty text: none.
   std::vector<LensEntry> search(std::string_view text, int limit = 50) const;
   // The lens named exactly (case-insensitive) by its model, or by "maker model"; of several
   // calibrations the one whose crop factor is nearest to `crop` (0: the first). Not found: a
