@@ -9,6 +9,7 @@
 // several crop factors appears once per calibration; `crop_factor` tells them apart.
 #pragma once
 
+#include "core/io/photo_metadata.h"
 #include "core/model/status.h"
 
 #include <memory>
@@ -37,13 +38,8 @@ struct LensEntry {
   std::string describe() const;
 };
 
-// What a photo says about the lens, from its EXIF (core/io/photo_metadata.h reads it).
-struct LensHint {
-  std::string camera_maker;  // Exif.Image.Make
-  std::string camera_model;  // Exif.Image.Model
-  std::string lens_model;    // Exif.Photo.LensModel (may be empty)
-  double focal_mm = 0.0;     // Exif.Photo.FocalLength; 0: unknown
-};
+// What a photo says about the lens: its EXIF make, model, lens model and focal length.
+using LensHint = PhotoLensTags;
 
 class LensDatabase {
  public:
