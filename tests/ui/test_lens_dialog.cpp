@@ -8,6 +8,7 @@
 #include "ui/main_window.h"
 #include "ui/session.h"
 
+#include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QLineEdit>
 #include <QListWidget>
