@@ -184,6 +184,9 @@ PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
   tags.camera_maker = text("Exif.Image.Make");
   tags.camera_model = text("Exif.Image.Model");
   tags.lens_model = text("Exif.Photo.LensModel");
+  // OpenImageIO 2.4 writes LensModel (tag 0xa434) into IFD0 rather than the Exif IFD, so
+  // files it wrote (ours among them) carry it there.
+  if (tags.lens_model.empty()) tags.lens_model = text("Exif.Image.0xa434");
   try {
     const auto at = metadata.exif.findKey(Exiv2::ExifKey("Exif.Photo.FocalLength"));
     if (at != metadata.exif.end() && at->count() > 0) {
