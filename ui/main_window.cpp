@@ -297,6 +297,10 @@ void MainWindow::createMenus() {
           new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
   });
 
+  QMenu* lens = menuBar()->addMenu(tr("&Lens"));
+  lens->addAction(tr("From &Database…"), session_, &Session::lensFromDatabaseDialog)
+      ->setToolTip(tr("The camera that corrects a lens of the lensfun database for this photo"));
+
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&Quick Start"), QKeySequence::HelpContents, this,
                   [this] { makeQuickStartDialog(this)->show(); })

@@ -5,6 +5,8 @@
 // as dialogs naming the file and the cause. MainWindow only wires actions to these slots.
 #pragma once
 
+#include "core/lens/lens_camera.h"
+#include "core/lens/lens_database.h"
 #include "ui/cloud_view.h"
 #include "ui/export_job.h"
 #include "ui/image_loader.h"
@@ -100,6 +102,13 @@ class Session : public QObject {
   void exportDepthMapDialog();
   void loadDepthMapDialog(double scale, bool inverse);
   void openCloudDialog();
+  // Lens ▸ From Database… (session_lens.cpp): the lensfun database loaded off the GUI thread,
+  // the lens dialog with the photo's EXIF suggestions, then applyLensCamera.
+  void lensFromDatabaseDialog();
+  // Makes `artcam lens camera`'s camera for the open photo off the GUI thread and sets it as
+  // the document's camera (undoable); lensCameraApplied reports the outcome either way.
+  void applyLensCamera(const LensCameraOptions& options,
+                       std::shared_ptr<const LensDatabase> database);
   // Asks to save unsaved changes; false when the user cancelled.
   bool maybeSave();
 
@@ -113,6 +122,7 @@ class Session : public QObject {
   void exportFinished(bool ok, const QString& message);
   void depthMapLoaded(bool ok, const QString& message);
   void cloudLoaded(const artcam::ui::LoadedCloud& cloud);
+  void lensCameraApplied(bool ok, const QString& message);
 
  private:
   void startLoading(const QString& photo_path, std::optional<Project> project,

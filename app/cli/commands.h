@@ -37,6 +37,7 @@ int insertCommand(const std::vector<std::string>& args);
 int sampleCommand(const std::vector<std::string>& args);
 int exportCommand(const std::vector<std::string>& args);  // artcam export: a studio project
 int exportMapCommand(const std::vector<std::string>& args);  // artcam export-map: an ST map
+int lensCommand(const std::vector<std::string>& args);  // artcam lens: the lensfun database
 
 extern const char* const kFitUsage;
 extern const char* const kMapUsage;
@@ -54,6 +55,7 @@ extern const char* const kInsertUsage;
 extern const char* const kSampleUsage;
 extern const char* const kExportUsage;
 extern const char* const kExportMapUsage;
+extern const char* const kLensUsage;
 
 int run(int argc, char** argv);
 

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <exception>
+#include <cmath>
 #include <mutex>
 #include <set>
 
@@ -163,6 +164,38 @@ int photoOrientation(const PhotoMetadata& metadata) {
   } catch (const std::exception&) {
     return 0;
   }
+}
+
+PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
+  const auto lock = exiv2Lock();
+  PhotoLensTags tags;
+  const auto text = [&](const char* key) -> std::string {
+    try {
+      const auto at = metadata.exif.findKey(Exiv2::ExifKey(key));
+      if (at == metadata.exif.end() || at->count() == 0) return {};
+      std::string v = at->toString();
+      // EXIF ASCII values are often padded with spaces or NULs.
+      while (!v.empty() && (v.back() == ' ' || v.back() == '\0')) v.pop_back();
+      return v;
+    } catch (const std::exception&) {
+      return {};
+    }
+  };
+  tags.camera_maker = text("Exif.Image.Make");
+  tags.camera_model = text("Exif.Image.Model");
+  tags.lens_model = text("Exif.Photo.LensModel");
+  // OpenImageIO 2.4 writes LensModel (tag 0xa434) into IFD0 rather than the Exif IFD, so
+  // files it wrote (ours among them) carry it there.
+  if (tags.lens_model.empty()) tags.lens_model = text("Exif.Image.0xa434");
+  try {
+    const auto at = metadata.exif.findKey(Exiv2::ExifKey("Exif.Photo.FocalLength"));
+    if (at != metadata.exif.end() && at->count() > 0) {
+      const double f = static_cast<double>(at->toFloat());
+      if (std::isfinite(f) && f > 0) tags.focal_mm = f;
+    }
+  } catch (const std::exception&) {
+  }
+  return tags;
 }
 
 Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,

@@ -36,6 +36,17 @@ std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path);
 // (Exif.Image.Orientation; a TIFF's own tag), else XMP's tiff:Orientation, else 0 (none).
 int photoOrientation(const PhotoMetadata& metadata);
 
+// What the photo's EXIF says about the camera and lens (empty / 0 where a tag is absent):
+// Exif.Image.Make and Model, Exif.Photo.LensModel, Exif.Photo.FocalLength in mm. For choosing
+// a lens of the lensfun database (core/lens/lens_database.h).
+struct PhotoLensTags {
+  std::string camera_maker;
+  std::string camera_model;
+  std::string lens_model;
+  double focal_mm = 0.0;
+};
+PhotoLensTags photoLensTags(const PhotoMetadata& metadata);
+
 struct MetadataUpdate {
   int width = 0;  // the written file's size in pixels
   int height = 0;

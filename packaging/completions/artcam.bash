@@ -7,8 +7,8 @@
 # completion time, so they follow the effects table without an edit here. Plain bash: it needs
 # neither the bash-completion package's helpers nor a particular bash-completion version.
 
-_artcam_commands="fit map warp batch info bench render preset compose export export-map insert
-                  sample"
+_artcam_commands="fit map warp batch info bench render preset compose export export-map lens
+                  insert sample"
 
 # The options of one page: a command, or bench's sub-command ("bench fit").
 _artcam_options() {
@@ -34,6 +34,8 @@ _artcam_options() {
     export) echo "--output -o --camera-out --depth-out --size --quality --bit-depth --crop-valid
                   --fill --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --json --overwrite --force" ;;
+    lens) echo "--limit --json --lens --focal --crop --size --output -o --distort --no-tca
+                --max-error --overwrite --force" ;;
     insert) echo "--output -o --matches --camera --canonical --max-error --save-camera
                   --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;
@@ -69,6 +71,12 @@ _artcam() {
         fit|effects) page="bench ${COMP_WORDS[2]}" ;;
         *) page="bench render" ;;  # bench without a sub-command is bench render
       esac
+      ;;
+    lens)
+      if [[ $COMP_CWORD -eq 2 && "$cur" != -* ]]; then
+        COMPREPLY=($(compgen -W "search camera" -- "$cur"))
+        return 0
+      fi
       ;;
     preset)
       if [[ $COMP_CWORD -eq 2 && "$cur" != -* ]]; then

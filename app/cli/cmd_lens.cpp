@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: Apache-2.0
+// artcam lens: lenses of the lensfun database (core/lens): search them, and write the camera
+// that corrects (or simulates) one at a focal length.
+#include "app/cli/args.h"
+#include "app/cli/commands.h"
+#include "app/cli/outputs.h"
+#include "core/io/artcam_file.h"
+#include "core/lens/lens_camera.h"
+#include "core/lens/lens_database.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+
+namespace artcam::cli {
+
+const char* const kLensUsage =
+    "usage: artcam lens search TEXT... [--limit N] [--json]\n"
+    "       artcam lens camera --lens NAME --focal MM --size WxH -o CAM.artcam [--crop C]\n"
+    "                          [--distort] [--no-tca] [--max-error PX] [--json]\n\n"
+    "Lenses from the lensfun database (Debian's liblensfun-data-v1).\n\n"
+    "search lists the lenses whose maker and model hold every word of TEXT (case-insensitive),\n"
+    "an exact name first, with the focal range, the crop factor of the camera they were\n"
+    "calibrated on, the projection and what the database has (distortion, TCA, vignetting).\n"
+    "--limit N shows at most N (default 50; 0: all). --json prints {lenses: [{maker, model,\n"
+    "min_focal_mm, max_focal_mm, crop_factor, type, distortion, tca, vignetting}]}.\n\n"
+    "camera writes the camera that corrects a photo taken with lens NAME (its model as search\n"
+    "prints it) at focal length --focal MM: source = the photo as shot, target = the\n"
+    "corrected photo, both --size WxH (the photo's pixels). --distort writes the reverse,\n"
+    "which makes a clean picture look shot through the lens. lensfun's own conventions hold:\n"
+    "its modifier's normalisation, --crop C the crop factor of the camera the photo was taken\n"
+    "with (default: the lens's calibration crop factor; of several calibrations the nearest\n"
+    "is used), scale 1, a fisheye converted to rectilinear. lensfun's map is sampled on a grid\n"
+    "and fitted as artcam fit --stmap fits a map; the camera is checked against lensfun's own\n"
+    "coordinates on a denser grid: a single camera when its max error is within --max-error\n"
+    "(default 0.5 px), else a piecewise one fitted to that threshold. Where the database has\n"
+    "transverse chromatic aberration (TCA) the camera is three colour layers, one per channel\n"
+    "(--no-tca: geometry only; a piecewise camera cannot be layered, so it leaves TCA out and\n"
+    "says so). Vignetting is reported, not applied: a radial gain is beyond a quadratic\n"
+    "stage's colour block. Prints the lens, the error against lensfun (max and RMS over the\n"
+    "checked points) and notes; --json prints {lens, crop, focal_mm, piecewise, patches,\n"
+    "single_max_px, single_rms_px, max_px, rms_px, checked, within_tolerance, tca,\n"
+    "tca_max_px, notes, output}.\n\n"
+    "-o/--output names the camera file (required; written atomically). An existing one is\n"
+    "refused unless --overwrite (--force is the same).\n\n"
+    "Examples:\n"
+    "  artcam lens search canon 10-22\n"
+    "  artcam lens camera --lens \"Canon EF-S 10-22mm f/3.5-4.5 USM\" --focal 10 \\\n"
+    "      --size 6000x4000 -o efs10-22.artcam\n"
+    "  artcam warp photo.jpg efs10-22.artcam -o corrected.jpg\n";
+
+namespace {
+
+std::shared_ptr<const LensDatabase> loadDatabase() {
+  auto db = LensDatabase::load();
+  if (!db) throw CommandError(db.status.message);
+  return *db.value;
+}
+
+nlohmann::json lensJson(const LensEntry& e) {
+  return {{"maker", e.maker},           {"model", e.model},
+          {"min_focal_mm", e.min_focal_mm}, {"max_focal_mm", e.max_focal_mm},
+          {"crop_factor", e.crop_factor},   {"type", e.type},
+          {"distortion", e.distortion},     {"tca", e.tca},
+          {"vignetting", e.vignetting}};
+}
+
+double number(const Args& args, const std::string& option, const std::string& what) {
+  try {
+    size_t used = 0;
+    const std::string text = *args.value(option);
+    const double v = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument(text);
+    return v;
+  } catch (const std::exception&) {
+    throw UsageError(option + " expects " + what);
+  }
+}
+
+int searchCommand(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--limit", "", true}, {"--json", "", false}});
+  if (args.positional().empty()) throw UsageError("missing the TEXT to search for");
+  std::string text;
+  for (const std::string& w : args.positional()) text += (text.empty() ? "" : " ") + w;
+  int limit = 50;
+  if (args.has("--limit")) {
+    const double l = number(args, "--limit", "a count");
+    if (l < 0 || l != static_cast<int>(l)) throw UsageError("--limit expects a count (0: all)");
+    limit = static_cast<int>(l);
+  }
+  const auto db = loadDatabase();
+  const std::vector<LensEntry> hits = db->search(text, 0);
+  const size_t shown = limit > 0 ? std::min(hits.size(), static_cast<size_t>(limit)) : hits.size();
+  if (args.has("--json")) {
+    nlohmann::json lenses = nlohmann::json::array();
+    for (size_t i = 0; i < shown; ++i) lenses.push_back(lensJson(hits[i]));
+    std::printf("%s\n", nlohmann::json{{"lenses", lenses}, {"found", hits.size()}}.dump().c_str());
+    return 0;
+  }
+  for (size_t i = 0; i < shown; ++i) std::printf("%s\n", hits[i].describe().c_str());
+  if (hits.empty())
+    std::printf("no lens in the lensfun database (%d lenses) holds every word of \"%s\"\n",
+                db->size(), text.c_str());
+  else if (shown < hits.size())
+    std::printf("(%zu more; --limit 0 shows all)\n", hits.size() - shown);
+  return 0;
+}
+
+int cameraCommand(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--lens", "", true},
+                         {"--focal", "", true},
+                         {"--crop", "", true},
+                         {"--size", "", true},
+                         {"--output", "-o", true},
+                         {"--distort", "", false},
+                         {"--no-tca", "", false},
+                         {"--max-error", "", true},
+                         {"--json", "", false},
+                         {"--overwrite", "", false},
+                         {"--force", "", false}});
+  if (!args.positional().empty())
+    throw UsageError("unexpected argument " + args.positional()[0] +
+                     " (the lens is named by --lens NAME)");
+  LensCameraOptions options;
+  const auto lens = args.value("--lens");
+  if (!lens) throw UsageError("missing --lens NAME (artcam lens search lists names)");
+  options.lens = *lens;
+  if (!args.has("--focal")) throw UsageError("missing --focal MM (the focal length)");
+  options.focal_mm = number(args, "--focal", "a focal length in millimetres");
+  if (!(options.focal_mm > 0)) throw UsageError("--focal must be positive");
+  if (args.has("--crop")) {
+    options.crop = number(args, "--crop", "a crop factor");
+    if (!(options.crop > 0)) throw UsageError("--crop must be positive");
+  }
+  const auto size = args.value("--size");
+  if (!size) throw UsageError("missing --size WxH (the photo's size)");
+  options.size = parseSize(*size, "--size");
+  if (args.has("--max-error")) {
+    options.max_error_px = number(args, "--max-error", "a number of pixels");
+    if (!(options.max_error_px > 0)) throw UsageError("--max-error must be positive");
+  }
+  options.distort = args.has("--distort");
+  options.tca = !args.has("--no-tca");
+  const auto output = args.value("--output");
+  if (!output) throw UsageError("missing -o CAM.artcam");
+  checkOutputs(args, {*output}, {});
+
+  const auto db = loadDatabase();
+  const LensCameraSummary s = lensCamera(*db, options);
+  if (!s.status) throw CommandError(s.status.message);
+  if (const Status w = writeArtcam(*output, s.camera); !w) throw CommandError(w.message);
+  if (args.has("--json")) {
+    nlohmann::json j = {{"lens", lensJson(s.lens)},
+                        {"crop", s.crop},
+                        {"focal_mm", s.focal_mm},
+                        {"distort", options.distort},
+                        {"piecewise", s.piecewise},
+                        {"patches", s.patches},
+                        {"single_max_px", s.single_max_px},
+                        {"single_rms_px", s.single_rms_px},
+                        {"max_px", s.max_px},
+                        {"rms_px", s.rms_px},
+                        {"checked", s.checked},
+                        {"max_error_px", options.max_error_px},
+                        {"within_tolerance", s.within_tolerance},
+                        {"tca", s.tca},
+                        {"tca_max_px", s.tca_max_px},
+                        {"notes", s.notes},
+                        {"output", *output}};
+    std::printf("%s\n", j.dump().c_str());
+    return 0;
+  }
+  std::printf("%s\nwrote %s\n", s.report().c_str(), output->c_str());
+  return 0;
+}
+
+}  // namespace
+
+int lensCommand(const std::vector<std::string>& argv) {
+  if (argv.empty()) throw UsageError("lens what? \"search\" or \"camera\"");
+  const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+  if (argv[0] == "search") return searchCommand(rest);
+  if (argv[0] == "camera") return cameraCommand(rest);
+  throw UsageError("lens what? \"search\" or \"camera\"", didYouMean(argv[0], {"search", "camera"}));
+}
+
+}  // namespace artcam::cli

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: Apache-2.0
+// Lens ▸ From Database…: choose a lens of the lensfun database (core/lens) and the settings of
+// `artcam lens camera` for the open photo. The list searches as you type (every word must
+// begin a word of the lens's name); with the field empty it shows the lenses the photo's EXIF
+// suggests (its lens name, else the lenses lensfun lists for its camera, those covering its
+// focal length first), and the focal length starts at the EXIF one. The dialog only chooses:
+// Session makes the camera off the GUI thread and sets it as the document's camera.
+#pragma once
+
+#include "core/lens/lens_camera.h"
+#include "core/lens/lens_database.h"
+
+#include <QDialog>
+
+#include <memory>
+
+class QCheckBox;
+class QDialogButtonBox;
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QListWidget;
+
+namespace artcam::ui {
+
+class LensDialog : public QDialog {
+  Q_OBJECT
+
+ public:
+  LensDialog(std::shared_ptr<const LensDatabase> database, FrameSize photo_size,
+             const LensHint& hint, QWidget* parent = nullptr);
+
+  // The chosen lens and settings; options().lens is empty while no lens is selected.
+  LensCameraOptions options() const;
+
+  QLineEdit* searchField() const { return search_; }
+  QListWidget* lensList() const { return list_; }
+  QDoubleSpinBox* focalField() const { return focal_; }
+
+ private:
+  void fill();             // the list for the search text (or the suggestions)
+  void selectionChanged();  // focal range and the description of the selected lens
+
+  std::shared_ptr<const LensDatabase> database_;
+  FrameSize photo_size_;
+  std::vector<LensEntry> suggestions_;
+  std::vector<LensEntry> shown_;
+  QLineEdit* search_;
+  QListWidget* list_;
+  QLabel* about_;
+  QDoubleSpinBox* focal_;
+  QDoubleSpinBox* crop_;
+  QCheckBox* distort_;
+  QCheckBox* tca_;
+  QDialogButtonBox* buttons_;
+};
+
+}  // namespace artcam::ui
