@@ -98,16 +98,17 @@ class TestCliFitLines : public QObject {
     QVERIFY(lines[0].toObject()["bow_before_px"].toDouble() > 20.0);
     QVERIFY(j["max_bow_px"].toDouble() < 0.01);
 
-    // Held-out edges through `artcam map`: a diagonal, a middle row and column.
+    // Held-out edges through `artcam map`: an oblique one, a low row and a column (none through
+    // the centre, which the lens keeps straight anyway).
     const std::vector<std::vector<Eigen::Vector2d>> held_out = {
-        edgePoints({300, 300}, {5700, 3700}, 40), edgePoints({300, 3400}, {5700, 3400}, 40),
+        edgePoints({300, 1500}, {3500, 3800}, 40), edgePoints({300, 3400}, {5700, 3400}, 40),
         edgePoints({700, 200}, {700, 3800}, 40)};
     for (const auto& edge : held_out) {
       QByteArray csv = "x,y\n";
       for (const auto& p : edge) csv += QByteArray::number(p.x(), 'g', 17) + "," +
                                         QByteArray::number(p.y(), 'g', 17) + "\n";
       QVERIFY(writeFile(dir.filePath("edge.csv"), csv));
-      QVERIFY2(bowOf(edge) > 5.0, "the photo's held-out edge must be bent");
+      QVERIFY2(bowOf(edge) > 2.0, qPrintable(QString::number(bowOf(edge))));
       const auto m = artcamCli({"map", dir.filePath("lens.artcam"), dir.filePath("edge.csv")});
       QVERIFY2(m.exit_code == 0, qPrintable(m.err));
       std::vector<Eigen::Vector2d> mapped;
