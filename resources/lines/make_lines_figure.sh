@@ -15,7 +15,8 @@ trap 'rm -rf "$tmp"' EXIT
 
 python3 "$here/make_lines_figure.py" scene "$tmp"
 oiiotool "$tmp/photo.ppm" -o "$tmp/photo.png"
-"$artcam" fit --lines "$tmp/lines.csv" -o "$tmp/lens.artcam" --size 1200x800 -q > "$here/fit-report.txt"
+"$artcam" fit --lines "$tmp/lines.csv" -o "$tmp/lens.artcam" --size 1200x800 -q \
+  | grep -v "^wrote " > "$here/fit-report.txt"
 "$artcam" warp "$tmp/photo.png" "$tmp/lens.artcam" -o "$tmp/straight.png" -q >/dev/null
 oiiotool "$tmp/straight.png" --ch R,G,B -o "$tmp/straight.ppm"
 
