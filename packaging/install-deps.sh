@@ -18,7 +18,9 @@ packages=(build-essential cmake ninja-build ccache pkg-config
 # --with-display adds what the screenshot/demo path needs to show a window without a screen, and
 # what packaging/studio-session.sh drives it with (xdotool) and shoots and compares it with
 # (imagemagick: import, convert, compare).
-if [[ "${1:-}" == "--with-display" ]]; then packages+=(xvfb xauth xdotool imagemagick); fi
+# The screenshot and picture generators (python3: resources/lines/make_lines_figure.py and the
+# screenshot scripts) run with --with-display.
+if [[ "${1:-}" == "--with-display" ]]; then packages+=(xvfb xauth xdotool imagemagick python3); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -25,6 +25,8 @@ const char* const kFitUsage =
     "       artcam fit --piecewise MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
     "                  [--max-error PX] [--model quadratic|homography|affine] [--json]\n"
     "       artcam fit --stmap MAP.exr -o CAM.artcam [--size WxH] [--piecewise] [--model …]\n"
+    "       artcam fit --lines LINES.csv [MATCHES.csv] -o CAM.artcam --size WxH\n"
+    "                  [--target-size WxH] [--model auto|radial|quadratic] [--json]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
     "       artcam fit --block colour SAMPLES.csv -o CAM.artcam --size WxH [--srgb]\n"
     "                  [--model auto|linear|affine|quadratic]\n"
@@ -57,6 +59,17 @@ const char* const kFitUsage =
     "frame; the source size is --size, else the map's artcam:source_width/height, else the\n"
     "map's own size. R = x / W, G = 1 - y / H; a map with artcam:convention opencv holds\n"
     "cv::remap pixels (-1: none). Maps without R and G channels are refused.\n"
+    "--lines LINES.csv calibrates a lens from straight edges: LINES.csv has the header line,x,y\n"
+    "(one point per row, pixels, centres at i + 0.5; the rows with one label are one edge, at\n"
+    "least 3 points each). The camera maps the photo to one in which every edge is straight;\n"
+    "lines stay lines under a homography, so that freedom is fixed as the least change at the\n"
+    "centre (centre kept, identity Jacobian there, no perspective tilt), unless MATCHES.csv is\n"
+    "given too, whose pairs then fix it. --model radial fits u' = u / (1 - k r^2) about the\n"
+    "centre, quadratic the full ratio of quadratics; auto (default) keeps the quadratic only\n"
+    "when it straightens the edges clearly better. Prints each line's remaining bow (largest\n"
+    "distance from its own straight line, px) before and after; --json prints {model, lines:\n"
+    "[{line, points, bow_px, rms_px, bow_before_px}], rms_bow_px, max_bow_px, pairs, reason,\n"
+    "radial_k, pair_rms_px, pair_max_px, pair_residuals_px, output}.\n"
     "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
     "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n"
     "--block colour fits the colour block to colour samples: SAMPLES.csv has the header\n"
@@ -73,10 +86,12 @@ const char* const kFitUsage =
     "Examples:\n"
     "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
     "  artcam fit matches.csv -o mirror.artcam --size 640x480 --piecewise --max-error 0.3\n"
-    "  artcam fit --stmap lens-undistort.exr -o lens.artcam\n";
+    "  artcam fit --stmap lens-undistort.exr -o lens.artcam\n"
+    "  artcam fit --lines edges.csv -o lens.artcam --size 6000x4000\n";
 
 int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize source,
                         FrameSize target, const MatchInput& input);  // cmd_fit_piecewise.cpp
+int fitLinesCommand(const Args& args, const std::string& lines_path);  // cmd_fit_lines.cpp
 
 namespace {
 
@@ -194,7 +209,9 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--stmap", "", true},
+                         {"--lines", "", true},
                          {"--quiet", "-q", false}});
+  if (const auto lines = args.value("--lines")) return fitLinesCommand(args, *lines);
   const auto stmap = args.value("--stmap");
   if (stmap) return fitStmapCommand(args, *stmap);
   args.expectPositional(1, "MATCHES.csv");

@@ -309,4 +309,53 @@ Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMat
   return writeRows(path, samples, 3, "src_r,src_g,src_b,dst_r,dst_g,dst_b", "sample");
 }
 
+// Lines: rows `line,x,y`, one traced point per row; the rows of one line need not be
+// adjacent (a line is every row with its label, in file order), and lines keep the order in
+// which their labels first appear.
+Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::string& name) {
+  using R = Result<std::vector<LineTrace>>;
+  const std::vector<Line> lines = contentLines(text);
+  if (lines.empty()) return R::failure(name + ": empty, expected the header line,x,y");
+  std::vector<std::string> header;
+  for (std::string_view h : splitFields(lines.front().text)) header.push_back(lower(h));
+  if (header != std::vector<std::string>{"line", "x", "y"})
+    return R::failure(name + ":" + std::to_string(lines.front().number) +
+                      ": expected the header line,x,y, found " + quoted(lines.front().text));
+  std::vector<LineTrace> out;
+  for (size_t l = 1; l < lines.size(); ++l) {
+    const std::string where = name + ":" + std::to_string(lines[l].number) + ": ";
+    const std::vector<std::string_view> fields = splitFields(lines[l].text);
+    if (fields.size() != 3)
+      return R::failure(where + "expected a line label and 2 numbers, found " +
+                        std::to_string(fields.size()) + " fields");
+    if (fields[0].empty()) return R::failure(where + "column 1 (line): empty");
+    double xy[2] = {};
+    for (int k = 0; k < 2; ++k) {
+      const std::string column = k == 0 ? "x" : "y";
+      // parseNumbers names the column of its own list ("column 1 (x)..."); keep the cause.
+      if (const auto error = parseNumbers({fields[static_cast<size_t>(k) + 1]}, {column}, &xy[k]))
+        return R::failure(where + "column " + std::to_string(k + 2) + " (" + column + ")" +
+                          error->substr(error->find(')') + 1));
+    }
+    const std::string label(fields[0]);
+    auto it = std::find_if(out.begin(), out.end(),
+                           [&](const LineTrace& t) { return t.label == label; });
+    if (it == out.end()) {
+      out.push_back(LineTrace{label, {}, true});
+      it = out.end() - 1;
+    }
+    it->points.emplace_back(xy[0], xy[1]);
+  }
+  if (out.empty()) return R::failure(name + ": no rows after the header line,x,y");
+  return R::success(std::move(out));
+}
+
+Result<std::vector<LineTrace>> readLinesCsv(const std::string& path) {
+  const std::optional<std::string> text = readText(path);
+  if (!text)
+    return Result<std::vector<LineTrace>>::failure(path +
+                                                   ": cannot read: no such file or not readable");
+  return parseLinesCsv(*text, path);
+}
+
 }  // namespace artcam

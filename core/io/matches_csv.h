@@ -19,6 +19,7 @@
 #pragma once
 
 #include "core/model/fit_record.h"
+#include "core/model/line_trace.h"
 #include "core/model/status.h"
 
 #include <Eigen/Core>
@@ -43,6 +44,10 @@ Result<std::vector<PointMatch>> parseMatchesCsv(std::string_view text, const std
                                                 int dimension = 2);
 Result<std::vector<PointMatch>> parseColourSamplesCsv(
     std::string_view text, const std::string& name, ColourEncoding encoding = ColourEncoding::Linear);
+// Straight lines traced in a photo: the header `line,x,y`, one point per row (source pixels);
+// `line` is any non-empty label, and the rows with one label, in file order, are one line.
+Result<std::vector<LineTrace>> readLinesCsv(const std::string& path);
+Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::string& name);
 // Writes the header and rows with %.17g numbers (locale-free, round-trip exact; atomic).
 Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches);
 // Colour samples in the columns parseColourSamplesCsv reads (linear light, as given).

@@ -28,8 +28,21 @@ DocumentFit fitDocumentGeometry(const DocumentFitInputs& in) {
   try {
     const int enabled = static_cast<int>(std::count_if(
         in.matches.begin(), in.matches.end(), [](const PointMatch& m) { return m.enabled; }));
+    const bool has_lines = std::any_of(in.lines.begin(), in.lines.end(),
+                                       [](const LineTrace& l) { return l.enabled; });
     if (in.manual_camera) {
       out.camera = *in.manual_camera;
+    } else if (has_lines) {
+      LinesFitOptions options;
+      options.model = in.model == ModelClass::Quadratic ? LineModel::Quadratic : LineModel::Auto;
+      const LinesFitSummary lines = fitLinesCamera(in.lines, in.matches, f, f, options);
+      out.fit.status = lines.status;
+      if (lines.status.ok) {
+        out.fit.camera = lines.camera;
+        out.fit.record = lines.record();
+        out.camera = lines.camera;
+        out.line_bows = lines.bows;
+      }
     } else if (enabled == 0) {
       out.fit.status =
           Status::failure("No point pairs yet: click a source point, then its target.");

@@ -3,7 +3,9 @@
 // studio's preview, its export, its saved project and `artcam export` all make the same camera:
 //
 //   geometry  fitted from the point pairs with the chosen model class (core/fit/fit_image.h),
-//             or a camera set by hand;
+//             or, when straight lines are traced, from the lines and the pairs together
+//             (core/fit/fit_lines.h: the lens that straightens the lines, the pairs fixing the
+//             homography the lines leave free), or a camera set by hand;
 //   colour    the colour block fitted in the Colour panel, put into the geometry's last stage
 //             (core/colour/colour_stage.h, eq 6/7);
 //   effects   an ordered stack of effects of the effects table (core/effects/effect_table.h),
@@ -21,6 +23,7 @@
 #pragma once
 
 #include "core/fit/fit_image.h"
+#include "core/fit/fit_lines.h"
 #include "core/model/artcam.h"
 #include "core/project/studio_project.h"
 
@@ -33,6 +36,10 @@ namespace artcam {
 struct DocumentFitInputs {
   FrameSize frame;                  // the photo's pixels; not an image frame: no photo yet
   std::vector<PointMatch> matches;  // every pair, with its enabled flag
+  // Straight edges: with one enabled, the geometry is the line fit (with the pairs). The model
+  // class then only says whether the quadratic is forced (Quadratic) or chosen (anything else:
+  // the line fit's auto, since lines cannot determine the lower rungs' homography).
+  std::vector<LineTrace> lines;
   ModelClass model = ModelClass::Auto;
   std::optional<Camera> manual_camera;  // the geometry of a camera set by hand
   std::optional<Camera> colour_block;
@@ -42,6 +49,7 @@ struct DocumentFit {
   FitSummary fit;
   Camera camera;  // geometry (+ colour block)
   std::vector<double> residual_by_pair;  // target px per pair; negative: unknown
+  std::vector<LineBow> line_bows;        // enabled lines' remaining bow, when lines were fitted
 };
 
 // Any thread; never throws (an engine exception becomes a failed fit and the identity camera).

@@ -153,6 +153,7 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
   DocumentFitInputs in;
   in.frame = frame;
   in.matches = project.pairs;
+  in.lines = project.lines;
   in.model = project.model;
   if (project.manual_camera) in.manual_camera = project.manual_camera->main();
   in.colour_block = *colour.value;

@@ -221,6 +221,24 @@ StudioProject projectAt(const Json& root, const std::string& file,
       p.pairs.push_back(std::move(m));
     }
   }
+  if (root.contains("lines")) {
+    const Json& lines = arrayAt(root["lines"], "/lines");
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const std::string where = "/lines/" + std::to_string(i);
+      const Json& o = objectAt(lines[i], where);
+      LineTrace line;
+      line.label = o.contains("label") ? stringAt(o["label"], where + "/label") : std::to_string(i + 1);
+      if (!o.contains("points")) refuse(where + "/points", "missing");
+      const Json& points = arrayAt(o["points"], where + "/points");
+      for (size_t k = 0; k < points.size(); ++k)
+        line.points.push_back(pointAt(points[k], where + "/points/" + std::to_string(k)));
+      if (o.contains("enabled")) {
+        if (!o["enabled"].is_boolean()) refuse(where + "/enabled", "expected true or false");
+        line.enabled = o["enabled"].get<bool>();
+      }
+      p.lines.push_back(std::move(line));
+    }
+  }
   if (root.contains("camera")) p.manual_camera = cameraAt(root["camera"], file, "/camera");
   if (root.contains("effects")) {
     const Json& effects = arrayAt(root["effects"], "/effects");
@@ -322,7 +340,8 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
   Json root;
   root["format"] = "artcam-studio-project";
   const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
-  const int version = !project.effects.empty()                         ? 3
+  const int version = !project.lines.empty()                           ? 4
+                      : !project.effects.empty()                       ? 3
                       : has_depth || !project.parts_json.empty()       ? 2
                                                                        : 1;
   root["version"] = version;
@@ -335,6 +354,15 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
                      {"target", pointJson(m.target)},
                      {"enabled", m.enabled}});
   root["pairs"] = pairs;
+  if (!project.lines.empty()) {
+    Json lines = Json::array();
+    for (const LineTrace& line : project.lines) {
+      Json points = Json::array();
+      for (const Eigen::Vector2d& q : line.points) points.push_back(pointJson(q));
+      lines.push_back({{"label", line.label}, {"points", points}, {"enabled", line.enabled}});
+    }
+    root["lines"] = lines;
+  }
   if (project.manual_camera) root["camera"] = Json::parse(toArtcamJson(*project.manual_camera));
   if (!project.effects.empty()) {
     Json effects = Json::array();

@@ -3,12 +3,13 @@
 // artcam-studio saves and reopens and what `artcam export` renders headless, so both read a
 // project the same way.
 //
-//   { "format": "artcam-studio-project", "version": 3,
+//   { "format": "artcam-studio-project", "version": 4,
 //     "photo": "relative/or/absolute/path.png",
 //     "model": "auto",
 //     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],   // photo pixels
 //     "camera": { ….artcam document… },          // optional: camera set by hand (any kind)
 //     "effects": [ {"effect": "aerial-perspective", "params": {"near": [1], …}}, … ],  // v3
+//     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true}, … ],   // v4, photo px
 //     "view": { … },                                // the studio's view state (opaque here)
 //     "depth": {                                    // optional: depth planes and map (v2)
 //       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
@@ -17,9 +18,9 @@
 //     "parts": { "colour": {…, "colour_block": {….artcam…}}, "insertion": {…} } }   // (v2)
 //
 // Versions: a file is written with the lowest version that holds everything in it (1: pairs
-// and view; 2: depth or parts; 3: an effect stack), so an older studio refuses a project whose
-// new parts it would silently drop and still opens every project it can represent fully. This
-// reader takes 1 to 3.
+// and view; 2: depth or parts; 3: an effect stack; 4: straight lines), so an older studio
+// refuses a project whose new parts it would silently drop and still opens every project it can
+// represent fully. This reader takes 1 to 4.
 //
 // Decisions:
 // - The view state and the studio modes' parts are kept as JSON text: they belong to the
@@ -39,6 +40,7 @@
 #include "core/fit/fit_image.h"
 #include "core/io/depth_file.h"
 #include "core/model/artcam.h"
+#include "core/model/line_trace.h"
 #include "core/model/status.h"
 
 #include <optional>
@@ -47,7 +49,7 @@
 
 namespace artcam {
 
-inline constexpr int kProjectFormatVersion = 3;  // the newest this code reads and writes
+inline constexpr int kProjectFormatVersion = 4;  // the newest this code reads and writes
 inline constexpr int kMaxDepthAnchors = 3;        // a plane in inverse depth needs three
 inline constexpr char kProjectExtension[] = "artcamproj";
 
@@ -74,6 +76,7 @@ struct EffectStep {
 struct StudioProject {
   std::string photo_path;  // absolute once read
   std::vector<PointMatch> pairs;  // photo pixels, 2D
+  std::vector<LineTrace> lines;   // straight edges traced in the photo (photo pixels)
   ModelClass model = ModelClass::Auto;
   std::optional<Artcam> manual_camera;
   std::vector<EffectStep> effects;  // applied in order after the geometry and colour

@@ -15,7 +15,7 @@ _artcam_options() {
   case "$1" in
     fit) echo "--output -o --size --target-size --model --dim --no-refine --robust --threshold
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
-               --quiet -q --stmap" ;;
+               --quiet -q --stmap --lines" ;;
     map) echo "--json" ;;
     warp) echo "--output -o --size --filter --threads --quality --bit-depth --stats --json
                 --overwrite --force --quiet -q --depth --depth-scale --disparity" ;;

@@ -95,8 +95,10 @@ class TestStudioProject : public QObject {
     QVERIFY(studioProjectToJson(p, "/x/a.artcamproj").find("\"version\": 2") != std::string::npos);
     p.effects = {{"barrel", {}}};
     QVERIFY(studioProjectToJson(p, "/x/a.artcamproj").find("\"version\": 3") != std::string::npos);
+    p.lines = {LineTrace{"1", {{1, 2}, {3, 4}, {5, 7}}, true}};
+    QVERIFY(studioProjectToJson(p, "/x/a.artcamproj").find("\"version\": 4") != std::string::npos);
     const Result<StudioProject> newer = parseStudioProject(
-        R"({"format":"artcam-studio-project","version":4,"photo":"p.png"})", "/d/n.artcamproj");
+        R"({"format":"artcam-studio-project","version":5,"photo":"p.png"})", "/d/n.artcamproj");
     QVERIFY(!newer.ok());
     QVERIFY2(newer.status.message.find("n.artcamproj: written by a newer ARTcam Studio") == 0,
              newer.status.message.c_str());
@@ -117,6 +119,9 @@ class TestStudioProject : public QObject {
          "x.artcamproj: /depth/layers/0/anchors/0/depth: expected a number greater than 0"},
         {R"("camera":{"format":"artcam"}})", "x.artcamproj: /camera"},
         {R"("view":[1]})", "x.artcamproj: /view: expected an object"},
+        {R"("lines":[{"points":[[1,2],[3]]}]})", "x.artcamproj: /lines/0/points/1: expected [x, y]"},
+        {R"("lines":[{"label":"a","points":[[1,2]],"enabled":1}]})",
+         "x.artcamproj: /lines/0/enabled: expected true or false"},
     };
     for (const auto& [rest, want] : cases) {
       const std::string got = refusal(rest);
