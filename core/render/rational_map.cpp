@@ -3,6 +3,7 @@
 
 #include "core/model/frames.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,6 +17,18 @@ RationalMap::RationalMap(const Camera& camera, FrameSize source_px, FrameSize ta
   if (!source_px.isImage() || !target_px.isImage())
     throw std::invalid_argument("a pixel map needs positive source and target sizes");
   Camera c = camera;
+  // A stage's three position forms share one scale (eq 1 is a ratio): bring the largest entry
+  // to 1 before the frame changes, so tensors written at 1e-300 or 1e300 neither underflow nor
+  // overflow in the products that follow.
+  {
+    const int off0 = layout.offsets[p];
+    for (Stage& st : c.stages()) {
+      double scale = 0.0;
+      for (int i = 0; i < 3; ++i) scale = std::max(scale, st.q[static_cast<size_t>(off0 + i)].cwiseAbs().maxCoeff());
+      if (scale > 0.0 && std::isfinite(scale))
+        for (int i = 0; i < 3; ++i) st.q[static_cast<size_t>(off0 + i)] /= scale;
+    }
+  }
   c.setFrames(source_px, target_px);
   // Row-vector input x_n = x_p N_colᵀ, so H_row = N_colᵀ (frames.h); outputs mix by P_col.
   changeInputFrame(c, p, normalizedFromPixelMatrix(source_px).transpose());
