@@ -104,6 +104,8 @@ class Document : public QObject {
   // The remaining bow of line `index` under the current fit; none when the geometry is not a
   // line fit (a hand-set camera, a failed fit) or the line is disabled.
   std::optional<LineBow> lineBow(int index) const;
+  // The enabled lines' bows, in order; empty when the geometry is not a line fit.
+  const std::vector<LineBow>& lineBows() const { return line_bows_; }
 
   // --- model and camera ---
   ModelClass model() const { return model_; }

@@ -17,7 +17,9 @@
 #include "ui/document.h"
 #include "ui/line_commands.h"
 #include "ui/session.h"
+#include "ui/preview_controller.h"
 #include "ui/tools/line_tool.h"
+#include "ui/tools/pair_tool.h"
 
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -257,6 +259,33 @@ class TestLineTool : public QObject {
     QVERIFY(a && b && (*a - *b).norm() < 1e-9);
     doc_->undoStack()->undo();
     QVERIFY(doc_->lineSet() == before);
+  }
+
+  // The photo view draws the lines as traced, the result view where the camera sends them.
+  void resultViewDrawsTheMappedLines() {
+    traceAll();
+    PreviewController preview(doc_.get());
+    canvas_->setPreview(&preview);
+    canvas_->setTool(std::make_unique<PairTool>(canvas_.get(), doc_.get()));  // shows the result
+    // A point away from the label (at the first point) and from every other line.
+    const Eigen::Vector2d traced = doc_->lines()[0].points[1];
+    const auto mapped = targetPixelFromSourcePixel(positionPart(doc_->camera()), traced);
+    QVERIFY(mapped);
+    QVERIFY((*mapped - traced).norm() * canvas_->view().scale() > 12.0);
+    // A straightened line is drawn green (its bow is far below a pixel); the photo is grey.
+    auto greenAt = [this](const QImage& shot, const Eigen::Vector2d& p) {
+      const QColor c = shot.pixelColor(test::widgetPoint(*canvas_, p));
+      return c.green() > c.red() + 80 && c.green() > c.blue() + 80;
+    };
+    canvas_->setViewMode(CanvasViewMode::Result);
+    QImage shot = canvas_->grab().toImage();
+    QVERIFY(greenAt(shot, *mapped));
+    QVERIFY(!greenAt(shot, traced));
+    canvas_->setViewMode(CanvasViewMode::Photo);
+    shot = canvas_->grab().toImage();
+    QVERIFY(greenAt(shot, traced));
+    QVERIFY(!greenAt(shot, *mapped));
+    canvas_->setPreview(nullptr);
   }
 
   // A project with lines opened in the studio and saved again keeps its lines; the lines the
