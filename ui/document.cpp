@@ -187,7 +187,13 @@ void Document::setColourBlock(std::optional<Camera> colour) {
   emit cameraChanged();
 }
 
-int Document::pairsNeeded() const { return pairsNeededFor(model_, enabledPairCount()); }
+int Document::pairsNeeded() const {
+  // Enabled lines determine the geometry on their own (pairs only join them).
+  if (std::any_of(lines_.lines.begin(), lines_.lines.end(),
+                  [](const LineTrace& l) { return l.enabled; }))
+    return 0;
+  return pairsNeededFor(model_, enabledPairCount());
+}
 
 double Document::residual(int index) const {
   if (index < 0 || index >= static_cast<int>(residual_by_pair_.size())) return -1.0;

@@ -134,7 +134,8 @@ class Document : public QObject {
   const Artcam& artcam() const { return whole_.camera; }
   // Why an effect is left out of artcam() (it reads depth and there is none, …); "" if none.
   const std::string& artcamNote() const { return whole_.note; }
-  // Enabled pairs still missing before the chosen model is determined (0 when enough).
+  // Enabled pairs still missing before the chosen model is determined (0 when enough, and when
+  // an enabled line makes the geometry a line fit).
   int pairsNeeded() const;
   // Residual (target px) of pair `index` under the current fit; negative if unknown.
   double residual(int index) const;

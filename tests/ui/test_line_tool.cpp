@@ -151,6 +151,7 @@ class TestLineTool : public QObject {
         QVERIFY((doc_->lines()[i].points[k] - tracedEdges()[i][k]).norm() <= tolerance);
     }
     QVERIFY2(doc_->fit().status.ok, doc_->fit().status.message.c_str());
+    QCOMPARE(doc_->pairsNeeded(), 0);  // lines need no pairs
     // The document's geometry is core's line fit of the same points.
     const LinesFitSummary direct = fitLinesCamera(doc_->lines(), {}, kFrame, kFrame);
     QVERIFY2(direct.status.ok, direct.status.message.c_str());
