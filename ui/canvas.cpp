@@ -5,6 +5,7 @@
 #include "ui/depth_overlay.h"
 #include "ui/document.h"
 #include "ui/grid_overlay.h"
+#include "ui/line_annotations.h"
 #include "ui/preview_controller.h"
 #include "ui/tools/tool.h"
 
@@ -52,6 +53,7 @@ Canvas::Canvas(Document* document, QWidget* parent) : QWidget(parent), document_
   grabGesture(Qt::PinchGesture);
   connect(document_, &Document::photoChanged, this, &Canvas::onPhotoChanged);
   connect(document_, &Document::pairsChanged, this, qOverload<>(&QWidget::update));
+  connect(document_, &Document::linesChanged, this, qOverload<>(&QWidget::update));
   connect(document_->depth(), &DepthModel::depthChanged, this, qOverload<>(&QWidget::update));
   connect(document_->depth(), &DepthModel::activeLayerChanged, this,
           qOverload<>(&QWidget::update));
@@ -198,6 +200,7 @@ void Canvas::paintEvent(QPaintEvent*) {
   paintDepthOnPhoto(painter, target);
   if (grid_visible_) paintGridOverlay(painter, target);
   painter.setRenderHint(QPainter::Antialiasing, true);
+  paintLines(painter, *this, *document_);
   paintPairs(painter);
   paintResidualAids(painter);
   if (tool_) tool_->paint(painter);

@@ -123,12 +123,15 @@ class Canvas : public QWidget {
   void setGridVisible(bool visible);
   // The residual vectors from fitted to clicked targets, ×10 (canvas_annotations.h).
   void setResidualsMagnified(bool magnified);
+  // A tool's one-line message for the status bar (a refused gesture and why).
+  void showToolMessage(const QString& message) { emit toolMessage(message); }
 
  signals:
   void viewChanged();
   void viewStateChanged();
   void toolChanged();  // setTool made another tool active
   void cursorMoved(const QPointF& image_point);
+  void toolMessage(const QString& message);
 
  protected:
   bool event(QEvent* event) override;

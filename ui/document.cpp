@@ -21,11 +21,22 @@ Document::~Document() = default;
 
 FrameSize Document::frame() const { return photo_ ? photo_->size() : FrameSize{}; }
 
+bool LineSet::operator==(const LineSet& o) const {
+  if (open != o.open || lines.size() != o.lines.size()) return false;
+  for (size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].label != o.lines[i].label || lines[i].points != o.lines[i].points ||
+        lines[i].enabled != o.lines[i].enabled)
+      return false;
+  return true;
+}
+
 void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
-                     std::optional<Artcam> manual_camera, std::vector<EffectStep> effects) {
+                     std::optional<Artcam> manual_camera, std::vector<EffectStep> effects,
+                     std::vector<LineTrace> lines) {
   undo_stack_.clear();
   photo_ = std::move(photo);
   pairs_ = std::move(pairs);
+  lines_ = LineSet{std::move(lines), {}};
   model_ = model;
   manual_camera_ = std::move(manual_camera);
   effects_ = std::move(effects);
@@ -39,6 +50,7 @@ void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
   emit photoChanged();
   emit pairCountChanged();
   emit pairsChanged();
+  emit linesChanged();
   emit modelChanged();
   emit selectionChanged();
   emit effectsChanged();
@@ -75,20 +87,54 @@ void Document::setPairs(const std::vector<int>& indices, const std::vector<Pair>
     if (i >= 0 && i < static_cast<int>(pairs_.size())) pairs_[static_cast<size_t>(i)] = values[k];
   }
   if (refit_mode == Refit::InWorker && fits_in_worker_) {
-    // A drag's move: a fit of a few hundred pairs per mouse move would stall the GUI thread,
-    // so only the edit is recorded here; camera, fit and residuals follow from the worker.
-    ++edit_revision_;
-    if (!fit_worker_)
-      fit_worker_ = std::make_unique<FitWorker>([this](FittedCamera fitted, quint64 revision) {
-        onWorkerFit(std::move(fitted), revision);
-      });
-    fit_worker_->request({fitInputs(), edit_revision_});
+    refitInWorker();
     emit pairsChanged();
     return;
   }
   refit();
   emit pairsChanged();
   emit cameraChanged();
+}
+
+void Document::setLineSet(LineSet lines, Refit refit_mode) {
+  const bool fitted_changed = !(LineSet{lines.lines, {}} == LineSet{lines_.lines, {}});
+  lines_ = std::move(lines);
+  if (!fitted_changed) {
+    emit linesChanged();
+    return;
+  }
+  if (refit_mode == Refit::InWorker && fits_in_worker_) {
+    refitInWorker();
+    emit linesChanged();
+    return;
+  }
+  refit();
+  emit linesChanged();
+  emit pairsChanged();  // residuals changed
+  emit cameraChanged();
+}
+
+std::optional<LineBow> Document::lineBow(int index) const {
+  if (index < 0 || index >= static_cast<int>(lines_.lines.size()) ||
+      !lines_.lines[static_cast<size_t>(index)].enabled)
+    return std::nullopt;
+  // The fit's bows are of the enabled lines, in order.
+  const auto enabled_before = std::count_if(lines_.lines.begin(), lines_.lines.begin() + index,
+                                            [](const LineTrace& l) { return l.enabled; });
+  if (enabled_before >= static_cast<long>(line_bows_.size())) return std::nullopt;
+  return line_bows_[static_cast<size_t>(enabled_before)];
+}
+
+// A drag's move: a fit per mouse move (a few hundred pairs, or a line fit's iterations) would
+// stall the GUI thread, so only the edit is recorded here; camera, fit, residuals and bows
+// follow from the worker.
+void Document::refitInWorker() {
+  ++edit_revision_;
+  if (!fit_worker_)
+    fit_worker_ = std::make_unique<FitWorker>([this](FittedCamera fitted, quint64 revision) {
+      onWorkerFit(std::move(fitted), revision);
+    });
+  fit_worker_->request({fitInputs(), edit_revision_});
 }
 
 int Document::enabledPairCount() const {
@@ -141,7 +187,13 @@ void Document::setColourBlock(std::optional<Camera> colour) {
   emit cameraChanged();
 }
 
-int Document::pairsNeeded() const { return pairsNeededFor(model_, enabledPairCount()); }
+int Document::pairsNeeded() const {
+  // Enabled lines determine the geometry on their own (pairs only join them).
+  if (std::any_of(lines_.lines.begin(), lines_.lines.end(),
+                  [](const LineTrace& l) { return l.enabled; }))
+    return 0;
+  return pairsNeededFor(model_, enabledPairCount());
+}
 
 double Document::residual(int index) const {
   if (index < 0 || index >= static_cast<int>(residual_by_pair_.size())) return -1.0;
@@ -164,13 +216,14 @@ void Document::setSelection(std::vector<int> indices) {
 FitInputs Document::fitInputs() const {
   std::optional<Camera> manual;
   if (manual_camera_) manual = manual_camera_->main();
-  return {frame(), matches(), model_, manual, colour_block_};
+  return {frame(), matches(), lines_.lines, model_, manual, colour_block_};
 }
 
 void Document::applyFit(FittedCamera fitted) {
   fit_ = std::move(fitted.fit);
   camera_ = std::move(fitted.camera);
   residual_by_pair_ = std::move(fitted.residual_by_pair);
+  line_bows_ = std::move(fitted.line_bows);
   assemble();
 }
 
@@ -205,6 +258,7 @@ void Document::onWorkerFit(FittedCamera fitted, quint64 revision) {
   applyFit(std::move(fitted));
   camera_revision_ = revision;
   emit pairsChanged();  // residuals changed
+  emit linesChanged();  // bows changed
   emit cameraChanged();
 }
 

@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// The model every panel shares: the photo, the point pairs, the model class, the camera and
-// its fit. Panels read it and listen to its signals; they change it only through the
+// The model every panel shares: the photo, the point pairs, the straight lines, the model
+// class, the camera and its fit. Panels read it and listen to its signals; they change it only through the
 // QUndoCommands of commands.h (every document edit is a command), which call the
 // mutators below. Selection is view state: not undoable, not saved.
 //
-// Frames: pairs are in PIXELS of the photo (centres at i + 0.5); source and target frames are
-// both the photo's size. The camera is in normalised frames (core/model/frames.h).
+// Frames: pairs and line points are in PIXELS of the photo (centres at i + 0.5); source and
+// target frames are both the photo's size. The camera is in normalised frames (core/model/frames.h).
 #pragma once
 
 #include "core/fit/fit_image.h"
+#include "core/fit/fit_lines.h"
 #include "core/model/camera.h"
+#include "core/model/line_trace.h"
 #include "ui/depth_model.h"
 #include "ui/document_fit.h"
 #include "ui/photo.h"
@@ -39,6 +41,16 @@ struct Pair {
 
 enum class Endpoint { Source, Target };
 
+// The straight edges traced in the photo (core/model/line_trace.h), and the one being traced.
+// The open line is part of the document so that each clicked point is an undo step, but it is
+// not fitted (a line needs 3 points, and a half-traced edge would pull the camera on every
+// click) and not saved: Enter ends it into `lines`.
+struct LineSet {
+  std::vector<LineTrace> lines;
+  std::vector<Eigen::Vector2d> open;
+  bool operator==(const LineSet& o) const;
+};
+
 class Document : public QObject {
   Q_OBJECT
 
@@ -58,7 +70,7 @@ class Document : public QObject {
   // marks clean.
   void reset(PhotoPtr photo, std::vector<Pair> pairs = {}, ModelClass model = ModelClass::Auto,
              std::optional<Artcam> manual_camera = std::nullopt,
-             std::vector<EffectStep> effects = {});
+             std::vector<EffectStep> effects = {}, std::vector<LineTrace> lines = {});
 
   // --- pairs: raw mutators for commands.h ---
   const std::vector<Pair>& pairs() const { return pairs_; }
@@ -81,6 +93,19 @@ class Document : public QObject {
   void setFitsInWorker(bool in_worker) { fits_in_worker_ = in_worker; }
   int enabledPairCount() const;
   std::vector<PointMatch> matches() const;  // all pairs, with their enabled flags
+
+  // --- straight lines: the raw mutator for line_commands.h ---
+  // With an enabled line the geometry is the line fit with the pairs (document_camera.h).
+  const std::vector<LineTrace>& lines() const { return lines_.lines; }
+  const std::vector<Eigen::Vector2d>& openLine() const { return lines_.open; }
+  const LineSet& lineSet() const { return lines_; }
+  // Refits only when the finished lines changed (a point added to the open line does not).
+  void setLineSet(LineSet lines, Refit refit = Refit::Now);
+  // The remaining bow of line `index` under the current fit; none when the geometry is not a
+  // line fit (a hand-set camera, a failed fit) or the line is disabled.
+  std::optional<LineBow> lineBow(int index) const;
+  // The enabled lines' bows, in order; empty when the geometry is not a line fit.
+  const std::vector<LineBow>& lineBows() const { return line_bows_; }
 
   // --- model and camera ---
   ModelClass model() const { return model_; }
@@ -109,7 +134,8 @@ class Document : public QObject {
   const Artcam& artcam() const { return whole_.camera; }
   // Why an effect is left out of artcam() (it reads depth and there is none, …); "" if none.
   const std::string& artcamNote() const { return whole_.note; }
-  // Enabled pairs still missing before the chosen model is determined (0 when enough).
+  // Enabled pairs still missing before the chosen model is determined (0 when enough, and when
+  // an enabled line makes the geometry a line fit).
   int pairsNeeded() const;
   // Residual (target px) of pair `index` under the current fit; negative if unknown.
   double residual(int index) const;
@@ -125,6 +151,7 @@ class Document : public QObject {
   void photoChanged();
   void pairsChanged();      // any pair added, removed or changed
   void pairCountChanged();  // rows added or removed (tables reset)
+  void linesChanged();      // a line or the open line changed, or their bows after a refit
   void modelChanged();
   void cameraChanged();  // after every refit, even if the camera came out equal
   void effectsChanged();  // the effect stack changed (cameraChanged follows)
@@ -132,6 +159,7 @@ class Document : public QObject {
 
  private:
   void refit();
+  void refitInWorker();  // a drag's move: record the edit, fit the newest inputs off-thread
   FitInputs fitInputs() const;
   void applyFit(FittedCamera fitted);
   void onWorkerFit(FittedCamera fitted, quint64 revision);
@@ -143,6 +171,7 @@ class Document : public QObject {
   DepthModel depth_;
   PhotoPtr photo_;
   std::vector<Pair> pairs_;
+  LineSet lines_;
   ModelClass model_ = ModelClass::Auto;
   std::optional<Artcam> manual_camera_;
   std::optional<Camera> colour_block_;
@@ -153,6 +182,7 @@ class Document : public QObject {
   FitSummary fit_;
   Camera camera_;
   std::vector<double> residual_by_pair_;
+  std::vector<LineBow> line_bows_;  // enabled lines, in order, when the geometry is a line fit
   std::vector<int> selection_;
   quint64 edit_revision_ = 0;
   quint64 camera_revision_ = 0;

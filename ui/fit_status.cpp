@@ -11,6 +11,8 @@
 #include <QPointF>
 #include <QProgressBar>
 
+#include <algorithm>
+
 namespace artcam::ui {
 
 FitStatus::FitStatus(Document* document, PreviewController* preview, QWidget* parent)
@@ -80,7 +82,19 @@ void FitStatus::updateFit() {
   } else {
     model_->setText(tr("Model: none (identity)"));
   }
-  if (fit.status.ok && !document_->manualCamera())
+  if (fit.status.ok && !document_->manualCamera() && !document_->lineBows().empty()) {
+    // A line fit: how straight the lines came out, then the pairs' residuals if there are any.
+    double bow = 0.0;
+    for (const LineBow& b : document_->lineBows()) bow = std::max(bow, b.max_px);
+    QString text = tr("%n line(s): bow max %1 px", nullptr,
+                      static_cast<int>(document_->lineBows().size()))
+                       .arg(bow, 0, 'f', 2);
+    if (fit.record.matches > 0)
+      text += tr(" · pairs RMS %1 px · max %2 px")
+                  .arg(fit.record.rms_px, 0, 'f', 2)
+                  .arg(fit.record.max_px, 0, 'f', 2);
+    residual_->setText(text);
+  } else if (fit.status.ok && !document_->manualCamera())
     residual_->setText(tr("RMS %1 px · max %2 px")
                            .arg(fit.record.rms_px, 0, 'f', 2)
                            .arg(fit.record.max_px, 0, 'f', 2));

@@ -43,6 +43,8 @@ QString quickStartHtml() {
       "go. The camera is fitted after every pair; Model ▸ Auto picks the simplest model that "
       "fits. Markers go green → red by residual (legend bottom right; View ▸ Magnify Residuals "
       "shows each miss ×10).</li>"
+      "<li><b>Or straighten a lens</b> with the line tool (S): click points along edges that "
+      "are straight in the world, Enter ends each line; every line shows its remaining bow.</li>"
       "<li><b>Check the preview</b> dock; drag a marker to refine it, Del deletes the selection, "
       "Ctrl+Z / Ctrl+Y undo and redo.</li>"
       "<li><b>Depth</b> (optional): paint a plane (B brush, E eraser, G polygon), give it depth "

@@ -10,6 +10,7 @@
 #include "ui/document.h"
 #include "ui/fit_status.h"
 #include "ui/help_dialogs.h"
+#include "ui/line_commands.h"
 #include "ui/manual_camera_banner.h"
 #include "ui/matting/insertion_studio.h"
 #include "ui/panels/depth_panel.h"
@@ -23,6 +24,7 @@
 #include "ui/tool_switcher.h"
 #include "ui/tools/depth_tool.h"
 #include "ui/tools/depth_tool_settings.h"
+#include "ui/tools/line_tool.h"
 #include "ui/tools/pair_tool.h"
 
 #include <QAction>
@@ -43,6 +45,8 @@
 #include <QToolBar>
 #include <QUrl>
 
+#include <functional>
+#include <memory>
 #include <optional>
 
 namespace artcam::ui {
@@ -125,6 +129,8 @@ MainWindow::MainWindow(QWidget* parent)
           [this](const QString& m) { statusBar()->showMessage(m, 8000); });
   connect(session_, &Session::loadProgress, fit_status_, &FitStatus::setLoadProgress);
   connect(canvas_, &Canvas::cursorMoved, fit_status_, &FitStatus::setCursorPosition);
+  connect(canvas_, &Canvas::toolMessage, this,
+          [this](const QString& m) { statusBar()->showMessage(m, 8000); });
   connect(session_, &Session::titleChanged, this, &MainWindow::updateTitle);
   connect(session_, &Session::recentFilesChanged, this, &MainWindow::rebuildRecentMenu);
   connect(preview_, &PreviewController::renderFailed, this, [this](const QString& m) {
@@ -328,35 +334,42 @@ void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
     QString label;
     QString key;
     QString tip;
-    std::optional<DepthToolMode> mode;  // none: the pair tool
+    std::function<std::unique_ptr<Tool>()> make;
+  };
+  auto depth = [this](DepthToolMode mode) {
+    return [this, mode]() -> std::unique_ptr<Tool> {
+      return std::make_unique<DepthTool>(canvas_, document_, depth_settings_, mode);
+    };
   };
   const Entry entries[] = {
-      {tr("&Pairs"), "P", tr("Click a source point, then its target (P)"), std::nullopt},
+      {tr("&Pairs"), "P", tr("Click a source point, then its target (P)"),
+       [this] { return std::make_unique<PairTool>(canvas_, document_); }},
+      {tr("&Lines"), "S",
+       tr("Click points along a straight edge, Enter ends the line: the camera straightens the "
+          "lines (S)"),
+       [this] { return std::make_unique<LineTool>(canvas_, document_); }},
       {tr("Depth &Brush"), "B", tr("Paint the selected depth plane's region (B; [ ] size)"),
-       DepthToolMode::Brush},
+       depth(DepthToolMode::Brush)},
       {tr("Depth &Eraser"), "E", tr("Erase from the selected depth plane's region (E)"),
-       DepthToolMode::Eraser},
+       depth(DepthToolMode::Eraser)},
       {tr("Depth Pol&ygon"), "G",
        tr("Click corners; Enter or the first corner closes (Alt: erase) (G)"),
-       DepthToolMode::Polygon},
+       depth(DepthToolMode::Polygon)},
       {tr("Depth P&oints"), "D",
-       tr("Click three points of the region and give each its depth (D)"), DepthToolMode::Points},
+       tr("Click three points of the region and give each its depth (D)"),
+       depth(DepthToolMode::Points)},
   };
   for (const Entry& e : entries) {
     QAction* a = menu->addAction(e.label);
     a->setCheckable(true);
     a->setShortcut(QKeySequence(e.key));
     a->setToolTip(e.tip);
-    tool_switcher_->addAction(a, /*is_default=*/!e.mode);
+    tool_switcher_->addAction(a, /*is_default=*/&e == &entries[0]);
     bar->addAction(a);
-    const std::optional<DepthToolMode> mode = e.mode;
-    connect(a, &QAction::triggered, this, [this, mode] {
-      if (mode)
-        canvas_->setTool(std::make_unique<DepthTool>(canvas_, document_, depth_settings_, *mode));
-      else
-        canvas_->setTool(std::make_unique<PairTool>(canvas_, document_));
-    });
+    connect(a, &QAction::triggered, this, [this, make = e.make] { canvas_->setTool(make()); });
   }
+  menu->addAction(tr("&Clear Lines"), this, [this] { pushClearLines(document_); })
+      ->setToolTip(tr("Remove every straight line (undoable)"));
   menu->addSeparator();
   menu->addAction(tr("Smaller Brush"), QKeySequence(tr("[")), this,
                   [this] { depth_settings_->setRadius(depth_settings_->radius() / 1.25); });

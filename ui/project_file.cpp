@@ -20,6 +20,7 @@ StudioProject toCore(const Project& p) {
   StudioProject c;
   c.photo_path = str(p.photo_path);
   for (const Pair& pair : p.pairs) c.pairs.push_back({pair.source, pair.target, pair.enabled});
+  c.lines = p.lines;
   c.model = p.model;
   c.manual_camera = p.manual_camera;
   c.effects = p.effects;
@@ -91,6 +92,7 @@ Result<Project> fromCore(StudioProject c, const std::string& name) {
   for (const PointMatch& m : c.pairs)
     p.pairs.push_back({Eigen::Vector2d(m.source.x(), m.source.y()),
                        Eigen::Vector2d(m.target.x(), m.target.y()), m.enabled});
+  p.lines = std::move(c.lines);
   p.model = c.model;
   p.manual_camera = std::move(c.manual_camera);
   p.effects = std::move(c.effects);

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // The studio's side of the project file: core's reader and writer (core/project/studio_project.h,
 // the one that `artcam export` uses too) with the studio's types — QString paths, the document's
-// pairs and depth layers, and the view state and mode parts as Qt JSON. Saved atomically.
+// pairs, straight lines and depth layers, and the view state and mode parts as Qt JSON. Saved
+// atomically. Every field of core's project passes through both ways: one left out here would be
+// dropped by the next save of a project opened in the studio.
 //
 // The view state ("view") is read here, because only the studio uses it:
 //   { "scale": s, "centre": [x, y], "preview_mode": 0, "opacity": 0.5,
@@ -42,6 +44,7 @@ struct DepthMapRef {
 struct Project {
   QString photo_path;  // absolute once read
   std::vector<Pair> pairs;
+  std::vector<LineTrace> lines;  // finished lines only: the open one is not saved
   ModelClass model = ModelClass::Auto;
   std::optional<Artcam> manual_camera;
   std::vector<EffectStep> effects;

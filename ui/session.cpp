@@ -149,6 +149,7 @@ std::optional<Project> Session::currentProject() const {
   Project p;
   p.photo_path = QFileInfo(document_->photo()->path).absoluteFilePath();
   p.pairs = document_->pairs();
+  p.lines = document_->lines();
   p.model = document_->model();
   p.manual_camera = document_->manualCamera();
   p.effects = document_->effects();
@@ -182,7 +183,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
       std::optional<Artcam> manual = p.manual_camera;
       if (manual) manual->setFrames(photo->size(), photo->size());
       document_->reset(photo, std::move(p.pairs), p.model, std::move(manual),
-                       std::move(p.effects));
+                       std::move(p.effects), std::move(p.lines));
       // Masks are the photo's size; a photo that changed size since the save cannot take them.
       QStringList dropped;
       for (size_t i = 0; i < p.depth_layers.size(); ++i) {

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: Apache-2.0
+// Undo commands for the straight lines (document.h, LineSet). Like the pair commands they store
+// the old and the new value, never a delta, so undo restores the lines and hence the fit bit
+// for bit; a line set is a few dozen points, so whole values cost nothing. One command class
+// carries every line edit (add point, end line, cancel, delete, move a point, clear); the push
+// helpers below name the edit and are what tools and menus call. Moves of one drag share a
+// gesture id and merge into one undo step; their first redo fits in the document's FitWorker.
+//
+// Points are photo pixels (centres at i + 0.5).
+#pragma once
+
+#include "ui/document.h"
+
+#include <QString>
+#include <QUndoCommand>
+
+namespace artcam::ui {
+
+inline constexpr int kMoveLinePointId = 1003;  // beside commands.h's ids
+inline constexpr int kMinLinePoints = 3;       // two points are always on a line
+
+class SetLinesCommand : public QUndoCommand {
+ public:
+  SetLinesCommand(Document* document, LineSet after, const QString& text, int gesture = 0);
+  void redo() override;
+  void undo() override;
+  int id() const override { return gesture_ != 0 ? kMoveLinePointId : -1; }
+  bool mergeWith(const QUndoCommand* other) override;
+
+ private:
+  Document* document_;
+  LineSet before_;
+  LineSet after_;
+  int gesture_;
+  bool pushed_ = false;  // the first redo (QUndoStack::push) has run
+};
+
+// Adds a point to the open line (starting one when none is open).
+void pushAddLinePoint(Document* document, const Eigen::Vector2d& point_px);
+// Ends the open line into the fitted lines. Refused (false, nothing pushed) below
+// kMinLinePoints points.
+bool pushEndLine(Document* document);
+// Drops the open line (Esc). False when none is open.
+bool pushCancelLine(Document* document);
+void pushDeleteLine(Document* document, int index);
+// Moves point `point` of finished line `line`; a drag passes one gesture id for all its moves.
+void pushMoveLinePoint(Document* document, int line, int point, const Eigen::Vector2d& to_px,
+                       int gesture);
+// Removes every line, the open one too. False when there are none.
+bool pushClearLines(Document* document);
+
+}  // namespace artcam::ui
