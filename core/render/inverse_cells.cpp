@@ -157,15 +157,21 @@ bool InverseCells::hasPatch(int cx, int cy) const {
          node(cx + 1, cy + 1).valid;
 }
 
+// Along the cell's left (a, c) and right (b, d) edges at local v: the value and ∂/∂u.
+void InverseCells::edgesAt(int cx, int cy, double v, Eigen::Vector2d& f0, Eigen::Vector2d& f1,
+                           Eigen::Vector2d& d0, Eigen::Vector2d& d1) const {
+  const Hermite hv(v);
+  const Node &a = node(cx, cy), &b = node(cx + 1, cy), &c = node(cx, cy + 1), &d = node(cx + 1, cy + 1);
+  f0 = hv.h0 * a.s + hv.h1 * c.s + hv.h2 * a.sv + hv.h3 * c.sv;
+  f1 = hv.h0 * b.s + hv.h1 * d.s + hv.h2 * b.sv + hv.h3 * d.sv;
+  d0 = hv.h0 * a.su + hv.h1 * c.su + hv.h2 * a.suv + hv.h3 * c.suv;
+  d1 = hv.h0 * b.su + hv.h1 * d.su + hv.h2 * b.suv + hv.h3 * d.suv;
+}
+
 void InverseCells::row(int cx, int y, CellRow& out) const {
   const int cy = std::min(y / kCell, cells_h_ - 1);
-  const Hermite hv((y + 0.5 - cy * kCell) / kCell);
-  const Node &a = node(cx, cy), &b = node(cx + 1, cy), &c = node(cx, cy + 1), &d = node(cx + 1, cy + 1);
-  // Along the cell's left (a, c) and right (b, d) edges at this row: value and ∂/∂u.
-  const Eigen::Vector2d f0 = hv.h0 * a.s + hv.h1 * c.s + hv.h2 * a.sv + hv.h3 * c.sv;
-  const Eigen::Vector2d f1 = hv.h0 * b.s + hv.h1 * d.s + hv.h2 * b.sv + hv.h3 * d.sv;
-  const Eigen::Vector2d d0 = hv.h0 * a.su + hv.h1 * c.su + hv.h2 * a.suv + hv.h3 * c.suv;
-  const Eigen::Vector2d d1 = hv.h0 * b.su + hv.h1 * d.su + hv.h2 * b.suv + hv.h3 * d.suv;
+  Eigen::Vector2d f0, f1, d0, d1;
+  edgesAt(cx, cy, (y + 0.5 - cy * kCell) / kCell, f0, f1, d0, d1);
   // The cubic through them in u: c0 + u (c1 + u (c2 + u c3)).
   const Eigen::Vector2d c2 = 3.0 * (f1 - f0) - 2.0 * d0 - d1;
   const Eigen::Vector2d c3 = 2.0 * (f0 - f1) + d0 + d1;
@@ -174,12 +180,9 @@ void InverseCells::row(int cx, int y, CellRow& out) const {
 }
 
 Eigen::Vector2d InverseCells::patchAt(int cx, int cy, double u, double v) const {
-  const Hermite hu(u), hv(v);
-  const Node &a = node(cx, cy), &b = node(cx + 1, cy), &c = node(cx, cy + 1), &d = node(cx + 1, cy + 1);
-  const Eigen::Vector2d f0 = hv.h0 * a.s + hv.h1 * c.s + hv.h2 * a.sv + hv.h3 * c.sv;
-  const Eigen::Vector2d f1 = hv.h0 * b.s + hv.h1 * d.s + hv.h2 * b.sv + hv.h3 * d.sv;
-  const Eigen::Vector2d d0 = hv.h0 * a.su + hv.h1 * c.su + hv.h2 * a.suv + hv.h3 * c.suv;
-  const Eigen::Vector2d d1 = hv.h0 * b.su + hv.h1 * d.su + hv.h2 * b.suv + hv.h3 * d.suv;
+  Eigen::Vector2d f0, f1, d0, d1;
+  edgesAt(cx, cy, v, f0, f1, d0, d1);
+  const Hermite hu(u);
   return hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
 }
 

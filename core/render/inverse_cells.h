@@ -102,6 +102,8 @@ class InverseCells {
   bool solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* start, Node& out) const;
   void solveNodes(int threads);
   void crossDerivatives();  // also drops nodes next to a pole
+  void edgesAt(int cx, int cy, double v, Eigen::Vector2d& f0, Eigen::Vector2d& f1, Eigen::Vector2d& d0,
+               Eigen::Vector2d& d1) const;
   // The patch's value at local (u, v) ∈ [0, 1]² of cell (cx, cy).
   Eigen::Vector2d patchAt(int cx, int cy, double u, double v) const;
   bool certify(int cx, int cy) const;

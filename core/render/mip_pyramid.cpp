@@ -91,33 +91,42 @@ int StoredMipPyramid::levelFor(double footprint) const {
   return std::clamp(k, 0, levels() - 1);
 }
 
-void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const ImageView& out,
-                 const WarpOptions& options, WarpSummary* summary) {
-  camera.validate();
+namespace {
+
+// The level matching `scale_camera`'s footprint at the target centre, the preview's certify
+// tolerance, then `warp` on that level; the note names the level.
+template <class Warp>
+void previewThrough(const StoredMipPyramid& pyramid, const Camera& scale_camera, const ImageView& out,
+                    const WarpOptions& options, WarpSummary* summary, Warp warp) {
   const ConstImageView& base = pyramid.level(0);
-  const double footprint = centreFootprint(camera, {base.width, base.height}, {out.width, out.height});
+  const double footprint = centreFootprint(scale_camera, {base.width, base.height}, {out.width, out.height});
   const int level = pyramid.levelFor(footprint);
   WarpOptions o = options;
   o.coordinates.certify_tolerance_px = std::max(o.coordinates.certify_tolerance_px, kPreviewCertifyTolerancePx);
   WarpSummary local;
   WarpSummary& report = summary ? *summary : local;
-  warpImage(pyramid.level(level), camera, out, o, &report);
+  warp(pyramid.level(level), o, report);
   report.note = "mip level " + std::to_string(level) + (report.note.empty() ? "" : "; " + report.note);
+}
+
+}  // namespace
+
+void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const ImageView& out,
+                 const WarpOptions& options, WarpSummary* summary) {
+  camera.validate();
+  previewThrough(pyramid, camera, out, options, summary,
+                 [&](const ConstImageView& level, const WarpOptions& o, WarpSummary& report) {
+                   warpImage(level, camera, out, o, &report);
+                 });
 }
 
 void warpPreview(const StoredMipPyramid& pyramid, const std::vector<Camera>& channel_cameras,
                  const ImageView& out, const WarpOptions& options, WarpSummary* summary) {
   if (channel_cameras.empty()) throw std::invalid_argument("warpPreview: no channel cameras");
-  const ConstImageView& base = pyramid.level(0);
-  const double footprint =
-      centreFootprint(channel_cameras.front(), {base.width, base.height}, {out.width, out.height});
-  const int level = pyramid.levelFor(footprint);
-  WarpOptions o = options;
-  o.coordinates.certify_tolerance_px = std::max(o.coordinates.certify_tolerance_px, kPreviewCertifyTolerancePx);
-  WarpSummary local;
-  WarpSummary& report = summary ? *summary : local;
-  warpChannels(pyramid.level(level), channel_cameras, out, o, &report);
-  report.note = "mip level " + std::to_string(level) + (report.note.empty() ? "" : "; " + report.note);
+  previewThrough(pyramid, channel_cameras.front(), out, options, summary,
+                 [&](const ConstImageView& level, const WarpOptions& o, WarpSummary& report) {
+                   warpChannels(level, channel_cameras, out, o, &report);
+                 });
 }
 
 MipPyramid::MipPyramid(ImageF base, int min_size) {
