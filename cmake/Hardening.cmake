@@ -36,11 +36,12 @@ foreach(_flag -fstack-clash-protection -fcf-protection)
 endforeach()
 
 # _FORTIFY_SOURCE needs optimisation (glibc warns at -O0, and -Werror turns that into a
-# failure), so it is on only in the optimised configurations. Not in the sanitizer and fuzzing
-# builds (cmake/Sanitizers.cmake): the fortified __*_chk variants of memcpy, strcpy ... are not
-# all intercepted by ASan, so fortification would hide the very overflows those builds look
-# for. -U first: some compilers predefine it, and a redefinition warns.
-if(NOT ARTCAM_SANITIZE AND NOT ARTCAM_FUZZ)
+# failure), so it is on only in the optimised configurations. Not in the fuzzing build, and not
+# on the sources a sanitizer build instruments (cmake/Sanitizers.cmake undoes it per source):
+# the fortified __*_chk variants of memcpy, strcpy ... are not all intercepted by ASan, so
+# fortification would hide the very overflows those builds look for. -U first: some compilers
+# predefine it, and a redefinition warns.
+if(NOT ARTCAM_FUZZ)
   target_compile_options(artcam_hardening INTERFACE
     "$<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-U_FORTIFY_SOURCE;-D_FORTIFY_SOURCE=2>")
 endif()

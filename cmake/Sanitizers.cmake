@@ -1,9 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-# Sanitizer and fuzzing builds. Both instrument EVERY target of the build
-# (core, ui, app, tests), so each gets its own build directory:
+# Sanitizer and fuzzing builds, each in its own build directory:
 #
 #   cmake -S . -B build-asan -G Ninja -DARTCAM_SANITIZE=address,undefined
-#   cmake -S . -B build-tsan -G Ninja -DARTCAM_SANITIZE=thread
+#   cmake -S . -B build-tsan -G Ninja -DARTCAM_SANITIZE=thread -DARTCAM_SANITIZE_ONLY="ui;tests/ui"
 #   CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DARTCAM_FUZZ=ON -DARTCAM_BUILD_GUI=OFF
 #
 # ARTCAM_FUZZ builds fuzz/ (libFuzzer targets, one per reader of untrusted files) with clang,
@@ -15,12 +14,98 @@
 # warning set, must not block a sanitizer run on a warning the gate does not see.
 
 set(ARTCAM_SANITIZE "" CACHE STRING
-    "Sanitizers for every target: address,undefined | thread | empty (none)")
+    "Sanitizers: address,undefined | thread | empty (none)")
+set(ARTCAM_SANITIZE_ONLY "" CACHE STRING
+    "Source folders (from the repository root, ;-separated) to instrument; empty: all of them")
+set(ARTCAM_SANITIZE_FLAGS "" CACHE STRING
+    "Further compile flags for instrumented sources only (CI: -O1 -g1)")
 option(ARTCAM_FUZZ "Build the libFuzzer targets in fuzz/ (clang only; ASan+UBSan)" OFF)
 
 if(ARTCAM_SANITIZE AND ARTCAM_FUZZ)
   message(FATAL_ERROR "ARTCAM_FUZZ already builds with address,undefined; leave ARTCAM_SANITIZE empty")
 endif()
+
+# Decision: the flags go on each instrumented SOURCE, never on the tree (no add_compile_options,
+# no change to artcam_warnings). A source left out is then compiled with exactly the normal
+# build's command line, so ccache hands over the object the normal build just made, and an
+# instrumented tree costs only what it instruments. CI instruments what reads and renders
+# untrusted input under ASan, and the GUI's threads under TSan (packaging/ci-sanitizers.sh).
+# Source-level options also come last on the command line, after the hardening's
+# -D_FORTIFY_SOURCE=2, so -U_FORTIFY_SOURCE undoes it where ASan looks (fortified __memcpy_chk
+# and friends are not all intercepted, and would hide the overflows ASan is there to see).
+# Sources Qt generates at build time (moc) are not instrumented: they are glue, not logic.
+function(_artcam_instrument_sources)
+  separate_arguments(_extra UNIX_COMMAND "${ARTCAM_SANITIZE_FLAGS}")
+  set(_flags -fsanitize=${ARTCAM_SANITIZE} -fno-omit-frame-pointer -U_FORTIFY_SOURCE -Wno-error
+      ${_extra})
+  if(ARTCAM_SANITIZE MATCHES "undefined")
+    # Stop at the first undefined behaviour instead of printing and going on, so a test fails.
+    list(APPEND _flags -fno-sanitize-recover=undefined)
+  endif()
+  if(ARTCAM_SANITIZE MATCHES "address")
+    # Eigen frees its own aligned blocks and picks how by __SANITIZE_ADDRESS__: plain malloc
+    # when glibc's is 16-aligned, else an offset block of its own. With instrumented and plain
+    # sources in one program a matrix made on one side and freed on the other is a bad free,
+    # so both sides take the plain-malloc choice (ASan's malloc is 16-aligned on x86-64, as
+    # glibc's is; a misaligned block would fault in the first vectorised load of a test).
+    list(APPEND _flags -DEIGEN_MALLOC_ALREADY_ALIGNED=1)
+  endif()
+  set(_only ${ARTCAM_SANITIZE_ONLY})
+  if(NOT _only)
+    set(_only core app ui tests)
+  endif()
+  set(_dirs ${PROJECT_SOURCE_DIR})
+  set(_count 0)
+  set(_skipped "")
+  while(_dirs)
+    list(POP_FRONT _dirs _dir)
+    get_property(_subdirs DIRECTORY ${_dir} PROPERTY SUBDIRECTORIES)
+    list(APPEND _dirs ${_subdirs})
+    get_property(_targets DIRECTORY ${_dir} PROPERTY BUILDSYSTEM_TARGETS)
+    foreach(_target IN LISTS _targets)
+      get_target_property(_type ${_target} TYPE)
+      if(_type STREQUAL "INTERFACE_LIBRARY" OR _type STREQUAL "UTILITY")
+        continue()
+      endif()
+      get_target_property(_sources ${_target} SOURCES)
+      get_target_property(_target_dir ${_target} SOURCE_DIR)
+      foreach(_src IN LISTS _sources)
+        if(NOT _src MATCHES "\\.cpp$" OR _src MATCHES "^\\$<")
+          continue()
+        endif()
+        cmake_path(ABSOLUTE_PATH _src BASE_DIRECTORY ${_target_dir} NORMALIZE OUTPUT_VARIABLE _abs)
+        cmake_path(RELATIVE_PATH _abs BASE_DIRECTORY ${PROJECT_SOURCE_DIR} OUTPUT_VARIABLE _rel)
+        set(_hit FALSE)
+        foreach(_prefix IN LISTS _only)
+          if(_rel MATCHES "^${_prefix}/")
+            set(_hit TRUE)
+          endif()
+        endforeach()
+        if(NOT _hit)
+          continue()
+        endif()
+        if(ARTCAM_SANITIZE MATCHES "thread")
+          # GCC makes an ifunc resolver for every target_clones function (runtime CPU dispatch);
+          # TSan instruments it, and the dynamic loader runs it before the TSan runtime exists:
+          # the program dies before main. Those files stay uninstrumented (their races unseen).
+          file(STRINGS ${_abs} _clones REGEX "target_clones")
+          if(_clones)
+            list(APPEND _skipped ${_rel})
+            continue()
+          endif()
+        endif()
+        set_property(SOURCE ${_abs} TARGET_DIRECTORY ${_target} APPEND PROPERTY COMPILE_OPTIONS
+                     ${_flags})
+        math(EXPR _count "${_count} + 1")
+      endforeach()
+    endforeach()
+  endwhile()
+  list(REMOVE_DUPLICATES _skipped)
+  message(STATUS "ARTcam: ${ARTCAM_SANITIZE} on ${_count} sources under ${_only}")
+  if(_skipped)
+    message(STATUS "ARTcam: without TSan (target_clones): ${_skipped}")
+  endif()
+endfunction()
 
 if(ARTCAM_SANITIZE)
   if(ARTCAM_SANITIZE MATCHES "thread" AND ARTCAM_SANITIZE MATCHES "address")
@@ -29,35 +114,14 @@ if(ARTCAM_SANITIZE)
   if(NOT ARTCAM_SANITIZE MATCHES "^(address|undefined|thread|leak)(,(address|undefined|leak))*$")
     message(FATAL_ERROR "ARTCAM_SANITIZE=${ARTCAM_SANITIZE}: expected address,undefined or thread")
   endif()
-  # Stop at the first undefined behaviour instead of printing and going on, so a test fails.
-  set(_artcam_san_flags -fsanitize=${ARTCAM_SANITIZE} -fno-omit-frame-pointer)
+  # Every executable links the runtime; which sources are instrumented is decided once all
+  # targets exist (deferred to the end of the root CMakeLists).
+  set(_artcam_san_link -fsanitize=${ARTCAM_SANITIZE})
   if(ARTCAM_SANITIZE MATCHES "undefined")
-    list(APPEND _artcam_san_flags -fno-sanitize-recover=undefined)
+    list(APPEND _artcam_san_link -fno-sanitize-recover=undefined)
   endif()
-  add_compile_options(${_artcam_san_flags})
-  add_link_options(${_artcam_san_flags})
-  set_property(TARGET artcam_warnings APPEND PROPERTY INTERFACE_COMPILE_OPTIONS -Wno-error)
-  if(ARTCAM_SANITIZE MATCHES "thread")
-    # GCC makes an ifunc resolver for every target_clones function (runtime CPU dispatch); TSan
-    # instruments it, and the dynamic loader runs it before the TSan runtime exists: the
-    # program dies before main. Those files are built without TSan (their races go unseen).
-    file(GLOB_RECURSE _artcam_sources ${PROJECT_SOURCE_DIR}/core/*.cpp)
-    set(_artcam_clones "")
-    foreach(_src IN LISTS _artcam_sources)
-      file(STRINGS ${_src} _hit REGEX "target_clones")
-      if(_hit)
-        list(APPEND _artcam_clones ${_src})
-      endif()
-    endforeach()
-    if(_artcam_clones)
-      # Deferred to the end of the root CMakeLists: core/ is not added yet at this point.
-      cmake_language(DEFER CALL set_source_files_properties ${_artcam_clones}
-                     DIRECTORY ${PROJECT_SOURCE_DIR}/core
-                     PROPERTIES COMPILE_OPTIONS -fno-sanitize=thread)
-      message(STATUS "ARTcam: without TSan (target_clones): ${_artcam_clones}")
-    endif()
-  endif()
-  message(STATUS "ARTcam: sanitizers ${ARTCAM_SANITIZE} on every target")
+  add_link_options(${_artcam_san_link})
+  cmake_language(DEFER DIRECTORY ${PROJECT_SOURCE_DIR} CALL _artcam_instrument_sources)
 endif()
 
 if(ARTCAM_FUZZ)

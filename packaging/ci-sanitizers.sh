@@ -2,24 +2,34 @@
 # SPDX-License-Identifier: Apache-2.0
 # CI's instrumented jobs, run by packaging/build-and-test.sh after the normal build and tests:
 #
-#   asan  GCC, ASan + UBSan, -O1: the engine and the CLI; runs the readers' tests (core/io,
-#         core/model/artcam and coverage) and app/hostile_warp with leak checking, and the hostile corpus
-#         (tests/hostile) through the instrumented artcam. Any report fails the job.
+#   asan  GCC, ASan + UBSan, -O1: instruments the layers untrusted input passes through (the
+#         readers in core/io, core/model, core/project and core/lens, the renderers in
+#         core/render, core/piecewise and core/pipeline, core/util, and the CLI in app/); runs
+#         the readers' tests (core/io, core/model/artcam and coverage) and app/hostile_warp with
+#         leak checking, and the hostile corpus (tests/hostile) through the instrumented artcam.
+#         Any report fails the job.
 #   fuzz  clang 14, libFuzzer + ASan + UBSan: every reader's fuzzer for ARTCAM_CI_FUZZ_SECONDS
 #         (default 5) from its checked-in corpus. What a fuzzer finds is left in
 #         build-fuzz/fuzz/findings/ and listed; it becomes a regression seed by being copied to
 #         fuzz/corpus/<target>/found-<what>, which the normal build replays on every test run.
-#   tsan  GCC, TSan, -O1: ui/preview, 1 000 rapid edits through the newest-request worker (the
-#         preview's render and fit workers), with cmake/tsan.supp for uninstrumented Qt. Not
+#   tsan  GCC, TSan, -O1: instruments ui/, tests/ui and core/util (the engine's thread pool);
+#         runs ui/preview, 1 000 rapid edits through the newest-request worker (the preview's
+#         render and fit workers), with cmake/tsan.supp for uninstrumented Qt. Not
 #         ui/background_job: the one-shot jobs run on QThreadPool, whose threads race inside
 #         libQt6Core (memmove between two pooled threads, no frame of ours) in a way no
 #         suppression can single out without hiding our own races; it needs a TSan-built Qt.
 #
-# Which targets, and why so few: CI has two cores and a budget of well under 30 minutes for the
-# whole of .ci/run from a cold cache; the normal build takes about half of that. Each tree builds
-# only what its tests need (README, "Hostile input, fuzzing and sanitizers", has the measured
-# times). The fuzz job leaves out fuzz_project, whose target links the whole engine a second
-# time (ARTCAM_CI_FUZZ_PROJECT=1 adds it); the corpus replay covers the project reader instead.
+# What each tree instruments, and why not everything: CI has two cores and a budget of well
+# under 30 minutes for the whole of .ci/run from a cold cache; the normal build takes about
+# half of that. cmake/Sanitizers.cmake puts the sanitizer flags on the chosen sources only
+# (ARTCAM_SANITIZE_ONLY), so every other source compiles with the normal build's exact command
+# line and ccache returns the object the normal build made minutes before: a tree costs what it
+# instruments. Left uninstrumented under ASan: the numerical layers (core/fit, core/effects,
+# core/colour, core/cameras, core/depth, core/cloud), which see only values a reader has
+# already checked, and the test programs themselves. ARTCAM_CI_ASAN_ONLY / ARTCAM_CI_TSAN_ONLY
+# change the lists ("core;app;ui;tests" is everything). The fuzz job leaves out fuzz_project,
+# whose target links the whole engine a second time (ARTCAM_CI_FUZZ_PROJECT=1 adds it); the
+# corpus replay covers the project reader instead.
 #
 # usage: ci-sanitizers.sh [asan] [fuzz] [tsan]   (default: all three)
 set -euo pipefail
@@ -27,7 +37,10 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="${ARTCAM_CI_JOBS:-$(nproc)}"
 selected=("$@")
 [[ ${#selected[@]} -eq 0 ]] && selected=(asan fuzz tsan)
-flags_o1=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1")
+# The normal build's type, so uninstrumented sources hit ccache; -O1 only where instrumented.
+flags_o1=(-DCMAKE_BUILD_TYPE="${ARTCAM_BUILD_TYPE:-RelWithDebInfo}" "-DARTCAM_SANITIZE_FLAGS=-O1 -g1")
+asan_only="${ARTCAM_CI_ASAN_ONLY:-core/io;core/model;core/project;core/lens;core/render;core/piecewise;core/pipeline;core/util;app}"
+tsan_only="${ARTCAM_CI_TSAN_ONLY:-ui;tests/ui;core/util}"
 
 timed() {  # timed NAME COMMAND...: runs it and prints how long it took
   local name="$1" start
@@ -40,7 +53,8 @@ timed() {  # timed NAME COMMAND...: runs it and prints how long it took
 asan() {
   local build="${ARTCAM_ASAN_DIR:-$root/build-asan}"
   timed "asan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
-    -DARTCAM_SANITIZE=address,undefined -DARTCAM_BUILD_GUI=OFF >/dev/null
+    -DARTCAM_SANITIZE=address,undefined -DARTCAM_SANITIZE_ONLY="$asan_only" \
+    -DARTCAM_BUILD_GUI=OFF >/dev/null
   local targets=(artcam test_app_hostile_warp)
   targets+=($(ninja -C "$build" -t targets all | grep -oE '^test_core_io_[a-z0-9_]+' | sort -u))
   targets+=(test_core_model_artcam test_core_model_coverage)
@@ -59,7 +73,7 @@ asan() {
   (cd "$build" &&
     ASAN_OPTIONS="detect_leaks=0:exitcode=86" \
     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87" \
-    ARTCAM_HOSTILE_SANITIZED=1 QT_QPA_PLATFORM=offscreen \
+    ARTCAM_HOSTILE_SANITIZED=1 ARTCAM_HOSTILE_JOBS="$jobs" QT_QPA_PLATFORM=offscreen \
     timed "asan hostile corpus" ctest --output-on-failure --no-tests=error -R '^hostile/corpus$')
 }
 
@@ -90,7 +104,7 @@ fuzz() {
 tsan() {
   local build="${ARTCAM_TSAN_DIR:-$root/build-tsan}"
   timed "tsan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
-    -DARTCAM_SANITIZE=thread >/dev/null
+    -DARTCAM_SANITIZE=thread -DARTCAM_SANITIZE_ONLY="$tsan_only" >/dev/null
   timed "tsan build" cmake --build "$build" -j"$jobs" --target test_ui_preview
   # setarch -R: TSan's shadow layout does not fit high-entropy ASLR (Debian 12's kernels).
   (cd "$build" &&
