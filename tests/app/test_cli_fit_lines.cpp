@@ -5,6 +5,7 @@
 // whose straightness this file measures itself. Refusals are one line naming the file.
 #include "core/model/frames.h"
 #include "tests/app/cli_run.h"
+#include "tests/support/straight_lines.h"
 
 #include <QtTest/QtTest>
 
@@ -14,14 +15,13 @@
 #include <QJsonObject>
 #include <QTemporaryDir>
 
-#include <Eigen/Eigenvalues>
-
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 using namespace artcam;
 using artcam::test::artcamCli;
+using artcam::test::bowOf;
 
 namespace {
 
@@ -30,27 +30,14 @@ const double kLensK = 0.05;
 
 // Scene pixel → photo pixel through the inverse of the lens (closed form in |U|).
 Eigen::Vector2d photoFromScene(const Eigen::Vector2d& scene_px) {
-  const Eigen::Vector2d s = normalizedFromPixel(kFrame, scene_px);
-  const Eigen::Vector2d u = s * (2.0 / (1.0 + std::sqrt(1.0 + 4.0 * kLensK * s.squaredNorm())));
-  return pixelFromNormalized(kFrame, u);
+  return pixelFromNormalized(
+      kFrame, test::radialPhotoFromScene(kLensK, normalizedFromPixel(kFrame, scene_px)));
 }
 
 std::vector<Eigen::Vector2d> edgePoints(Eigen::Vector2d a, Eigen::Vector2d b, int n) {
   std::vector<Eigen::Vector2d> out;
   for (int k = 0; k < n; ++k) out.push_back(photoFromScene(a + (b - a) * (k / (n - 1.0))));
   return out;
-}
-
-double bowOf(const std::vector<Eigen::Vector2d>& points) {
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
-  for (const auto& p : points) c += p;
-  c /= static_cast<double>(points.size());
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const auto& p : points) cov += (p - c) * (p - c).transpose();
-  const Eigen::Vector2d n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvectors().col(0);
-  double worst = 0;
-  for (const auto& p : points) worst = std::max(worst, std::abs(n.dot(p - c)));
-  return worst;
 }
 
 bool writeFile(const QString& path, const QByteArray& text) {

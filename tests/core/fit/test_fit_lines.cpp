@@ -3,20 +3,23 @@
 // edges on a 6000×4000 frame, photographed through a known lens that one quadratic camera
 // represents exactly, u = U / (1 - k |U|²) from photo to scene in the normalised frame (the
 // photo's points are its closed-form inverse). The fit sees some edges; the HELD-OUT edges,
-// measured here with this file's own total-least-squares line, must come out straight to
-// 0.5 px, and the camera must agree with the true lens, which the least-change gauge picks.
+// measured with the tests' own total-least-squares line (tests/support/straight_lines.h), must
+// come out straight to 0.5 px, and the camera must agree with the true lens, which the
+// least-change gauge picks.
 #include "core/fit/fit_lines.h"
 #include "core/model/frames.h"
+#include "tests/support/straight_lines.h"
 
 #include <QtTest/QtTest>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <functional>
 #include <random>
 
 using namespace artcam;
+using artcam::test::bowOf;
 
 namespace {
 
@@ -27,10 +30,6 @@ using Lens = std::function<Eigen::Vector2d(const Eigen::Vector2d&)>;  // normali
 Lens radialLens(double k) {
   return [k](const Eigen::Vector2d& u) { return Eigen::Vector2d(u / (1 - k * u.squaredNorm())); };
 }
-Eigen::Vector2d radialInverse(double k, const Eigen::Vector2d& scene) {
-  const double rho2 = scene.squaredNorm();
-  return scene * (2.0 / (1.0 + std::sqrt(1.0 + 4.0 * k * rho2)));
-}
 
 struct Scene {
   std::function<Eigen::Vector2d(const Eigen::Vector2d&)> photo_from_scene;  // normalised
@@ -38,7 +37,7 @@ struct Scene {
 };
 
 Scene radialScene(double k, Eigen::Vector2d centre = Eigen::Vector2d::Zero()) {
-  return {[k, centre](const Eigen::Vector2d& s) { return Eigen::Vector2d(radialInverse(k, s - centre) + centre); },
+  return {[k, centre](const Eigen::Vector2d& s) { return Eigen::Vector2d(test::radialPhotoFromScene(k, s - centre) + centre); },
           [k, centre](const Eigen::Vector2d& u) {
             return Eigen::Vector2d(radialLens(k)(u - centre) + centre);
           }};
@@ -82,19 +81,6 @@ void facade(const Scene& scene, std::vector<LineTrace>& fitted, std::vector<Line
     held_out.push_back(edge(scene, "V" + std::to_string(int(x)), {x, 200}, {x, h - 200}, 30));
   held_out.push_back(edge(scene, "D1", {300, 300}, {w - 300, h - 300}, 50));
   held_out.push_back(edge(scene, "D2", {600, h - 200}, {w - 900, 250}, 50));
-}
-
-// This file's own straightness measure: largest distance from the total-least-squares line.
-double bowOf(const std::vector<Eigen::Vector2d>& points) {
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
-  for (const auto& p : points) c += p;
-  c /= static_cast<double>(points.size());
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const auto& p : points) cov += (p - c) * (p - c).transpose();
-  const Eigen::Vector2d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvectors().col(0);
-  double worst = 0;
-  for (const auto& p : points) worst = std::max(worst, std::abs(normal.dot(p - c)));
-  return worst;
 }
 
 double worstBow(const Camera& camera, const std::vector<LineTrace>& lines) {
