@@ -84,6 +84,15 @@ Measured measure(const Artcam& cam, Truth& truth, FrameSize size, int channel = 
   return m;
 }
 
+// The options every case starts from: a lens of the database, its focal length, the photo size.
+LensCameraOptions optionsFor(const char* lens_name, double focal_mm, FrameSize size) {
+  LensCameraOptions o;
+  o.lens = lens_name;
+  o.focal_mm = focal_mm;
+  o.size = size;
+  return o;
+}
+
 }  // namespace
 
 class TestLensCamera : public QObject {
@@ -109,10 +118,7 @@ class TestLensCamera : public QObject {
   // what an independent measurement finds.
   void compactZoomAgainstLfModifier() {
     const FrameSize size{1200, 800};
-    LensCameraOptions o;
-    o.lens = kCompact;
-    o.focal_mm = 6.1;
-    o.size = size;
+    LensCameraOptions o = optionsFor(kCompact, 6.1, size);
     const LensCameraSummary s = lensCamera(*db_, o);
     QVERIFY2(s.status.ok, s.status.message.c_str());
     QVERIFY(s.piecewise);
@@ -135,11 +141,8 @@ class TestLensCamera : public QObject {
   // comparisons above would not see at their threshold).
   void frameCentreStaysPut() {
     const FrameSize size{600, 400};
-    LensCameraOptions o;
-    o.lens = kPrime;
+    LensCameraOptions o = optionsFor(kPrime, 50, size);
     o.crop = 1.0;
-    o.focal_mm = 50;
-    o.size = size;
     o.tca = false;
     const LensCameraSummary s = lensCamera(*db_, o);
     QVERIFY2(s.status.ok, s.status.message.c_str());
@@ -155,10 +158,7 @@ class TestLensCamera : public QObject {
   // corners), so the layers are not three copies.
   void tcaLayersAgainstLfModifier() {
     const FrameSize size{1600, 1200};
-    LensCameraOptions o;
-    o.lens = kTcaZoom;
-        o.focal_mm = 45;
-    o.size = size;
+    LensCameraOptions o = optionsFor(kTcaZoom, 45, size);
     const LensCameraSummary s = lensCamera(*db_, o);
     QVERIFY2(s.status.ok, s.status.message.c_str());
     QVERIFY(!s.piecewise);
@@ -183,10 +183,7 @@ class TestLensCamera : public QObject {
   // A stereographic fisheye converted to rectilinear: far from one quadratic, so patches.
   void fisheyeToRectilinear() {
     const FrameSize size{1500, 1000};
-    LensCameraOptions o;
-    o.lens = kFisheye;
-    o.focal_mm = 8;
-    o.size = size;
+    LensCameraOptions o = optionsFor(kFisheye, 8, size);
     const LensCameraSummary s = lensCamera(*db_, o);
     QVERIFY2(s.status.ok, s.status.message.c_str());
     QCOMPARE(s.lens.type, std::string("fisheye (stereographic)"));
@@ -202,10 +199,7 @@ class TestLensCamera : public QObject {
   // --distort is lensfun's reverse modifier.
   void distortAgainstReverseModifier() {
     const FrameSize size{1200, 800};
-    LensCameraOptions o;
-    o.lens = kCompact;
-    o.focal_mm = 6.1;
-    o.size = size;
+    LensCameraOptions o = optionsFor(kCompact, 6.1, size);
     o.distort = true;
     const LensCameraSummary s = lensCamera(*db_, o);
     QVERIFY2(s.status.ok, s.status.message.c_str());
@@ -219,10 +213,7 @@ class TestLensCamera : public QObject {
   }
 
   void refusals() {
-    LensCameraOptions o;
-    o.lens = kCompact;
-    o.focal_mm = 50;  // the G11 zooms 6.1-30.5 mm
-    o.size = {600, 400};
+    LensCameraOptions o = optionsFor(kCompact, 50, {600, 400});  // the G11 zooms 6.1-30.5 mm
     LensCameraSummary s = lensCamera(*db_, o);
     QVERIFY(!s.status.ok);
     QVERIFY(QString::fromStdString(s.status.message).contains("6.1-30.5"));
