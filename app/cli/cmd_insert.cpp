@@ -10,34 +10,46 @@
 #include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_fit.h"
 #include "core/piecewise/piecewise_render.h"
-#include "core/pipeline/render.h"
+#include "core/pipeline/insert_graphic.h"
 
-#include <chrono>
 #include <cstdio>
+#include <optional>
 
 namespace artcam::cli {
 
 const char* const kInsertUsage =
     "usage: artcam insert PHOTO GRAPHIC (--matches GRID.csv | --camera CAM.artcam) -o OUT\n"
+    "                     [--table TABLE.csv [--grid-on-table]] [--region REGION.csv]\n"
     "                     [--max-error PX] [--save-camera FILE] [--mesh-step PX] [--overwrite]\n\n"
     "Renders GRAPHIC into the reflection or refraction seen in PHOTO and composites it over\n"
-    "the photo with premultiplied alpha.\n\n"
+    "the photo with premultiplied alpha; with --table, also onto the table (or backdrop) the\n"
+    "calibration grid lay on, as the paper's Fig 7 does.\n\n"
     "GRAPHIC stands in for the calibration grid: the matches' source points are pixels of the\n"
     "grid's canonical view, scaled to GRAPHIC's size; their targets are pixels of PHOTO.\n"
     "  --matches GRID.csv  fit a piecewise camera (src_x,src_y,dst_x,dst_y): patches are split\n"
     "                      until every patch's max error is under --max-error (default 0.5 px)\n"
     "  --camera CAM.artcam use a fitted camera (piecewise or single)\n"
     "  --canonical WxH     size of the grid's canonical view (default: GRAPHIC's size)\n"
+    "  --table TABLE.csv   points of the board seen directly in PHOTO (canonical view → photo,\n"
+    "                      at least 4, e.g. its corners): the board → photo homography (Fig 7b)\n"
+    "                      puts GRAPHIC on the table under its reflection\n"
+    "  --grid-on-table     GRID.csv's sources are photo pixels of the grid as seen on the table\n"
+    "                      (Fig 7a); the --table homography takes them to the canonical view\n"
+    "  --region REGION.csv the object's outline in PHOTO (x,y rows, a polygon): the reflection\n"
+    "                      is kept inside it and the table's copy outside it, where the object\n"
+    "                      does not hide the table\n"
     "  --save-camera FILE  also write the fitted piecewise camera\n"
     "  --mesh-step PX      lattice spacing of the mesh render, source pixels (default 4)\n"
     "  -o, --output OUT    the composited image (required)\n"
     "  --overwrite         replace OUT (and FILE) if they exist (--force is the same)\n"
     "  -q, --quiet         no progress bar (drawn on stderr only when it is a terminal)\n"
     "OUT keeps PHOTO's format and metadata; it is written atomically. Neither OUT nor FILE is\n"
-    "ever one of the inputs (PHOTO, GRAPHIC, GRID.csv, CAM.artcam), even with --overwrite.\n\n"
+    "ever one of the inputs (PHOTO, GRAPHIC, the CSV files, CAM.artcam), even with --overwrite.\n\n"
     "Example:\n"
     "  artcam sample mirror-sphere -o demo && artcam insert demo/mirror-sphere.png \\\n"
-    "      demo/emblem.png --matches demo/mirror-sphere-grid.csv -o inserted.png\n";
+    "      demo/emblem.png --matches demo/mirror-sphere-grid.csv \\\n"
+    "      --table demo/mirror-sphere-table.csv --region demo/mirror-sphere-region.csv \\\n"
+    "      -o inserted.png\n";
 
 namespace {
 
@@ -60,6 +72,9 @@ int insertCommand(const std::vector<std::string>& argv) {
                          {"--matches", "", true},
                          {"--camera", "", true},
                          {"--canonical", "", true},
+                         {"--table", "", true},
+                         {"--grid-on-table", "", false},
+                         {"--region", "", true},
                          {"--max-error", "", true},
                          {"--save-camera", "", true},
                          {"--mesh-step", "", true},
@@ -71,11 +86,13 @@ int insertCommand(const std::vector<std::string>& argv) {
   if (!output) throw UsageError("missing -o OUT");
   if (args.has("--matches") == args.has("--camera"))
     throw UsageError("give exactly one of --matches GRID.csv and --camera CAM.artcam");
+  if (args.has("--grid-on-table") && !(args.has("--table") && args.has("--matches")))
+    throw UsageError("--grid-on-table needs --matches GRID.csv and --table TABLE.csv");
   const std::string& photo_path = args.positional()[0];
   {
     std::vector<std::string> outputs = {*output}, inputs = args.positional();
     if (const auto save = args.value("--save-camera")) outputs.push_back(*save);
-    for (const char* read : {"--matches", "--camera"})
+    for (const char* read : {"--matches", "--camera", "--table", "--region"})
       if (const auto path = args.value(read)) inputs.push_back(*path);
     checkOutputs(args, outputs, inputs);
   }
@@ -95,12 +112,48 @@ int insertCommand(const std::vector<std::string>& argv) {
                                     ? parseSize(*args.value("--canonical"), "--canonical")
                                     : FrameSize{graphic->image.width, graphic->image.height};
 
-    PiecewiseCamera camera;
+    InsertionCameras cameras;
+    std::string table_report;  // printed after the bar is gone
+    std::optional<Camera> photo_to_board;  // --grid-on-table: the table homography's inverse
+    if (const auto table_csv = args.value("--table")) {
+      const auto table = readMatchesCsv(*table_csv, 2);
+      if (!table) throw CommandError(table.status.message);
+      job.stage("fitting the table's homography");
+      const auto board_to_photo = fitBoardHomography(*table, canonical, photo_size);
+      if (!board_to_photo.status) throw CommandError(*table_csv + ": " + board_to_photo.status.message);
+      cameras.plane = board_to_photo.camera;
+      table_report = "table homography: " + board_to_photo.report();
+      if (args.has("--grid-on-table")) {
+        const auto inverse = fitBoardFromPhoto(*table, canonical, photo_size);
+        if (!inverse.status) throw CommandError(*table_csv + ": " + inverse.status.message);
+        photo_to_board = inverse.camera;
+      }
+    }
+    if (const auto region_csv = args.value("--region")) {
+      const auto region = readPointsCsv(*region_csv);
+      if (!region) throw CommandError(region.status.message);
+      if (region->size() < 3)
+        throw CommandError(*region_csv + ": a region needs at least 3 points, found " +
+                           std::to_string(region->size()));
+      cameras.region = *region;
+    }
+
+    PiecewiseCamera& camera = cameras.object;
     std::string fit_report;  // printed after the bar is gone
     if (args.has("--matches")) {
       const std::string csv = *args.value("--matches");
-      const auto matches = readMatchesCsv(csv, 2);
+      auto matches = readMatchesCsv(csv, 2);
       if (!matches) throw CommandError(matches.status.message);
+      if (photo_to_board) {
+        for (size_t i = 0; i < matches->size(); ++i) {
+          PointMatch& m = (*matches)[i];
+          const auto board = targetPixelFromSourcePixel(*photo_to_board, m.source);
+          if (!board)
+            throw CommandError(csv + ": match " + std::to_string(i + 1) +
+                               ": its grid point lies on the table homography's horizon");
+          m.source = *board;
+        }
+      }
       PiecewiseOptions options;
       options.max_error_px = positiveNumber(args, "--max-error", options.max_error_px);
       job.stage("fitting");
@@ -142,32 +195,33 @@ int insertCommand(const std::vector<std::string>& argv) {
             std::to_string(photo_size.width) + "x" + std::to_string(photo_size.height));
     }
 
-    // Through the render front door: the piecewise camera as a camera value, on the photo's frame.
-    Artcam lens(camera.patches.front().camera);
-    lens.pieces = camera;
+    if (cameras.plane && cameras.plane->sourceSize() != camera.source_size)
+      throw CommandError(*args.value("--table") + ": the table's canonical view is " +
+                         std::to_string(canonical.width) + "x" + std::to_string(canonical.height) +
+                         " but the camera's source frame is " +
+                         std::to_string(camera.source_size.width) + "x" +
+                         std::to_string(camera.source_size.height) + " (set --canonical)");
+
+    // One entry point with the studio's Insertion mode: the table's copy, then the reflection.
     RenderOptions render_options;
     render_options.mesh_step_px = positiveNumber(args, "--mesh-step", render_options.mesh_step_px);
-    render_options.warp.width = camera.target_size.width;
-    render_options.warp.height = camera.target_size.height;
     job.stage("rendering");
-    const auto start = std::chrono::steady_clock::now();
-    ImageF inserted;
+    InsertSummary summary;
+    ImageF composited;
     try {
-      inserted = render(RenderInputs::of(graphic->image), lens, render_options);
+      composited = insertGraphic(photo->image, graphic->image, cameras, render_options, &summary);
     } catch (const std::invalid_argument& e) {
       throw CommandError(std::string("cannot render the graphic: ") + e.what());
     }
-    compositeOver(inserted, photo->image);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     WriteImageOptions write;
     write.progress = job.polled("writing");
-    if (const Status s = writeImage(*output, photo->image, &photo->info, write); !s)
+    if (const Status s = writeImage(*output, composited, &photo->info, write); !s)
       throw CommandError(s.message);
     job.finish();
+    if (!table_report.empty()) std::printf("%s\n", table_report.c_str());
     if (!fit_report.empty()) std::printf("%s\n", fit_report.c_str());
-    std::printf("wrote %s (%zu patches, render + composite %.1f ms)\n", output->c_str(),
-                camera.patches.size(), ms);
+    std::printf("wrote %s (%zu patches%s, render + composite %.1f ms)\n", output->c_str(),
+                camera.patches.size(), cameras.plane ? " and the table" : "", summary.ms);
     return 0;
   });
 }

@@ -26,15 +26,22 @@ const char* const kSampleUsage =
     "                  src_x,src_y in the board's canonical view (512×512), dst_x,dst_y in\n"
     "                  the photo, exact to 1e-6 px\n"
     "  emblem.png      a 512×512 graphic with alpha to insert\n"
+    "mirror-sphere also writes what puts the graphic on the table too (the paper's Fig 7):\n"
+    "  mirror-sphere-table.csv   grid corners seen directly on the table (canonical view →\n"
+    "                            photo, the clicks that fix the board's homography)\n"
+    "  mirror-sphere-region.csv  the sphere's outline in the photo (x,y), where it hides\n"
+    "                            the table\n"
     "options:\n"
     "  --squares N     squares along the board's side (default 24)\n"
     "  --size WxH      photo size (default 640x480)\n"
     "  -o, --output DIR  the folder to write into (required; created if missing)\n"
-    "  --overwrite     replace the three files if they exist (--force is the same)\n"
+    "  --overwrite     replace the files if they exist (--force is the same)\n"
     "  -q, --quiet     no progress bar (drawn on stderr only when it is a terminal)\n"
     "Example:\n"
     "  artcam sample water-glass -o demo --squares 16 --size 800x600\n"
-    "Then: artcam insert DIR/NAME.png DIR/emblem.png --matches DIR/NAME-grid.csv -o OUT.png\n";
+    "Then: artcam insert DIR/NAME.png DIR/emblem.png --matches DIR/NAME-grid.csv -o OUT.png\n"
+    "  (mirror-sphere: add --table DIR/mirror-sphere-table.csv\n"
+    "   --region DIR/mirror-sphere-region.csv for the table's copy too)\n";
 
 int sampleCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
@@ -65,7 +72,12 @@ int sampleCommand(const std::vector<std::string>& argv) {
   const std::string photo = (base / (name + ".png")).string();
   const std::string csv = (base / (name + "-grid.csv")).string();
   const std::string emblem = (base / "emblem.png").string();
-  checkOutputs(args, {photo, csv, emblem}, {});
+  const bool sphere = name == "mirror-sphere";
+  const std::string table_csv = (base / (name + "-table.csv")).string();
+  const std::string region_csv = (base / (name + "-region.csv")).string();
+  std::vector<std::string> outputs = {photo, csv, emblem};
+  if (sphere) outputs.insert(outputs.end(), {table_csv, region_csv});
+  checkOutputs(args, outputs, {});
   std::error_code ec;
   std::filesystem::create_directories(*dir, ec);
   if (ec) throw CommandError(*dir + ": cannot create the directory: " + ec.message());
@@ -75,7 +87,7 @@ int sampleCommand(const std::vector<std::string>& argv) {
     // has been written yet); the image writes poll and cancel, removing their temporary.
     job.stage("ray tracing");
     SampleScene sample;
-    if (name == "mirror-sphere") {
+    if (sphere) {
       MirrorSphereScene scene;
       scene.focal_px = 0.9 * size.width;
       scene.floor_centre_z = 1.6;  // the board lies in front of the sphere, all of it reflected
@@ -97,6 +109,13 @@ int sampleCommand(const std::vector<std::string>& argv) {
     job.stage("writing " + name + "-grid.csv");
     if (const Status s = writeMatchesCsv(csv, sample.grid_matches); !s)
       throw CommandError(s.message);
+    if (sphere) {
+      job.stage("writing " + name + "-table.csv");
+      if (const Status s = writeMatchesCsv(table_csv, sample.table_matches); !s)
+        throw CommandError(s.message);
+      if (const Status s = writePointsCsv(region_csv, sample.region); !s)
+        throw CommandError(s.message);
+    }
     job.stage("drawing emblem.png");
     const ImageF graphic = makeEmblemGraphic(512);
     write.progress = job.polled("writing emblem.png");
@@ -105,6 +124,10 @@ int sampleCommand(const std::vector<std::string>& argv) {
     job.finish();
     std::printf("wrote %s, %s (%zu grid corners), %s\n", photo.c_str(), csv.c_str(),
                 sample.grid_matches.size(), emblem.c_str());
+    if (sphere)
+      std::printf("wrote %s (%zu corners on the table), %s (%zu outline points)\n",
+                  table_csv.c_str(), sample.table_matches.size(), region_csv.c_str(),
+                  sample.region.size());
     return 0;
   });
 }

@@ -309,6 +309,24 @@ Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMat
   return writeRows(path, samples, 3, "src_r,src_g,src_b,dst_r,dst_g,dst_b", "sample");
 }
 
+Status writePointsCsv(const std::string& path, const std::vector<Eigen::Vector2d>& points) {
+  std::string text = "x,y\n";
+  char buffer[32];
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite())
+      return Status::failure(path + ": cannot write: point " + std::to_string(i) +
+                             " has a non-finite value");
+    for (int k = 0; k < 2; ++k) {
+      // Locale-free %.17g, as for the match rows.
+      const auto result =
+          std::to_chars(buffer, buffer + sizeof buffer, points[i][k], std::chars_format::general, 17);
+      text += (k ? "," : "") + std::string(buffer, result.ptr);
+    }
+    text += "\n";
+  }
+  return writeTextAtomically(path, text);
+}
+
 // Lines: rows `line,x,y`, one traced point per row; the rows of one line need not be
 // adjacent (a line is every row with its label, in file order), and lines keep the order in
 // which their labels first appear.

@@ -52,5 +52,7 @@ Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::s
 Status writeMatchesCsv(const std::string& path, const std::vector<PointMatch>& matches);
 // Colour samples in the columns parseColourSamplesCsv reads (linear light, as given).
 Status writeColourSamplesCsv(const std::string& path, const std::vector<PointMatch>& samples);
+// Points under the header `x,y`, as readPointsCsv reads them.
+Status writePointsCsv(const std::string& path, const std::vector<Eigen::Vector2d>& points);
 
 }  // namespace artcam

@@ -5,6 +5,8 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -107,10 +109,57 @@ SampleScene makeSample(const Scene& scene, int squares, const Eigen::Vector3d& t
   return out;
 }
 
+// The object's outline: from a point inside it, along `vertices` directions, the last photo
+// position whose ray still meets the object, by bisection (the silhouette is star-shaped about
+// the sphere's centre seen in the photo).
+template <class Scene>
+std::vector<Eigen::Vector2d> objectOutline(const Scene& scene, const Eigen::Vector2d& inside,
+                                           int vertices) {
+  std::vector<Eigen::Vector2d> outline;
+  const double reach = std::hypot(scene.photo_width, scene.photo_height);
+  for (int k = 0; k < vertices; ++k) {
+    const double a = 2.0 * kPi * k / vertices;
+    const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+    double lo = 0.0, hi = reach;
+    while (hi - lo > 1e-6) {
+      const double mid = 0.5 * (lo + hi);
+      (scene.trace(inside + mid * dir).through_object ? lo : hi) = mid;
+    }
+    outline.push_back(inside + lo * dir);
+  }
+  return outline;
+}
+
 }  // namespace
 
 SampleScene makeMirrorSphereSample(const MirrorSphereScene& scene, int squares) {
-  return makeSample(scene, squares, {0.9, 0.9, 0.92});  // a slightly cool chrome
+  SampleScene out = makeSample(scene, squares, {0.9, 0.9, 0.92});  // a slightly cool chrome
+  // The user's clicks: four grid corners seen directly, as far apart as the frame allows (the
+  // visible corners extreme in i + j and i − j: near the board's four corners).
+  const double cell = static_cast<double>(scene.graphic_size) / squares;
+  std::array<std::optional<std::pair<int, int>>, 4> extremes;  // min i+j, max i−j, max i+j, min i−j
+  const auto score = [](int k, int i, int j) {
+    return k == 0 ? -(i + j) : k == 1 ? i - j : k == 2 ? i + j : j - i;
+  };
+  for (int j = 0; j <= squares; ++j)
+    for (int i = 0; i <= squares; ++i) {
+      const Eigen::Vector2d p = scene.photoFromWorld(scene.floorFromGraphicPx({i * cell, j * cell}));
+      if (p.x() < 0 || p.y() < 0 || p.x() > scene.photo_width || p.y() > scene.photo_height) continue;
+      if (scene.trace(p).through_object) continue;  // hidden behind the sphere
+      for (int k = 0; k < 4; ++k)
+        if (!extremes[k] || score(k, i, j) > score(k, extremes[k]->first, extremes[k]->second))
+          extremes[k] = {i, j};
+    }
+  for (const auto& corner : extremes) {
+    if (!corner) continue;
+    const Eigen::Vector2d g(corner->first * cell, corner->second * cell);
+    PointMatch m;
+    m.source = g;
+    m.target = scene.photoFromWorld(scene.floorFromGraphicPx(g));
+    out.table_matches.push_back(m);
+  }
+  out.region = objectOutline(scene, scene.objectCentrePx(), 256);
+  return out;
 }
 
 SampleScene makeWaterGlassSample(const WaterGlassScene& scene, int squares) {

@@ -45,14 +45,39 @@ struct MirrorSphereScene {
             (floor.z() - floor_centre_z + floor_half) / (2.0 * floor_half) * graphic_size};
   }
 
-  // The ray through photo pixel p (pixel centres at i + 0.5).
-  TracedRay trace(const Eigen::Vector2d& p) const {
+  // The point of the floor under graphic pixel g (floorPx's inverse).
+  Eigen::Vector3d floorFromGraphicPx(const Eigen::Vector2d& g) const {
+    return {g.x() / graphic_size * 2.0 * floor_half - floor_half, 0.0,
+            g.y() / graphic_size * 2.0 * floor_half - floor_half + floor_centre_z};
+  }
+
+  // The photo pixel where the pinhole sees world point X directly (no occlusion test).
+  Eigen::Vector2d photoFromWorld(const Eigen::Vector3d& x) const {
     const Eigen::Vector3d forward = (look_at - eye).normalized();
     const Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitY()).normalized();
     const Eigen::Vector3d up = right.cross(forward);
-    const Eigen::Vector3d d = (forward + (p.x() - 0.5 * photo_width) / focal_px * right -
-                               (p.y() - 0.5 * photo_height) / focal_px * up)
-                                  .normalized();
+    const Eigen::Vector3d v = x - eye;
+    const double depth = v.dot(forward);
+    return {0.5 * photo_width + focal_px * v.dot(right) / depth,
+            0.5 * photo_height - focal_px * v.dot(up) / depth};
+  }
+
+  // Where the sphere's centre shows in the photo: a point inside its outline.
+  Eigen::Vector2d objectCentrePx() const { return photoFromWorld(sphere_centre); }
+
+  // The unit direction of the ray from the eye through photo pixel p (centres at i + 0.5).
+  Eigen::Vector3d rayDirection(const Eigen::Vector2d& p) const {
+    const Eigen::Vector3d forward = (look_at - eye).normalized();
+    const Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitY()).normalized();
+    const Eigen::Vector3d up = right.cross(forward);
+    return (forward + (p.x() - 0.5 * photo_width) / focal_px * right -
+            (p.y() - 0.5 * photo_height) / focal_px * up)
+        .normalized();
+  }
+
+  // The ray through photo pixel p.
+  TracedRay trace(const Eigen::Vector2d& p) const {
+    const Eigen::Vector3d d = rayDirection(p);
     TracedRay out;
     // Ray–sphere: |eye + t d - c|² = r².
     const Eigen::Vector3d oc = eye - sphere_centre;
@@ -171,9 +196,19 @@ struct WaterGlassScene {
 // calibration checkerboard of `squares` × `squares` (linear float RGB, 3×3 supersampled),
 // and the grid's corners seen through the object as matches (graphic pixels → photo pixels),
 // each found by Newton's method on the tracer to 1e-6 graphic px.
+//
+// The mirror-sphere sample also carries what Fig 7 needs to put the graphic on the table as well
+// as in its reflection: four grid corners the photo sees directly, as a user would click them
+// (graphic pixels → exact pinhole projections in photo pixels; inside the frame, not hidden by
+// the sphere, as far apart as the frame allows), from which the board → photo homography is
+// fitted (Fig 7b); and the sphere's outline in the photo (a polygon of photo pixels, its
+// vertices on the traced silhouette to 1e-6 px), the region where the object hides the table
+// and shows the reflection.
 struct SampleScene {
   ImageF photo;
   std::vector<PointMatch> grid_matches;
+  std::vector<PointMatch> table_matches;  // mirror sphere only
+  std::vector<Eigen::Vector2d> region;    // mirror sphere only
 };
 SampleScene makeMirrorSphereSample(const MirrorSphereScene& scene, int squares);
 SampleScene makeWaterGlassSample(const WaterGlassScene& scene, int squares);

@@ -24,6 +24,22 @@ ImageF load(const QString& path) {
   return r ? r->image : ImageF();
 }
 
+// The rows of a src_x,src_y,dst_x,dst_y file, read here without the engine's reader.
+QVector<QVector<double>> readMatchesCsvForTest(const QString& path) {
+  QVector<QVector<double>> rows;
+  QFile file(path);
+  if (!file.open(QIODevice::ReadOnly)) return rows;
+  file.readLine();  // header
+  while (!file.atEnd()) {
+    const QList<QByteArray> fields = file.readLine().trimmed().split(',');
+    if (fields.size() != 4) continue;
+    QVector<double> row;
+    for (const QByteArray& f : fields) row.push_back(f.toDouble());
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 }  // namespace
 
 class TestCliInsert : public QObject {
@@ -75,6 +91,79 @@ class TestCliInsert : public QObject {
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     const ImageF again = load(dir.filePath("again.png"));
     QCOMPARE(again.data, after.data);
+  }
+
+  void insertsOnTheTableToo() {
+    // Fig 7(c): with the sample's four table clicks and the sphere's outline, the emblem shows on
+    // the table where the photo sees the board directly, and in the reflection; nowhere else.
+    QTemporaryDir dir;
+    Run r = artcamCli({"sample", "mirror-sphere", "-o", dir.path(), "--size", "320x240"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"insert", dir.filePath("mirror-sphere.png"), dir.filePath("emblem.png"),
+                   "--matches", dir.filePath("mirror-sphere-grid.csv"), "--table",
+                   dir.filePath("mirror-sphere-table.csv"), "--region",
+                   dir.filePath("mirror-sphere-region.csv"), "-o", dir.filePath("out.png")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY(r.out.contains("table homography"));
+    const ImageF before = load(dir.filePath("mirror-sphere.png"));
+    const ImageF after = load(dir.filePath("out.png"));
+    MirrorSphereScene scene;
+    scene.photo_width = 320;
+    scene.photo_height = 240;
+    scene.focal_px = 0.9 * 320;
+    scene.floor_centre_z = 1.6;
+    int on_table = 0, in_reflection = 0, elsewhere = 0;
+    for (int y = 0; y < 240; ++y)
+      for (int x = 0; x < 320; ++x) {
+        double diff = 0;
+        for (int c = 0; c < 3; ++c)
+          diff = std::max(diff, double(std::abs(after.pixel(x, y)[c] - before.pixel(x, y)[c])));
+        if (diff < 0.02) continue;
+        bool table = false, reflection = false;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const TracedRay t = scene.trace({x + dx + 0.5, y + dy + 0.5});
+            const bool on_board = t.on_plane && t.plane_px.x() >= 0 && t.plane_px.y() >= 0 &&
+                                  t.plane_px.x() <= 512 && t.plane_px.y() <= 512;
+            table = table || (on_board && !t.through_object);
+            reflection = reflection || (on_board && t.through_object);
+          }
+        if (table) ++on_table;
+        else if (reflection) ++in_reflection;
+        else ++elsewhere;
+      }
+    QVERIFY2(on_table > 5000, qPrintable(QString::number(on_table)));
+    QVERIFY2(in_reflection > 300, qPrintable(QString::number(in_reflection)));
+    QCOMPARE(elsewhere, 0);
+
+    // --grid-on-table: the same grid given as photographed on the table (Fig 7a) is taken to the
+    // canonical view by the table homography and gives the same picture.
+    const auto grid = readMatchesCsvForTest(dir.filePath("mirror-sphere-grid.csv"));
+    QVERIFY(!grid.isEmpty());
+    QFile on_table_csv(dir.filePath("grid-on-table.csv"));
+    QVERIFY(on_table_csv.open(QIODevice::WriteOnly));
+    on_table_csv.write("src_x,src_y,dst_x,dst_y\n");
+    for (const QVector<double>& row : grid) {
+      const Eigen::Vector2d seen = scene.photoFromWorld(scene.floorFromGraphicPx({row[0], row[1]}));
+      on_table_csv.write(QString("%1,%2,%3,%4\n")
+                             .arg(seen.x(), 0, 'g', 17).arg(seen.y(), 0, 'g', 17)
+                             .arg(row[2], 0, 'g', 17).arg(row[3], 0, 'g', 17).toUtf8());
+    }
+    on_table_csv.close();
+    r = artcamCli({"insert", dir.filePath("mirror-sphere.png"), dir.filePath("emblem.png"),
+                   "--matches", dir.filePath("grid-on-table.csv"), "--grid-on-table", "--table",
+                   dir.filePath("mirror-sphere-table.csv"), "--region",
+                   dir.filePath("mirror-sphere-region.csv"), "-o", dir.filePath("again.png")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    const ImageF again = load(dir.filePath("again.png"));
+    double worst = 0;
+    for (size_t i = 0; i < again.data.size(); ++i)
+      worst = std::max(worst, double(std::abs(again.data[i] - after.data[i])));
+    QVERIFY2(worst < 0.02, qPrintable(QString::number(worst)));
+
+    QCOMPARE(artcamCli({"insert", dir.filePath("mirror-sphere.png"), dir.filePath("emblem.png"),
+                        "--matches", dir.filePath("mirror-sphere-grid.csv"), "--grid-on-table",
+                        "-o", dir.filePath("x.png")}).exit_code, 2);
   }
 
   void fitPiecewiseMeetsItsThreshold() {
