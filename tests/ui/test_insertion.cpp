@@ -10,6 +10,7 @@
 #include "core/io/artcam_file.h"
 #include "core/piecewise/piecewise_render.h"
 #include "core/piecewise/sample_scenes.h"
+#include "core/pipeline/insert_graphic.h"
 #include "tests/support/test_support.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
@@ -269,6 +270,71 @@ class TestInsertion : public QObject {
     QVERIFY(rig.preview.composite() != expected);
     rig.doc.undoStack()->undo();
     QVERIFY(rig.model.state().placement.fillsBoard());
+  }
+
+  void tableClicksPutTheGraphicOnTheTable() {
+    // Fig 7(b, c) in the studio: with "Clicks on the table", four grid-tool clicks on board
+    // corners seen directly fix the board's homography; the preview then shows the graphic on
+    // the table (outside the region) and in the reflection, exactly as core's insertGraphic
+    // makes it from the same clicks, and the piecewise fit does not see the table clicks.
+    Rig rig;
+    QVERIFY(rig.openSample());
+    const int grid_matches = rig.preview.fit().matches;
+    MirrorSphereScene scene;  // the bundled photo's scene (`artcam sample mirror-sphere`)
+    scene.photo_width = 640;
+    scene.photo_height = 480;
+    scene.focal_px = 0.9 * 640;
+    scene.floor_centre_z = 1.6;
+    InsertionState with_region = rig.model.state();
+    with_region.region = makeMirrorSphereSample(scene, 4).region;
+    rig.model.edit(with_region, "region");
+
+    Canvas canvas(&rig.doc);
+    GridTool tool(&canvas, &rig.doc, &rig.model, &rig.preview, defaultCornerSnapper());
+    rig.model.setClickingTable(true);
+    const int n = rig.model.cornersPerRow();
+    std::vector<PointMatch> clicks;
+    for (const auto& [i, j] : {std::pair{2, 2}, {n - 1, 2}, {n - 1, 13}, {2, 13}}) {
+      const int corner = (j - 1) * n + (i - 1);
+      rig.model.setSelectedCorner(corner);
+      const Eigen::Vector2d board = rig.model.cornerPosition(corner);
+      const Eigen::Vector2d photo = scene.photoFromWorld(scene.floorFromGraphicPx(board));
+      const TracedRay seen_there = scene.trace(photo);
+      QVERIFY(seen_there.on_plane && !seen_there.through_object);  // a corner on the table
+      tool.placeAt(photo, 0.0);
+      PointMatch m;
+      m.source = board;
+      m.target = photo;
+      clicks.push_back(m);
+    }
+    QCOMPARE(rig.model.tableMatches().size(), size_t(4));
+    QCOMPARE(int(rig.model.pointMatches().size()), grid_matches);
+    QVERIFY(waitForCurrent(rig.preview));
+    const InsertionFit fit = rig.preview.fit();
+    QVERIFY2(fit.ok && fit.table, qPrintable(fit.table_report));
+    QCOMPARE(fit.matches, grid_matches);
+    QVERIFY(rig.panel.reportText().contains("table"));
+
+    auto photo = readImage(kPhoto.toStdString());
+    auto graphic = readImage(kEmblem.toStdString());
+    QVERIFY(photo.ok() && graphic.ok());
+    InsertionCameras cameras;
+    cameras.object = *fit.camera;
+    const FitSummary table = fitBoardHomography(clicks, rig.model.state().board_size, {640, 480});
+    QVERIFY(table.status.ok);
+    cameras.plane = table.camera;
+    cameras.region = with_region.region;
+    const QImage expected = qimageFromLinear(insertGraphic(photo->image, graphic->image, cameras));
+    QVERIFY(rig.preview.composite() == expected);
+    cameras.plane.reset();
+    const QImage reflection_only = qimageFromLinear(insertGraphic(photo->image, graphic->image, cameras));
+    QVERIFY(expected != reflection_only);  // the table's copy is there
+
+    // Undo takes the last click away: three clicks fix no homography.
+    rig.doc.undoStack()->undo();
+    QVERIFY(waitForCurrent(rig.preview));
+    QVERIFY(!rig.preview.fit().table);
+    QVERIFY(rig.preview.composite() == reflection_only);
   }
 
   void largePhotosPreviewOnTheirPreviewCopy() {

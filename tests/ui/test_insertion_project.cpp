@@ -51,6 +51,7 @@ class TestInsertionProject : public QObject {
       QVERIFY(graphic.wait(30000));
       InsertionState edit = studio->model()->state();
       edit.region = {{200, 250}, {450, 250}, {450, 330}, {200, 330}};
+      edit.matches.push_back({{64.0, 64.0}, {120.5, 400.25}, true});  // a table click
       edit.squares = 24;
       edit.max_error_px = 0.3;
       edit.placement.origin = {64, 32};

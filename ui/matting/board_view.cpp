@@ -67,8 +67,10 @@ void BoardView::paintEvent(QPaintEvent*) {
   const double dot = std::clamp(std::min(cw, ch) * 0.18, 0.8, 4.0);
   p.setPen(Qt::NoPen);
   p.setBrush(QColor(255, 0, 200));
+  // The click mode's kind only: the corners still to click on the table, or in the object.
   for (const GridMatch& m : model_->state().matches)
-    p.drawEllipse(widgetFromBoard(QPointF(m.board.x(), m.board.y())), dot, dot);
+    if (m.on_table == model_->clickingTable())
+      p.drawEllipse(widgetFromBoard(QPointF(m.board.x(), m.board.y())), dot, dot);
   const InsertionState& s = model_->state();
   if (s.graphic && !s.placement.fillsBoard() && s.graphic->width > 0) {
     const double h = s.placement.width * s.graphic->height / s.graphic->width;

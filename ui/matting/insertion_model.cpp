@@ -33,16 +33,28 @@ void InsertionModel::edit(const InsertionState& next, const QString& text) {
   document_->undoStack()->push(new SetInsertionStateCommand(this, state_, next, text));
 }
 
-std::vector<PointMatch> InsertionModel::pointMatches() const {
+namespace {
+
+std::vector<PointMatch> matchesOfKind(const std::vector<GridMatch>& matches, bool on_table) {
   std::vector<PointMatch> out;
-  out.reserve(state_.matches.size());
-  for (const GridMatch& m : state_.matches) {
+  for (const GridMatch& m : matches) {
+    if (m.on_table != on_table) continue;
     PointMatch p;
     p.source = m.board;
     p.target = m.photo;
     out.push_back(std::move(p));
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<PointMatch> InsertionModel::pointMatches() const {
+  return matchesOfKind(state_.matches, false);
+}
+
+std::vector<PointMatch> InsertionModel::tableMatches() const {
+  return matchesOfKind(state_.matches, true);
 }
 
 Eigen::Vector2d InsertionModel::cornerPosition(int corner) const {
@@ -68,7 +80,8 @@ int InsertionModel::cornerAt(const Eigen::Vector2d& board_px, double tolerance_p
 int InsertionModel::matchOfCorner(int corner) const {
   const Eigen::Vector2d c = cornerPosition(corner);
   for (size_t k = 0; k < state_.matches.size(); ++k)
-    if ((state_.matches[k].board - c).norm() < 1e-6) return static_cast<int>(k);
+    if (state_.matches[k].on_table == clicking_table_ && (state_.matches[k].board - c).norm() < 1e-6)
+      return static_cast<int>(k);
   return -1;
 }
 
@@ -83,6 +96,12 @@ void InsertionModel::setSelectedMatch(int match) {
   if (match >= static_cast<int>(state_.matches.size())) match = -1;
   if (match == selected_match_) return;
   selected_match_ = match;
+  emit selectionChanged();
+}
+
+void InsertionModel::setClickingTable(bool on_table) {
+  if (on_table == clicking_table_) return;
+  clicking_table_ = on_table;
   emit selectionChanged();
 }
 

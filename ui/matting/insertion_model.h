@@ -9,6 +9,11 @@
 // Frames: a match's `board` point is in canonical board PIXELS (the board's canonical view,
 // default 512×512; the graphic is drawn over the same frame, scaled to it), its `photo` point
 // in photo PIXELS (centres at i + 0.5). The fit maps board → photo (source → target).
+//
+// A match is seen either through the object (the reflection or refraction; the piecewise
+// camera's matches) or directly on the table the board lies on (Fig 7b: at least four such
+// clicks fix the board → photo homography that puts the graphic on the table too). The grid
+// tool makes whichever kind the model's click mode says; a corner may have one of each.
 #pragma once
 
 #include "core/model/camera.h"
@@ -31,6 +36,7 @@ class Document;
 struct GridMatch {
   Eigen::Vector2d board{0.0, 0.0};  // canonical board pixels (source)
   Eigen::Vector2d photo{0.0, 0.0};  // photo pixels (target)
+  bool on_table = false;            // seen directly on the table, not through the object
   bool operator==(const GridMatch&) const = default;
 };
 
@@ -67,8 +73,10 @@ class InsertionModel : public QObject {
   // Convenience: the edit as one undo step on the document's stack (no step when unchanged).
   void edit(const InsertionState& next, const QString& text);
 
-  // The matches as core point matches (board → photo).
+  // The matches through the object as core point matches (board → photo).
   std::vector<PointMatch> pointMatches() const;
+  // The matches seen directly on the table (board → photo), for the table's homography.
+  std::vector<PointMatch> tableMatches() const;
   // Interior corners of the board, row-major: (squares - 1)² points, corner (i, j) at
   // (i · w / squares, j · h / squares) for i, j in 1 … squares - 1.
   int cornersPerRow() const { return state_.squares - 1; }
@@ -76,7 +84,7 @@ class InsertionModel : public QObject {
   Eigen::Vector2d cornerPosition(int corner) const;
   // Index of the corner within `tolerance_px` of a board point, or -1.
   int cornerAt(const Eigen::Vector2d& board_px, double tolerance_px) const;
-  // Index of the match whose board point is this corner, or -1.
+  // Index of the match of the click mode's kind whose board point is this corner, or -1.
   int matchOfCorner(int corner) const;
 
   // --- view state ---
@@ -84,6 +92,9 @@ class InsertionModel : public QObject {
   void setSelectedCorner(int corner);
   int selectedMatch() const { return selected_match_; }
   void setSelectedMatch(int match);
+  // Whether grid clicks place matches on the table (true) or through the object.
+  bool clickingTable() const { return clicking_table_; }
+  void setClickingTable(bool on_table);
   bool errorMapVisible() const { return error_map_visible_; }
   void setErrorMapVisible(bool visible);
 
@@ -98,6 +109,7 @@ class InsertionModel : public QObject {
   int selected_corner_ = 0;
   int selected_match_ = -1;
   bool error_map_visible_ = true;
+  bool clicking_table_ = false;
 };
 
 }  // namespace artcam::ui

@@ -64,8 +64,9 @@ void InsertionOverlay::paint(QPainter& painter, const ViewTransform& view,
   for (size_t k = 0; k < s.matches.size(); ++k) {
     const QPointF w = view.widgetFromImage(QPointF(s.matches[k].photo.x(), s.matches[k].photo.y()));
     const bool selected = static_cast<int>(k) == model.selectedMatch();
-    painter.setPen(
-        QPen(selected ? QColor(255, 255, 0) : QColor(255, 0, 200), selected ? 2.0 : 1.0));
+    // Table clicks (the homography's) in cyan, matches through the object in magenta.
+    const QColor kind = s.matches[k].on_table ? QColor(0, 220, 255) : QColor(255, 0, 200);
+    painter.setPen(QPen(selected ? QColor(255, 255, 0) : kind, selected ? 2.0 : 1.0));
     const double r = selected ? 5.0 : 3.0;
     painter.drawLine(w - QPointF(r, r), w + QPointF(r, r));
     painter.drawLine(w - QPointF(r, -r), w + QPointF(r, -r));

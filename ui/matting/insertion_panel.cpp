@@ -68,6 +68,7 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
       place_width_(new QDoubleSpinBox(this)),
       error_map_(new QCheckBox(tr("Show per-patch error map"), this)),
       matches_label_(new QLabel(this)),
+      on_table_(new QCheckBox(tr("Clicks on the table"), this)),
       board_view_(new BoardView(model, this)),
       status_(new QLabel(this)),
       report_(new QPlainTextEdit(this)),
@@ -142,6 +143,7 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   edit_row->addWidget(delete_match);
   edit_row->addWidget(clear_region);
   layout->addLayout(edit_row);
+  layout->addWidget(on_table_);
   layout->addWidget(matches_label_);
   layout->addWidget(board_view_, 1);
   error_map_->setToolTip(
@@ -175,6 +177,13 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
       setPlacement(p);
     });
   connect(error_map_, &QCheckBox::toggled, model_, &InsertionModel::setErrorMapVisible);
+  on_table_->setToolTip(
+      tr("Grid clicks place board corners seen directly on the table, not in the reflection: "
+         "four or more fix the board's homography, and the graphic is inserted on the table "
+         "too (outside the region)"));
+  connect(on_table_, &QCheckBox::toggled, model_, &InsertionModel::setClickingTable);
+  connect(model_, &InsertionModel::selectionChanged, this,
+          [this] { on_table_->setChecked(model_->clickingTable()); });
   connect(model_, &InsertionModel::errorMapVisibilityChanged, error_map_, &QCheckBox::setChecked);
   connect(model_, &InsertionModel::stateChanged, this, &InsertionPanel::syncFromModel);
   connect(preview_, &InsertionPreview::requested, this, &InsertionPanel::showFit);
@@ -206,7 +215,10 @@ void InsertionPanel::syncFromModel() {
   }
   graphic_label_->setText(s.graphic ? QFileInfo(s.graphic_path).fileName() : tr("none"));
   graphic_label_->setToolTip(s.graphic_path);
-  matches_label_->setText(tr("%n grid match(es)", nullptr, static_cast<int>(s.matches.size())) +
+  const int on_table = static_cast<int>(
+      std::count_if(s.matches.begin(), s.matches.end(), [](const GridMatch& m) { return m.on_table; }));
+  matches_label_->setText(tr("%n grid match(es)", nullptr, static_cast<int>(s.matches.size()) - on_table) +
+                          (on_table > 0 ? tr(", %n on the table", nullptr, on_table) : QString()) +
                           (s.region.size() >= 3 ? tr(", region of %1 corners").arg(s.region.size())
                                                 : tr(", no region")));
   board_view_->updateGeometry();
@@ -226,7 +238,10 @@ void InsertionPanel::showFit() {
                  .arg(fit.fit_ms, 0, 'f', 0);
   if (!preview_->isCurrent()) status = tr("Fitting… ") + status;
   status_->setText(status);
-  report_->setPlainText(fit.ok ? fit.report : QString());
+  report_->setPlainText(fit.ok ? fit.report + (fit.table_report.isEmpty()
+                                                    ? QString()
+                                                    : QStringLiteral("\n") + fit.table_report)
+                               : QString());
 }
 
 void InsertionPanel::reportError(const QString& title, const QString& message) {
@@ -270,12 +285,13 @@ void InsertionPanel::importGridCsv(const QString& path) {
           return;
         }
         InsertionState next = model_->state();
-        next.matches.clear();
+        // The file holds matches through the object; the table clicks stay.
+        std::erase_if(next.matches, [](const GridMatch& m) { return !m.on_table; });
         for (const PointMatch& m : *r)
           if (m.enabled) next.matches.push_back({m.source.head<2>(), m.target.head<2>()});
         model_->edit(next, tr("Import Grid Matches"));
         emit gridImported(
-            true, tr("%1: %2 matches").arg(QFileInfo(path).fileName()).arg(next.matches.size()));
+            true, tr("%1: %2 matches").arg(QFileInfo(path).fileName()).arg(model_->pointMatches().size()));
       });
 }
 
@@ -306,10 +322,10 @@ void InsertionPanel::exportComposite(const QString& path) {
   status_->setText(tr("Exporting %1…").arg(QFileInfo(path).fileName()));
   runOffThread<bool>(
       this,
-      [p = path.toStdString(), photo, camera = fit.camera, graphic = s.graphic, region = s.region,
-       placement = s.placement] {
-        const ImageF out =
-            InsertionWorker::composite(photo->full.image, *graphic, *camera, region, placement);
+      [p = path.toStdString(), photo, camera = fit.camera, table = fit.table, graphic = s.graphic,
+       region = s.region, placement = s.placement] {
+        const ImageF out = InsertionWorker::composite(photo->full.image, *graphic, *camera, region,
+                                                      placement, table.get());
         const Status st = writeImage(p, out, &photo->full.info);
         return st ? Result<bool>::success(true) : Result<bool>::failure(st.message);
       },

@@ -88,6 +88,7 @@ class InsertionPanel : public QWidget {
   QDoubleSpinBox* place_width_;
   QCheckBox* error_map_;
   QLabel* matches_label_;
+  QCheckBox* on_table_;
   BoardView* board_view_;
   QLabel* status_;
   QPlainTextEdit* report_;

@@ -49,6 +49,7 @@ void InsertionPreview::refresh() {
   InsertionRequest r;
   r.generation = ++requested_;
   r.matches = model_->pointMatches();
+  r.table_matches = model_->tableMatches();
   r.board_size = s.board_size;
   r.options.max_error_px = s.max_error_px;
   r.graphic = s.graphic;

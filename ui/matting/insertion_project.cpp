@@ -28,8 +28,11 @@ QJsonObject insertionToJson(const InsertionState& s) {
   o["squares"] = s.squares;
   o["max_error_px"] = s.max_error_px;
   QJsonArray matches;
-  for (const GridMatch& m : s.matches)
-    matches.append(QJsonObject{{"board", point(m.board)}, {"photo", point(m.photo)}});
+  for (const GridMatch& m : s.matches) {
+    QJsonObject match{{"board", point(m.board)}, {"photo", point(m.photo)}};
+    if (m.on_table) match["on_table"] = true;  // absent: through the object (older projects)
+    matches.append(match);
+  }
   o["matches"] = matches;
   QJsonArray region;
   for (const Eigen::Vector2d& p : s.region) region.append(point(p));
@@ -56,7 +59,10 @@ Result<InsertionState> insertionFromJson(const QJsonObject& o, const std::string
     const QJsonObject m = matches[i].toObject();
     const auto b = readPoint(m["board"]), p = readPoint(m["photo"]);
     if (!b || !p) return fail("/matches/" + std::to_string(i) + ": expected board and photo [x, y]");
-    s.matches.push_back({*b, *p});
+    const QJsonValue on_table = m["on_table"];
+    if (!on_table.isUndefined() && !on_table.isBool())
+      return fail("/matches/" + std::to_string(i) + "/on_table: expected true or false");
+    s.matches.push_back({*b, *p, on_table.toBool(false)});
   }
   const QJsonArray region = o["region"].toArray();
   for (qsizetype i = 0; i < region.size(); ++i) {

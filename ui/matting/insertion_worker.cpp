@@ -3,8 +3,10 @@
 
 #include "core/model/camera.h"
 #include "core/piecewise/piecewise_render.h"
-#include "core/pipeline/render.h"
+#include "core/pipeline/insert_graphic.h"
 #include "ui/image_convert.h"
+
+#include <QCoreApplication>
 
 #include <algorithm>
 #include <chrono>
@@ -23,7 +25,32 @@ bool sameFitInputs(const InsertionRequest& a, const InsertionRequest& b) {
     if (a.matches[i].source != b.matches[i].source || a.matches[i].target != b.matches[i].target ||
         a.matches[i].enabled != b.matches[i].enabled)
       return false;
+  if (a.table_matches.size() != b.table_matches.size()) return false;
+  for (size_t i = 0; i < a.table_matches.size(); ++i)
+    if (a.table_matches[i].source != b.table_matches[i].source ||
+        a.table_matches[i].target != b.table_matches[i].target)
+      return false;
   return true;
+}
+
+// The table's homography (Fig 7b) from the request's table clicks, into `fit`.
+void describeTable(const InsertionRequest& job, InsertionFit& fit) {
+  if (job.table_matches.empty()) return;
+  if (job.table_matches.size() < 4) {
+    fit.table_report = QCoreApplication::translate("InsertionWorker",
+                                                   "table: %n click(s); 4 fix its homography",
+                                                   nullptr, int(job.table_matches.size()));
+    return;
+  }
+  const FitSummary table = fitBoardHomography(job.table_matches, job.board_size, job.photo_size);
+  if (!table.status) {
+    fit.table_report = QCoreApplication::translate("InsertionWorker", "table: %1")
+                           .arg(QString::fromStdString(table.status.message));
+    return;
+  }
+  fit.table = std::make_shared<const Camera>(table.camera);
+  fit.table_report = QCoreApplication::translate("InsertionWorker", "table: %1")
+                         .arg(QString::fromStdString(table.report()));
 }
 
 }  // namespace
@@ -78,33 +105,6 @@ InsertionFit InsertionWorker::describe(const PiecewiseSummary& summary) {
   return fit;
 }
 
-void InsertionWorker::limitToPolygon(ImageF& image, const std::vector<Eigen::Vector2d>& polygon) {
-  if (polygon.size() < 3) return;
-  std::vector<double> crossings;
-  for (int y = 0; y < image.height; ++y) {
-    const double yc = y + 0.5;
-    crossings.clear();
-    for (size_t i = 0; i < polygon.size(); ++i) {
-      const Eigen::Vector2d& a = polygon[i];
-      const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
-      if ((a.y() <= yc) != (b.y() <= yc))
-        crossings.push_back(a.x() + (yc - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
-    }
-    std::sort(crossings.begin(), crossings.end());
-    // Pixel x is inside when its centre lies between an odd crossing and the next one.
-    size_t k = 0;
-    bool inside = false;
-    for (int x = 0; x < image.width; ++x) {
-      const double xc = x + 0.5;
-      while (k < crossings.size() && crossings[k] <= xc) {
-        inside = !inside;
-        ++k;
-      }
-      if (!inside) std::fill_n(image.pixel(x, y), image.channels, 0.0f);
-    }
-  }
-}
-
 PiecewiseCamera InsertionWorker::retarget(const PiecewiseCamera& camera, FrameSize target_size) {
   if (camera.target_size == target_size) return camera;
   PiecewiseCamera out = camera;
@@ -116,32 +116,13 @@ PiecewiseCamera InsertionWorker::retarget(const PiecewiseCamera& camera, FrameSi
 ImageF InsertionWorker::composite(const ImageF& photo, const ImageF& graphic,
                                   const PiecewiseCamera& camera,
                                   const std::vector<Eigen::Vector2d>& region,
-                                  const GraphicPlacement& placement) {
-  const FrameSize size{photo.width, photo.height};
-  // Through core's render front door, on the photo's size (the output-frame rule scales the
-  // camera's target frame to it).
-  Artcam lens(camera.patches.front().camera);
-  lens.pieces = camera;
-  RenderOptions options;
-  options.warp.width = size.width;
-  options.warp.height = size.height;
-  ImageF top = placement.fillsBoard()
-                   ? render(RenderInputs::of(graphic), lens, options)
-                   : render(RenderInputs::of(placeGraphic(graphic, camera.source_size, placement)),
-                            lens, options);
-  if (region.size() >= 3 && size != camera.target_size) {
-    // The region is in full-resolution photo pixels.
-    const double sx = double(size.width) / camera.target_size.width;
-    const double sy = double(size.height) / camera.target_size.height;
-    std::vector<Eigen::Vector2d> scaled;
-    for (const Eigen::Vector2d& p : region) scaled.emplace_back(p.x() * sx, p.y() * sy);
-    limitToPolygon(top, scaled);
-  } else {
-    limitToPolygon(top, region);
-  }
-  ImageF out = photo;
-  compositeOver(top, out);
-  return out;
+                                  const GraphicPlacement& placement, const Camera* table) {
+  InsertionCameras cameras;
+  cameras.object = camera;
+  if (table) cameras.plane = *table;
+  cameras.region = region;
+  if (placement.fillsBoard()) return insertGraphic(photo, graphic, cameras);
+  return insertGraphic(photo, placeGraphic(graphic, camera.source_size, placement), cameras);
 }
 
 void InsertionWorker::run() {
@@ -155,11 +136,13 @@ void InsertionWorker::run() {
         const PiecewiseSummary summary =
             fitPiecewise(job.matches, job.board_size, job.photo_size, job.options);
         last_fit_ = describe(summary);
+        if (last_fit_.ok) describeTable(job, last_fit_);
         last_fit_.fit_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
         InsertionRequest inputs;
         inputs.matches = job.matches;
+        inputs.table_matches = job.table_matches;
         inputs.board_size = job.board_size;
         inputs.photo_size = job.photo_size;
         inputs.options = job.options;
@@ -170,7 +153,8 @@ void InsertionWorker::run() {
       if (!last_fit_.ok || !job.photo || !job.graphic || job.photo->empty() || job.graphic->empty())
         continue;
       const ImageF out =
-          composite(*job.photo, *job.graphic, *last_fit_.camera, job.region, job.placement);
+          composite(*job.photo, *job.graphic, *last_fit_.camera, job.region, job.placement,
+                    last_fit_.table.get());
       if (!keepGoing()) continue;
       const QImage image = qimageFromLinear(out);
       if (!keepGoing()) continue;

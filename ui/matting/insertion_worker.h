@@ -2,9 +2,10 @@
 // The Insertion worker (the RenderWorker pattern: one thread, one pending request slot where
 // the newest request wins, std::atomic restart/abort flags, results by queued signals stamped
 // with the request's generation). A request carries the grid matches, the graphic, the photo
-// and the region; the worker fits the piecewise camera (core/piecewise/piecewise_fit.h),
-// emits the fit, then renders the graphic through it and composites it over the photo
-// (core/piecewise/piecewise_render.h), limited to the region, and emits the preview.
+// and the region; the worker fits the piecewise camera (core/piecewise/piecewise_fit.h) and,
+// from four or more table clicks, the board's homography (Fig 7b), emits the fit, then puts the
+// graphic on the table and in the object through core's insertGraphic (the same call as
+// `artcam insert`; core/pipeline/insert_graphic.h), and emits the preview.
 //
 // The fit and the render have no cancel hook: a newer request makes the worker drop the
 // current one between the fit and the render, and the last fit is reused when only the
@@ -33,7 +34,8 @@ namespace artcam::ui {
 
 struct InsertionRequest {
   quint64 generation = 0;
-  std::vector<PointMatch> matches;  // board pixels → photo pixels
+  std::vector<PointMatch> matches;        // board pixels → photo pixels, through the object
+  std::vector<PointMatch> table_matches;  // board pixels → photo pixels, seen on the table
   FrameSize board_size;
   PiecewiseOptions options;
   FrameSize photo_size;                   // the fit's target frame (full resolution)
@@ -55,6 +57,10 @@ struct InsertionFit {
   bool converged = false;
   double fit_ms = 0.0;
   std::shared_ptr<const PiecewiseCamera> camera;
+  // The board → photo homography from the table clicks (null: fewer than 4, or refused) and
+  // what to say about it ("table: homography, 4 matches …", or why there is none).
+  std::shared_ptr<const Camera> table;
+  QString table_report;
   // Per patch: its support hull mapped through its own camera (photo pixels) and its max error.
   QVector<QPolygonF> patch_outlines;
   QVector<double> patch_max_px;
@@ -75,15 +81,12 @@ class InsertionWorker : public QThread {
   // The same camera onto a target frame of another size (the preview copy of the photo):
   // cameras live in normalised frames, so only the recorded sizes change.
   static PiecewiseCamera retarget(const PiecewiseCamera& camera, FrameSize target_size);
-  // The preview a request gives for a camera (retargeted to the photo's size): the graphic rendered
-  // through it, limited to the region, composited over the photo (a copy). Public so tests can
-  // compare with core calls.
+  // The preview (and export) a request gives for a fit: the placed graphic through core's
+  // insertGraphic with the fit's cameras and the region, over the photo at its size (a copy).
+  // `table` may be null (the object's copy only). Public so tests can compare with core calls.
   static ImageF composite(const ImageF& photo, const ImageF& graphic, const PiecewiseCamera& camera,
                           const std::vector<Eigen::Vector2d>& region,
-                          const GraphicPlacement& placement = {});
-  // Multiplies every channel of a premultiplied image by the polygon's coverage (pixel centres
-  // inside, even-odd rule).
-  static void limitToPolygon(ImageF& image, const std::vector<Eigen::Vector2d>& polygon);
+                          const GraphicPlacement& placement = {}, const Camera* table = nullptr);
   static InsertionFit describe(const PiecewiseSummary& summary);
 
  signals:

@@ -46,7 +46,7 @@ Eigen::Vector2d GridTool::placeAt(const Eigen::Vector2d& photo_px, double search
   if (model_->cornerCount() <= 0) return p;
   const int corner = model_->selectedCorner();
   InsertionState next = model_->state();
-  const GridMatch match{model_->cornerPosition(corner), p};
+  const GridMatch match{model_->cornerPosition(corner), p, model_->clickingTable()};
   int index = model_->matchOfCorner(corner);
   if (index >= 0) {
     next.matches[static_cast<size_t>(index)] = match;
