@@ -36,8 +36,8 @@ _artcam_options() {
     export-map) echo "--output -o --size --convention --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --focal --crop --size --output -o --distort --no-tca
                 --max-error --overwrite --force" ;;
-    insert) echo "--output -o --matches --camera --canonical --max-error --save-camera
-                  --mesh-step --overwrite --force --quiet -q" ;;
+    insert) echo "--output -o --matches --camera --canonical --table --grid-on-table --region
+                  --max-error --save-camera --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;
   esac
 }

@@ -254,6 +254,7 @@ put("m-3d-2d.csv", "src_x,src_y,src_z,dst_x,dst_y,dst_z\n1,2,3,4,5,6\n")
 put("points.csv", "x,y\n10,10\n32,24\n60,40\n")
 put("points-nan.csv", "x,y\n10,10\nnan,24\n")
 put("points-bad.csv", "x,y\n10\n")
+put("points-two.csv", "x,y\n10,10\n32,24\n")
 CHEAD = "src_r,src_g,src_b,dst_r,dst_g,dst_b"
 crows = ["%g,%g,%g,%g,%g,%g" % (r / 4, g / 4, b / 4, r / 4 * 0.9, g / 4, b / 4 * 1.1)
          for r in range(3) for g in range(3) for b in range(3)]

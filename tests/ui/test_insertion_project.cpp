@@ -98,6 +98,14 @@ class TestInsertionProject : public QObject {
     o = insertionToJson(s);
     o["squares"] = 1;
     QVERIFY(insertionFromJson(o, "").status.message.find("/squares") != std::string::npos);
+    o = insertionToJson(s);
+    matches = o["matches"].toArray();
+    QJsonObject table_click = matches[0].toObject();
+    table_click["on_table"] = "yes";
+    matches[0] = table_click;
+    o["matches"] = matches;
+    QCOMPARE(insertionFromJson(o, "p").status.message,
+             std::string("p/matches/0/on_table: expected true or false"));
   }
 };
 
