@@ -130,6 +130,8 @@ int infoCommand(const std::vector<std::string>& argv) {
   if (artcam.layers.size() > 1)
     std::printf("layers:    %zu (the picture is the sum of the layers' colours)\n",
                 artcam.layers.size());
+  if (camera.layout().find(BlockKind::SecondColour) >= 0)
+    std::printf("inputs:    a second image composited with the photo (artcam warp --second FILE)\n");
   if (camera.layout().find(BlockKind::Depth) >= 0)
     std::printf("outputs:   depth block holds %s\n",
                 artcam.depth_output == DepthOutput::BlurVariance

@@ -184,7 +184,8 @@ constexpr const char* kDefaultEffectSize = "600x400";
 FrameSize effectFrame(const std::string& text) { return parseSize(text, "--size", true); }
 
 std::string effectSummary(const EffectSpec& effect) {
-  return "2D: " + effect.summary + (effect.needs_depth ? " (needs --depth)" : "");
+  return "2D: " + effect.summary + (effect.needs_depth ? " (needs --depth)" : "") +
+         (effect.needs_second ? " (needs --second)" : "");
 }
 
 // "k=-0.15 [-1 … 0]" for each parameter, then the frame.
@@ -305,10 +306,18 @@ int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) 
   std::string summary;
   for (const EffectParam& p : effect.params) {
     const std::string text = args.valueOr("--" + p.name, defaultText(p));
-    values[p.name] = parseNumbers(text, p.name);
+    if (p.isChoice()) {
+      const auto index = choiceValue(p, text);
+      if (!index)
+        throw UsageError("--" + p.name + ": \"" + text + "\" is not one of " + rangeText(p));
+      values[p.name] = {*index};
+    } else {
+      values[p.name] = parseNumbers(text, p.name);
+    }
     if (const std::string problem = checkEffectValue(p, values[p.name]); !problem.empty())
       throw UsageError("--" + problem);
-    summary += p.name + "=" + text + " ";
+    summary += p.name + "=" +
+               (p.isChoice() ? p.choices[static_cast<size_t>(values[p.name][0])] : text) + " ";
   }
   Artcam camera;
   try {
@@ -335,8 +344,9 @@ const char* const kPresetUsage =
     "twist-3d, pincushion-3d, inverse-perspective-3d, colour-scale, chromatic-aberration-3d) move\n"
     "points and colours before the view. cube-of-cubes writes the sample cloud of the paper's\n"
     "Fig 1. Image effects (artcam preset --help lists them with their parameters) apply to\n"
-    "photos with artcam warp (those marked \"needs --depth\" with --depth FILE); --size WxH is\n"
-    "the photo's size (default 600x400; W,H also accepted).\n"
+    "photos with artcam warp (those marked \"needs --depth\" with --depth FILE, \"needs\n"
+    "--second\" with --second FILE); --size WxH is the photo's size (default 600x400; W,H also\n"
+    "accepted). A NAME parameter takes one of the names its range lists (--op over).\n"
     "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
     "its parameters and defaults; every parameter is optional, and an image effect's parameter\n"
     "outside its range is refused. -o/--output names OUT (required); an existing OUT is\n"
@@ -345,6 +355,7 @@ const char* const kPresetUsage =
     "  artcam preset list\n"
     "  artcam preset barrel --k -0.2 --size 6000x4000 -o barrel.artcam\n"
     "  artcam preset aerial-perspective --haze 0.6,0.7,0.9 --far 50 -o haze.artcam\n"
+    "  artcam preset composite --op over --size 1920x1080 -o over.artcam\n"
     "  artcam preset pinhole --eye 3,2,-4 -o view.artcam\n";
 
 // The usage above, then every image effect of the table with its parameters: type, range,
@@ -354,9 +365,10 @@ std::string presetHelp() {
   s += "\nImage effects (--PARAM VALUE, ranges inclusive; norm = normalised units, 1 = half the\n"
        "larger image side; depth units = those of the --depth file given to artcam warp):\n";
   for (const EffectSpec& e : effectSpecs()) {
-    s += "  " + e.name + "  " + e.summary + (e.needs_depth ? " (needs --depth)" : "") + "\n";
+    s += "  " + e.name + "  " + e.summary + (e.needs_depth ? " (needs --depth)" : "") +
+         (e.needs_second ? " (needs --second)" : "") + "\n";
     for (const EffectParam& p : e.params) {
-      std::string value = "N";
+      std::string value = p.isChoice() ? "NAME" : "N";
       for (int i = 1; i < p.size(); ++i) value += ",N";
       char line[512];
       std::snprintf(line, sizeof line, "      --%-10s %-6s %s; %s, default %s\n", p.name.c_str(),

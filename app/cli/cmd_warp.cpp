@@ -19,7 +19,8 @@ const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
     "                   [--threads N] [--quality N] [--bit-depth 8|16|half|float]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
-    "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n\n"
+    "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n"
+    "                   [--second FILE]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
     "Output frame: the camera's target frame scaled per axis by IN's size over the camera's\n"
     "source frame and rounded, so a camera made on a preview applies to the full photo and a\n"
@@ -47,7 +48,10 @@ const char* const kWarpUsage =
     "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
     "field go to the attributed renderer; those that read depth need --depth FILE: float\n"
     "EXR/TIFF as stored, integer files times --depth-scale S, or disparity made depth as\n"
-    "BF / disparity with --disparity BF.\n\n"
+    "BF / disparity with --disparity BF.\n"
+    "Compositing cameras (artcam preset composite) blend a second image with IN and need\n"
+    "--second FILE: read as linear premultiplied colour over IN's frame (an image of another\n"
+    "size is stretched to IN's, with a warning); IN is the photo A of \"A over B\".\n\n"
     "options:\n"
     "  -o, --output OUT     the warped image (required)\n"
     "  --size WxH           output size in pixels (default: the target frame scaled as above)\n"
@@ -64,10 +68,12 @@ const char* const kWarpUsage =
     "  --depth FILE         per-pixel depth for cameras that read it (no default)\n"
     "  --depth-scale S      multiplies an integer depth file's values (default 1)\n"
     "  --disparity BF       the depth file holds disparity; depth = BF / disparity (default:\n"
-    "                       off, the file holds depth)\n\n"
+    "                       off, the file holds depth)\n"
+    "  --second FILE        the second image for compositing cameras (no default)\n\n"
     "Examples:\n"
     "  artcam warp photo.jpg lens.artcam -o fixed.jpg\n"
-    "  artcam warp photo.png dof.artcam -o blurred.png --depth depth.exr --filter bicubic\n";
+    "  artcam warp photo.png dof.artcam -o blurred.png --depth depth.exr --filter bicubic\n"
+    "  artcam warp title.png over.artcam -o card.png --second backdrop.png\n";
 
 int warpCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
@@ -83,13 +89,15 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--quiet", "-q", false},
                          {"--depth", "", true},
                          {"--depth-scale", "", true},
-                         {"--disparity", "", true}});
+                         {"--disparity", "", true},
+                         {"--second", "", true}});
   args.expectPositional(2, "IN and CAM.artcam");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
   const std::string& input = args.positional()[0];
   std::vector<std::string> inputs = {input, args.positional()[1]};
   if (const auto depth = args.value("--depth")) inputs.push_back(*depth);
+  if (const auto second = args.value("--second")) inputs.push_back(*second);
   checkOutputs(args, {*output}, inputs);
   const WarpRequest request = parseWarpRequest(args);
   const WarpCameraFile camera = loadWarpCamera(args.positional()[1]);

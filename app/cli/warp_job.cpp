@@ -79,6 +79,13 @@ WarpRequest parseWarpRequest(const Args& args) {
     std::printf("depth %s: %dx%d, %g..%g, %lld holes\n", path->c_str(), request.depth->width,
                 request.depth->height, summary.min_depth, summary.max_depth, summary.holes);
   }
+  if (const auto path = args.value("--second")) {
+    auto second = readImage(*path);
+    if (!second) throw CommandError(second.status.message);
+    request.second = std::move(second->image);
+    std::printf("second image %s: %dx%d\n", path->c_str(), request.second->width,
+                request.second->height);
+  }
   parseWriteOptions(args, request.write);
   request.stats = args.has("--stats");
   return request;
@@ -165,7 +172,9 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
       out.warning = frame.warning;
     } else {
       const LoadedImage& in = *source.loaded;
-      ImageF image = render(RenderInputs::of(in.image, depth), camera.camera, options, &summary);
+      RenderInputs inputs = RenderInputs::of(in.image, depth);
+      if (request.second) inputs.second = &*request.second;
+      ImageF image = render(inputs, camera.camera, options, &summary);
       if (!summary.cancelled) {
         if (in.image.alpha_channel < 0) dropOpaqueAlpha(image);
         out.width = image.width;
@@ -175,6 +184,14 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
       out.like = in.info;
       out.warning = outputFrameFor(camera.camera, {in.image.width, in.image.height},
                                    options.warp.width, options.warp.height).warning;
+      // The second image lies over the photo's frame (core/pipeline/render.h): another size is
+      // stretched to it, which a user should hear about.
+      if (request.second && (request.second->width != in.image.width ||
+                             request.second->height != in.image.height))
+        out.warning += (out.warning.empty() ? "" : "; ") + std::string("the second image is ") +
+                       sizeText(request.second->width, request.second->height) +
+                       ", not the photo's " + sizeText(in.image.width, in.image.height) +
+                       ": it is stretched to the photo's frame";
     }
   } catch (const std::bad_alloc&) {
     throw CommandError(out.output + ": cannot render: not enough memory");

@@ -39,12 +39,14 @@ WarpCameraFile loadWarpCamera(const std::string& path);
 struct WarpRequest {
   RenderOptions options;  // filter, threads; width × height 0: the output-frame rule per input
   std::optional<ImageF> depth;  // --depth FILE, read once for every input
+  std::optional<ImageF> second;  // --second FILE, linear premultiplied, for compositing cameras
   WriteImageOptions write;      // --quality, --bit-depth (write_args.h); progress unset
   bool stats = false;
 };
 
 // --size WxH, --filter, --threads, --quality, --bit-depth (and the attributed renderer's
-// --depth, --depth-scale, --disparity when `args` has them): the options warp and batch share.
+// --depth, --depth-scale, --disparity and --second when `args` has them): the options warp and
+// batch share.
 WarpRequest parseWarpRequest(const Args& args);
 
 using Progress = std::function<bool(double)>;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/effects/effect_table.h"
 
+#include "core/colour/composite.h"
 #include "core/effects/aerial.h"
 #include "core/effects/chromatic.h"
 #include "core/effects/depth_of_field.h"
@@ -61,6 +62,11 @@ Artcam depthOfField(const EffectValues& v, FrameSize frame) {
   return camera;
 }
 
+Artcam composite(const EffectValues& v, FrameSize frame) {
+  const auto op = static_cast<CompositeOp>(static_cast<int>(number(v, "op")));
+  return Artcam(compositeCamera(op, number(v, "amount"), frame));
+}
+
 std::string numberText(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", v);
@@ -110,6 +116,14 @@ const std::vector<EffectSpec>& effectSpecs() {
         {"blur", "sigma at infinite depth", {0.01}, 0.0, 0.1, "norm"},
         {"thin-lens", "1 thin lens (/d), 0 linear (/focus)", {1.0}, 0.0, 1.0, ""}},
        true, depthOfField},
+      {"composite",
+       "blends a second image (artcam warp --second) with the photo by a Porter-Duff operator in "
+       "premultiplied (projective) alpha, one quadratic form per colour element (eq 6/7)",
+       {{"op", "the photo OP the second image (under: the second over the photo; mix with amount "
+               "t: (1-t)·photo + t·second)",
+         {0.0}, 0.0, static_cast<double>(compositeOpNames().size() - 1), "", compositeOpNames()},
+        {"amount", "t: (1-t)·photo + t·(photo OP second)", {1.0}, 0.0, 1.0, ""}},
+       false, composite, true},
   };
   return specs;
 }
@@ -127,11 +141,17 @@ const EffectParam* findParam(const EffectSpec& effect, const std::string& name) 
 }
 
 std::string rangeText(const EffectParam& param) {
+  if (param.isChoice()) {
+    std::string names;
+    for (const std::string& n : param.choices) names += (names.empty() ? "" : "|") + n;
+    return names;
+  }
   std::string text = numberText(param.min) + " … " + numberText(param.max);
   return param.unit.empty() ? text : text + " " + param.unit;
 }
 
 std::string defaultText(const EffectParam& param) {
+  if (param.isChoice()) return param.choices.at(static_cast<size_t>(param.value.at(0)));
   std::string text;
   for (const double v : param.value) text += (text.empty() ? "" : ",") + numberText(v);
   return text;
@@ -145,7 +165,17 @@ std::string checkEffectValue(const EffectParam& param, const std::vector<double>
   for (const double v : value)
     if (!(v >= param.min && v <= param.max))  // NaN fails too
       return param.name + " = " + numberText(v) + " is outside its range " + rangeText(param);
+  if (param.isChoice() && value.front() != std::floor(value.front()))
+    return param.name + " = " + numberText(value.front()) + " is not one of " + rangeText(param);
   return {};
+}
+
+std::optional<double> choiceValue(const EffectParam& param, const std::string& text) {
+  for (size_t i = 0; i < param.choices.size(); ++i)
+    if (param.choices[i] == text) return static_cast<double>(i);
+  for (size_t i = 0; i < param.choices.size(); ++i)
+    if (std::to_string(i) == text) return static_cast<double>(i);
+  return std::nullopt;
 }
 
 Artcam buildEffect(const std::string& name, const EffectValues& values, FrameSize frame) {

@@ -16,6 +16,9 @@
 //   what was asked. Ranges stay where the camera accepts every frame: the radial lens refuses
 //   k·|p|² ≥ 0.95 and |p|² ≤ 2 in the normalised frame, so k ≤ 0.45; inverse perspective refuses
 //   |gain·v| ≥ 0.9 and |v| ≤ 1, so |gain| ≤ 0.85 (image_warps.h).
+// - Compositing (composite.h) is a row whose camera reads a second image (needs_second), with
+//   its operator a named choice; the studio has no second image yet, so its effect stack leaves
+//   such a row out with a note, as it leaves out depth effects without depth.
 // - Builders return the whole camera value (model/artcam.h): chromatic aberration is three
 //   layers, depth of field a depth output that is the blur variance.
 #pragma once
@@ -24,6 +27,7 @@
 #include "core/model/camera.h"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,8 +42,12 @@ struct EffectParam {
   std::vector<double> value;  // the default; 1 number, or N for a vector parameter
   double min = 0, max = 0;    // inclusive, for every component
   std::string unit;           // "" (a plain factor), "norm" (normalised frame units), "depth units"
+  // A named choice (composite's operator): the value is the index of a name, min 0 and max the
+  // last index; the CLI takes and writes the name, the panel a whole number.
+  std::vector<std::string> choices = {};
 
   int size() const { return static_cast<int>(value.size()); }
+  bool isChoice() const { return !choices.empty(); }
 };
 
 struct EffectSpec {
@@ -50,19 +58,23 @@ struct EffectSpec {
   // `values` holds every parameter of the row, each checked against it. Throws
   // std::invalid_argument for a value the camera refuses (e.g. near ≥ far, a pole in the frame).
   Artcam (*build)(const EffectValues& values, FrameSize frame) = nullptr;
+  // The camera composites a second image (a second-colour block): artcam warp --second FILE.
+  bool needs_second = false;
 };
 
 const std::vector<EffectSpec>& effectSpecs();
 const EffectSpec* findEffect(const std::string& name);
 const EffectParam* findParam(const EffectSpec& effect, const std::string& name);
 
-// "-1 … 0"; with a unit "0.01 … 10000 depth units".
+// "-1 … 0"; with a unit "0.01 … 10000 depth units"; a choice's names "over|under|…".
 std::string rangeText(const EffectParam& param);
-// "-0.15", "0.62,0.72,0.86": the default as the CLI writes it.
+// "-0.15", "0.62,0.72,0.86": the default as the CLI writes it; a choice's name, "over".
 std::string defaultText(const EffectParam& param);
 // Empty when `value` suits the parameter, else one line naming it: "k = 0.9 is outside its
-// range -1 … 0", "haze expects 3 comma-separated numbers".
+// range -1 … 0", "haze expects 3 comma-separated numbers", "op = 2.5 is not one of over|…".
 std::string checkEffectValue(const EffectParam& param, const std::vector<double>& value);
+// A choice parameter's value from its name or its index ("over", "0"); empty if neither.
+std::optional<double> choiceValue(const EffectParam& param, const std::string& text);
 
 // The row's builder with the defaults filled in for missing parameters. Throws
 // std::invalid_argument for an unknown effect or parameter, a value checkEffectValue refuses,

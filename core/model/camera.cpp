@@ -15,6 +15,7 @@ std::string_view blockKindName(BlockKind kind) {
     case BlockKind::Position: return "position";
     case BlockKind::Colour: return "colour";
     case BlockKind::Depth: return "depth";
+    case BlockKind::SecondColour: return "second-colour";
   }
   return "unknown";
 }
@@ -23,6 +24,7 @@ std::optional<BlockKind> blockKindFromName(std::string_view name) {
   if (name == "position") return BlockKind::Position;
   if (name == "colour" || name == "color") return BlockKind::Colour;
   if (name == "depth") return BlockKind::Depth;
+  if (name == "second-colour" || name == "second-color") return BlockKind::SecondColour;
   return std::nullopt;
 }
 
@@ -31,6 +33,7 @@ bool isValidBlock(const Block& block) {
     case BlockKind::Position: return block.size == 3 || block.size == 4;
     case BlockKind::Colour: return block.size == 4;
     case BlockKind::Depth: return block.size == 2;
+    case BlockKind::SecondColour: return block.size == 4;
   }
   return false;
 }
@@ -100,6 +103,10 @@ void Camera::validate() const {
         throw std::invalid_argument("block kind " + std::string(blockKindName(block.kind)) +
                                     " appears twice");
   }
+  // The second image's colour is what a compositing camera blends into the first: alone it
+  // has nothing to blend with.
+  if (layout_.find(BlockKind::SecondColour) >= 0 && layout_.find(BlockKind::Colour) < 0)
+    throw std::invalid_argument("a second-colour block needs a colour block");
   if (stages_.empty()) throw std::invalid_argument("camera has no stages");
   const int n = layout_.dimension;
   for (size_t s = 0; s < stages_.size(); ++s) {
@@ -151,7 +158,7 @@ void divideBlocks(const BlockLayout& layout, const double* z, double* y) {
     const int h = layout.homogeneousIndex(static_cast<int>(b));
     const double w = z[h];
     for (int k = off; k < h; ++k) y[k] = z[k] / w;  // eq 5
-    y[h] = layout.blocks[b].kind == BlockKind::Colour ? std::clamp(w, 0.0, 1.0) : 1.0;
+    y[h] = weightIsAlpha(layout.blocks[b].kind) ? std::clamp(w, 0.0, 1.0) : 1.0;
   }
 }
 
@@ -164,7 +171,7 @@ Eigen::VectorXd Camera::divideBlocks(const Eigen::VectorXd& z) const {
 Eigen::VectorXd Camera::rehomogenise(const Eigen::VectorXd& z) const {
   Eigen::VectorXd x = divideBlocks(z);
   for (size_t b = 0; b < layout_.blocks.size(); ++b) {
-    if (layout_.blocks[b].kind != BlockKind::Colour) continue;
+    if (!weightIsAlpha(layout_.blocks[b].kind)) continue;
     const int off = layout_.offsets[b];
     const int h = layout_.homogeneousIndex(static_cast<int>(b));
     for (int k = off; k < h; ++k) x[k] *= x[h];  // back to premultiplied colour

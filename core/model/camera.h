@@ -4,7 +4,9 @@
 // Conventions (docs/architecture.md, "The model"):
 // - An input point is one ROW vector x made of blocks; each block is a homogeneous projective
 //   subspace whose LAST element is its homogeneous weight: position (u, v, 1) or (X, Y, Z, 1),
-//   colour premultiplied (a·r, a·g, a·b, a), depth (d, 1).
+//   colour premultiplied (a·r, a·g, a·b, a), depth (d, 1), and the second image's colour
+//   (a·r, a·g, a·b, a) premultiplied, which compositing cameras blend with the first (eq 6/7:
+//   Q_icc over both colours, the paper's generalisation of projective alpha).
 // - A stage holds one symmetric N×N matrix Q_i per element (N = sum of block sizes) and maps
 //   z_i = x Q_i xᵀ (eq 3). Every output block is then divided by its own homogeneous element
 //   (eq 5). Output alpha is the colour block's homogeneous weight before division, clamped to
@@ -23,7 +25,17 @@
 
 namespace artcam {
 
-enum class BlockKind { Position, Colour, Depth };
+// SecondColour is a second image's premultiplied colour, read in the photo's frame: the input
+// of compositing cameras (core/colour/composite.h). Like colour its weight is alpha, kept (and
+// clamped to [0, 1]) by eq 5, not divided out to 1. Its outputs are not rendered; cameras pass
+// it through unchanged so that chains keep it.
+enum class BlockKind { Position, Colour, Depth, SecondColour };
+
+// Colour and second colour: blocks whose weight is alpha (kept by eq 5, premultiplied again
+// between stages).
+inline bool weightIsAlpha(BlockKind kind) {
+  return kind == BlockKind::Colour || kind == BlockKind::SecondColour;
+}
 
 struct Block {
   BlockKind kind = BlockKind::Position;

@@ -58,7 +58,7 @@ void CompiledCamera::divide(const Vector& z, Vector& y) const {
 void CompiledCamera::rehomogenise(const Vector& z, Vector& x) const {
   divide(z, x);
   for (size_t b = 0; b < layout_.blocks.size(); ++b) {
-    if (layout_.blocks[b].kind != BlockKind::Colour) continue;
+    if (!weightIsAlpha(layout_.blocks[b].kind)) continue;
     const int h = layout_.homogeneousIndex(static_cast<int>(b));
     for (int k = layout_.offsets[b]; k < h; ++k) x[k] *= x[h];
   }

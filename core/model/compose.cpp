@@ -124,7 +124,7 @@ Eigen::VectorXd probe(const Camera& camera, double d) {
     if (block.kind == BlockKind::Position) {
       x(o + block.size - 1) = 1.0;
       for (int k = 0; k + 1 < block.size; ++k) x(o + k) = 0.1 * (k + 1);
-    } else if (block.kind == BlockKind::Colour) {
+    } else if (weightIsAlpha(block.kind)) {
       for (int k = 0; k + 1 < block.size; ++k) x(o + k) = 0.5;
       x(o + block.size - 1) = 1.0;
     } else {

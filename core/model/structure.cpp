@@ -61,7 +61,7 @@ bool isIdentityOutput(const Stage& stage, const BlockLayout& layout, int block, 
   const Eigen::VectorXd unit = Eigen::VectorXd::Unit(n, layout.unitIndex());
   // Colour weights are alpha and must not be scaled; depth is projective, any common scale.
   double common = 1.0;
-  if (layout.blocks[block].kind != BlockKind::Colour) {
+  if (!weightIsAlpha(layout.blocks[block].kind)) {
     const int h = layout.homogeneousIndex(block);
     common = stage.q[h](h, layout.unitIndex()) * 2.0;
     if (h == layout.unitIndex()) common = stage.q[h](h, h);

@@ -170,9 +170,10 @@ ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera,
   a.splat_supersample = options.splat_supersample;
   a.force_path = options.force_path;
   AttributedSummary as;
+  const AttributedSources sources{*inputs.linear, inputs.depth, inputs.second};
   AttributedImage out = camera.layers.size() > 1
-                            ? renderLayers(*inputs.linear, inputs.depth, camera.layers, a, &as)
-                            : renderAttributed(*inputs.linear, inputs.depth, camera.main(), a, &as);
+                            ? renderLayers(sources, camera.layers, a, &as)
+                            : renderAttributed(sources, camera.main(), a, &as);
   report.path = camera.layers.size() > 1 ? RenderPath::Layered : attributedPath(as.path);
   report.kernel = as.kernel;
   report.note = as.note;

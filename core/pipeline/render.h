@@ -8,6 +8,8 @@
 //   layered or attributed  the attributed renderer (core/render/attributed.h): colour-only
 //                          (identity geometry, no resampling), gather (geometry from position
 //                          alone, eq 4), splat (geometry reading colour or depth, eq 8/9);
+//                          compositing cameras (core/colour/composite.h) read the second
+//                          image (RenderInputs::second) on colour-only and gather;
 //                          layers summed (the paper's Fig 4); then, when the depth output is
 //                          the blur variance, the depth-of-field blur stack
 //   geometry only          the gather warp's kernels on the photo as stored (core/render/warp.h:
@@ -45,6 +47,11 @@ struct RenderInputs {
   const StoredMipPyramid* pyramid = nullptr;
   // The depth block's input: 1 channel (d) or 2 (coverage·d, coverage), any size.
   const ImageF* depth = nullptr;
+  // The second-colour block's input, for compositing cameras (core/colour/composite.h): a second
+  // image as linear float, premultiplied. It lies over the photo's frame: read at each source
+  // point scaled to its own size (bilinear), so one of the photo's size is read texel for texel
+  // and one of another size is stretched per axis to the photo's frame.
+  const ImageF* second = nullptr;
 
   static RenderInputs of(const ImageF& linear_photo, const ImageF* depth = nullptr);
 };

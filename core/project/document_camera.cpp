@@ -113,6 +113,11 @@ EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize
                         "depth map");
       continue;
     }
+    if (spec->needs_second) {
+      leaveOut(i, step, "it composites a second image, which the studio cannot load yet (artcam "
+                        "warp --second FILE renders it)");
+      continue;
+    }
     try {
       Artcam effect = buildEffect(step.effect, step.values, frame);
       if (out.camera) {

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -37,6 +38,7 @@ AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera)
   position_ = layout.offsets[p];
   if (const int c = layout.find(BlockKind::Colour); c >= 0) colour_ = layout.offsets[c];
   if (const int d = layout.find(BlockKind::Depth); d >= 0) depth_ = layout.offsets[d];
+  if (const int b = layout.find(BlockKind::SecondColour); b >= 0) second_ = layout.offsets[b];
   if (depth_ >= 0 && colour_ >= 0) {
     const int n = layout.dimension;
     std::vector<bool> tainted(static_cast<size_t>(n), false);
@@ -65,7 +67,7 @@ AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera)
 }
 
 void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, double depth,
-                                  Output& out) const {
+                                  Output& out, const float* second) const {
   CompiledCamera::Vector x{}, z{};
   x[position_] = u_n;
   x[position_ + 1] = v_n;
@@ -76,6 +78,8 @@ void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, dou
     x[depth_] = depth;
     x[depth_ + 1] = 1.0;
   }
+  if (second_ >= 0 && second)
+    for (int k = 0; k < 4; ++k) x[second_ + k] = second[k];
   compiled_.evaluateHomogeneous(x, z);  // eq 3 (through every stage)
 
   // eq 5, block by block.
@@ -233,18 +237,47 @@ ParallelOptions parallelOptions(const AttributedOptions& options) {
   return po;
 }
 
+// The second image read at source pixel point (sx, sy) of a source of `source_px`: scaled to its
+// own size, bilinear (exact texels at the pixel centres of a second image of the source's size),
+// clamped to its outer texel centres so a stretched second image covers the whole frame instead
+// of fading in its outer half texel.
+class SecondReader {
+ public:
+  SecondReader(const ImageF* second_rgba, FrameSize source_px)
+      : sampler_(second_rgba ? std::optional<Sampler>(std::in_place, *second_rgba, Filter::Bilinear)
+                             : std::nullopt),
+        sx_(second_rgba ? static_cast<double>(second_rgba->width) / source_px.width : 1.0),
+        sy_(second_rgba ? static_cast<double>(second_rgba->height) / source_px.height : 1.0),
+        width_(second_rgba ? second_rgba->width : 1),
+        height_(second_rgba ? second_rgba->height : 1) {}
+  // Null when there is no second image; else `out` (4 floats) filled.
+  const float* read(double sx, double sy, float* out) const {
+    if (!sampler_) return nullptr;
+    sampler_->sample(std::clamp(sx * sx_, 0.5, width_ - 0.5),
+                     std::clamp(sy * sy_, 0.5, height_ - 0.5), out);
+    return out;
+  }
+
+ private:
+  std::optional<Sampler> sampler_;
+  double sx_, sy_, width_, height_;
+};
+
 // Geometry identity, same size: each pixel's own colour and depth through the camera.
-bool colourOnly(const ImageF& rgba, const ImageF* depth, const AttributeEvaluator& eval,
-                const AttributedOptions& options, AttributedImage& out) {
+bool colourOnly(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
+                const AttributeEvaluator& eval, const AttributedOptions& options,
+                AttributedImage& out) {
   const FrameSize px{rgba.width, rgba.height};
   return parallelForRows(rgba.height, parallelOptions(options), [&](int y0, int y1) {
     AttributeEvaluator::Output o;
+    float b[4];
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < rgba.width; ++x) {
         const Eigen::Vector2d n = normalizedFromPixel(px, {x + 0.5, y + 0.5});
         const DepthSample d =
             depth ? sampleDepthCoverage(*depth, px, x + 0.5, y + 0.5) : DepthSample{};
-        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d.depth, o);
+        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d.depth, o,
+                      second.read(x + 0.5, y + 0.5, b));
         float* d_out = out.depth.empty() ? nullptr : out.depth.pixel(x, y);
         writeOutput(o, out.colour.pixel(x, y), d_out);
         keepWithoutDepth(eval, d.coverage, rgba.pixel(x, y), out.colour.pixel(x, y), d_out);
@@ -254,9 +287,9 @@ bool colourOnly(const ImageF& rgba, const ImageF* depth, const AttributeEvaluato
 
 // Positions from position alone: the gather kernels find the source point, the camera then
 // maps [source point | sampled colour | sampled depth].
-bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
-            const AttributeEvaluator& eval, const AttributedOptions& options,
-            AttributedImage& out, AttributedSummary& report) {
+bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
+            const Camera& camera, const AttributeEvaluator& eval,
+            const AttributedOptions& options, AttributedImage& out, AttributedSummary& report) {
   const Camera geometry = positionPart(camera);
   const CameraStructure structure = analyseStructure(geometry);
   const FrameSize source_px{rgba.width, rgba.height};
@@ -277,6 +310,7 @@ bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
     float sx[kSpanPixels], sy[kSpanPixels];
     unsigned char valid[kSpanPixels];
     AttributeEvaluator::Output o;
+    float b[4];
     for (int y = y0; y < y1; ++y) {
       RowState state;
       for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
@@ -288,11 +322,13 @@ bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
           if (!valid[i]) continue;  // stays transparent
           float sample[4];
           sampler.sample(sx[i], sy[i], sample);
-          if (!(sample[3] > 0.0f)) continue;
+          // A transparent photo pixel has nothing to change, unless a second image is
+          // composited with it (B over nothing is B).
+          if (!(sample[3] > 0.0f) && !eval.readsSecond()) continue;
           const Eigen::Vector2d s = normalizedFromPixel(source_px, {sx[i], sy[i]});
           const DepthSample d =
               depth ? sampleDepthCoverage(*depth, source_px, sx[i], sy[i]) : DepthSample{};
-          eval.evaluate(s.x(), s.y(), sample, d.depth, o);
+          eval.evaluate(s.x(), s.y(), sample, d.depth, o, second.read(sx[i], sy[i], b));
           writeOutput(o, colour, d_out);
           keepWithoutDepth(eval, d.coverage, sample, colour, d_out);
         }
@@ -303,8 +339,10 @@ bool gather(const ImageF& rgba, const ImageF* depth, const Camera& camera,
 
 }  // namespace
 
-AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, const Camera& camera,
+AttributedImage renderAttributed(const AttributedSources& sources, const Camera& camera,
                                  const AttributedOptions& options, AttributedSummary* summary) {
+  const ImageF& source = sources.colour;
+  const ImageF* depth = sources.depth;
   const auto start = std::chrono::steady_clock::now();
   AttributedSummary local;
   AttributedSummary& report = summary ? *summary : local;
@@ -330,6 +368,17 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
                                   "image (artcam warp --depth FILE)");
     if (depth->channels > 2) throw std::invalid_argument("the depth image must have 1 or 2 channels");
   }
+  ImageF second_rgba;
+  if (eval.readsSecond() && path != AttributedPath::Geometry) {
+    if (!sources.second || sources.second->empty())
+      throw std::invalid_argument("this camera composites a second image (it has a second-colour "
+                                  "block): give one (artcam warp --second FILE)");
+    if (path == AttributedPath::Splat)
+      throw std::invalid_argument("a camera that composites a second image cannot also move "
+                                  "pixels by their colour or depth (the splat path)");
+    second_rgba = rgbaFromImage(*sources.second);
+  }
+  const SecondReader second(second_rgba.empty() ? nullptr : &second_rgba, source_px);
   const ImageF rgba = rgbaFromImage(source);
 
   AttributedImage out;
@@ -359,9 +408,9 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
     if (eval.readsDepth()) out.depth = ImageF(out_px.width, out_px.height, 1);
     if (path == AttributedPath::ColourOnly) {
       report.kernel = "colour-only";
-      finished = colourOnly(rgba, depth, eval, options, out);
+      finished = colourOnly(rgba, depth, second, eval, options, out);
     } else {
-      finished = gather(rgba, depth, camera, eval, options, out, report);
+      finished = gather(rgba, depth, second, camera, eval, options, out, report);
     }
   }
   report.render_ms =
@@ -374,9 +423,8 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
   return out;
 }
 
-AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
-                             const std::vector<Camera>& layers, const AttributedOptions& options,
-                             AttributedSummary* summary) {
+AttributedImage renderLayers(const AttributedSources& sources, const std::vector<Camera>& layers,
+                             const AttributedOptions& options, AttributedSummary* summary) {
   if (layers.empty()) throw std::invalid_argument("a layered camera needs at least one layer");
   AttributedSummary local;
   AttributedSummary& report = summary ? *summary : local;
@@ -404,7 +452,7 @@ AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
         return options.warp.progress((static_cast<double>(l) + f) / n);
       };
     }
-    AttributedImage layer = renderAttributed(source, depth, layers[l], lo, &report);
+    AttributedImage layer = renderAttributed(sources, layers[l], lo, &report);
     if (report.cancelled) return {};
     ms += report.render_ms;
     kernels += (l ? "+" : "") + report.kernel;

@@ -7,7 +7,10 @@
 // - The input point of pixel p is x = [position | colour | depth] (eq 4): position is the
 //   source pixel centre in the source's NORMALISED frame (frames.h), colour the premultiplied
 //   RGBA sample (alpha is the homogeneous weight; a source without alpha has alpha 1, a grey
-//   source is replicated to RGB), depth (d, 1) from the depth image.
+//   source is replicated to RGB), depth (d, 1) from the depth image, and for compositing cameras
+//   (core/colour/composite.h) the second image's premultiplied RGBA at the same place of the
+//   source frame (the second-colour block; the second image is scaled to the source's size,
+//   bilinear, so a second image of the photo's size is read texel for texel).
 // - Outputs follow eq 5: colour = z_c / z_a with output alpha clamp(z_a, 0, 1), written
 //   premultiplied; depth = z_d / z_dh. A pixel whose colour weight is not positive, or whose
 //   outputs are not finite, is transparent (all channels 0): never NaN.
@@ -74,6 +77,17 @@ struct AttributedImage {
                   // camera has no depth block
 };
 
+// The images the camera's blocks read: the colour source, and where the camera has those
+// blocks, the depth image (1 channel (d), or 2 channels (coverage·d, coverage) with
+// alpha_channel 1 as core/depth/depth_raster.h makes) and the second image (any channels as the
+// source, linear premultiplied). Both may have any size: they are read at the source point
+// scaled to their size.
+struct AttributedSources {
+  const ImageF& colour;
+  const ImageF* depth = nullptr;
+  const ImageF* second = nullptr;
+};
+
 // Which path renders `camera` from a source of `source_px` to an output of `out_px`.
 AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure& structure,
                                     FrameSize source_px, FrameSize out_px);
@@ -82,10 +96,17 @@ AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure&
 // (coverage·d, coverage) with alpha_channel 1 as core/depth/depth_raster.h makes; any size
 // (sampled at the source point scaled to its size). Throws std::invalid_argument naming the
 // cause for a broken contract: an invalid camera, a camera without a 2D position block, a
-// camera that reads depth but no depth image, a bad source.
-AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, const Camera& camera,
+// camera that reads depth but no depth image, one that reads a second image but none given (or
+// whose geometry reads attributes: the splat path has no second image), a bad source.
+AttributedImage renderAttributed(const AttributedSources& sources, const Camera& camera,
                                  const AttributedOptions& options = {},
                                  AttributedSummary* summary = nullptr);
+inline AttributedImage renderAttributed(const ImageF& source, const ImageF* depth,
+                                        const Camera& camera,
+                                        const AttributedOptions& options = {},
+                                        AttributedSummary* summary = nullptr) {
+  return renderAttributed({source, depth}, camera, options, summary);
+}
 
 // Every layer rendered as above and combined: the picture is the sum of the layers' colours
 // (each layer carries its own colour channel, the paper's Fig 4), and a pixel is covered only as
@@ -94,10 +115,15 @@ AttributedImage renderAttributed(const ImageF& source, const ImageF* depth, cons
 // where one layer shrinks away from the frame's edge the pixel becomes transparent instead of
 // keeping the other layers' channels as a frame of the complementary colour. The depth is that
 // of the layer with the largest alpha. All layers must share the output size.
-AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
-                             const std::vector<Camera>& layers,
+AttributedImage renderLayers(const AttributedSources& sources, const std::vector<Camera>& layers,
                              const AttributedOptions& options = {},
                              AttributedSummary* summary = nullptr);
+inline AttributedImage renderLayers(const ImageF& source, const ImageF* depth,
+                                    const std::vector<Camera>& layers,
+                                    const AttributedOptions& options = {},
+                                    AttributedSummary* summary = nullptr) {
+  return renderLayers({source, depth}, layers, options, summary);
+}
 
 // One camera compiled for per-pixel evaluation (CompiledCamera: no allocation per call), with
 // the block bookkeeping every path shares.
@@ -110,6 +136,8 @@ class AttributeEvaluator {
   // element taints its whole block at each re-homogenisation). Aerial perspective's do.
   bool colourReadsDepth() const { return colour_reads_depth_; }
   bool hasColour() const { return colour_ >= 0; }
+  // The camera has a second-colour block: a compositing camera (core/colour/composite.h).
+  bool readsSecond() const { return second_ >= 0; }
 
   struct Output {
     double position[2] = {0, 0};  // target, normalised frame (eq 5)
@@ -119,13 +147,15 @@ class AttributeEvaluator {
     bool position_valid = false;  // finite position with q_h != 0
     bool attributes_valid = false;  // finite colour/depth with positive colour weight
   };
-  // x = [(u_n, v_n, 1) | rgba (premultiplied) | (d, 1)] through the camera. Without a colour
-  // block the input colour passes through.
-  void evaluate(double u_n, double v_n, const float* rgba, double depth, Output& out) const;
+  // x = [(u_n, v_n, 1) | rgba (premultiplied) | (d, 1) | second (premultiplied)] through the
+  // camera. Without a colour block the input colour passes through; `second` (4 floats) is read
+  // only by cameras with a second-colour block, and null reads as transparent.
+  void evaluate(double u_n, double v_n, const float* rgba, double depth, Output& out,
+                const float* second = nullptr) const;
 
  private:
   CompiledCamera compiled_;
-  int position_ = -1, colour_ = -1, depth_ = -1;  // element offsets, -1: no such block
+  int position_ = -1, colour_ = -1, depth_ = -1, second_ = -1;  // element offsets, -1: none
   bool colour_reads_depth_ = false;
 };
 

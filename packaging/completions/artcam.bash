@@ -18,7 +18,7 @@ _artcam_options() {
                --quiet -q --stmap --lines" ;;
     map) echo "--json" ;;
     warp) echo "--output -o --size --filter --threads --quality --bit-depth --stats --json
-                --overwrite --force --quiet -q --depth --depth-scale --disparity" ;;
+                --overwrite --force --quiet -q --depth --depth-scale --disparity --second" ;;
     batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
                  --bit-depth --overwrite --force --json --quiet -q" ;;
     info) echo "--json" ;;

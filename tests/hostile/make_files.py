@@ -185,6 +185,12 @@ put_json("wrong-tensor-count.artcam", camera(IDENT[:2]))
 put_json("wrong-tensor-size.artcam", camera([[[0, 0], [0, 0]]] * 3))
 put_json("ragged-tensor.artcam", camera([[[0, 0, 0.5], [0, 0], [0.5, 0, 0]], IDENT[1], IDENT[2]]))
 put_json("block-unknown.artcam", dict(camera(), blocks=[{"kind": "smell", "size": 3}]))
+# A second image's colour block with a wrong size, and one without the colour it blends into.
+put_json("second-size.artcam", dict(camera(), blocks=[
+    {"kind": "position", "size": 3}, {"kind": "colour", "size": 4},
+    {"kind": "second-colour", "size": 3}]))
+put_json("second-alone.artcam", dict(camera([[[0] * 7] * 7] * 7), blocks=[
+    {"kind": "position", "size": 3}, {"kind": "second-colour", "size": 4}]))
 put_json("block-size-huge.artcam", dict(camera(), blocks=[{"kind": "position", "size": 2**31 - 1}]))
 put_json("number-as-string.artcam", camera([[["0", 0, 0.5], [0, 0, 0], [0.5, 0, 0]], IDENT[1],
                                            IDENT[2]]))
@@ -330,6 +336,7 @@ put_json("proj-effect-unknown.artcamproj", project(effects=[{"name": "sparkle"}]
 for name, args in [("twist-3d.artcam", ["twist-3d"]),
                    ("aerial.artcam", ["aerial-perspective", "--size", "64x48"]),
                    ("barrel.artcam", ["barrel", "--size", "64x48"]),
+                   ("over.artcam", ["composite", "--op", "over", "--size", "64x48"]),
                    ("pinhole.artcam", ["pinhole"])]:
     subprocess.run([artcam, "preset", *args, "-o", os.path.join(out, name)], check=True,
                    stdout=subprocess.DEVNULL)

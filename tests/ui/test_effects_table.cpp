@@ -29,6 +29,8 @@ namespace {
 double otherValue(const EffectParam& p, double d) {
   double end = (p.max - d <= d - p.min) ? p.max : p.min;
   if (end == d) end = (end == p.max) ? p.min : p.max;
+  // A named choice's value is an index: the nearest whole one.
+  if (p.isChoice()) return std::round((d + end) / 2);
   return std::round((d + end) / 2 * 1e4) / 1e4;
 }
 

@@ -183,9 +183,10 @@ void EffectsPanel::rebuildParameters() {
       auto* spin = new QDoubleSpinBox(this);
       spin->setObjectName(QString::fromStdString(
           p.size() == 1 ? p.name : p.name + "[" + std::to_string(i) + "]"));
-      spin->setDecimals(4);  // the table's ranges and defaults are multiples of 0.0001
+      // The table's ranges and defaults are multiples of 0.0001; a named choice is its index.
+      spin->setDecimals(p.isChoice() ? 0 : 4);
       spin->setRange(p.min, p.max);
-      spin->setSingleStep((p.max - p.min) / 100.0);
+      spin->setSingleStep(p.isChoice() ? 1.0 : (p.max - p.min) / 100.0);
       const bool has = given != step->values.end() && given->second.size() == p.value.size();
       spin->setValue(has ? given->second[static_cast<size_t>(i)] : p.value[static_cast<size_t>(i)]);
       if (!p.unit.empty()) spin->setSuffix(QString::fromStdString(" " + p.unit));

@@ -40,7 +40,8 @@ bool sameArtcam(const Artcam& a, const Artcam& b) {
 double otherValue(const EffectParam& p, double d) {
   double end = (p.max - d <= d - p.min) ? p.max : p.min;
   if (end == d) end = (end == p.max) ? p.min : p.max;
-  return (d + end) / 2;
+  // A named choice's value is an index: the nearest whole one.
+  return p.isChoice() ? std::round((d + end) / 2) : (d + end) / 2;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // .artcam files: bit-exact round trips (random and edge doubles), and every refusal names the
 // file and the JSON path or line of the problem.
+#include "core/colour/composite.h"
 #include "core/io/artcam_file.h"
 #include "tests/support/test_support.h"
 
@@ -198,6 +199,40 @@ class TestArtcamFile : public QObject {
     QVERIFY(read->fit->singular_values == original.fit->singular_values);
     // Writing what was read gives the same text: nothing drifts over save cycles.
     QCOMPARE(toArtcamJson(*read), toArtcamJson(original));
+  }
+
+  // A compositing camera's second-colour block (core/colour/composite.h) is written by its name
+  // and read back as the same block, with every tensor bit for bit; a second-colour block of the
+  // wrong size, or one without the colour block it blends into, is refused naming the place.
+  void secondColourBlockRoundTrips() {
+    const Camera composite = compositeCamera(CompositeOp::Multiply, 0.3, {96, 64});
+    const std::string text = toArtcamJson(Artcam(composite));
+    QVERIFY2(text.find("\"second-colour\"") != std::string::npos, text.c_str());
+    const Result<Artcam> read = parseArtcam(text, "cam.artcam");
+    QVERIFY2(read.ok(), read.status.message.c_str());
+    QVERIFY(read->main().blocks() == composite.blocks());
+    QCOMPARE(read->main().layout().find(BlockKind::SecondColour), 2);
+    for (size_t i = 0; i < composite.stages()[0].q.size(); ++i)
+      for (int r = 0; r < 11; ++r)
+        for (int c = 0; c < 11; ++c)
+          QVERIFY(sameBits(read->main().stages()[0].q[i](r, c), composite.stages()[0].q[i](r, c)));
+    QCOMPARE(toArtcamJson(*read), text);
+
+    Json j = Json::parse(text);
+    j["blocks"][2]["size"] = 3;
+    EXPECT_REFUSAL(j.dump(1), "cam.artcam: /blocks/2/size");
+    // [position 3 | second-colour 4] with its seven 7×7 tensors, all zero.
+    Json alone = Json::parse(text);
+    alone["blocks"] = Json::array({Json{{"kind", "position"}, {"size", 3}},
+                                   Json{{"kind", "second-colour"}, {"size", 4}}});
+    Json tensors = Json::array();
+    for (int i = 0; i < 7; ++i) {
+      Json t = Json::array();
+      for (int r = 0; r < 7; ++r) t.push_back(Json::array({0, 0, 0, 0, 0, 0, 0}));
+      tensors.push_back(t);
+    }
+    alone["stages"] = Json::array({Json{{"tensors", tensors}}});
+    EXPECT_REFUSAL(alone.dump(1), "a second-colour block needs a colour block");
   }
 
   void mappedPointsAreBitIdentical() {
