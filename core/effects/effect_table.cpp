@@ -6,6 +6,7 @@
 #include "core/effects/chromatic.h"
 #include "core/effects/depth_of_field.h"
 #include "core/effects/image_warps.h"
+#include "core/effects/multi_perspective.h"
 
 #include <array>
 #include <cmath>
@@ -67,6 +68,23 @@ Artcam composite(const EffectValues& v, FrameSize frame) {
   return Artcam(compositeCamera(op, number(v, "amount"), frame));
 }
 
+Eigen::Vector2d xy(const EffectValues& v, const char* name) {
+  const std::vector<double>& numbers = v.at(name);
+  return {numbers.at(0), numbers.at(1)};
+}
+Artcam photoPushbroom(const EffectValues& v, FrameSize frame) {
+  return Artcam(photoPushbroomCamera({number(v, "reference-depth"), number(v, "angle")}, frame));
+}
+Artcam photoXSlit(const EffectValues& v, FrameSize frame) {
+  return Artcam(photoXSlitCamera(
+      {number(v, "slit-u-behind"), number(v, "slit-v-behind"), number(v, "reference-depth")},
+      frame));
+}
+Artcam photoGlc(const EffectValues& v, FrameSize frame) {
+  return Artcam(
+      photoParallaxCamera({xy(v, "shift"), xy(v, "shift-per-u"), xy(v, "shift-per-v")}, frame));
+}
+
 std::string numberText(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", v);
@@ -124,6 +142,33 @@ const std::vector<EffectSpec>& effectSpecs() {
          {0.0}, 0.0, static_cast<double>(compositeOpNames().size() - 1), "", compositeOpNames()},
         {"amount", "t: (1-t)·photo + t·(photo OP second)", {1.0}, 0.0, 1.0, ""}},
        false, composite, true},
+      // Multi-perspective pictures of the photo and its depth (multi_perspective.h); every
+      // parameter is a depth or an image shift, so none needs the photo's focal.
+      {"photo-pushbroom",
+       "push-broom view of the photo and its depth: along the sweep a, a·p' = "
+       "(a·p)·d/reference-depth",
+       {{"reference-depth", "depth that keeps its size", {3.0}, 0.01, 1e4, "depth units"},
+        {"angle", "sweep direction in degrees: 0 along rows, 90 along columns", {0.0}, -90.0,
+         90.0, ""}},
+       true, photoPushbroom},
+      {"photo-xslit",
+       "crossed-slits view of the photo and its depth: u' = u·d·(r + s_u)/(r·(d + s_u)), "
+       "r = reference-depth, v' likewise",
+       {{"slit-u-behind", "distance of the slit that sets u behind the photo's centre", {0.0}, 0.0,
+         100.0, "depth units"},
+        {"slit-v-behind", "distance of the slit that sets v behind the photo's centre", {3.0}, 0.0,
+         100.0, "depth units"},
+        {"reference-depth", "depth that keeps its size", {3.0}, 0.01, 1e4, "depth units"}},
+       true, photoXSlit},
+      {"photo-glc",
+       "GLC view of the photo and its depth, its centre sliding with the image point: "
+       "p' = p + e(p')/d",
+       {{"shift", "image shift of a point at depth 1, at the centre (x,y)", {0.0, 0.0}, -2.0, 2.0,
+         "norm"},
+        {"shift-per-u", "change of that shift per unit of u (x,y)", {0.0, 0.3}, -2.0, 2.0, "norm"},
+        {"shift-per-v", "change of that shift per unit of v (x,y)", {-0.3, 0.0}, -2.0, 2.0,
+         "norm"}},
+       true, photoGlc},
   };
   return specs;
 }

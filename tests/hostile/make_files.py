@@ -335,6 +335,7 @@ put_json("proj-effect-unknown.artcamproj", project(effects=[{"name": "sparkle"}]
 # --- presets (written by artcam itself: valid files the hostile ones are compared with) ----------
 for name, args in [("twist-3d.artcam", ["twist-3d"]),
                    ("aerial.artcam", ["aerial-perspective", "--size", "64x48"]),
+                   ("photo-glc.artcam", ["photo-glc", "--size", "64x48"]),
                    ("barrel.artcam", ["barrel", "--size", "64x48"]),
                    ("over.artcam", ["composite", "--op", "over", "--size", "64x48"]),
                    ("pinhole.artcam", ["pinhole"])]:

@@ -97,6 +97,46 @@ class TestEffectsPanel : public QObject {
     QVERIFY(!readsDepth(doc.artcam()));
   }
 
+  // The multi-perspective effects (core/effects/multi_perspective.h) need nothing beyond their
+  // table rows: each waits for depth, then joins the document's camera, which renders with the
+  // document's depth raster through the splat exactly as the row's own camera does (rendered
+  // directly: the independent path), and visibly differs from the photo.
+  void multiPerspectiveEffectsRenderWithDepth() {
+    for (const char* name : {"photo-pushbroom", "photo-xslit", "photo-glc"}) {
+      Document doc;
+      doc.reset(test::syntheticPhoto(160, 120));
+      EffectsPanel panel(&doc);
+      QVERIFY2(panel.addEffect(name), name);
+      QVERIFY2(!readsDepth(doc.artcam()), name);
+      QVERIFY2(panel.status().contains("reads depth"), qPrintable(panel.status()));
+      doc.undoStack()->push(
+          new AddDepthLayerCommand(doc.depth(), wholePhotoPlane(*doc.depth(), 2, 8)));
+      QVERIFY2(readsDepth(doc.artcam()), name);
+      QVERIFY2(doc.artcamNote().empty(), doc.artcamNote().c_str());
+      const ImageF depth = doc.depth()->rasterise();
+      const ImageF& photo = doc.photo()->full.image;
+      RenderSummary summary;
+      const ImageF got = render(RenderInputs::of(photo, &depth), doc.artcam(), {}, &summary);
+      QCOMPARE(summary.path, RenderPath::Splat);
+      const ImageF want =
+          render(RenderInputs::of(photo, &depth), buildEffect(name, {}, doc.frame()));
+      QCOMPARE(got.width, want.width);
+      QCOMPARE(got.height, want.height);
+      QCOMPARE(got.channels, 4);
+      double off = 0.0, changed = 0.0, covered = 0.0;
+      for (int y = 0; y < got.height; ++y)
+        for (int x = 0; x < got.width; ++x) {
+          for (int c = 0; c < 4; ++c) off += std::abs(got.pixel(x, y)[c] - want.pixel(x, y)[c]);
+          for (int c = 0; c < 3; ++c) changed += std::abs(got.pixel(x, y)[c] - photo.pixel(x, y)[c]);
+          covered += got.pixel(x, y)[3];
+        }
+      const double n = static_cast<double>(got.width) * got.height;
+      QVERIFY2(off / (4 * n) < 1e-4, qPrintable(QString("%1 off by %2").arg(name).arg(off / (4 * n))));
+      QVERIFY2(changed / (3 * n) > 0.01, qPrintable(QString("%1 invisible: %2").arg(name).arg(changed / (3 * n))));
+      QVERIFY2(covered / n > 0.5, qPrintable(QString("%1 mostly transparent: %2").arg(name).arg(covered / n)));
+    }
+  }
+
   void previewShowsTheStack() {
     MainWindow window;
     window.document()->reset(test::syntheticPhoto(640, 480));

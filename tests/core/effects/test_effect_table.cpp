@@ -73,7 +73,8 @@ class TestEffectTable : public QObject {
       QVERIFY2(reads_depth == e.needs_depth, e.name.c_str());
     }
     for (const char* n : {"barrel", "pincushion", "twist", "inverse-perspective",
-                          "chromatic-aberration", "colour-shift", "aerial-perspective", "depth-of-field"})
+                          "chromatic-aberration", "colour-shift", "aerial-perspective", "depth-of-field",
+                          "photo-pushbroom", "photo-xslit", "photo-glc"})
       QVERIFY2(names.count(n), n);
   }
 
