@@ -137,7 +137,7 @@ DltSolution solveQuadraticMoments2d(const QuadraticMoments2d& mo) {
 // The 3D quadratic DLT through its 40×40 normal matrix: with the rows [χ in slot i, -y_i χ in
 // slot 4] of each match, DᵀD has A = Σχχᵀ in slots (i, i), -B_i = -Σ y_i χχᵀ in (i, 4) and
 // E = Σ|y|²χχᵀ in (4, 4); each is one product of the 10 × m monomials with its weighted copy.
-DltSolution solveQuadraticNormal3d(const Points& src, const Points& dst) {
+Eigen::MatrixXd quadraticNormal3d(const Points& src, const Points& dst) {
   constexpr int kTerms = 10, kUnknowns = 40;
   const Eigen::Index m = src.cols();
   Eigen::Matrix<double, kTerms, Eigen::Dynamic> chi(kTerms, m);
@@ -157,6 +157,12 @@ DltSolution solveQuadraticNormal3d(const Points& src, const Points& dst) {
   }
   const Eigen::RowVectorXd y2 = dst.colwise().squaredNorm();
   normal.block<kTerms, kTerms>(30, 30) = chi * y2.asDiagonal() * chi.transpose();
+  return normal;
+}
+
+DltSolution solveQuadraticNormal3d(const Points& src, const Points& dst) {
+  constexpr int kTerms = 10, kUnknowns = 40;
+  const Eigen::Matrix<double, kUnknowns, kUnknowns> normal = quadraticNormal3d(src, dst);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, kUnknowns, kUnknowns>> eig(normal);
   DltSolution s;
   s.singular_values = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending

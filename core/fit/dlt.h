@@ -36,6 +36,9 @@ inline constexpr size_t kNormalEquationsFrom = 40;
 inline constexpr size_t kNormalEquationsFrom3d = 200;
 
 DltSolution solveQuadraticDlt(const Points& src, const Points& dst);
+// The 3D quadratic DLT's 40 × 40 normal matrix DᵀD (unknowns: the upper triangles of Q_1..Q_4,
+// 10 each, in the order (0,0) (0,1) (0,2) (0,3) (1,1) (1,2) (1,3) (2,2) (2,3) (3,3)).
+Eigen::MatrixXd quadraticNormal3d(const Points& src, const Points& dst);
 
 // The 2D quadratic DLT's normal matrix DᵀD = [[A, 0, -B], [0, A, -C], [-B, -C, E]] is made of
 // the 6×6 moments A = Σχχᵀ, B = ΣXχχᵀ, C = ΣYχχᵀ, E = Σ(X² + Y²)χχᵀ. Every entry of χχᵀ is a

@@ -2,17 +2,21 @@
 #include "core/fit/fit_colour.h"
 
 #include "core/colour/colour_difference.h"
+#include "core/fit/dlt.h"
 #include "core/fit/fit_image.h"
 #include "core/fit/normalize.h"
 #include "core/fit/robust.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -120,9 +124,68 @@ void colourBox(const Samples& s, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
   }
 }
 
+// Scales the map so its denominator is ≥ 1 over the colour box (the output alpha, the colour
+// block's weight of eq 5, then clamps to 1 for every opaque colour in the box); false when the
+// denominator changes sign there (a pole).
+bool scalePoleFree(ColourMap& map, const Samples& s) {
+  Eigen::Vector3d lo, hi;
+  colourBox(s, lo, hi);
+  const QuadraticRange range = quadraticRangeOverBox(map.q[3], lo, hi);
+  double scale = 0.0;
+  if (range.least > 0.0) scale = range.least;
+  else if (range.greatest < 0.0) scale = range.greatest;
+  if (scale == 0.0 || !std::isfinite(1.0 / scale)) return false;
+  for (Eigen::Matrix4d& q : map.q) q /= scale;
+  return true;
+}
+
+// The quadratic preferring a flat denominator. When the samples are nearly explained by a map
+// of lower degree (a linear map with a bend near white, say), N_c = f_c·L fits about as well for
+// any affine L: the DLT's near-null space has several directions and the plain solution picks
+// one at random, its denominator often crossing zero inside the box. Adding λ·|d'|² to the
+// conditioned DLT cost, d' the denominator's non-constant coefficients, picks the member with
+// the flattest denominator; λ grows (relative to the normal matrix's mean eigenvalue) until the
+// map is pole-free. The samples' fit still decides everything the data determine.
+std::optional<ColourMap> flatDenominatorQuadratic(const Samples& s) {
+  const Eigen::Index m = s.size();
+  Points src(3, m), dst(3, m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    src.col(k) = s.src[static_cast<size_t>(k)];
+    dst.col(k) = s.dst[static_cast<size_t>(k)];
+  }
+  const Eigen::MatrixXd ts = conditioningTransform(src), td = conditioningTransform(dst);
+  const Eigen::MatrixXd normal = quadraticNormal3d(applyTransform(ts, src), applyTransform(td, dst));
+  const double mean_eigenvalue = normal.trace() / 40.0;
+  const Eigen::MatrixXd td_inv = td.inverse();
+  for (double relative : {1e-8, 1e-6, 1e-4, 1e-3, 1e-2}) {
+    Eigen::MatrixXd penalised = normal;
+    for (int i = 30; i < 39; ++i) penalised(i, i) += relative * mean_eigenvalue;  // not (3,3)
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(penalised);
+    const Eigen::VectorXd r = eig.eigenvectors().col(0);
+    std::array<Eigen::Matrix4d, 4> conditioned;
+    for (int i = 0; i < 4; ++i) {
+      int c = 10 * i;
+      for (int j = 0; j < 4; ++j)
+        for (int l = j; l < 4; ++l) conditioned[i](j, l) = conditioned[i](l, j) = r[c++];
+    }
+    // Undo the conditioning as fit_image.cpp does: Q ← tsᵀ Q ts, then mix by td⁻¹.
+    ColourMap map;
+    map.model = ColourModel::Quadratic;
+    for (int i = 0; i < 4; ++i) {
+      map.q[i].setZero();
+      for (int j = 0; j < 4; ++j) map.q[i] += td_inv(i, j) * (ts.transpose() * conditioned[j] * ts);
+    }
+    bool finite = true;
+    for (const Eigen::Matrix4d& q : map.q) finite = finite && q.allFinite();
+    if (finite && scalePoleFree(map, s)) return map;
+  }
+  return std::nullopt;
+}
+
 // The paper's §4 DLT on the colour block: the 3D quadratic solver of fit_image.h. Minimal sets
 // inside the robust search skip the pole test (`check_pole` false): such a map still scores
-// the samples, and the final fit on the inliers is checked.
+// the samples, and the final fit on the inliers is checked. A map with a pole is fitted again
+// preferring a flat denominator (flatDenominatorQuadratic) before it is refused.
 Fitted fitQuadratic(const Samples& s, bool check_pole = true) {
   Fitted out;
   out.map.model = ColourModel::Quadratic;
@@ -143,22 +206,17 @@ Fitted fitQuadratic(const Samples& s, bool check_pole = true) {
   }
   for (int i = 0; i < 4; ++i) out.map.q[i] = fit.camera.stages()[0].q[i];
   if (!check_pole) return out;
-  // One sign over the colour box, scaled so the denominator is ≥ 1 there: the output alpha
-  // (the colour block's weight, eq 5) then clamps to 1 for every opaque colour in the box.
-  Eigen::Vector3d lo, hi;
-  colourBox(s, lo, hi);
-  const QuadraticRange range = quadraticRangeOverBox(out.map.q[3], lo, hi);
-  double scale = 0.0;
-  if (range.least > 0.0) scale = range.least;
-  else if (range.greatest < 0.0) scale = range.greatest;
-  if (scale == 0.0 || !std::isfinite(1.0 / scale)) {
-    out.status = Status::failure(
-        "the quadratic colour map fitted to these samples has a pole: its denominator changes "
-        "sign inside the colour box [" + fmt(lo.minCoeff()) + ", " + fmt(hi.maxCoeff()) +
-        "]; a simpler model, or more samples spread over the gamut, avoids it");
+  if (scalePoleFree(out.map, s)) return out;
+  if (const auto flat = flatDenominatorQuadratic(s)) {
+    out.map = *flat;
     return out;
   }
-  for (Eigen::Matrix4d& q : out.map.q) q /= scale;
+  Eigen::Vector3d lo, hi;
+  colourBox(s, lo, hi);
+  out.status = Status::failure(
+      "the quadratic colour map fitted to these samples has a pole: its denominator changes "
+      "sign inside the colour box [" + fmt(lo.minCoeff()) + ", " + fmt(hi.maxCoeff()) +
+      "]; a simpler model, or more samples spread over the gamut, avoids it");
   return out;
 }
 
