@@ -6,18 +6,20 @@
 #include "app/cli/memory.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "core/colour/specular_pair.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "core/piecewise/sample_scenes.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
 namespace artcam::cli {
 
 const char* const kSampleUsage =
-    "usage: artcam sample mirror-sphere|water-glass -o DIR [--squares N] [--size WxH]\n"
-    "                     [--overwrite]\n\n"
+    "usage: artcam sample mirror-sphere|water-glass|specular-pair -o DIR [--squares N]\n"
+    "                     [--size WxH] [--overwrite]\n\n"
     "Ray traces a sample scene for `artcam insert` into DIR:\n"
     "  NAME.png        the photo: a chrome sphere on a table that carries a calibration\n"
     "                  checkerboard (mirror-sphere), or a glass of water in front of a\n"
@@ -31,6 +33,12 @@ const char* const kSampleUsage =
     "                            photo, the clicks that fix the board's homography)\n"
     "  mirror-sphere-region.csv  the sphere's outline in the photo (x,y), where it hides\n"
     "                            the table\n"
+    "specular-pair renders the paper's Fig 6 instead, for colour calibration:\n"
+    "  silver.png, green.png     a silver and a green reflector under the same lights, pixel\n"
+    "                            for pixel (--size: the side, default 512)\n"
+    "  specular-samples.csv      colour samples (linear RGB, silver → green) on a grid of\n"
+    "                            the reflector (every side/64-th pixel), for\n"
+    "                            artcam fit --block colour\n"
     "options:\n"
     "  --squares N     squares along the board's side (default 24)\n"
     "  --size WxH      photo size (default 640x480)\n"
@@ -39,9 +47,51 @@ const char* const kSampleUsage =
     "  -q, --quiet     no progress bar (drawn on stderr only when it is a terminal)\n"
     "Example:\n"
     "  artcam sample water-glass -o demo --squares 16 --size 800x600\n"
+    "  artcam sample specular-pair -o fig6 && artcam fit --block colour \\\n"
+    "      fig6/specular-samples.csv --size 512x512 -o relight.artcam && \\\n"
+    "      artcam warp fig6/silver.png relight.artcam -o relit.png\n"
     "Then: artcam insert DIR/NAME.png DIR/emblem.png --matches DIR/NAME-grid.csv -o OUT.png\n"
     "  (mirror-sphere: add --table DIR/mirror-sphere-table.csv\n"
     "   --region DIR/mirror-sphere-region.csv for the table's copy too)\n";
+
+namespace {
+
+// The paper's Fig 6: the specular pair and its colour samples (core/colour/specular_pair.h).
+int specularPairSample(const Args& args, const std::string& dir) {
+  if (args.has("--squares")) throw UsageError("--squares is for mirror-sphere and water-glass");
+  const FrameSize size = parseSize(args.valueOr("--size", "512x512"), "--size");
+  if (size.width != size.height) throw UsageError("specular-pair is square: give --size NxN");
+  if (size.width < 16 || size.width > 4096)
+    throw UsageError("specular-pair's side must be between 16 and 4096");
+  const std::filesystem::path base(dir);
+  const std::string silver = (base / "silver.png").string();
+  const std::string green = (base / "green.png").string();
+  const std::string csv = (base / "specular-samples.csv").string();
+  checkOutputs(args, {silver, green, csv}, {});
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw CommandError(dir + ": cannot create the directory: " + ec.message());
+  return runJobStages("sample", args.has("--quiet"), [&](JobStages& job) {
+    job.stage("rendering");
+    const SpecularPair pair = makeSpecularPair(size.width);
+    const std::vector<PointMatch> samples = specularSamples(pair, std::max(1, size.width / 64));
+    WriteImageOptions write;
+    write.progress = job.polled("writing silver.png");
+    if (const Status s = writeImage(silver, pair.silver, nullptr, write); !s)
+      throw CommandError(s.message);
+    write.progress = job.polled("writing green.png");
+    if (const Status s = writeImage(green, pair.green, nullptr, write); !s)
+      throw CommandError(s.message);
+    job.stage("writing specular-samples.csv");
+    if (const Status s = writeColourSamplesCsv(csv, samples); !s) throw CommandError(s.message);
+    job.finish();
+    std::printf("wrote %s, %s, %s (%zu colour samples)\n", silver.c_str(), green.c_str(),
+                csv.c_str(), samples.size());
+    return 0;
+  });
+}
+
+}  // namespace
 
 int sampleCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
@@ -62,12 +112,13 @@ int sampleCommand(const std::vector<std::string>& argv) {
     }
     if (squares < 2 || squares > 256) throw UsageError("--squares must be between 2 and 256");
   }
+  const std::string& name = args.positional()[0];
+  if (name != "mirror-sphere" && name != "water-glass" && name != "specular-pair")
+    throw UsageError("unknown sample \"" + name + "\" (mirror-sphere, water-glass or specular-pair)",
+                     didYouMean(name, {"mirror-sphere", "water-glass", "specular-pair"}));
+  if (name == "specular-pair") return specularPairSample(args, *dir);
   const FrameSize size = parseSize(args.valueOr("--size", "640x480"), "--size");
   checkImageMemory(size, "--size");
-  const std::string& name = args.positional()[0];
-  if (name != "mirror-sphere" && name != "water-glass")
-    throw UsageError("unknown sample \"" + name + "\" (mirror-sphere or water-glass)",
-                     didYouMean(name, {"mirror-sphere", "water-glass"}));
   const std::filesystem::path base(*dir);
   const std::string photo = (base / (name + ".png")).string();
   const std::string csv = (base / (name + "-grid.csv")).string();

@@ -17,7 +17,9 @@ struct Surface {
   Eigen::Vector3d mirror;   // reflectance of the room (the specular reflection)
 };
 
-const Eigen::Vector3d kBackdrop(0.18, 0.18, 0.18);
+// Black velvet behind the reflectors, as in a product shot: the same in both photos, and black
+// is where any colour map through the origin already sends black.
+const Eigen::Vector3d kBackdrop(0.0, 0.0, 0.0);
 const Eigen::Vector3d kKeyColour(1.0, 0.95, 0.9);
 const Eigen::Vector3d kAmbient(0.05, 0.05, 0.05);
 constexpr double kHighlight = 3.0;    // the key light's own reflection: far brighter than the room
@@ -107,7 +109,7 @@ std::vector<PointMatch> specularSamples(const SpecularPair& pair, int stride) {
   for (int y = stride / 2; y < h; y += stride)
     for (int x = stride / 2; x < w; x += stride)
       if (pair.on_object[static_cast<size_t>(y) * w + x]) sample(x, y);
-  sample(0, 0);  // the backdrop
+  sample(0, 0);  // the backdrop: black stays black
   return samples;
 }
 

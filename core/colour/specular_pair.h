@@ -5,7 +5,7 @@
 // nearly white while turning the rest green — non-linear in the colour, which is what the
 // colour block's quadratic forms are for (§4.1).
 //
-// The scene: an orthographic view of a sphere (radius 0.42 of the image side) over a grey
+// The scene: an orthographic view of a sphere (radius 0.42 of the image side) over a black
 // backdrop, in a room with a blue sky, a red-brown floor and six coloured walls round the
 // horizon, lit by one key light. Silver is almost all mirror, untinted; the bauble is a green
 // glaze: its reflection of the room tinted green, a little green body colour. Both show the key
@@ -31,7 +31,7 @@ struct SpecularPair {
 SpecularPair makeSpecularPair(int size);
 
 // Colour samples (linear RGB, silver → green) at every `stride`-th pixel in x and y that is
-// fully on the object, and a few of the backdrop (so the map keeps it).
+// fully on the object, and one of the (black) backdrop.
 std::vector<PointMatch> specularSamples(const SpecularPair& pair, int stride);
 
 }  // namespace artcam
