@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(build-essential cmake ninja-build ccache pkg-config
   qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
-  libexiv2-dev libjpeg62-turbo-dev liblensfun-dev liblensfun-data-v1
+  libexiv2-dev libjpeg62-turbo-dev liblcms2-dev liblensfun-dev liblensfun-data-v1
   # The hostile corpus (CTest hostile/corpus) is driven by python3; oiiotool makes its images.
   python3
   # CI's fuzzing job (packaging/ci-sanitizers.sh): libFuzzer comes with clang's runtime.

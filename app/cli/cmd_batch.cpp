@@ -31,7 +31,7 @@ namespace artcam::cli {
 const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
-    "                    [--quality N] [--bit-depth 8|16|half|float]\n"
+    "                    [--quality N] [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                    [--overwrite] [--json] [--quiet]\n\n"
     "Warps every IN through the camera into DIR (created if missing), as artcam warp does\n"
     "(upright, with IN's metadata, quality and pixel type unless --quality or --bit-depth),\n"
@@ -62,6 +62,9 @@ const char* const kBatchUsage =
     "                       are JPEG, else 95)\n"
     "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
     "                       IN's)\n"
+    "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
+    "                       IN's ICC profile when it had one, embedded; srgb: sRGB, with an\n"
+    "                       sRGB profile). Float output is linear Rec.709/D65 either way\n"
     "  --overwrite          replace outputs that exist (--force is the same); never an input\n"
     "  --json               the results as one JSON object on stdout (above)\n"
     "  -q, --quiet          no progress and no per-file lines (errors and summary only)\n\n"
@@ -108,6 +111,7 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--threads", "", true},
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
+                         {"--colourspace", "", true},
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--json", "", false},

@@ -24,7 +24,8 @@ namespace artcam::cli {
 const char* const kExportUsage =
     "usage: artcam export PROJECT.artcamproj -o OUT [--camera-out CAM.artcam]\n"
     "                     [--depth-out DEPTH.exr] [--size WxH] [--quality N]\n"
-    "                     [--bit-depth 8|16|half|float] [--crop-valid | --fill R,G,B[,A]]\n"
+    "                     [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
+    "                     [--crop-valid | --fill R,G,B[,A]]\n"
     "                     [--json] [--quiet] [--overwrite]\n\n"
     "Renders a project saved by ARTcam Studio at the photo's full resolution, exactly as the\n"
     "studio's File > Export Warped Image does: the camera fitted from the project's point pairs\n"
@@ -45,6 +46,9 @@ const char* const kExportUsage =
     "  --quality N            JPEG quality 1-100 (default: the photo's when it is a JPEG,\n"
     "                         else 95)\n"
     "  --bit-depth B          8, 16, half or float (default: the photo's)\n"
+    "  --colourspace C        input or srgb: what 8/16-bit OUT is encoded in (default input:\n"
+    "                         the photo's ICC profile when it had one, embedded; srgb: sRGB,\n"
+    "                         with an sRGB profile). Float OUT is linear Rec.709/D65 either way\n"
     "  --crop-valid           crop to the largest rectangle whose every pixel has a preimage\n"
     "  --fill R,G,B[,A]       linear colour under pixels without a preimage (default: none,\n"
     "                         they stay transparent)\n"
@@ -88,6 +92,7 @@ int exportCommand(const std::vector<std::string>& argv) {
                          {"--size", "", true},
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
+                         {"--colourspace", "", true},
                          {"--crop-valid", "", false},
                          {"--fill", "", true},
                          {"--json", "", false},

@@ -18,6 +18,7 @@ namespace artcam::cli {
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
     "                   [--threads N] [--quality N] [--bit-depth 8|16|half|float]\n"
+    "                   [--colourspace input|srgb]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n"
     "                   [--second FILE]\n\n"
@@ -38,6 +39,8 @@ const char* const kWarpUsage =
     "writes the stored values in place (no float copy: peak memory about input + output),\n"
     "interpolating them in the file's own encoding as OpenCV's remap does; otherwise it\n"
     "renders in linear float.\n"
+    "Colour: IN is read into linear Rec.709/D65; an ICC profile other than sRGB is converted\n"
+    "(lcms2) and, by default, 8/16-bit OUT is encoded back into it with it embedded.\n"
     "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130). An OUT that\n"
     "exists is refused unless --overwrite; OUT is never IN, the camera or the depth file.\n"
     "--stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr (the render alone, without\n"
@@ -61,6 +64,9 @@ const char* const kWarpUsage =
     "                       95)\n"
     "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
     "                       IN's)\n"
+    "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
+    "                       IN's ICC profile when it had one, embedded; srgb: sRGB, with an\n"
+    "                       sRGB profile). Float output is linear Rec.709/D65 either way\n"
     "  --stats              print render_ms and mpix_per_s on stderr\n"
     "  --json               the result (and --stats) as one JSON object on stdout\n"
     "  --overwrite          replace OUT if it exists (--force is the same); never IN\n"
@@ -82,6 +88,7 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--threads", "", true},
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
+                         {"--colourspace", "", true},
                          {"--stats", "", false},
                          {"--json", "", false},
                          {"--overwrite", "", false},

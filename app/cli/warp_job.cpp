@@ -116,8 +116,9 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
   read.progress = progress;
   // The stored-type path where the output keeps the input's encoding (peak memory ≤ input +
   // output + a small constant); re-encoding between integer and float files, and cameras that
-  // render from the linear photo, go through linear light (image_io.h).
-  if (!camera.linear) {
+  // render from the linear photo, go through linear light (image_io.h); so does
+  // --colourspace srgb, which may re-encode an ICC-tagged input.
+  if (!camera.linear && request.write.colour_space == WriteImageOptions::ColourSpace::Input) {
     const auto type = readStoredPixelType(input);
     if (!type) throw CommandError(type.status.message);
     const std::string& asked = request.write.pixel_type;

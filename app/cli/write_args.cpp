@@ -28,6 +28,14 @@ void parseWriteOptions(const Args& args, WriteImageOptions& options) {
     options.jpeg_quality = value;
   }
   if (const auto bits = args.value("--bit-depth")) options.pixel_type = pixelTypeForBitDepth(*bits);
+  if (const auto space = args.value("--colourspace")) {
+    if (*space == "input")
+      options.colour_space = WriteImageOptions::ColourSpace::Input;
+    else if (*space == "srgb")
+      options.colour_space = WriteImageOptions::ColourSpace::Srgb;
+    else
+      throw UsageError("--colourspace expects input or srgb, not \"" + *space + "\"");
+  }
 }
 
 }  // namespace artcam::cli

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// --quality N and --bit-depth 8|16|half|float: how the commands that write a photo (export,
-// warp, batch) encode it. One parser, so the three accept and refuse the same spellings.
+// --quality N, --bit-depth 8|16|half|float and --colourspace input|srgb: how the commands that
+// write a photo (export, warp, batch) encode it. One parser, so the three accept and refuse the same spellings.
 #pragma once
 
 #include "app/cli/args.h"
@@ -16,7 +16,9 @@ std::string pixelTypeForBitDepth(const std::string& bit_depth);
 
 // Sets options.jpeg_quality from --quality (a whole number 1..100; absent: left empty, so the
 // writer keeps a JPEG input's quality, else 95) and options.pixel_type from --bit-depth
-// (absent: left empty, the input's). Throws UsageError naming the option.
+// (absent: left empty, the input's) and options.colour_space from --colourspace ("input", the
+// default: integer outputs keep an ICC-tagged input's profile; "srgb": sRGB with an sRGB
+// profile; image_io.h). Throws UsageError naming the option.
 void parseWriteOptions(const Args& args, WriteImageOptions& options);
 
 }  // namespace artcam::cli

@@ -17,6 +17,7 @@
 #include "core/io/io_text.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
+#include "core/colour/icc_profile.h"
 #include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -99,6 +100,37 @@ void decodeFloats(const Transfer& transfer, bool associated_encoded, ImageF& ima
   }
 }
 
+// The file's embedded ICC profile when it is one to convert through (not sRGB-equivalent), or
+// null; fails when the profile is damaged or does not describe the pixels (icc_profile.h).
+Result<std::shared_ptr<const IccProfile>> conversionProfile(const OIIO::ImageSpec& spec,
+                                                            int colour_channels,
+                                                            const std::string& path) {
+  using R = Result<std::shared_ptr<const IccProfile>>;
+  const OIIO::ParamValue* attribute = spec.find_attribute("ICCProfile");
+  if (!attribute) return R::success(nullptr);
+  const auto* first = static_cast<const unsigned char*>(attribute->data());
+  const std::vector<unsigned char> bytes(first, first + attribute->type().size());
+  if (colour_channels != 1 && colour_channels != 3)
+    return R::failure(path + ": cannot read: an ICC profile cannot describe its " +
+                      std::to_string(colour_channels) + " colour channels");
+  auto profile = IccProfile::fromBytes(bytes, colour_channels, path);
+  if (!profile) return R::failure(profile.status.message);
+  if (profile->equivalentToSrgb()) return R::success(nullptr);
+  return R::success(std::make_shared<const IccProfile>(std::move(*profile.value)));
+}
+
+// Associated alpha over encoded values: straight colour before a profile converts it.
+void unpremultiply(ImageF& image) {
+  const size_t channels = static_cast<size_t>(image.channels);
+  for (size_t p = 0; p < image.data.size(); p += channels) {
+    float* px = image.data.data() + p;
+    const float a = px[image.alpha_channel];
+    if (!(a > 0.0f)) continue;
+    for (size_t c = 0; c < channels; ++c)
+      if (static_cast<int>(c) != image.alpha_channel) px[c] /= a;
+  }
+}
+
 void premultiply(ImageF& image) {
   if (image.alpha_channel < 0) return;
   const size_t channels = static_cast<size_t>(image.channels);
@@ -128,6 +160,9 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
   const bool linear = transfer.kind == Transfer::Kind::Linear;
 
+  auto icc = conversionProfile(spec, channels - (alpha >= 0 ? 1 : 0), path);
+  if (!icc) return R::failure(icc.status.message);
+
   LoadedImage loaded;
   loaded.image = ImageF(spec.width, spec.height, channels, alpha);
   ImageF& image = loaded.image;
@@ -142,16 +177,29 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   const bool tables =
       (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
       (!associated || linear);
-  auto codec = io_input::jpegCodecPath(*in, spec, path);
-  if (!codec) return R::failure(codec.status.message);
+  std::unique_ptr<JpegDecoder> codec;
+  if (!*icc) {
+    auto found = io_input::jpegCodecPath(*in, spec, path);
+    if (!found) return R::failure(found.status.message);
+    codec = std::move(*found.value);
+  }
   try {
-    if (*codec && tables) {
+    if (*icc) {
+      // The profile converts encoded values (OIIO scales integers to 0..1) to the working space.
+      ok = read(OIIO::TypeDesc::FLOAT, image.data.data());
+      if (ok && !context.cancelled) {
+        if (associated) unpremultiply(image);
+        (*icc)->toWorking(image.data.data(),
+                          static_cast<size_t>(image.width) * static_cast<size_t>(image.height),
+                          image.channels, image.alpha_channel);
+      }
+    } else if (codec && tables) {
       // The codec path (jpeg_decode.h), then the same tables as below.
       std::vector<std::uint8_t> stored(image.data.size());
-      const Status decoded = (*codec)->decode(
+      const Status decoded = codec->decode(
           stored.data(), static_cast<size_t>(image.width) * static_cast<size_t>(channels),
           options.progress);
-      codec.value->reset();  // closes the file before the metadata reader opens it
+      codec.reset();  // closes the file before the metadata reader opens it
       if (!decoded) return R::failure(decoded.message);
       decodeIntegers(stored, transfer, image);
     } else if (tables && spec.format == OIIO::TypeDesc::UINT8) {
@@ -173,7 +221,7 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));
   if (const Status damage = io_input::decodeProblems(*in, path); !damage)
     return R::failure(damage.message);
-  if (!associated) premultiply(image);
+  if (!associated || *icc) premultiply(image);
   in->close();
 
   // Upright, as the photo is shown (orientation.h): a second buffer for a moment, once per read.
@@ -190,6 +238,11 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   }
   loaded.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
                                        std::move(metadata));
+  if (*icc) {
+    loaded.info.icc = *icc;
+    loaded.info.srgb = false;
+    loaded.info.colour_space = "ICC: " + (*icc)->description();
+  }
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));
 }

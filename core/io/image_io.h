@@ -3,8 +3,9 @@
 //
 // Inside the engine pixels are ImageF: float, linear light, premultiplied alpha
 // (docs/architecture.md, "Images").
-// readImage decodes sRGB (or whatever OIIO reports as the file's colour space; 8/16-bit files
-// without a colour space are taken as sRGB, float files as linear) and premultiplies.
+// readImage decodes sRGB (or through the file's ICC profile, or whatever OIIO reports as its
+// colour space; 8/16-bit files without one are taken as sRGB, float files as linear) and
+// premultiplies.
 // writeImage does the reverse and keeps the input's pixel format and metadata when given
 // them (ImageInfo from readImage), unless the options say otherwise. Saves are atomic: written
 // to a temporary file beside the target, then renamed, so no partial file is ever left.
@@ -12,6 +13,20 @@
 // Decisions:
 // - Colour space: OIIO's "oiio:ColorSpace" when it names a transfer we know (sRGB, Linear,
 //   Rec709, GammaCorrectedX); else 8/16-bit = sRGB, half/float = linear. Alpha is never encoded.
+// - ICC profiles: an embedded profile ("ICCProfile") is the file's full description and wins
+//   over the transfer. One that decodes like sRGB (IccProfile::equivalentToSrgb) takes the exact
+//   sRGB path; any other (Adobe RGB, Display P3, a grey gamma) is converted with lcms2 into the
+//   working space (icc_profile.h), for every pixel type, so colours outside sRGB come out with
+//   negative components rather than relabelled. A damaged profile, or one that does not
+//   describe the pixels (CMYK on RGB), refuses the read in one line: guessing would mislabel.
+// - Output colour (WriteImageOptions::colour_space): float/half files hold the working space as
+//   it is, and EXR says so with the "chromaticities" attribute (Rec.709 primaries, D65; an EXR
+//   input's own chromaticities are carried instead, its values having been read unconverted);
+//   they never carry an ICC profile. Integer files, by default (Input), are encoded back into the
+//   profile `like` was converted from, with that profile embedded (an Adobe RGB photo stays
+//   Adobe RGB; values round-trip to the quantisation step, or to ~1e-6 in linear light where a
+//   pure power curve's slope at 0 magnifies float rounding); Srgb encodes sRGB and embeds an
+//   sRGB profile. Otherwise (Input, `like` had no converting profile) see "Write" below.
 // - Channels: 1 to 4 (Y, YA, RGB, RGBA); further channels of a file are not read.
 // - Write: the format follows the extension. Pixel type = options, else `like`'s, else the
 //   format's natural one, then fitted to what the format stores (EXR has no 8/16-bit: half;
@@ -23,8 +38,9 @@
 // - Metadata of `like` is carried over except what no longer applies: "oiio:*" and other
 //   format-private attributes ("tiff:*", "png:*", "openexr:*", …), thumbnails, Exif pixel
 //   dimensions, compression settings unless the format is the same, and the ICC profile and
-//   Exif:ColorSpace unless the transfer is the same. Then exiv2 writes `like`'s EXIF, IPTC and
-//   XMP packet as read into the temporary, before the rename (photo_metadata.h).
+//   Exif:ColorSpace unless the encoding is the same (the output's own profile replaces it).
+//   Then exiv2 writes `like`'s EXIF, IPTC and XMP packet as read into the temporary, before the
+//   rename (photo_metadata.h).
 // - Orientation: readImage honours the file's EXIF orientation and hands over the upright
 //   photo (orientation.h); what is written is upright and says Orientation 1.
 // - JPEG quality: WriteImageOptions::jpeg_quality, else `like`'s estimated quality when both
@@ -43,6 +59,7 @@
 namespace artcam {
 
 struct PhotoMetadata;  // photo_metadata.h
+class IccProfile;      // core/colour/icc_profile.h
 
 // What a file said about itself, kept so export can write the same format and metadata.
 // Opaque to callers: holds an OpenImageIO ImageSpec without exposing OIIO in this header.
@@ -62,6 +79,9 @@ struct ImageInfo {
   // Channels beyond the four a reader keeps (an EXR's Z, AOVs, a fifth TIFF channel), by name:
   // they are not read, so commands that write the image say they are left out.
   std::vector<std::string> dropped_channels;
+  // The ICC profile readImage converted the colour from (colour_space is then "ICC: " and its
+  // description, srgb false); null when the file had none or one equivalent to sRGB.
+  std::shared_ptr<const IccProfile> icc;
 };
 
 struct LoadedImage {
@@ -85,6 +105,11 @@ struct WriteImageOptions {
   // Fraction of rows written, between bands; return false to cancel (the write then fails with
   // "cancelled" and no file is left: the save is atomic).
   std::function<bool(double)> progress = {};
+  // What integer outputs are encoded in (float outputs are always the working space; see the
+  // decisions above). Input: `like`'s ICC profile when readImage converted from one, else as
+  // before. Srgb: sRGB, with an sRGB ICC profile embedded.
+  enum class ColourSpace { Input, Srgb };
+  ColourSpace colour_space = ColourSpace::Input;
 };
 
 // The JPEG quality a write uses: options.jpeg_quality clamped to 1..100, else `like`'s estimate

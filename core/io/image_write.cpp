@@ -5,6 +5,7 @@
 #include "core/io/image_io.h"
 #include "core/io/io_text.h"
 #include "core/io/photo_metadata.h"
+#include "core/colour/icc_profile.h"
 #include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -136,9 +137,24 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   std::optional<Transfer> like_transfer =
       like ? Transfer::fromColourSpace(like->colour_space) : std::nullopt;
   if (like && !like_transfer) like_transfer = like->srgb ? Transfer::srgb() : Transfer::linear();
-  const Transfer transfer = !integer                                  ? Transfer::linear()
-                            : like && isIntegerType(like->pixel_type) ? *like_transfer
-                                                                      : Transfer::srgb();
+  const bool want_srgb = options.colour_space == WriteImageOptions::ColourSpace::Srgb;
+  // An integer input converted through a profile keeps no transfer of its own: where its
+  // profile does not encode the output (below), sRGB does.
+  const Transfer transfer =
+      !integer ? Transfer::linear()
+      : like && isIntegerType(like->pixel_type) && !like->icc && !want_srgb ? *like_transfer
+                                                                             : Transfer::srgb();
+
+  // The profile integer values are encoded in (image_io.h, "Output colour"): `like`'s converting
+  // profile by default, where it describes these channels; sRGB's when asked for.
+  const int colour_channels = image.channels - (image.alpha_channel >= 0 ? 1 : 0);
+  const IccProfile* encode_icc = integer && !want_srgb && like && like->icc &&
+                                         like->icc->colourChannels() == colour_channels
+                                     ? like->icc.get()
+                                     : nullptr;
+  const bool same_encoding = encode_icc ? isIntegerType(like->pixel_type)
+                             : like && like->icc ? false
+                                                 : like_transfer && *like_transfer == transfer;
 
   const bool keep_alpha = image.alpha_channel >= 0 && out->supports("alpha");
   const bool associated = format == "openexr";
@@ -149,17 +165,37 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   const auto* like_spec = like ? static_cast<const OIIO::ImageSpec*>(like->spec.get()) : nullptr;
   if (like_spec) {
     const bool same_format = like->format_name == format;
-    const bool same_transfer = like_transfer && *like_transfer == transfer;
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
-      if (keepAttribute(p.name().string(), same_format, same_transfer))
+      if (keepAttribute(p.name().string(), same_format, same_encoding))
         spec.extra_attribs.push_back(p);
+  }
+  if (!integer) {
+    // Float files hold the working space; OpenEXR names its primaries and white, others are
+    // linear by convention. No ICC profile describes them. An EXR input's own chromaticities,
+    // carried over above, stay: its values were read as they are, not converted.
+    spec.erase_attribute("ICCProfile");
+    if (format == "openexr" && !spec.find_attribute("chromaticities")) {
+      const float rec709_d65[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+      spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), rec709_d65);
+    }
+  } else if (encode_icc || want_srgb) {
+    const std::vector<unsigned char> profile =
+        encode_icc ? encode_icc->bytes() : IccProfile::srgbBytes();
+    spec.erase_attribute("ICCProfile");
+    spec.attribute("ICCProfile",
+                   OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(profile.size())),
+                   profile.data());
   }
   spec.channelnames =
       like_spec && like_spec->nchannels == channels && like_spec->alpha_channel == alpha
           ? like_spec->channelnames
           : defaultChannelNames(channels, alpha);
   spec.alpha_channel = alpha;
-  spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
+  // The profile is the whole label: no transfer tag (a PNG sRGB or gAMA chunk) beside it.
+  if (encode_icc)
+    spec.erase_attribute("oiio:ColorSpace");
+  else
+    spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   if (format == "jpeg") {
     const int quality = jpegQualityFor(options, like);
@@ -184,9 +220,13 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
           continue;
         }
         const double linear = !divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0;
-        encoded.push_back(static_cast<float>(transfer.encode(linear)));
+        encoded.push_back(encode_icc ? static_cast<float>(linear)
+                                     : static_cast<float>(transfer.encode(linear)));
       }
     }
+    if (encode_icc)
+      encode_icc->fromWorking(encoded.data(), encoded.size() / static_cast<size_t>(channels),
+                              channels, alpha);
   };
   const OIIO::TypeDesc data_type = pixel_type == "uint8"    ? OIIO::TypeDesc::UINT8
                                    : pixel_type == "uint16" ? OIIO::TypeDesc::UINT16
@@ -227,8 +267,7 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     }
     if (!out->close()) return failure(out->geterror());
     if (like && like->metadata) {
-      const bool same_transfer = like_transfer && *like_transfer == transfer;
-      return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, same_transfer},
+      return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, same_encoding},
                                 path);
     }
     return Status::success();

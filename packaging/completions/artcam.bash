@@ -17,10 +17,10 @@ _artcam_options() {
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
                --quiet -q --stmap --lines" ;;
     map) echo "--json" ;;
-    warp) echo "--output -o --size --filter --threads --quality --bit-depth --stats --json
-                --overwrite --force --quiet -q --depth --depth-scale --disparity --second" ;;
+    warp) echo "--output -o --size --filter --threads --quality --bit-depth --colourspace --stats
+                --json --overwrite --force --quiet -q --depth --depth-scale --disparity --second" ;;
     batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
-                 --bit-depth --overwrite --force --json --quiet -q" ;;
+                 --bit-depth --colourspace --overwrite --force --json --quiet -q" ;;
     info) echo "--json" ;;
     "bench render") echo "--size --reps --threads --plot --peer --only --filter --no-e2e
                           --no-suite --cameras --overwrite --force" ;;
@@ -31,8 +31,8 @@ _artcam_options() {
                   --threads --stats --json --overwrite --force --quiet -q" ;;
     preset) echo "--output -o --overwrite --force --size" ;;
     compose) echo "--output -o --force --overwrite --json" ;;
-    export) echo "--output -o --camera-out --depth-out --size --quality --bit-depth --crop-valid
-                  --fill --json --overwrite --force --quiet -q" ;;
+    export) echo "--output -o --camera-out --depth-out --size --quality --bit-depth --colourspace
+                  --crop-valid --fill --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --focal --crop --size --output -o --distort --no-tca
                 --max-error --overwrite --force" ;;

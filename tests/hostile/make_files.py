@@ -108,6 +108,40 @@ def tiff_with(width, height, pad=0):
     return b"II*\x00" + struct.pack("<I", 8) + ifd + struct.pack("<I", 0) + b"\x00" * pad
 
 
+
+
+def tiff_with_icc(icc, width=4, height=2):
+    # A 4x2 8-bit RGB TIFF carrying `icc` as its ICC profile (tag 34675): the profile is what
+    # the case is about, the pixels are fine.
+    pixels = bytes(range(width * height * 3))
+    count = 12
+    icc_at = 8 + 2 + 12 * count + 4
+    strip_at = icc_at + len(icc)
+    entries = [(256, 4, 1, width), (257, 4, 1, height), (258, 3, 1, 8), (259, 3, 1, 1),
+               (262, 3, 1, 2), (273, 4, 1, strip_at), (277, 3, 1, 3), (278, 4, 1, height),
+               (279, 4, 1, len(pixels)), (284, 3, 1, 1), (339, 3, 1, 1),
+               (34675, 7, len(icc), icc_at)]
+    assert len(entries) == count
+    ifd = struct.pack("<H", count)
+    for tag, kind, n, value in entries:
+        ifd += struct.pack("<HHII", tag, kind, n, value)
+    return b"II*\x00" + struct.pack("<I", 8) + ifd + struct.pack("<I", 0) + icc + pixels
+
+
+def icc_header(size, space=b"RGB ", tags=0):
+    # An ICC v2 display-class header (128 bytes) and a tag count: what a profile opens with.
+    header = struct.pack(">I", size) + b"lcms" + bytes([2, 0x10, 0, 0]) + b"mntr" + space
+    header += b"XYZ " + bytes(12) + b"acsp" + bytes(128 - 40)
+    return header + struct.pack(">I", tags)
+
+
+# A profile that is noise after its signature, one whose tag table points past its end, and a
+# CMYK header on RGB pixels.
+put("icc-noise.tif", tiff_with_icc(b"acsp" + bytes((i * 37) % 256 for i in range(300))))
+put("icc-cut.tif", tiff_with_icc(icc_header(4000, tags=3)
+                                  + struct.pack(">4sII", b"rXYZ", 3000, 20) * 3))
+put("icc-cmyk.tif", tiff_with_icc(icc_header(132, space=b"CMYK")))
+
 put("giant-header.tif", tiff_with(2**31 - 1, 2**31 - 1))
 put("giant-padded.tif", tiff_with(40000, 40000, pad=64 * 1024))
 put("zero-size.tif", tiff_with(0, 0, pad=16))
