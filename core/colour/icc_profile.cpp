@@ -97,6 +97,14 @@ struct IccProfile::Transforms {
   }
 };
 
+bool IccProfile::describesCmyk(const std::vector<unsigned char>& bytes) {
+  if (bytes.empty()) return false;
+  ProfileHandle file(
+      cmsOpenProfileFromMem(bytes.data(), static_cast<cmsUInt32Number>(bytes.size())),
+      &cmsCloseProfile);
+  return file && cmsGetColorSpace(file.get()) == cmsSigCmykData;
+}
+
 Result<IccProfile> IccProfile::fromBytes(const std::vector<unsigned char>& bytes,
                                          int colour_channels, const std::string& path) {
   using R = Result<IccProfile>;

@@ -39,6 +39,9 @@ class IccProfile {
   static Result<IccProfile> fromBytes(const std::vector<unsigned char>& bytes, int colour_channels,
                                       const std::string& path);
 
+  // Whether the profile describes CMYK colour (false when lcms2 cannot parse it).
+  static bool describesCmyk(const std::vector<unsigned char>& bytes);
+
   // lcms2's sRGB profile, serialised: the label of files encoded in sRGB.
   static std::vector<unsigned char> srgbBytes();
 

@@ -103,13 +103,17 @@ void decodeFloats(const Transfer& transfer, bool associated_encoded, ImageF& ima
 // The file's embedded ICC profile when it is one to convert through (not sRGB-equivalent), or
 // null; fails when the profile is damaged or does not describe the pixels (icc_profile.h).
 Result<std::shared_ptr<const IccProfile>> conversionProfile(const OIIO::ImageSpec& spec,
-                                                            int colour_channels,
+                                                            int colour_channels, bool jpeg,
                                                             const std::string& path) {
   using R = Result<std::shared_ptr<const IccProfile>>;
   const OIIO::ParamValue* attribute = spec.find_attribute("ICCProfile");
   if (!attribute) return R::success(nullptr);
   const auto* first = static_cast<const unsigned char*>(attribute->data());
   const std::vector<unsigned char> bytes(first, first + attribute->type().size());
+  // A CMYK JPEG: the reader has already turned its ink values into RGB (without the profile),
+  // so the profile no longer describes the pixels; they are read as sRGB, as before profiles
+  // were honoured, and colour_space says so.
+  if (jpeg && colour_channels == 3 && IccProfile::describesCmyk(bytes)) return R::success(nullptr);
   if (colour_channels != 1 && colour_channels != 3)
     return R::failure(path + ": cannot read: an ICC profile cannot describe its " +
                       std::to_string(colour_channels) + " colour channels");
@@ -160,7 +164,8 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
   const bool linear = transfer.kind == Transfer::Kind::Linear;
 
-  auto icc = conversionProfile(spec, channels - (alpha >= 0 ? 1 : 0), path);
+  const bool jpeg = std::string(in->format_name()) == "jpeg";
+  auto icc = conversionProfile(spec, channels - (alpha >= 0 ? 1 : 0), jpeg, path);
   if (!icc) return R::failure(icc.status.message);
 
   LoadedImage loaded;
@@ -242,6 +247,10 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
     loaded.info.icc = *icc;
     loaded.info.srgb = false;
     loaded.info.colour_space = "ICC: " + (*icc)->description();
+  } else if (const OIIO::ParamValue* cmyk = jpeg ? spec.find_attribute("ICCProfile") : nullptr) {
+    const auto* first = static_cast<const unsigned char*>(cmyk->data());
+    if (IccProfile::describesCmyk({first, first + cmyk->type().size()}))
+      loaded.info.colour_space = "sRGB (CMYK turned into RGB by the reader; its profile not applied)";
   }
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));
