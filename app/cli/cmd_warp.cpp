@@ -6,6 +6,7 @@
 #include "app/cli/interrupt.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/stdio_paths.h"
 #include "app/cli/warp_job.h"
 
 #include <nlohmann/json.hpp>
@@ -17,12 +18,16 @@ namespace artcam::cli {
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--threads N] [--quality N] [--bit-depth 8|16|half|float]\n"
-    "                   [--colourspace input|srgb]\n"
+    "                   [--format EXT] [--threads N] [--quality N]\n"
+    "                   [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n"
     "                   [--second FILE]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
+    "IN \"-\" reads the photo from standard input (any format, found from its bytes); OUT \"-\"\n"
+    "writes the image to standard output in the format --format EXT names (png, jpg, exr,\n"
+    "tif, ...), encoded in full before the first byte is sent, so a failure sends nothing.\n"
+    "Standard output then carries only the image: reports go to stderr; --json is refused.\n"
     "Output frame: the camera's target frame scaled per axis by IN's size over the camera's\n"
     "source frame and rounded, so a camera made on a preview applies to the full photo and a\n"
     "camera of IN's own size and aspect keeps IN's exact size; if IN's aspect differs from the\n"
@@ -56,7 +61,9 @@ const char* const kWarpUsage =
     "--second FILE: read as linear premultiplied colour over IN's frame (an image of another\n"
     "size is stretched to IN's, with a warning); IN is the photo A of \"A over B\".\n\n"
     "options:\n"
-    "  -o, --output OUT     the warped image (required)\n"
+    "  -o, --output OUT     the warped image (required); - for standard output\n"
+    "  --format EXT         the image format for -o - (png, jpg, exr, tif, ...); refused with a\n"
+    "                       file OUT, whose extension says the format\n"
     "  --size WxH           output size in pixels (default: the target frame scaled as above)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
     "  --threads N          worker threads (default 0: all cores)\n"
@@ -78,11 +85,13 @@ const char* const kWarpUsage =
     "  --second FILE        the second image for compositing cameras (no default)\n\n"
     "Examples:\n"
     "  artcam warp photo.jpg lens.artcam -o fixed.jpg\n"
+    "  cat photo.jpg | artcam warp - lens.artcam -o - --format png | display -\n"
     "  artcam warp photo.png dof.artcam -o blurred.png --depth depth.exr --filter bicubic\n"
     "  artcam warp title.png over.artcam -o card.png --second backdrop.png\n";
 
 int warpCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
+                         {"--format", "", true},
                          {"--size", "", true},
                          {"--filter", "", true},
                          {"--threads", "", true},
@@ -101,13 +110,20 @@ int warpCommand(const std::vector<std::string>& argv) {
   args.expectPositional(2, "IN and CAM.artcam");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
-  const std::string& input = args.positional()[0];
-  std::vector<std::string> inputs = {input, args.positional()[1]};
+  StdioPaths streams(args, args.positional()[0], *output);
+  // Standard streams are no files: no output to refuse, no input to protect.
+  std::vector<std::string> inputs = {args.positional()[1]};
+  if (!streams.inputIsStdin()) inputs.push_back(args.positional()[0]);
   if (const auto depth = args.value("--depth")) inputs.push_back(*depth);
   if (const auto second = args.value("--second")) inputs.push_back(*second);
-  checkOutputs(args, {*output}, inputs);
+  if (!streams.outputIsStdout()) checkOutputs(args, {*output}, inputs);
   const WarpRequest request = parseWarpRequest(args);
   const WarpCameraFile camera = loadWarpCamera(args.positional()[1]);
+  streams.open();
+  const std::string& input = streams.inputName();
+  const std::string& output_name = streams.outputName();
+  // Reports never share standard output with the image.
+  std::FILE* report = streams.outputIsStdout() ? stderr : stdout;
 
   // Ctrl-C stops between bands of rows; the atomic writer removes its temporary.
   const CooperativeInterrupt interrupt;
@@ -120,9 +136,11 @@ int warpCommand(const std::vector<std::string>& argv) {
   // makes it an interrupted run (exit 130 with the new output in place).
   bool written = false;
   try {
-    DecodedInput decoded = decodeForWarp(camera, request, input, *output, stage("reading"));
+    DecodedInput decoded =
+        decodeForWarp(camera, request, streams.input(), streams.output(), stage("reading"));
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
     encodeWarp(rendered, request, stage("writing"));
+    streams.sendOutput();
     written = true;
     bar.finish();
     const double mpix = static_cast<double>(rendered.width) * rendered.height / 1e6;
@@ -134,7 +152,7 @@ int warpCommand(const std::vector<std::string>& argv) {
     for (const std::string& c : rendered.like.dropped_channels) dropped += (dropped.empty() ? "" : ", ") + c;
     if (!dropped.empty())
       std::fprintf(stderr, "artcam warp: warning: %s: channels beyond the first four (%s) are not "
-                   "warped and are left out of %s\n", input.c_str(), dropped.c_str(), output->c_str());
+                   "warped and are left out of %s\n", input.c_str(), dropped.c_str(), output_name.c_str());
     if (args.has("--json")) {
       nlohmann::json j = {{"output", *output},
                           {"width", rendered.width},
@@ -151,14 +169,14 @@ int warpCommand(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms, mpix_per_s);
     }
     if (!args.has("--json"))
-      std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), rendered.width, rendered.height,
-                  rendered.description.c_str());
-  } catch (const CommandError&) {
-    if (!interruptRequested()) throw;
+      std::fprintf(report, "wrote %s (%dx%d, %s)\n", output_name.c_str(), rendered.width,
+                   rendered.height, rendered.description.c_str());
+  } catch (const CommandError& e) {
+    if (!interruptRequested()) throw CommandError(streams.named(e.what()));
   }
   bar.finish();
   if (interruptRequested() && !written) {
-    std::fprintf(stderr, "artcam warp: interrupted; %s not written\n", output->c_str());
+    std::fprintf(stderr, "artcam warp: interrupted; %s not written\n", output_name.c_str());
     return interruptExitCode();
   }
   return 0;

@@ -17,8 +17,9 @@ _artcam_options() {
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
                --quiet -q --stmap --lines" ;;
     map) echo "--json" ;;
-    warp) echo "--output -o --size --filter --threads --quality --bit-depth --colourspace --stats
-                --json --overwrite --force --quiet -q --depth --depth-scale --disparity --second" ;;
+    warp) echo "--output -o --format --size --filter --threads --quality --bit-depth --colourspace
+                --stats --json --overwrite --force --quiet -q --depth --depth-scale --disparity
+                --second" ;;
     batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
                  --bit-depth --colourspace --overwrite --force --json --quiet -q" ;;
     info) echo "--json" ;;

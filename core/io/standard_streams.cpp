@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/io/standard_streams.h"
+
+#include "core/io/io_text.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace artcam {
+
+namespace {
+
+std::string temporaryFolder() {
+  const char* tmp = std::getenv("TMPDIR");
+  return tmp && *tmp ? tmp : "/tmp";
+}
+
+// Writes all of `size` bytes or fails with errno set.
+bool writeAll(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// An unnamed file for the spool: O_TMPFILE, else a named one unlinked at once.
+int anonymousFile() {
+  const std::string folder = temporaryFolder();
+  int fd = ::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd >= 0) return fd;
+  std::string name = folder + "/.artcam-stdin-XXXXXX";
+  std::vector<char> buffer(name.begin(), name.end());
+  buffer.push_back('\0');
+  fd = ::mkostemp(buffer.data(), O_CLOEXEC);
+  if (fd >= 0) ::unlink(buffer.data());
+  return fd;
+}
+
+}  // namespace
+
+StdinSpool::StdinSpool(int fd, std::size_t bytes)
+    : fd_(fd), bytes_(bytes), path_("/proc/self/fd/" + std::to_string(fd)) {}
+
+StdinSpool::~StdinSpool() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Result<std::shared_ptr<const StdinSpool>> StdinSpool::read() {
+  using R = Result<std::shared_ptr<const StdinSpool>>;
+  const std::string fail = kStdinName + ": cannot read: ";
+  // A terminal would wait for typed bytes that never make an image: refused, not waited on.
+  if (::isatty(STDIN_FILENO) == 1)
+    return R::failure(fail + "standard input is a terminal; pipe an image into it");
+  const int fd = anonymousFile();
+  if (fd < 0)
+    return R::failure(fail + "cannot make a temporary file in " + temporaryFolder() + ": " +
+                      std::strerror(errno));
+  std::shared_ptr<StdinSpool> spool(new StdinSpool(fd, 0));
+  std::vector<char> chunk(1 << 20);
+  for (;;) {
+    const ssize_t n = ::read(STDIN_FILENO, chunk.data(), chunk.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return R::failure(fail + std::strerror(errno));
+    if (n == 0) break;
+    if (!writeAll(fd, chunk.data(), static_cast<std::size_t>(n)))
+      return R::failure(fail + "cannot spool it to " + temporaryFolder() + ": " +
+                        std::strerror(errno));
+    spool->bytes_ += static_cast<std::size_t>(n);
+  }
+  if (spool->bytes_ == 0) return R::failure(fail + "standard input is empty");
+  return R::success(std::move(spool));
+}
+
+std::string StdinSpool::named(std::string message) const {
+  return io_text::replaceAll(std::move(message), path_, kStdinName);
+}
+
+StdoutSpool::StdoutSpool(std::string folder, std::string path)
+    : folder_(std::move(folder)), path_(std::move(path)) {}
+
+StdoutSpool::~StdoutSpool() {
+  std::error_code error;
+  std::filesystem::remove_all(folder_, error);
+}
+
+Result<std::shared_ptr<StdoutSpool>> StdoutSpool::create(const std::string& extension) {
+  using R = Result<std::shared_ptr<StdoutSpool>>;
+  std::string name = temporaryFolder() + "/artcam-stdout-XXXXXX";
+  std::vector<char> buffer(name.begin(), name.end());
+  buffer.push_back('\0');
+  if (!::mkdtemp(buffer.data()))
+    return R::failure(kStdoutName + ": cannot write: cannot make a temporary folder in " +
+                      temporaryFolder() + ": " + std::strerror(errno));
+  std::string folder(buffer.data());
+  std::string path = folder + "/stdout." + extension;
+  return R::success(std::shared_ptr<StdoutSpool>(new StdoutSpool(folder, path)));
+}
+
+Status StdoutSpool::send() const {
+  const std::string fail = kStdoutName + ": cannot write: ";
+  std::FILE* in = std::fopen(path_.c_str(), "rb");
+  if (!in) return Status::failure(fail + "the encoded image is missing");
+  std::vector<char> bytes;
+  std::vector<char> chunk(1 << 20);
+  for (std::size_t n; (n = std::fread(chunk.data(), 1, chunk.size(), in)) > 0;)
+    bytes.insert(bytes.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(n));
+  const bool read_ok = !std::ferror(in);
+  std::fclose(in);
+  if (!read_ok) return Status::failure(fail + "cannot read back the encoded image");
+  // Nothing else of ours is on standard output (the commands report on stderr), so the raw
+  // descriptor carries exactly the image.
+  std::fflush(stdout);
+  if (!writeAll(STDOUT_FILENO, bytes.data(), bytes.size()))
+    return Status::failure(fail + std::strerror(errno));
+  return Status::success();
+}
+
+std::string StdoutSpool::named(std::string message) const {
+  message = io_text::replaceAll(std::move(message), path_, kStdoutName);
+  return io_text::replaceAll(std::move(message), folder_, kStdoutName);
+}
+
+bool imageExtensionWritable(const std::string& extension) {
+  if (extension.empty() || extension.find_first_of("/.") != std::string::npos) return false;
+  auto out = OIIO::ImageOutput::create("stdout." + io_text::lower(extension));
+  if (!out) OIIO::geterror();  // clear the thread's pending message
+  return out != nullptr;
+}
+
+}  // namespace artcam
