@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -125,8 +126,20 @@ Status StdoutSpool::send() const {
   // Nothing else of ours is on standard output (the commands report on stderr), so the raw
   // descriptor carries exactly the image.
   std::fflush(stdout);
-  if (!writeAll(STDOUT_FILENO, bytes.data(), bytes.size()))
-    return Status::failure(fail + std::strerror(errno));
+  // A reader that closes the pipe early (`| head -c 10`) would kill the process by SIGPIPE with
+  // no word; ignored for this write, the write fails with EPIPE and the command says so.
+  struct sigaction ignore {}, previous {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  const bool ignoring = sigaction(SIGPIPE, &ignore, &previous) == 0;
+  const bool written = writeAll(STDOUT_FILENO, bytes.data(), bytes.size());
+  const int write_errno = errno;
+  if (ignoring) sigaction(SIGPIPE, &previous, nullptr);
+  if (!written)
+    return Status::failure(fail + (write_errno == EPIPE
+                                       ? std::string("the reader closed the pipe before the "
+                                                     "whole image was written")
+                                       : std::string(std::strerror(write_errno))));
   return Status::success();
 }
 

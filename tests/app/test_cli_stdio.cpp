@@ -9,6 +9,8 @@
 
 #include <QtTest/QtTest>
 
+#include <QProcess>
+
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -179,6 +181,23 @@ class TestCliStdio : public QObject {
     QVERIFY2(!run.err.contains(spoolDir()), qPrintable(run.err));
     QCOMPARE(QDir(spoolDir()).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot),
              QStringList());
+  }
+
+  void aReaderClosingThePipeEarlyIsOneLine() {
+    // 2400×1600 uncompressed TIFF (11.5 MB, far beyond a pipe's buffer) into `true`, which reads
+    // nothing and exits: the write meets a closed pipe. The command must say so on stderr and
+    // exit 1, not die of SIGPIPE.
+    QProcess shell;
+    shell.start(QStringLiteral("/bin/bash"),
+                {QStringLiteral("-c"),
+                 QStringLiteral("\"$0\" warp \"$1\" \"$2\" --size 2400x1600 -o - --format tif "
+                                "| true; exit ${PIPESTATUS[0]}"),
+                 QStringLiteral(ARTCAM_CLI_PATH), path("in.png"), path("id.artcam")});
+    QVERIFY(shell.waitForFinished(120000));
+    const QString err = QString::fromUtf8(shell.readAllStandardError());
+    QCOMPARE(shell.exitCode(), 1);
+    QVERIFY2(err.contains("<stdout>") && err.contains("closed the pipe"), qPrintable(err));
+    QCOMPARE(err.trimmed().count('\n'), 0);
   }
 
   void usageMistakesExitTwo() {
