@@ -104,7 +104,8 @@ void decodeFloats(const Transfer& transfer, bool associated_encoded, ImageF& ima
 // null; fails when the profile is damaged or does not describe the pixels (icc_profile.h).
 Result<std::shared_ptr<const IccProfile>> conversionProfile(const OIIO::ImageSpec& spec,
                                                             int colour_channels, bool jpeg,
-                                                            const std::string& path) {
+                                                            const std::string& path,
+                                                            bool& cmyk_not_applied) {
   using R = Result<std::shared_ptr<const IccProfile>>;
   const OIIO::ParamValue* attribute = spec.find_attribute("ICCProfile");
   if (!attribute) return R::success(nullptr);
@@ -113,7 +114,10 @@ Result<std::shared_ptr<const IccProfile>> conversionProfile(const OIIO::ImageSpe
   // A CMYK JPEG: the reader has already turned its ink values into RGB (without the profile),
   // so the profile no longer describes the pixels; they are read as sRGB, as before profiles
   // were honoured, and colour_space says so.
-  if (jpeg && colour_channels == 3 && IccProfile::describesCmyk(bytes)) return R::success(nullptr);
+  if (jpeg && colour_channels == 3 && IccProfile::describesCmyk(bytes)) {
+    cmyk_not_applied = true;
+    return R::success(nullptr);
+  }
   if (colour_channels != 1 && colour_channels != 3)
     return R::failure(path + ": cannot read: an ICC profile cannot describe its " +
                       std::to_string(colour_channels) + " colour channels");
@@ -165,7 +169,8 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   const bool linear = transfer.kind == Transfer::Kind::Linear;
 
   const bool jpeg = std::string(in->format_name()) == "jpeg";
-  auto icc = conversionProfile(spec, channels - (alpha >= 0 ? 1 : 0), jpeg, path);
+  bool cmyk_not_applied = false;
+  auto icc = conversionProfile(spec, channels - (alpha >= 0 ? 1 : 0), jpeg, path, cmyk_not_applied);
   if (!icc) return R::failure(icc.status.message);
 
   LoadedImage loaded;
@@ -247,10 +252,8 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
     loaded.info.icc = *icc;
     loaded.info.srgb = false;
     loaded.info.colour_space = "ICC: " + (*icc)->description();
-  } else if (const OIIO::ParamValue* cmyk = jpeg ? spec.find_attribute("ICCProfile") : nullptr) {
-    const auto* first = static_cast<const unsigned char*>(cmyk->data());
-    if (IccProfile::describesCmyk({first, first + cmyk->type().size()}))
-      loaded.info.colour_space = "sRGB (CMYK turned into RGB by the reader; its profile not applied)";
+  } else if (cmyk_not_applied) {
+    loaded.info.colour_space = "sRGB (CMYK turned into RGB by the reader; its profile not applied)";
   }
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));

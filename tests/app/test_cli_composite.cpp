@@ -6,6 +6,7 @@
 // without --second, and an unknown operator, are refused in one line.
 #include "core/io/image_io.h"
 #include "tests/app/cli_run.h"
+#include "tests/support/porter_duff.h"
 
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
@@ -41,14 +42,6 @@ Colour pixelOf(const artcam::ImageF& image, int x, int y) {
   return {p[0], p[1], p[2], image.alpha_channel >= 0 ? p[image.alpha_channel] : 1.0f};
 }
 
-// Multiply (the separable blend mode in premultiplied alpha) by its definition.
-Colour multiply(const Colour& a, const Colour& b) {
-  Colour c;
-  for (int k = 0; k < 3; ++k) c[k] = a[k] * b[k] + a[k] * (1 - b[3]) + b[k] * (1 - a[3]);
-  c[3] = a[3] + b[3] - a[3] * b[3];
-  return c;
-}
-
 bool oneLine(const QString& text) { return text.trimmed().count('\n') == 0 && !text.trimmed().isEmpty(); }
 
 }  // namespace
@@ -82,7 +75,7 @@ class TestCliComposite : public QObject {
     for (int y = 0; y < 6; ++y)
       for (int x = 0; x < 9; ++x) {
         const Colour ca = pixelOf(a->image, x, y), cb = pixelOf(b->image, x, y);
-        const Colour z = 0.2 * ca + 0.8 * multiply(ca, cb);
+        const Colour z = 0.2 * ca + 0.8 * artcam::test::porterDuff(artcam::CompositeOp::Multiply, ca, cb);
         const double alpha = std::min(z[3], 1.0);  // eq 5
         const Colour want(z[0] / z[3] * alpha, z[1] / z[3] * alpha, z[2] / z[3] * alpha, alpha);
         worst = std::max(worst, (pixelOf(o->image, x, y) - want).cwiseAbs().maxCoeff());

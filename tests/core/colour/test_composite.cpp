@@ -7,6 +7,7 @@
 #include "core/colour/composite.h"
 #include "core/effects/effect_table.h"
 #include "core/model/structure.h"
+#include "tests/support/porter_duff.h"
 
 #include <QtTest/QtTest>
 
@@ -16,51 +17,19 @@
 #include <stdexcept>
 
 using namespace artcam;
+using artcam::test::kCompositeOps;
+using artcam::test::porterDuff;
 
 namespace {
 
 using Colour = Eigen::Vector4d;  // (a·r, a·g, a·b, a), premultiplied
 
-// The Porter–Duff operators on premultiplied colours, as their definitions state them (alpha by
-// the same rule as the colours where the definition is per element; the separable blend modes
-// multiply and screen with the union alpha aA + aB − aA·aB).
-Colour porterDuff(CompositeOp op, const Colour& a, const Colour& b) {
-  const double aa = a[3], ab = b[3];
-  switch (op) {
-    case CompositeOp::Over: return a + (1 - aa) * b;
-    case CompositeOp::Under: return b + (1 - ab) * a;
-    case CompositeOp::In: return a * ab;
-    case CompositeOp::Out: return a * (1 - ab);
-    case CompositeOp::Atop: return a * ab + b * (1 - aa);
-    case CompositeOp::Xor: return a * (1 - ab) + b * (1 - aa);
-    case CompositeOp::Add: return a + b;
-    case CompositeOp::Multiply: {
-      Colour c;
-      for (int k = 0; k < 3; ++k) c[k] = a[k] * b[k] + a[k] * (1 - ab) + b[k] * (1 - aa);
-      c[3] = aa + ab - aa * ab;
-      return c;
-    }
-    case CompositeOp::Screen: {
-      Colour c;
-      for (int k = 0; k < 3; ++k) c[k] = a[k] + b[k] - a[k] * b[k];
-      c[3] = aa + ab - aa * ab;
-      return c;
-    }
-    case CompositeOp::Mix: return b;
-  }
-  throw std::logic_error("unknown operator");
-}
 
 Colour randomPremultiplied(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double alpha = unit(rng);
   return {alpha * unit(rng), alpha * unit(rng), alpha * unit(rng), alpha};
 }
-
-const CompositeOp kOps[] = {CompositeOp::Over,   CompositeOp::Under, CompositeOp::In,
-                            CompositeOp::Out,    CompositeOp::Atop,  CompositeOp::Xor,
-                            CompositeOp::Add,    CompositeOp::Multiply, CompositeOp::Screen,
-                            CompositeOp::Mix};
 
 }  // namespace
 
@@ -78,7 +47,7 @@ class TestComposite : public QObject {
     pairs.emplace_back(Colour(0.2, 0.3, 0.4, 1.0), Colour(0.9, 0.8, 0.7, 1.0));
     pairs.emplace_back(Colour(0, 0, 0, 0), Colour(0.5, 0.25, 0.125, 0.5));
     pairs.emplace_back(Colour(0.3, 0.1, 0.2, 0.6), Colour(0, 0, 0, 0));
-    for (const CompositeOp op : kOps)
+    for (const CompositeOp op : kCompositeOps)
       for (const double t : {1.0, 0.37, 0.0}) {
         const Camera camera = compositeCamera(op, t, frame);
         for (const auto& [a, b] : pairs) {
@@ -120,9 +89,9 @@ class TestComposite : public QObject {
   }
 
   void operatorNamesRoundTrip() {
-    for (const CompositeOp op : kOps) QVERIFY(compositeOpFromName(compositeOpName(op)) == op);
+    for (const CompositeOp op : kCompositeOps) QVERIFY(compositeOpFromName(compositeOpName(op)) == op);
     QVERIFY(!compositeOpFromName("overlay"));
-    QCOMPARE(compositeOpNames().size(), std::size(kOps));
+    QCOMPARE(compositeOpNames().size(), std::size(kCompositeOps));
   }
 
   // The effects table's row: the operator is a named choice (its index is the value), and the
@@ -144,9 +113,9 @@ class TestComposite : public QObject {
     QVERIFY(!checkEffectValue(*op, {10.0}).empty());
     QVERIFY(checkEffectValue(*op, {9.0}).empty());
     const FrameSize frame{320, 200};
-    for (size_t i = 0; i < std::size(kOps); ++i) {
+    for (size_t i = 0; i < std::size(kCompositeOps); ++i) {
       const Artcam built = buildEffect("composite", {{"op", {double(i)}}, {"amount", {0.25}}}, frame);
-      const Camera want = compositeCamera(kOps[i], 0.25, frame);
+      const Camera want = compositeCamera(kCompositeOps[i], 0.25, frame);
       QCOMPARE(built.layers.size(), size_t{1});
       QVERIFY(built.main().blocks() == want.blocks());
       for (size_t e = 0; e < want.stages()[0].q.size(); ++e)

@@ -9,6 +9,7 @@
 // is refused.
 #include "core/colour/composite.h"
 #include "core/pipeline/render.h"
+#include "tests/support/porter_duff.h"
 
 #include <QtTest/QtTest>
 
@@ -19,6 +20,8 @@
 #include <stdexcept>
 
 using namespace artcam;
+using artcam::test::kCompositeOps;
+using artcam::test::porterDuff;
 
 namespace {
 
@@ -45,30 +48,6 @@ ImageF randomImage(int w, int h, unsigned seed, bool transparent_last_row) {
   return image;
 }
 
-// The Porter–Duff operators from their definitions (as in tests/core/colour/test_composite.cpp).
-Colour porterDuff(CompositeOp op, const Colour& a, const Colour& b) {
-  const double aa = a[3], ab = b[3];
-  Colour c;
-  switch (op) {
-    case CompositeOp::Over: return a + (1 - aa) * b;
-    case CompositeOp::Under: return b + (1 - ab) * a;
-    case CompositeOp::In: return a * ab;
-    case CompositeOp::Out: return a * (1 - ab);
-    case CompositeOp::Atop: return a * ab + b * (1 - aa);
-    case CompositeOp::Xor: return a * (1 - ab) + b * (1 - aa);
-    case CompositeOp::Add: return a + b;
-    case CompositeOp::Multiply:
-      for (int k = 0; k < 3; ++k) c[k] = a[k] * b[k] + a[k] * (1 - ab) + b[k] * (1 - aa);
-      c[3] = aa + ab - aa * ab;
-      return c;
-    case CompositeOp::Screen:
-      for (int k = 0; k < 3; ++k) c[k] = a[k] + b[k] - a[k] * b[k];
-      c[3] = aa + ab - aa * ab;
-      return c;
-    case CompositeOp::Mix: return b;
-  }
-  throw std::logic_error("unknown operator");
-}
 
 // eq 5 on the formula: colour / weight, premultiplied again by the weight clamped to [0, 1];
 // transparent where the weight is not positive.
@@ -91,11 +70,6 @@ double worstError(const ImageF& out, const ImageF& a, const ImageF& b, Composite
   return worst;
 }
 
-const CompositeOp kOps[] = {CompositeOp::Over,   CompositeOp::Under, CompositeOp::In,
-                            CompositeOp::Out,    CompositeOp::Atop,  CompositeOp::Xor,
-                            CompositeOp::Add,    CompositeOp::Multiply, CompositeOp::Screen,
-                            CompositeOp::Mix};
-
 }  // namespace
 
 class TestRenderComposite : public QObject {
@@ -106,7 +80,7 @@ class TestRenderComposite : public QObject {
     const ImageF a = randomImage(7, 5, 11, false), b = randomImage(7, 5, 12, true);
     RenderInputs inputs = RenderInputs::of(a);
     inputs.second = &b;
-    for (const CompositeOp op : kOps)
+    for (const CompositeOp op : kCompositeOps)
       for (const double t : {1.0, 0.6}) {
         const Artcam camera(compositeCamera(op, t, {7, 5}));
         RenderSummary summary;
