@@ -36,7 +36,8 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
       fill_colour_(new QPushButton(this)),
       colour_(Qt::black),
       quality_(new QSpinBox(this)),
-      bit_depth_(new QComboBox(this)) {
+      bit_depth_(new QComboBox(this)),
+      colour_space_(new QComboBox(this)) {
   setWindowTitle(tr("Export options"));
   setObjectName("exportOptionsDialog");
   const QString suffix = QFileInfo(path).suffix().toLower();
@@ -72,12 +73,24 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
   }
   const int at = bit_depth_->findData(QString::fromStdString(current.write.pixel_type));
   bit_depth_->setCurrentIndex(at < 0 ? 0 : at);
+  // As `artcam export --colourspace input|srgb`: integer files keep the ICC profile the photo
+  // was converted from (an Adobe RGB photo stays Adobe RGB), or are encoded as sRGB with an
+  // sRGB profile; float files hold the linear working space either way (image_io.h).
+  colour_space_->setObjectName("colourSpace");
+  colour_space_->addItem(tr("As the photo"), int(WriteImageOptions::ColourSpace::Input));
+  colour_space_->addItem(tr("sRGB"), int(WriteImageOptions::ColourSpace::Srgb));
+  colour_space_->setCurrentIndex(colour_space_->findData(int(current.write.colour_space)));
+  colour_space_->setToolTip(
+      tr("As the photo: 8- and 16-bit files keep the photo's ICC profile (Adobe RGB stays Adobe "
+         "RGB). sRGB: encoded as sRGB with an sRGB profile, for the web. Float files hold linear "
+         "Rec.709 either way."));
   auto* form = new QFormLayout;
   form->addRow(tr("Pixels outside the photo"), keep_);
   form->addRow(QString(), fill_row);
   form->addRow(QString(), crop_);
   form->addRow(tr("JPEG quality"), quality_);
   form->addRow(tr("Bit depth"), bit_depth_);
+  form->addRow(tr("Colour space"), colour_space_);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
   connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
@@ -100,6 +113,8 @@ ExportOptions ExportOptionsDialog::options() const {
                                   linearFromSrgb(colour_.blueF()), 1.0f};
   if (quality_->isEnabled()) o.write.jpeg_quality = quality_->value();
   o.write.pixel_type = bit_depth_->currentData().toString().toStdString();
+  o.write.colour_space =
+      static_cast<WriteImageOptions::ColourSpace>(colour_space_->currentData().toInt());
   return o;
 }
 

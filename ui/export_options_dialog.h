@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The export options image editors offer after the file name: what to do with pixels the camera
 // leaves without a preimage (keep them transparent, fill them with a colour, or crop to the
-// largest rectangle of valid pixels, as Hugin's "crop to valid area"), the JPEG quality and the
-// bit depth. The choices persist for the session's next exports (Session::exportOptions).
+// largest rectangle of valid pixels, as Hugin's "crop to valid area"), the JPEG quality, the
+// bit depth and the colour space (the photo's own ICC profile, or sRGB for the web). The choices persist for the session's next exports (Session::exportOptions).
 #pragma once
 
 #include "core/project/project_render.h"
@@ -42,6 +42,7 @@ class ExportOptionsDialog : public QDialog {
   QColor colour_;
   QSpinBox* quality_;
   QComboBox* bit_depth_;
+  QComboBox* colour_space_;
 };
 
 }  // namespace artcam::ui

@@ -7,19 +7,24 @@
 #include "ui/depth_commands.h"
 #include "ui/depth_model.h"
 #include "ui/panels/tensor_panel.h"
+#include "tests/support/icc_files.h"
 #include "tests/ui/ui_fixtures.h"
+#include "ui/export_options_dialog.h"
 #include "ui/commands.h"
 #include "ui/document.h"
 #include "ui/panels/pairs_panel.h"
 #include "ui/project_file.h"
 #include "ui/session.h"
 
+#include <QComboBox>
 #include <QDir>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableView>
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
+
+#include <OpenImageIO/imageio.h>
 
 using namespace artcam;
 using namespace artcam::ui;
@@ -31,7 +36,7 @@ class TestSession : public QObject {
 
   QString writeSamplePhoto() {
     const QString path = dir_.filePath("photo.png");
-    const PhotoPtr p = test::syntheticPhoto();
+    const PhotoPtr p = ui::test::syntheticPhoto();
     const Status s = writeImage(path.toStdString(), p->full.image);
     if (!s) qWarning("%s", s.message.c_str());
     return path;
@@ -46,7 +51,7 @@ class TestSession : public QObject {
   void projectRoundTripIsExact() {
     Project p;
     p.photo_path = dir_.filePath("photo.png");
-    p.pairs = test::ninePairs();
+    p.pairs = ui::test::ninePairs();
     p.pairs[3].enabled = false;
     p.pairs[0].source = {1.0 / 3.0, 2.0 / 7.0};  // needs all 17 digits
     p.model = ModelClass::Homography;
@@ -89,7 +94,7 @@ class TestSession : public QObject {
     session.openPhoto(photo);
     QTRY_VERIFY_WITH_TIMEOUT(doc.photo() != nullptr, 20000);
     QCOMPARE(doc.frame().width, 320);
-    for (const Pair& p : test::ninePairs()) doc.undoStack()->push(new AddPairCommand(&doc, p));
+    for (const Pair& p : ui::test::ninePairs()) doc.undoStack()->push(new AddPairCommand(&doc, p));
     QVERIFY(doc.isModified());
     const QString project = dir_.filePath("session.artcamproj");
     QVERIFY(session.saveProjectTo(project));
@@ -125,7 +130,7 @@ class TestSession : public QObject {
     Document doc;
     Session session(&doc, nullptr);
     session.setInteractive(false);
-    doc.reset(test::syntheticPhoto(), test::ninePairs(), ModelClass::Quadratic);
+    doc.reset(ui::test::syntheticPhoto(), ui::test::ninePairs(), ModelClass::Quadratic);
     QVERIFY(doc.fit().status.ok);
     const QString cam = dir_.filePath("cam.artcam");
     QVERIFY(session.exportArtcam(cam));
@@ -133,7 +138,7 @@ class TestSession : public QObject {
     Document doc2;
     Session session2(&doc2, nullptr);
     session2.setInteractive(false);
-    doc2.reset(test::syntheticPhoto());
+    doc2.reset(ui::test::syntheticPhoto());
     session2.importArtcam(cam);
     QCOMPARE(doc2.pairs().size(), size_t{9});
     doc2.undoStack()->push(new SetModelCommand(&doc2, ModelClass::Quadratic));
@@ -153,11 +158,69 @@ class TestSession : public QObject {
     QCOMPARE(back->image.height, 240);
   }
 
+  // The export dialog's colour space reaches the file: an Adobe RGB photo exported "As the
+  // photo" keeps its profile and its codes, "sRGB" is re-encoded and labelled sRGB.
+  void exportColourSpaceFromTheDialog() {
+    ExportOptions current;
+    current.write.colour_space = WriteImageOptions::ColourSpace::Srgb;
+    ExportOptionsDialog dialog(current, "out.png");
+    auto* combo = dialog.findChild<QComboBox*>("colourSpace");
+    QVERIFY(combo);
+    QCOMPARE(dialog.options().write.colour_space, WriteImageOptions::ColourSpace::Srgb);
+    combo->setCurrentIndex(combo->findData(int(WriteImageOptions::ColourSpace::Input)));
+    QCOMPARE(dialog.options().write.colour_space, WriteImageOptions::ColourSpace::Input);
+
+    // A flat Adobe RGB colour, so every pixel the camera covers keeps it.
+    const std::uint16_t code[3] = {13107, 39321, 26214};
+    std::vector<std::uint16_t> pixels(320 * 240 * 3);
+    for (size_t k = 0; k < pixels.size(); ++k) pixels[k] = code[k % 3];
+    const std::vector<unsigned char> adobe = artcam::test::adobeRgbProfile();
+    const QString photo_path = dir_.filePath("adobe.png");
+    QVERIFY(artcam::test::write16(photo_path.toStdString(), 320, 240, 3, pixels, adobe));
+    Result<LoadedImage> loaded = readImage(photo_path.toStdString());
+    QVERIFY2(loaded.ok(), loaded.status.message.c_str());
+    QVERIFY(loaded->info.icc);
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    doc.reset(makePhoto(photo_path, std::move(*loaded.value)), ui::test::ninePairs(),
+              ModelClass::Quadratic);
+    QVERIFY(doc.fit().status.ok);
+
+    auto exportWith = [&](WriteImageOptions::ColourSpace space, const QString& name,
+                          std::vector<std::uint16_t>& centre) {
+      ExportOptions options;
+      options.write.colour_space = space;
+      session.setExportOptions(options);
+      QSignalSpy finished(&session, &Session::exportFinished);
+      const QString out = dir_.filePath(name);
+      session.exportImage(out);
+      if (!QTest::qWaitFor([&] { return finished.size() == 1; }, 60000)) return std::vector<unsigned char>{};
+      if (!finished.front().at(0).toBool()) qWarning("%s", qPrintable(finished.front().at(1).toString()));
+      auto in = OIIO::ImageInput::open(out.toStdString());
+      if (!in) return std::vector<unsigned char>{};
+      const OIIO::ImageSpec spec = in->spec();
+      std::vector<std::uint16_t> all(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+      in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT16, all.data());
+      const size_t at = (static_cast<size_t>(spec.height / 2) * spec.width + spec.width / 2) * spec.nchannels;
+      centre.assign(all.begin() + at, all.begin() + at + 3);
+      return artcam::test::profileOf(spec);
+    };
+    std::vector<std::uint16_t> kept, srgb;
+    QVERIFY(exportWith(WriteImageOptions::ColourSpace::Input, "as-photo.png", kept) == adobe);
+    for (int c = 0; c < 3; ++c) QVERIFY2(std::abs(int(kept[c]) - int(code[c])) <= 2, qPrintable(QString::number(kept[c])));
+    const std::vector<unsigned char> srgb_profile =
+        exportWith(WriteImageOptions::ColourSpace::Srgb, "srgb.png", srgb);
+    QVERIFY(!srgb_profile.empty() && srgb_profile != adobe);
+    // Adobe's green primary lies outside sRGB: this green-heavy colour's red comes out lower.
+    QVERIFY2(srgb[0] + 1000 < kept[0], qPrintable(QString("%1 vs %2").arg(srgb[0]).arg(kept[0])));
+  }
+
   void importTakesEveryKindAndKeepsIt() {
     Document doc;
     Session session(&doc, nullptr);
     session.setInteractive(false);
-    doc.reset(test::syntheticPhoto());
+    doc.reset(ui::test::syntheticPhoto());
     TensorPanel tensors(&doc);
     // Chromatic aberration: three layers, one per colour (the paper's Fig 4), made for another
     // frame size: it is scaled to the photo and every layer is kept.
@@ -197,7 +260,7 @@ class TestSession : public QObject {
     Document doc;
     Session session(&doc, nullptr);
     session.setInteractive(false);
-    doc.reset(test::syntheticPhoto());
+    doc.reset(ui::test::syntheticPhoto());
     const QString depth_path = dir_.filePath("depth.exr");
     QVERIFY(!session.exportDepthMap(depth_path));  // nothing painted yet
     QVERIFY(!QFile::exists(depth_path));
@@ -239,7 +302,7 @@ class TestSession : public QObject {
     Session session(&doc, nullptr);
     session.setInteractive(false);
     // Large enough that the export is still running when Cancel arrives.
-    doc.reset(test::syntheticPhoto(3000, 3000), test::ninePairs(3000, 3000), ModelClass::Quadratic);
+    doc.reset(ui::test::syntheticPhoto(3000, 3000), ui::test::ninePairs(3000, 3000), ModelClass::Quadratic);
     QSignalSpy finished(&session, &Session::exportFinished);
     const QString out = dir_.filePath("cancelled.png");
     session.exportImage(out);
@@ -252,7 +315,7 @@ class TestSession : public QObject {
 
   void pairsTableEditsBothWays() {
     Document doc;
-    doc.reset(test::syntheticPhoto(), test::ninePairs());
+    doc.reset(ui::test::syntheticPhoto(), ui::test::ninePairs());
     PairsPanel panel(&doc);
     QAbstractItemModel* model = panel.table()->model();
     QCOMPARE(model->rowCount(), 9);
@@ -264,9 +327,9 @@ class TestSession : public QObject {
     QVERIFY(!doc.pairs()[2].enabled);
     doc.undoStack()->undo();
     doc.undoStack()->undo();
-    QVERIFY(doc.pairs() == test::ninePairs());
+    QVERIFY(doc.pairs() == ui::test::ninePairs());
     QCOMPARE(model->data(model->index(2, PairsTableModel::TargetX), Qt::EditRole).toDouble(),
-             test::ninePairs()[2].target.x());
+             ui::test::ninePairs()[2].target.x());
     // Selection travels both ways.
     doc.setSelection({1, 4});
     QCOMPARE(panel.table()->selectionModel()->selectedRows().size(), 2);
@@ -276,10 +339,10 @@ class TestSession : public QObject {
 
   void bannerCountsMissingPairs() {
     Document doc;
-    doc.reset(test::syntheticPhoto());
+    doc.reset(ui::test::syntheticPhoto());
     PairsPanel panel(&doc);
     doc.undoStack()->push(new SetModelCommand(&doc, ModelClass::Quadratic));
-    std::vector<Pair> pairs = test::ninePairs();
+    std::vector<Pair> pairs = ui::test::ninePairs();
     for (int i = 0; i < 5; ++i)
       doc.undoStack()->push(new AddPairCommand(&doc, pairs[static_cast<size_t>(i)]));
     QVERIFY2(panel.bannerText().contains("4 more"), qPrintable(panel.bannerText()));

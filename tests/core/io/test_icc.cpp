@@ -7,12 +7,12 @@
 // refused in one line.
 #include "core/colour/icc_profile.h"
 #include "core/io/image_io.h"
+#include "tests/support/icc_files.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>
 
 #include <OpenImageIO/imageio.h>
-#include <lcms2.h>
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -20,10 +20,9 @@
 #include <cstdint>
 
 using namespace artcam;
+using namespace artcam::test;
 
 namespace {
-
-constexpr double kAdobeGamma = 563.0 / 256.0;
 
 double srgbToLinear(double v) {
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
@@ -46,10 +45,6 @@ Eigen::Matrix3d xyzFromRgb(const double primaries[3][2], const double white[2]) 
   return m * scale.asDiagonal();
 }
 
-const double kD65[2] = {0.3127, 0.3290};
-const double kAdobePrimaries[3][2] = {{0.64, 0.33}, {0.21, 0.71}, {0.15, 0.06}};
-const double kSrgbPrimaries[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};
-
 // Linear sRGB from Adobe RGB encoded values, independent of lcms2.
 Eigen::Vector3d linearSrgbFromAdobe(const Eigen::Vector3d& encoded) {
   const Eigen::Matrix3d srgb_from_adobe =
@@ -57,53 +52,6 @@ Eigen::Vector3d linearSrgbFromAdobe(const Eigen::Vector3d& encoded) {
   const Eigen::Vector3d linear =
       encoded.unaryExpr([](double v) { return std::pow(v, kAdobeGamma); });
   return srgb_from_adobe * linear;
-}
-
-std::vector<unsigned char> saveProfile(cmsHPROFILE profile, const char* description) {
-  cmsMLU* mlu = cmsMLUalloc(nullptr, 1);
-  cmsMLUsetASCII(mlu, "en", "US", description);
-  cmsWriteTag(profile, cmsSigProfileDescriptionTag, mlu);
-  cmsMLUfree(mlu);
-  cmsUInt32Number size = 0;
-  cmsSaveProfileToMem(profile, nullptr, &size);
-  std::vector<unsigned char> bytes(size);
-  cmsSaveProfileToMem(profile, bytes.data(), &size);
-  cmsCloseProfile(profile);
-  return bytes;
-}
-
-std::vector<unsigned char> adobeRgbProfile() {
-  const cmsCIExyY white{kD65[0], kD65[1], 1.0};
-  const cmsCIExyYTRIPLE primaries{{0.64, 0.33, 1.0}, {0.21, 0.71, 1.0}, {0.15, 0.06, 1.0}};
-  cmsToneCurve* curve = cmsBuildGamma(nullptr, kAdobeGamma);
-  cmsToneCurve* curves[3] = {curve, curve, curve};
-  cmsHPROFILE profile = cmsCreateRGBProfile(&white, &primaries, curves);
-  cmsFreeToneCurve(curve);
-  return saveProfile(profile, "Adobe RGB (1998)");
-}
-
-std::vector<unsigned char> greyGammaProfile(double gamma) {
-  const cmsCIExyY white{kD65[0], kD65[1], 1.0};
-  cmsToneCurve* curve = cmsBuildGamma(nullptr, gamma);
-  cmsHPROFILE profile = cmsCreateGrayProfile(&white, curve);
-  cmsFreeToneCurve(curve);
-  return saveProfile(profile, "Grey gamma 2.2");
-}
-
-void setProfile(OIIO::ImageSpec& spec, const std::vector<unsigned char>& bytes) {
-  spec.attribute("ICCProfile",
-                 OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(bytes.size())),
-                 bytes.data());
-}
-
-bool write16(const std::string& path, int w, int h, int c, const std::vector<std::uint16_t>& data,
-             const std::vector<unsigned char>& icc) {
-  auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
-  if (!out) return false;
-  OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT16);
-  if (!icc.empty()) setProfile(spec, icc);
-  return out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT16, data.data()) &&
-         out->close();
 }
 
 template <class T>
@@ -114,13 +62,6 @@ std::vector<T> readRaw(const std::string& path, OIIO::TypeDesc type, OIIO::Image
   std::vector<T> data(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
   in->read_image(0, 0, 0, spec.nchannels, type, data.data());
   return data;
-}
-
-std::vector<unsigned char> profileOf(const OIIO::ImageSpec& spec) {
-  const OIIO::ParamValue* p = spec.find_attribute("ICCProfile");
-  if (!p) return {};
-  const auto* first = static_cast<const unsigned char*>(p->data());
-  return {first, first + p->type().size()};
 }
 
 // Adobe RGB test colours: black, white, the three primaries, and mixed ones.
