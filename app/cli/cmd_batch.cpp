@@ -205,7 +205,7 @@ int batchCommand(const std::vector<std::string>& argv) {
       if (interruptRequested()) break;
       const double mpix = static_cast<double>(item->image.width) * item->image.height / 1e6;
       const BatchItem& names = items[item->index];
-      if (guarded(item->index, [&] { encodeWarp(item->image, request, no_report); })) {
+      if (guarded(item->index, [&] { encodeWarp(item->image, request, no_report, camera); })) {
         tally.written.fetch_add(1);
         results[item->index] = {"written", "", item->image.width, item->image.height,
                                 item->image.render_ms, item->image.description};

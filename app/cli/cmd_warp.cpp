@@ -139,7 +139,7 @@ int warpCommand(const std::vector<std::string>& argv) {
     DecodedInput decoded =
         decodeForWarp(camera, request, streams.input(), streams.output(), stage("reading"));
     RenderedOutput rendered = renderForWarp(camera, std::move(decoded), request, stage("warping"));
-    encodeWarp(rendered, request, stage("writing"));
+    encodeWarp(rendered, request, stage("writing"), camera);
     streams.sendOutput();
     written = true;
     bar.finish();

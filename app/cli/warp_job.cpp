@@ -4,6 +4,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/memory.h"
 #include "core/io/depth_file.h"
+#include "core/util/memory_budget.h"
 
 #include <algorithm>
 #include <chrono>
@@ -104,6 +105,7 @@ WarpCameraFile loadWarpCamera(const std::string& path) {
 
 double DecodedInput::megapixels() const {
   if (stored) return static_cast<double>(stored->width) * stored->height / 1e6;
+  if (streamed) return static_cast<double>(streamed->width()) * streamed->height() / 1e6;
   if (loaded) return static_cast<double>(loaded->image.width) * loaded->image.height / 1e6;
   return 0.0;
 }
@@ -111,7 +113,7 @@ double DecodedInput::megapixels() const {
 DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& request,
                            const std::string& input, const std::string& output,
                            const Progress& progress) {
-  DecodedInput decoded{input, output, std::nullopt, std::nullopt};
+  DecodedInput decoded{input, output, std::nullopt, std::nullopt, nullptr};
   ReadImageOptions read;
   read.progress = progress;
   // The stored-type path where the output keeps the input's encoding (peak memory ≤ input +
@@ -119,12 +121,30 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
   // render from the linear photo, go through linear light (image_io.h); so does
   // --colourspace srgb, which may re-encode an ICC-tagged input.
   if (!camera.linear && request.write.colour_space == WriteImageOptions::ColourSpace::Input) {
-    const auto type = readStoredPixelType(input);
-    if (!type) throw CommandError(type.status.message);
+    const auto shape = readStoredShape(input);
+    if (!shape) throw CommandError(shape.status.message);
+    const PixelType type = shape->type;
     const std::string& asked = request.write.pixel_type;
-    const bool same_type = asked.empty() || (asked == "uint8" && *type == PixelType::UInt8) ||
-                           (asked == "uint16" && *type == PixelType::UInt16);
-    if (same_type && storedWriteKeepsEncoding(output, *type)) {
+    const bool same_type = asked.empty() || (asked == "uint8" && type == PixelType::UInt8) ||
+                           (asked == "uint16" && type == PixelType::UInt16);
+    if (same_type && storedWriteKeepsEncoding(output, type)) {
+      // The decoded photo and the output together (the output frame as the rule gives it, an
+      // EXIF turn aside), and the float copy readStoredImage also checks, against the budget.
+      const FrameSize out = outputFrameFor(camera.camera, {shape->width, shape->height},
+                                           request.options.warp.width, request.options.warp.height).size;
+      const double sample = pixelTypeSize(type);
+      const double whole =
+          static_cast<double>(shape->width) * shape->height * shape->channels * sample +
+          static_cast<double>(out.width) * out.height * (shape->channels + 1) * sample;
+      const double as_float = static_cast<double>(shape->width) * shape->height *
+                              std::max(4, shape->channels) * 4.0;
+      const double budget = memoryBudgetBytes();
+      if ((whole > budget || as_float > budget) && streamableCamera(camera.camera)) {
+        auto reader = StoredImageReader::open(input);
+        if (!reader) throw CommandError(reader.status.message);
+        decoded.streamed = std::move(*reader.value);
+        return decoded;
+      }
       auto stored = readStoredImage(input, read);
       if (!stored) throw CommandError(stored.status.message);
       decoded.stored = std::move(*stored.value);
@@ -142,6 +162,11 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
   DecodedInput source = std::move(input);  // freed on return, before the output is encoded
   RenderedOutput out;
   out.output = source.output;
+  if (source.streamed) {  // rendered band by band as encodeWarp writes
+    out.like = source.streamed->info();
+    out.streamed = std::move(source.streamed);
+    return out;
+  }
   RenderOptions options = request.options;
   options.warp.progress = progress;
   const ImageF* depth = request.depth ? &*request.depth : nullptr;
@@ -205,7 +230,24 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
   return out;
 }
 
-void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress) {
+void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress,
+                const WarpCameraFile& camera) {
+  if (output.streamed) {
+    StreamedWarpOptions streamed;
+    streamed.warp = request.options.warp;
+    streamed.warp.progress = progress;
+    streamed.write = request.write;
+    StreamedWarpSummary summary;
+    const Status s = streamWarp(*output.streamed, camera.camera, output.output, streamed, &summary);
+    output.streamed.reset();
+    if (!s) throw CommandError(s.message);
+    output.width = summary.size.width;
+    output.height = summary.size.height;
+    output.render_ms = summary.ms;
+    output.description = summary.describe();
+    output.warning = summary.warning;
+    return;
+  }
   WriteImageOptions options = request.write;
   options.progress = progress;
   const Status s = output.stored

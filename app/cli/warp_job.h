@@ -21,6 +21,7 @@
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
 #include "core/pipeline/render.h"
+#include "core/pipeline/streamed_warp.h"
 
 #include <functional>
 #include <optional>
@@ -56,10 +57,15 @@ struct DecodedInput {
   std::string output;
   std::optional<StoredImage> stored;  // the stored-type path
   std::optional<LoadedImage> loaded;  // linear float (re-encoding, piecewise, attributed)
+  // Too big for the stored path's memory budget: opened, not decoded; encodeWarp streams it
+  // (core/pipeline/streamed_warp.h).
+  std::shared_ptr<StoredImageReader> streamed;
   double megapixels() const;
 };
 // The stored-type path is taken only where it writes what was asked: the output format keeps
-// the input's kind of sample and --bit-depth, if given, is the input's integer type.
+// the input's kind of sample and --bit-depth, if given, is the input's integer type. There, a
+// photo whose decode and output would not fit the memory budget together is streamed instead
+// when its camera is a gather warp (streamableCamera); otherwise the budget refuses it.
 DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& request,
                            const std::string& input, const std::string& output,
                            const Progress& progress);
@@ -68,6 +74,7 @@ struct RenderedOutput {
   std::string output;
   std::optional<StoredImage> stored;
   std::optional<ImageF> image;
+  std::shared_ptr<StoredImageReader> streamed;  // rendered while encodeWarp writes
   ImageInfo like;        // the input's format and metadata, written back
   int width = 0;
   int height = 0;
@@ -79,6 +86,8 @@ struct RenderedOutput {
 RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
                              const WarpRequest& request, const Progress& progress);
 
-void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress);
+// Writes the output (a streamed input is rendered here, band by band, through `camera`).
+void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress,
+                const WarpCameraFile& camera);
 
 }  // namespace artcam::cli

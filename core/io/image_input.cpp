@@ -23,7 +23,7 @@ namespace artcam::io_input {
 
 double memoryBudgetBytes() { return artcam::memoryBudgetBytes(); }
 
-Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
+Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path, bool whole) {
   using R = Result<OIIO::ImageInput::unique_ptr>;
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error))
@@ -66,7 +66,7 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
   const double float_bytes = static_cast<double>(spec.width) * static_cast<double>(spec.height) *
                              std::max(4.0, static_cast<double>(spec.nchannels)) * 4.0;
   const double budget = memoryBudgetBytes();
-  if (float_bytes > budget) {
+  if (whole && float_bytes > budget) {
     const auto gib = [](double b) {
       char text[32];
       if (b < 1024.0 * 1024.0 * 1024.0)

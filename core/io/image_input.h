@@ -21,7 +21,9 @@ namespace artcam::io_input {
 // is asked for unassociated (the readers premultiply themselves). Refuses, from the header,
 // sizes no codec could decode from the file's bytes and photos whose float copy would exceed
 // the memory budget.
-Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path);
+// `whole`: false for a reader that holds only bands of rows (StoredImageReader), which skips
+// the memory-budget check (its caller checks what it holds).
+Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path, bool whole = true);
 
 // The memory one photo may take as float: ARTCAM_MAX_MEMORY_MB when set (> 0), else half of
 // the machine's physical memory.

@@ -82,13 +82,13 @@ bool keepAttribute(const std::string& name, bool same_format) {
   return kPortable.count(n.substr(0, colon)) > 0;
 }
 
+// Colour times alpha in the stored domain, rounded to nearest for integers.
 template <class T>
-void premultiplyRows(StoredImage& image) {
-  const float full = pixelTypeFullScale(image.type);
-  T* p = static_cast<T*>(static_cast<void*>(image.bytes.data()));
-  const size_t count = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
-  const int c_n = image.channels, a_i = image.alpha_channel;
-  for (size_t k = 0; k < count; ++k, p += c_n) {
+void premultiplyRow(T* p, std::size_t count, int c_n, int a_i) {
+  const float full = pixelTypeFullScale(std::is_same_v<T, std::uint8_t>    ? PixelType::UInt8
+                                        : std::is_same_v<T, std::uint16_t> ? PixelType::UInt16
+                                                                           : PixelType::Float);
+  for (std::size_t k = 0; k < count; ++k, p += c_n) {
     const float a = static_cast<float>(p[a_i]) / full;
     for (int c = 0; c < c_n; ++c) {
       if (c == a_i) continue;
@@ -96,6 +96,13 @@ void premultiplyRows(StoredImage& image) {
       else p[c] = static_cast<T>(std::lround(static_cast<float>(p[c]) * a));
     }
   }
+}
+
+template <class T>
+void premultiplyRows(StoredImage& image) {
+  premultiplyRow(static_cast<T*>(static_cast<void*>(image.bytes.data())),
+                 static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height),
+                 image.channels, image.alpha_channel);
 }
 
 // One row of the view → the written layout: alpha dropped (composited over black) or colour
@@ -240,11 +247,99 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   return R::success(std::move(image));
 }
 
-Result<PixelType> readStoredPixelType(const std::string& path) {
-  auto opened = io_input::openImageInput(path);
-  if (!opened) return Result<PixelType>::failure(opened.status.message);
+struct StoredImageReader::State {
+  std::string path;
+  OIIO::ImageInput::unique_ptr in;
+  OIIO::ImageSpec spec;
+  int channels = 0, alpha = -1;
+  PixelType type = PixelType::UInt8;
+  bool premultiply = false;
+  int next = 0;
+  ImageInfo info;
+};
+
+StoredImageReader::StoredImageReader(std::unique_ptr<State> state) : state_(std::move(state)) {}
+StoredImageReader::~StoredImageReader() = default;
+
+Result<std::unique_ptr<StoredImageReader>> StoredImageReader::open(const std::string& path) {
+  using R = Result<std::unique_ptr<StoredImageReader>>;
+  auto opened = io_input::openImageInput(path, /*whole=*/false);
+  if (!opened) return R::failure(opened.status.message);
+  auto state = std::make_unique<State>();
+  state->path = path;
+  state->in = std::move(*opened.value);
+  state->spec = state->in->spec();
+  const OIIO::ImageSpec& spec = state->spec;
+  state->channels = io_input::keptChannels(spec);
+  state->alpha = io_input::keptAlpha(spec);
+  std::string pixel_type;
+  state->type = storedType(spec.format, pixel_type);
+  const Transfer transfer =
+      Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
+          .value_or(state->type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
+  state->premultiply = state->alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
+  std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
+  const int orientation = io_input::storedOrientation(spec, metadata.get());
+  if (orientation != 1)
+    return R::failure(path + ": cannot read in bands: the photo is stored turned (EXIF Orientation " +
+                      std::to_string(orientation) + ") and turning it upright needs every row at once");
+  state->info = io_input::describeImage(*state->in, spec, path, pixel_type, transfer, orientation,
+                                        std::move(metadata));
+  return R::success(std::unique_ptr<StoredImageReader>(new StoredImageReader(std::move(state))));
+}
+
+int StoredImageReader::width() const { return state_->spec.width; }
+int StoredImageReader::height() const { return state_->spec.height; }
+int StoredImageReader::channels() const { return state_->channels; }
+int StoredImageReader::alphaChannel() const { return state_->alpha; }
+PixelType StoredImageReader::type() const { return state_->type; }
+const ImageInfo& StoredImageReader::info() const { return state_->info; }
+int StoredImageReader::nextRow() const { return state_->next; }
+
+Status StoredImageReader::read(int count, void* rows, std::size_t row_bytes) {
+  State& st = *state_;
+  const std::string& path = st.path;
+  if (count < 0 || st.next + count > st.spec.height)
+    return Status::failure(path + ": cannot read rows " + std::to_string(st.next) + "+" +
+                           std::to_string(count) + ": the image has " +
+                           std::to_string(st.spec.height));
+  if (count == 0) return Status::success();
+  bool ok = true;
+  try {
+    if (st.spec.tile_width > 0)
+      ok = st.in->read_tiles(0, 0, st.spec.x, st.spec.x + st.spec.width, st.spec.y + st.next,
+                             st.spec.y + st.next + count, 0, 1, 0, st.channels, oiioType(st.type),
+                             rows, OIIO::AutoStride, static_cast<OIIO::stride_t>(row_bytes));
+    else
+      ok = st.in->read_scanlines(0, 0, st.spec.y + st.next, st.spec.y + st.next + count, 0, 0,
+                                 st.channels, oiioType(st.type), rows, OIIO::AutoStride,
+                                 static_cast<OIIO::stride_t>(row_bytes));
+  } catch (const std::exception& e) {
+    return Status::failure(path + ": cannot read: " + decoderFailure(e));
+  }
+  if (!ok) return Status::failure(path + ": cannot read: " + oneLine(st.in->geterror()));
+  if (const Status damage = io_input::decodeProblems(*st.in, path); !damage) return damage;
+  if (st.premultiply) {
+    for (int r = 0; r < count; ++r) {
+      void* row = static_cast<std::uint8_t*>(rows) + static_cast<std::size_t>(r) * row_bytes;
+      switch (st.type) {
+        case PixelType::UInt8: premultiplyRow(static_cast<std::uint8_t*>(row), st.spec.width, st.channels, st.alpha); break;
+        case PixelType::UInt16: premultiplyRow(static_cast<std::uint16_t*>(row), st.spec.width, st.channels, st.alpha); break;
+        case PixelType::Float: premultiplyRow(static_cast<float*>(row), st.spec.width, st.channels, st.alpha); break;
+      }
+    }
+  }
+  st.next += count;
+  return Status::success();
+}
+
+Result<StoredShape> readStoredShape(const std::string& path) {
+  auto opened = io_input::openImageInput(path, /*whole=*/false);
+  if (!opened) return Result<StoredShape>::failure(opened.status.message);
+  const OIIO::ImageSpec& spec = (*opened)->spec();
   std::string name;
-  return Result<PixelType>::success(storedType((*opened)->spec().format, name));
+  return Result<StoredShape>::success(
+      StoredShape{spec.width, spec.height, io_input::keptChannels(spec), storedType(spec.format, name)});
 }
 
 bool storedWriteKeepsEncoding(const std::string& path, PixelType type) {
@@ -268,8 +363,22 @@ bool formatStoresAlpha(const std::string& path) {
 
 Status writeStoredImage(const std::string& path, const ConstImageView& image, const ImageInfo* like,
                         const WriteImageOptions& options) {
+  return writeStoredImageBands(path, image, like, options,
+                               [&image](int y0, int y1, ConstImageView& rows) {
+                                 rows = image;
+                                 rows.data = image.row(y0);
+                                 rows.height = y1 - y0;
+                                 return Status::success();
+                               });
+}
+
+Status writeStoredImageBands(const std::string& path, const ConstImageView& shape,
+                             const ImageInfo* like, const WriteImageOptions& options,
+                             const StoredBandSource& band_rows) {
   const std::string fail = path + ": cannot write: ";
-  if (image.empty() || image.channels < 1 || image.channels > 4 || image.alpha_channel >= image.channels)
+  const ConstImageView& image = shape;  // its size, channels and type; rows come from band_rows
+  if (image.width < 1 || image.height < 1 || image.channels < 1 || image.channels > 4 ||
+      image.alpha_channel >= image.channels)
     return Status::failure(fail + "the image is empty or malformed");
   auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
   if (!out) {
@@ -342,38 +451,46 @@ Status writeStoredImage(const std::string& path, const ConstImageView& image, co
     bool ok = true;
     CancelHook context{options.progress};  // cancel between bands
     const OIIO::ProgressCallback callback = context.callback();
-    if (direct) {
-      ok = out->write_image(oiioType(image.type), image.data, OIIO::AutoStride, image.row_bytes,
-                            OIIO::AutoStride, callback, &context);
-    } else {
-      constexpr int kBand = 64;
-      const size_t row_bytes = static_cast<size_t>(image.width) * static_cast<size_t>(channels) *
-                               static_cast<size_t>(sample);
-      std::vector<std::uint8_t> band(row_bytes * kBand);
-      const float full = pixelTypeFullScale(image.type);
-      for (int y0 = 0; ok && y0 < image.height; y0 += kBand) {
-        if (callback && callback(&context, static_cast<float>(y0) / static_cast<float>(image.height)))
-          break;
-        const int y1 = std::min(image.height, y0 + kBand);
-        for (int y = y0; y < y1; ++y) {
-          void* dst = band.data() + static_cast<size_t>(y - y0) * row_bytes;
-          switch (image.type) {
-            case PixelType::UInt8:
-              unpremultiplyRow(static_cast<const std::uint8_t*>(image.row(y)), static_cast<std::uint8_t*>(dst),
-                               image.width, image.channels, image.alpha_channel, keep_alpha, full);
-              break;
-            case PixelType::UInt16:
-              unpremultiplyRow(static_cast<const std::uint16_t*>(image.row(y)), static_cast<std::uint16_t*>(dst),
-                               image.width, image.channels, image.alpha_channel, keep_alpha, full);
-              break;
-            case PixelType::Float:
-              unpremultiplyRow(static_cast<const float*>(image.row(y)), static_cast<float*>(dst),
-                               image.width, image.channels, image.alpha_channel, keep_alpha, full);
-              break;
-          }
-        }
-        ok = out->write_scanlines(y0, y1, 0, oiioType(image.type), band.data());
+    // Bands of rows from the source, each written straight through when the layout is the
+    // file's, else converted (alpha dropped or divided out) into a band buffer first.
+    constexpr int kBand = 64;
+    const size_t row_bytes = static_cast<size_t>(image.width) * static_cast<size_t>(channels) *
+                             static_cast<size_t>(sample);
+    std::vector<std::uint8_t> band(direct ? 0 : row_bytes * kBand);
+    const float full = pixelTypeFullScale(image.type);
+    for (int y0 = 0; ok && y0 < image.height; y0 += kBand) {
+      if (callback && callback(&context, static_cast<float>(y0) / static_cast<float>(image.height)))
+        break;
+      const int y1 = std::min(image.height, y0 + kBand);
+      ConstImageView rows;
+      if (const Status produced = band_rows(y0, y1, rows); !produced) {
+        out->close();
+        return produced;
       }
+      if (direct) {
+        ok = out->write_scanlines(y0, y1, 0, oiioType(image.type), rows.data, OIIO::AutoStride,
+                                  rows.row_bytes);
+        continue;
+      }
+      for (int y = y0; y < y1; ++y) {
+        void* dst = band.data() + static_cast<size_t>(y - y0) * row_bytes;
+        const void* src = rows.row(y - y0);
+        switch (image.type) {
+          case PixelType::UInt8:
+            unpremultiplyRow(static_cast<const std::uint8_t*>(src), static_cast<std::uint8_t*>(dst),
+                             image.width, image.channels, image.alpha_channel, keep_alpha, full);
+            break;
+          case PixelType::UInt16:
+            unpremultiplyRow(static_cast<const std::uint16_t*>(src), static_cast<std::uint16_t*>(dst),
+                             image.width, image.channels, image.alpha_channel, keep_alpha, full);
+            break;
+          case PixelType::Float:
+            unpremultiplyRow(static_cast<const float*>(src), static_cast<float*>(dst),
+                             image.width, image.channels, image.alpha_channel, keep_alpha, full);
+            break;
+        }
+      }
+      ok = out->write_scanlines(y0, y1, 0, oiioType(image.type), band.data());
     }
     if (context.cancelled) {
       out->close();

@@ -20,7 +20,10 @@
 #include "core/model/image_view.h"
 #include "core/model/pixel_buffer.h"
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,9 +52,46 @@ StoredImage makeStoredImage(int width, int height, int channels, int alpha_chann
                             PixelBuffer::Init init = PixelBuffer::Init::Zeroed);
 
 Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options = {});
-// The pixel type readStoredImage would give `path`, from its header alone (choosing between the
-// stored and the float path before decoding anything), with readStoredImage's refusals.
-Result<PixelType> readStoredPixelType(const std::string& path);
+// What readStoredImage would give `path`, from its header alone (choosing between the stored,
+// the streamed and the float path before decoding anything): the stored raster's size (before
+// any EXIF turn), the channels kept and the pixel type. readStoredImage's refusals but the
+// memory budget, which depends on the path taken.
+struct StoredShape {
+  int width = 0, height = 0, channels = 0;
+  PixelType type = PixelType::UInt8;
+};
+Result<StoredShape> readStoredShape(const std::string& path);
+
+// A photo read band by band in its stored type, top to bottom, for photos too big to hold
+// whole (core/pipeline/streamed_warp.h). Rows are what readStoredImage would hold: the same
+// samples, alpha premultiplied the same way. Decoded by OpenImageIO scanline by scanline.
+class StoredImageReader {
+ public:
+  // readStoredImage's refusals but the memory budget (the caller checks what it holds), and a
+  // photo stored turned (EXIF Orientation other than 1: turning it upright needs every row).
+  static Result<std::unique_ptr<StoredImageReader>> open(const std::string& path);
+  ~StoredImageReader();
+  StoredImageReader(const StoredImageReader&) = delete;
+  StoredImageReader& operator=(const StoredImageReader&) = delete;
+
+  int width() const;
+  int height() const;
+  int channels() const;       // 1..4, as readStoredImage keeps
+  int alphaChannel() const;   // or -1
+  PixelType type() const;
+  const ImageInfo& info() const;  // as readStoredImage's image.info
+  int nextRow() const;            // rows read so far
+
+  // The next `count` rows into `rows`, `row_bytes` apart. Fails (one line naming the file) on
+  // damage or when fewer rows are left.
+  Status read(int count, void* rows, std::size_t row_bytes);
+
+  struct State;
+
+ private:
+  explicit StoredImageReader(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
 
 // True when writing `type` samples to `path`'s format keeps their encoding: integer samples
 // into a format that stores integers, float into one that stores float/half. False also when
@@ -66,5 +106,15 @@ bool formatStoresAlpha(const std::string& path);
 // colour, i.e. composited over black. Fails (no file written) when the encoding would change.
 Status writeStoredImage(const std::string& path, const ConstImageView& image,
                         const ImageInfo* like = nullptr, const WriteImageOptions& options = {});
+
+// Output rows [y0, y1) for writeStoredImageBands: sets `rows` to a view of y1 − y0 rows in the
+// image's layout, valid until the next call. A failure stops the write (no file is left).
+using StoredBandSource = std::function<Status(int y0, int y1, ConstImageView& rows)>;
+// writeStoredImage with the rows made on demand, top to bottom, in bands: `shape` gives the
+// size, channels, alpha and type (its pixels are not read). Peak memory is a band, not the
+// image (core/pipeline/streamed_warp.h renders each band as the encoder asks for it).
+Status writeStoredImageBands(const std::string& path, const ConstImageView& shape,
+                             const ImageInfo* like, const WriteImageOptions& options,
+                             const StoredBandSource& band_rows);
 
 }  // namespace artcam

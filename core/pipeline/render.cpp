@@ -285,6 +285,12 @@ RenderSummary& startReport(RenderSummary* summary, RenderSummary& local, const A
 
 bool needsLinearPhoto(const Artcam& camera) { return analyse(camera).linear; }
 
+bool rendersByGatherWarp(const Artcam& camera) {
+  if (camera.pieces) return false;
+  const Analysis analysis = analyse(camera);
+  return !analysis.linear && analysis.channels.empty();
+}
+
 void render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
             const ImageView& out, RenderSummary* summary) {
   const auto start = std::chrono::steady_clock::now();

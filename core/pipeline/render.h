@@ -91,6 +91,10 @@ OutputFrame outputFrameFor(const Artcam& camera, FrameSize photo, int width = 0,
 // True when the camera renders from the linear float photo (RenderInputs::linear): layers,
 // colour or depth blocks that change or steer geometry, depth of field, patches.
 bool needsLinearPhoto(const Artcam& camera);
+// True when the camera renders by the gather warp of one position camera on the photo as stored
+// (warp.h's warpImage on camera.main()): no layers, patches, colour or depth. Those cameras
+// also render band by band from a window of the photo's rows (streamed_warp.h).
+bool rendersByGatherWarp(const Artcam& camera);
 
 // Renders into `out`, which must have outputFrameFor's size and, for cameras that render from
 // the stored photo, the photo's pixel type with its channels (+ alpha as warpImage allows);

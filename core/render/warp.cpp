@@ -77,10 +77,11 @@ void checkCamera(const Camera& camera, const CameraStructure& structure) {
 
 // Rows of a whole-pixel translation (identity included): sampling at pixel centres would
 // reproduce the source exactly for every filter (weights 1 and 0, coverage 1), so copy.
-long long copyRow(const ConstImageView& src, const ImageView& out, int y, std::array<int, 2> offset) {
-  const int sy = y + offset[1];
+// Row `out_row` of `out` from row `sy` of `src` (outside it: transparent), shifted by offset_x.
+long long copyRow(const ConstImageView& src, int sy, const ImageView& out, int out_row, int offset_x) {
+  const std::array<int, 2> offset{offset_x, 0};
   const int pixel_in = src.pixelBytes(), pixel_out = out.pixelBytes();
-  unsigned char* row = static_cast<unsigned char*>(out.row(y));
+  unsigned char* row = static_cast<unsigned char*>(out.row(out_row));
   if (sy < 0 || sy >= src.height) {
     std::memset(row, 0, static_cast<size_t>(out.width) * static_cast<size_t>(pixel_out));
     return out.width;
@@ -333,7 +334,8 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
     alignas(32) float sx[kSpanPixels], sy[kSpanPixels];
     unsigned char valid[kSpanPixels];
     if (offset) {
-      for (int y = y0; y < y1; ++y) band_transparent += copyRow(source, out, y, *offset);
+      for (int y = y0; y < y1; ++y)
+        band_transparent += copyRow(source, y + (*offset)[1], out, y, (*offset)[0]);
       transparent += band_transparent;
       return;
     }
@@ -366,6 +368,163 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   report.newton_pixels = newton.load();
   finishTiming();
   report.cancelled = !finished;
+}
+
+// How far beyond the photo's rows a position can still reach it through a filter's taps, and
+// the margin a banded warp's window keeps around the rows its positions fall in.
+constexpr float kReach = 4.0f;
+
+struct BandWarp::State {
+  FrameSize source_px, out_px;
+  WarpOptions options;
+  bool degenerate = false;
+  std::unique_ptr<CoordinateKernel> kernel;
+  std::optional<std::array<int, 2>> offset;  // whole-pixel translation: rows are copied
+};
+
+BandWarp::BandWarp(const Camera& camera, FrameSize source_px, FrameSize out_px,
+                   const WarpOptions& options)
+    : state_(std::make_unique<State>()) {
+  camera.validate();
+  checkOptions(options);
+  if (options.antialias)
+    throw std::invalid_argument("a banded warp does not anti-alias (its taps leave the band's rows)");
+  if (source_px.width < 1 || source_px.height < 1 || out_px.width < 1 || out_px.height < 1)
+    throw std::invalid_argument("a banded warp needs non-empty source and output frames");
+  const CameraStructure structure = analyseStructure(camera);
+  checkCamera(camera, structure);
+  State& st = *state_;
+  st.source_px = source_px;
+  st.out_px = out_px;
+  st.options = options;
+  if (structure.degenerate) {
+    st.degenerate = true;
+    kernel_name_ = "degenerate";
+    return;
+  }
+  KernelChoice choice =
+      makeCoordinateKernel(camera, structure, source_px, out_px, options.coordinates, options.threads);
+  kernel_name_ = choice.name;
+  st.kernel = std::move(choice.kernel);
+  st.offset = st.kernel->wholePixelOffset();
+  if (st.offset && kernel_name_ != "identity") kernel_name_ = "translation-copy";
+}
+
+BandWarp::~BandWarp() = default;
+
+BandWarp::Rows BandWarp::sourceRows(int y0, int y1, bool* inside) const {
+  const State& st = *state_;
+  y0 = std::max(y0, 0);
+  y1 = std::min(y1, st.out_px.height);
+  if (inside) *inside = false;
+  if (st.degenerate || y1 <= y0) return {};
+  const int height = st.source_px.height;
+  if (st.offset) {
+    const int dx = (*st.offset)[0], dy = (*st.offset)[1];
+    const int first = std::max(0, y0 + dy), last = std::min(height, y1 + dy);
+    if (inside)
+      *inside = y0 + dy >= 0 && y1 + dy <= height && dx >= 0 && st.out_px.width + dx <= st.source_px.width;
+    return first < last ? Rows{first, last} : Rows{};
+  }
+  const float x_min = 2.5f, y_min = 2.5f, x_max = static_cast<float>(st.source_px.width) - 2.5f,
+              y_max = static_cast<float>(height) - 2.5f;
+  std::atomic<bool> all_inside{true};
+  // A tap reads rows floor(sy − ½) − 1 … floor(sy − ½) + 2 (bicubic; bilinear and nearest
+  // fewer): positions further than kReach beyond the frame read nothing, and the window keeps
+  // kReach rows of margin around the rest.
+  std::atomic<int> lowest{std::numeric_limits<int>::max()}, highest{std::numeric_limits<int>::min()};
+  ParallelOptions po;
+  po.threads = st.options.threads;
+  po.band_rows = kBandRows;
+  parallelForRows(y1 - y0, po, [&](int r0, int r1) {
+    alignas(32) float sx[kSpanPixels], sy[kSpanPixels];
+    unsigned char valid[kSpanPixels];
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (int y = y0 + r0; y < y0 + r1; ++y) {
+      RowState state;
+      for (int x0 = 0; x0 < st.out_px.width; x0 += kSpanPixels) {
+        const int n = std::min(kSpanPixels, st.out_px.width - x0);
+        st.kernel->span(y, x0, n, sx, sy, valid, state);
+        bool span_inside = true;
+        for (int i = 0; i < n; ++i) {
+          if (valid[i] && sy[i] >= -kReach && sy[i] <= static_cast<float>(height) + kReach)
+            lo = std::min(lo, sy[i]), hi = std::max(hi, sy[i]);
+          span_inside = span_inside && valid[i] && sx[i] >= x_min && sx[i] <= x_max &&
+                        sy[i] >= y_min && sy[i] <= y_max;
+        }
+        if (!span_inside) all_inside = false;
+      }
+    }
+    if (!(lo <= hi)) return;
+    const int first = static_cast<int>(std::floor(lo)) - static_cast<int>(kReach);
+    const int last = static_cast<int>(std::floor(hi)) + static_cast<int>(kReach) + 1;
+    for (int v = lowest.load(); first < v && !lowest.compare_exchange_weak(v, first);) {}
+    for (int v = highest.load(); last > v && !highest.compare_exchange_weak(v, last);) {}
+  });
+  if (inside) *inside = all_inside.load();
+  const int first = std::max(0, lowest.load()), last = std::min(height, highest.load());
+  return first < last ? Rows{first, last} : Rows{};
+}
+
+long long BandWarp::render(const ConstImageView& window, int window_first, int y0, int y1,
+                           const ImageView& out) const {
+  const State& st = *state_;
+  if (out.width != st.out_px.width || out.height != y1 - y0 || y0 < 0 || y1 > st.out_px.height ||
+      window.width != st.source_px.width || window_first < 0 ||
+      window_first + window.height > st.source_px.height)
+    throw std::invalid_argument("BandWarp::render: the band or the window does not fit the frames");
+  const size_t row_bytes = static_cast<size_t>(out.width) * static_cast<size_t>(out.pixelBytes());
+  if (st.degenerate) {
+    for (int y = 0; y < out.height; ++y) std::memset(out.row(y), 0, row_bytes);
+    return static_cast<long long>(out.width) * out.height;
+  }
+  // The window's edges that are not the photo's: a tap beyond them would read a row the
+  // window does not hold, so the render refuses rather than sample black there.
+  const int window_end = window_first + window.height;
+  const bool open_top = window_first > 0, open_bottom = window_end < st.source_px.height;
+  if (window.height == 0) {
+    // No row read: every position lies beyond the photo's reach (sourceRows was empty), where
+    // the sampler writes 0 in every channel.
+    for (int y = 0; y < out.height; ++y) std::memset(out.row(y), 0, row_bytes);
+    return static_cast<long long>(out.width) * out.height;
+  }
+  const SpanSampler sampler(window, out, st.options.filter, !st.options.coordinates.scalar_only);
+  std::atomic<long long> transparent{0};
+  ParallelOptions po;
+  po.threads = st.options.threads;
+  po.band_rows = kBandRows;
+  parallelForRows(y1 - y0, po, [&](int r0, int r1) {
+    long long band_transparent = 0;
+    alignas(32) float sx[kSpanPixels], sy[kSpanPixels];
+    unsigned char valid[kSpanPixels];
+    const float shift = static_cast<float>(window_first);
+    for (int r = r0; r < r1; ++r) {
+      const int y = y0 + r;
+      if (st.offset) {
+        band_transparent += copyRow(window, y + (*st.offset)[1] - window_first, out, r, (*st.offset)[0]);
+        continue;
+      }
+      RowState state;
+      for (int x0 = 0; x0 < st.out_px.width; x0 += kSpanPixels) {
+        const int n = std::min(kSpanPixels, st.out_px.width - x0);
+        st.kernel->span(y, x0, n, sx, sy, valid, state);
+        for (int i = 0; i < n; ++i) {
+          if (valid[i] && (open_top || open_bottom)) {
+            const float tap = std::floor(sy[i] - 0.5f);  // bicubic reads tap − 1 … tap + 2
+            if ((open_top && tap - 1.0f < shift && sy[i] > -kReach) ||
+                (open_bottom && tap + 2.0f >= static_cast<float>(window_end) &&
+                 sy[i] < static_cast<float>(st.source_px.height) + kReach))
+              throw std::invalid_argument("BandWarp::render: the window does not hold the rows the band reads");
+          }
+          // Exact in float: sy and the shift are multiples of sy's ulp (|sy| < 2²⁴).
+          sy[i] -= shift;
+        }
+        band_transparent += sampler.run(r, x0, n, sx, sy, valid);
+      }
+    }
+    transparent += band_transparent;
+  });
+  return transparent.load();
 }
 
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options,

@@ -22,6 +22,7 @@
 #include "core/render/coordinates.h"
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -96,6 +97,46 @@ ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& 
 // and summary->cancelled is set; the caller discards it.
 void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
                const WarpOptions& options = {}, WarpSummary* summary = nullptr);
+
+// The gather warp prepared once (kernel chosen, rational cells solved) and rendered band by band
+// from a window of source rows: for photos too big to hold whole, which are then decoded and
+// encoded in bands (core/pipeline/streamed_warp.h). Each output row comes out byte for byte as
+// warpImage writes it: the same kernel gives the same positions row by row (each row's spans
+// left to right from a fresh RowState, coordinates.h), and the window always holds every row a
+// filter tap reads, so no tap sees the window's edge where the photo has none.
+class BandWarp {
+ public:
+  struct Rows {
+    int first = 0, last = 0;  // source rows [first, last)
+    bool empty() const { return last <= first; }
+  };
+
+  // Throws std::invalid_argument as warpImage does, and for antialias (its taps spread over
+  // footprints the band's positions do not bound).
+  BandWarp(const Camera& camera, FrameSize source_px, FrameSize out_px, const WarpOptions& options);
+  ~BandWarp();
+  BandWarp(const BandWarp&) = delete;
+  BandWarp& operator=(const BandWarp&) = delete;
+
+  const std::string& kernelName() const { return kernel_name_; }
+  // The source rows that output rows [y0, y1) read, every filter tap included (empty: none,
+  // the rows are transparent). Runs the coordinate kernel over the rows: about the cost of the
+  // positions half of rendering them.
+  // `inside` (may be null) is set to whether every pixel of the rows certainly has full
+  // coverage: a whole-pixel copy from within the photo, or every position valid and 2.5 px
+  // inside the photo's frame (no filter tap leaves it).
+  Rows sourceRows(int y0, int y1, bool* inside = nullptr) const;
+  // Output rows [y0, y1) into `out` (y1 − y0 rows; type and channels as warpImage's `out`)
+  // from `window`, the source's rows [window_first, window_first + window.height) with the
+  // source's full width; it must hold sourceRows(y0, y1). Returns the transparent pixels.
+  long long render(const ConstImageView& window, int window_first, int y0, int y1,
+                   const ImageView& out) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+  std::string kernel_name_;
+};
 
 // Chromatic aberration the way the paper's Fig 4 builds it, on the photo as stored: channel k
 // (k < channel_cameras.size() ≤ the source's colour channels) through its own position camera,
