@@ -54,8 +54,8 @@ Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
                                                    const OIIO::ImageSpec& spec,
                                                    const std::string& path);
 
-// Channels a reader keeps (beyond the fourth — EXR depth, masks — they are left behind) and the
-// alpha channel among them, or -1.
+// Channels a reader keeps (beyond the fourth — EXR depth, masks — readExtraChannels reads them
+// on request) and the alpha channel among them, or -1.
 inline int keptChannels(const OIIO::ImageSpec& spec) { return spec.nchannels < 4 ? spec.nchannels : 4; }
 inline int keptAlpha(const OIIO::ImageSpec& spec) {
   return spec.alpha_channel >= 0 && spec.alpha_channel < keptChannels(spec) ? spec.alpha_channel : -1;

@@ -93,7 +93,8 @@ struct ImageInfo {
   int jpeg_quality = 0;  // a JPEG's estimated quality (jpeg_quality.h); 0: not JPEG, unknown
   std::shared_ptr<const PhotoMetadata> metadata;  // EXIF, IPTC, XMP as read; null: none
   // Channels beyond the four a reader keeps (an EXR's Z, AOVs, a fifth TIFF channel), by name:
-  // they are not read, so commands that write the image say they are left out.
+  // not part of the image; readExtraChannels reads them, and commands that write the image
+  // without them say they are left out.
   std::vector<std::string> dropped_channels;
   // The ICC profile readImage converted the colour from (colour_space is then "ICC: " and its
   // description, srgb false); null when the file had none or one equivalent to sRGB.
