@@ -207,6 +207,10 @@ int batchCommand(const std::vector<std::string>& argv) {
       const BatchItem& names = items[item->index];
       if (guarded(item->index, [&] { encodeWarp(item->image, request, no_report, camera); })) {
         tally.written.fetch_add(1);
+        // Channels past RGBA that are not warped are said, never dropped silently.
+        if (const std::string left_out = leftOutWarning(item->image, names.input, names.output);
+            !left_out.empty())
+          std::fprintf(stderr, "artcam batch: warning: %s\n", left_out.c_str());
         results[item->index] = {"written", "", item->image.width, item->image.height,
                                 item->image.render_ms, item->image.description};
         tally.megapixels.store(tally.megapixels.load() + mpix);  // only this thread adds

@@ -34,7 +34,12 @@ const char* const kWarpUsage =
     "source frame's by more than a rounding pixel the result is stretched per axis and a\n"
     "warning names both sizes. --size WxH overrides the rule.\n"
     "Channels: IN's channels are kept; an alpha channel is added only where some pixel has no\n"
-    "preimage (transparent; black in formats without alpha) or IN had alpha.\n"
+    "preimage (transparent; black in formats without alpha) or IN had alpha. Channels beyond\n"
+    "RGBA (an EXR's Z, N.x, AOVs) are warped at the same source positions into an EXR OUT,\n"
+    "names kept (depth Z/ZBack/depth by the nearest texel); OUT in another format, or a\n"
+    "camera that moves R, G, B apart or changes colour or depth, leaves them out with a\n"
+    "warning. An EXR OUT keeps IN's display-window origin; an EXR IN whose data window is\n"
+    "not its display window is refused (oiiotool IN --croptofull -o FIXED makes them one).\n"
     "IN is read upright: an EXIF orientation (a portrait photo stored sideways) is applied\n"
     "first, and OUT is written upright with orientation 1.\n"
     "OUT keeps IN's pixel type (unless --bit-depth), JPEG quality (unless --quality) and\n"
@@ -147,19 +152,17 @@ int warpCommand(const std::vector<std::string>& argv) {
     const double mpix_per_s = rendered.render_ms > 0 ? mpix / (rendered.render_ms / 1000.0) : 0.0;
     if (!rendered.warning.empty())
       std::fprintf(stderr, "artcam warp: warning: %s\n", rendered.warning.c_str());
-    // Channels past RGBA are not read (image_io.h): said, never dropped silently.
-    std::string dropped;
-    for (const std::string& c : rendered.like.dropped_channels) dropped += (dropped.empty() ? "" : ", ") + c;
-    if (!dropped.empty())
-      std::fprintf(stderr, "artcam warp: warning: %s: channels beyond the first four (%s) are not "
-                   "warped and are left out of %s\n", input.c_str(), dropped.c_str(), output_name.c_str());
+    // Channels past RGBA that are not warped are said, never dropped silently.
+    if (const std::string left_out = leftOutWarning(rendered, input, output_name); !left_out.empty())
+      std::fprintf(stderr, "artcam warp: warning: %s\n", left_out.c_str());
     if (args.has("--json")) {
       nlohmann::json j = {{"output", *output},
                           {"width", rendered.width},
                           {"height", rendered.height},
                           {"description", rendered.description}};
       if (!rendered.warning.empty()) j["warning"] = rendered.warning;
-      if (!rendered.like.dropped_channels.empty()) j["dropped_channels"] = rendered.like.dropped_channels;
+      if (!rendered.left_out.empty()) j["dropped_channels"] = rendered.left_out;
+      if (!rendered.extra_names.empty()) j["extra_channels"] = rendered.extra_names;
       if (request.stats) {
         j["render_ms"] = rendered.render_ms;
         j["mpix_per_s"] = mpix_per_s;

@@ -37,7 +37,61 @@ void dropAddedAlpha(StoredImage& image, bool input_had_alpha) {
   image.alpha_channel = -1;
 }
 
+// Reads the input's extra channels where the output keeps them warped, else records why not.
+void readOrLeaveOutExtra(const WarpCameraFile& camera, DecodedInput& decoded,
+                         const ReadImageOptions& read) {
+  const ImageInfo& info = decoded.stored ? decoded.stored->info : decoded.loaded->info;
+  if (info.dropped_channels.empty()) return;
+  std::string reason = extraChannelsUnsupported(camera.camera);
+  if (!reason.empty())
+    reason = camera.path + ": " + reason;
+  else if (!formatStoresExtraChannels(decoded.output))
+    reason = "its format holds no channels beyond RGBA (OpenEXR does)";
+  if (!reason.empty()) {
+    decoded.left_out = info.dropped_channels;
+    decoded.left_out_reason = reason;
+    return;
+  }
+  auto extra = readExtraChannels(decoded.input, info, read);
+  if (!extra) throw CommandError(extra.status.message);
+  decoded.extra = std::move(*extra.value);
+}
+
+// Each group of extra channels through the same render entry point as the image, into the
+// image's output size: same camera, same source positions. Depth-like groups take the nearest
+// filter (isDepthChannel says why); the others the image's.
+ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, int width,
+                          int height, const RenderOptions& image_options, double& render_ms) {
+  ExtraChannels warped;
+  for (ChannelGroup& group : source.groups) {
+    RenderOptions options = image_options;
+    if (group.depth) {
+      options.warp.filter = Filter::Nearest;
+      options.warp.antialias = false;
+    }
+    ChannelGroup out{group.names, ImageF(width, height, group.image.channels, -1), group.depth};
+    RenderInputs inputs;
+    inputs.photo = viewOf(std::as_const(group.image));
+    RenderSummary summary;
+    render(inputs, camera.camera, options, viewOf(out.image), &summary);
+    if (summary.cancelled) return {};
+    render_ms += summary.render_ms;
+    group.image = ImageF();  // the input group is no longer needed
+    warped.groups.push_back(std::move(out));
+  }
+  return warped;
+}
+
 }  // namespace
+
+std::string leftOutWarning(const RenderedOutput& output, const std::string& input_name,
+                           const std::string& output_name) {
+  std::string names;
+  for (const std::string& c : output.left_out) names += (names.empty() ? "" : ", ") + c;
+  if (names.empty()) return "";
+  return input_name + ": channels beyond the first four (" + names +
+         ") are not warped and are left out of " + output_name + ": " + output.left_out_reason;
+}
 
 WarpRequest parseWarpRequest(const Args& args) {
   WarpRequest request;
@@ -113,7 +167,9 @@ double DecodedInput::megapixels() const {
 DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& request,
                            const std::string& input, const std::string& output,
                            const Progress& progress) {
-  DecodedInput decoded{input, output, std::nullopt, std::nullopt, nullptr};
+  DecodedInput decoded;
+  decoded.input = input;
+  decoded.output = output;
   ReadImageOptions read;
   read.progress = progress;
   // The stored-type path where the output keeps the input's encoding (peak memory ≤ input +
@@ -143,17 +199,23 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
         auto reader = StoredImageReader::open(input);
         if (!reader) throw CommandError(reader.status.message);
         decoded.streamed = std::move(*reader.value);
+        // Bands carry the first four channels only: the rest are named, never dropped silently.
+        decoded.left_out = decoded.streamed->info().dropped_channels;
+        decoded.left_out_reason = "the photo is warped in bands (too big for the memory budget "
+                                  "whole), which carries the first four channels only";
         return decoded;
       }
       auto stored = readStoredImage(input, read);
       if (!stored) throw CommandError(stored.status.message);
       decoded.stored = std::move(*stored.value);
+      readOrLeaveOutExtra(camera, decoded, read);
       return decoded;
     }
   }
   auto loaded = readImage(input, read);
   if (!loaded) throw CommandError(loaded.status.message);
   decoded.loaded = std::move(*loaded.value);
+  readOrLeaveOutExtra(camera, decoded, read);
   return decoded;
 }
 
@@ -165,6 +227,8 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
   if (source.streamed) {  // rendered band by band as encodeWarp writes
     out.like = source.streamed->info();
     out.streamed = std::move(source.streamed);
+    out.left_out = std::move(source.left_out);
+    out.left_out_reason = std::move(source.left_out_reason);
     return out;
   }
   RenderOptions options = request.options;
@@ -219,12 +283,20 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
                        ", not the photo's " + sizeText(in.image.width, in.image.height) +
                        ": it is stretched to the photo's frame";
     }
+    if (!summary.cancelled && !source.extra.empty()) {
+      out.extra = renderExtra(camera, std::move(source.extra), out.width, out.height, options,
+                              summary.render_ms);
+      out.extra_names = out.extra.names();
+      summary.cancelled = out.extra.empty();
+    }
   } catch (const std::bad_alloc&) {
     throw CommandError(out.output + ": cannot render: not enough memory");
   } catch (const std::invalid_argument& e) {
     throw CommandError(camera.path + ": cannot render " + source.input + ": " + e.what());
   }
   if (summary.cancelled) throw CommandError(source.input + ": cancelled");
+  out.left_out = std::move(source.left_out);
+  out.left_out_reason = std::move(source.left_out_reason);
   out.render_ms = summary.render_ms;
   out.description = summary.describe();
   return out;
@@ -250,6 +322,7 @@ void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progre
   }
   WriteImageOptions options = request.write;
   options.progress = progress;
+  if (!output.extra.empty()) options.extra_channels = &output.extra;
   const Status s = output.stored
                        ? writeStoredImage(output.output, std::as_const(*output.stored).view(),
                                           &output.like, options)
@@ -257,6 +330,7 @@ void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progre
   if (!s) throw CommandError(s.message);
   output.stored.reset();
   output.image.reset();
+  output.extra = {};
 }
 
 }  // namespace artcam::cli

@@ -26,6 +26,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace artcam::cli {
 
@@ -60,6 +61,11 @@ struct DecodedInput {
   // Too big for the stored path's memory budget: opened, not decoded; encodeWarp streams it
   // (core/pipeline/streamed_warp.h).
   std::shared_ptr<StoredImageReader> streamed;
+  // Channels beyond the first four (image_io.h): read when the output's format holds them and
+  // the camera renders them (extraChannelsUnsupported), else named in left_out with the reason.
+  ExtraChannels extra;
+  std::vector<std::string> left_out;
+  std::string left_out_reason;  // "out.png's format holds at most four channels"
   double megapixels() const;
 };
 // The stored-type path is taken only where it writes what was asked: the output format keeps
@@ -81,6 +87,10 @@ struct RenderedOutput {
   double render_ms = 0.0;
   std::string description;  // "gather warp (homography), 12 transparent pixels"
   std::string warning;      // the output-frame rule's aspect warning, if any
+  ExtraChannels extra;      // the input's extra channels, warped (written after the image's)
+  std::vector<std::string> extra_names;  // their names (kept after encodeWarp frees them)
+  std::vector<std::string> left_out;  // extra channels not warped (DecodedInput's)
+  std::string left_out_reason;
 };
 // Consumes the input (freed before returning).
 RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
@@ -89,5 +99,10 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
 // Writes the output (a streamed input is rendered here, band by band, through `camera`).
 void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress,
                 const WarpCameraFile& camera);
+
+// The one-line warning for extra channels left out ("IN: channels beyond the first four (Z) are
+// not warped and are left out of OUT: REASON"), or "" when none were.
+std::string leftOutWarning(const RenderedOutput& output, const std::string& input_name,
+                           const std::string& output_name);
 
 }  // namespace artcam::cli

@@ -56,11 +56,33 @@ Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
                                                    const OIIO::ImageSpec& spec,
                                                    const std::string& path);
 
-// Channels a reader keeps (beyond the fourth — EXR depth, masks — they are left behind) and the
-// alpha channel among them, or -1.
+// Channels a reader keeps (beyond the fourth — EXR depth, masks — readExtraChannels reads them
+// on request) and the alpha channel among them, or -1.
 inline int keptChannels(const OIIO::ImageSpec& spec) { return spec.nchannels < 4 ? spec.nchannels : 4; }
 inline int keptAlpha(const OIIO::ImageSpec& spec) {
   return spec.alpha_channel >= 0 && spec.alpha_channel < keptChannels(spec) ? spec.alpha_channel : -1;
+}
+
+// An OpenEXR file whose data window is not its display window is refused (image_io.h, "Data
+// and display windows"): the readers hand over the data window's pixels while camera pixels
+// are display-window pixels. Other formats have no separate display window.
+inline Status dataWindowIsDisplayWindow(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
+                                        const std::string& path) {
+  if (std::string(in.format_name()) != "openexr") return Status::success();
+  if (spec.full_width <= 0 || spec.full_height <= 0) return Status::success();
+  if (spec.x == spec.full_x && spec.y == spec.full_y && spec.width == spec.full_width &&
+      spec.height == spec.full_height)
+    return Status::success();
+  const auto window = [](int x, int y, int w, int h) {
+    return std::to_string(w) + "x" + std::to_string(h) + " at (" + std::to_string(x) + ", " +
+           std::to_string(y) + ")";
+  };
+  return Status::failure(path + ": cannot read: the data window (" +
+                         window(spec.x, spec.y, spec.width, spec.height) +
+                         ") is not the display window (" +
+                         window(spec.full_x, spec.full_y, spec.full_width, spec.full_height) +
+                         "), whose pixels the camera's are; make them one with oiiotool " +
+                         "--croptofull");
 }
 
 // The orientation a reader turns the raster upright from (orientation.h), 1..8: exiv2's

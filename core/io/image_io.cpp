@@ -157,6 +157,8 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   if (!opened) return R::failure(opened.status.message);
   const OIIO::ImageInput::unique_ptr& in = *opened;
   const OIIO::ImageSpec spec = in->spec();
+  if (const Status windows = io_input::dataWindowIsDisplayWindow(*in, spec, path); !windows)
+    return R::failure(windows.message);
 
   const int channels = io_input::keptChannels(spec);
   const int alpha = io_input::keptAlpha(spec);

@@ -27,7 +27,23 @@
 //   Adobe RGB; values round-trip to the quantisation step, or to ~1e-6 in linear light where a
 //   pure power curve's slope at 0 magnifies float rounding); Srgb encodes sRGB and embeds an
 //   sRGB profile. Otherwise (Input, `like` had no converting profile) see "Write" below.
-// - Channels: 1 to 4 (Y, YA, RGB, RGBA); further channels of a file are not read.
+// - Channels: 1 to 4 (Y, YA, RGB, RGBA) make the image; further channels of a file (an EXR's
+//   Z, N.x, diffuse.R, …) are not part of it. readExtraChannels reads them on request, as the
+//   stored float values (no transfer, no premultiplication: an EXR's channels are stored
+//   premultiplied already, and data channels carry no colour), in groups of at most four so
+//   each group renders like a photo of its own; WriteImageOptions::extra_channels writes them
+//   back, by name, after the image's own channels. Only OpenEXR holds named extra channels
+//   (formatStoresExtraChannels): a writer asked to put them into another format refuses.
+// - Depth-like extra channels (isDepthChannel: Z, ZBack, depth) are grouped apart from the
+//   others, so a caller can resample them with the nearest filter (see isDepthChannel).
+// - Data and display windows (OpenEXR): camera pixel coordinates are display-window pixels,
+//   pixel (0, 0) being the display window's top-left one (the OpenEXR and Nuke convention).
+//   The readers hand over the data window's pixels, so they refuse a file whose data window
+//   is not its display window (one line naming both and the fix, oiiotool --croptofull):
+//   placing the pixels anywhere else would move them silently. On write, an OpenEXR output
+//   gets `like`'s display-window origin, its size being the image's, and a data window equal
+//   to it: a warp of the whole frame keeps the input's display window, and an image of
+//   another size starts where the input's frame did.
 // - Write: the format follows the extension. Pixel type = options, else `like`'s, else the
 //   format's natural one, then fitted to what the format stores (EXR has no 8/16-bit: half;
 //   PNG has no float: uint16; JPEG/BMP/TGA/GIF/WebP: uint8). Float/half files are written
@@ -77,21 +93,54 @@ struct ImageInfo {
   int jpeg_quality = 0;  // a JPEG's estimated quality (jpeg_quality.h); 0: not JPEG, unknown
   std::shared_ptr<const PhotoMetadata> metadata;  // EXIF, IPTC, XMP as read; null: none
   // Channels beyond the four a reader keeps (an EXR's Z, AOVs, a fifth TIFF channel), by name:
-  // they are not read, so commands that write the image say they are left out.
+  // not part of the image; readExtraChannels reads them, and commands that write the image
+  // without them say they are left out.
   std::vector<std::string> dropped_channels;
   // The ICC profile readImage converted the colour from (colour_space is then "ICC: " and its
   // description, srgb false); null when the file had none or one equivalent to sRGB.
   std::shared_ptr<const IccProfile> icc;
 };
 
-struct LoadedImage {
-  ImageF image;
-  ImageInfo info;
-};
-
 struct ReadImageOptions {
   // Progress in [0, 1]; return false to cancel (the read then fails with "cancelled").
   std::function<bool(double)> progress;
+};
+
+// Channels beyond the image's own, as their stored float values, each group holding 1..4 of
+// them interleaved (ImageF without alpha) at the image's size, in the file's channel order
+// within each group.
+struct ChannelGroup {
+  std::vector<std::string> names;  // the file's names of the group's channels
+  ImageF image;
+  bool depth = false;  // every channel is depth-like (isDepthChannel)
+};
+struct ExtraChannels {
+  std::vector<ChannelGroup> groups;
+  std::vector<std::string> names() const;  // every group's names, in group order
+  bool empty() const { return groups.empty(); }
+};
+
+// Depth-like channel names: OpenEXR's "Z" and "ZBack" (exactly: "N.z" is a normal's
+// component) and "depth" (any case), also as the last part of a layer's name ("beauty.Z",
+// "pass.depth"). A depth interpolated across an edge is a depth no
+// surface has (half-way between foreground and background), so depth is resampled with the
+// nearest filter: a real sample at the nearest texel of the same source position. Everything
+// else (normals, AOV colour, masks) takes the image's filter, as Nuke's STMap does.
+bool isDepthChannel(const std::string& name);
+
+// The extra channels of `path` (ImageInfo::dropped_channels, in that order), upright as the
+// image `info` describes (its stored_orientation): depth-like and other channels in groups of
+// their own, each consecutive run of one kind cut into groups of at most four. Empty when the
+// file has none. Fails in one line naming the file.
+Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo& info,
+                                        const ReadImageOptions& options = {});
+
+// Whether `path`'s format holds named channels beyond RGBA (OpenEXR).
+bool formatStoresExtraChannels(const std::string& path);
+
+struct LoadedImage {
+  ImageF image;
+  ImageInfo info;
 };
 
 Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options = {});
@@ -110,6 +159,10 @@ struct WriteImageOptions {
   // before. Srgb: sRGB, with an sRGB ICC profile embedded.
   enum class ColourSpace { Input, Srgb };
   ColourSpace colour_space = ColourSpace::Input;
+  // Channels written after the image's own, by name, as they are (float, or half when `like`
+  // was half): each group of the image's size. Only OpenEXR outputs take them; another format
+  // refuses the write. Null or empty: none.
+  const ExtraChannels* extra_channels = nullptr;
 };
 
 // The JPEG quality a write uses: options.jpeg_quality clamped to 1..100, else `like`'s estimate

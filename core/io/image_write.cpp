@@ -2,6 +2,7 @@
 // writeImage (declared in image_io.h): ImageF (linear, premultiplied) -> any OIIO format,
 // atomically. The decisions are listed in image_io.h.
 #include "core/io/atomic_file.h"
+#include "core/io/extra_channels.h"
 #include "core/io/image_io.h"
 #include "core/io/io_text.h"
 #include "core/io/photo_metadata.h"
@@ -186,11 +187,20 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
                    OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(profile.size())),
                    profile.data());
   }
+  // `like`'s names for the channels the image kept of it (the first four at most).
   spec.channelnames =
-      like_spec && like_spec->nchannels == channels && like_spec->alpha_channel == alpha
-          ? like_spec->channelnames
+      like_spec && std::min(like_spec->nchannels, 4) == channels &&
+              like_spec->alpha_channel == alpha &&
+              static_cast<int>(like_spec->channelnames.size()) >= channels
+          ? std::vector<std::string>(like_spec->channelnames.begin(),
+                                     like_spec->channelnames.begin() + channels)
           : defaultChannelNames(channels, alpha);
   spec.alpha_channel = alpha;
+  io_extra::keepDisplayWindow(spec, format, like_spec);
+  if (const Status extra = io_extra::addExtraChannels(spec, format, options.extra_channels, path);
+      !extra)
+    return extra;
+  const bool with_extra = options.extra_channels && !options.extra_channels->empty();
   // The profile is the whole label: no transfer tag (a PNG sRGB or gAMA chunk) beside it.
   if (encode_icc)
     spec.erase_attribute("oiio:ColorSpace");
@@ -240,6 +250,7 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     if (!out->open(temp, spec)) return failure(out->geterror());
     constexpr int kBand = 64;
     std::vector<float> encoded;
+    std::vector<float> with_channels;
     std::vector<std::uint8_t> bytes;
     std::vector<std::uint16_t> words;
     bool ok = true;
@@ -251,6 +262,11 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       const int y1 = std::min(image.height, y0 + kBand);
       encodeRows(y0, y1, encoded);
       const void* data = encoded.data();
+      if (with_extra) {  // OpenEXR only, so float samples
+        io_extra::interleaveRows(encoded.data(), channels, image.width, y0, y1,
+                                 *options.extra_channels, with_channels);
+        data = with_channels.data();
+      }
       if (data_type == OIIO::TypeDesc::UINT8) {
         bytes = quantise<std::uint8_t>(encoded);
         data = bytes.data();
@@ -258,7 +274,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
         words = quantise<std::uint16_t>(encoded);
         data = words.data();
       }
-      ok = out->write_scanlines(y0, y1, 0, data_type, data);
+      // Scanline numbers are the data window's (its origin, keepDisplayWindow, may not be 0).
+      ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, data);
     }
     if (!ok) {
       const std::string message = out->geterror();

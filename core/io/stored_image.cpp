@@ -5,6 +5,7 @@
 #include "core/io/stored_image.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/extra_channels.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
 #include "core/io/jpeg_decode.h"
@@ -152,6 +153,8 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   if (!opened) return R::failure(opened.status.message);
   const OIIO::ImageInput::unique_ptr& in = *opened;
   const OIIO::ImageSpec spec = in->spec();
+  if (const Status windows = io_input::dataWindowIsDisplayWindow(*in, spec, path); !windows)
+    return R::failure(windows.message);
   const int channels = io_input::keptChannels(spec);
   const int alpha = io_input::keptAlpha(spec);
 
@@ -270,6 +273,8 @@ Result<std::unique_ptr<StoredImageReader>> StoredImageReader::open(const std::st
   state->in = std::move(*opened.value);
   state->spec = state->in->spec();
   const OIIO::ImageSpec& spec = state->spec;
+  if (const Status windows = io_input::dataWindowIsDisplayWindow(*state->in, spec, path); !windows)
+    return R::failure(windows.message);
   state->channels = io_input::keptChannels(spec);
   state->alpha = io_input::keptAlpha(spec);
   std::string pixel_type;
@@ -337,6 +342,8 @@ Result<StoredShape> readStoredShape(const std::string& path) {
   auto opened = io_input::openImageInput(path, /*whole=*/false);
   if (!opened) return Result<StoredShape>::failure(opened.status.message);
   const OIIO::ImageSpec& spec = (*opened)->spec();
+  if (const Status windows = io_input::dataWindowIsDisplayWindow(**opened, spec, path); !windows)
+    return Result<StoredShape>::failure(windows.message);
   std::string name;
   return Result<StoredShape>::success(
       StoredShape{spec.width, spec.height, io_input::keptChannels(spec), storedType(spec.format, name)});
@@ -419,10 +426,15 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   if (like_spec) {
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
       if (keepAttribute(p.name().string(), like->format_name == format)) spec.extra_attribs.push_back(p);
-    if (like_spec->nchannels == channels && like_spec->alpha_channel == alpha)
-      spec.channelnames = like_spec->channelnames;
   }
-  if (!like_spec || like_spec->nchannels != channels || like_spec->alpha_channel != alpha) {
+  // `like`'s names for the channels the image kept of it (the first four at most).
+  const bool like_names = like_spec && std::min(like_spec->nchannels, 4) == channels &&
+                          like_spec->alpha_channel == alpha &&
+                          static_cast<int>(like_spec->channelnames.size()) >= channels;
+  if (like_names) {
+    spec.channelnames.assign(like_spec->channelnames.begin(),
+                             like_spec->channelnames.begin() + channels);
+  } else {
     spec.channelnames.clear();
     const int colours = channels - (alpha >= 0 ? 1 : 0);
     const char* rgb[] = {"R", "G", "B"};
@@ -430,6 +442,11 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
       spec.channelnames.emplace_back(c == alpha ? "A" : colours == 1 ? "Y" : rgb[std::min(k++, 2)]);
   }
   spec.alpha_channel = alpha;
+  io_extra::keepDisplayWindow(spec, format, like_spec);
+  if (const Status extra = io_extra::addExtraChannels(spec, format, options.extra_channels, path);
+      !extra)
+    return extra;
+  const bool with_extra = options.extra_channels && !options.extra_channels->empty();
   const std::string colour_space =
       like ? like->colour_space : image.type == PixelType::Float ? "Linear" : "sRGB";
   spec.attribute("oiio:ColorSpace", colour_space);
@@ -441,7 +458,7 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   }
 
   // Straight through when the layout is already the file's; else bands of rows converted.
-  const bool direct = channels == image.channels && (alpha < 0 || associated);
+  const bool direct = channels == image.channels && (alpha < 0 || associated) && !with_extra;
   const int sample = pixelTypeSize(image.type);
   return writeAtomically(path, [&](const std::string& temp) {
     auto failure = [&](const std::string& message) {
@@ -452,12 +469,16 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
     CancelHook context{options.progress};  // cancel between bands
     const OIIO::ProgressCallback callback = context.callback();
     // Bands of rows from the source, each written straight through when the layout is the
-    // file's, else converted (alpha dropped or divided out) into a band buffer first.
+    // file's, else converted (alpha dropped or divided out, extra channels interleaved) into a
+    // band buffer first.
     constexpr int kBand = 64;
     const size_t row_bytes = static_cast<size_t>(image.width) * static_cast<size_t>(channels) *
                              static_cast<size_t>(sample);
     std::vector<std::uint8_t> band(direct ? 0 : row_bytes * kBand);
+    std::vector<float> with_channels;
     const float full = pixelTypeFullScale(image.type);
+    // OpenEXR stores premultiplied alpha: copied (it comes here only with extra channels).
+    const int divided_alpha = associated ? -1 : image.alpha_channel;
     for (int y0 = 0; ok && y0 < image.height; y0 += kBand) {
       if (callback && callback(&context, static_cast<float>(y0) / static_cast<float>(image.height)))
         break;
@@ -467,9 +488,10 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
         out->close();
         return produced;
       }
+      // Scanline numbers are the data window's (its origin, keepDisplayWindow, may not be 0).
       if (direct) {
-        ok = out->write_scanlines(y0, y1, 0, oiioType(image.type), rows.data, OIIO::AutoStride,
-                                  rows.row_bytes);
+        ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), rows.data,
+                                  OIIO::AutoStride, rows.row_bytes);
         continue;
       }
       for (int y = y0; y < y1; ++y) {
@@ -478,19 +500,26 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
         switch (image.type) {
           case PixelType::UInt8:
             unpremultiplyRow(static_cast<const std::uint8_t*>(src), static_cast<std::uint8_t*>(dst),
-                             image.width, image.channels, image.alpha_channel, keep_alpha, full);
+                             image.width, image.channels, divided_alpha, keep_alpha, full);
             break;
           case PixelType::UInt16:
             unpremultiplyRow(static_cast<const std::uint16_t*>(src), static_cast<std::uint16_t*>(dst),
-                             image.width, image.channels, image.alpha_channel, keep_alpha, full);
+                             image.width, image.channels, divided_alpha, keep_alpha, full);
             break;
           case PixelType::Float:
             unpremultiplyRow(static_cast<const float*>(src), static_cast<float*>(dst),
-                             image.width, image.channels, image.alpha_channel, keep_alpha, full);
+                             image.width, image.channels, divided_alpha, keep_alpha, full);
             break;
         }
       }
-      ok = out->write_scanlines(y0, y1, 0, oiioType(image.type), band.data());
+      // Extra channels go with OpenEXR only, so with float samples.
+      const void* data = band.data();
+      if (with_extra) {
+        io_extra::interleaveRows(reinterpret_cast<const float*>(band.data()), channels,
+                                 image.width, y0, y1, *options.extra_channels, with_channels);
+        data = with_channels.data();
+      }
+      ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), data);
     }
     if (context.cancelled) {
       out->close();

@@ -33,7 +33,7 @@ struct StoredImage {
   PixelBuffer bytes;  // packed rows of width · channels samples of `type` (huge pages, zeroed)
   int width = 0;
   int height = 0;
-  int channels = 0;        // 1..4 (further channels of the file are not read)
+  int channels = 0;        // 1..4 (further channels: readExtraChannels, image_io.h)
   int alpha_channel = -1;  // premultiplied (see above), or -1
   PixelType type = PixelType::UInt8;
   ImageInfo info;          // what the file said about itself, for writing the same kind back

@@ -291,6 +291,16 @@ bool rendersByGatherWarp(const Artcam& camera) {
   return !analysis.linear && analysis.channels.empty();
 }
 
+std::string extraChannelsUnsupported(const Artcam& camera) {
+  const Analysis analysis = analyse(camera);
+  if (!analysis.channels.empty())
+    return "the camera moves each colour channel by its own geometry (chromatic aberration)";
+  if (analysis.linear)
+    return "the camera changes colour or depth (layers, attributes or depth of field), which "
+           "has no meaning for data channels";
+  return "";
+}
+
 void render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
             const ImageView& out, RenderSummary* summary) {
   const auto start = std::chrono::steady_clock::now();

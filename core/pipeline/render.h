@@ -111,6 +111,17 @@ void render(const RenderInputs& inputs, const Artcam& camera, const RenderOption
 ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options = {},
               RenderSummary* summary = nullptr, ImageF* depth_out = nullptr);
 
+// Channels beyond the photo's (an EXR's depth, normals, AOVs) render through the same entry
+// point, a group of 1..4 at a time as a photo of its own (RenderInputs::photo, no alpha) into
+// an output of the photo's output size and the group's channels: the same camera, the same
+// source position for every output pixel, pixels without a preimage 0 (as Nuke's STMap moves
+// every channel). That holds for cameras rendered from the stored photo by one geometry
+// (geometry-only and piecewise). Empty for those; else why not: per-channel cameras
+// (chromatic aberration) move R, G and B differently, so no position is "the" source of an
+// extra channel, and cameras on the linear photo change colour or depth or blur by depth,
+// which has no meaning for data channels.
+std::string extraChannelsUnsupported(const Artcam& camera);
+
 // Drops the alpha channel (the last) when every pixel's alpha is full: returns the narrower view's
 // channel count written in place (packed rows), or the old count when some pixel is not opaque.
 int dropOpaqueAlpha(const ImageView& image);

@@ -43,6 +43,15 @@ oiio("ok.jpg", "--pattern", "fill:top=0.2,0.4,0.6:bottom=0.8,0.6,0.4", "64x48", 
 oiio("ok.tif", "--pattern", "checker:width=8:height=8", "64x48", "3")
 oiio("ok.exr", "--pattern", "fill:top=0.1,0.2,0.3,1:bottom=0.9,0.8,0.7,1", "64x48", "4", "-d", "half")
 oiio("five.tif", "--pattern", "constant:color=0.1,0.2,0.3,1,0.5", "64x48", "5")
+# An EXR of 40 channels (RGBA, Z and 35 AOVs): every one is warped into an EXR.
+forty = ["R", "G", "B", "A", "Z"] + ["aov%d.%s" % (k // 3, "RGB"[k % 3]) for k in range(35)]
+oiio("forty.exr", "--pattern", "constant:color=" + ",".join("%.2f" % (0.02 * k) for k in range(40)),
+     "64x48", "40", "--chnames", ",".join(forty), "-d", "half")
+# Data windows that are not the display window: one outside it, one a crop inside it.
+oiio("window-outside.exr", "--pattern", "constant:color=0.5,0.5,0.5", "32x24", "3",
+     "--origin", "+100+100", "--fullsize", "64x48+0+0", "-d", "half")
+oiio("window-inside.exr", "--pattern", "constant:color=0.5,0.5,0.5", "32x24", "3",
+     "--origin", "+8+4", "--fullsize", "64x48+0+0", "-d", "half")
 oiio("gray.png", "--pattern", "fill:top=0:bottom=1", "64x48", "1")
 oiio("gray-alpha.png", "--pattern", "constant:color=0.5,1", "64x48", "2")
 oiio("one-pixel.png", "--pattern", "constant:color=0.5,0.5,0.5", "1x1", "3")
