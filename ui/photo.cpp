@@ -3,25 +3,103 @@
 
 #include "ui/image_convert.h"
 
+#include "core/colour/transfer.h"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace artcam::ui {
+
+namespace {
+
+// The live preview's 8-bit mip pyramid over `base` (premultiplied RGBA8), kept with the photo.
+void buildPyramid(Photo& photo, QImage base) {
+  photo.pyramid_base = std::move(base);
+  const QImage& b = photo.pyramid_base;
+  ConstImageView view = packedView<const void>(b.constBits(), b.width(), b.height(), 4,
+                                               PixelType::UInt8, /*alpha_channel=*/3);
+  view.row_bytes = b.bytesPerLine();
+  photo.pyramid = std::make_shared<const StoredMipPyramid>(view);
+}
+
+// boxDownscale (image_convert.h) of 8-bit sRGB samples, each decoded through readImage's
+// table (the exact sRGB curve), summed in linear light: the float preview without a float
+// copy of the whole raster.
+ImageF boxDownscaleSrgb8(const std::uint8_t* bytes, int w, int h, int ch, int max_side) {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    const Transfer srgb = Transfer::srgb();
+    for (int v = 0; v < 256; ++v)
+      t[static_cast<size_t>(v)] = static_cast<float>(srgb.decode(static_cast<double>(v) / 255));
+    return t;
+  }();
+  const int longest = std::max(w, h);
+  const int f = longest <= max_side ? 1 : (longest + max_side - 1) / max_side;
+  const int ow = (w + f - 1) / f, oh = (h + f - 1) / f;
+  ImageF out(ow, oh, ch);
+  std::vector<double> sums(static_cast<size_t>(ow) * static_cast<size_t>(ch));
+  const size_t row = static_cast<size_t>(w) * static_cast<size_t>(ch);
+  for (int oy = 0; oy < oh; ++oy) {
+    std::fill(sums.begin(), sums.end(), 0.0);
+    const int y1 = std::min(h, (oy + 1) * f);
+    for (int y = oy * f; y < y1; ++y) {
+      const std::uint8_t* in = bytes + static_cast<size_t>(y) * row;
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < ch; ++c)
+          sums[static_cast<size_t>((x / f) * ch + c)] += table[in[x * ch + c]];
+    }
+    for (int ox = 0; ox < ow; ++ox) {
+      const int n = (y1 - oy * f) * (std::min(w, (ox + 1) * f) - ox * f);
+      for (int c = 0; c < ch; ++c)
+        out.pixel(ox, oy)[c] =
+            static_cast<float>(sums[static_cast<size_t>(ox * ch + c)] / static_cast<double>(n));
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 PhotoPtr makePhoto(QString path, LoadedImage loaded) {
   auto photo = std::make_shared<Photo>();
   photo->path = std::move(path);
+  photo->full_size = {loaded.image.width, loaded.image.height};
   photo->full = std::move(loaded);
   photo->preview = boxDownscale(photo->full.image, kPreviewMaxSide);
   photo->display = qimageFromLinear(boxDownscale(photo->full.image, kDisplayMaxSide));
-  if (!photo->display.isNull()) {
-    photo->pyramid_base = photo->display.convertToFormat(QImage::Format_RGBA8888_Premultiplied);
-    const QImage& base = photo->pyramid_base;
-    ConstImageView view = packedView<const void>(base.constBits(), base.width(), base.height(), 4,
-                                                 PixelType::UInt8, /*alpha_channel=*/3);
-    view.row_bytes = base.bytesPerLine();
-    photo->pyramid = std::make_shared<const StoredMipPyramid>(view);
+  if (!photo->display.isNull())
+    buildPyramid(*photo, photo->display.convertToFormat(QImage::Format_RGBA8888_Premultiplied));
+  return photo;
+}
+
+PhotoPtr makeFirstLookPhoto(QString path, FirstLook look) {
+  auto photo = std::make_shared<Photo>();
+  photo->path = std::move(path);
+  photo->reduced_by = look.reduced_by;
+  photo->full_size = {look.full_width, look.full_height};
+  photo->full.info = std::move(look.image.info);  // full.image stays empty (photo.h)
+  const StoredImage& image = look.image;
+  const int w = image.width, h = image.height, ch = image.channels;
+  const auto* bytes = static_cast<const std::uint8_t*>(image.bytes.data());
+  // Opaque RGBA: premultiplied is the same bytes.
+  QImage base(w, h, QImage::Format_RGBA8888_Premultiplied);
+  if (base.isNull()) return photo;  // allocation failed: nothing to show until the full photo
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* in = bytes + static_cast<size_t>(y) * static_cast<size_t>(w * ch);
+    std::uint8_t* out = base.scanLine(y);
+    for (int x = 0; x < w; ++x, in += ch, out += 4) {
+      out[0] = in[0];
+      out[1] = in[ch == 3 ? 1 : 0];
+      out[2] = in[ch == 3 ? 2 : 0];
+      out[3] = 255;
+    }
   }
+  photo->display = base;  // shares the pixels
+  buildPyramid(*photo, std::move(base));
+  photo->preview = boxDownscaleSrgb8(bytes, w, h, ch, kPreviewMaxSide);
   return photo;
 }
 
