@@ -32,6 +32,7 @@
 #include <QElapsedTimer>
 #include <QEventLoop>
 #include <QMouseEvent>
+#include <QFile>
 #include <QStandardPaths>
 #include <QTimer>
 
@@ -52,7 +53,8 @@ namespace {
 
 const char kUsage[] =
     "usage: artcam-studio-bench [--drag] [--photo FILE] [--edits N] [--strength S]\n"
-    "                           [--pairs N] [--moves N] [--fit-on-gui-thread] [--help]\n"
+    "                           [--pairs N] [--moves N] [--fit-on-gui-thread]\n"
+    "                           [--export PROJECT -o OUT] [--help]\n"
     "\n"
     "Measures the studio's responsiveness and prints key=value lines. Run it on an idle\n"
     "machine; the figures are wall-clock times.\n"
@@ -80,6 +82,9 @@ const char kUsage[] =
     "  --moves N            drag mode: number of mouse-move events (default 120, at least 5)\n"
     "  --fit-on-gui-thread  drag mode: fit every move on the GUI thread (the old behaviour),\n"
     "                       for comparison\n"
+    "  --export PROJECT -o OUT  the studio's export of PROJECT to OUT (Session::exportImage),\n"
+    "                       timed from the call to its outcome (studio_export_ms), to set\n"
+    "                       beside `artcam export PROJECT -o OUT`\n"
     "  --help               this text\n";
 
 struct Options {
@@ -90,6 +95,8 @@ struct Options {
   int pairs = 300;
   int moves = 120;
   bool fit_on_gui = false;
+  std::string export_project;  // --export PROJECT -o OUT
+  std::string export_output;
 };
 
 LoadedImage syntheticPhoto(int w, int h) {
@@ -512,6 +519,51 @@ int runDrag(const Options& o) {
   return 0;
 }
 
+// The studio's export of a project (Session::exportImage, the ExportJob), timed from the call
+// to its outcome, the project opened as the studio opens it and its full photo in first. The
+// figure to set beside `artcam export PROJECT -o OUT` (which also reads the photo: see
+// export_read_ms, the studio's whole read of it, for that share).
+int runExport(const Options& o) {
+  QStandardPaths::setTestModeEnabled(true);  // no autosave or settings in the user's folders
+  Document doc;
+  Session session(&doc, nullptr);
+  session.setInteractive(false);
+  QElapsedTimer clock;
+  clock.start();
+  session.openPath(QString::fromStdString(o.export_project));
+  while (clock.elapsed() < 120000 && (!doc.photo() || !doc.photo()->hasFullImage()))
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
+  if (!doc.photo() || !doc.photo()->hasFullImage()) {
+    std::fprintf(stderr, "the project's photo did not arrive\n");
+    return 1;
+  }
+  const double open_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  QFile::remove(QString::fromStdString(o.export_output));
+  bool done = false, ok = false;
+  QString message;
+  QObject::connect(&session, &Session::exportFinished, [&](bool success, const QString& m) {
+    done = true;
+    ok = success;
+    message = m;
+  });
+  clock.restart();
+  session.exportImage(QString::fromStdString(o.export_output));
+  while (!done && clock.elapsed() < 600000)
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+  const double export_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  if (!ok) {
+    std::fprintf(stderr, "%s\n", done ? qPrintable(message) : "the export did not finish");
+    return 1;
+  }
+  clock.restart();
+  const auto read = readImage(doc.photo()->path.toStdString());
+  const double read_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  std::printf("mode=export\nphoto=%dx%d\nopen_to_full_photo_ms=%.0f\n", doc.photo()->size().width,
+              doc.photo()->size().height, open_ms);
+  std::printf("studio_export_ms=%.0f\nexport_read_ms=%.0f\n", export_ms, read ? read_ms : -1.0);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -526,7 +578,12 @@ int main(int argc, char** argv) {
       o.drag = true;
     else if (std::strcmp(argv[i], "--fit-on-gui-thread") == 0)
       o.fit_on_gui = true;
-    else if (std::strcmp(argv[i], "--photo") == 0 && has_value)
+    else if (std::strcmp(argv[i], "--export") == 0 && i + 2 < argc &&
+             std::strcmp(argv[i + 2], "-o") == 0 && i + 3 < argc) {
+      o.export_project = argv[i + 1];
+      o.export_output = argv[i + 3];
+      i += 3;
+    } else if (std::strcmp(argv[i], "--photo") == 0 && has_value)
       o.photo_path = argv[++i];
     else if (std::strcmp(argv[i], "--edits") == 0 && has_value)
       o.edits = std::max(3, std::atoi(argv[++i]));
@@ -546,5 +603,6 @@ int main(int argc, char** argv) {
   }
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
   QApplication app(argc, argv);
+  if (!o.export_project.empty()) return runExport(o);
   return o.drag ? runDrag(o) : runLatency(o);
 }

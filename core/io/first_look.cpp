@@ -62,20 +62,29 @@ Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_
     return R::success(std::nullopt);
   const int n = firstLookReduction(spec.width, spec.height, box_width, box_height);
   if (n == 1) return R::success(std::nullopt);
-  auto codec = io_input::jpegCodecPath(*in, spec, path, n);
+  // The codec path's test (io_input::jpegCodecPath), with RGB files decoded as opaque RGBA.
+  if (std::string(in->format_name()) != "jpeg" || spec.format != OIIO::TypeDesc::UINT8)
+    return R::success(std::nullopt);
+  const bool rgba = channels == 3;
+  auto codec = JpegDecoder::open(path, n, rgba ? JpegDecoder::Output::Rgba
+                                              : JpegDecoder::Output::Samples);
   if (!codec) return R::failure(codec.status.message);
-  if (!*codec.value) return R::success(std::nullopt);  // not a JPEG the codec path takes
-  JpegDecoder& jpeg = **codec.value;
+  std::unique_ptr<JpegDecoder> jpeg = std::move(*codec.value);
+  const int out_channels = rgba ? 4 : 1;
+  if (!jpeg->supported() || jpeg->channels() != out_channels ||
+      jpeg->width() != (spec.width + n - 1) / n || jpeg->height() != (spec.height + n - 1) / n)
+    return R::success(std::nullopt);
 
   FirstLook look;
   look.reduced_by = n;
   StoredImage& image = look.image;
-  image = makeStoredImage(jpeg.width(), jpeg.height(), channels, -1, PixelType::UInt8,
+  image = makeStoredImage(jpeg->width(), jpeg->height(), out_channels, rgba ? 3 : -1,
+                          PixelType::UInt8,
                           PixelBuffer::Init::Uninitialised);  // the decoder writes every byte
-  const Status decoded = jpeg.decode(
-      image.bytes.data(), static_cast<size_t>(image.width) * static_cast<size_t>(channels),
+  const Status decoded = jpeg->decode(
+      image.bytes.data(), static_cast<size_t>(image.width) * static_cast<size_t>(out_channels),
       progress);
-  codec.value->reset();  // closes the file before the metadata reader opens it
+  jpeg.reset();  // closes the file before the metadata reader opens it
   if (!decoded) return R::failure(decoded.message);
   if (const Status damage = io_input::decodeProblems(*in, path); !damage)
     return R::failure(damage.message);
@@ -88,9 +97,10 @@ Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_
   if (orientation != 1) {
     StoredImage upright =
         makeStoredImage(swap ? image.height : image.width, swap ? image.width : image.height,
-                        channels, -1, PixelType::UInt8, PixelBuffer::Init::Uninitialised);
-    reorientPixels(image.bytes.data(), image.width, image.height, static_cast<size_t>(channels),
-                   orientation, upright.bytes.data());
+                        out_channels, image.alpha_channel, PixelType::UInt8,
+                        PixelBuffer::Init::Uninitialised);
+    reorientPixels(image.bytes.data(), image.width, image.height,
+                   static_cast<size_t>(out_channels), orientation, upright.bytes.data());
     image = std::move(upright);
   }
   look.full_width = swap ? spec.height : spec.width;

@@ -2,7 +2,9 @@
 // A photo's quick first look, for the studio to show while readImage decodes the whole file:
 // libjpeg's DCT-scaled decode (jpeg_decode.h) of a JPEG, the largest 1/2, 1/4 or 1/8 whose
 // raster still covers the photo shrunk (never enlarged, aspect kept) into a box, as the 8-bit
-// samples the file stores, turned upright (orientation.h).
+// samples the file stores, turned upright (orientation.h). Colour comes as opaque RGBA (libjpeg-
+// turbo writes the fourth byte, 255), ready to be an RGBA8 picture without a pass of its own;
+// grey as one channel.
 //
 // Only files whose whole read (image_io.h) decodes those same samples through the sRGB table
 // take it: an 8-bit grey or YCbCr/RGB JPEG the codec path takes, sRGB-encoded, with no ICC
@@ -22,7 +24,9 @@
 namespace artcam {
 
 struct FirstLook {
-  StoredImage image;  // upright, 8-bit sRGB, 1 or 3 channels; info as readImage gives it
+  // Upright, 8-bit sRGB: Y, or R, G, B, A with A = 255 (alpha_channel 3); info as readImage
+  // gives it.
+  StoredImage image;
   int reduced_by = 1;  // libjpeg's 1/n, each side rounded up
   int full_width = 0;  // the whole photo, upright
   int full_height = 0;

@@ -85,18 +85,14 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path) {
 
 Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
                                                    const OIIO::ImageSpec& spec,
-                                                   const std::string& path,
-                                                   int scale_denominator) {
+                                                   const std::string& path) {
   using R = Result<std::unique_ptr<JpegDecoder>>;
   if (std::string(in.format_name()) != "jpeg" || spec.format != OIIO::TypeDesc::UINT8)
     return R::success(nullptr);
-  auto decoder = JpegDecoder::open(path, scale_denominator);
+  auto decoder = JpegDecoder::open(path);
   if (!decoder) return R::failure(decoder.status.message);
   const JpegDecoder& d = **decoder;
-  const auto reduced = [scale_denominator](int side) {
-    return (side + scale_denominator - 1) / scale_denominator;
-  };
-  if (!d.supported() || d.width() != reduced(spec.width) || d.height() != reduced(spec.height) ||
+  if (!d.supported() || d.width() != spec.width || d.height() != spec.height ||
       d.channels() != keptChannels(spec))
     return R::success(nullptr);
   return decoder;

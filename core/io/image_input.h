@@ -49,12 +49,10 @@ inline Status decodeProblems(OIIO::ImageInput& in, const std::string& path) {
 // The codec path both readers take for the pixels of `in` (opened by openImageInput): a
 // libjpeg-turbo decoder for an 8-bit grey or YCbCr/RGB JPEG whose raster is what `spec` says
 // (jpeg_decode.h), else null and OpenImageIO decodes. Fails (one line) when libjpeg refuses
-// the header OpenImageIO accepted. scale_denominator > 1 asks for libjpeg's 1/n decode (the
-// raster then is `spec`'s size divided by n, each side rounded up).
+// the header OpenImageIO accepted.
 Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
                                                    const OIIO::ImageSpec& spec,
-                                                   const std::string& path,
-                                                   int scale_denominator = 1);
+                                                   const std::string& path);
 
 // Channels a reader keeps (beyond the fourth — EXR depth, masks — they are left behind) and the
 // alpha channel among them, or -1.

@@ -87,6 +87,9 @@ class TestFirstLook : public QObject {
     QCOMPARE(live.width, 1920);
     QVERIFY(first->display.width() >= live.width && first->display.height() >= live.height);
     QVERIFY(first->pyramid);
+    QCOMPARE(qAlpha(first->display.pixel(17, 3)), 255);  // libjpeg-turbo's RGBA is opaque
+    QCOMPARE(first->preview.width, full->preview.width);  // the float copy: 1000×100 both
+    QCOMPARE(first->preview.channels, full->preview.channels);
 
     QVERIFY(full->hasFullImage());
     QCOMPARE(full->size().width, kWidth);

@@ -54,6 +54,17 @@ std::vector<std::uint8_t> scaledDecode(const std::string& path, int n, int* widt
   return bytes;
 }
 
+// R, G, B of an opaque RGBA first look; empty when any alpha byte is not 255.
+std::vector<std::uint8_t> rgbOf(const StoredImage& image) {
+  const auto* p = static_cast<const std::uint8_t*>(image.bytes.data());
+  std::vector<std::uint8_t> rgb;
+  for (size_t k = 0; k < static_cast<size_t>(image.width) * image.height; ++k, p += 4) {
+    if (p[3] != 255) return {};
+    rgb.insert(rgb.end(), p, p + 3);
+  }
+  return rgb;
+}
+
 std::vector<std::uint8_t> bytesOf(const StoredImage& image) {
   const auto* first = static_cast<const std::uint8_t*>(image.bytes.data());
   return {first, first + static_cast<size_t>(image.width) * image.height * image.channels};
@@ -106,11 +117,15 @@ class TestFirstLook : public QObject {
     QCOMPARE(l.reduced_by, 2);
     QCOMPARE(l.image.width, 2000);
     QCOMPARE(l.image.height, 200);
-    QCOMPARE(l.image.channels, 3);
+    QCOMPARE(l.image.channels, 4);  // opaque RGBA (first_look.h)
+    QCOMPARE(l.image.alpha_channel, 3);
     QCOMPARE(l.full_width, 4000);
     QCOMPARE(l.full_height, 400);
     int w = 0, h = 0;
-    QVERIFY(bytesOf(l.image) == scaledDecode(file, 2, &w, &h));
+    const std::vector<std::uint8_t> truth = scaledDecode(file, 2, &w, &h);
+    QCOMPARE(w, 2000);
+    QVERIFY(!truth.empty());
+    QVERIFY(rgbOf(l.image) == truth);
     // What the whole read says about the file, the first look says too.
     const auto whole = readImage(file);
     QVERIFY2(whole, whole.status.message.c_str());
@@ -140,7 +155,7 @@ class TestFirstLook : public QObject {
     const StoredImage& s = (*as_stored)->image;
     QCOMPARE(s.width, 200);
     std::vector<std::uint8_t> upright(bytesOf(s).size());
-    reorientPixels(s.bytes.data(), s.width, s.height, 3, 6, upright.data());
+    reorientPixels(s.bytes.data(), s.width, s.height, 4, 6, upright.data());
     QVERIFY(bytesOf((*look)->image) == upright);
     const auto whole = readImage(turned);
     QVERIFY2(whole, whole.status.message.c_str());
