@@ -7,10 +7,11 @@
 // First look (setFirstLook, the studio's photo opens): a JPEG that has one (core/io/first_look.h:
 // sRGB, no ICC conversion) is first read through libjpeg's DCT scaling, just large enough for
 // the live preview (kLivePreviewMaxWidth × kLivePreviewMaxHeight), and loaded() brings that
-// first look (Photo::reduced_by > 1, no full pixels, size() the
-// whole photo's). Then a second job reads the whole file and refined() brings the full photo,
-// or refineFailed() says why not. The two jobs run one after the other, so the first look has
-// both cores' worth of machine to itself. Any other file is read whole and only loaded() comes.
+// first look (Photo::reduced_by > 1, no full pixels, size() the whole photo's). Then a second
+// job reads the whole file and refined() brings the full photo, or refineFailed() says why
+// not. The second starts when the first is delivered, so the whole read does not compete with
+// the first look and its first preview for the cores. Any other file is read whole and only
+// loaded() comes.
 #pragma once
 
 #include "ui/background_job.h"
