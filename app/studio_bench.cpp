@@ -3,7 +3,8 @@
 // otherwise idle machine and quote the load). Two modes, both printing key=value lines:
 //
 //   latency (default): a 24-megapixel photo (made in code, or --photo FILE) is loaded as the
-//     studio loads it (display copy and 8-bit mip pyramid built once), ten pairs through a
+//     studio loads it (a JPEG's reduced first look, then the full photo swapped in; display
+//     copy and 8-bit mip pyramid built once per photo), ten pairs through a
 //     rational lens are fitted, then each edit moves one target point and the clock runs from
 //     the edit (the refit included) until the final pass of the preview (fitted into 1920×1080)
 //     is in the controller.
@@ -15,10 +16,13 @@
 //     (until a final preview of that edit or a newer one is shown), the GUI thread's CPU time
 //     over the drag (what it did itself, against the wall time others kept it waiting) and
 //     where the fits ran.
+#include "core/io/first_look.h"
 #include "core/io/image_io.h"
+#include "core/io/jpeg_decode.h"
 #include "ui/canvas.h"
 #include "ui/document.h"
 #include "ui/document_fit.h"
+#include "ui/image_loader.h"
 #include "ui/main_window.h"
 #include "ui/photo.h"
 #include "ui/preview_controller.h"
@@ -28,6 +32,7 @@
 #include <QElapsedTimer>
 #include <QEventLoop>
 #include <QMouseEvent>
+#include <QFile>
 #include <QStandardPaths>
 #include <QTimer>
 
@@ -48,7 +53,8 @@ namespace {
 
 const char kUsage[] =
     "usage: artcam-studio-bench [--drag] [--photo FILE] [--edits N] [--strength S]\n"
-    "                           [--pairs N] [--moves N] [--fit-on-gui-thread] [--help]\n"
+    "                           [--pairs N] [--moves N] [--fit-on-gui-thread]\n"
+    "                           [--export PROJECT -o OUT] [--help]\n"
     "\n"
     "Measures the studio's responsiveness and prints key=value lines. Run it on an idle\n"
     "machine; the figures are wall-clock times.\n"
@@ -58,7 +64,10 @@ const char kUsage[] =
     "                       24-megapixel photo; each edit moves one target point and waits for\n"
     "                       the final preview pass (median, min, p90); also\n"
     "                       first_preview_ms and first_final_preview_ms, from opening the\n"
-    "                       photo (decode, display copy) to its first and its final preview\n"
+    "                       photo as the studio opens it (a JPEG's first look, decoded\n"
+    "                       reduced) to its first and its final preview, full_photo_ms to\n"
+    "                       the full photo swapped in, and apart: decode_ms and prepare_ms\n"
+    "                       (the whole read and its copies) and djpeg_ms (one libjpeg decode)\n"
     "  --drag               a mouse drag in the whole studio window: one target point of\n"
     "                       --pairs pairs is dragged through --moves mouse moves at 125 Hz;\n"
     "                       prints the GUI thread's time per move event (median, max), the\n"
@@ -73,6 +82,9 @@ const char kUsage[] =
     "  --moves N            drag mode: number of mouse-move events (default 120, at least 5)\n"
     "  --fit-on-gui-thread  drag mode: fit every move on the GUI thread (the old behaviour),\n"
     "                       for comparison\n"
+    "  --export PROJECT -o OUT  the studio's export of PROJECT to OUT (Session::exportImage),\n"
+    "                       timed from the call to its outcome (studio_export_ms), to set\n"
+    "                       beside `artcam export PROJECT -o OUT`\n"
     "  --help               this text\n";
 
 struct Options {
@@ -83,6 +95,8 @@ struct Options {
   int pairs = 300;
   int moves = 120;
   bool fit_on_gui = false;
+  std::string export_project;  // --export PROJECT -o OUT
+  std::string export_output;
 };
 
 LoadedImage syntheticPhoto(int w, int h) {
@@ -162,34 +176,92 @@ std::optional<LoadedPhoto> loadPhoto(const std::string& path) {
   return out;
 }
 
-int runLatency(const Options& o) {
-  const std::optional<LoadedPhoto> loaded = loadPhoto(o.photo_path);
-  if (!loaded) return 1;
-  const PhotoPtr& photo = loaded->photo;
-  const FrameSize size = photo->size();
-  const FrameSize preview = livePreviewSize(*photo);
+std::vector<Pair> latencyPairs(FrameSize size, double strength) {
   std::vector<Pair> pairs;
   for (int k = 0; k < 10; ++k) {
     // Offsets are shares of the frame, so every pair stays inside a photo of any size.
     const Eigen::Vector2d s(size.width * (0.15 + 0.7 * (k % 4) / 3.0),
                             size.height * (0.15 + 0.7 * (k / 4) / 2.0 + 0.00925 * k));
-    pairs.push_back(lensPair(s, size, o.strength));
+    pairs.push_back(lensPair(s, size, strength));
   }
-  Document doc;
-  PreviewController controller(&doc);
+  return pairs;
+}
+
+// One full libjpeg decode of the file (JpegDecoder at scale 1 into 8-bit rows, djpeg's own
+// loop): the yardstick for opening. Negative when the codec path does not take the file.
+double djpegMs(const std::string& path) {
   QElapsedTimer clock;
   clock.start();
-  doc.reset(photo, pairs, ModelClass::Quadratic);
-  // The first picture of any quality, then the final one, both counted from the decoded photo.
-  double first_any_ms = -1.0;
-  while (clock.elapsed() < 60000 && controller.image().isNull())
+  auto decoder = JpegDecoder::open(path);
+  if (!decoder || !(*decoder.value)->supported()) return -1.0;
+  JpegDecoder& d = **decoder.value;
+  const size_t row = static_cast<size_t>(d.width()) * static_cast<size_t>(d.channels());
+  std::vector<std::uint8_t> pixels(row * static_cast<size_t>(d.height()));
+  if (!d.decode(pixels.data(), row)) return -1.0;
+  return static_cast<double>(clock.nsecsElapsed()) / 1e6;
+}
+
+// Opening as the studio opens a photo (Session: ImageLoader with the first look,
+// Document::reset, then Document::refinePhoto), timed from the open: the first preview shown
+// (any pass), its final pass, and the full photo swapped in.
+struct StudioOpen {
+  int reduced_by = 1;
+  double first_preview_ms = -1.0;
+  double first_final_preview_ms = -1.0;
+  double full_photo_ms = -1.0;
+};
+
+std::optional<StudioOpen> openAsStudio(const std::string& path, double strength, Document& doc,
+                                       const PreviewController& controller) {
+  StudioOpen out;
+  bool failed = false, refined = false;
+  ImageLoader loader(QString::fromStdString(path));
+  loader.setFirstLook(true);
+  QElapsedTimer clock;
+  QObject::connect(&loader, &ImageLoader::loaded, [&](const PhotoPtr& photo) {
+    out.reduced_by = photo->reduced_by;
+    doc.reset(photo, latencyPairs(photo->size(), strength), ModelClass::Quadratic);
+    if (photo->hasFullImage()) {
+      refined = true;
+      out.full_photo_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+    }
+  });
+  QObject::connect(&loader, &ImageLoader::refined, [&](const PhotoPtr& photo) {
+    doc.refinePhoto(photo);
+    refined = true;
+    out.full_photo_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  });
+  const auto fail = [&failed](const QString& message) {
+    std::fprintf(stderr, "%s\n", qPrintable(message));
+    failed = true;
+  };
+  QObject::connect(&loader, &ImageLoader::failed, fail);
+  QObject::connect(&loader, &ImageLoader::refineFailed, fail);
+  clock.start();
+  loader.start();
+  while (!failed && clock.elapsed() < 60000 && (!refined || out.first_final_preview_ms < 0.0)) {
     QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
-  if (!controller.image().isNull()) first_any_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
-  if (!waitForFinal(controller, 60000)) {
-    std::fprintf(stderr, "the first preview did not arrive\n");
-    return 1;
+    if (out.first_preview_ms < 0.0 && !controller.image().isNull())
+      out.first_preview_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+    if (out.first_final_preview_ms < 0.0 && controller.imageIsFinal() &&
+        !controller.image().isNull())
+      out.first_final_preview_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
   }
-  const double first_final_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  if (failed || !refined || out.first_final_preview_ms < 0.0) {
+    if (!failed) std::fprintf(stderr, "the photo or its first preview did not arrive\n");
+    return std::nullopt;
+  }
+  // The preview of the full photo, before the edits are timed.
+  if (!waitForFinal(controller, 60000)) {
+    std::fprintf(stderr, "the preview of the full photo did not arrive\n");
+    return std::nullopt;
+  }
+  return out;
+}
+
+int runEdits(const Options& o, Document& doc, const PreviewController& controller) {
+  QElapsedTimer clock;
+  clock.start();
   std::vector<double> latency_ms, render_ms;
   for (int e = 0; e < o.edits; ++e) {
     Pair moved = doc.pairs()[static_cast<size_t>(e % 10)];
@@ -203,20 +275,82 @@ int runLatency(const Options& o) {
     latency_ms.push_back(static_cast<double>(clock.nsecsElapsed()) / 1e6);
     render_ms.push_back(controller.lastRenderMs());
   }
-  std::printf("mode=latency\n");
-  std::printf("lens_strength=%.3g\n", o.strength);
-  std::printf("photo=%dx%d\ndecode_ms=%.0f\nprepare_ms=%.0f\npreview=%dx%d\n", size.width,
-              size.height, loaded->decode_ms, loaded->prepare_ms, preview.width, preview.height);
-  // From opening the file: its full decode, the display copy, then the preview's render.
-  std::printf("first_preview_ms=%.0f\nfirst_final_preview_ms=%.0f\n",
-              loaded->decode_ms + loaded->prepare_ms + first_any_ms,
-              loaded->decode_ms + loaded->prepare_ms + first_final_ms);
   std::printf(
       "edits=%d\nedit_to_preview_ms_median=%.1f\nedit_to_preview_ms_min=%.1f\n"
       "edit_to_preview_ms_p90=%.1f\nfinal_pass_render_ms_median=%.1f\n",
       o.edits, percentile(latency_ms, 0.5), percentile(latency_ms, 0.0),
       percentile(latency_ms, 0.9), percentile(render_ms, 0.5));
   return 0;
+}
+
+// A photo file: opened as the studio opens it (first look, then the full photo); then, apart,
+// the whole read and the copies (decode_ms, prepare_ms) and one libjpeg decode (djpeg_ms), so
+// the figures sit side by side; then the edits.
+int runLatencyFile(const Options& o) {
+  Document doc;
+  PreviewController controller(&doc);
+  const std::optional<StudioOpen> opened = openAsStudio(o.photo_path, o.strength, doc, controller);
+  if (!opened) return 1;
+  const std::optional<LoadedPhoto> whole = loadPhoto(o.photo_path);
+  if (!whole) return 1;
+  const double djpeg_ms = djpegMs(o.photo_path);
+  // The first look's two stages on this thread: its read, then its copies.
+  QElapsedTimer clock;
+  clock.start();
+  auto look = readFirstLook(o.photo_path, kLivePreviewMaxWidth, kLivePreviewMaxHeight);
+  const double look_read_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  clock.restart();
+  if (look && *look) makeFirstLookPhoto(QString(), std::move(**look));
+  const double look_prepare_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  const FrameSize size = doc.photo()->size();
+  const FrameSize preview = livePreviewSize(*doc.photo());
+  std::printf("mode=latency\n");
+  std::printf("lens_strength=%.3g\n", o.strength);
+  std::printf("photo=%dx%d\npreview=%dx%d\n", size.width, size.height, preview.width,
+              preview.height);
+  // The whole read (readImage) and its copies (makePhoto) timed apart; libjpeg's decode alone.
+  std::printf("decode_ms=%.0f\nprepare_ms=%.0f\ndjpeg_ms=%.0f\n", whole->decode_ms,
+              whole->prepare_ms, djpeg_ms);
+  // From the open: the first look's preview shown (any pass, then its final pass), then the
+  // full photo swapped in. first_look_reduced_by 1: the file was read whole (no first look).
+  std::printf("first_look_reduced_by=%d\nfirst_look_read_ms=%.0f\nfirst_look_prepare_ms=%.0f\n",
+              opened->reduced_by, look_read_ms, look_prepare_ms);
+  std::printf("first_preview_ms=%.0f\nfirst_final_preview_ms=%.0f\nfull_photo_ms=%.0f\n",
+              opened->first_preview_ms, opened->first_final_preview_ms, opened->full_photo_ms);
+  return runEdits(o, doc, controller);
+}
+
+int runLatency(const Options& o) {
+  if (!o.photo_path.empty()) return runLatencyFile(o);
+  // The synthetic photo: made in memory (decode_ms), its copies built (prepare_ms).
+  const std::optional<LoadedPhoto> loaded = loadPhoto(o.photo_path);
+  if (!loaded) return 1;
+  const PhotoPtr& photo = loaded->photo;
+  const FrameSize size = photo->size();
+  const FrameSize preview = livePreviewSize(*photo);
+  Document doc;
+  PreviewController controller(&doc);
+  QElapsedTimer clock;
+  clock.start();
+  doc.reset(photo, latencyPairs(size, o.strength), ModelClass::Quadratic);
+  // The first picture of any quality, then the final one, both counted from the made photo.
+  double first_any_ms = -1.0;
+  while (clock.elapsed() < 60000 && controller.image().isNull())
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
+  if (!controller.image().isNull()) first_any_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  if (!waitForFinal(controller, 60000)) {
+    std::fprintf(stderr, "the first preview did not arrive\n");
+    return 1;
+  }
+  const double first_final_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  std::printf("mode=latency\n");
+  std::printf("lens_strength=%.3g\n", o.strength);
+  std::printf("photo=%dx%d\ndecode_ms=%.0f\nprepare_ms=%.0f\npreview=%dx%d\n", size.width,
+              size.height, loaded->decode_ms, loaded->prepare_ms, preview.width, preview.height);
+  std::printf("first_preview_ms=%.0f\nfirst_final_preview_ms=%.0f\n",
+              loaded->decode_ms + loaded->prepare_ms + first_any_ms,
+              loaded->decode_ms + loaded->prepare_ms + first_final_ms);
+  return runEdits(o, doc, controller);
 }
 
 void sendMouse(QWidget* w, QEvent::Type type, const QPointF& pos, Qt::MouseButton button,
@@ -385,6 +519,51 @@ int runDrag(const Options& o) {
   return 0;
 }
 
+// The studio's export of a project (Session::exportImage, the ExportJob), timed from the call
+// to its outcome, the project opened as the studio opens it and its full photo in first. The
+// figure to set beside `artcam export PROJECT -o OUT` (which also reads the photo: see
+// export_read_ms, the studio's whole read of it, for that share).
+int runExport(const Options& o) {
+  QStandardPaths::setTestModeEnabled(true);  // no autosave or settings in the user's folders
+  Document doc;
+  Session session(&doc, nullptr);
+  session.setInteractive(false);
+  QElapsedTimer clock;
+  clock.start();
+  session.openPath(QString::fromStdString(o.export_project));
+  while (clock.elapsed() < 120000 && (!doc.photo() || !doc.photo()->hasFullImage()))
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
+  if (!doc.photo() || !doc.photo()->hasFullImage()) {
+    std::fprintf(stderr, "the project's photo did not arrive\n");
+    return 1;
+  }
+  const double open_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  QFile::remove(QString::fromStdString(o.export_output));
+  bool done = false, ok = false;
+  QString message;
+  QObject::connect(&session, &Session::exportFinished, [&](bool success, const QString& m) {
+    done = true;
+    ok = success;
+    message = m;
+  });
+  clock.restart();
+  session.exportImage(QString::fromStdString(o.export_output));
+  while (!done && clock.elapsed() < 600000)
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+  const double export_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  if (!ok) {
+    std::fprintf(stderr, "%s\n", done ? qPrintable(message) : "the export did not finish");
+    return 1;
+  }
+  clock.restart();
+  const auto read = readImage(doc.photo()->path.toStdString());
+  const double read_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+  std::printf("mode=export\nphoto=%dx%d\nopen_to_full_photo_ms=%.0f\n", doc.photo()->size().width,
+              doc.photo()->size().height, open_ms);
+  std::printf("studio_export_ms=%.0f\nexport_read_ms=%.0f\n", export_ms, read ? read_ms : -1.0);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -399,7 +578,12 @@ int main(int argc, char** argv) {
       o.drag = true;
     else if (std::strcmp(argv[i], "--fit-on-gui-thread") == 0)
       o.fit_on_gui = true;
-    else if (std::strcmp(argv[i], "--photo") == 0 && has_value)
+    else if (std::strcmp(argv[i], "--export") == 0 && i + 2 < argc &&
+             std::strcmp(argv[i + 2], "-o") == 0 && i + 3 < argc) {
+      o.export_project = argv[i + 1];
+      o.export_output = argv[i + 3];
+      i += 3;
+    } else if (std::strcmp(argv[i], "--photo") == 0 && has_value)
       o.photo_path = argv[++i];
     else if (std::strcmp(argv[i], "--edits") == 0 && has_value)
       o.edits = std::max(3, std::atoi(argv[++i]));
@@ -419,5 +603,6 @@ int main(int argc, char** argv) {
   }
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
   QApplication app(argc, argv);
+  if (!o.export_project.empty()) return runExport(o);
   return o.drag ? runDrag(o) : runLatency(o);
 }

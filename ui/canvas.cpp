@@ -52,6 +52,8 @@ Canvas::Canvas(Document* document, QWidget* parent) : QWidget(parent), document_
   setAttribute(Qt::WA_OpaquePaintEvent);
   grabGesture(Qt::PinchGesture);
   connect(document_, &Document::photoChanged, this, &Canvas::onPhotoChanged);
+  // The full photo's picture replaces the first look's: same frame, so the view stays.
+  connect(document_, &Document::photoRefined, this, qOverload<>(&QWidget::update));
   connect(document_, &Document::pairsChanged, this, qOverload<>(&QWidget::update));
   connect(document_, &Document::linesChanged, this, qOverload<>(&QWidget::update));
   connect(document_->depth(), &DepthModel::depthChanged, this, qOverload<>(&QWidget::update));

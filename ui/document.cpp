@@ -21,6 +21,38 @@ Document::~Document() = default;
 
 FrameSize Document::frame() const { return photo_ ? photo_->size() : FrameSize{}; }
 
+bool Document::refinePhoto(PhotoPtr full) {
+  if (!photo_ || !full || photo_->hasFullImage() || !full->hasFullImage() ||
+      full->path != photo_->path || full->size().width != photo_->size().width ||
+      full->size().height != photo_->size().height)
+    return false;
+  // The camera lives in normalised frames and the frame is unchanged: no refit, no new camera.
+  photo_ = std::move(full);
+  emit photoRefined();
+  return true;
+}
+
+void Document::failRefine(const QString& message) {
+  if (photo_ && !photo_->hasFullImage()) emit photoRefineFailed(message);
+}
+
+void Document::whenFullImage(QObject* context, std::function<void(bool ready)> then) {
+  if (!photo_ || photo_->hasFullImage()) {
+    then(true);
+    return;
+  }
+  // One shot: whichever of the three comes first disconnects all three.
+  auto links = std::make_shared<std::vector<QMetaObject::Connection>>();
+  auto once = [links, then = std::move(then)](bool ready) {
+    for (const QMetaObject::Connection& c : *links) QObject::disconnect(c);
+    links->clear();
+    then(ready);
+  };
+  links->push_back(connect(this, &Document::photoRefined, context, [once] { once(true); }));
+  links->push_back(connect(this, &Document::photoRefineFailed, context, [once] { once(false); }));
+  links->push_back(connect(this, &Document::photoChanged, context, [once] { once(false); }));
+}
+
 bool LineSet::operator==(const LineSet& o) const {
   if (open != o.open || lines.size() != o.lines.size()) return false;
   for (size_t i = 0; i < lines.size(); ++i)

@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -71,6 +72,18 @@ class Document : public QObject {
   void reset(PhotoPtr photo, std::vector<Pair> pairs = {}, ModelClass model = ModelClass::Auto,
              std::optional<Artcam> manual_camera = std::nullopt,
              std::vector<EffectStep> effects = {}, std::vector<LineTrace> lines = {});
+  // The full photo of a quick first look (Photo::reduced_by, image_loader.h) replaces it: same
+  // path and size(), so pairs, lines, effects, the camera, the selection and the undo stack stay
+  // as they are (nothing refits). Emits photoRefined, not photoChanged. Ignored (false) when
+  // the current photo is not that first look (another photo was opened meanwhile).
+  bool refinePhoto(PhotoPtr full);
+  // The full decode of the first look failed: the photo stays the first look, and what waits
+  // for the full image (whenFullImage) is told so. Emits photoRefineFailed.
+  void failRefine(const QString& message);
+  // Runs `then(true)` once the photo has its full image: at once when it has (or there is no
+  // photo), else when refinePhoto brings it. `then(false)` when the full decode failed or
+  // another photo replaced this one first. Nothing runs once `context` is destroyed.
+  void whenFullImage(QObject* context, std::function<void(bool ready)> then);
 
   // --- pairs: raw mutators for commands.h ---
   const std::vector<Pair>& pairs() const { return pairs_; }
@@ -149,6 +162,10 @@ class Document : public QObject {
 
  signals:
   void photoChanged();
+  // The first look's full photo arrived (refinePhoto): pictures and pixel readers refresh;
+  // nothing else changed.
+  void photoRefined();
+  void photoRefineFailed(const QString& message);
   void pairsChanged();      // any pair added, removed or changed
   void pairCountChanged();  // rows added or removed (tables reset)
   void linesChanged();      // a line or the open line changed, or their bows after a refit

@@ -38,6 +38,15 @@ ImageF ExportJob::render(const ImageF& photo, const ImageF* depth, const Artcam&
 
 void ExportJob::start() {
   if (job_) return;
+  // A first look has no full pixels (photo.h); its caller waits for the full photo
+  // (Document::whenFullImage). Rendering the reduced one would be a silently smaller export.
+  if (!photo_->hasFullImage()) {
+    QMetaObject::invokeMethod(this, [this] {
+      emit done(false, tr("Export of %1: the full photo is not decoded yet.").arg(path_));
+      emit finished();
+    }, Qt::QueuedConnection);
+    return;
+  }
   // Everything the work reads is copied or shared here: the job never touches this object.
   job_ = runInBackground(
       this,

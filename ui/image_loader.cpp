@@ -10,6 +10,34 @@ struct LoadOutcome {
   QString message;
 };
 
+// readImage and the reduced copies, progress 0…1 over both.
+LoadOutcome readPhoto(const QString& path, JobContext& job) {
+  ReadImageOptions options;
+  // The last 10 % are the reduced copies.
+  options.progress = [&job](double f) { return job.progress(f * 0.9); };
+  Result<LoadedImage> result = readImage(path.toStdString(), options);
+  if (job.cancelled()) return LoadOutcome{};
+  if (!result) return LoadOutcome{nullptr, QString::fromStdString(result.status.message)};
+  PhotoPtr photo = makePhoto(path, std::move(*result.value));
+  if (job.cancelled()) return LoadOutcome{};
+  job.setProgress(1.0);
+  return LoadOutcome{std::move(photo), QString()};
+}
+
+// The first look (core/io/first_look.h) when the file has one, else the whole read.
+LoadOutcome readFirstLookOrPhoto(const QString& path, JobContext& job) {
+  Result<std::optional<FirstLook>> look =
+      readFirstLook(path.toStdString(), kLivePreviewMaxWidth, kLivePreviewMaxHeight,
+                    [&job](double f) { return job.progress(f * 0.9); });
+  if (job.cancelled()) return LoadOutcome{};
+  if (!look) return LoadOutcome{nullptr, QString::fromStdString(look.status.message)};
+  if (!*look.value) return readPhoto(path, job);
+  PhotoPtr photo = makeFirstLookPhoto(path, std::move(**look.value));
+  if (job.cancelled()) return LoadOutcome{};
+  job.setProgress(1.0);
+  return LoadOutcome{std::move(photo), QString()};
+}
+
 }  // namespace
 
 ImageLoader::ImageLoader(QString path, QObject* parent) : QObject(parent), path_(std::move(path)) {
@@ -19,6 +47,7 @@ ImageLoader::ImageLoader(QString path, QObject* parent) : QObject(parent), path_
 ImageLoader::~ImageLoader() { cancel(); }
 
 void ImageLoader::cancel() {
+  cancelled_ = true;
   if (job_) job_->cancel();
 }
 
@@ -26,26 +55,43 @@ void ImageLoader::start() {
   if (job_) return;
   job_ = runInBackground(
       this,
-      [path = path_](JobContext& job) {
-        ReadImageOptions options;
-        // The last 10 % are the reduced copies.
-        options.progress = [&job](double f) { return job.progress(f * 0.9); };
-        Result<LoadedImage> result = readImage(path.toStdString(), options);
-        if (job.cancelled()) return LoadOutcome{};
-        if (!result) return LoadOutcome{nullptr, QString::fromStdString(result.status.message)};
-        PhotoPtr photo = makePhoto(path, std::move(*result.value));
-        if (job.cancelled()) return LoadOutcome{};
-        job.setProgress(1.0);
-        return LoadOutcome{std::move(photo), QString()};
+      [path = path_, first_look = first_look_](JobContext& job) {
+        return first_look ? readFirstLookOrPhoto(path, job) : readPhoto(path, job);
       },
       [this](JobOutcome<LoadOutcome> outcome) {
-        if (!outcome.cancelled) {
+        if (outcome.cancelled || cancelled_) {
+          emit finished();
+          return;
+        }
+        if (!outcome.value) {
+          emit failed(tr("Could not load %1: %2").arg(path_, outcome.error));
+        } else if (!outcome.value->photo) {
+          emit failed(outcome.value->message);
+        } else {
+          const bool first_look = !outcome.value->photo->hasFullImage();
+          emit loaded(outcome.value->photo);
+          // A receiver of loaded() may have cancelled this loader (a newer open).
+          if (first_look && !cancelled_) {
+            startWholeRead();
+            return;
+          }
+        }
+        emit finished();
+      });
+  connect(job_, &BackgroundJob::progressChanged, this, &ImageLoader::progressChanged);
+}
+
+void ImageLoader::startWholeRead() {
+  job_ = runInBackground(
+      this, [path = path_](JobContext& job) { return readPhoto(path, job); },
+      [this](JobOutcome<LoadOutcome> outcome) {
+        if (!outcome.cancelled && !cancelled_) {
           if (!outcome.value)
-            emit failed(tr("Could not load %1: %2").arg(path_, outcome.error));
+            emit refineFailed(tr("Could not load %1: %2").arg(path_, outcome.error));
           else if (outcome.value->photo)
-            emit loaded(outcome.value->photo);
+            emit refined(outcome.value->photo);
           else
-            emit failed(outcome.value->message);
+            emit refineFailed(outcome.value->message);
         }
         emit finished();
       });

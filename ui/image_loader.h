@@ -1,8 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// Loads a photo off the GUI thread, a one-shot job of background_job.h: readImage, then the
+// Loads a photo off the GUI thread, one-shot jobs of background_job.h: readImage, then the
 // preview and display copies (photo.h). Progress and the result arrive on the GUI thread as
 // signals; exceptions are caught by the job helper and arrive as failed(). One loader per file;
 // cancel() makes the read stop at its next progress callback (then only finished() comes).
+//
+// First look (setFirstLook, the studio's photo opens): a JPEG that has one (core/io/first_look.h:
+// sRGB, no ICC conversion) is first read through libjpeg's DCT scaling, just large enough for
+// the live preview (kLivePreviewMaxWidth × kLivePreviewMaxHeight), and loaded() brings that
+// first look (Photo::reduced_by > 1, no full pixels, size() the whole photo's). Then a second
+// job reads the whole file and refined() brings the full photo, or refineFailed() says why
+// not. The second starts when the first is delivered, so the whole read does not compete with
+// the first look and its first preview for the cores. Any other file is read whole and only
+// loaded() comes.
 #pragma once
 
 #include "ui/background_job.h"
@@ -22,19 +31,29 @@ class ImageLoader : public QObject {
   ~ImageLoader() override;  // cancels the read; never waits for it
 
   const QString& path() const { return path_; }
+  // Before start(): read a JPEG reduced first, the whole file after (see the top).
+  void setFirstLook(bool on) { first_look_ = on; }
   // Starts the read off the GUI thread (once).
   void start();
   void cancel();
 
  signals:
+  // Percent of the first read (the photo shown), then of the whole read after a first look.
   void progressChanged(int percent);
   void loaded(artcam::ui::PhotoPtr photo);
+  // After a first look's loaded(): the full photo, same path and size().
+  void refined(artcam::ui::PhotoPtr photo);
+  void refineFailed(const QString& message);
   void failed(const QString& message);
-  // After loaded() or failed(), or alone when cancelled.
+  // After the last of loaded(), refined(), refineFailed() or failed(), or alone when cancelled.
   void finished();
 
  private:
+  void startWholeRead();
+
   QString path_;
+  bool first_look_ = false;
+  bool cancelled_ = false;
   QPointer<BackgroundJob> job_;
 };
 

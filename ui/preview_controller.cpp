@@ -11,6 +11,9 @@ namespace artcam::ui {
 PreviewController::PreviewController(Document* document, QObject* parent)
     : QObject(parent), document_(document) {
   connect(document_, &Document::cameraChanged, this, &PreviewController::schedule);
+  // The same camera over the full photo's copies; the first look's picture stays up until the
+  // new one arrives, so the swap shows no gap.
+  connect(document_, &Document::photoRefined, this, &PreviewController::schedule);
   // Document::reset emits cameraChanged too, so a new photo is covered.
   // Queued: the worker emits from its own thread; values cross by copy.
   connect(&worker_, &RenderWorker::rendered, this, &PreviewController::onRendered,

@@ -35,6 +35,7 @@ PreviewArea::PreviewArea(Document* document, PreviewController* controller, QWid
   setMinimumSize(160, 120);
   connect(controller_, &PreviewController::previewChanged, this, qOverload<>(&QWidget::update));
   connect(document_, &Document::photoChanged, this, qOverload<>(&QWidget::update));
+  connect(document_, &Document::photoRefined, this, qOverload<>(&QWidget::update));
 }
 
 void PreviewArea::setMode(PreviewMode mode) {

@@ -172,6 +172,8 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
   pending_project_ = std::move(project);
   pending_recovered_ = recovered;
   auto* loader = new ImageLoader(photo_path, this);
+  // A JPEG shows its first look at once and its full photo a moment later (image_loader.h).
+  loader->setFirstLook(true);
   loader_ = loader;
   connect(loader, &ImageLoader::progressChanged, this, &Session::loadProgress);
   connect(loader, &ImageLoader::loaded, this, [this, loader](const PhotoPtr& photo) {
@@ -224,6 +226,16 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
                            .arg(QFileInfo(photo->path).fileName())
                            .arg(photo->size().width)
                            .arg(photo->size().height));
+  });
+  connect(loader, &ImageLoader::refined, this, [this, loader](const PhotoPtr& photo) {
+    if (loader != loader_) return;
+    document_->refinePhoto(photo);
+  });
+  connect(loader, &ImageLoader::refineFailed, this, [this, loader](const QString& message) {
+    if (loader != loader_) return;
+    document_->failRefine(message);
+    showError(tr("Open photo"),
+              tr("%1\nThe photo is shown from a reduced decode; it cannot be exported.").arg(message));
   });
   connect(loader, &ImageLoader::failed, this, [this, loader](const QString& message) {
     if (loader != loader_) return;
@@ -348,8 +360,27 @@ void Session::exportImage(const QString& path) {
     showError(tr("Export image"), tr("Nothing to export: open a photo first."));
     return;
   }
-  if (export_job_) {
+  if (export_job_ || export_waits_) {
     showError(tr("Export image"), tr("An export is already running."));
+    return;
+  }
+  if (!document_->photo()->hasFullImage()) {
+    // A first look (image_loader.h): the export renders the full photo, so it waits for it.
+    export_waits_ = true;
+    emit statusMessage(tr("Export of %1 waits for the full photo (decoding)…").arg(path));
+    document_->whenFullImage(this, [this, path](bool ready) {
+      export_waits_ = false;
+      if (ready) {
+        exportImage(path);
+        return;
+      }
+      const QString message =
+          tr("Export of %1 not made: the full photo was not decoded (another photo was opened, "
+             "or its decode failed).")
+              .arg(path);
+      showError(tr("Export image"), message);
+      emit exportFinished(false, message);
+    });
     return;
   }
   auto* job = new ExportJob(document_->photo(), document_->artcam(), path, export_options_, this);

@@ -141,6 +141,7 @@ class Session : public QObject {
   ExportOptions export_options_;
   QString project_path_;
   QPointer<ImageLoader> loader_;
+  bool export_waits_ = false;  // an export waits for the full photo (exportImage)
   std::optional<Project> pending_project_;
   QString pending_project_path_;
   QPointer<ExportJob> export_job_;

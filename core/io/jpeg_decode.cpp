@@ -68,7 +68,7 @@ struct JpegDecoder::State {
 namespace {
 
 // The header and output parameters; false when libjpeg failed (the message is in `state`).
-bool readHeader(JpegDecoder::State& state, int scale_denominator) {
+bool readHeader(JpegDecoder::State& state, int scale_denominator, bool rgba) {
   if (setjmp(state.errors.jump)) return false;
   jpeg_create_decompress(&state.info);
   state.created = true;
@@ -76,7 +76,7 @@ bool readHeader(JpegDecoder::State& state, int scale_denominator) {
   jpeg_read_header(&state.info, TRUE);
   const J_COLOR_SPACE in = state.info.jpeg_color_space;
   if (state.info.num_components == 1) state.info.out_color_space = JCS_GRAYSCALE;
-  else if (in == JCS_YCbCr || in == JCS_RGB) state.info.out_color_space = JCS_RGB;
+  else if (in == JCS_YCbCr || in == JCS_RGB) state.info.out_color_space = rgba ? JCS_EXT_RGBA : JCS_RGB;
   state.info.scale_num = 1;
   state.info.scale_denom = static_cast<unsigned int>(scale_denominator);
   jpeg_calc_output_dimensions(&state.info);
@@ -118,7 +118,7 @@ JpegDecoder::JpegDecoder(std::unique_ptr<State> state) : state_(std::move(state)
 JpegDecoder::~JpegDecoder() = default;
 
 Result<std::unique_ptr<JpegDecoder>> JpegDecoder::open(const std::string& path,
-                                                       int scale_denominator) {
+                                                       int scale_denominator, Output output) {
   using R = Result<std::unique_ptr<JpegDecoder>>;
   if (scale_denominator != 1 && scale_denominator != 2 && scale_denominator != 4 &&
       scale_denominator != 8)
@@ -130,7 +130,7 @@ Result<std::unique_ptr<JpegDecoder>> JpegDecoder::open(const std::string& path,
   state->info.err = jpeg_std_error(&state->errors.manager);
   state->errors.manager.error_exit = &State::onFatal;
   state->errors.manager.emit_message = &State::onMessage;
-  if (!readHeader(*state, scale_denominator)) return R::failure(state->failure(state->errors.fatal).message);
+  if (!readHeader(*state, scale_denominator, output == Output::Rgba)) return R::failure(state->failure(state->errors.fatal).message);
   if (const Status damage = state->damage(); !damage) return R::failure(damage.message);
   return R::success(std::unique_ptr<JpegDecoder>(new JpegDecoder(std::move(state))));
 }
@@ -143,7 +143,8 @@ bool JpegDecoder::supported() const {
   const jpeg_decompress_struct& info = state_->info;
   return info.data_precision == 8 &&
          ((info.num_components == 1 && info.out_color_space == JCS_GRAYSCALE) ||
-          (info.num_components == 3 && info.out_color_space == JCS_RGB));
+          (info.num_components == 3 &&
+           (info.out_color_space == JCS_RGB || info.out_color_space == JCS_EXT_RGBA)));
 }
 
 Status JpegDecoder::decode(std::uint8_t* pixels, std::size_t row_bytes,

@@ -31,20 +31,27 @@ namespace artcam {
 
 class JpegDecoder {
  public:
+  // Samples: as the file stores them (Y, or R, G, B). Rgba: a three-component file as R, G,
+  // B, 255, libjpeg-turbo's own conversion (JCS_EXT_RGBA), for rows that go straight into an
+  // RGBA8 picture (the studio's first look) without a pass of their own.
+  enum class Output { Samples, Rgba };
   // Reads the header of `path`. scale_denominator 1, 2, 4 or 8 asks libjpeg's DCT scaling for
   // a raster 1/n the size (each side rounded up), decoded in a fraction of the full time.
   // Fails (one line naming the file) when the file cannot be opened or its header is corrupt.
   static Result<std::unique_ptr<JpegDecoder>> open(const std::string& path,
-                                                   int scale_denominator = 1);
+                                                   int scale_denominator = 1,
+                                                   Output output = Output::Samples);
   ~JpegDecoder();
   JpegDecoder(const JpegDecoder&) = delete;
   JpegDecoder& operator=(const JpegDecoder&) = delete;
 
-  // The decoded raster's size and samples per pixel (1 or 3), valid after open.
+  // The decoded raster's size and samples per pixel (1 or 3; 4 for Output::Rgba), valid after
+  // open.
   int width() const;
   int height() const;
   int channels() const;
-  // Whether this path decodes the file: 8-bit, one component (grey) or three (YCbCr/RGB).
+  // Whether this path decodes the file: 8-bit, one component (grey) or three (YCbCr/RGB);
+  // Output::Rgba takes three-component files only.
   bool supported() const;
 
   // Decodes every row into `pixels` (height() rows of `row_bytes`, each at least width() ·

@@ -172,6 +172,8 @@ ColourDock::ColourDock(Document* document, QWidget* parent)
     refreshViews();
     refreshReport();
   });
+  // The full photo of a first look: sharper patches, the same samples.
+  connect(document_, &Document::photoRefined, this, &ColourDock::refreshViews);
   connect(document_, &Document::cameraChanged, this, &ColourDock::refreshTable);
   refreshViews();
   refreshTable();

@@ -40,6 +40,8 @@ std::optional<Eigen::Vector3d> patchMean(const ImageF& image, const Eigen::Vecto
 
 ColourSampleModel::ColourSampleModel(Document* document, QObject* parent)
     : QObject(parent), document_(document) {
+  // A first look has no full pixels to average (patchMean gives none); the full photo does.
+  connect(document_, &Document::photoRefined, this, &ColourSampleModel::changed);
   connect(document_, &Document::photoChanged, this, [this] {
     if (state_.samples.empty()) {
       emit changed();  // the source colours change with the photo

@@ -319,6 +319,21 @@ void InsertionPanel::exportComposite(const QString& path) {
     emit compositeExported(false, m);
     return;
   }
+  if (!photo->hasFullImage()) {
+    // A first look (image_loader.h): the composite is of the full photo, so it waits for it.
+    status_->setText(tr("Export of %1 waits for the full photo…").arg(QFileInfo(path).fileName()));
+    model_->document()->whenFullImage(this, [this, path](bool ready) {
+      if (ready) {
+        exportComposite(path);
+        return;
+      }
+      const QString m = tr("Export of %1 not made: the full photo was not decoded.").arg(path);
+      reportError(tr("Could not export the inserted image"), m);
+      status_->setText(m);
+      emit compositeExported(false, m);
+    });
+    return;
+  }
   status_->setText(tr("Exporting %1…").arg(QFileInfo(path).fileName()));
   runOffThread<bool>(
       this,

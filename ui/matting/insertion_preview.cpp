@@ -29,6 +29,7 @@ InsertionPreview::InsertionPreview(InsertionModel* model, QObject* parent)
       Qt::QueuedConnection);
   connect(model_, &InsertionModel::stateChanged, this, &InsertionPreview::refresh);
   connect(model_->document(), &Document::photoChanged, this, &InsertionPreview::refresh);
+  connect(model_->document(), &Document::photoRefined, this, &InsertionPreview::refresh);
 }
 
 InsertionPreview::~InsertionPreview() { shutdown(); }

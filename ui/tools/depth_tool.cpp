@@ -64,7 +64,9 @@ void DepthTool::mousePress(QMouseEvent* event) {
       RegionMask* mask = depth()->maskForStroke(stroke_layer_);
       stroke_before_ = *mask;
       stroke_edges_.reset();
-      if (settings_->edgeAware() && document_->photo()) {
+      // Edge-aware strokes read full-resolution pixels: during a first look (no full image
+      // yet, under a second after opening) the brush paints plain; it never reads reduced ones.
+      if (settings_->edgeAware() && document_->photo() && document_->photo()->hasFullImage()) {
         const ImageF& photo = document_->photo()->full.image;
         const int px = static_cast<int>(std::floor(p.x())), py = static_cast<int>(std::floor(p.y()));
         if (px >= 0 && py >= 0 && px < photo.width && py < photo.height)

@@ -41,7 +41,8 @@ int GridTool::hitTest(const QPointF& widget) const {
 Eigen::Vector2d GridTool::placeAt(const Eigen::Vector2d& photo_px, double search_radius_px) {
   Eigen::Vector2d p = photo_px;
   const PhotoPtr& photo = document_->photo();
-  if (search_radius_px > 0.0 && snapper_ && photo)
+  // Snapping reads full-resolution pixels: a first look (no full image yet) places unsnapped.
+  if (search_radius_px > 0.0 && snapper_ && photo && photo->hasFullImage())
     if (const auto snapped = snapper_(photo->full.image, photo_px, search_radius_px)) p = *snapped;
   if (model_->cornerCount() <= 0) return p;
   const int corner = model_->selectedCorner();
@@ -100,7 +101,7 @@ void GridTool::mouseRelease(QMouseEvent* event) {
   const QPointF image = canvas_->view().imageFromWidget(event->position());
   Eigen::Vector2d p(image.x(), image.y());
   const double radius = searchRadius(event->modifiers());
-  if (radius > 0.0 && snapper_ && document_->photo())
+  if (radius > 0.0 && snapper_ && document_->photo() && document_->photo()->hasFullImage())
     if (const auto snapped = snapper_(document_->photo()->full.image, p, radius)) p = *snapped;
   InsertionState next = model_->state();
   next.matches[static_cast<size_t>(k)].photo = p;
