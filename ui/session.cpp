@@ -222,10 +222,19 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
     pending_recovered_ = false;
     autosave_->setProjectPath(project_path_);
     emit titleChanged();
-    emit statusMessage(tr("Loaded %1 (%2×%3)")
-                           .arg(QFileInfo(photo->path).fileName())
-                           .arg(photo->size().width)
-                           .arg(photo->size().height));
+    QString loaded = tr("Loaded %1 (%2×%3)")
+                         .arg(QFileInfo(photo->path).fileName())
+                         .arg(photo->size().width)
+                         .arg(photo->size().height);
+    // The studio shows and exports the first four channels (image_io.h): the rest are named,
+    // never dropped silently. `artcam warp` carries them into an EXR.
+    QStringList dropped;
+    for (const std::string& c : photo->full.info.dropped_channels) dropped << QString::fromStdString(c);
+    if (!dropped.isEmpty())
+      loaded += tr("; channels beyond the first four (%1) are not shown or exported here "
+                   "(artcam warp carries them into an EXR)")
+                    .arg(dropped.join(", "));
+    emit statusMessage(loaded);
   });
   connect(loader, &ImageLoader::refined, this, [this, loader](const PhotoPtr& photo) {
     if (loader != loader_) return;

@@ -115,6 +115,31 @@ class TestSession : public QObject {
     QVERIFY(!doc2.isModified());
   }
 
+  // A photo with more than four channels (an EXR with depth) opens with its first four, and the
+  // status line names the channels left out.
+  void extraChannelsAreNamedOnLoad() {
+    const QString file = dir_.filePath("five.exr");
+    OIIO::ImageSpec spec(32, 24, 5, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = {"R", "G", "B", "A", "Z"};
+    spec.alpha_channel = 3;
+    std::vector<float> pixels(32 * 24 * 5, 0.5f);
+    auto out = OIIO::ImageOutput::create(file.toStdString());
+    QVERIFY(out && out->open(file.toStdString(), spec) &&
+            out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+    Document doc;
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    QSignalSpy status(&session, &Session::statusMessage);
+    session.openPhoto(file);
+    QTRY_VERIFY_WITH_TIMEOUT(doc.photo() != nullptr, 20000);
+    QCOMPARE(doc.photo()->full.image.channels, 4);
+    bool named = false;
+    for (const QList<QVariant>& m : status)
+      named = named || (m.front().toString().contains("Loaded five.exr") &&
+                        m.front().toString().contains("(Z) are not shown or exported"));
+    QVERIFY(named);
+  }
+
   void missingPhotoIsAnErrorNamingTheFile() {
     Document doc;
     Session session(&doc, nullptr);

@@ -7,12 +7,11 @@
 #include "core/io/image_io.h"
 #include "core/io/jpeg_decode.h"
 #include "core/io/orientation.h"
+#include "tests/support/icc_files.h"
 #include "tests/support/photo_files.h"
 
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
-
-#include <lcms2.h>
 
 #include <cstdint>
 #include <cstring>
@@ -68,22 +67,6 @@ std::vector<std::uint8_t> rgbOf(const StoredImage& image) {
 std::vector<std::uint8_t> bytesOf(const StoredImage& image) {
   const auto* first = static_cast<const std::uint8_t*>(image.bytes.data());
   return {first, first + static_cast<size_t>(image.width) * image.height * image.channels};
-}
-
-// Adobe RGB (1998)-like primaries with a 2.2 curve: a profile the whole read converts through.
-std::vector<unsigned char> wideProfile() {
-  const cmsCIExyY white{0.3127, 0.3290, 1.0};
-  const cmsCIExyYTRIPLE primaries{{0.64, 0.33, 1.0}, {0.21, 0.71, 1.0}, {0.15, 0.06, 1.0}};
-  cmsToneCurve* curve = cmsBuildGamma(nullptr, 2.2);
-  cmsToneCurve* curves[3] = {curve, curve, curve};
-  cmsHPROFILE profile = cmsCreateRGBProfile(&white, &primaries, curves);
-  cmsFreeToneCurve(curve);
-  cmsUInt32Number size = 0;
-  cmsSaveProfileToMem(profile, nullptr, &size);
-  std::vector<unsigned char> bytes(size);
-  cmsSaveProfileToMem(profile, bytes.data(), &size);
-  cmsCloseProfile(profile);
-  return bytes;
 }
 
 }  // namespace
@@ -179,7 +162,7 @@ class TestFirstLook : public QObject {
 
     const std::string wide = path("wide-gamut.jpg");
     OIIO::ImageBuf image = texture(4000, 400);
-    const std::vector<unsigned char> icc = wideProfile();
+    const std::vector<unsigned char> icc = adobeRgbProfile();  // a wide gamut: converted
     image.specmod().attribute(
         "ICCProfile", OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(icc.size())),
         icc.data());
