@@ -167,7 +167,14 @@ Status streamWarp(StoredImageReader& reader, const Artcam& camera, const std::st
     return Status::success();
   };
   WriteImageOptions write = options.write;
-  write.progress = options.warp.progress;
+  // The writer's bands poll the caller's progress; a false answer is the cancel the summary
+  // reports.
+  if (options.warp.progress)
+    write.progress = [&report, &progress = options.warp.progress](double done) {
+      if (progress(done)) return true;
+      report.cancelled = true;
+      return false;
+    };
   const ConstImageView shape = packedView<const void>(nullptr, frame.size.width, frame.size.height,
                                                       out_channels, reader.type(), out_alpha);
   Status written;
@@ -180,7 +187,6 @@ Status streamWarp(StoredImageReader& reader, const Artcam& camera, const std::st
   }
   report.transparent_pixels = transparent;
   report.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (!written && written.message.find("cancelled") != std::string::npos) report.cancelled = true;
   return written;
 }
 

@@ -9,6 +9,7 @@
 // the nearest texel's own value passes. The source point of each output pixel is computed here
 // from the homography's pixel matrix, not by the code under test.
 #include "tests/app/cli_run.h"
+#include "tests/support/exr_files.h"
 
 #include "core/io/artcam_file.h"
 #include "core/model/camera.h"
@@ -66,21 +67,11 @@ float extraValue(int e, int x, int y) {
 }
 
 bool writeInput(const QString& path) {
-  OIIO::ImageSpec spec(kW, kH, static_cast<int>(kNames.size()), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = kNames;
-  spec.alpha_channel = 3;
-  spec.x = spec.full_x = kOriginX;
-  spec.y = spec.full_y = kOriginY;
-  std::vector<float> pixels;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      for (float v : {0.25f, 0.5f, 0.75f, 1.0f}) pixels.push_back(v);
-      for (int e = 0; e < static_cast<int>(kNames.size()) - kFirstExtra; ++e)
-        pixels.push_back(extraValue(e, x, y));
-    }
-  auto out = OIIO::ImageOutput::create(path.toStdString());
-  return out && out->open(path.toStdString(), spec) &&
-         out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close();
+  const float colour[4] = {0.25f, 0.5f, 0.75f, 1.0f};
+  return artcam::test::writeFloatExr(path.toStdString(), kW, kH, kNames, 3, kOriginX, kOriginY,
+                       [&colour](int c, int x, int y) {
+                         return c < kFirstExtra ? colour[c] : extraValue(c - kFirstExtra, x, y);
+                       });
 }
 
 struct ReadBack {

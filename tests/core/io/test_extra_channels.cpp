@@ -4,6 +4,7 @@
 // only into OpenEXR, and that an EXR output keeps the display-window origin of `like`.
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
+#include "tests/support/exr_files.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -24,19 +25,8 @@ constexpr int kW = 8, kH = 6;
 float valueOf(int c, int x, int y) { return static_cast<float>(100 * c + x + 10 * y); }
 
 bool writeFile(const std::string& path, const std::vector<std::string>& names, int x0, int y0) {
-  OIIO::ImageSpec spec(kW, kH, static_cast<int>(names.size()), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = names;
-  spec.alpha_channel = 3;
-  spec.x = spec.full_x = x0;
-  spec.y = spec.full_y = y0;
-  std::vector<float> pixels;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      for (int c = 0; c < static_cast<int>(names.size()); ++c)
-        pixels.push_back(c == 3 ? 1.0f : valueOf(c, x, y));
-  auto out = OIIO::ImageOutput::create(path);
-  return out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) &&
-         out->close();
+  return test::writeFloatExr(path, kW, kH, names, 3, x0, y0,
+                             [](int c, int x, int y) { return c == 3 ? 1.0f : valueOf(c, x, y); });
 }
 
 }  // namespace

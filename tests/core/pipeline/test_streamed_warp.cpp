@@ -224,6 +224,24 @@ class TestStreamedWarp : public QObject {
     std::filesystem::remove(out);
   }
 
+  // A progress callback that says stop: the summary says cancelled and no file is left.
+  void cancelLeavesNoFile() {
+    const std::string photo = scratch("cancel-in.png"), out = scratch("cancel-out.png");
+    QVERIFY(writePhoto(photo, 3, -1, PixelType::UInt8));
+    auto reader = StoredImageReader::open(photo);
+    QVERIFY(reader.ok());
+    StreamedWarpOptions options;
+    int calls = 0;
+    options.warp.progress = [&calls](double) { return ++calls < 6; };  // past the plan, mid-write
+    StreamedWarpSummary summary;
+    const Status s = streamWarp(**reader, Artcam(mildLens()), out, options, &summary);
+    QVERIFY(!s.ok);
+    QVERIFY(summary.cancelled);
+    QVERIFY2(s.message.find("cancelled") != std::string::npos, s.message.c_str());
+    QVERIFY(!std::filesystem::exists(out));
+    std::filesystem::remove(photo);
+  }
+
   void layeredCamerasAreNotStreamed() {
     const Artcam aberration = buildEffect("chromatic-aberration", {}, kFrame);
     QVERIFY(!streamableCamera(aberration));
