@@ -122,6 +122,28 @@ template <class T>
   }
 }
 
+// The 8-bit one-tap paths' interior: both bilinear taps inside (fx, fy = position − ½).
+[[gnu::always_inline]] inline bool interiorU8(int w, int h, float fx, float fy) {
+  return fx >= 0.0f && fy >= 0.0f && fx < w - 1.0f && fy < h - 1.0f;
+}
+
+// The 8-bit bilinear's quantised position (see below): the top-left tap and the weights.
+struct BilinearQuanta {
+  int x0, y0, ax, ay;
+  [[gnu::always_inline]] BilinearQuanta(int w, float fx, float fy) {
+    const int qx = static_cast<int>(fx * 256.0f + 0.5f);
+    x0 = std::min(qx >> 8, w - 2), y0 = static_cast<int>(fy);  // fy < h − 1
+    ax = qx - (x0 << 8);                                         // 0 … 256
+    ay = static_cast<int>((fy - static_cast<float>(y0)) * 255.0f + 0.5f);  // 0 … 255
+  }
+  // One channel: r0, r1 its sample in the tap rows, the right tap `stride` bytes on.
+  [[gnu::always_inline]] std::uint8_t blend(const std::uint8_t* r0, const std::uint8_t* r1, int stride) const {
+    const int left = (255 - ay) * r0[0] + ay * r1[0];
+    const int right = (255 - ay) * r0[stride] + ay * r1[stride];
+    return static_cast<std::uint8_t>(((256 - ax) * left + ax * right + 32640) / 65280);
+  }
+};
+
 // 8-bit nearest and bilinear without leaving integers in the interior (most pixels): nearest
 // copies the bytes, bilinear weighs rows by 1/255 and columns by 1/256 (position quanta of
 // 1/510 and 1/512 px at worst, sixteen times finer than OpenCV's 1/32), in exact integers:
@@ -143,25 +165,18 @@ long long sampleSpanU8(const Context& k, std::uint8_t* out, int n, const float* 
     if constexpr (A) out[C] = 255;
     const float fx = sx[i] - 0.5f, fy = sy[i] - 0.5f;
     if constexpr (F == Filter::Nearest) {
-      if (valid[i] && fx >= 0.0f && fy >= 0.0f && fx < w - 1.0f && fy < h - 1.0f) {
+      if (valid[i] && interiorU8(w, h, fx, fy)) {
         const std::uint8_t* p = pixelAt<std::uint8_t>(k, static_cast<int>(fx + 0.5f), static_cast<int>(fy + 0.5f), C);
         for (int c = 0; c < C; ++c) out[c] = p[c];
         if (src_alpha >= 0) transparent += out[src_alpha] == 0;
         continue;
       }
     } else {
-      if (valid[i] && fx >= 0.0f && fy >= 0.0f && fx < w - 1.0f && fy < h - 1.0f) {
-        const int qx = static_cast<int>(fx * 256.0f + 0.5f);
-        const int x0 = std::min(qx >> 8, w - 2), y0 = static_cast<int>(fy);  // fy < h − 1
-        const int ax = qx - (x0 << 8);                                          // 0 … 256
-        const int ay = static_cast<int>((fy - static_cast<float>(y0)) * 255.0f + 0.5f);  // 0 … 255
-        const std::uint8_t* r0 = pixelAt<std::uint8_t>(k, x0, y0, C);
-        const std::uint8_t* r1 = pixelAt<std::uint8_t>(k, x0, y0 + 1, C);
-        for (int c = 0; c < C; ++c) {
-          const int left = (255 - ay) * r0[c] + ay * r1[c];
-          const int right = (255 - ay) * r0[c + C] + ay * r1[c + C];
-          out[c] = static_cast<std::uint8_t>(((256 - ax) * left + ax * right + 32640) / 65280);
-        }
+      if (valid[i] && interiorU8(w, h, fx, fy)) {
+        const BilinearQuanta q(w, fx, fy);
+        const std::uint8_t* r0 = pixelAt<std::uint8_t>(k, q.x0, q.y0, C);
+        const std::uint8_t* r1 = pixelAt<std::uint8_t>(k, q.x0, q.y0 + 1, C);
+        for (int c = 0; c < C; ++c) out[c] = q.blend(r0 + c, r1 + c, C);
         if (src_alpha >= 0) transparent += out[src_alpha] == 0;
         continue;
       }
@@ -424,6 +439,8 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
   context_.append_alpha = append;
   context_.out_alpha = append ? src.channels : src.alpha_channel;
   context_.full = pixelTypeFullScale(src.type);
+  filter_ = filter;
+  u8_ = src.type == PixelType::UInt8;
   switch (src.type) {
     case PixelType::UInt8: fn_ = pickFilter<std::uint8_t>(filter, src.channels); break;
     case PixelType::UInt16: fn_ = pickFilter<std::uint16_t>(filter, src.channels); break;
@@ -444,6 +461,49 @@ long long SpanSampler::run(int y, int x0, int n, const float* sx, const float* s
   unsigned char* out = static_cast<unsigned char*>(dst_.row(y)) +
                        static_cast<std::ptrdiff_t>(x0) * dst_.pixelBytes();
   return fn_(context_, out, n, sx, sy, valid, supersample, jacobian);
+}
+
+bool SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
+                                      const float* const* sy, const unsigned char* const* valid) const {
+  const Context& k = context_;
+  if (!u8_ || filter_ == Filter::Bicubic || !k.append_alpha || count < 1 || count > k.out_channels - 1) return false;
+  const int w = k.width, h = k.height;
+  const int stride = k.out_channels, src_channels = stride - 1;
+  std::uint8_t* out = static_cast<std::uint8_t*>(dst_.row(y)) + static_cast<std::ptrdiff_t>(x0) * stride;
+  int done = 0;
+#ifdef ARTCAM_HAVE_AVX2_SAMPLER
+  if (simd_ && filter_ == Filter::Bilinear && src_channels == 3 && count == 3) {
+    done = n & ~7;
+    if (!avx2::bilinearChannelsRgb8(k, out, done, sx, sy, valid)) return false;
+  }
+#endif
+  // interiorU8 without branches: the spans are nearly all inside.
+  const float x_end = w - 1.0f, y_end = h - 1.0f;
+  for (int j = 0; j < count; ++j) {
+    bool inside = true;
+    for (int i = done; i < n; ++i) {
+      const float fx = sx[j][i] - 0.5f, fy = sy[j][i] - 0.5f;
+      inside &= (valid[j][i] != 0) & (fx >= 0.0f) & (fy >= 0.0f) & (fx < x_end) & (fy < y_end);
+    }
+    if (!inside) return false;
+  }
+  for (int i = done; i < n; ++i) out[static_cast<std::ptrdiff_t>(i) * stride + stride - 1] = 255;
+  for (int c = 0; c < src_channels; ++c) {
+    const int j = c < count ? c : 0;
+    const std::uint8_t* src = k.src + c;
+    std::uint8_t* o = out + static_cast<std::ptrdiff_t>(done) * stride + c;
+    for (int i = done; i < n; ++i, o += stride) {
+      const float fx = sx[j][i] - 0.5f, fy = sy[j][i] - 0.5f;
+      if (filter_ == Filter::Nearest) {  // run()'s rounding, to the same tap
+        *o = src[static_cast<int>(fy + 0.5f) * k.src_row + static_cast<int>(fx + 0.5f) * src_channels];
+      } else {
+        const BilinearQuanta q(w, fx, fy);
+        const std::uint8_t* r0 = src + q.y0 * k.src_row + q.x0 * src_channels;
+        *o = q.blend(r0, r0 + k.src_row, src_channels);
+      }
+    }
+  }
+  return true;
 }
 
 }  // namespace artcam

@@ -38,6 +38,16 @@ class SpanSampler {
   long long run(int y, int x0, int n, const float* sx, const float* sy, const unsigned char* valid,
                 int supersample = 1, const float* jacobian = nullptr) const;
 
+  // The colour channels of the span each from positions of its own, for cameras that move
+  // each channel on its own (chromatic aberration): colour channel c from sx[k], sy[k] with
+  // k = c < count ? c : 0, alpha full. 8-bit nearest or bilinear of a photo without alpha into
+  // one with alpha appended, every pixel interior for every camera (valid, all taps inside):
+  // there each channel gets exactly what run() would write from its camera's positions.
+  // Returns false when the sampler is of another kind or a pixel is not interior; the span may
+  // then be written in part (the caller writes all of it again another way).
+  bool runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
+                           const float* const* sy, const unsigned char* const* valid) const;
+
   struct Context {
     const unsigned char* src = nullptr;
     std::ptrdiff_t src_row = 0;
@@ -56,6 +66,8 @@ class SpanSampler {
   Context context_;
   ImageView dst_;
   SpanFn fn_ = nullptr;
+  Filter filter_ = Filter::Bilinear;
+  bool u8_ = false;
   bool simd_ = false;
   bool avx512_ = false;
 };

@@ -286,6 +286,126 @@ __attribute__((target("avx2"))) long long nearestU8(const SpanSampler::Context& 
   return transparent;
 }
 
+// 16 bytes at lo in the low lane, 16 at hi in the high one.
+__attribute__((target("avx2"), always_inline)) inline __m256i halves(const std::uint8_t* lo, const std::uint8_t* hi) {
+  return _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(lo)))),
+                                 _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(hi))), 1);
+}
+
+// Three colour channels, each at positions of its own (chromatic aberration), RGB8 → RGBA8
+// with alpha 255: the scalar interior bilinear's integers (BilinearQuanta in span_sampler.cpp)
+// per channel, eight pixels at a time. Where a channel's eight pixels lie nearly consecutive
+// in the source (the usual case: chromatic aberration scales by a hair), a few wide loads and
+// byte shuffles; elsewhere one 4-byte load per pixel and row at the left tap's byte, whose
+// bytes 0 and 3 are the channel at taps x0 and x0 + 1 (nothing read past the taps). Groups of eight while every channel's pixels are interior (allInterior);
+// returns false at the first group with a pixel that is not, having written the groups before
+// it. n is a multiple of 8.
+__attribute__((target("avx2"))) inline bool bilinearChannelsRgb8(const SpanSampler::Context& k, std::uint8_t* out,
+                                                                 int n, const float* const* sx,
+                                                                 const float* const* sy,
+                                                                 const unsigned char* const* valid) {
+  const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
+  const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - 1.0f);
+  const __m256 half = _mm256_set1_ps(0.5f), scale_x = _mm256_set1_ps(256.0f), scale_y = _mm256_set1_ps(255.0f);
+  const __m256i xlim = _mm256_set1_epi32(k.width - 2);
+  const __m256i row = _mm256_set1_epi32(static_cast<int>(k.src_row));
+  const __m256i c255 = _mm256_set1_epi32(255), c256 = _mm256_set1_epi32(256);
+  const __m256i low = _mm256_set1_epi32(0xFF);
+  const __m256i bias = _mm256_set1_epi32(32640);
+  const __m256i div255 = _mm256_set1_epi32(0x8081);
+  const __m256i step3 = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+  // Channel c of pixels 0–3 from the 16 bytes at pixel 0, of pixels 4–7 from those at byte 8.
+  const __m128i pick_first[3] = {_mm_setr_epi8(0, 3, 6, 9, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                                 _mm_setr_epi8(1, 4, 7, 10, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                                 _mm_setr_epi8(2, 5, 8, 11, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1)};
+  const __m128i pick_second[3] = {_mm_setr_epi8(-1, -1, -1, -1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1, -1, -1),
+                                  _mm_setr_epi8(-1, -1, -1, -1, 5, 8, 11, 14, -1, -1, -1, -1, -1, -1, -1, -1),
+                                  _mm_setr_epi8(-1, -1, -1, -1, 6, 9, 12, 15, -1, -1, -1, -1, -1, -1, -1, -1)};
+  const __m256i minus_one = _mm256_set1_epi32(-1), thirteen = _mm256_set1_epi32(13), three = _mm256_set1_epi32(3);
+  const __m256i zero_rest = _mm256_set1_epi32(static_cast<int>(0x80808000u));
+  // One past the image's last byte, as an offset from its first.
+  const std::ptrdiff_t end = (k.height - 1) * k.src_row + 3 * static_cast<std::ptrdiff_t>(k.width);
+  const int* top = static_cast<const int*>(static_cast<const void*>(k.src));
+  const int* below = static_cast<const int*>(static_cast<const void*>(k.src + k.src_row));
+  for (int i = 0; i + 8 <= n; i += 8) {
+    __m256i rgba = _mm256_set1_epi32(static_cast<int>(0xFF000000u));
+    for (int c = 0; c < 3; ++c) {
+      const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx[c] + i), half);
+      const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy[c] + i), half);
+      if (!allInterior(fx, fy, xmax, ymax, valid[c] + i)) return false;
+      const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale_x), half));
+      const __m256i x0 = _mm256_min_epi32(_mm256_srai_epi32(qx, 8), xlim);
+      const __m256i y0 = _mm256_cvttps_epi32(fy);
+      const __m256i ax = _mm256_sub_epi32(qx, _mm256_slli_epi32(x0, 8));  // 0 … 256
+      const __m256i ay = _mm256_cvttps_epi32(
+          _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0)), scale_y), half));  // 0 … 255
+      const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y0, row),
+                                           _mm256_add_epi32(_mm256_add_epi32(x0, _mm256_slli_epi32(x0, 1)),
+                                                            _mm256_set1_epi32(c)));
+      // Exactly eight consecutive pixel centres of one row (a channel the camera leaves in
+      // place, as lateral chromatic aberration leaves green): the weights are (1, 0), the
+      // value is the tap, read from two loads.
+      const std::int32_t first = _mm256_cvtsi256_si32(off);
+      const __m256i centres = _mm256_and_si256(
+          _mm256_cmpeq_epi32(_mm256_or_si256(ax, ay), _mm256_setzero_si256()),
+          _mm256_cmpeq_epi32(off, _mm256_add_epi32(_mm256_set1_epi32(first), step3)));
+      if (_mm256_movemask_epi8(centres) == -1) {
+        const std::uint8_t* p = k.src + first;  // channel c of the first pixel
+        const __m128i a = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(p - c)));
+        const __m128i b = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(p - c + 8)));
+        const __m128i bytes = _mm_or_si128(_mm_shuffle_epi8(a, pick_first[c]), _mm_shuffle_epi8(b, pick_second[c]));
+        rgba = _mm256_or_si256(rgba, _mm256_slli_epi32(_mm256_cvtepu8_epi32(bytes), 8 * c));
+        continue;
+      }
+      // Words (tap of the top row, tap of the bottom row) per lane, to be weighed (255 − ay, ay),
+      // for the left taps and the right ones.
+      __m256i left_taps, right_taps;
+      // Each half's four left taps within 12 bytes of its first (a magnification near 1: the
+      // channel's pixels nearly consecutive): one 16-byte load per half and row, and the taps
+      // picked by byte shuffles (a lane's tap byte at d, the right tap at d + 3, the rest 0).
+      const __m256i d = _mm256_sub_epi32(off, _mm256_shuffle_epi32(off, 0));
+      const std::int32_t second = _mm256_extract_epi32(off, 4);
+      const bool window = _mm256_movemask_epi8(_mm256_and_si256(_mm256_cmpgt_epi32(d, minus_one),
+                                                                _mm256_cmpgt_epi32(thirteen, d))) == -1 &&
+                          std::max(first, second) + k.src_row + 16 <= end;
+      if (window) {
+        if (c == 0) prefetchRowsAhead(k, k.src + first);
+        const __m256i t = halves(k.src + first, k.src + second);
+        const __m256i b = halves(k.src + first + k.src_row, k.src + second + k.src_row);
+        const __m256i pick_left = _mm256_or_si256(d, zero_rest);
+        const __m256i pick_right = _mm256_or_si256(_mm256_add_epi32(d, three), zero_rest);
+        left_taps = _mm256_or_si256(_mm256_shuffle_epi8(t, pick_left), _mm256_slli_epi32(_mm256_shuffle_epi8(b, pick_left), 16));
+        right_taps = _mm256_or_si256(_mm256_shuffle_epi8(t, pick_right), _mm256_slli_epi32(_mm256_shuffle_epi8(b, pick_right), 16));
+      } else {
+        const Offsets8 at = toRegisters(off);
+        if (c == 0) prefetchRowsAhead(k, k.src + at[0]);
+        // Eight 4-byte loads per row, not a gather: vpgatherdd ran at half this speed here.
+        const auto word = [](const int* base, std::int32_t byte) __attribute__((always_inline)) {
+          int v;
+          std::memcpy(&v, static_cast<const std::uint8_t*>(static_cast<const void*>(base)) + byte, 4);
+          return v;
+        };
+        const __m256i t = _mm256_setr_epi32(word(top, at[0]), word(top, at[1]), word(top, at[2]), word(top, at[3]),
+                                            word(top, at[4]), word(top, at[5]), word(top, at[6]), word(top, at[7]));
+        const __m256i b = _mm256_setr_epi32(word(below, at[0]), word(below, at[1]), word(below, at[2]), word(below, at[3]),
+                                            word(below, at[4]), word(below, at[5]), word(below, at[6]), word(below, at[7]));
+        left_taps = _mm256_or_si256(_mm256_and_si256(t, low), _mm256_slli_epi32(_mm256_and_si256(b, low), 16));
+        right_taps = _mm256_or_si256(_mm256_srli_epi32(t, 24), _mm256_slli_epi32(_mm256_srli_epi32(b, 24), 16));
+      }
+      const __m256i wy = _mm256_or_si256(_mm256_sub_epi32(c255, ay), _mm256_slli_epi32(ay, 16));
+      const __m256i left = _mm256_madd_epi16(left_taps, wy);
+      const __m256i right = _mm256_madd_epi16(right_taps, wy);
+      const __m256i sum = _mm256_add_epi32(
+          _mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(c256, ax), left), _mm256_mullo_epi32(ax, right)), bias);
+      // ⌊sum / 65280⌋ = ⌊⌊sum / 256⌋ / 255⌋, the second as (q · 0x8081) >> 23 for q < 2¹⁶.
+      const __m256i q = _mm256_srli_epi32(_mm256_mullo_epi32(_mm256_srli_epi32(sum, 8), div255), 23);
+      rgba = _mm256_or_si256(rgba, _mm256_slli_epi32(q, 8 * c));
+    }
+    _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(out + 4 * i)), rgba);
+  }
+  return true;
+}
+
 }  // namespace artcam::avx2
 
 #endif

@@ -237,10 +237,18 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
   po.threads = options.threads;
   po.progress = options.progress;
   po.band_rows = kBandRows;
+  // Where every channel's position is interior, each colour channel is sampled alone straight
+  // into `out` (SpanSampler::runChannelsInterior: the same integers the channel's full sample
+  // gives) and alpha is full, which is what the merge gives there: a third of the taps and no
+  // merge. Only for 8-bit photos without alpha (an alpha would rescale the colours).
+  const SpanSampler direct(source, out, options.filter, !options.coordinates.scalar_only);
+  const bool direct_ok = out.type == PixelType::UInt8 && source.alpha_channel < 0 && options.filter != Filter::Bicubic;
   const bool finished = parallelForRows(out_px.height, po, [&](int y0, int y1) {
     long long band_transparent = 0, band_newton = 0;
-    alignas(32) float sx[kSpanPixels], sy[kSpanPixels];
-    unsigned char valid[kSpanPixels];
+    alignas(32) float sx[4][kSpanPixels], sy[4][kSpanPixels];
+    unsigned char valid[4][kSpanPixels];
+    int ss[4] = {1, 1, 1, 1};
+    float jac[4][4];
     // One span per channel, in out's layout; each channel's sampler writes its own.
     std::vector<unsigned char> scratch(static_cast<size_t>(count) * kSpanPixels * static_cast<size_t>(pixel_bytes));
     std::vector<SpanSampler> band_samplers;
@@ -258,14 +266,24 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
     for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
       const int n = std::min(kSpanPixels, out_px.width - x0);
       for (int y = y0; y < y1; ++y) {
+        bool one_tap = true;
         for (int k = 0; k < count; ++k) {
           const CoordinateKernel& kernel = *kernels[static_cast<size_t>(k)];
-          band_newton += kernel.span(y, x0, n, sx, sy, valid, states[static_cast<size_t>(k) * kBandRows + static_cast<size_t>(y - y0)]);
-          int ss = 1;
-          float jac[4] = {1, 0, 0, 1};
-          if (options.antialias) ss = spanFootprint(kernel, y, x0, n, sx, sy, valid, max_ss, jac);
-          band_samplers[static_cast<size_t>(k)].run(0, 0, n, sx, sy, valid, ss, jac);
+          band_newton += kernel.span(y, x0, n, sx[k], sy[k], valid[k], states[static_cast<size_t>(k) * kBandRows + static_cast<size_t>(y - y0)]);
+          ss[k] = 1;
+          std::fill(jac[k], jac[k] + 4, 0.0f);
+          jac[k][0] = jac[k][3] = 1.0f;
+          if (options.antialias) ss[k] = spanFootprint(kernel, y, x0, n, sx[k], sy[k], valid[k], max_ss, jac[k]);
+          one_tap = one_tap && ss[k] == 1;
         }
+        if (direct_ok && one_tap) {
+          const float* xs[4] = {sx[0], sx[1], sx[2], sx[3]};
+          const float* ys[4] = {sy[0], sy[1], sy[2], sy[3]};
+          const unsigned char* vs[4] = {valid[0], valid[1], valid[2], valid[3]};
+          if (direct.runChannelsInterior(y, x0, n, count, xs, ys, vs)) continue;
+        }
+        for (int k = 0; k < count; ++k)
+          band_samplers[static_cast<size_t>(k)].run(0, 0, n, sx[k], sy[k], valid[k], ss[k], jac[k]);
         unsigned char* dst = static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0) * pixel_bytes;
         if (out.type == PixelType::UInt8) band_transparent += mergeChannels<std::uint8_t>(spans, count, out.channels, dst, n);
         else if (out.type == PixelType::UInt16) band_transparent += mergeChannels<std::uint16_t>(spans, count, out.channels, dst, n);
