@@ -13,6 +13,7 @@
 #include "core/io/stored_image.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
+#include "core/piecewise/piecewise_render.h"
 #include "core/pipeline/render.h"
 #include "core/render/coordinates.h"
 #include "core/render/mip_pyramid.h"
@@ -409,10 +410,10 @@ void endToEndJpeg(const PixelBuffer& pixels, FrameSize size, const Camera& camer
 }  // namespace
 
 // The largest position error of an Artcam's geometry against the exact inverse: every layer's
-// camera; negative where there is no figure (piecewise cameras: their mesh warp is measured
-// against each patch by the piecewise tests, not here).
+// camera; for a piecewise camera the mesh's error as the render estimates it (chooseMeshStep,
+// checked against the exact inverse by the piecewise tests); negative where there is no figure.
 double suiteError(const Artcam& camera, FrameSize size) {
-  if (camera.isPiecewise()) return -1.0;
+  if (camera.isPiecewise()) return chooseMeshStep(*camera.pieces, size, size).error_px;
   double worst = 0.0;
   for (const Camera& layer : camera.layers) {
     try {

@@ -7,165 +7,463 @@
 #include "core/render/span_sampler.h"
 #include "core/util/parallel.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 namespace artcam {
 namespace {
 
-struct Vertex {
-  Eigen::Vector2d source;  // source-camera pixels
-  Eigen::Vector2d target;
-  bool valid = false;
-};
-
 double edge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double px, double py) {
   return (b.x() - a.x()) * (py - a.y()) - (b.y() - a.y()) * (px - a.x());
 }
 
-// One mapped triangle: its output rows, and what a pixel centre inside needs: the three edge
-// functions and the source position, each affine in (x, y), so a row costs adds.
-struct Triangle {
-  Eigen::Vector2d a, b, c;        // output pixels
-  Eigen::Vector2d sa, sb, sc;     // source pixels of the source image
-  double area = 0.0;
-  int y_begin = 0, y_end = -1;    // output rows with a pixel centre inside the bounding box
-};
-
 constexpr int kBandRows = 16;
+// Cells per side of a chunk: the unit the bands list. A chunk's target bounding box decides
+// which bands look at its cells, so a band visits the few thousand cells near it, not the
+// lattice (millions at 24 MP), and no per-triangle record is ever stored.
+constexpr int kChunkCells = 16;
 
+// The source lattice (vertex (i, j) at all.x0 + i · step, clamped to the patches' extent)
+// mapped forward into output pixels, and which cells the mesh draws.
 struct Mesh {
-  std::vector<Triangle> triangles;
-  std::vector<std::vector<int>> bands;  // triangles touching each band of kBandRows output rows
+  int nx = 0, ny = 0;                     // vertices per row and per column
+  PatchRect all;                          // the patches' extent, source pixels of the camera
+  double step = 0.0;
+  Eigen::Vector2d source_scale{1.0, 1.0};  // camera source pixels → source image pixels
+  Eigen::Vector2d out_scale{1.0, 1.0};     // camera target pixels → output pixels
+  std::vector<Eigen::Vector2d> target;    // output pixels, nx · ny
+  std::vector<unsigned char> valid;       // some patch maps the vertex
+  std::vector<int> patch;                 // the one patch that maps the vertex; −1: several
+                                          // (their average is taken) or none
+  std::vector<unsigned char> cell_ok;     // (nx − 1) · (ny − 1): the cell's centre has data
+  // The bend of the lattice's edges from vertex (i, j): to its right, down and down-right
+  // neighbour. The exact preimage of the midpoint of the edge's two targets, less the
+  // midpoint of its two sources (camera source pixels): what makes the triangles quadratic.
+  std::vector<Eigen::Vector2d> bend[3];
+  int chunks_x = 0, chunks_y = 0;
+  std::vector<std::vector<int>> bands;    // chunks whose cells may cover each band's rows
+  long long triangles = 0;
+
+  size_t at(int i, int j) const { return static_cast<size_t>(j) * static_cast<size_t>(nx) + static_cast<size_t>(i); }
+  Eigen::Vector2d sourceAt(int i, int j) const {
+    return {std::min(all.x1, all.x0 + i * step), std::min(all.y1, all.y0 + j * step)};
+  }
 };
+
+// Lattice indices [first, last] whose coordinate (origin + k · step, clamped to `end`) may lie
+// in [lo, hi]: one index of slack each side, the exact test is the caller's.
+void latticeRange(double origin, double step, double end, int count, double lo, double hi, int& first, int& last) {
+  first = std::max(0, static_cast<int>(std::floor((lo - origin) / step)) - 1);
+  last = std::min(count - 1, static_cast<int>(std::ceil((std::min(hi, end) - origin) / step)) + 1);
+  if (hi >= end) last = count - 1;  // the clamped last vertex sits on `end`
+}
+
+// The patches' averaged map at a source point, as at the vertices, with the first patch's
+// Jacobian; false where no patch has data.
+bool averagedMap(const PiecewiseCamera& camera, const std::vector<RationalMap>& maps, const Eigen::Vector2d& s,
+                 double tolerance, Eigen::Vector2d& target, Eigen::Matrix2d& jacobian) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (size_t k = 0; k < camera.patches.size(); ++k) {
+    Eigen::Vector2d t;
+    Eigen::Matrix2d j;
+    if (camera.patches[k].rect.contains(s, tolerance) && camera.supports(static_cast<int>(k), s) &&
+        maps[k].evaluate(s, t, count == 0 ? &j : nullptr)) {
+      if (count == 0) jacobian = j;
+      sum += t;
+      ++count;
+    }
+  }
+  if (count == 0) return false;
+  target = sum / count;
+  return true;
+}
+
+// The exact preimage of `target` (camera target pixels) near `start`: two Newton steps through
+// patch `patch`'s map, or the averaged map when it is −1. False where the map has no data or
+// no inverse Jacobian.
+bool preimageNear(const PiecewiseCamera& camera, const std::vector<RationalMap>& maps, int patch,
+                  const Eigen::Vector2d& target, Eigen::Vector2d start, double tolerance, Eigen::Vector2d& source) {
+  for (int k = 0; k < 2; ++k) {
+    Eigen::Vector2d f;
+    Eigen::Matrix2d j;
+    const bool mapped = patch >= 0 ? maps[static_cast<size_t>(patch)].evaluate(start, f, &j)
+                                   : averagedMap(camera, maps, start, tolerance, f, j);
+    if (!mapped || !(std::abs(j.determinant()) > 0.0)) return false;
+    start += j.inverse() * (target - f);
+  }
+  source = start;
+  return start.allFinite();
+}
 
 Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize size, double step,
                int threads) {
-  const double out_x = static_cast<double>(size.width) / camera.target_size.width;
-  const double out_y = static_cast<double>(size.height) / camera.target_size.height;
-  PatchRect all = camera.patches.front().rect;
+  Mesh mesh;
+  mesh.step = step;
+  PatchRect& all = mesh.all;
+  all = camera.patches.front().rect;
   for (const CameraPatch& p : camera.patches) {
     all.x0 = std::min(all.x0, p.rect.x0);
     all.y0 = std::min(all.y0, p.rect.y0);
     all.x1 = std::max(all.x1, p.rect.x1);
     all.y1 = std::max(all.y1, p.rect.y1);
   }
-  const int nx = static_cast<int>(std::ceil(all.width() / step)) + 1;
-  const int ny = static_cast<int>(std::ceil(all.height() / step)) + 1;
-  std::vector<Vertex> lattice(static_cast<size_t>(nx) * static_cast<size_t>(ny));
-  std::vector<unsigned char> cell_ok(static_cast<size_t>(nx) * static_cast<size_t>(ny), 0);
+  const int nx = mesh.nx = static_cast<int>(std::ceil(all.width() / step)) + 1;
+  const int ny = mesh.ny = static_cast<int>(std::ceil(all.height() / step)) + 1;
+  mesh.source_scale = {static_cast<double>(source_image.width) / camera.source_size.width,
+                       static_cast<double>(source_image.height) / camera.source_size.height};
+  const Eigen::Vector2d out_scale = mesh.out_scale = {static_cast<double>(size.width) / camera.target_size.width,
+                                                      static_cast<double>(size.height) / camera.target_size.height};
+  const size_t vertices = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+  mesh.target.resize(vertices);
+  mesh.valid.assign(vertices, 0);
+  mesh.patch.assign(vertices, -1);
+  mesh.cell_ok.assign(static_cast<size_t>(std::max(0, nx - 1)) * static_cast<size_t>(std::max(0, ny - 1)), 0);
   const double tolerance = 1e-9 * std::max(all.width(), all.height());
   // Each patch's forward map in pixels, evaluated from its six coefficients per form
   // (rational_map.h): the lattice asks it ~1.5 million times at 24 MP.
   std::vector<RationalMap> maps;
   for (const CameraPatch& p : camera.patches) maps.emplace_back(p.camera, camera.source_size, camera.target_size);
+  const auto cellAt = [&](int i, int j) { return static_cast<size_t>(j) * static_cast<size_t>(nx - 1) + static_cast<size_t>(i); };
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 8;
   parallelForRows(ny, po, [&](int j0, int j1) {
-    for (int j = j0; j < j1; ++j)
-      for (int i = 0; i < nx; ++i) {
-        Vertex& v = lattice[static_cast<size_t>(j) * static_cast<size_t>(nx) + static_cast<size_t>(i)];
-        v.source = {std::min(all.x1, all.x0 + i * step), std::min(all.y1, all.y0 + j * step)};
-        Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-        int count = 0;
-        for (size_t k = 0; k < camera.patches.size(); ++k) {
-          const CameraPatch& p = camera.patches[k];
-          Eigen::Vector2d y;
-          if (p.rect.contains(v.source, tolerance) && camera.supports(static_cast<int>(k), v.source) &&
-              maps[k].evaluate(v.source, y, nullptr)) {
-            sum += y;
-            ++count;
+    std::vector<Eigen::Vector2d> sum(static_cast<size_t>(nx));
+    std::vector<int> count(static_cast<size_t>(nx)), last_patch(static_cast<size_t>(nx));
+    for (int j = j0; j < j1; ++j) {
+      std::fill(sum.begin(), sum.end(), Eigen::Vector2d::Zero());
+      std::fill(count.begin(), count.end(), 0);
+      const double y = mesh.sourceAt(0, j).y();
+      const double centre_y = std::min(all.y1, all.y0 + (j + 0.5) * step);
+      // Only the patches whose rectangle holds the row, over the columns it spans: the same
+      // tests as one pass over every patch per vertex, at a fraction of the cost.
+      for (size_t k = 0; k < camera.patches.size(); ++k) {
+        const PatchRect& r = camera.patches[k].rect;
+        if (y < r.y0 - tolerance || y > r.y1 + tolerance) continue;
+        int first = 0, last = -1;
+        latticeRange(all.x0, step, all.x1, nx, r.x0 - tolerance, r.x1 + tolerance, first, last);
+        for (int i = first; i <= last; ++i) {
+          const Eigen::Vector2d v = mesh.sourceAt(i, j);
+          Eigen::Vector2d t;
+          if (r.contains(v, tolerance) && camera.supports(static_cast<int>(k), v) && maps[k].evaluate(v, t, nullptr)) {
+            sum[static_cast<size_t>(i)] += t;
+            ++count[static_cast<size_t>(i)];
+            last_patch[static_cast<size_t>(i)] = static_cast<int>(k);
           }
         }
-        v.valid = count > 0;
-        if (v.valid) v.target = (sum / count).cwiseProduct(Eigen::Vector2d(out_x, out_y));
-        // A cell counts only when its centre lies where a patch has data (the quadtree's
-        // empty corners stay empty).
-        if (i + 1 < nx && j + 1 < ny) {
-          const Eigen::Vector2d centre(std::min(all.x1, all.x0 + (i + 0.5) * step),
-                                       std::min(all.y1, all.y0 + (j + 0.5) * step));
-          bool inside = false;
-          for (size_t k = 0; k < camera.patches.size() && !inside; ++k)
-            inside = camera.patches[k].rect.contains(centre) && camera.supports(static_cast<int>(k), centre);
-          cell_ok[static_cast<size_t>(j) * static_cast<size_t>(nx) + static_cast<size_t>(i)] = inside ? 1 : 0;
+      }
+      for (int i = 0; i < nx; ++i)
+        if (count[static_cast<size_t>(i)] > 0) {
+          mesh.valid[mesh.at(i, j)] = 1;
+          if (count[static_cast<size_t>(i)] == 1) mesh.patch[mesh.at(i, j)] = last_patch[static_cast<size_t>(i)];
+          mesh.target[mesh.at(i, j)] = (sum[static_cast<size_t>(i)] / count[static_cast<size_t>(i)]).cwiseProduct(out_scale);
+        }
+      // A cell counts only when its centre lies where a patch has data (the quadtree's empty
+      // corners stay empty).
+      if (j + 1 >= ny) continue;
+      for (size_t k = 0; k < camera.patches.size(); ++k) {
+        const PatchRect& r = camera.patches[k].rect;
+        if (centre_y < r.y0 || centre_y > r.y1) continue;
+        int first = 0, last = -1;
+        latticeRange(all.x0 + 0.5 * step, step, all.x1, nx - 1, r.x0, r.x1, first, last);
+        for (int i = first; i <= last; ++i) {
+          unsigned char& ok = mesh.cell_ok[cellAt(i, j)];
+          if (ok) continue;
+          const Eigen::Vector2d centre(std::min(all.x1, all.x0 + (i + 0.5) * step), centre_y);
+          ok = r.contains(centre) && camera.supports(static_cast<int>(k), centre) ? 1 : 0;
         }
       }
-  });
-  const double sx = static_cast<double>(source_image.width) / camera.source_size.width;
-  const double sy = static_cast<double>(source_image.height) / camera.source_size.height;
-  Mesh mesh;
-  mesh.bands.resize(static_cast<size_t>((size.height + kBandRows - 1) / kBandRows));
-  const auto add = [&](const Vertex& a, const Vertex& b, const Vertex& c) {
-    Triangle t;
-    t.a = a.target, t.b = b.target, t.c = c.target;
-    t.area = edge(t.a, t.b, t.c.x(), t.c.y());
-    if (!(std::abs(t.area) > 1e-12)) return;
-    const auto scaled = [&](const Eigen::Vector2d& s) { return Eigen::Vector2d(s.x() * sx, s.y() * sy); };
-    t.sa = scaled(a.source), t.sb = scaled(b.source), t.sc = scaled(c.source);
-    const double lo_y = std::min({t.a.y(), t.b.y(), t.c.y()}), hi_y = std::max({t.a.y(), t.b.y(), t.c.y()});
-    t.y_begin = std::max(0, static_cast<int>(std::ceil(lo_y - 0.5)));
-    t.y_end = std::min(size.height - 1, static_cast<int>(std::floor(hi_y - 0.5)));
-    const double lo_x = std::min({t.a.x(), t.b.x(), t.c.x()}), hi_x = std::max({t.a.x(), t.b.x(), t.c.x()});
-    if (t.y_begin > t.y_end || hi_x < 0.5 - 1e-9 || lo_x > size.width - 0.5 + 1e-9) {
-      mesh.triangles.push_back(t);  // counted, never drawn
-      return;
     }
-    const int index = static_cast<int>(mesh.triangles.size());
-    mesh.triangles.push_back(t);
-    for (int band = t.y_begin / kBandRows; band <= t.y_end / kBandRows; ++band)
-      mesh.bands[static_cast<size_t>(band)].push_back(index);
+  });
+  // Chunks: the target bounding box of each chunk's drawn triangles, per cell row first (in
+  // parallel), then merged; the triangle count on the way.
+  const int cells_x = std::max(0, nx - 1), cells_y = std::max(0, ny - 1);
+  mesh.chunks_x = (cells_x + kChunkCells - 1) / kChunkCells;
+  mesh.chunks_y = (cells_y + kChunkCells - 1) / kChunkCells;
+  struct Box {
+    double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    void add(const Eigen::Vector2d& p) {
+      x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y()), x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
+    }
+    void add(const Box& b) { x0 = std::min(x0, b.x0), y0 = std::min(y0, b.y0), x1 = std::max(x1, b.x1), y1 = std::max(y1, b.y1); }
   };
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      if (!cell_ok[static_cast<size_t>(j) * static_cast<size_t>(nx) + static_cast<size_t>(i)]) continue;
-      const auto at = [&](int di, int dj) -> const Vertex& {
-        return lattice[static_cast<size_t>(j + dj) * static_cast<size_t>(nx) + static_cast<size_t>(i + di)];
-      };
-      const Vertex &v00 = at(0, 0), &v10 = at(1, 0), &v01 = at(0, 1), &v11 = at(1, 1);
-      if (v00.valid && v10.valid && v11.valid) add(v00, v10, v11);
-      if (v00.valid && v11.valid && v01.valid) add(v00, v11, v01);
+  std::vector<Box> row_boxes(static_cast<size_t>(cells_y) * static_cast<size_t>(mesh.chunks_x));
+  std::atomic<long long> triangles{0};
+  for (auto& b : mesh.bend) b.assign(vertices, Eigen::Vector2d::Zero());
+  // Edge (i, j) → (i + di, j + dj)'s bend, where both ends are mapped.
+  const auto bendOf = [&](int i, int j, int di, int dj) {
+    const size_t a = mesh.at(i, j), b = mesh.at(i + di, j + dj);
+    if (!mesh.valid[a] || !mesh.valid[b]) return Eigen::Vector2d(Eigen::Vector2d::Zero());
+    const Eigen::Vector2d m = 0.5 * (mesh.sourceAt(i, j) + mesh.sourceAt(i + di, j + dj));
+    const Eigen::Vector2d mid = (0.5 * (mesh.target[a] + mesh.target[b])).cwiseQuotient(out_scale);
+    Eigen::Vector2d exact;
+    const int patch = mesh.patch[a] >= 0 && mesh.patch[a] == mesh.patch[b] ? mesh.patch[a] : -1;
+    if (!preimageNear(camera, maps, patch, mid, m, tolerance, exact)) return Eigen::Vector2d(Eigen::Vector2d::Zero());
+    return Eigen::Vector2d(exact - m);
+  };
+  parallelForRows(cells_y, po, [&](int j0, int j1) {
+    long long count = 0;
+    for (int j = j0; j < j1; ++j) {
+      // The edges the cells of row j draw: right edges of vertex rows j (and j + 1 on the
+      // last row), down edges of every vertex of row j, diagonals.
+      for (int i = 0; i < nx; ++i) {
+        const size_t v = mesh.at(i, j);
+        if (i + 1 < nx) {
+          mesh.bend[0][v] = bendOf(i, j, 1, 0);
+          if (j + 1 == cells_y) mesh.bend[0][mesh.at(i, j + 1)] = bendOf(i, j + 1, 1, 0);
+          mesh.bend[2][v] = bendOf(i, j, 1, 1);
+        }
+        mesh.bend[1][v] = bendOf(i, j, 0, 1);
+      }
+      for (int i = 0; i < cells_x; ++i) {
+        if (!mesh.cell_ok[cellAt(i, j)]) continue;
+        const size_t v00 = mesh.at(i, j), v10 = mesh.at(i + 1, j), v01 = mesh.at(i, j + 1), v11 = mesh.at(i + 1, j + 1);
+        Box& box = row_boxes[static_cast<size_t>(j) * static_cast<size_t>(mesh.chunks_x) + static_cast<size_t>(i / kChunkCells)];
+        const auto triangle = [&](size_t a, size_t b, size_t c) {
+          if (!mesh.valid[a] || !mesh.valid[b] || !mesh.valid[c]) return;
+          const Eigen::Vector2d &ta = mesh.target[a], &tb = mesh.target[b], &tc = mesh.target[c];
+          if (!(std::abs(edge(ta, tb, tc.x(), tc.y())) > 1e-12)) return;
+          ++count;
+          box.add(ta), box.add(tb), box.add(tc);
+        };
+        triangle(v00, v10, v11);
+        triangle(v00, v11, v01);
+      }
+    }
+    triangles += count;
+  });
+  mesh.triangles = triangles.load();
+  mesh.bands.resize(static_cast<size_t>((size.height + kBandRows - 1) / kBandRows));
+  for (int cj = 0; cj < mesh.chunks_y; ++cj)
+    for (int ci = 0; ci < mesh.chunks_x; ++ci) {
+      Box box;
+      for (int j = cj * kChunkCells; j < std::min(cells_y, (cj + 1) * kChunkCells); ++j)
+        box.add(row_boxes[static_cast<size_t>(j) * static_cast<size_t>(mesh.chunks_x) + static_cast<size_t>(ci)]);
+      if (!(box.x0 <= box.x1)) continue;  // nothing drawn
+      const int y_begin = std::max(0, static_cast<int>(std::ceil(box.y0 - 0.5)));
+      const int y_end = std::min(size.height - 1, static_cast<int>(std::floor(box.y1 - 0.5)));
+      if (y_begin > y_end || box.x1 < 0.5 - 1e-9 || box.x0 > size.width - 0.5 + 1e-9) continue;
+      for (int band = y_begin / kBandRows; band <= y_end / kBandRows; ++band)
+        mesh.bands[static_cast<size_t>(band)].push_back(cj * mesh.chunks_x + ci);
     }
   return mesh;
 }
 
-// The triangle's pixel centres in rows [y0, y1) into the band's position buffers (row r of
-// the band at r · width). Shared edges are drawn by both triangles with the same value (the
-// mesh is continuous), so the inclusive test costs nothing but a second identical write.
-long long rasterise(const Triangle& t, int y0, int y1, int width, float* sx, float* sy,
-                    unsigned char* valid, int band_y0) {
-  const double lo_x = std::min({t.a.x(), t.b.x(), t.c.x()}), hi_x = std::max({t.a.x(), t.b.x(), t.c.x()});
+// The cell's two triangles: the vertex offsets of each, counter-wise as drawn, and which bend
+// each edge (a→b, b→c, c→a) takes, with the vertex it starts from.
+struct TriangleShape {
+  int v[3][2];          // (di, dj) of a, b, c
+  int bend[3][3];       // per edge: bend index, (di, dj) of the vertex it belongs to
+};
+constexpr TriangleShape kTriangles[2] = {
+    {{{0, 0}, {1, 0}, {1, 1}}, {{0, 0, 0}, {1, 1, 0}, {2, 0, 0}}},   // v00 v10 v11
+    {{{0, 0}, {1, 1}, {0, 1}}, {{2, 0, 0}, {0, 0, 1}, {1, 0, 0}}},   // v00 v11 v01
+};
+
+// Edge a→b's bend as seen going that way: the bend is stored from the edge's first lattice
+// vertex; traversing the edge backwards leaves the midpoint and so the bend unchanged.
+Eigen::Vector2d bendOf(const Mesh& mesh, int i, int j, const int e[3]) {
+  return mesh.bend[e[0]][mesh.at(i + e[1], j + e[2])];
+}
+
+// The quadratic triangle's source position at barycentric (wa, wb, wc): the vertices' blend
+// plus each edge's bend on the edge's quadratic bubble 4 w w′ (1 at its midpoint, 0 at the
+// vertices and along the other edges), so shared edges agree and the mesh stays continuous.
+inline Eigen::Vector2d quadratic(double wa, double wb, double wc, const Eigen::Vector2d s[3], const Eigen::Vector2d bend[3]) {
+  return wa * s[0] + wb * s[1] + wc * s[2] + 4.0 * (wa * wb * bend[0] + wb * wc * bend[1] + wc * wa * bend[2]);
+}
+
+// The largest J⁻¹ (t − f(s)) over the drawn triangles at their centroids and their edges'
+// quarter points (where a quadratic's error peaks, away from the exact nodes), s the mesh's
+// position for the target point t, f the map of the one patch that maps all three vertices: in
+// pixels of the image rendered from. Triangles whose vertices several patches map, or
+// different ones, are left out: there the mesh blends patches that disagree by the fit's seam
+// gap (piecewise_fit.h reports it), which no step removes.
+double meshError(const Mesh& mesh, const PiecewiseCamera& camera, int threads) {
+  std::vector<RationalMap> maps;
+  for (const CameraPatch& p : camera.patches) maps.emplace_back(p.camera, camera.source_size, camera.target_size);
+  const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
+  std::vector<double> row_worst(static_cast<size_t>(std::max(0, cells_y)), 0.0);
+  const double points[7][3] = {{1 / 3.0, 1 / 3.0, 1 / 3.0}, {0.75, 0.25, 0}, {0.25, 0.75, 0}, {0, 0.75, 0.25},
+                               {0, 0.25, 0.75}, {0.25, 0, 0.75}, {0.75, 0, 0.25}};
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = 8;
+  parallelForRows(std::max(0, cells_y), po, [&](int j0, int j1) {
+    for (int j = j0; j < j1; ++j) {
+      double worst = 0.0;
+      for (int i = 0; i < cells_x; ++i) {
+        if (!mesh.cell_ok[static_cast<size_t>(j) * static_cast<size_t>(cells_x) + static_cast<size_t>(i)]) continue;
+        for (const TriangleShape& shape : kTriangles) {
+          Eigen::Vector2d s[3], t[3], bend[3];
+          const int patch = mesh.patch[mesh.at(i + shape.v[0][0], j + shape.v[0][1])];
+          bool ok = patch >= 0;
+          for (int q = 0; q < 3 && ok; ++q) {
+            const size_t v = mesh.at(i + shape.v[q][0], j + shape.v[q][1]);
+            ok = mesh.valid[v] && mesh.patch[v] == patch;
+            s[q] = mesh.sourceAt(i + shape.v[q][0], j + shape.v[q][1]);
+            t[q] = mesh.target[v].cwiseQuotient(mesh.out_scale);
+            bend[q] = bendOf(mesh, i, j, shape.bend[q]);
+          }
+          if (!ok) continue;
+          for (const auto& w : points) {
+            const Eigen::Vector2d target = w[0] * t[0] + w[1] * t[1] + w[2] * t[2];
+            const Eigen::Vector2d source = quadratic(w[0], w[1], w[2], s, bend);
+            Eigen::Vector2d f;
+            Eigen::Matrix2d jac;
+            if (!maps[static_cast<size_t>(patch)].evaluate(source, f, &jac) || !(std::abs(jac.determinant()) > 0.0)) continue;
+            const double err = (jac.inverse() * (target - f)).cwiseProduct(mesh.source_scale).norm();
+            if (std::isfinite(err)) worst = std::max(worst, err);
+          }
+        }
+      }
+      row_worst[static_cast<size_t>(j)] = worst;
+    }
+  });
+  double worst = 0.0;
+  for (const double w : row_worst) worst = std::max(worst, w);
+  return worst;
+}
+
+// The step for the options, and its mesh when it was built on the way.
+MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, FrameSize size,
+                      const PiecewiseRenderOptions& options, std::optional<Mesh>* built) {
+  MeshChoice choice;
+  if (options.mesh_step_px > 0.0) {
+    choice.step_px = std::max(0.25, options.mesh_step_px);
+    if (!built) choice.error_px = meshError(buildMesh(camera, source_image, size, choice.step_px, options.threads), camera, options.threads);
+    else choice.error_px = -1.0;  // not measured
+    return choice;
+  }
+  // Coarsest first; the error falls as the step cubed, so one halving is nearly always the most.
+  for (const double step : {32.0, 16.0, 8.0, 4.0, 2.0}) {
+    Mesh mesh = buildMesh(camera, source_image, size, step, options.threads);
+    choice.step_px = step;
+    choice.error_px = meshError(mesh, camera, options.threads);
+    if (choice.error_px <= options.max_error_px || step == 2.0) {
+      if (built) built->emplace(std::move(mesh));
+      break;
+    }
+  }
+  return choice;
+}
+
+// The pixel centres of output rows [y0, y1) inside triangle t[0..2] (output pixels) into the
+// band's position buffers (row r of the band at r · width), each the quadratic triangle's
+// source position (quadratic(), in pixels of the image rendered from). Shared edges are drawn
+// by both triangles with the same value (the mesh is continuous), so the inclusive test costs
+// nothing but a second identical write.
+long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], const Eigen::Vector2d bend[3], int y0,
+                    int y1, int width, float* sx, float* sy, unsigned char* valid) {
+  const Eigen::Vector2d &a = t[0], &b = t[1], &c = t[2];
+  const double lo_y = std::min({a.y(), b.y(), c.y()}), hi_y = std::max({a.y(), b.y(), c.y()});
+  const int row_begin = std::max(y0, static_cast<int>(std::ceil(lo_y - 0.5)));
+  const int row_end = std::min(y1 - 1, static_cast<int>(std::floor(hi_y - 0.5)));
+  if (row_begin > row_end) return 0;
+  const double lo_x = std::min({a.x(), b.x(), c.x()}), hi_x = std::max({a.x(), b.x(), c.x()});
   const int x_begin = std::max(0, static_cast<int>(std::ceil(lo_x - 0.5)));
   const int x_end = std::min(width - 1, static_cast<int>(std::floor(hi_x - 0.5)));
-  const double eps = -1e-9 * std::abs(t.area);
-  const double inv = 1.0 / t.area;
-  // Each barycentric weight is affine in x along a row: w(x) = w(x_begin) + (x − x_begin) dw.
-  const double dwa = -(t.c.y() - t.b.y()) * inv, dwb = -(t.a.y() - t.c.y()) * inv, dwc = -(t.b.y() - t.a.y()) * inv;
+  if (x_begin > x_end) return 0;
+  const double area = edge(a, b, c.x(), c.y());
+  if (!(std::abs(area) > 1e-12)) return 0;
+  const double eps = -1e-9 * std::abs(area);
+  const double inv = 1.0 / area;
+  // Each barycentric weight is affine in x along a row, so the position is quadratic in it:
+  // p(k) = p0 + k (d1 + k d2), walked by forward differences (two adds per coordinate).
+  const double dwa = -(c.y() - b.y()) * inv, dwb = -(a.y() - c.y()) * inv, dwc = -(b.y() - a.y()) * inv;
+  const Eigen::Vector2d d_linear = dwa * s[0] + dwb * s[1] + dwc * s[2];
+  const Eigen::Vector2d d2 = 4.0 * (dwa * dwb * bend[0] + dwb * dwc * bend[1] + dwc * dwa * bend[2]);
   long long covered = 0;
-  for (int y = std::max(y0, t.y_begin); y <= std::min(y1 - 1, t.y_end); ++y) {
-    const double py = y + 0.5, px0 = x_begin + 0.5;
-    const double wa0 = edge(t.b, t.c, px0, py) * inv, wb0 = edge(t.c, t.a, px0, py) * inv,
-                 wc0 = edge(t.a, t.b, px0, py) * inv;
-    const size_t row = static_cast<size_t>(y - band_y0) * static_cast<size_t>(width);
-    for (int x = x_begin; x <= x_end; ++x) {
-      const double k = x - x_begin;
-      const double wa = wa0 + k * dwa, wb = wb0 + k * dwb, wc = wc0 + k * dwc;
-      if (wa < eps || wb < eps || wc < eps) continue;
-      const Eigen::Vector2d s = wa * t.sa + wb * t.sb + wc * t.sc;
-      sx[row + static_cast<size_t>(x)] = static_cast<float>(s.x());
-      sy[row + static_cast<size_t>(x)] = static_cast<float>(s.y());
-      valid[row + static_cast<size_t>(x)] = 1;
+  // And affine in y at the row's first pixel.
+  const double dya = (c.x() - b.x()) * inv, dyb = (a.x() - c.x()) * inv, dyc = (b.x() - a.x()) * inv;
+  const double px0 = x_begin + 0.5, py0 = row_begin + 0.5;
+  const double wa_first = edge(b, c, px0, py0) * inv, wb_first = edge(c, a, px0, py0) * inv,
+               wc_first = edge(a, b, px0, py0) * inv;
+  const double dw[3] = {dwa, dwb, dwc};
+  const double inv_dw[3] = {dwa != 0.0 ? 1.0 / dwa : 0.0, dwb != 0.0 ? 1.0 / dwb : 0.0, dwc != 0.0 ? 1.0 / dwc : 0.0};
+  for (int y = row_begin; y <= row_end; ++y) {
+    const double ry = y - row_begin;
+    const double wa0 = wa_first + ry * dya, wb0 = wb_first + ry * dyb, wc0 = wc_first + ry * dyc;
+    // The row's pixels inside: each weight ≥ eps is a half-line in k; one pixel of slack
+    // each side, the exact per-pixel test decides (so a pixel on an edge is never lost).
+    double k_lo = 0.0, k_hi = x_end - x_begin;
+    const double w0[3] = {wa0, wb0, wc0};
+    for (int q = 0; q < 3; ++q) {
+      if (dw[q] > 0.0) k_lo = std::max(k_lo, std::floor((eps - w0[q]) * inv_dw[q]) - 1.0);
+      else if (dw[q] < 0.0) k_hi = std::min(k_hi, std::ceil((eps - w0[q]) * inv_dw[q]) + 1.0);
+      else if (w0[q] < eps) k_hi = -1.0;
+    }
+    if (!(k_lo <= k_hi)) continue;
+    const int first = static_cast<int>(k_lo), last = static_cast<int>(k_hi);
+    const double k0 = first;
+    const double wa = wa0 + k0 * dwa, wb = wb0 + k0 * dwb, wc = wc0 + k0 * dwc;
+    Eigen::Vector2d p = quadratic(wa, wb, wc, s, bend);
+    // Δ(k) = p(k + 1) − p(k) = d1 + d2 (2k + 1), with d1 the slope at k0.
+    const Eigen::Vector2d d1 = d_linear + 4.0 * ((wa * dwb + dwa * wb) * bend[0] + (wb * dwc + dwb * wc) * bend[1] +
+                                                 (wc * dwa + dwc * wa) * bend[2]);
+    Eigen::Vector2d delta = d1 + d2;
+    const Eigen::Vector2d step2 = 2.0 * d2;
+    const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(x_begin);
+    for (int k = first; k <= last; ++k, p += delta, delta += step2) {
+      const double kk = k;
+      if (wa0 + kk * dwa < eps || wb0 + kk * dwb < eps || wc0 + kk * dwc < eps) continue;
+      sx[row + static_cast<size_t>(k)] = static_cast<float>(p.x());
+      sy[row + static_cast<size_t>(k)] = static_cast<float>(p.y());
+      valid[row + static_cast<size_t>(k)] = 1;
       ++covered;
     }
   }
   return covered;
 }
 
+// Every drawn triangle of the chunks listed for the band of output rows [y0, y1).
+long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, float* sy, unsigned char* valid) {
+  const double top = y0 + 0.5 - 1e-9, bottom = y1 - 0.5 + 1e-9;  // the band's pixel centres
+  const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
+  long long covered = 0;
+  for (const int chunk : mesh.bands[static_cast<size_t>(y0 / kBandRows)]) {
+    const int ci = chunk % mesh.chunks_x, cj = chunk / mesh.chunks_x;
+    for (int j = cj * kChunkCells; j < std::min(cells_y, (cj + 1) * kChunkCells); ++j)
+      for (int i = ci * kChunkCells; i < std::min(cells_x, (ci + 1) * kChunkCells); ++i) {
+        if (!mesh.cell_ok[static_cast<size_t>(j) * static_cast<size_t>(cells_x) + static_cast<size_t>(i)]) continue;
+        const size_t v[4] = {mesh.at(i, j), mesh.at(i + 1, j), mesh.at(i, j + 1), mesh.at(i + 1, j + 1)};
+        const double lo = std::min({mesh.target[v[0]].y(), mesh.target[v[1]].y(), mesh.target[v[2]].y(), mesh.target[v[3]].y()});
+        const double hi = std::max({mesh.target[v[0]].y(), mesh.target[v[1]].y(), mesh.target[v[2]].y(), mesh.target[v[3]].y()});
+        if (hi < top || lo > bottom) continue;  // the common case: a cell above or below the band
+        for (const TriangleShape& shape : kTriangles) {
+          Eigen::Vector2d t[3], s[3], bend[3];
+          bool ok = true;
+          for (int q = 0; q < 3 && ok; ++q) {
+            const size_t at = mesh.at(i + shape.v[q][0], j + shape.v[q][1]);
+            ok = mesh.valid[at] != 0;
+            t[q] = mesh.target[at];
+            s[q] = mesh.sourceAt(i + shape.v[q][0], j + shape.v[q][1]).cwiseProduct(mesh.source_scale);
+            bend[q] = bendOf(mesh, i, j, shape.bend[q]).cwiseProduct(mesh.source_scale);
+          }
+          if (ok) covered += rasterise(t, s, bend, y0, y1, width, sx, sy, valid);
+        }
+      }
+  }
+  return covered;
+}
+
 }  // namespace
+
+MeshChoice chooseMeshStep(const PiecewiseCamera& camera, FrameSize source_image, FrameSize output,
+                          const PiecewiseRenderOptions& options) {
+  if (camera.patches.empty() || !camera.target_size.isImage() || !camera.source_size.isImage()) return {};
+  const FrameSize size = output.isImage() ? output : camera.target_size;
+  return chooseStep(camera, source_image, size, options, nullptr);
+}
 
 void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera, const ImageView& out,
                      const PiecewiseRenderOptions& options, PiecewiseRenderStats* stats_out) {
@@ -175,27 +473,33 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
   const SpanSampler sampler(source, out, options.filter, options.allow_simd);  // validates both
   const FrameSize size{out.width, out.height};
   PiecewiseRenderStats stats;
-  for (int y = 0; y < out.height; ++y)
-    std::memset(out.row(y), 0, static_cast<size_t>(out.width) * static_cast<size_t>(out.pixelBytes()));
   if (camera.patches.empty()) {
+    for (int y = 0; y < out.height; ++y)
+      std::memset(out.row(y), 0, static_cast<size_t>(out.width) * static_cast<size_t>(out.pixelBytes()));
     if (stats_out) *stats_out = stats;
     return;
   }
-  const Mesh mesh = buildMesh(camera, {source.width, source.height}, size,
-                              std::max(0.25, options.mesh_step_px), options.threads);
-  stats.triangles = static_cast<int>(mesh.triangles.size());
+  std::optional<Mesh> probe;
+  const MeshChoice choice = chooseStep(camera, {source.width, source.height}, size, options, &probe);
+  const Mesh mesh = probe ? std::move(*probe) : buildMesh(camera, {source.width, source.height}, size, choice.step_px, options.threads);
+  stats.mesh_step_px = choice.step_px;
+  stats.error_px = choice.error_px;
+  stats.triangles = static_cast<int>(std::min<long long>(mesh.triangles, std::numeric_limits<int>::max()));
   std::atomic<long long> covered{0};
   ParallelOptions po;
   po.threads = options.threads;
   po.band_rows = kBandRows;
+  // Every output pixel is written by the sampler (no position: transparent), so the output
+  // needs no clearing first.
   parallelForRows(out.height, po, [&](int y0, int y1) {
     const size_t cells = static_cast<size_t>(kBandRows) * static_cast<size_t>(out.width);
-    std::vector<float> sx(cells), sy(cells);
-    std::vector<unsigned char> valid(cells, 0);
-    long long band_covered = 0;
-    for (const int index : mesh.bands[static_cast<size_t>(y0 / kBandRows)])
-      band_covered += rasterise(mesh.triangles[static_cast<size_t>(index)], y0, y1, out.width, sx.data(),
-                                sy.data(), valid.data(), y0);
+    // One set of buffers per thread, reused band after band (a fresh megabyte per band would
+    // be page-faulted in each time).
+    thread_local std::vector<float> sx, sy;
+    thread_local std::vector<unsigned char> valid;
+    if (sx.size() < cells) sx.resize(cells), sy.resize(cells), valid.resize(cells);
+    std::memset(valid.data(), 0, cells);
+    const long long band_covered = rasteriseBand(mesh, y0, y1, out.width, sx.data(), sy.data(), valid.data());
     for (int y = y0; y < y1; ++y) {
       const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(out.width);
       for (int x0 = 0; x0 < out.width; x0 += 64) {

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: Apache-2.0
+// The mesh warp's positions against the exact inverse. Four patches all holding one strong lens
+// camera, so the piecewise camera has a single exact inverse everywhere (no seam gap); the
+// photo is a ramp whose channels hold each pixel centre's own coordinates, which bilinear
+// sampling reproduces exactly, so every rendered pixel shows the source position the mesh gave
+// it. Each is compared with the preimage solved to convergence through the lens.
+#include "core/effects/effect_table.h"
+#include "core/piecewise/piecewise_render.h"
+#include "core/render/rational_map.h"
+
+#include <QtTest/QtTest>
+
+#include <Eigen/LU>
+
+#include <cmath>
+
+using namespace artcam;
+
+namespace {
+
+constexpr FrameSize kSize{320, 240};
+
+PiecewiseCamera fourPatchesOf(const Camera& lens) {
+  PiecewiseCamera pieces;
+  pieces.source_size = pieces.target_size = kSize;
+  const double w = kSize.width, h = kSize.height;
+  for (const PatchRect& r : {PatchRect{0, 0, w / 2, h / 2}, PatchRect{w / 2, 0, w, h / 2}, PatchRect{0, h / 2, w / 2, h},
+                             PatchRect{w / 2, h / 2, w, h}})
+    pieces.patches.push_back({r, {}, lens, "quadratic", 0, 0, 0, true});
+  return pieces;
+}
+
+// x + ½ and y + ½ at pixel (x, y): bilinear sampling at a position returns the position.
+ImageF coordinateRamp() {
+  ImageF ramp(kSize.width, kSize.height, 2);
+  for (int y = 0; y < kSize.height; ++y)
+    for (int x = 0; x < kSize.width; ++x) {
+      ramp.pixel(x, y)[0] = x + 0.5f;
+      ramp.pixel(x, y)[1] = y + 0.5f;
+    }
+  return ramp;
+}
+
+struct Measured {
+  double worst_px = 0.0;
+  long long pixels = 0;
+};
+
+// The rendered positions against Newton's preimage through the lens, where all bilinear taps
+// are inside the ramp (there it is exact).
+Measured measure(const ImageF& out, const Camera& lens) {
+  const RationalMap map(lens, kSize, kSize);
+  Measured m;
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const float* p = out.pixel(x, y);
+      if (!(p[2] >= 1.0f)) continue;
+      const Eigen::Vector2d rendered(p[0], p[1]);
+      if (rendered.x() < 1.0 || rendered.y() < 1.0 || rendered.x() > kSize.width - 1.0 ||
+          rendered.y() > kSize.height - 1.0)
+        continue;
+      const Eigen::Vector2d target(x + 0.5, y + 0.5);
+      Eigen::Vector2d s = rendered;
+      bool ok = true;
+      for (int k = 0; k < 20 && ok; ++k) {
+        Eigen::Vector2d f;
+        Eigen::Matrix2d j;
+        ok = map.evaluate(s, f, &j);
+        if (ok) s += j.inverse() * (target - f);
+      }
+      if (!ok) continue;
+      m.worst_px = std::max(m.worst_px, (s - rendered).norm());
+      ++m.pixels;
+    }
+  return m;
+}
+
+}  // namespace
+
+class TestPiecewiseMesh : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void automaticStepMeetsTheBudget() {
+    const Camera lens = buildEffect("barrel", {{"k", {-0.3}}}, kSize).main();
+    const PiecewiseCamera camera = fourPatchesOf(lens);
+    PiecewiseRenderStats stats;
+    const ImageF out = renderPiecewise(coordinateRamp(), camera, {}, &stats);
+    const Measured m = measure(out, lens);
+    QVERIFY(m.pixels > kSize.width * kSize.height / 2);
+    QVERIFY2(m.worst_px <= 1.0 / 256.0, qPrintable(QString::number(m.worst_px)));
+    // The render's own estimate is honest: within a factor of the measured error of the same
+    // mesh, and itself within the budget.
+    QVERIFY(stats.error_px <= 1.0 / 256.0);
+    QVERIFY2(m.worst_px <= 2.0 * stats.error_px + 1e-5,
+             qPrintable(QString("measured %1, estimated %2").arg(m.worst_px).arg(stats.error_px)));
+    QVERIFY(stats.mesh_step_px >= 2.0);
+  }
+
+  void theEstimateFollowsACoarseStep() {
+    // A step far too coarse for the lens: the estimate must say so, and still bound what the
+    // pixels show within a factor.
+    const Camera lens = buildEffect("barrel", {{"k", {-0.3}}}, kSize).main();
+    const PiecewiseCamera camera = fourPatchesOf(lens);
+    PiecewiseRenderOptions options;
+    options.mesh_step_px = 40.0;
+    const MeshChoice choice = chooseMeshStep(camera, kSize, kSize, options);
+    const ImageF out = renderPiecewise(coordinateRamp(), camera, options);
+    const Measured m = measure(out, lens);
+    QVERIFY2(m.worst_px > 1.0 / 256.0, qPrintable(QString::number(m.worst_px)));
+    QVERIFY2(m.worst_px <= 2.0 * choice.error_px && choice.error_px <= 4.0 * m.worst_px,
+             qPrintable(QString("measured %1, estimated %2").arg(m.worst_px).arg(choice.error_px)));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestPiecewiseMesh)
+#include "test_piecewise_mesh.moc"
