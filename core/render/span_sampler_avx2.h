@@ -92,6 +92,22 @@ __attribute__((target("avx2"), always_inline)) inline void prefetchRowsAhead(con
   _mm_prefetch(reinterpret_cast<const char*>(ahead + static_cast<std::uintptr_t>(bytes - 1)), _MM_HINT_T0);
 }
 
+// The scalar bilinear's fixed point for eight lanes (fx, fy = position − ½, interior): the
+// left tap x0, the row y0, column weight ax in 0 … 256 and row weight ay in 0 … 255, rounded
+// as span_sampler.cpp's BilinearQuanta rounds them (no FMA).
+struct Quanta8 {
+  __m256i x0, y0, ax, ay;
+};
+__attribute__((target("avx2"), always_inline)) inline Quanta8 quantise(__m256 fx, __m256 fy, __m256i xlim) {
+  const __m256 half = _mm256_set1_ps(0.5f);
+  const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, _mm256_set1_ps(256.0f)), half));
+  const __m256i x0 = _mm256_min_epi32(_mm256_srai_epi32(qx, 8), xlim);
+  const __m256i y0 = _mm256_cvttps_epi32(fy);
+  const __m256 row_fraction = _mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0));
+  return {x0, y0, _mm256_sub_epi32(qx, _mm256_slli_epi32(x0, 8)),
+          _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(row_fraction, _mm256_set1_ps(255.0f)), half))};
+}
+
 // bilinearU8's pieces. Pixels p and p + 4: [top 8 bytes | bottom 8 bytes] in one lane each.
 __attribute__((target("avx2"), always_inline)) inline __m256i pixelPair(const std::uint8_t* src,
                                                                         const std::uint8_t* below,
@@ -135,7 +151,7 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
   static_assert(C == 3 || C == 4);
   static_assert(!kAppendAlpha || C == 3);  // RGB in, RGBA out: alpha = coverage, 1 inside
   constexpr int kOut = kAppendAlpha ? 4 : C;
-  const __m256 half = _mm256_set1_ps(0.5f), scale_x = _mm256_set1_ps(256.0f), scale_y = _mm256_set1_ps(255.0f);
+  const __m256 half = _mm256_set1_ps(0.5f);
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
   // The 8-byte loads read past the right tap (RGB: two bytes), so the lower row must not be
   // the image's last.
@@ -169,12 +185,7 @@ __attribute__((target("avx2"))) long long bilinearU8(const SpanSampler::Context&
       }
       continue;
     }
-    const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale_x), half));
-    const __m256i x0 = _mm256_min_epi32(_mm256_srai_epi32(qx, 8), xlim);
-    const __m256i y0 = _mm256_cvttps_epi32(fy);
-    const __m256i ax = _mm256_sub_epi32(qx, _mm256_slli_epi32(x0, 8));  // 0 … 256
-    const __m256i ay = _mm256_cvttps_epi32(
-        _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0)), scale_y), half));  // 0 … 255
+    const auto [x0, y0, ax, ay] = quantise(fx, fy, xlim);
     const __m256i xoff = C == 4 ? _mm256_slli_epi32(x0, 2) : _mm256_add_epi32(x0, _mm256_slli_epi32(x0, 1));
     const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y0, row), xoff);
     const Offsets8 top = toRegisters(off);
@@ -306,7 +317,7 @@ __attribute__((target("avx2"))) inline bool bilinearChannelsRgb8(const SpanSampl
                                                                  const unsigned char* const* valid) {
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
   const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - 1.0f);
-  const __m256 half = _mm256_set1_ps(0.5f), scale_x = _mm256_set1_ps(256.0f), scale_y = _mm256_set1_ps(255.0f);
+  const __m256 half = _mm256_set1_ps(0.5f);
   const __m256i xlim = _mm256_set1_epi32(k.width - 2);
   const __m256i row = _mm256_set1_epi32(static_cast<int>(k.src_row));
   const __m256i c255 = _mm256_set1_epi32(255), c256 = _mm256_set1_epi32(256);
@@ -333,12 +344,7 @@ __attribute__((target("avx2"))) inline bool bilinearChannelsRgb8(const SpanSampl
       const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx[c] + i), half);
       const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy[c] + i), half);
       if (!allInterior(fx, fy, xmax, ymax, valid[c] + i)) return false;
-      const __m256i qx = _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(fx, scale_x), half));
-      const __m256i x0 = _mm256_min_epi32(_mm256_srai_epi32(qx, 8), xlim);
-      const __m256i y0 = _mm256_cvttps_epi32(fy);
-      const __m256i ax = _mm256_sub_epi32(qx, _mm256_slli_epi32(x0, 8));  // 0 … 256
-      const __m256i ay = _mm256_cvttps_epi32(
-          _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0)), scale_y), half));  // 0 … 255
+      const auto [x0, y0, ax, ay] = quantise(fx, fy, xlim);
       const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y0, row),
                                            _mm256_add_epi32(_mm256_add_epi32(x0, _mm256_slli_epi32(x0, 1)),
                                                             _mm256_set1_epi32(c)));
