@@ -252,18 +252,22 @@ struct CheckInputs {
   double tolerance;
 };
 
-// The seed check (RationalKernel::check) for a whole span of starts in plain doubles without
-// branches, so it vectorises: q = start − δ, passed = 1 where the check accepts. SIMD by
+// The seed check (RationalKernel::check) for kCheckLanes starts in plain doubles without
+// branches, so it vectorises: q = start − δ, passed = 1 where the check accepts. A span runs it
+// only on the groups of lanes that hold a pixel to check (certified subcells need none). SIMD by
 // runtime dispatch: GCC clones the function for AVX2 and the x86-64 baseline and
 // picks one when the program loads (ifunc); no -march flag anywhere, and the baseline clone
 // is the scalar fallback machines without AVX2 run; CoordinateOptions::scalar_only forces it
 // so the tests compare the two (no FMA in either, so they agree bit for bit).
+constexpr int kCheckLanes = 8;
+static_assert(kSpanPixels % kCheckLanes == 0, "a span holds whole groups of lanes");
+
 [[gnu::always_inline]] inline void checkSpanBody(
     const CheckInputs& in, double tx0, double ty, const double* __restrict bx,
     const double* __restrict by, double* __restrict qx, double* __restrict qy,
     std::int64_t* __restrict passed) {
   const Quadratic f0 = in.f0, f1 = in.f1, f2 = in.f2;
-  for (int i = 0; i < kSpanPixels; ++i) {
+  for (int i = 0; i < kCheckLanes; ++i) {
     const double u = bx[i], v = by[i];
     const double den = f2.value(u, v), inv = 1.0 / den;
     const double fx = f0.value(u, v) * inv, fy = f1.value(u, v) * inv;
@@ -339,9 +343,46 @@ __attribute__((target("avx2"))) void cubicCellAvx2(const CellCubicF& c, float* s
 }
 #endif
 
+// A certified subcell's eight pixels from x on its patch's row (InverseCells::SubRow), in
+// float like a cell's: u = (x + j − x0 + 0.5) / size.
+void cubicSubcellScalar(const CellCubicF& c, int offset, float scale, int count, float* sx,
+                        float* sy) {
+  for (int j = 0; j < count; ++j) {
+    const float u = (static_cast<float>(offset + j) + 0.5f) * scale;
+    sx[j] = c.x[0] + u * (c.x[1] + u * (c.x[2] + u * c.x[3]));
+    sy[j] = c.y[0] + u * (c.y[1] + u * (c.y[2] + u * c.y[3]));
+  }
+}
+
+#if defined(__x86_64__)
+// The same for all eight, in the same order of operations (no FMA): bit-identical.
+__attribute__((target("avx2"))) void cubicSubcellAvx2(const CellCubicF& c, int offset, float scale,
+                                                      float* sx, float* sy) {
+  const __m256 j = _mm256_cvtepi32_ps(
+      _mm256_add_epi32(_mm256_set1_epi32(offset), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+  const __m256 u = _mm256_mul_ps(_mm256_add_ps(j, _mm256_set1_ps(0.5f)), _mm256_set1_ps(scale));
+  const __m256 px = _mm256_add_ps(
+      _mm256_set1_ps(c.x[0]),
+      _mm256_mul_ps(
+          u, _mm256_add_ps(
+                 _mm256_set1_ps(c.x[1]),
+                 _mm256_mul_ps(u, _mm256_add_ps(_mm256_set1_ps(c.x[2]),
+                                                _mm256_mul_ps(u, _mm256_set1_ps(c.x[3])))))));
+  const __m256 py = _mm256_add_ps(
+      _mm256_set1_ps(c.y[0]),
+      _mm256_mul_ps(
+          u, _mm256_add_ps(
+                 _mm256_set1_ps(c.y[1]),
+                 _mm256_mul_ps(u, _mm256_add_ps(_mm256_set1_ps(c.y[2]),
+                                                _mm256_mul_ps(u, _mm256_set1_ps(c.y[3])))))));
+  _mm256_storeu_ps(sx, px);
+  _mm256_storeu_ps(sy, py);
+}
+#endif
+
 // The patch in double at pixel j of the cell (the per-pixel path's start).
-Eigen::Vector2d cubicAt(const CellRow& r, int j) {
-  const double u = (j + 0.5) / kCellPixels;
+Eigen::Vector2d cubicAt(const CellRow& r, int j, int size = kCellPixels) {
+  const double u = (j + 0.5) / size;
   return {r.x[0] + u * (r.x[1] + u * (r.x[2] + u * r.x[3])),
           r.y[0] + u * (r.y[1] + u * (r.y[2] + u * r.y[3]))};
 }
@@ -369,20 +410,63 @@ class RationalKernel final : public CoordinateKernel {
     const InverseCells& cells = *cells_;
     const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
     const int first = x0 / kCellPixels, count = (n + kCellPixels - 1) / kCellPixels;
-    bool all_certified = true, all_empty = true;
+    bool all_certified = true, all_empty = true, all_patched = true;
+    const int sub_y =
+        std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
     for (int k = 0; k < count; ++k) {
-      const InverseCells::Kind kind = cells.kind(std::min(first + k, cells.cellsWide() - 1), cy);
+      const int cx = std::min(first + k, cells.cellsWide() - 1);
+      const InverseCells::Kind kind = cells.kind(cx, cy);
       all_certified = all_certified && kind == InverseCells::kCertified;
       all_empty = all_empty && kind == InverseCells::kEmpty;
+      if (kind == InverseCells::kOpen) {
+        if (!cells.refined(cx, cy)) all_patched = false;
+        for (int sub_x = 0; sub_x < InverseCells::kSubs && all_patched; ++sub_x)
+          all_patched = cells.subKind(cx, cy, sub_x, sub_y) != InverseCells::kOpen;
+      }
     }
     if (all_empty) {
       std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(0));
       state.run = 0;
       return 0;
     }
-    if (!all_certified) return mixedSpan(y, x0, n, sx, sy, valid, state);
-    for (int k = 0; k < count; ++k) certifiedCell(first + k, y, sx + k * kCellPixels, sy + k * kCellPixels);
-    std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
+    if (!all_patched) return mixedSpan(y, x0, n, sx, sy, valid, state);
+    if (all_certified) {
+      for (int k = 0; k < count; ++k)
+        certifiedCell(first + k, y, sx + k * kCellPixels, sy + k * kCellPixels);
+      std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
+    } else {
+      // Certified and empty cells and subcells only: no pixel needs a check.
+      InverseCells::SubRow row;
+      int row_key = -1;  // cell · kSubs + subcell of `row`
+      for (int k = 0; k < count; ++k) {
+        const int cx = std::min(first + k, cells.cellsWide() - 1), c0 = k * kCellPixels;
+        const int c1 = std::min(n, c0 + kCellPixels);
+        const InverseCells::Kind kind = cells.kind(cx, cy);
+        if (kind == InverseCells::kCertified) {
+          certifiedCell(first + k, y, sx + c0, sy + c0);
+          std::fill(valid + c0, valid + c1, static_cast<unsigned char>(1));
+          continue;
+        }
+        for (int s0 = c0; s0 < c1; s0 += InverseCells::kSub) {
+          const int s1 = std::min(c1, s0 + InverseCells::kSub);
+          if (kind == InverseCells::kEmpty || cells.subKind(cx, cy, (s0 - c0) / InverseCells::kSub,
+                                                            sub_y) == InverseCells::kEmpty) {
+            std::fill(valid + s0, valid + s1, static_cast<unsigned char>(0));
+            std::fill(sx + s0, sx + s1, 0.0f);
+            std::fill(sy + s0, sy + s1, 0.0f);
+            continue;
+          }
+          // The two subcells of a quadrant certified whole share its row.
+          const int sub_x = (s0 - c0) / InverseCells::kSub;
+          const int key = cx * InverseCells::kSubs + sub_x;
+          if (!(sub_x % 2 == 1 && row_key == key - 1 && row.size == 2 * InverseCells::kSub))
+            cells.subRow(cx, sub_x, y, row);
+          row_key = key;
+          subcellPixels(row, x0 + s0, s1 - s0, sx + s0, sy + s0);
+          std::fill(valid + s0, valid + s1, static_cast<unsigned char>(1));
+        }
+      }
+    }
     // The row state as if these pixels had been solved (their solutions are these positions).
     const auto at = [&](int j) {
       return j >= 0 ? Eigen::Vector2d(sx[j], sy[j])
@@ -393,7 +477,9 @@ class RationalKernel final : public CoordinateKernel {
     state.before_previous = p2;
     state.third = p3;
     state.seed_offset = Eigen::Vector2d::Zero();
-    state.run += n;
+    int tail = 0;  // solved pixels at the span's end
+    while (tail < n && valid[n - 1 - tail]) ++tail;
+    state.run = tail == n ? state.run + n : tail;
     return 0;
   }
 
@@ -424,6 +510,17 @@ class RationalKernel final : public CoordinateKernel {
     cubicCellScalar(c, sx, sy);
   }
 
+  // A certified subcell's pixels x .. x + count − 1 on its patch's row, in float like a cell's.
+  void subcellPixels(const InverseCells::SubRow& r, int x, int count, float* sx, float* sy) const {
+    const CellCubicF c(r.cubic);
+    const float scale = 1.0f / static_cast<float>(r.size);
+#if defined(__x86_64__)
+    if (count == InverseCells::kSub && !scalar_only_ && cpuHasAvx2())
+      return cubicSubcellAvx2(c, x - r.x0, scale, sx, sy);
+#endif
+    cubicSubcellScalar(c, x - r.x0, scale, count, sx, sy);
+  }
+
   // A span with cells of different kinds: certified cells take their patch, empty cells and
   // uncovered blocks are transparent, the rest is checked per pixel from the best start.
   int mixedSpan(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
@@ -446,6 +543,44 @@ class RationalKernel final : public CoordinateKernel {
       const bool patch = cells.hasPatch(cx, cy);
       CellRow r{};
       if (patch) cells.row(cx, y, r);
+      if (kind == InverseCells::kOpen && cells.refined(cx, cy)) {
+        // Subcells: certified ones take their patch, empty ones are transparent, the others
+        // run the per-pixel path from their patch, else the cell's.
+        const int sub_y =
+            std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
+        for (int s0 = c0; s0 < c1; s0 += InverseCells::kSub) {
+          const int sub_x = (s0 - c0) / InverseCells::kSub,
+                    s1 = std::min(c1, s0 + InverseCells::kSub);
+          const InverseCells::Kind sub = cells.subKind(cx, cy, sub_x, sub_y);
+          if (sub == InverseCells::kEmpty) {
+            for (int i = s0; i < s1; ++i) mode[i] = kSkip, bx[i] = by[i] = 0.0;
+            continue;
+          }
+          const bool sub_patch = cells.hasSubPatch(cx, cy, sub_x, sub_y);
+          InverseCells::SubRow sr{};
+          if (sub_patch) cells.subRow(cx, sub_x, y, sr);
+          if (sub == InverseCells::kCertified) {
+            // In float as where no pixel needs a check (span), the solutions its neighbours
+            // extrapolate from.
+            subcellPixels(sr, x0 + s0, s1 - s0, sx + s0, sy + s0);
+            for (int i = s0; i < s1; ++i) mode[i] = kDirect, bx[i] = sx[i], by[i] = sy[i];
+            continue;
+          }
+          for (int i = s0; i < s1; ++i) {
+            mode[i] = cells.covered(x0 + i, y) ? kCheck : kSkip;
+            if (sub_patch || patch) {
+              const Eigen::Vector2d s =
+                  sub_patch ? cubicAt(sr.cubic, x0 + i - sr.x0, sr.size) : cubicAt(r, i - c0);
+              bx[i] = s.x();
+              by[i] = s.y();
+            } else {
+              bx[i] = by[i] = std::numeric_limits<double>::quiet_NaN();
+              need_seed = need_seed || mode[i] == kCheck;
+            }
+          }
+        }
+        continue;
+      }
       for (int i = c0; i < c1; ++i) {
         mode[i] = kind == InverseCells::kCertified ? kDirect : cells.covered(x0 + i, y) ? kCheck : kSkip;
         if (patch) {
@@ -486,8 +621,18 @@ class RationalKernel final : public CoordinateKernel {
       const CheckInputs in{forward_q_[0], forward_q_[1], forward_q_[2],
                            (newton_.centre().denominator_signs & 1u) != 0,
                            newton_.centre().det_positive, seed_tolerance_};
-      (scalar_only_ ? checkSpanScalar : checkSpanDispatched)(in, x0 + 0.5, ty, bx, by, qx, qy, accepted);
-      for (int i = 0; i < n; ++i) passed[i] = have[i] && accepted[i] != 0;
+      for (int c = 0; c < n; c += kCheckLanes) {
+        bool any = false;
+        for (int i = c; i < std::min(n, c + kCheckLanes); ++i)
+          any = any || (have[i] && mode[i] == kCheck);
+        if (!any) {
+          std::fill(accepted + c, accepted + c + kCheckLanes, std::int64_t{0});
+          continue;
+        }
+        (scalar_only_ ? checkSpanScalar : checkSpanDispatched)(in, x0 + c + 0.5, ty, bx + c, by + c,
+                                                               qx + c, qy + c, accepted + c);
+      }
+      for (int i = 0; i < n; ++i) passed[i] = have[i] && mode[i] == kCheck && accepted[i] != 0;
     } else {
       for (int i = 0; i < n; ++i) {
         Eigen::Vector2d q(0, 0);

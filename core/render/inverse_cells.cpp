@@ -54,9 +54,12 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
       for (int cx = 0; cx < cells_w_; ++cx) {
         Kind& k = kinds_[index(cx, cy, cells_w_)];
         if (coverage_known_ && !cellCovered(cx, cy)) k = kEmpty;
-        else if (hasPatch(cx, cy) && certify(cx, cy)) k = patchBeyondReach(cx, cy) ? kEmpty : kCertified;
+        else if (hasPatch(cx, cy) && certify(cellCorners(cx, cy), cx * kCell, cy * kCell, kCell,
+                                             options_.certify_tolerance_px))
+          k = patchBeyondReach(cellCorners(cx, cy)) ? kEmpty : kCertified;
       }
   });
+  if (options.subdivide) refineOpenCells(options.threads);
 }
 
 bool InverseCells::solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* start, Node& out) const {
@@ -68,7 +71,10 @@ bool InverseCells::solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* st
       ok = newton_.solve(t, seeded, s, kNodeIterations);
   }
   if (!ok) ok = newton_.solveFromCentre(t, s, kNodeIterations);
-  if (!ok) return false;
+  return ok && finishNode(s, kCell, out);
+}
+
+bool InverseCells::finishNode(const Eigen::Vector2d& s, double size, Node& out) const {
   Eigen::Vector2d f;
   Eigen::Matrix2d j;
   if (!newton_.forward().evaluate(s, f, &j)) return false;
@@ -77,8 +83,8 @@ bool InverseCells::solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* st
   const Eigen::Matrix2d a = j.inverse();  // ∂s/∂t at the node (eq 2 inverted)
   if (!a.allFinite()) return false;
   out.s = s;
-  out.su = kCell * a.col(0);
-  out.sv = kCell * a.col(1);
+  out.su = size * a.col(0);
+  out.sv = size * a.col(1);
   out.valid = true;
   return true;
 }
@@ -122,33 +128,35 @@ void InverseCells::solveNodes(int threads) {
   // every cell has the same parametrisation; the frame's last cell uses part of it.
 }
 
-void InverseCells::crossDerivatives() {
-  // kCell² ∂²s/∂x∂y from F(s(t)) = t: ∂A/∂y = −A (∂J/∂y) A with A = J⁻¹, and ∂J/∂y the forward
+void InverseCells::crossDerivative(Node& n, double size) const {
+  // size² ∂²s/∂x∂y from F(s(t)) = t: ∂A/∂y = −A (∂J/∂y) A with A = J⁻¹, and ∂J/∂y the forward
   // Jacobian's derivative along A's y column, a central difference over ±h output pixels
   // (error ~h² |∂³F|, far below the patch's). Exact to that where a neighbour difference
   // would be first order at the frame's edge.
   constexpr double h = 0.25;
+  const Eigen::Matrix2d a = (Eigen::Matrix2d() << n.su, n.sv).finished() / size;
+  const Eigen::Vector2d dir = h * a.col(1);
+  Eigen::Vector2d f;
+  Eigen::Matrix2d jp, jm;
+  if (!newton_.forward().evaluate(n.s + dir, f, &jp) ||
+      !newton_.forward().evaluate(n.s - dir, f, &jm)) {
+    n.valid = false;  // a pole within a quarter pixel: no patch here
+    return;
+  }
+  const Eigen::Matrix2d dj = (jp - jm) / (2.0 * h);
+  const Eigen::Matrix2d da = -a * dj * a;
+  n.suv = size * size * da.col(0);
+  if (!n.suv.allFinite()) n.valid = false;
+}
+
+void InverseCells::crossDerivatives() {
   ParallelOptions po;
   po.threads = options_.threads;
   po.band_rows = 4;
   parallelForRows(nodes_h_, po, [&](int j0, int j1) {
     for (int j = j0; j < j1; ++j)
-      for (int i = 0; i < nodes_w_; ++i) {
-        Node& n = node(i, j);
-        if (!n.valid) continue;
-        const Eigen::Matrix2d a = (Eigen::Matrix2d() << n.su, n.sv).finished() / kCell;
-        const Eigen::Vector2d dir = h * a.col(1);
-        Eigen::Vector2d f;
-        Eigen::Matrix2d jp, jm;
-        if (!newton_.forward().evaluate(n.s + dir, f, &jp) || !newton_.forward().evaluate(n.s - dir, f, &jm)) {
-          n.valid = false;  // a pole within a quarter pixel: no patch here
-          continue;
-        }
-        const Eigen::Matrix2d dj = (jp - jm) / (2.0 * h);
-        const Eigen::Matrix2d da = -a * dj * a;
-        n.suv = static_cast<double>(kCell) * kCell * da.col(0);
-        if (!n.suv.allFinite()) n.valid = false;
-      }
+      for (int i = 0; i < nodes_w_; ++i)
+        if (node(i, j).valid) crossDerivative(node(i, j), kCell);
   });
 }
 
@@ -157,21 +165,20 @@ bool InverseCells::hasPatch(int cx, int cy) const {
          node(cx + 1, cy + 1).valid;
 }
 
-// Along the cell's left (a, c) and right (b, d) edges at local v: the value and ∂/∂u.
-void InverseCells::edgesAt(int cx, int cy, double v, Eigen::Vector2d& f0, Eigen::Vector2d& f1,
-                           Eigen::Vector2d& d0, Eigen::Vector2d& d1) const {
+// Along the patch's left (a, c) and right (b, d) edges at local v: the value and ∂/∂u.
+void InverseCells::edgesAt(const Corners& n, double v, Eigen::Vector2d& f0, Eigen::Vector2d& f1,
+                           Eigen::Vector2d& d0, Eigen::Vector2d& d1) {
   const Hermite hv(v);
-  const Node &a = node(cx, cy), &b = node(cx + 1, cy), &c = node(cx, cy + 1), &d = node(cx + 1, cy + 1);
+  const Node &a = *n.a, &b = *n.b, &c = *n.c, &d = *n.d;
   f0 = hv.h0 * a.s + hv.h1 * c.s + hv.h2 * a.sv + hv.h3 * c.sv;
   f1 = hv.h0 * b.s + hv.h1 * d.s + hv.h2 * b.sv + hv.h3 * d.sv;
   d0 = hv.h0 * a.su + hv.h1 * c.su + hv.h2 * a.suv + hv.h3 * c.suv;
   d1 = hv.h0 * b.su + hv.h1 * d.su + hv.h2 * b.suv + hv.h3 * d.suv;
 }
 
-void InverseCells::row(int cx, int y, CellRow& out) const {
-  const int cy = std::min(y / kCell, cells_h_ - 1);
+void InverseCells::rowOf(const Corners& n, double v, CellRow& out) {
   Eigen::Vector2d f0, f1, d0, d1;
-  edgesAt(cx, cy, (y + 0.5 - cy * kCell) / kCell, f0, f1, d0, d1);
+  edgesAt(n, v, f0, f1, d0, d1);
   // The cubic through them in u: c0 + u (c1 + u (c2 + u c3)).
   const Eigen::Vector2d c2 = 3.0 * (f1 - f0) - 2.0 * d0 - d1;
   const Eigen::Vector2d c3 = 2.0 * (f0 - f1) + d0 + d1;
@@ -179,43 +186,62 @@ void InverseCells::row(int cx, int y, CellRow& out) const {
   out.y[0] = f0.y(), out.y[1] = d0.y(), out.y[2] = c2.y(), out.y[3] = c3.y();
 }
 
-Eigen::Vector2d InverseCells::patchAt(int cx, int cy, double u, double v) const {
+void InverseCells::row(int cx, int y, CellRow& out) const {
+  const int cy = std::min(y / kCell, cells_h_ - 1);
+  rowOf(cellCorners(cx, cy), (y + 0.5 - cy * kCell) / kCell, out);
+}
+
+Eigen::Vector2d InverseCells::patchAt(const Corners& n, double u, double v) {
   Eigen::Vector2d f0, f1, d0, d1;
-  edgesAt(cx, cy, v, f0, f1, d0, d1);
+  edgesAt(n, v, f0, f1, d0, d1);
   const Hermite hu(u);
   return hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
 }
 
-bool InverseCells::certify(int cx, int cy) const {
+bool InverseCells::certify(const Corners& n, double x0, double y0, double size, double tol) const {
   const CentreReference& centre = newton_.centre();
-  const double tol = options_.certify_tolerance_px;
   // The edges' midpoints (a cubic Hermite's error along an edge, ∝ u²(1 − u)², peaks there),
   // the centre, and the four points u, v ∈ {1/2 ± 1/√12} where an error in the cross
   // derivatives, ∝ u(1 − u)(1 − 2u) · v(1 − v)(1 − 2v), peaks and the centre sees nothing.
+  // Grouped by v, so each row of points interpolates the patch's edges once.
   constexpr double lo = 0.5 - 0.28867513459481287, hi = 0.5 + 0.28867513459481287;
-  static constexpr double kPoints[9][2] = {{0.5, 0.0}, {0.5, 1.0}, {0.0, 0.5}, {1.0, 0.5}, {0.5, 0.5},
-                                           {lo, lo},   {hi, lo},   {lo, hi},   {hi, hi}};
-  for (const auto& uv : kPoints) {
-    const Eigen::Vector2d t((cx + uv[0]) * kCell, (cy + uv[1]) * kCell);
-    const Eigen::Vector2d p = patchAt(cx, cy, uv[0], uv[1]);
-    Eigen::Vector2d f;
-    Eigen::Matrix2d j;
-    unsigned signs = 0;
-    if (!newton_.forward().evaluate(p, f, &j, &signs)) return false;
-    const double det = j.determinant();
-    if (signs != centre.denominator_signs || (det > 0.0) != centre.det_positive) return false;
-    const Eigen::Vector2d r = f - t;
-    const Eigen::Vector2d step((j(1, 1) * r.x() - j(0, 1) * r.y()) / det,
-                               (j(0, 0) * r.y() - j(1, 0) * r.x()) / det);
-    if (!(step.cwiseAbs().maxCoeff() <= tol)) return false;
+  struct PointRow {
+    double v;
+    int count;
+    double u[3];
+  };
+  static constexpr PointRow kRows[5] = {{0.0, 1, {0.5, 0, 0}},
+                                        {1.0, 1, {0.5, 0, 0}},
+                                        {0.5, 3, {0.0, 1.0, 0.5}},
+                                        {lo, 2, {lo, hi, 0}},
+                                        {hi, 2, {lo, hi, 0}}};
+  for (const PointRow& row : kRows) {
+    Eigen::Vector2d f0, f1, d0, d1;
+    edgesAt(n, row.v, f0, f1, d0, d1);
+    for (int k = 0; k < row.count; ++k) {
+      const double u = row.u[k];
+      const Hermite hu(u);
+      const Eigen::Vector2d t(x0 + u * size, y0 + row.v * size);
+      const Eigen::Vector2d p = hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
+      Eigen::Vector2d f;
+      Eigen::Matrix2d j;
+      unsigned signs = 0;
+      if (!newton_.forward().evaluate(p, f, &j, &signs)) return false;
+      const double det = j.determinant();
+      if (signs != centre.denominator_signs || (det > 0.0) != centre.det_positive) return false;
+      const Eigen::Vector2d r = f - t;
+      const Eigen::Vector2d step((j(1, 1) * r.x() - j(0, 1) * r.y()) / det,
+                                 (j(0, 0) * r.y() - j(1, 0) * r.x()) / det);
+      if (!(step.cwiseAbs().maxCoeff() <= tol)) return false;
+    }
   }
   return true;
 }
 
-bool InverseCells::patchBeyondReach(int cx, int cy) const {
+bool InverseCells::patchBeyondReach(const Corners& corners) const {
   // The Bézier control net of the bicubic Hermite patch: corners, corners ± derivative / 3,
   // and the inner four from the cross derivatives; the patch lies in its convex hull.
-  const Node* n[2][2] = {{&node(cx, cy), &node(cx, cy + 1)}, {&node(cx + 1, cy), &node(cx + 1, cy + 1)}};
+  const Node* n[2][2] = {{corners.a, corners.c}, {corners.b, corners.d}};
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
   for (int a = 0; a < 2; ++a)
@@ -237,7 +263,6 @@ void InverseCells::buildCoverage(int threads) {
   // The source frame grown by the largest reach, as a lattice of quads kLattice source pixels
   // apart, mapped forward with the Jacobian. The reach follows from the inverse's scale
   // (source pixels per output pixel) in and near the frame: minifying filters reach further.
-  constexpr double kLattice = 32.0;
   constexpr double kMaxScale = 64.0;
   const double margin = options_.reach_px + 4.0 * kMaxScale;
   const int qw = static_cast<int>(std::ceil((source_px_.width + 2 * margin) / kLattice));
@@ -307,6 +332,10 @@ void InverseCells::buildCoverage(int threads) {
     }
   covered_ = std::move(covered);
   coverage_known_ = true;
+  lattice_margin_ = margin;
+  lattice_w_ = qw;
+  lattice_h_ = qh;
+  lattice_mapped_ = std::move(mapped);
 }
 
 bool InverseCells::cellCovered(int cx, int cy) const {
@@ -319,19 +348,32 @@ bool InverseCells::cellCovered(int cx, int cy) const {
 
 bool InverseCells::covered(int x, int y) const {
   if (!coverage_known_) return true;
-  return covered_[index(std::min(x / kBlock, blocks_w_ - 1), std::min(y / kBlock, blocks_h_ - 1), blocks_w_)] != 0;
+  if (!covered_[index(std::min(x / kBlock, blocks_w_ - 1), std::min(y / kBlock, blocks_h_ - 1),
+                      blocks_w_)])
+    return false;
+  const int cx = std::min(x / kCell, cells_w_ - 1), cy = std::min(y / kCell, cells_h_ - 1);
+  if (!refined(cx, cy)) return true;
+  const int fx = std::min((x - cx * kCell) / kFine, kFines - 1),
+            fy = std::min((y - cy * kCell) / kFine, kFines - 1);
+  return refinedAt(cx, cy).covered[fy * kFines + fx] != 0;
 }
 
 double InverseCells::certifiedShare() const {
   if (kinds_.empty()) return 0.0;
-  return static_cast<double>(std::count(kinds_.begin(), kinds_.end(), kCertified)) /
-         static_cast<double>(kinds_.size());
+  double cells = static_cast<double>(std::count(kinds_.begin(), kinds_.end(), kCertified));
+  for (const Refined& r : refined_)
+    cells += static_cast<double>(std::count(std::begin(r.kinds), std::end(r.kinds), kCertified)) /
+             (kSubs * kSubs);
+  return cells / static_cast<double>(kinds_.size());
 }
 
 double InverseCells::emptyShare() const {
   if (kinds_.empty()) return 0.0;
-  return static_cast<double>(std::count(kinds_.begin(), kinds_.end(), kEmpty)) /
-         static_cast<double>(kinds_.size());
+  double cells = static_cast<double>(std::count(kinds_.begin(), kinds_.end(), kEmpty));
+  for (const Refined& r : refined_)
+    cells += static_cast<double>(std::count(std::begin(r.kinds), std::end(r.kinds), kEmpty)) /
+             (kSubs * kSubs);
+  return cells / static_cast<double>(kinds_.size());
 }
 
 }  // namespace artcam

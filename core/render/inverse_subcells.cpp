@@ -1,0 +1,298 @@
+// SPDX-License-Identifier: Apache-2.0
+// InverseCells' open cells (inverse_cells.h): subcells certified by the cells' rule, and
+// coverage at kFine pixels where the edge of what the camera sees crosses them.
+#include "core/render/inverse_cells.h"
+
+#include "core/util/parallel.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <iterator>
+
+namespace artcam {
+namespace {
+
+// A subcell's node starts from its cell's patch or a neighbour two or three steps away; one that
+// needs more has no preimage nearby, and its subcells take the per-pixel path.
+constexpr int kSubIterations = 8;
+
+// Lattice quads split kSplit × kSplit for the open cells' coverage (kLattice / kSplit source
+// pixels a side).
+constexpr int kSplit = 4;
+
+}  // namespace
+
+bool InverseCells::hasSubPatch(int cx, int cy, int sx, int sy) const {
+  const Refined& r = refinedAt(cx, cy);
+  if (r.quad_certified[(sy / 2) * 2 + sx / 2]) return true;
+  const Corners n = r.corners(sx, sy);
+  return n.a->valid && n.b->valid && n.c->valid && n.d->valid;
+}
+
+void InverseCells::subRow(int cx, int sx, int y, SubRow& out) const {
+  const int cy = std::min(y / kCell, cells_h_ - 1);
+  const int sy = std::min((y - cy * kCell) / kSub, kSubs - 1);
+  const Refined& r = refinedAt(cx, cy);
+  const int qx = sx / 2, qy = sy / 2;
+  if (r.quad_certified[qy * 2 + qx]) {
+    out.size = 2 * kSub;
+    out.x0 = cx * kCell + qx * out.size;
+    const Corners n{&r.quads[qy * 3 + qx], &r.quads[qy * 3 + qx + 1], &r.quads[(qy + 1) * 3 + qx],
+                    &r.quads[(qy + 1) * 3 + qx + 1]};
+    rowOf(n, (y + 0.5 - cy * kCell - qy * out.size) / out.size, out.cubic);
+    return;
+  }
+  out.size = kSub;
+  out.x0 = cx * kCell + sx * kSub;
+  rowOf(r.corners(sx, sy), (y + 0.5 - cy * kCell - sy * kSub) / kSub, out.cubic);
+}
+
+void InverseCells::refineOpenCells(int threads) {
+  refined_index_.assign(kinds_.size(), -1);
+  int count = 0;
+  for (size_t k = 0; k < kinds_.size(); ++k)
+    if (kinds_[k] == kOpen) refined_index_[k] = count++;
+  if (count == 0) {
+    refined_index_.clear();
+    return;
+  }
+  refined_.assign(static_cast<size_t>(count), Refined{});
+  // Finer coverage only where a node of the cell has no preimage: elsewhere the edge of what
+  // the camera sees is at least a cell away (coverage is a bound, so all covered is safe).
+  bool any_fine = false;
+  for (int cy = 0; cy < cells_h_; ++cy)
+    for (int cx = 0; cx < cells_w_; ++cx) {
+      if (!refined(cx, cy)) continue;
+      Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
+      r.fine = coverage_known_ && !hasPatch(cx, cy);
+      any_fine = any_fine || r.fine;
+      std::fill(std::begin(r.covered), std::end(r.covered), r.fine ? 0 : 1);
+    }
+  if (any_fine) coverFine(threads);
+  std::vector<std::array<int, 2>> cells;
+  cells.reserve(static_cast<size_t>(count));
+  for (int cy = 0; cy < cells_h_; ++cy)
+    for (int cx = 0; cx < cells_w_; ++cx)
+      if (refined(cx, cy)) cells.push_back({cx, cy});
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = 1;
+  parallelForRows(static_cast<int>(cells.size()), po, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const auto [cx, cy] = cells[static_cast<size_t>(k)];
+      refineCell(cx, cy, refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])]);
+    }
+  });
+}
+
+void InverseCells::coverFine(int threads) {
+  // The open cells' coverage at kFine pixels: each lattice quad whose box (buildCoverage's)
+  // reaches a cell that needs it, split into kSplit² quads of kLattice / kSplit = 8 source
+  // pixels mapped forward, each marking its corners' bounding box grown for the edges'
+  // curvature as buildCoverage does. An 8-pixel edge's image sags from its chord by
+  // |∂²F| · 8 px² (64 px² / 8), and a fold inside the quad bulges its image by the same
+  // second-order term: within the half pixel added to the quarter of the quad's size for any
+  // map smooth at that scale. A split point beyond a pole curve falls back to the whole
+  // quad's box.
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = 4;
+  parallelForRows(lattice_h_, po, [&](int j0, int j1) {
+    for (int j = j0; j < j1; ++j)
+      for (int i = 0; i < lattice_w_; ++i) coverQuadFine(i, j);
+  });
+}
+
+void InverseCells::coverQuadFine(int i, int j) {
+  const Eigen::Vector2d lo_s(-lattice_margin_ + i * kLattice, -lattice_margin_ + j * kLattice);
+  const Eigen::Vector2d hi_s = lo_s + Eigen::Vector2d::Constant(kLattice);
+  if (hi_s.x() < -reach_px_ || hi_s.y() < -reach_px_ || lo_s.x() > source_px_.width + reach_px_ ||
+      lo_s.y() > source_px_.height + reach_px_)
+    return;
+  const int pw = lattice_w_ + 1;
+  const Eigen::Vector2d& a = lattice_mapped_[index(i, j, pw)];
+  const Eigen::Vector2d& b = lattice_mapped_[index(i + 1, j, pw)];
+  const Eigen::Vector2d& c = lattice_mapped_[index(i, j + 1, pw)];
+  const Eigen::Vector2d& d = lattice_mapped_[index(i + 1, j + 1, pw)];
+  Eigen::Vector2d lo = a.cwiseMin(b).cwiseMin(c).cwiseMin(d);
+  Eigen::Vector2d hi = a.cwiseMax(b).cwiseMax(c).cwiseMax(d);
+  const double grow = 2.0 + 0.25 * (hi - lo).maxCoeff();  // buildCoverage's box
+  lo.array() -= grow;
+  hi.array() += grow;
+  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return;
+  const int cx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kCell)));
+  const int cy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kCell)));
+  const int cx1 =
+      std::min(cells_w_ - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kCell)));
+  const int cy1 =
+      std::min(cells_h_ - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kCell)));
+  bool touches = false;
+  for (int cy = cy0; cy <= cy1 && !touches; ++cy)
+    for (int cx = cx0; cx <= cx1 && !touches; ++cx)
+      touches = refined(cx, cy) && refinedAt(cx, cy).fine;
+  if (!touches) return;
+  const unsigned centre_signs = newton_.centre().denominator_signs;
+  Eigen::Vector2d fine[(kSplit + 1) * (kSplit + 1)];
+  for (int v = 0; v <= kSplit; ++v)
+    for (int u = 0; u <= kSplit; ++u) {
+      Eigen::Vector2d& f = fine[v * (kSplit + 1) + u];
+      unsigned signs = 0;
+      if (!newton_.forward().evaluate(lo_s + (kLattice / kSplit) * Eigen::Vector2d(u, v), f,
+                                      nullptr, &signs) ||
+          signs != centre_signs || !f.allFinite()) {
+        markFine(lo, hi);
+        return;
+      }
+    }
+  for (int v = 0; v < kSplit; ++v)
+    for (int u = 0; u < kSplit; ++u) {
+      const auto at = [&](int du, int dv) -> const Eigen::Vector2d& {
+        return fine[(v + dv) * (kSplit + 1) + u + du];
+      };
+      Eigen::Vector2d flo = at(0, 0).cwiseMin(at(1, 0)).cwiseMin(at(0, 1)).cwiseMin(at(1, 1));
+      Eigen::Vector2d fhi = at(0, 0).cwiseMax(at(1, 0)).cwiseMax(at(0, 1)).cwiseMax(at(1, 1));
+      const double fgrow = 0.5 + 0.25 * (fhi - flo).maxCoeff();
+      flo.array() -= fgrow;
+      fhi.array() += fgrow;
+      markFine(flo, fhi);
+    }
+}
+
+void InverseCells::markFine(Eigen::Vector2d lo, Eigen::Vector2d hi) {
+  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return;
+  const int fx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kFine)));
+  const int fy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kFine)));
+  const int fx1 =
+      std::min(cells_w_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kFine)));
+  const int fy1 =
+      std::min(cells_h_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kFine)));
+  for (int fy = fy0; fy <= fy1; ++fy)
+    for (int fx = fx0; fx <= fx1;) {
+      const int cx = fx / kFines, cy = fy / kFines;
+      const int end = std::min(fx1, (cx + 1) * kFines - 1);
+      if (refined(cx, cy) && refinedAt(cx, cy).fine) {
+        // Bands of lattice rows mark concurrently; every write stores the same 1.
+        Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
+        unsigned char* row = r.covered + (fy - cy * kFines) * kFines;
+        for (int k = fx - cx * kFines; k <= end - cx * kFines; ++k)
+          std::atomic_ref<unsigned char>(row[k]).store(1, std::memory_order_relaxed);
+      }
+      fx = end + 1;
+    }
+}
+
+bool InverseCells::solveSubNode(int cx, int cy, int i, int j, Refined& r) const {
+  constexpr int w = kSubs + 1;
+  Node& n = r.nodes[j * w + i];
+  if ((i == 0 || i == kSubs) && (j == 0 || j == kSubs)) {
+    const Node& c = node(cx + i / kSubs, cy + j / kSubs);
+    if (c.valid) {
+      const double scale = static_cast<double>(kSub) / kCell;
+      n = c;
+      n.su *= scale;
+      n.sv *= scale;
+      n.suv *= scale * scale;
+      return true;
+    }
+  }
+  // Starts: the cell's patch (close wherever the cell only narrowly failed to certify), the
+  // nearest solved node to the left or above stepped by its derivative, the seed. A node that
+  // fails costs only its subcells, which take the per-pixel path.
+  const Eigen::Vector2d t(cx * kCell + i * kSub, cy * kCell + j * kSub);
+  Eigen::Vector2d s;
+  bool ok =
+      hasPatch(cx, cy) && newton_.solve(t,
+                                        patchAt(cellCorners(cx, cy), static_cast<double>(i) / kSubs,
+                                                static_cast<double>(j) / kSubs),
+                                        s, kSubIterations);
+  for (int k = i - 1; k >= 0 && !ok; --k)
+    if (const Node& m = r.nodes[j * w + k]; m.valid) {
+      ok = newton_.solve(t, m.s + (i - k) * m.su, s, kSubIterations);
+      break;
+    }
+  for (int k = j - 1; k >= 0 && !ok; --k)
+    if (const Node& m = r.nodes[k * w + i]; m.valid) {
+      ok = newton_.solve(t, m.s + (j - k) * m.sv, s, kSubIterations);
+      break;
+    }
+  Eigen::Vector2d seeded;
+  if (!ok && seed_ && seed_->evaluate(t, seeded, nullptr) && seeded.allFinite())
+    ok = newton_.solve(t, seeded, s, kSubIterations);
+  if (!ok || !finishNode(s, kSub, n)) return false;
+  crossDerivative(n, kSub);
+  return n.valid;
+}
+
+void InverseCells::refineCell(int cx, int cy, Refined& r) const {
+  constexpr int w = kSubs + 1;
+  const auto sub_covered = [&](int sx, int sy) {
+    constexpr int per = kSub / kFine;
+    for (int fy = sy * per; fy < (sy + 1) * per; ++fy)
+      for (int fx = sx * per; fx < (sx + 1) * per; ++fx)
+        if (r.covered[fy * kFines + fx]) return true;
+    return false;
+  };
+  // A node is needed when a subcell it bounds may show something.
+  bool tried[w * w] = {};
+  const auto solve = [&](int i, int j) {
+    if (tried[j * w + i]) return;
+    tried[j * w + i] = true;
+    bool needed = false;
+    for (int sy = std::max(0, j - 1); sy <= std::min(kSubs - 1, j); ++sy)
+      for (int sx = std::max(0, i - 1); sx <= std::min(kSubs - 1, i); ++sx)
+        needed = needed || sub_covered(sx, sy);
+    if (needed) solveSubNode(cx, cy, i, j, r);
+  };
+  // Quadrants first (2 kSub pixels, the nodes at even positions): the same certification
+  // rule; only a quadrant that fails is split into its four subcells. To a quarter of the
+  // cells' tolerance: a subcell certifies where its cell just failed, so its error sits near
+  // the tolerance between the checked points rather than far below it as most cells' does;
+  // a quarter keeps subcells as close to the exact inverse as certified cells in practice.
+  const double tol = options_.certify_tolerance_px / 4.0;
+  for (int j = 0; j < w; j += 2)
+    for (int i = 0; i < w; i += 2) {
+      solve(i, j);
+      Node& q = r.quads[(j / 2) * 3 + i / 2];
+      q = r.nodes[j * w + i];
+      q.su *= 2.0;
+      q.sv *= 2.0;
+      q.suv *= 4.0;
+    }
+  for (int qy = 0; qy < 2; ++qy)
+    for (int qx = 0; qx < 2; ++qx) {
+      const Corners n{&r.quads[qy * 3 + qx], &r.quads[qy * 3 + qx + 1], &r.quads[(qy + 1) * 3 + qx],
+                      &r.quads[(qy + 1) * 3 + qx + 1]};
+      bool covered = false;
+      for (int sy = 2 * qy; sy < 2 * qy + 2; ++sy)
+        for (int sx = 2 * qx; sx < 2 * qx + 2; ++sx) covered = covered || sub_covered(sx, sy);
+      Kind k = kOpen;
+      if (!covered)
+        k = kEmpty;
+      else if (n.a->valid && n.b->valid && n.c->valid && n.d->valid &&
+               certify(n, cx * kCell + qx * 2 * kSub, cy * kCell + qy * 2 * kSub, 2 * kSub, tol))
+        k = patchBeyondReach(n) ? kEmpty : kCertified;
+      r.quad_certified[qy * 2 + qx] = k == kCertified;
+      if (k == kOpen) {
+        for (int j = 2 * qy; j <= 2 * qy + 2; ++j)
+          for (int i = 2 * qx; i <= 2 * qx + 2; ++i) solve(i, j);
+        for (int sy = 2 * qy; sy < 2 * qy + 2; ++sy)
+          for (int sx = 2 * qx; sx < 2 * qx + 2; ++sx) {
+            const Corners m = r.corners(sx, sy);
+            Kind& ks = r.kinds[sy * kSubs + sx];
+            ks = kOpen;
+            if (!sub_covered(sx, sy))
+              ks = kEmpty;
+            else if (m.a->valid && m.b->valid && m.c->valid && m.d->valid &&
+                     certify(m, cx * kCell + sx * kSub, cy * kCell + sy * kSub, kSub, tol))
+              ks = patchBeyondReach(m) ? kEmpty : kCertified;
+          }
+      } else {
+        for (int sy = 2 * qy; sy < 2 * qy + 2; ++sy)
+          for (int sx = 2 * qx; sx < 2 * qx + 2; ++sx) r.kinds[sy * kSubs + sx] = k;
+      }
+    }
+}
+
+}  // namespace artcam
