@@ -259,6 +259,17 @@ bool InverseCells::patchBeyondReach(const Corners& corners) const {
   return hi.x() < -m || hi.y() < -m || lo.x() > source_px_.width + m || lo.y() > source_px_.height + m;
 }
 
+void InverseCells::quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                           const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
+  lo = a.cwiseMin(b).cwiseMin(c).cwiseMin(d);
+  hi = a.cwiseMax(b).cwiseMax(c).cwiseMax(d);
+  // The edges' curvature: a quarter of the quad's size is far beyond the chord's sag of any
+  // map smooth at the lattice's scale (near a pole the corners spread and the box with them).
+  const double grow = 2.0 + 0.25 * (hi - lo).maxCoeff();
+  lo.array() -= grow;
+  hi.array() += grow;
+}
+
 void InverseCells::buildCoverage(int threads) {
   // The source frame grown by the largest reach, as a lattice of quads kLattice source pixels
   // apart, mapped forward with the Jacobian. The reach follows from the inverse's scale
@@ -314,13 +325,8 @@ void InverseCells::buildCoverage(int threads) {
       const Eigen::Vector2d& b = mapped[index(i + 1, j, pw)];
       const Eigen::Vector2d& c = mapped[index(i, j + 1, pw)];
       const Eigen::Vector2d& d = mapped[index(i + 1, j + 1, pw)];
-      Eigen::Vector2d lo = a.cwiseMin(b).cwiseMin(c).cwiseMin(d);
-      Eigen::Vector2d hi = a.cwiseMax(b).cwiseMax(c).cwiseMax(d);
-      // The edges' curvature: a quarter of the quad's size is far beyond the chord's sag of any
-      // map smooth at the lattice's scale (near a pole the corners spread and the box with them).
-      const double grow = 2.0 + 0.25 * (hi - lo).maxCoeff();
-      lo.array() -= grow;
-      hi.array() += grow;
+      Eigen::Vector2d lo, hi;
+      quadBox(a, b, c, d, lo, hi);
       if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) continue;
       const int bx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kBlock)));
       const int by0 = std::max(0, static_cast<int>(std::floor(lo.y() / kBlock)));

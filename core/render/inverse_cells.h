@@ -185,6 +185,10 @@ class InverseCells {
   static constexpr double kLattice = 32.0;  // source pixels between coverage lattice points
   void refineOpenCells(int threads);
   void coverFine(int threads);
+  // The output box a source lattice quad may cover: its mapped corners' bounding box, grown
+  // by 2 px and a quarter of its size for the edges' curvature.
+  static void quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                      const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi);
   void coverQuadFine(int i, int j);
   void markFine(Eigen::Vector2d lo, Eigen::Vector2d hi);
   void refineCell(int cx, int cy, Refined& r) const;

@@ -116,11 +116,8 @@ void InverseCells::coverQuadFine(int i, int j) {
   const Eigen::Vector2d& b = lattice_mapped_[index(i + 1, j, pw)];
   const Eigen::Vector2d& c = lattice_mapped_[index(i, j + 1, pw)];
   const Eigen::Vector2d& d = lattice_mapped_[index(i + 1, j + 1, pw)];
-  Eigen::Vector2d lo = a.cwiseMin(b).cwiseMin(c).cwiseMin(d);
-  Eigen::Vector2d hi = a.cwiseMax(b).cwiseMax(c).cwiseMax(d);
-  const double grow = 2.0 + 0.25 * (hi - lo).maxCoeff();  // buildCoverage's box
-  lo.array() -= grow;
-  hi.array() += grow;
+  Eigen::Vector2d lo, hi;
+  quadBox(a, b, c, d, lo, hi);
   if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return;
   const int cx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kCell)));
   const int cy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kCell)));
