@@ -27,6 +27,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -74,6 +75,9 @@ const char* const kBenchUsage =
     "  --no-suite       skip the camera suite\n"
     "  --only LIST      run only the named kernels (default: all)\n"
     "  --filter LIST    run only the named filters: nearest,bilinear,bicubic (default: all)\n"
+    "  --type TYPE      the kernel rows' pixels: uint8 (default), uint16 or float, the same\n"
+    "                   image scaled to full range; the kernel names get -uint16 or -float\n"
+    "                   (the suite, the peer and the e2e line stay 8-bit)\n"
     "  --no-e2e         skip the last part: `artcam warp`'s path on a JPEG of the image\n"
     "                   (decode into 8-bit, render, encode) timed by part, and the 1920-px\n"
     "                   preview from the mip pyramid, on stderr\n\n"
@@ -516,6 +520,7 @@ int benchCommand(const std::vector<std::string>& argv) {
                          {"--peer", "", true},
                          {"--only", "", true},
                          {"--filter", "", true},
+                         {"--type", "", true},
                          {"--no-e2e", "", false},
                          {"--cameras", "", true},
                          {"--no-suite", "", false},
@@ -549,11 +554,37 @@ int benchCommand(const std::vector<std::string>& argv) {
   for (const int t : thread_counts)
     if (t < 1) throw UsageError("--threads expects whole numbers ≥ 1 (--threads 1,2)");
 
+  const std::string type_name = args.valueOr("--type", "uint8");
+  PixelType type = PixelType::UInt8;
+  if (type_name == "uint16") type = PixelType::UInt16;
+  else if (type_name == "float") type = PixelType::Float;
+  else if (type_name != "uint8")
+    throw UsageError("--type expects uint8, uint16 or float", didYouMean(type_name, {"uint8", "uint16", "float"}));
+
   // Whole images live on huge pages where the kernel allows (pixel_buffer.h), as in `artcam warp`.
   const PixelBuffer pixels = makeImage(size.width, size.height);
-  const ConstImageView src = packedView<const void>(pixels.data(), size.width, size.height, 3, PixelType::UInt8);
+  const ConstImageView src8 = packedView<const void>(pixels.data(), size.width, size.height, 3, PixelType::UInt8);
   PixelBuffer out_pixels(pixels.size());
-  const ImageView dst = packedView<void>(out_pixels.data(), size.width, size.height, 3, PixelType::UInt8);
+  // --type: the kernel rows' copy of the image in that type (full scale: 255 → 65535 or 1).
+  const size_t samples = pixels.size();
+  const size_t sample_bytes = static_cast<size_t>(pixelTypeSize(type));
+  std::optional<PixelBuffer> typed_in, typed_out;
+  if (type != PixelType::UInt8) {
+    typed_in.emplace(samples * sample_bytes);
+    typed_out.emplace(samples * sample_bytes);
+    for (size_t i = 0; i < samples; ++i) {
+      if (type == PixelType::UInt16) {
+        const auto v = static_cast<std::uint16_t>(pixels[i] * 257u);
+        std::memcpy(typed_in->data() + i * 2, &v, 2);
+      } else {
+        const float v = pixels[i] / 255.0f;
+        std::memcpy(typed_in->data() + i * 4, &v, 4);
+      }
+    }
+  }
+  const ConstImageView src = typed_in ? packedView<const void>(typed_in->data(), size.width, size.height, 3, type) : src8;
+  const ImageView dst = packedView<void>(typed_out ? typed_out->data() : out_pixels.data(), size.width, size.height, 3, type);
+  const std::string type_suffix = type == PixelType::UInt8 ? "" : "-" + type_name;
   const double mpix = size.width * static_cast<double>(size.height) / 1e6;
 
   std::printf("source,kernel,filter,threads,ms,mpix_per_s,max_err_px,rms_err_px,newton_share,certified_share,cpu_ms\n");
@@ -618,7 +649,7 @@ int benchCommand(const std::vector<std::string>& argv) {
         }
         Row row;
         row.source = "artcam";
-        row.kernel = c.name;
+        row.kernel = c.name + type_suffix;
         row.filter = std::string(filterName(f)) + (c.antialias ? "+aa" : "");
         row.threads = threads;
         row.ms = medianOf(times);

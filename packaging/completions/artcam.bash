@@ -23,7 +23,7 @@ _artcam_options() {
     batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
                  --bit-depth --colourspace --overwrite --force --json --quiet -q" ;;
     info) echo "--json" ;;
-    "bench render") echo "--size --reps --threads --plot --peer --only --filter --no-e2e
+    "bench render") echo "--size --reps --threads --plot --peer --only --filter --type --no-e2e
                           --no-suite --cameras --overwrite --force" ;;
     "bench fit") echo "--counts --noise --plot --seconds --methods --colour --overwrite --force" ;;
     "bench effects") echo "--size --crop --sigmas --reps --threads --image --ratio --shrink-from

@@ -16,6 +16,7 @@ class TestCliBenchArgs : public QObject {
     const std::pair<QStringList, QString> cases[] = {
         {{"bench", "render", "--reps", "0"}, "--reps expects a whole number"},
         {{"bench", "render", "--threads", "0,1"}, "--threads expects whole numbers"},
+        {{"bench", "render", "--type", "uint32"}, "--type expects uint8, uint16 or float"},
         {{"bench", "effects", "--reps", "0"}, "--reps expects a whole number"},
         {{"bench", "effects", "--crop", "x"}, "--crop expects a whole number"},
         {{"bench", "effects", "--threads", "-1"}, "--threads expects a whole number"},
