@@ -101,6 +101,9 @@ set(CPACK_STRIP_FILES ON)  # RelWithDebInfo binaries carry debug info the packag
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # artcam-studio_<version>-<release>_<arch>.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The engine and its image module are private libraries in <libdir>/artcam (core/CMakeLists.txt):
+# dpkg-shlibdeps is pointed at their build copies (-l) rather than asking which package has them.
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS "${PROJECT_BINARY_DIR}/lib")
 # lensfun's database is data, not a shared library, so shlibdeps cannot find it.
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "liblensfun-data-v1")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "qt6-wayland")

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/io/depth_file.h"
+#include "core/io/oiio_io.h"
 
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
@@ -47,6 +48,8 @@ bool readFirstChannel(OIIO::ImageInput& in, std::vector<float>& values) {
 }
 
 }  // namespace
+
+namespace oiio_io {
 
 Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& options,
                              DepthFileSummary* summary) {
@@ -97,4 +100,5 @@ Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& op
   return R::success(std::move(depth));
 }
 
+}  // namespace oiio_io
 }  // namespace artcam

@@ -2,6 +2,7 @@
 // Extra channels (image_io.h, "Channels"): reading them in groups, and the writers' helpers
 // (extra_channels.h).
 #include "core/io/extra_channels.h"
+#include "core/io/oiio_io.h"
 
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
@@ -15,18 +16,7 @@
 
 namespace artcam {
 
-std::vector<std::string> ExtraChannels::names() const {
-  std::vector<std::string> all;
-  for (const ChannelGroup& g : groups) all.insert(all.end(), g.names.begin(), g.names.end());
-  return all;
-}
-
-bool isDepthChannel(const std::string& name) {
-  // Case matters for Z: OpenEXR's depth is "Z", while "N.z" or "P.z" is a vector's component.
-  const size_t dot = name.rfind('.');
-  const std::string last = dot == std::string::npos ? name : name.substr(dot + 1);
-  return last == "Z" || last == "ZBack" || io_text::lower(last) == "depth";
-}
+namespace oiio_io {
 
 bool formatStoresExtraChannels(const std::string& path) {
   auto out = OIIO::ImageOutput::create(OIIO::string_view(path));
@@ -95,6 +85,8 @@ Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo
   }
   return R::success(std::move(extra));
 }
+
+}  // namespace oiio_io
 
 namespace io_extra {
 

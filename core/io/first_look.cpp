@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/io/first_look.h"
+#include "core/io/oiio_io.h"
 
 #include "core/colour/icc_profile.h"
 #include "core/colour/transfer.h"
@@ -35,18 +36,7 @@ bool decodesAsSrgb(const OIIO::ImageSpec& spec, int colour_channels, const std::
 
 }  // namespace
 
-int firstLookReduction(int width, int height, int box_width, int box_height) {
-  if (box_width <= 0 || box_height <= 0 || width <= 0 || height <= 0) return 1;
-  const double bw = box_width, bh = box_height;
-  const double as_stored = std::min({1.0, bw / width, bh / height});
-  const double turned = std::min({1.0, bw / height, bh / width});
-  const double shrink = std::max(as_stored, turned);
-  const int need_w = static_cast<int>(std::ceil(width * shrink - 1e-9));
-  const int need_h = static_cast<int>(std::ceil(height * shrink - 1e-9));
-  for (const int n : {8, 4, 2})
-    if ((width + n - 1) / n >= need_w && (height + n - 1) / n >= need_h) return n;
-  return 1;
-}
+namespace oiio_io {
 
 Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_width,
                                                int box_height,
@@ -111,4 +101,5 @@ Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_
   return R::success(std::move(look));
 }
 
+}  // namespace oiio_io
 }  // namespace artcam

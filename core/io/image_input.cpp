@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/io/image_input.h"
 
+#include "core/io/image_checks.h"
 #include "core/io/io_text.h"
 #include "core/io/jpeg_quality.h"
 #include "core/io/orientation.h"
@@ -25,10 +26,7 @@ double memoryBudgetBytes() { return artcam::memoryBudgetBytes(); }
 
 Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path, bool whole) {
   using R = Result<OIIO::ImageInput::unique_ptr>;
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error))
-    return R::failure(path + ": cannot read: " +
-                      (std::filesystem::exists(path, error) ? "not a file" : "no such file"));
+  if (const Status file = image_checks::regularFile(path); !file) return R::failure(file.message);
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   OIIO::ImageInput::unique_ptr in;
@@ -44,42 +42,10 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path, boo
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     return R::failure(path + ": cannot read: the image is empty");
   if (spec.depth > 1) return R::failure(path + ": cannot read: volume images are not supported");
-  // A header can claim any size; the readers allocate what it claims before decoding. No codec
-  // OpenImageIO reads packs more than kMaxCompression decoded bytes into one file byte (deflate
-  // peaks at 1032:1, LZW near 2700:1), so a claim beyond that is a corrupt or truncated file,
-  // refused before gigabytes are asked for (a 67-byte PNG can claim 100 000 × 100 000 pixels).
-  constexpr double kMaxCompression = 4096.0;
-  const double decoded_bytes = static_cast<double>(spec.width) * static_cast<double>(spec.height) *
-                               static_cast<double>(spec.nchannels) *
-                               static_cast<double>(spec.format.size());
-  const double file_bytes = static_cast<double>(std::filesystem::file_size(path, error));
-  if (!error && decoded_bytes > kMaxCompression * file_bytes)
-    return R::failure(path + ": cannot read: the header claims " + std::to_string(spec.width) +
-                      "x" + std::to_string(spec.height) + " pixels (" +
-                      std::to_string(static_cast<long long>(decoded_bytes / 1e6)) +
-                      " MB decoded) but the file holds only " +
-                      std::to_string(static_cast<long long>(file_bytes)) +
-                      " bytes (corrupt or truncated)");
-  // The padding above cannot buy memory: whatever the file's size, the photo as the engine holds
-  // it (float, at least the 4 channels of a render) must fit the memory budget, checked here from
-  // the header before any pixel is allocated.
-  const double float_bytes = static_cast<double>(spec.width) * static_cast<double>(spec.height) *
-                             std::max(4.0, static_cast<double>(spec.nchannels)) * 4.0;
-  const double budget = memoryBudgetBytes();
-  if (whole && float_bytes > budget) {
-    const auto gib = [](double b) {
-      char text[32];
-      if (b < 1024.0 * 1024.0 * 1024.0)
-        std::snprintf(text, sizeof text, "%.1f MiB", b / (1024.0 * 1024.0));
-      else
-        std::snprintf(text, sizeof text, "%.1f GiB", b / (1024.0 * 1024.0 * 1024.0));
-      return std::string(text);
-    };
-    return R::failure(path + ": cannot read: " + std::to_string(spec.width) + "x" +
-                      std::to_string(spec.height) + " pixels need " + gib(float_bytes) +
-                      " as float, more than the memory budget of " + gib(budget) +
-                      " (half this machine's memory; ARTCAM_MAX_MEMORY_MB sets it)");
-  }
+  if (const Status size = image_checks::claimedSize(path, spec.width, spec.height, spec.nchannels,
+                                                    static_cast<int>(spec.format.size()), whole);
+      !size)
+    return R::failure(size.message);
   return R::success(std::move(in));
 }
 
@@ -105,6 +71,41 @@ int storedOrientation(const OIIO::ImageSpec& spec, const PhotoMetadata* metadata
   return validOrientation(spec.get_int_attribute("Orientation", 1));
 }
 
+namespace {
+
+// The spec of the photo as handed over: turned upright, saying Orientation 1.
+std::shared_ptr<const OIIO::ImageSpec> uprightSpec(const OIIO::ImageSpec& spec, int orientation) {
+  auto upright = std::make_shared<OIIO::ImageSpec>(spec);
+  if (orientationSwapsAxes(orientation)) {
+    std::swap(upright->width, upright->height);
+    std::swap(upright->full_width, upright->full_height);
+    std::swap(upright->x, upright->y);
+    std::swap(upright->full_x, upright->full_y);
+  }
+  if (orientation != 1 || spec.find_attribute("Orientation")) upright->attribute("Orientation", 1);
+  return upright;
+}
+
+}  // namespace
+
+std::shared_ptr<const OIIO::ImageSpec> likeSpec(const ImageInfo* like) {
+  if (!like) return nullptr;
+  if (like->spec) return std::static_pointer_cast<const OIIO::ImageSpec>(like->spec);
+  if (like->path.empty()) return nullptr;
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  try {
+    auto in = OIIO::ImageInput::open(like->path, &config);
+    if (!in) {
+      OIIO::geterror();  // clear the thread's pending message
+      return nullptr;
+    }
+    return uprightSpec(in->spec(), like->stored_orientation);
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
+
 ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
                         const std::string& path, const std::string& pixel_type,
                         const Transfer& transfer, int orientation,
@@ -116,15 +117,7 @@ ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
   info.srgb = transfer.kind == Transfer::Kind::Srgb;
   info.colour_space = transfer.colourSpaceName();
   info.stored_orientation = orientation;
-  auto upright = std::make_shared<OIIO::ImageSpec>(spec);
-  if (orientationSwapsAxes(info.stored_orientation)) {
-    std::swap(upright->width, upright->height);
-    std::swap(upright->full_width, upright->full_height);
-    std::swap(upright->x, upright->y);
-    std::swap(upright->full_x, upright->full_y);
-  }
-  if (orientation != 1 || spec.find_attribute("Orientation")) upright->attribute("Orientation", 1);
-  info.spec = std::move(upright);
+  info.spec = uprightSpec(spec, orientation);
   if (info.format_name == "jpeg") info.jpeg_quality = estimateJpegQuality(path);
   info.metadata = std::move(metadata);
   for (int c = keptChannels(spec); c < spec.nchannels; ++c)

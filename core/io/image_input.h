@@ -99,4 +99,10 @@ ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
                         const Transfer& transfer, int orientation,
                         std::shared_ptr<const PhotoMetadata> metadata);
 
+// The spec a writer carries `like`'s metadata from: like->spec, or, for an image read without
+// OpenImageIO (a JPEG through jpeg_file.h leaves it null), the file's header read again from
+// like->path and turned upright as describeImage turns it. Null when there is no `like` or
+// its file cannot be read any more (the metadata held in memory is still written).
+std::shared_ptr<const OIIO::ImageSpec> likeSpec(const ImageInfo* like);
+
 }  // namespace artcam::io_input

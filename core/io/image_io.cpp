@@ -11,6 +11,7 @@
 //   except OpenEXR, whose convention is premultiplied linear; "oiio:UnassociatedAlpha" = 1
 //   tells OIIO not to unpremultiply a second time.
 #include "core/io/image_io.h"
+#include "core/io/oiio_io.h"
 
 #include "core/io/atomic_file.h"
 #include "core/io/image_input.h"
@@ -151,6 +152,8 @@ void premultiply(ImageF& image) {
 
 }  // namespace
 
+namespace oiio_io {
+
 Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options) {
   using R = Result<LoadedImage>;
   auto opened = io_input::openImageInput(path);
@@ -261,4 +264,5 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   return R::success(std::move(loaded));
 }
 
+}  // namespace oiio_io
 }  // namespace artcam

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Images through OpenImageIO: every format it reads and writes (PNG, JPEG, TIFF 8/16-bit, EXR).
+// Images through OpenImageIO: every format it reads and writes (PNG, JPEG, TIFF 8/16-bit, EXR),
+// loaded on first use (oiio_io.h); JPEG also without it where it can (jpeg_file.h).
 //
 // Inside the engine pixels are ImageF: float, linear light, premultiplied alpha
 // (docs/architecture.md, "Images").
@@ -86,7 +87,9 @@ struct ImageInfo {
   bool srgb = true;         // the file's values were sRGB-encoded
   std::string
       colour_space;  // transfer decoded on read: "sRGB", "Linear", "Rec709", "GammaCorrected2.2"
-  std::shared_ptr<const void> spec;  // OIIO::ImageSpec of the file (metadata to carry over)
+  // OIIO::ImageSpec of the file (metadata to carry over); null for a JPEG read without
+  // OpenImageIO (jpeg_file.h), whose writers read the header again from `path` if they need it.
+  std::shared_ptr<const void> spec;
   // The EXIF orientation the stored raster was turned upright from (orientation.h); the image
   // handed over is upright and `spec` says Orientation 1.
   int stored_orientation = 1;

@@ -4,6 +4,8 @@
 #include "core/io/atomic_file.h"
 #include "core/io/extra_channels.h"
 #include "core/io/image_io.h"
+#include "core/io/image_input.h"
+#include "core/io/oiio_io.h"
 #include "core/io/io_text.h"
 #include "core/io/photo_metadata.h"
 #include "core/colour/icc_profile.h"
@@ -94,11 +96,7 @@ std::vector<T> quantise(const std::vector<float>& values) {
 
 }  // namespace
 
-int jpegQualityFor(const WriteImageOptions& options, const ImageInfo* like) {
-  if (options.jpeg_quality) return std::clamp(*options.jpeg_quality, 1, 100);
-  if (like && like->format_name == "jpeg" && like->jpeg_quality > 0) return like->jpeg_quality;
-  return 95;
-}
+namespace oiio_io {
 
 Status writeImage(const std::string& path, const ImageF& image, const ImageInfo* like,
                   const WriteImageOptions& options) {
@@ -163,7 +161,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   const int alpha = keep_alpha ? image.alpha_channel : -1;
 
   OIIO::ImageSpec spec(image.width, image.height, channels, typeOf(pixel_type));
-  const auto* like_spec = like ? static_cast<const OIIO::ImageSpec*>(like->spec.get()) : nullptr;
+  const std::shared_ptr<const OIIO::ImageSpec> like_spec_held = io_input::likeSpec(like);
+  const OIIO::ImageSpec* like_spec = like_spec_held.get();
   if (like_spec) {
     const bool same_format = like->format_name == format;
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
@@ -291,4 +290,12 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   });
 }
 
+bool imageExtensionWritable(const std::string& extension) {
+  if (extension.empty() || extension.find_first_of("/.") != std::string::npos) return false;
+  auto out = OIIO::ImageOutput::create("stdout." + io_text::lower(extension));
+  if (!out) OIIO::geterror();  // clear the thread's pending message
+  return out != nullptr;
+}
+
+}  // namespace oiio_io
 }  // namespace artcam

@@ -3,7 +3,6 @@
 
 #include "core/io/io_text.h"
 
-#include <OpenImageIO/imageio.h>
 
 #include <cerrno>
 #include <csignal>
@@ -148,11 +147,5 @@ std::string StdoutSpool::named(std::string message) const {
   return io_text::replaceAll(std::move(message), folder_, kStdoutName);
 }
 
-bool imageExtensionWritable(const std::string& extension) {
-  if (extension.empty() || extension.find_first_of("/.") != std::string::npos) return false;
-  auto out = OIIO::ImageOutput::create("stdout." + io_text::lower(extension));
-  if (!out) OIIO::geterror();  // clear the thread's pending message
-  return out != nullptr;
-}
 
 }  // namespace artcam

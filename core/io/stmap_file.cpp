@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/io/stmap_file.h"
+#include "core/io/oiio_io.h"
 
 #include "core/io/atomic_file.h"
 #include "core/io/image_input.h"
@@ -26,15 +27,7 @@ int channelNamed(const OIIO::ImageSpec& spec, const std::string& name) {
 
 }  // namespace
 
-std::string_view stmapConventionName(StmapConvention convention) {
-  return convention == StmapConvention::OpenCv ? "opencv" : "stmap";
-}
-
-std::optional<StmapConvention> stmapConventionFromName(std::string_view name) {
-  if (name == "stmap") return StmapConvention::StMap;
-  if (name == "opencv") return StmapConvention::OpenCv;
-  return std::nullopt;
-}
+namespace oiio_io {
 
 Status writeStmap(const std::string& path, const PositionMap& map, StmapConvention convention) {
   const int width = map.target_px.width, height = map.target_px.height;
@@ -187,4 +180,5 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
   return R::success(std::move(samples));
 }
 
+}  // namespace oiio_io
 }  // namespace artcam

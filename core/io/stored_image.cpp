@@ -3,6 +3,7 @@
 // files are opened with "oiio:UnassociatedAlpha" = 1 so OIIO hands over the stored values and
 // we premultiply ourselves; writes go through a band of rows so no whole-image copy is made.
 #include "core/io/stored_image.h"
+#include "core/io/oiio_io.h"
 
 #include "core/io/atomic_file.h"
 #include "core/io/extra_channels.h"
@@ -133,19 +134,7 @@ void unpremultiplyRow(const T* in, T* out, int width, int in_channels, int alpha
 
 }  // namespace
 
-StoredImage makeStoredImage(int width, int height, int channels, int alpha_channel, PixelType type,
-                            PixelBuffer::Init init) {
-  StoredImage image;
-  image.width = width;
-  image.height = height;
-  image.channels = channels;
-  image.alpha_channel = alpha_channel;
-  image.type = type;
-  image.bytes = PixelBuffer(static_cast<size_t>(width) * static_cast<size_t>(height) *
-                            static_cast<size_t>(channels) * static_cast<size_t>(pixelTypeSize(type)),
-                            init);
-  return image;
-}
+namespace oiio_io {
 
 Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options) {
   using R = Result<StoredImage>;
@@ -250,60 +239,59 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   return R::success(std::move(image));
 }
 
-struct StoredImageReader::State {
+// The reader of every format OpenImageIO decodes, scanline by scanline (or tile row by tile row).
+class OiioStoredImageReader final : public StoredImageReader {
+ public:
   std::string path;
   OIIO::ImageInput::unique_ptr in;
   OIIO::ImageSpec spec;
-  int channels = 0, alpha = -1;
-  PixelType type = PixelType::UInt8;
+  int channels_ = 0, alpha = -1;
+  PixelType type_ = PixelType::UInt8;
   bool premultiply = false;
   int next = 0;
-  ImageInfo info;
+  ImageInfo info_;
+
+  int width() const override { return spec.width; }
+  int height() const override { return spec.height; }
+  int channels() const override { return channels_; }
+  int alphaChannel() const override { return alpha; }
+  PixelType type() const override { return type_; }
+  const ImageInfo& info() const override { return info_; }
+  int nextRow() const override { return next; }
+  Status read(int count, void* rows, std::size_t row_bytes) override;
 };
 
-StoredImageReader::StoredImageReader(std::unique_ptr<State> state) : state_(std::move(state)) {}
-StoredImageReader::~StoredImageReader() = default;
-
-Result<std::unique_ptr<StoredImageReader>> StoredImageReader::open(const std::string& path) {
+Result<std::unique_ptr<StoredImageReader>> openStoredImageReader(const std::string& path) {
   using R = Result<std::unique_ptr<StoredImageReader>>;
   auto opened = io_input::openImageInput(path, /*whole=*/false);
   if (!opened) return R::failure(opened.status.message);
-  auto state = std::make_unique<State>();
+  auto state = std::make_unique<OiioStoredImageReader>();
   state->path = path;
   state->in = std::move(*opened.value);
   state->spec = state->in->spec();
   const OIIO::ImageSpec& spec = state->spec;
   if (const Status windows = io_input::dataWindowIsDisplayWindow(*state->in, spec, path); !windows)
     return R::failure(windows.message);
-  state->channels = io_input::keptChannels(spec);
+  state->channels_ = io_input::keptChannels(spec);
   state->alpha = io_input::keptAlpha(spec);
   std::string pixel_type;
-  state->type = storedType(spec.format, pixel_type);
+  state->type_ = storedType(spec.format, pixel_type);
   const Transfer transfer =
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
-          .value_or(state->type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
+          .value_or(state->type_ == PixelType::Float ? Transfer::linear() : Transfer::srgb());
   state->premultiply = state->alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
   std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
   const int orientation = io_input::storedOrientation(spec, metadata.get());
   if (orientation != 1)
     return R::failure(path + ": cannot read in bands: the photo is stored turned (EXIF Orientation " +
                       std::to_string(orientation) + ") and turning it upright needs every row at once");
-  state->info = io_input::describeImage(*state->in, spec, path, pixel_type, transfer, orientation,
-                                        std::move(metadata));
-  return R::success(std::unique_ptr<StoredImageReader>(new StoredImageReader(std::move(state))));
+  state->info_ = io_input::describeImage(*state->in, spec, path, pixel_type, transfer, orientation,
+                                         std::move(metadata));
+  return R::success(std::move(state));
 }
 
-int StoredImageReader::width() const { return state_->spec.width; }
-int StoredImageReader::height() const { return state_->spec.height; }
-int StoredImageReader::channels() const { return state_->channels; }
-int StoredImageReader::alphaChannel() const { return state_->alpha; }
-PixelType StoredImageReader::type() const { return state_->type; }
-const ImageInfo& StoredImageReader::info() const { return state_->info; }
-int StoredImageReader::nextRow() const { return state_->next; }
-
-Status StoredImageReader::read(int count, void* rows, std::size_t row_bytes) {
-  State& st = *state_;
-  const std::string& path = st.path;
+Status OiioStoredImageReader::read(int count, void* rows, std::size_t row_bytes) {
+  OiioStoredImageReader& st = *this;
   if (count < 0 || st.next + count > st.spec.height)
     return Status::failure(path + ": cannot read rows " + std::to_string(st.next) + "+" +
                            std::to_string(count) + ": the image has " +
@@ -313,11 +301,11 @@ Status StoredImageReader::read(int count, void* rows, std::size_t row_bytes) {
   try {
     if (st.spec.tile_width > 0)
       ok = st.in->read_tiles(0, 0, st.spec.x, st.spec.x + st.spec.width, st.spec.y + st.next,
-                             st.spec.y + st.next + count, 0, 1, 0, st.channels, oiioType(st.type),
+                             st.spec.y + st.next + count, 0, 1, 0, st.channels_, oiioType(st.type_),
                              rows, OIIO::AutoStride, static_cast<OIIO::stride_t>(row_bytes));
     else
       ok = st.in->read_scanlines(0, 0, st.spec.y + st.next, st.spec.y + st.next + count, 0, 0,
-                                 st.channels, oiioType(st.type), rows, OIIO::AutoStride,
+                                 st.channels_, oiioType(st.type_), rows, OIIO::AutoStride,
                                  static_cast<OIIO::stride_t>(row_bytes));
   } catch (const std::exception& e) {
     return Status::failure(path + ": cannot read: " + decoderFailure(e));
@@ -327,10 +315,10 @@ Status StoredImageReader::read(int count, void* rows, std::size_t row_bytes) {
   if (st.premultiply) {
     for (int r = 0; r < count; ++r) {
       void* row = static_cast<std::uint8_t*>(rows) + static_cast<std::size_t>(r) * row_bytes;
-      switch (st.type) {
-        case PixelType::UInt8: premultiplyRow(static_cast<std::uint8_t*>(row), st.spec.width, st.channels, st.alpha); break;
-        case PixelType::UInt16: premultiplyRow(static_cast<std::uint16_t*>(row), st.spec.width, st.channels, st.alpha); break;
-        case PixelType::Float: premultiplyRow(static_cast<float*>(row), st.spec.width, st.channels, st.alpha); break;
+      switch (st.type_) {
+        case PixelType::UInt8: premultiplyRow(static_cast<std::uint8_t*>(row), st.spec.width, st.channels_, st.alpha); break;
+        case PixelType::UInt16: premultiplyRow(static_cast<std::uint16_t*>(row), st.spec.width, st.channels_, st.alpha); break;
+        case PixelType::Float: premultiplyRow(static_cast<float*>(row), st.spec.width, st.channels_, st.alpha); break;
       }
     }
   }
@@ -370,7 +358,7 @@ bool formatStoresAlpha(const std::string& path) {
 
 Status writeStoredImage(const std::string& path, const ConstImageView& image, const ImageInfo* like,
                         const WriteImageOptions& options) {
-  return writeStoredImageBands(path, image, like, options,
+  return oiio_io::writeStoredImageBands(path, image, like, options,
                                [&image](int y0, int y1, ConstImageView& rows) {
                                  rows = image;
                                  rows.data = image.row(y0);
@@ -396,7 +384,7 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
                                        : ": no image format for extension \"" + extension + "\""));
   }
   const std::string format = out->format_name();
-  if (!storedWriteKeepsEncoding(path, image.type))
+  if (!oiio_io::storedWriteKeepsEncoding(path, image.type))
     return Status::failure(fail + "the " + format + " format cannot store these " +
                            (image.type == PixelType::Float ? "float" : "integer") +
                            " samples without re-encoding them");
@@ -422,7 +410,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   if (image.type == PixelType::Float && like && like->pixel_type == "half") file_type = OIIO::TypeDesc::HALF;
 
   OIIO::ImageSpec spec(image.width, image.height, channels, file_type);
-  const auto* like_spec = like ? static_cast<const OIIO::ImageSpec*>(like->spec.get()) : nullptr;
+  const std::shared_ptr<const OIIO::ImageSpec> like_spec_held = io_input::likeSpec(like);
+  const OIIO::ImageSpec* like_spec = like_spec_held.get();
   if (like_spec) {
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
       if (keepAttribute(p.name().string(), like->format_name == format)) spec.extra_attribs.push_back(p);
@@ -538,4 +527,5 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   });
 }
 
+}  // namespace oiio_io
 }  // namespace artcam

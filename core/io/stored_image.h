@@ -70,27 +70,24 @@ class StoredImageReader {
   // readStoredImage's refusals but the memory budget (the caller checks what it holds), and a
   // photo stored turned (EXIF Orientation other than 1: turning it upright needs every row).
   static Result<std::unique_ptr<StoredImageReader>> open(const std::string& path);
-  ~StoredImageReader();
+  virtual ~StoredImageReader() = default;
   StoredImageReader(const StoredImageReader&) = delete;
   StoredImageReader& operator=(const StoredImageReader&) = delete;
 
-  int width() const;
-  int height() const;
-  int channels() const;       // 1..4, as readStoredImage keeps
-  int alphaChannel() const;   // or -1
-  PixelType type() const;
-  const ImageInfo& info() const;  // as readStoredImage's image.info
-  int nextRow() const;            // rows read so far
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  virtual int channels() const = 0;       // 1..4, as readStoredImage keeps
+  virtual int alphaChannel() const = 0;   // or -1
+  virtual PixelType type() const = 0;
+  virtual const ImageInfo& info() const = 0;  // as readStoredImage's image.info
+  virtual int nextRow() const = 0;            // rows read so far
 
   // The next `count` rows into `rows`, `row_bytes` apart. Fails (one line naming the file) on
   // damage or when fewer rows are left.
-  Status read(int count, void* rows, std::size_t row_bytes);
+  virtual Status read(int count, void* rows, std::size_t row_bytes) = 0;
 
-  struct State;
-
- private:
-  explicit StoredImageReader(std::unique_ptr<State> state);
-  std::unique_ptr<State> state_;
+ protected:
+  StoredImageReader() = default;  // the codecs' readers derive from it
 };
 
 // True when writing `type` samples to `path`'s format keeps their encoding: integer samples

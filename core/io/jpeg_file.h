@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: Apache-2.0
+// JPEG files in and out through libjpeg-turbo and exiv2 alone, without the OpenImageIO module
+// (oiio_io.h): `artcam warp photo.jpg out.jpg`, the commonest job, then never loads the ~250
+// libraries behind OpenImageIO, whose loading alone cost more than decoding the photo.
+//
+// The stored-type entry points (stored_image.h) come here first and fall back to the module
+// for anything this path does not take (nullopt): other formats, CMYK or 12-bit JPEGs, writes
+// that change the pixel type or carry extra channels, a JPEG written from a non-JPEG input
+// (whose header metadata only OpenImageIO reads). What it takes, it does as the module would:
+// - Reading: the module's refusals (image_checks.h), the same samples (jpeg_decode.h is the
+//   module's JPEG codec path too), turned upright the same way, the same ImageInfo but for
+//   `spec`, which stays null (image_io.h: writers that need it read it again from the file).
+// - Writing: OpenImageIO 2.4's JPEG writer's choices, so either path writes the same bytes:
+//   jpeg_set_defaults (4:2:0 chroma, islow DCT, standard Huffman tables), the quality of
+//   jpegQualityFor, a JFIF header whose density is the input's, the input's comment and ICC
+//   profile; then exiv2 writes the input's EXIF, IPTC and XMP, as every writer does. Colour
+//   is written as it is held, premultiplied (a JPEG has no alpha: composited over black).
+#pragma once
+
+#include "core/io/stored_image.h"
+
+#include <optional>
+#include <string>
+
+namespace artcam::jpeg_file {
+
+// What readStoredShape and readStoredImage give a JPEG this path decodes; nullopt for any
+// other file.
+std::optional<Result<StoredShape>> readShape(const std::string& path);
+std::optional<Result<StoredImage>> readStored(const std::string& path, const ReadImageOptions& options);
+
+// Whether `path`'s extension names JPEG (.jpg, .jpeg, .jpe, .jif, .jfif, .jfi, any case), the
+// writer OpenImageIO would pick.
+bool jpegExtension(const std::string& path);
+
+// writeStoredImageBands into a JPEG; nullopt when the write is not one this path takes.
+std::optional<Status> writeBands(const std::string& path, const ConstImageView& shape,
+                                 const ImageInfo* like, const WriteImageOptions& options,
+                                 const StoredBandSource& band_rows);
+
+}  // namespace artcam::jpeg_file
