@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
+// Without the OpenImageIO module: a first look is only ever of a JPEG, which the codec path
+// reads on its own (jpeg_file.h), so opening a photo in the studio shows it before the module
+// that the whole read needs has loaded.
 #include "core/io/first_look.h"
-#include "core/io/oiio_io.h"
 
 #include "core/colour/icc_profile.h"
-#include "core/colour/transfer.h"
-#include "core/io/image_input.h"
+#include "core/io/image_checks.h"
 #include "core/io/jpeg_decode.h"
+#include "core/io/jpeg_file.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,40 +21,34 @@ namespace {
 
 // Whether the whole read decodes this file's samples through the plain sRGB table: no profile
 // to convert through (a damaged or CMYK one is the whole read's to report or handle).
-bool decodesAsSrgb(const OIIO::ImageSpec& spec, int colour_channels, const std::string& path) {
-  const Transfer transfer =
-      Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
-          .value_or(Transfer::srgb());
-  if (transfer.kind != Transfer::Kind::Srgb) return false;
-  const OIIO::ParamValue* attribute = spec.find_attribute("ICCProfile");
-  if (!attribute) return true;
-  const auto* first = static_cast<const unsigned char*>(attribute->data());
-  const std::vector<unsigned char> bytes(first, first + attribute->type().size());
-  auto profile = IccProfile::fromBytes(bytes, colour_channels, path);
+bool decodesAsSrgb(const std::vector<unsigned char>& icc, int colour_channels, const std::string& path) {
+  if (icc.empty()) return true;
+  auto profile = IccProfile::fromBytes(icc, colour_channels, path);
   return profile && profile->equivalentToSrgb();
 }
 
 }  // namespace
 
-namespace oiio_io {
-
 Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_width,
                                                int box_height,
                                                const std::function<bool(double)>& progress) {
   using R = Result<std::optional<FirstLook>>;
-  auto opened = io_input::openImageInput(path);
-  if (!opened) return R::failure(opened.status.message);
-  const OIIO::ImageInput::unique_ptr& in = *opened;
-  const OIIO::ImageSpec spec = in->spec();
-  const int channels = io_input::keptChannels(spec);
-  if (io_input::keptAlpha(spec) >= 0 || (channels != 1 && channels != 3) ||
-      !decodesAsSrgb(spec, channels, path))
-    return R::success(std::nullopt);
-  const int n = firstLookReduction(spec.width, spec.height, box_width, box_height);
+  if (const Status file = image_checks::regularFile(path); !file) return R::failure(file.message);
+  if (!jpeg_file::startsLikeJpeg(path)) return R::success(std::nullopt);
+  // The whole photo's header: what the whole read would take, and its refusals.
+  auto whole = JpegDecoder::open(path);
+  if (!whole) return R::failure(whole.status.message);
+  const JpegDecoder& header = **whole;
+  if (!header.supported()) return R::success(std::nullopt);
+  const int width = header.width(), height = header.height(), channels = header.channels();
+  if (const Status size = image_checks::claimedSize(path, width, height, channels, 1, true); !size)
+    return R::failure(size.message);
+  if (!decodesAsSrgb(header.iccProfile(), channels, path)) return R::success(std::nullopt);
+  const int n = firstLookReduction(width, height, box_width, box_height);
   if (n == 1) return R::success(std::nullopt);
-  // The codec path's test (io_input::jpegCodecPath), with RGB files decoded as opaque RGBA.
-  if (std::string(in->format_name()) != "jpeg" || spec.format != OIIO::TypeDesc::UINT8)
-    return R::success(std::nullopt);
+  whole.value.reset();
+
+  // RGB files decoded as opaque RGBA.
   const bool rgba = channels == 3;
   auto codec = JpegDecoder::open(path, n, rgba ? JpegDecoder::Output::Rgba
                                               : JpegDecoder::Output::Samples);
@@ -62,7 +56,7 @@ Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_
   std::unique_ptr<JpegDecoder> jpeg = std::move(*codec.value);
   const int out_channels = rgba ? 4 : 1;
   if (!jpeg->supported() || jpeg->channels() != out_channels ||
-      jpeg->width() != (spec.width + n - 1) / n || jpeg->height() != (spec.height + n - 1) / n)
+      jpeg->width() != (width + n - 1) / n || jpeg->height() != (height + n - 1) / n)
     return R::success(std::nullopt);
 
   FirstLook look;
@@ -76,13 +70,11 @@ Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_
       progress);
   jpeg.reset();  // closes the file before the metadata reader opens it
   if (!decoded) return R::failure(decoded.message);
-  if (const Status damage = io_input::decodeProblems(*in, path); !damage)
-    return R::failure(damage.message);
-  in->close();
 
   // Upright as the whole read turns it (same metadata, same orientation).
   std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
-  const int orientation = io_input::storedOrientation(spec, metadata.get());
+  const int tagged = metadata ? photoOrientation(*metadata) : 0;
+  const int orientation = validOrientation(tagged != 0 ? tagged : 1);
   const bool swap = orientationSwapsAxes(orientation);
   if (orientation != 1) {
     StoredImage upright =
@@ -93,13 +85,11 @@ Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_
                    static_cast<size_t>(out_channels), orientation, upright.bytes.data());
     image = std::move(upright);
   }
-  look.full_width = swap ? spec.height : spec.width;
-  look.full_height = swap ? spec.width : spec.height;
-  image.info = io_input::describeImage(*in, spec, path, "uint8", Transfer::srgb(), orientation,
-                                       std::move(metadata));
+  look.full_width = swap ? height : width;
+  look.full_height = swap ? width : height;
+  image.info = jpeg_file::describe(path, orientation, std::move(metadata));
   if (progress) progress(1.0);
   return R::success(std::move(look));
 }
 
-}  // namespace oiio_io
 }  // namespace artcam

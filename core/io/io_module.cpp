@@ -155,14 +155,6 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   return t ? t->write_stored_image_bands(path, shape, like, options, band_rows) : std::move(failed);
 }
 
-Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_width,
-                                               int box_height,
-                                               const std::function<bool(double)>& progress) {
-  Result<std::optional<FirstLook>> failed;
-  const auto* t = tableOr(failed, path, "read");
-  return t ? t->read_first_look(path, box_width, box_height, progress) : std::move(failed);
-}
-
 bool imageExtensionWritable(const std::string& extension) {
   const auto* t = loaded().table;
   return t && t->image_extension_writable(extension);

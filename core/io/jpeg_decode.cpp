@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 #include <jerror.h>
@@ -31,6 +32,7 @@ struct JpegDecoder::State {
   Errors errors{};
   bool created = false;
   bool started = false;
+  std::vector<unsigned char> icc;
 
   ~State() {
     if (created) jpeg_destroy_decompress(&info);
@@ -73,7 +75,14 @@ bool readHeader(JpegDecoder::State& state, int scale_denominator, bool rgba) {
   jpeg_create_decompress(&state.info);
   state.created = true;
   jpeg_stdio_src(&state.info, state.file);
+  jpeg_save_markers(&state.info, JPEG_APP0 + 2, 0xFFFF);  // the ICC profile's
   jpeg_read_header(&state.info, TRUE);
+  JOCTET* icc = nullptr;
+  unsigned int icc_bytes = 0;
+  if (jpeg_read_icc_profile(&state.info, &icc, &icc_bytes) && icc) {
+    state.icc.assign(icc, icc + icc_bytes);
+    std::free(icc);
+  }
   const J_COLOR_SPACE in = state.info.jpeg_color_space;
   if (state.info.num_components == 1) state.info.out_color_space = JCS_GRAYSCALE;
   else if (in == JCS_YCbCr || in == JCS_RGB) state.info.out_color_space = rgba ? JCS_EXT_RGBA : JCS_RGB;
@@ -138,6 +147,8 @@ Result<std::unique_ptr<JpegDecoder>> JpegDecoder::open(const std::string& path,
 int JpegDecoder::width() const { return static_cast<int>(state_->info.output_width); }
 int JpegDecoder::height() const { return static_cast<int>(state_->info.output_height); }
 int JpegDecoder::channels() const { return state_->info.out_color_components; }
+
+const std::vector<unsigned char>& JpegDecoder::iccProfile() const { return state_->icc; }
 
 bool JpegDecoder::supported() const {
   const jpeg_decompress_struct& info = state_->info;

@@ -26,6 +26,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace artcam {
 
@@ -53,6 +54,8 @@ class JpegDecoder {
   // Whether this path decodes the file: 8-bit, one component (grey) or three (YCbCr/RGB);
   // Output::Rgba takes three-component files only.
   bool supported() const;
+  // The ICC profile the file embeds (APP2 markers), empty when none.
+  const std::vector<unsigned char>& iccProfile() const;
 
   // Decodes every row into `pixels` (height() rows of `row_bytes`, each at least width() ·
   // channels() bytes). `progress` gets the fraction of rows done between batches of rows and

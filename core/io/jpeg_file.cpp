@@ -27,17 +27,6 @@
 namespace artcam::jpeg_file {
 namespace {
 
-// A file that starts with a JPEG start-of-image marker (FF D8 FF), as OpenImageIO's reader
-// checks; the extension does not matter for reading.
-bool startsLikeJpeg(const std::string& path) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) return false;
-  unsigned char magic[3] = {};
-  const size_t got = std::fread(magic, 1, 3, file);
-  std::fclose(file);
-  return got == 3 && magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF;
-}
-
 // The decoder for `path` when this path reads it: a regular file that is a JPEG the codec path
 // decodes (8-bit grey or YCbCr/RGB). nullopt: not ours (the module reads it).
 std::optional<Result<std::unique_ptr<JpegDecoder>>> openOurs(const std::string& path) {
@@ -181,6 +170,29 @@ bool finishCompress(Compressor& c) {
 
 }  // namespace
 
+bool startsLikeJpeg(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) return false;
+  unsigned char magic[3] = {};
+  const size_t got = std::fread(magic, 1, 3, file);
+  std::fclose(file);
+  return got == 3 && magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF;
+}
+
+ImageInfo describe(const std::string& path, int stored_orientation,
+                   std::shared_ptr<const PhotoMetadata> metadata) {
+  ImageInfo info;
+  info.path = path;
+  info.format_name = "jpeg";
+  info.pixel_type = "uint8";
+  info.srgb = true;
+  info.colour_space = "sRGB";
+  info.stored_orientation = stored_orientation;
+  info.jpeg_quality = estimateJpegQuality(path);
+  info.metadata = std::move(metadata);
+  return info;
+}
+
 bool jpegExtension(const std::string& path) {
   const std::string e = io_text::lower(std::filesystem::path(path).extension().string());
   return e == ".jpg" || e == ".jpeg" || e == ".jpe" || e == ".jif" || e == ".jfif" || e == ".jfi";
@@ -236,15 +248,7 @@ std::optional<Result<StoredImage>> readStored(const std::string& path, const Rea
                    upright.bytes.data());
     image = std::move(upright);
   }
-  ImageInfo& info = image.info;
-  info.path = path;
-  info.format_name = "jpeg";
-  info.pixel_type = "uint8";
-  info.srgb = true;
-  info.colour_space = "sRGB";
-  info.stored_orientation = orientation;
-  info.jpeg_quality = estimateJpegQuality(path);
-  info.metadata = std::move(metadata);
+  image.info = describe(path, orientation, std::move(metadata));
   if (options.progress) options.progress(1.0);
   return R::success(std::move(image));
 }

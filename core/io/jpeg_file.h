@@ -19,10 +19,20 @@
 
 #include "core/io/stored_image.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 
 namespace artcam::jpeg_file {
+
+// A file that starts with a JPEG start-of-image marker (FF D8 FF), as OpenImageIO's reader
+// checks; the extension does not matter for reading.
+bool startsLikeJpeg(const std::string& path);
+
+// The ImageInfo the module's readers give an 8-bit sRGB JPEG, but `spec` (null here): format,
+// pixel type, transfer, orientation turned from, estimated quality, metadata.
+ImageInfo describe(const std::string& path, int stored_orientation,
+                   std::shared_ptr<const PhotoMetadata> metadata);
 
 // What readStoredShape and readStoredImage give a JPEG this path decodes; nullopt for any
 // other file.

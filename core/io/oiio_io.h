@@ -12,7 +12,6 @@
 #pragma once
 
 #include "core/io/depth_file.h"
-#include "core/io/first_look.h"
 #include "core/io/image_io.h"
 #include "core/io/stmap_file.h"
 #include "core/io/stored_image.h"
@@ -42,9 +41,6 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
                              const ImageInfo* like, const WriteImageOptions& options,
                              const StoredBandSource& band_rows);
 
-Result<std::optional<FirstLook>> readFirstLook(const std::string& path, int box_width,
-                                               int box_height,
-                                               const std::function<bool(double)>& progress);
 bool imageExtensionWritable(const std::string& extension);
 Status writeStmap(const std::string& path, const PositionMap& map, StmapConvention convention);
 Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSampleOptions& options);
@@ -67,7 +63,6 @@ struct Table {
   decltype(&formatStoresAlpha) format_stores_alpha = &formatStoresAlpha;
   decltype(&writeStoredImage) write_stored_image = &writeStoredImage;
   decltype(&writeStoredImageBands) write_stored_image_bands = &writeStoredImageBands;
-  decltype(&readFirstLook) read_first_look = &readFirstLook;
   decltype(&imageExtensionWritable) image_extension_writable = &imageExtensionWritable;
   decltype(&writeStmap) write_stmap = &writeStmap;
   decltype(&readStmapSamples) read_stmap_samples = &readStmapSamples;
