@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -197,7 +198,8 @@ class TestJpegFile : public QObject {
     QVERIFY(!jpeg_file::readStored(png, {}).has_value());
     QVERIFY(!jpeg_file::readShape(png).has_value());
     const std::string disguised = path("really-a-jpeg.png");
-    QVERIFY(writePhoto(disguised, texture(16, 16, 3), 1, 90, nullptr));
+    QVERIFY(writePhoto(path("renamed.jpg"), texture(16, 16, 3), 1, 90, nullptr));
+    std::filesystem::rename(path("renamed.jpg"), disguised);
     QVERIFY(jpeg_file::readShape(disguised).has_value());
     // A missing file: the module's refusal (it names the file), not this path's.
     QVERIFY(!jpeg_file::readStored(path("missing.jpg"), {}).has_value());
