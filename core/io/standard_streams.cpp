@@ -3,7 +3,6 @@
 
 #include "core/io/io_text.h"
 
-
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -146,6 +145,5 @@ std::string StdoutSpool::named(std::string message) const {
   message = io_text::replaceAll(std::move(message), path_, kStdoutName);
   return io_text::replaceAll(std::move(message), folder_, kStdoutName);
 }
-
 
 }  // namespace artcam
