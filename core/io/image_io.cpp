@@ -15,6 +15,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/image_input.h"
+#include "core/io/integer_decode.h"
 #include "core/io/io_text.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
@@ -64,24 +65,8 @@ bool oiioProgress(void* opaque, float portion_done) {
 }
 
 template <class T>
-std::vector<float> decodeTable(const Transfer& transfer) {
-  constexpr int kMax = std::numeric_limits<T>::max();
-  std::vector<float> table(kMax + 1);
-  for (int v = 0; v <= kMax; ++v)
-    table[static_cast<size_t>(v)] =
-        static_cast<float>(transfer.decode(static_cast<double>(v) / kMax));
-  return table;
-}
-
-template <class T>
 void decodeIntegers(const std::vector<T>& stored, const Transfer& transfer, ImageF& image) {
-  constexpr float kMax = static_cast<float>(std::numeric_limits<T>::max());
-  const std::vector<float> table = decodeTable<T>(transfer);
-  const size_t channels = static_cast<size_t>(image.channels);
-  for (size_t k = 0; k < stored.size(); ++k) {
-    const bool alpha = static_cast<int>(k % channels) == image.alpha_channel;
-    image.data[k] = alpha ? static_cast<float>(stored[k]) / kMax : table[stored[k]];
-  }
+  integer_decode::decode(stored.data(), stored.size(), transfer, image);
 }
 
 // Float path, and every case the tables do not cover.

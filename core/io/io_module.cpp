@@ -75,6 +75,7 @@ const oiio_io::Table* tableOr(R& failure, const std::string& path, const char* v
 }  // namespace
 
 Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options) {
+  if (auto jpeg = jpeg_file::readFloat(path, options)) return std::move(*jpeg);
   Result<LoadedImage> failed;
   const auto* t = tableOr(failed, path, "read");
   return t ? t->read_image(path, options) : std::move(failed);

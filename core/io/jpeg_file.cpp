@@ -4,8 +4,10 @@
 // does the same); the compressor and the file are released by the owning struct's destructor.
 #include "core/io/jpeg_file.h"
 
+#include "core/colour/icc_profile.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_checks.h"
+#include "core/io/integer_decode.h"
 #include "core/io/io_text.h"
 #include "core/io/jpeg_decode.h"
 #include "core/io/jpeg_quality.h"
@@ -16,6 +18,7 @@
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -251,6 +254,52 @@ std::optional<Result<StoredImage>> readStored(const std::string& path, const Rea
   image.info = describe(path, orientation, std::move(metadata));
   if (options.progress) options.progress(1.0);
   return R::success(std::move(image));
+}
+
+std::optional<Result<LoadedImage>> readFloat(const std::string& path, const ReadImageOptions& options) {
+  using R = Result<LoadedImage>;
+  auto opened = openOurs(path);
+  if (!opened) return std::nullopt;
+  if (!*opened) return R::failure(opened->status.message);
+  std::unique_ptr<JpegDecoder> jpeg = std::move(*opened->value);
+  const int width = jpeg->width(), height = jpeg->height(), channels = jpeg->channels();
+  if (const Status size = image_checks::claimedSize(path, width, height, channels, 1, true); !size)
+    return R::failure(size.message);
+  if (!jpeg->iccProfile().empty()) {
+    auto profile = IccProfile::fromBytes(jpeg->iccProfile(), channels, path);
+    if (!profile || !profile->equivalentToSrgb()) return std::nullopt;  // the module's to convert or refuse
+  }
+  LoadedImage loaded;
+  std::vector<std::uint8_t> stored;
+  try {
+    loaded.image = ImageF(width, height, channels, -1);
+    stored.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels));
+  } catch (const std::bad_alloc&) {
+    return R::failure(path + ": cannot read: not enough memory for " + std::to_string(width) + "x" +
+                      std::to_string(height) + " pixels");
+  }
+  const Status decoded = jpeg->decode(stored.data(),
+                                      static_cast<size_t>(width) * static_cast<size_t>(channels),
+                                      options.progress);
+  jpeg.reset();  // closes the file before the metadata reader opens it
+  if (!decoded) return R::failure(decoded.message);
+  ImageF& image = loaded.image;
+  integer_decode::decode(stored.data(), stored.size(), Transfer::srgb(), image);
+  stored = {};
+
+  std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
+  const int tagged = metadata ? photoOrientation(*metadata) : 0;
+  const int orientation = validOrientation(tagged != 0 ? tagged : 1);
+  if (orientation != 1) {
+    const bool swap = orientationSwapsAxes(orientation);
+    ImageF upright(swap ? height : width, swap ? width : height, channels, -1);
+    reorientPixels(image.data.data(), width, height, sizeof(float) * static_cast<size_t>(channels),
+                   orientation, upright.data.data());
+    image = std::move(upright);
+  }
+  loaded.info = describe(path, orientation, std::move(metadata));
+  if (options.progress) options.progress(1.0);
+  return R::success(std::move(loaded));
 }
 
 std::optional<Status> writeBands(const std::string& path, const ConstImageView& shape,

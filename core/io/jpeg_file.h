@@ -7,7 +7,7 @@
 // for anything this path does not take (nullopt): other formats, CMYK or 12-bit JPEGs, writes
 // that change the pixel type or carry extra channels, a JPEG written from a non-JPEG input
 // (whose header metadata only OpenImageIO reads). What it takes, it does as the module would:
-// - Reading: the module's refusals (image_checks.h), the same samples (jpeg_decode.h is the
+// - Reading (stored samples, or linear float for readImage): the module's refusals (image_checks.h), the same samples (jpeg_decode.h is the
 //   module's JPEG codec path too), turned upright the same way, the same ImageInfo but for
 //   `spec`, which stays null (image_io.h: writers that need it read it again from the file).
 // - Writing: OpenImageIO 2.4's JPEG writer's choices, so either path writes the same bytes:
@@ -38,6 +38,11 @@ ImageInfo describe(const std::string& path, int stored_orientation,
 // other file.
 std::optional<Result<StoredShape>> readShape(const std::string& path);
 std::optional<Result<StoredImage>> readStored(const std::string& path, const ReadImageOptions& options);
+
+// What readImage gives a JPEG this path decodes whose colours need no profile (none embedded,
+// or one equivalent to sRGB): the sRGB table's linear floats; nullopt for any other file (a
+// JPEG with an Adobe RGB or grey-gamma profile is converted by the module's lcms2 path).
+std::optional<Result<LoadedImage>> readFloat(const std::string& path, const ReadImageOptions& options);
 
 // Whether `path`'s extension names JPEG (.jpg, .jpeg, .jpe, .jif, .jfif, .jfi, any case), the
 // writer OpenImageIO would pick.

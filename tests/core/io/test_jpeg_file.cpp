@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // JPEG files without the OpenImageIO module (core/io/jpeg_file.h) against the module's own
-// stored-type reader and writer (oiio_io.h, called directly): the same samples, the same
-// ImageInfo but the spec, and written files that decode to the same pixels and carry the same
+// readers and stored-type writer (oiio_io.h, called directly): the same samples and floats, the
+// same ImageInfo but the spec, and written files that decode to the same pixels and carry the same
 // ICC profile, comment, orientation and quality. Files it does not take come back nullopt.
 // Fixtures are written here with OpenImageIO and exiv2 directly.
 #include "core/io/jpeg_file.h"
@@ -135,6 +135,30 @@ class TestJpegFile : public QObject {
     QCOMPARE(a.info.metadata != nullptr, b.info.metadata != nullptr);
     QVERIFY(a.info.dropped_channels.empty());
     QVERIFY(!a.info.spec);  // read without OpenImageIO
+
+    // As linear float (readImage): the same floats; a profile to convert through is the
+    // module's (lcms2), so this path declines it.
+    const auto floats = jpeg_file::readFloat(file, {});
+    if (profile) {
+      QVERIFY(!floats.has_value());
+      return;
+    }
+    QVERIFY(floats.has_value());
+    QVERIFY2(*floats, floats->status.message.c_str());
+    const auto module_floats = oiio_io::readImage(file, {});
+    QVERIFY2(module_floats, module_floats.status.message.c_str());
+    const ImageF& f = (*floats)->image;
+    const ImageF& g = module_floats->image;
+    QCOMPARE(f.width, g.width);
+    QCOMPARE(f.height, g.height);
+    QCOMPARE(f.channels, g.channels);
+    QCOMPARE(f.alpha_channel, g.alpha_channel);
+    QVERIFY(f.data == g.data);
+    QCOMPARE((*floats)->info.colour_space, module_floats->info.colour_space);
+    QCOMPARE((*floats)->info.srgb, module_floats->info.srgb);
+    QCOMPARE((*floats)->info.stored_orientation, module_floats->info.stored_orientation);
+    QCOMPARE((*floats)->info.jpeg_quality, module_floats->info.jpeg_quality);
+    QVERIFY(!(*floats)->info.icc && !module_floats->info.icc);
   }
 
   // The same photo written by both writers from what each reader gave: the same coded pixels
