@@ -2,6 +2,7 @@
 #include "core/render/span_sampler.h"
 
 #include "core/render/span_sampler_avx2.h"
+#include "core/render/span_sampler_avx2_wide.h"
 #include "core/render/span_sampler_avx512.h"
 #include "core/render/span_sampler_cubic.h"
 
@@ -345,6 +346,27 @@ long long sampleSpanU8Simd(const Context& k, unsigned char* out_bytes, int n, co
   else return avx2::nearestU8<C>(k, out, n, sx, sy, valid, &sampleSpanU8<C, F>);
 }
 
+// The AVX2 clone of the 16-bit and float one-tap nearest and bilinear paths
+// (span_sampler_avx2_wide.h); supersampling and every group it does not take run the scalar
+// code above.
+template <class T, int C, Filter F>
+long long sampleSpanWideSimd(const Context& k, unsigned char* out, int n, const float* sx, const float* sy,
+                             const unsigned char* valid, int supersample, const float* jac) {
+  if (supersample <= 1) {
+    if (k.out_channels == C) return avx2::sampleWide<T, C, F>(k, out, n, sx, sy, valid, &sampleSpan<T, C, F>);
+    if constexpr (C == 3)
+      if (k.append_alpha) return avx2::sampleWide<T, 3, F, true>(k, out, n, sx, sy, valid, &sampleSpan<T, C, F>);
+  }
+  return sampleSpan<T, C, F>(k, out, n, sx, sy, valid, supersample, jac);
+}
+
+template <class T>
+SpanSampler::SpanFn pickWide(Filter filter, int channels) {
+  if (filter == Filter::Bilinear)
+    return channels == 3 ? sampleSpanWideSimd<T, 3, Filter::Bilinear> : sampleSpanWideSimd<T, 4, Filter::Bilinear>;
+  return channels == 3 ? sampleSpanWideSimd<T, 3, Filter::Nearest> : sampleSpanWideSimd<T, 4, Filter::Nearest>;
+}
+
 // The AVX2 clone of the 8-bit bicubic (span_sampler_cubic.h): the interior pixels by
 // cubic::interiorAvx2, everything else as the scalar code.
 template <int C>
@@ -376,10 +398,16 @@ bool cpuHasAvx512Sampler() {
 #endif
 
 // AVX2 when the CPU has it and the source's byte offsets fit the 32-bit offsets; AVX-512 for
-// RGB8 bilinear where the CPU has it and rows hold a 64-byte window.
+// RGB8 bilinear where the CPU has it and rows hold a 64-byte window. 16-bit and float: AVX2
+// nearest and bilinear (their bicubic stays scalar).
 SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter, bool allow_avx512) {
-  if (src.type != PixelType::UInt8 || (src.channels != 3 && src.channels != 4)) return nullptr;
+  if (src.channels != 3 && src.channels != 4) return nullptr;
   if (!__builtin_cpu_supports("avx2")) return nullptr;
+  if (src.type != PixelType::UInt8) {
+    if (filter == Filter::Bicubic) return nullptr;
+    if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
+    return src.type == PixelType::UInt16 ? pickWide<std::uint16_t>(filter, src.channels) : pickWide<float>(filter, src.channels);
+  }
   if (filter == Filter::Bicubic) return src.channels == 3 ? cubicSpanU8Simd<3> : cubicSpanU8Simd<4>;
   if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
 #ifdef ARTCAM_HAVE_AVX512_SAMPLER

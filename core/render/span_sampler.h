@@ -23,8 +23,10 @@ class SpanSampler {
  public:
   // dst must have src's type and either src's channels or src's channels + 1 (appended alpha,
   // last) when src has no alpha. Throws std::invalid_argument otherwise. `allow_simd`: take the
-  // AVX2 clone of the 8-bit one-tap paths where the CPU has it (runtime dispatch, bit-identical
-  // to the scalar code: span_sampler_avx2.h); false keeps the portable scalar code.
+  // AVX2 clones where the CPU has it (runtime dispatch, bit-identical to the scalar code): the
+  // 8-bit one-tap paths and bicubic (span_sampler_avx2.h, span_sampler_cubic.h), the 16-bit and
+  // float one-tap nearest and bilinear of 3 or 4 channels (span_sampler_avx2_wide.h); false
+  // keeps the portable scalar code.
   // `allow_avx512`: for RGB8 bilinear, the AVX-512 clone (span_sampler_avx512.h, also
   // bit-identical) where the CPU has it; false stops at AVX2 (tests compare the two).
   SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter, bool allow_simd = true,

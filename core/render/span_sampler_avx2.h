@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// AVX2 kernels of the 8-bit sampler (span_sampler.cpp only; SIMD where it pays).
+// AVX2 kernels of the 8-bit sampler (span_sampler.cpp only; SIMD where it pays). The 16-bit
+// and float ones are in span_sampler_avx2_wide.h, which shares the helpers here (allInterior,
+// allOutside, toRegisters, prefetchRowsAhead).
 //
 // Runtime dispatch only: these functions carry __attribute__((target("avx2"))), the rest of the
 // program keeps the x86-64 baseline, and span_sampler.cpp picks them when the CPU reports AVX2
