@@ -298,13 +298,12 @@ void checkSpanScalar(const CheckInputs& in, double tx0, double ty, const double*
   checkSpanBody(in, tx0, ty, bx, by, qx, qy, passed);
 }
 
-// A certified cell's pixels: its patch's cubic along the row (inverse_cells.h),
-// s(u) = c0 + u (c1 + u (c2 + u c3)) at u_j = (j + 0.5) / kCell, in float: c0 is rounded once
-// to float like every position (half an ulp ≤ 2.4e-4 px at 6000 px), the offset from it
-// (≤ a cell's stretch) to ~1e-6 px. No division, no branch.
 constexpr int kCellPixels = InverseCells::kCell;
 static_assert(kSpanPixels % kCellPixels == 0, "a span holds whole cells");
 
+// A subcell's patch row in float (InverseCells::SubRow): c0 is rounded once to float like
+// every position (half an ulp ≤ 2.4e-4 px at 6000 px), the offset from it (≤ the subcell's
+// stretch) to ~1e-6 px. Certified whole cells take CellPoly instead (polyCellScalar).
 struct CellCubicF {
   float x[4], y[4];
   explicit CellCubicF(const CellRow& r) {
@@ -314,34 +313,6 @@ struct CellCubicF {
     }
   }
 };
-
-void cubicCellScalar(const CellCubicF& c, float* sx, float* sy) {
-  for (int j = 0; j < kCellPixels; ++j) {
-    const float u = (static_cast<float>(j) + 0.5f) * (1.0f / kCellPixels);
-    sx[j] = c.x[0] + u * (c.x[1] + u * (c.x[2] + u * c.x[3]));
-    sy[j] = c.y[0] + u * (c.y[1] + u * (c.y[2] + u * c.y[3]));
-  }
-}
-
-#if defined(__x86_64__)
-// The same, eight lanes at a time, in the same order of operations (no FMA): bit-identical.
-__attribute__((target("avx2"))) void cubicCellAvx2(const CellCubicF& c, float* sx, float* sy) {
-  const __m256 x0 = _mm256_set1_ps(c.x[0]), x1 = _mm256_set1_ps(c.x[1]), x2 = _mm256_set1_ps(c.x[2]),
-               x3 = _mm256_set1_ps(c.x[3]);
-  const __m256 y0 = _mm256_set1_ps(c.y[0]), y1 = _mm256_set1_ps(c.y[1]), y2 = _mm256_set1_ps(c.y[2]),
-               y3 = _mm256_set1_ps(c.y[3]);
-  const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(1.0f / kCellPixels),
-               eight = _mm256_set1_ps(8.0f);
-  __m256 j = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
-  for (int i = 0; i < kCellPixels; i += 8, j = _mm256_add_ps(j, eight)) {
-    const __m256 u = _mm256_mul_ps(_mm256_add_ps(j, half), scale);
-    const __m256 px = _mm256_add_ps(x0, _mm256_mul_ps(u, _mm256_add_ps(x1, _mm256_mul_ps(u, _mm256_add_ps(x2, _mm256_mul_ps(u, x3))))));
-    const __m256 py = _mm256_add_ps(y0, _mm256_mul_ps(u, _mm256_add_ps(y1, _mm256_mul_ps(u, _mm256_add_ps(y2, _mm256_mul_ps(u, y3))))));
-    _mm256_storeu_ps(sx + i, px);
-    _mm256_storeu_ps(sy + i, py);
-  }
-}
-#endif
 
 // A certified subcell's eight pixels from x on its patch's row (InverseCells::SubRow), in
 // float like a cell's: u = (x + j − x0 + 0.5) / size.
@@ -372,6 +343,131 @@ __attribute__((target("avx2"))) void cubicSubcellAvx2(const CellCubicF& c, int o
 }
 #endif
 
+// A certified cell's pixels on row v (local, 0 … 1) from its float patch (CellPoly): the row's
+// cubic by Horner in v, k_i = p0 + v (p1 + v (p2 + v p3)) per lane, then at u_j = (j + 0.5) /
+// kCell the cubic in u plus the anchor. Every step is a fused multiply-add, which rounds once
+// whatever the vector width: the scalar code (std::fma), the AVX2 and the AVX-512 clones agree
+// bit for bit, and a pixel can be recomputed alone (polyPixel) exactly as its span wrote it.
+// Fused, a position costs four instructions per axis instead of seven: at 24 Mpix per render
+// the plain multiply-adds cost about as much as the patch rows themselves.
+[[gnu::always_inline]] inline float polyLane(const CellPoly& c, float v, int i) {
+  return std::fma(v, std::fma(v, std::fma(v, c.p[3][i], c.p[2][i]), c.p[1][i]), c.p[0][i]);
+}
+
+[[gnu::always_inline]] inline float polyU(int j) {
+  return (static_cast<float>(j) + 0.5f) * (1.0f / kCellPixels);
+}
+
+[[gnu::always_inline]] inline void polyCellBody(const CellPoly& c, float v, float* sx, float* sy) {
+  float k[8];
+  for (int i = 0; i < 8; ++i) k[i] = polyLane(c, v, i);
+  for (int j = 0; j < kCellPixels; ++j) {
+    const float u = polyU(j);
+    sx[j] = c.anchor_x + std::fma(u, std::fma(u, std::fma(u, k[3], k[2]), k[1]), k[0]);
+    sy[j] = c.anchor_y + std::fma(u, std::fma(u, std::fma(u, k[7], k[6]), k[5]), k[4]);
+  }
+}
+
+// Scalar, but with the FMA instruction where the CPU has one (std::fma is a library call on the
+// x86-64 baseline); the results are the same either way.
+__attribute__((target_clones("fma", "default"))) void polyCellScalar(const CellPoly& c, float v, float* sx,
+                                                                     float* sy) {
+  polyCellBody(c, v, sx, sy);
+}
+
+// Pixel j of the cell's row v, as polyCellScalar and the clones write it.
+void polyPixel(const CellPoly& c, float v, int j, Eigen::Vector2d& s) {
+  float k[8];
+  for (int i = 0; i < 8; ++i) k[i] = polyLane(c, v, i);
+  const float u = polyU(j);
+  s = Eigen::Vector2d(c.anchor_x + std::fma(u, std::fma(u, std::fma(u, k[3], k[2]), k[1]), k[0]),
+                      c.anchor_y + std::fma(u, std::fma(u, std::fma(u, k[7], k[6]), k[5]), k[4]));
+}
+
+#if defined(__x86_64__)
+bool cpuHasFma() {
+  static const bool has = __builtin_cpu_supports("fma");
+  return has;
+}
+
+bool cpuHasAvx512f() {
+  static const bool has = __builtin_cpu_supports("avx512f");
+  return has;
+}
+
+__attribute__((target("avx2,fma"))) void polyCellsAvx2(const CellPoly* cells, int count, float v, float* sx,
+                                                       float* sy) {
+  const __m256 vv = _mm256_set1_ps(v);
+  const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(1.0f / kCellPixels);
+  __m256 u[kCellPixels / 8];
+#pragma GCC unroll 4
+  for (int g = 0; g < kCellPixels / 8; ++g) {
+    const __m256 j = _mm256_add_ps(_mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_ps(8.0f * static_cast<float>(g)));
+    u[g] = _mm256_mul_ps(_mm256_add_ps(j, half), scale);
+  }
+  for (int cell = 0; cell < count; ++cell, sx += kCellPixels, sy += kCellPixels) {
+    const CellPoly& c = cells[cell];
+    const __m256 k = _mm256_fmadd_ps(
+        vv, _mm256_fmadd_ps(vv, _mm256_fmadd_ps(vv, _mm256_load_ps(c.p[3]), _mm256_load_ps(c.p[2])), _mm256_load_ps(c.p[1])),
+        _mm256_load_ps(c.p[0]));
+    // Named, not an array: GCC keeps an array of vectors on the stack.
+    const __m256 x0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(0)),
+                 x1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(1)),
+                 x2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(2)),
+                 x3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(3));
+    const __m256 y0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(4)),
+                 y1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(5)),
+                 y2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(6)),
+                 y3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(7));
+    const __m256 ax = _mm256_set1_ps(c.anchor_x), ay = _mm256_set1_ps(c.anchor_y);
+#pragma GCC unroll 4
+    for (int g = 0; g < kCellPixels / 8; ++g) {
+      const __m256 w = u[g];
+      const __m256 px = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, x3, x2), x1), x0);
+      const __m256 py = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, y3, y2), y1), y0);
+      _mm256_storeu_ps(sx + 8 * g, _mm256_add_ps(ax, px));
+      _mm256_storeu_ps(sy + 8 * g, _mm256_add_ps(ay, py));
+    }
+  }
+}
+
+#pragma GCC diagnostic push
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_*() (a self-initialised variable):
+// a false positive of both warnings.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+__attribute__((target("avx512f,avx512vl,fma"))) void polyCellsAvx512(const CellPoly* cells, int count, float v,
+                                                                    float* sx, float* sy) {
+  const __m256 vv = _mm256_set1_ps(v);
+  const __m512 half = _mm512_set1_ps(0.5f), scale = _mm512_set1_ps(1.0f / kCellPixels);
+  const __m512 j0 = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  __m512 u[kCellPixels / 16];
+#pragma GCC unroll 2
+  for (int g = 0; g < kCellPixels / 16; ++g)
+    u[g] = _mm512_mul_ps(_mm512_add_ps(_mm512_add_ps(j0, _mm512_set1_ps(16.0f * static_cast<float>(g))), half), scale);
+  for (int cell = 0; cell < count; ++cell, sx += kCellPixels, sy += kCellPixels) {
+    const CellPoly& c = cells[cell];
+    const __m512 k = _mm512_castps256_ps512(_mm256_fmadd_ps(
+        vv, _mm256_fmadd_ps(vv, _mm256_fmadd_ps(vv, _mm256_load_ps(c.p[3]), _mm256_load_ps(c.p[2])), _mm256_load_ps(c.p[1])),
+        _mm256_load_ps(c.p[0])));
+    const __m512 x0 = _mm512_permutexvar_ps(_mm512_set1_epi32(0), k), x1 = _mm512_permutexvar_ps(_mm512_set1_epi32(1), k),
+                 x2 = _mm512_permutexvar_ps(_mm512_set1_epi32(2), k), x3 = _mm512_permutexvar_ps(_mm512_set1_epi32(3), k);
+    const __m512 y0 = _mm512_permutexvar_ps(_mm512_set1_epi32(4), k), y1 = _mm512_permutexvar_ps(_mm512_set1_epi32(5), k),
+                 y2 = _mm512_permutexvar_ps(_mm512_set1_epi32(6), k), y3 = _mm512_permutexvar_ps(_mm512_set1_epi32(7), k);
+    const __m512 ax = _mm512_set1_ps(c.anchor_x), ay = _mm512_set1_ps(c.anchor_y);
+#pragma GCC unroll 2
+    for (int g = 0; g < kCellPixels / 16; ++g) {
+      const __m512 w = u[g];
+      const __m512 px = _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, x3, x2), x1), x0);
+      const __m512 py = _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, y3, y2), y1), y0);
+      _mm512_storeu_ps(sx + 16 * g, _mm512_add_ps(ax, px));
+      _mm512_storeu_ps(sy + 16 * g, _mm512_add_ps(ay, py));
+    }
+  }
+}
+#pragma GCC diagnostic pop
+#endif
+
 // The patch in double at pixel j of the cell (the per-pixel path's start).
 Eigen::Vector2d cubicAt(const CellRow& r, int j, int size = kCellPixels) {
   const double u = (j + 0.5) / size;
@@ -387,6 +483,10 @@ class RationalKernel final : public CoordinateKernel {
         seed_(std::move(seed)),
         seed_tolerance_(options.seed_tolerance_px),
         scalar_only_(options.scalar_only) {
+#if defined(__x86_64__)
+    if (!scalar_only_ && cpuHasAvx2() && cpuHasFma())
+      cells_simd_ = options.allow_avx512 && cpuHasAvx512f() ? 2 : 1;
+#endif
     if (seed_ && seed_->stageCount() == 1) seed_q_ = seed_->stage(0);
     if (newton_.forward().stageCount() == 1)
       for (const Eigen::Matrix3d& q : newton_.forward().stage(0)) forward_q_.emplace_back(q);
@@ -423,9 +523,15 @@ class RationalKernel final : public CoordinateKernel {
     }
     if (!all_patched) return mixedSpan(y, x0, n, sx, sy, valid, state);
     if (all_certified) {
-      for (int k = 0; k < count; ++k)
-        certifiedCell(first + k, y, sx + k * kCellPixels, sy + k * kCellPixels);
+      certifiedCells(first, count, y, sx, sy);
       std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
+      if (n >= 3) {
+        // The row state names these pixels instead of copying them (settle).
+        state.certified_end = x0 + n;
+        state.seed_offset = Eigen::Vector2d::Zero();
+        state.run += n;
+        return 0;
+      }
     } else {
       // Certified and empty cells and subcells only: no pixel needs a check.
       InverseCells::SubRow row;
@@ -435,7 +541,7 @@ class RationalKernel final : public CoordinateKernel {
         const int c1 = std::min(n, c0 + kCellPixels);
         const InverseCells::Kind kind = cells.kind(cx, cy);
         if (kind == InverseCells::kCertified) {
-          certifiedCell(first + k, y, sx + c0, sy + c0);
+          certifiedCells(first + k, 1, y, sx + c0, sy + c0);
           std::fill(valid + c0, valid + c1, static_cast<unsigned char>(1));
           continue;
         }
@@ -460,6 +566,7 @@ class RationalKernel final : public CoordinateKernel {
       }
     }
     // The row state as if these pixels had been solved (their solutions are these positions).
+    settle(y, state);
     const auto at = [&](int j) {
       return j >= 0 ? Eigen::Vector2d(sx[j], sy[j])
                     : j == -1 ? state.previous : j == -2 ? state.before_previous : state.third;
@@ -492,14 +599,30 @@ class RationalKernel final : public CoordinateKernel {
   static constexpr int kQuickIterations = 8;
   static constexpr int kMaxIterations = 30;
 
-  void certifiedCell(int cx, int y, float* sx, float* sy) const {
-    CellRow r;
-    cells_->row(cx, y, r);
-    const CellCubicF c(r);
+  // A row state that names certified pixels (RowState::certified_end) gets their positions,
+  // recomputed as the span wrote them (polyPixel).
+  void settle(int y, RowState& state) const {
+    if (state.certified_end <= 0) return;
+    const int cy = std::min(y / kCellPixels, cells_->cellsHigh() - 1);
+    const float v = (static_cast<float>(y - cy * kCellPixels) + 0.5f) * (1.0f / kCellPixels);
+    Eigen::Vector2d* const slots[3] = {&state.previous, &state.before_previous, &state.third};
+    for (int k = 0; k < 3; ++k) {
+      const int x = state.certified_end - 1 - k, cx = x / kCellPixels;
+      polyPixel(cells_->poly(cx, cy), v, x - cx * kCellPixels, *slots[k]);
+    }
+    state.certified_end = 0;
+  }
+
+  // Certified cells cx … cx + count − 1 of y's cell row: their patches along row y, in float.
+  void certifiedCells(int cx, int count, int y, float* sx, float* sy) const {
+    const int cy = std::min(y / kCellPixels, cells_->cellsHigh() - 1);
+    const float v = (static_cast<float>(y - cy * kCellPixels) + 0.5f) * (1.0f / kCellPixels);
+    const CellPoly* polys = &cells_->poly(cx, cy);
 #if defined(__x86_64__)
-    if (!scalar_only_ && cpuHasAvx2()) return cubicCellAvx2(c, sx, sy);
+    if (cells_simd_ == 2) return polyCellsAvx512(polys, count, v, sx, sy);
+    if (cells_simd_ == 1) return polyCellsAvx2(polys, count, v, sx, sy);
 #endif
-    cubicCellScalar(c, sx, sy);
+    for (int k = 0; k < count; ++k) polyCellScalar(polys[k], v, sx + k * kCellPixels, sy + k * kCellPixels);
   }
 
   // A certified subcell's pixels x .. x + count − 1 on its patch's row, in float like a cell's.
@@ -517,6 +640,7 @@ class RationalKernel final : public CoordinateKernel {
   // uncovered blocks are transparent, the rest is checked per pixel from the best start.
   int mixedSpan(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
                 RowState& state) const {
+    settle(y, state);
     const InverseCells& cells = *cells_;
     const double ty = y + 0.5;
     const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
@@ -744,6 +868,8 @@ class RationalKernel final : public CoordinateKernel {
   std::vector<Quadratic> forward_q_;
   double seed_tolerance_;
   bool scalar_only_;
+  // The certified cells' clone: 0 scalar, 1 AVX2, 2 AVX-512 (CoordinateOptions::allow_avx512).
+  int cells_simd_ = 0;
   std::optional<InverseCells> cells_;  // built last: it refers to newton_ and seed_
 };
 

@@ -22,9 +22,10 @@
 //   δ = J⁻¹ r. When |δ| ≤ the seed tolerance and s is on the centre's side of the poles and
 //   folds (inverse.h), s − δ is taken (the Newton step the check has already paid for, which
 //   leaves an error ~ curvature · δ²); only pixels where every start misses run the damped
-//   Newton of inverse.h. Certified cells (certify_tolerance_px) skip the check; under AVX2
-//   their spans run in float lanes re-anchored per span like the projective ones. The SIMD
-//   lanes are tested against the scalar double code (≤ 1e-3 px) and the exact inverse.
+//   Newton of inverse.h. Certified cells (certify_tolerance_px, inverse_cells.h) skip the check:
+//   their float patch (CellPoly, an offset from an anchor) is evaluated by fused multiply-adds,
+//   sixteen lanes under AVX-512, eight under AVX2, bit-identical to the scalar code. The SIMD
+//   lanes are tested against the scalar code (≤ 1e-3 px) and the exact inverse.
 #pragma once
 
 #include "core/model/camera.h"
@@ -58,8 +59,8 @@ struct CoordinateOptions {
   bool force_rational = false;  // run the rational kernel on projective cameras (tests, bench)
   // Run the portable scalar code where a SIMD clone exists (tests and the benchmark compare).
   bool scalar_only = false;
-  // Let certified rational spans take the AVX-512 lanes where the CPU has them (false: AVX2;
-  // the tests hold both to the same bounds).
+  // Let certified rational cells take the AVX-512 lanes where the CPU has them (false: AVX2;
+  // both give the scalar code's positions bit for bit).
   bool allow_avx512 = true;
 };
 
@@ -71,6 +72,10 @@ struct RowState {
   Eigen::Vector2d previous{0, 0}, before_previous{0, 0}, third{0, 0};
   Eigen::Vector2d seed_offset{0, 0};  // solution − seed at the last pixel solved from the seed
   int run = 0;                        // consecutive solved pixels just before this one
+  // > 0: previous, before_previous and third are not written yet; they are the rational
+  // kernel's certified positions at pixels certified_end − 1, − 2, − 3 of this row, worked out
+  // again only when a span needs them (most spans of a certified row never do).
+  int certified_end = 0;
 };
 
 class CoordinateKernel {

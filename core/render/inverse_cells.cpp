@@ -46,17 +46,42 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
   crossDerivatives();
 
   kinds_.assign(static_cast<size_t>(cells_w_) * static_cast<size_t>(cells_h_), kOpen);
+  polys_.reset(new CellPoly[kinds_.size()]);
+  // Neighbouring cells share an edge and, along it, their patches (the edge's two nodes alone
+  // define it): each edge midpoint is checked once here, not once by each cell.
+  const double tol = options_.certify_tolerance_px;
+  std::vector<unsigned char> across(nodes_.size(), 0), down(nodes_.size(), 0);
   ParallelOptions po;
   po.threads = options.threads;
   po.band_rows = 2;
+  parallelForRows(nodes_h_, po, [&](int j0, int j1) {
+    const Hermite mid(0.5);
+    for (int j = j0; j < j1; ++j)
+      for (int i = 0; i < nodes_w_; ++i) {
+        const Node& a = node(i, j);
+        if (!a.valid) continue;
+        if (i + 1 < nodes_w_ && node(i + 1, j).valid) {
+          const Node& b = node(i + 1, j);
+          const Eigen::Vector2d p = mid.h0 * a.s + mid.h1 * b.s + mid.h2 * a.su + mid.h3 * b.su;
+          across[index(i, j, nodes_w_)] = pointCertifies(p, Eigen::Vector2d((i + 0.5) * kCell, j * kCell), tol);
+        }
+        if (j + 1 < nodes_h_ && node(i, j + 1).valid) {
+          const Node& c = node(i, j + 1);
+          const Eigen::Vector2d p = mid.h0 * a.s + mid.h1 * c.s + mid.h2 * a.sv + mid.h3 * c.sv;
+          down[index(i, j, nodes_w_)] = pointCertifies(p, Eigen::Vector2d(i * kCell, (j + 0.5) * kCell), tol);
+        }
+      }
+  });
   parallelForRows(cells_h_, po, [&](int j0, int j1) {
     for (int cy = j0; cy < j1; ++cy)
       for (int cx = 0; cx < cells_w_; ++cx) {
         Kind& k = kinds_[index(cx, cy, cells_w_)];
         if (coverage_known_ && !cellCovered(cx, cy)) k = kEmpty;
-        else if (hasPatch(cx, cy) && certify(cellCorners(cx, cy), cx * kCell, cy * kCell, kCell,
-                                             options_.certify_tolerance_px))
+        else if (hasPatch(cx, cy) && across[index(cx, cy, nodes_w_)] && across[index(cx, cy + 1, nodes_w_)] &&
+                 down[index(cx, cy, nodes_w_)] && down[index(cx + 1, cy, nodes_w_)] &&
+                 certify(cellCorners(cx, cy), cx * kCell, cy * kCell, kCell, tol, false))
           k = patchBeyondReach(cellCorners(cx, cy)) ? kEmpty : kCertified;
+        if (k == kCertified) polyOf(cellCorners(cx, cy), polys_[index(cx, cy, cells_w_)]);
       }
   });
   if (options.subdivide) refineOpenCells(options.threads);
@@ -186,6 +211,30 @@ void InverseCells::rowOf(const Corners& n, double v, CellRow& out) {
   out.y[0] = f0.y(), out.y[1] = d0.y(), out.y[2] = c2.y(), out.y[3] = c3.y();
 }
 
+void InverseCells::polyOf(const Corners& n, CellPoly& out) {
+  // rowOf in the power basis of v: the Hermite basis functions' coefficients (1, v, v², v³)
+  // blend the edges' values and derivatives; the row cubic's coefficients are linear in those.
+  static constexpr double kH[4][4] = {{1, 0, -3, 2}, {0, 0, 3, -2}, {0, 1, -2, 1}, {0, 0, -1, 1}};
+  const Node &a = *n.a, &b = *n.b, &c = *n.c, &d = *n.d;
+  const Eigen::Vector2d anchor(static_cast<float>(a.s.x()), static_cast<float>(a.s.y()));
+  out.anchor_x = static_cast<float>(anchor.x());
+  out.anchor_y = static_cast<float>(anchor.y());
+  for (int l = 0; l < 4; ++l) {
+    const double h0 = kH[0][l], h1 = kH[1][l], h2 = kH[2][l], h3 = kH[3][l];
+    // The anchor enters the values only through the constant term (h0 + h1 = 1 at l = 0).
+    const Eigen::Vector2d base = l == 0 ? anchor : Eigen::Vector2d::Zero();
+    const Eigen::Vector2d f0 = h0 * a.s + h1 * c.s + h2 * a.sv + h3 * c.sv - base;
+    const Eigen::Vector2d f1 = h0 * b.s + h1 * d.s + h2 * b.sv + h3 * d.sv - base;
+    const Eigen::Vector2d d0 = h0 * a.su + h1 * c.su + h2 * a.suv + h3 * c.suv;
+    const Eigen::Vector2d d1 = h0 * b.su + h1 * d.su + h2 * b.suv + h3 * d.suv;
+    const Eigen::Vector2d k[4] = {f0, d0, 3.0 * (f1 - f0) - 2.0 * d0 - d1, 2.0 * (f0 - f1) + d0 + d1};
+    for (int i = 0; i < 4; ++i) {
+      out.p[l][i] = static_cast<float>(k[i].x());
+      out.p[l][4 + i] = static_cast<float>(k[i].y());
+    }
+  }
+}
+
 void InverseCells::row(int cx, int y, CellRow& out) const {
   const int cy = std::min(y / kCell, cells_h_ - 1);
   rowOf(cellCorners(cx, cy), (y + 0.5 - cy * kCell) / kCell, out);
@@ -198,8 +247,22 @@ Eigen::Vector2d InverseCells::patchAt(const Corners& n, double u, double v) {
   return hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
 }
 
-bool InverseCells::certify(const Corners& n, double x0, double y0, double size, double tol) const {
+bool InverseCells::pointCertifies(const Eigen::Vector2d& p, const Eigen::Vector2d& t, double tol) const {
   const CentreReference& centre = newton_.centre();
+  Eigen::Vector2d f;
+  Eigen::Matrix2d j;
+  unsigned signs = 0;
+  if (!newton_.forward().evaluate(p, f, &j, &signs)) return false;
+  const double det = j.determinant();
+  if (signs != centre.denominator_signs || (det > 0.0) != centre.det_positive) return false;
+  const Eigen::Vector2d r = f - t;
+  const Eigen::Vector2d step((j(1, 1) * r.x() - j(0, 1) * r.y()) / det,
+                             (j(0, 0) * r.y() - j(1, 0) * r.x()) / det);
+  return step.cwiseAbs().maxCoeff() <= tol;
+}
+
+bool InverseCells::certify(const Corners& n, double x0, double y0, double size, double tol,
+                           bool edges) const {
   // The edges' midpoints (a cubic Hermite's error along an edge, ∝ u²(1 − u)², peaks there),
   // the centre, and the four points u, v ∈ {1/2 ± 1/√12} where an error in the cross
   // derivatives, ∝ u(1 − u)(1 − 2u) · v(1 − v)(1 − 2v), peaks and the centre sees nothing.
@@ -212,27 +275,21 @@ bool InverseCells::certify(const Corners& n, double x0, double y0, double size, 
   };
   static constexpr PointRow kRows[5] = {{0.0, 1, {0.5, 0, 0}},
                                         {1.0, 1, {0.5, 0, 0}},
-                                        {0.5, 3, {0.0, 1.0, 0.5}},
+                                        {0.5, 3, {0.5, 0.0, 1.0}},
                                         {lo, 2, {lo, hi, 0}},
                                         {hi, 2, {lo, hi, 0}}};
   for (const PointRow& row : kRows) {
+    if (!edges && (row.v == 0.0 || row.v == 1.0)) continue;
     Eigen::Vector2d f0, f1, d0, d1;
     edgesAt(n, row.v, f0, f1, d0, d1);
-    for (int k = 0; k < row.count; ++k) {
+    // Without the edges, the middle row's points on them (u = 0, 1) are left out too.
+    const int count = !edges && row.v == 0.5 ? 1 : row.count;
+    for (int k = 0; k < count; ++k) {
       const double u = row.u[k];
       const Hermite hu(u);
       const Eigen::Vector2d t(x0 + u * size, y0 + row.v * size);
       const Eigen::Vector2d p = hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
-      Eigen::Vector2d f;
-      Eigen::Matrix2d j;
-      unsigned signs = 0;
-      if (!newton_.forward().evaluate(p, f, &j, &signs)) return false;
-      const double det = j.determinant();
-      if (signs != centre.denominator_signs || (det > 0.0) != centre.det_positive) return false;
-      const Eigen::Vector2d r = f - t;
-      const Eigen::Vector2d step((j(1, 1) * r.x() - j(0, 1) * r.y()) / det,
-                                 (j(0, 0) * r.y() - j(1, 0) * r.x()) / det);
-      if (!(step.cwiseAbs().maxCoeff() <= tol)) return false;
+      if (!pointCertifies(p, t, tol)) return false;
     }
   }
   return true;

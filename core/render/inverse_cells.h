@@ -54,6 +54,7 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <vector>
 
 namespace artcam {
@@ -72,6 +73,18 @@ struct InverseCellsOptions {
 // at u = (x + 0.5 − cx · kCell) / kCell.
 struct CellRow {
   double x[4], y[4];
+};
+
+// A certified cell's patch in float, made once when the cell certifies so that a span's rows
+// cost no double Hermite blend per cell and row: the patch minus `anchor` (its first node's
+// position rounded to float) in the power basis of the cell's local (u, v) ∈ [0, 1]²,
+//   s(u, v) = anchor + Σ_k u^k Σ_l v^l p[l][k]  (x in lanes 0–3, y in lanes 4–7).
+// A row's cubic in u is then one Horner step in v per power over eight lanes. Only the offset
+// from the anchor (a cell's stretch, ~32 px: its rounding ~1e-6 px) is a float sum; adding
+// the anchor rounds once, as any float position does (half an ulp ≤ 2.4e-4 px at 6000 px).
+struct alignas(32) CellPoly {
+  float p[4][8];
+  float anchor_x, anchor_y;
 };
 
 class InverseCells {
@@ -100,6 +113,9 @@ class InverseCells {
   bool hasPatch(int cx, int cy) const;
   // The patch of cell (cx, y / kCell) along output row y (hasPatch must hold).
   void row(int cx, int y, CellRow& out) const;
+  // A certified cell's patch in float (kind(cx, cy) == kCertified; cells (cx, cy), (cx + 1,
+  // cy), … follow each other in memory).
+  const CellPoly& poly(int cx, int cy) const { return polys_[index(cx, cy, cells_w_)]; }
   // Output pixel (x, y) may have a preimage within reach (always true without coverage).
   bool covered(int x, int y) const;
 
@@ -175,10 +191,15 @@ class InverseCells {
   static void edgesAt(const Corners& n, double v, Eigen::Vector2d& f0, Eigen::Vector2d& f1,
                       Eigen::Vector2d& d0, Eigen::Vector2d& d1);
   static void rowOf(const Corners& n, double v, CellRow& out);
+  static void polyOf(const Corners& n, CellPoly& out);
   // The patch's value at local (u, v) ∈ [0, 1]².
   static Eigen::Vector2d patchAt(const Corners& n, double u, double v);
-  // The patch over the square of `size` output pixels at (x0, y0), to `tol` output pixels.
-  bool certify(const Corners& n, double x0, double y0, double size, double tol) const;
+  // The patch over the square of `size` output pixels at (x0, y0), to `tol` output pixels;
+  // `edges` false leaves out the four edge midpoints (the caller checked them).
+  bool certify(const Corners& n, double x0, double y0, double size, double tol, bool edges = true) const;
+  // One point: the patch's value p for output point t is one Newton step within `tol` of the
+  // exact inverse, on the source centre's side of every pole curve and of the fold.
+  bool pointCertifies(const Eigen::Vector2d& p, const Eigen::Vector2d& t, double tol) const;
   bool patchBeyondReach(const Corners& n) const;
   void buildCoverage(int threads);
   bool cellCovered(int cx, int cy) const;
@@ -202,6 +223,8 @@ class InverseCells {
   int nodes_w_ = 0, nodes_h_ = 0, cells_w_ = 0, cells_h_ = 0, blocks_w_ = 0, blocks_h_ = 0;
   std::vector<Node> nodes_;
   std::vector<Kind> kinds_;
+  // cells_w_ × cells_h_, written where kinds_ is kCertified only (so never zero-filled first).
+  std::unique_ptr<CellPoly[]> polys_;
   bool coverage_known_ = false;
   std::vector<unsigned char> covered_;  // blocks_w_ × blocks_h_
   // The coverage lattice mapped forward (buildCoverage), for the open cells' finer coverage.

@@ -161,10 +161,10 @@ class TestFused : public QObject {
   }
 
   // The SIMD clone picked at run time and the portable scalar code give the same image, bit
-  // for bit (neither contracts to FMA), and the same summary, on a strong random map: the
-  // checked path and the certified cells' cubic (the same float operations in the same order
-  // in both). Homographies' float spans are compared within tolerance instead
-  // (test_fast_paths, floatSpans…).
+  // for bit, and the same summary, on a strong random map: the checked path (neither
+  // contracts to FMA) and the certified cells' patches (fused multiply-adds in both, each
+  // rounded once whatever the width, in the same order). Homographies' float spans are
+  // compared within tolerance instead (test_fast_paths, floatSpans…).
   void dispatchedAndScalarAgree() {
     const FrameSize size{300, 200};
     test::rng().seed(13);
