@@ -51,23 +51,33 @@ struct HeaderMarkers {
   std::vector<unsigned char> icc;
 };
 
+// libjpeg's error handling for the header reader and the compressor: error_exit formats the
+// message and jumps back to the caller's setjmp; warnings and traces are dropped.
+struct JumpErrors {
+  jpeg_error_mgr manager;  // first: libjpeg hands back a pointer to it
+  std::jmp_buf jump;
+  char fatal[JMSG_LENGTH_MAX] = {};
+  jpeg_error_mgr* install() {
+    jpeg_std_error(&manager);
+    manager.error_exit = [](j_common_ptr common) {
+      JumpErrors* e = reinterpret_cast<JumpErrors*>(common->err);
+      (*common->err->format_message)(common, e->fatal);
+      std::longjmp(e->jump, 1);
+    };
+    manager.emit_message = [](j_common_ptr, int) {};
+    return &manager;
+  }
+};
+
 struct HeaderReader {
-  struct Errors {
-    jpeg_error_mgr manager;  // first: libjpeg hands back a pointer to it
-    std::jmp_buf jump;
-  };
   std::FILE* file = nullptr;
   jpeg_decompress_struct info{};
-  Errors errors{};
+  JumpErrors errors{};
   bool created = false;
   ~HeaderReader() {
     if (created) jpeg_destroy_decompress(&info);
     if (file) std::fclose(file);
   }
-  static void onFatal(j_common_ptr common) {
-    std::longjmp(reinterpret_cast<Errors*>(common->err)->jump, 1);
-  }
-  static void onMessage(j_common_ptr, int) {}
 };
 
 bool readMarkers(HeaderReader& r, HeaderMarkers& markers) {
@@ -104,33 +114,20 @@ HeaderMarkers markersOf(const ImageInfo* like) {
   HeaderReader r;
   r.file = std::fopen(like->path.c_str(), "rb");
   if (!r.file) return markers;
-  r.info.err = jpeg_std_error(&r.errors.manager);
-  r.errors.manager.error_exit = &HeaderReader::onFatal;
-  r.errors.manager.emit_message = &HeaderReader::onMessage;
+  r.info.err = r.errors.install();
   if (!readMarkers(r, markers)) return HeaderMarkers{};
   return markers;
 }
 
 struct Compressor {
-  struct Errors {
-    jpeg_error_mgr manager;
-    std::jmp_buf jump;
-    char fatal[JMSG_LENGTH_MAX] = {};
-  };
   std::FILE* file = nullptr;
   jpeg_compress_struct info{};
-  Errors errors{};
+  JumpErrors errors{};
   bool created = false;
   ~Compressor() {
     if (created) jpeg_destroy_compress(&info);
     if (file) std::fclose(file);
   }
-  static void onFatal(j_common_ptr common) {
-    Errors* e = reinterpret_cast<Errors*>(common->err);
-    (*common->err->format_message)(common, e->fatal);
-    std::longjmp(e->jump, 1);
-  }
-  static void onMessage(j_common_ptr, int) {}
 };
 
 bool startCompress(Compressor& c, int width, int height, int components, int quality,
@@ -328,9 +325,7 @@ std::optional<Status> writeBands(const std::string& path, const ConstImageView& 
     Compressor c;
     c.file = std::fopen(temp.c_str(), "wb");
     if (!c.file) return failure("cannot create the file");
-    c.info.err = jpeg_std_error(&c.errors.manager);
-    c.errors.manager.error_exit = &Compressor::onFatal;
-    c.errors.manager.emit_message = &Compressor::onMessage;
+    c.info.err = c.errors.install();
     if (!startCompress(c, shape.width, shape.height, colours, quality, markers)) return failure(c.errors.fatal);
     // Bands of rows, each handed to libjpeg as it is (alpha dropped first where there is one).
     constexpr int kBand = 64;
