@@ -4,7 +4,7 @@
 //
 // Where the module is: $ARTCAM_IO_MODULE when set (a path), else beside this library
 // (libartcam_core.so's own directory, found with dladdr: the build puts both in <build>/lib,
-// the package in /usr/lib/<triplet>/artcam). A module that cannot be loaded makes every
+// an install in <libdir>/artcam, /usr/lib/artcam in the package). A module that cannot be loaded makes every
 // image read and write fail in one line naming it and why, never a crash.
 //
 // JPEG files the codec path takes are read and written without the module (jpeg_file.h).
