@@ -209,15 +209,14 @@ std::optional<Result<StoredShape>> readShape(const std::string& path) {
   return R::success(StoredShape{d.width(), d.height(), d.channels(), PixelType::UInt8});
 }
 
-std::optional<Result<StoredImage>> readStored(const std::string& path, const ReadImageOptions& options) {
+namespace {
+
+// The decode both readers share, from an opened decoder (openOurs) of a file within the memory
+// budget: the stored samples, turned upright (orientation.h), with readStored's ImageInfo.
+Result<StoredImage> decodeUpright(const std::string& path, std::unique_ptr<JpegDecoder> jpeg,
+                                  const ReadImageOptions& options) {
   using R = Result<StoredImage>;
-  auto opened = openOurs(path);
-  if (!opened) return std::nullopt;
-  if (!*opened) return R::failure(opened->status.message);
-  std::unique_ptr<JpegDecoder> jpeg = std::move(*opened->value);
   const int width = jpeg->width(), height = jpeg->height(), channels = jpeg->channels();
-  if (const Status size = image_checks::claimedSize(path, width, height, channels, 1, true); !size)
-    return R::failure(size.message);
   StoredImage image;
   try {  // every byte is decoded into, so the raster is not zeroed first
     image = makeStoredImage(width, height, channels, -1, PixelType::UInt8, PixelBuffer::Init::Uninitialised);
@@ -249,52 +248,54 @@ std::optional<Result<StoredImage>> readStored(const std::string& path, const Rea
     image = std::move(upright);
   }
   image.info = describe(path, orientation, std::move(metadata));
-  if (options.progress) options.progress(1.0);
   return R::success(std::move(image));
+}
+
+// The decoder of a JPEG this path reads whole, checked against the memory budget; nullopt when
+// the file is not one it takes.
+std::optional<Result<std::unique_ptr<JpegDecoder>>> openWhole(const std::string& path) {
+  using R = Result<std::unique_ptr<JpegDecoder>>;
+  auto opened = openOurs(path);
+  if (!opened || !*opened) return opened;
+  const JpegDecoder& d = ***opened;
+  if (const Status size = image_checks::claimedSize(path, d.width(), d.height(), d.channels(), 1, true); !size)
+    return R::failure(size.message);
+  return opened;
+}
+
+}  // namespace
+
+std::optional<Result<StoredImage>> readStored(const std::string& path, const ReadImageOptions& options) {
+  using R = Result<StoredImage>;
+  auto opened = openWhole(path);
+  if (!opened) return std::nullopt;
+  if (!*opened) return R::failure(opened->status.message);
+  Result<StoredImage> image = decodeUpright(path, std::move(*opened->value), options);
+  if (image && options.progress) options.progress(1.0);
+  return image;
 }
 
 std::optional<Result<LoadedImage>> readFloat(const std::string& path, const ReadImageOptions& options) {
   using R = Result<LoadedImage>;
-  auto opened = openOurs(path);
+  auto opened = openWhole(path);
   if (!opened) return std::nullopt;
   if (!*opened) return R::failure(opened->status.message);
-  std::unique_ptr<JpegDecoder> jpeg = std::move(*opened->value);
-  const int width = jpeg->width(), height = jpeg->height(), channels = jpeg->channels();
-  if (const Status size = image_checks::claimedSize(path, width, height, channels, 1, true); !size)
-    return R::failure(size.message);
-  if (!jpeg->iccProfile().empty()) {
-    auto profile = IccProfile::fromBytes(jpeg->iccProfile(), channels, path);
+  const JpegDecoder& header = ***opened;
+  if (!header.iccProfile().empty()) {
+    auto profile = IccProfile::fromBytes(header.iccProfile(), header.channels(), path);
     if (!profile || !profile->equivalentToSrgb()) return std::nullopt;  // the module's to convert or refuse
   }
+  Result<StoredImage> stored = decodeUpright(path, std::move(*opened->value), options);
+  if (!stored) return R::failure(stored.status.message);
   LoadedImage loaded;
-  std::vector<std::uint8_t> stored;
   try {
-    loaded.image = ImageF(width, height, channels, -1);
-    stored.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels));
+    loaded.image = ImageF(stored->width, stored->height, stored->channels, -1);
   } catch (const std::bad_alloc&) {
-    return R::failure(path + ": cannot read: not enough memory for " + std::to_string(width) + "x" +
-                      std::to_string(height) + " pixels");
+    return R::failure(path + ": cannot read: not enough memory for " + std::to_string(stored->width) +
+                      "x" + std::to_string(stored->height) + " pixels");
   }
-  const Status decoded = jpeg->decode(stored.data(),
-                                      static_cast<size_t>(width) * static_cast<size_t>(channels),
-                                      options.progress);
-  jpeg.reset();  // closes the file before the metadata reader opens it
-  if (!decoded) return R::failure(decoded.message);
-  ImageF& image = loaded.image;
-  integer_decode::decode(stored.data(), stored.size(), Transfer::srgb(), image);
-  stored = {};
-
-  std::shared_ptr<const PhotoMetadata> metadata = readPhotoMetadata(path);
-  const int tagged = metadata ? photoOrientation(*metadata) : 0;
-  const int orientation = validOrientation(tagged != 0 ? tagged : 1);
-  if (orientation != 1) {
-    const bool swap = orientationSwapsAxes(orientation);
-    ImageF upright(swap ? height : width, swap ? width : height, channels, -1);
-    reorientPixels(image.data.data(), width, height, sizeof(float) * static_cast<size_t>(channels),
-                   orientation, upright.data.data());
-    image = std::move(upright);
-  }
-  loaded.info = describe(path, orientation, std::move(metadata));
+  integer_decode::decode(stored->bytes.data(), loaded.image.data.size(), Transfer::srgb(), loaded.image);
+  loaded.info = std::move(stored->info);
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));
 }
