@@ -4,7 +4,8 @@
 // to a fully transparent image, and one that loses part of the frame is reported.
 //
 // The position map is sampled on a 49×49 lattice of the source rectangle (coarser for chains of
-// hundreds of stages, down to 5×5; in the normalised frames of frames.h). A lattice cell "covers" when its four
+// hundreds of stages, down to 5×5; in the normalised frames of frames.h); a rectangle smaller
+// than the frame (a patch) on a lattice as dense, at least 5×5. A lattice cell "covers" when its four
 // mapped corners are finite, span an area (not a line or a point: the shoelace area exceeds
 // 1e-12 of the target frame's), and one of them lands inside the target frame. A camera with
 // no covering cell renders nothing: refused. A sign change of the position block's homogeneous

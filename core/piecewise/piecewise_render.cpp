@@ -9,7 +9,10 @@
 
 #include <Eigen/LU>
 
+#include <emmintrin.h>
+
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -50,6 +53,10 @@ struct Mesh {
   std::vector<Eigen::Vector2d> bend[3];
   int chunks_x = 0, chunks_y = 0;
   std::vector<std::vector<int>> bands;    // chunks whose cells may cover each band's rows
+  // Per cell row j and chunk column ci (j · chunks_x + ci): the output rows its drawn
+  // triangles span, [lo, hi]; empty (lo > hi) where it draws none. A band skips a chunk's
+  // cell rows that miss it with one test each instead of one per cell.
+  std::vector<std::array<double, 2>> row_spans;
   long long triangles = 0;
 
   size_t at(int i, int j) const { return static_cast<size_t>(j) * static_cast<size_t>(nx) + static_cast<size_t>(i); }
@@ -242,6 +249,10 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
     triangles += count;
   });
   mesh.triangles = triangles.load();
+  mesh.row_spans.resize(row_boxes.size());
+  for (size_t r = 0; r < row_boxes.size(); ++r)
+    mesh.row_spans[r] = row_boxes[r].x0 <= row_boxes[r].x1 ? std::array<double, 2>{row_boxes[r].y0, row_boxes[r].y1}
+                                                           : std::array<double, 2>{1.0, 0.0};
   mesh.bands.resize(static_cast<size_t>((size.height + kBandRows - 1) / kBandRows));
   for (int cj = 0; cj < mesh.chunks_y; ++cj)
     for (int ci = 0; ci < mesh.chunks_x; ++ci) {
@@ -378,7 +389,8 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
   const double eps = -1e-9 * std::abs(area);
   const double inv = 1.0 / area;
   // Each barycentric weight is affine in x along a row, so the position is quadratic in it:
-  // p(k) = p0 + k (d1 + k d2), walked by forward differences (two adds per coordinate).
+  // p(k) = p0 + k (d1 + k d2), evaluated two pixels at a time (no value carried from one pixel
+  // to the next).
   const double dwa = -(c.y() - b.y()) * inv, dwb = -(a.y() - c.y()) * inv, dwc = -(b.y() - a.y()) * inv;
   const Eigen::Vector2d d_linear = dwa * s[0] + dwb * s[1] + dwc * s[2];
   const Eigen::Vector2d d2 = 4.0 * (dwa * dwb * bend[0] + dwb * dwc * bend[1] + dwc * dwa * bend[2]);
@@ -390,37 +402,54 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
                wc_first = edge(a, b, px0, py0) * inv;
   const double dw[3] = {dwa, dwb, dwc};
   const double inv_dw[3] = {dwa != 0.0 ? 1.0 / dwa : 0.0, dwb != 0.0 ? 1.0 / dwb : 0.0, dwc != 0.0 ? 1.0 / dwc : 0.0};
+  // The row's run of pixels inside is bounded by dividing: each weight w0 + k dw ≥ eps is a
+  // half-line in k. The bound is taken at twice eps, so rounding (~1e-16 of k) never drops a
+  // pixel the per-pixel test w ≥ eps would keep: a pixel on an edge shared by two triangles is
+  // drawn by both, with the same position to rounding (the mesh is continuous), never by neither.
+  const double eps_bound = 2.0 * eps;
+  const double k_max = x_end - x_begin;
   for (int y = row_begin; y <= row_end; ++y) {
     const double ry = y - row_begin;
     const double wa0 = wa_first + ry * dya, wb0 = wb_first + ry * dyb, wc0 = wc_first + ry * dyc;
-    // The row's pixels inside: each weight ≥ eps is a half-line in k; one pixel of slack
-    // each side, the exact per-pixel test decides (so a pixel on an edge is never lost).
-    double k_lo = 0.0, k_hi = x_end - x_begin;
+    double k_lo = 0.0, k_hi = k_max;
     const double w0[3] = {wa0, wb0, wc0};
     for (int q = 0; q < 3; ++q) {
-      if (dw[q] > 0.0) k_lo = std::max(k_lo, std::floor((eps - w0[q]) * inv_dw[q]) - 1.0);
-      else if (dw[q] < 0.0) k_hi = std::min(k_hi, std::ceil((eps - w0[q]) * inv_dw[q]) + 1.0);
+      const double at = (eps_bound - w0[q]) * inv_dw[q];
+      if (dw[q] > 0.0) k_lo = std::max(k_lo, at);
+      else if (dw[q] < 0.0) k_hi = std::min(k_hi, at);
       else if (w0[q] < eps) k_hi = -1.0;
     }
     if (!(k_lo <= k_hi)) continue;
-    const int first = static_cast<int>(k_lo), last = static_cast<int>(k_hi);
-    const double k0 = first;
-    const double wa = wa0 + k0 * dwa, wb = wb0 + k0 * dwb, wc = wc0 + k0 * dwc;
-    Eigen::Vector2d p = quadratic(wa, wb, wc, s, bend);
-    // Δ(k) = p(k + 1) − p(k) = d1 + d2 (2k + 1), with d1 the slope at k0.
-    const Eigen::Vector2d d1 = d_linear + 4.0 * ((wa * dwb + dwa * wb) * bend[0] + (wb * dwc + dwb * wc) * bend[1] +
-                                                 (wc * dwa + dwc * wa) * bend[2]);
-    Eigen::Vector2d delta = d1 + d2;
-    const Eigen::Vector2d step2 = 2.0 * d2;
+    const int k = static_cast<int>(std::ceil(k_lo)), end = static_cast<int>(std::floor(k_hi));
+    if (k > end) continue;
+    // The position at the row's first pixel of the box (k = 0) and its slope there:
+    // p(k) = p + k (d1 + k d2).
+    const Eigen::Vector2d p = quadratic(wa0, wb0, wc0, s, bend);
+    const Eigen::Vector2d d1 = d_linear + 4.0 * ((wa0 * dwb + dwa * wb0) * bend[0] + (wb0 * dwc + dwb * wc0) * bend[1] +
+                                                 (wc0 * dwa + dwc * wa0) * bend[2]);
     const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(x_begin);
-    for (int k = first; k <= last; ++k, p += delta, delta += step2) {
-      const double kk = k;
-      if (wa0 + kk * dwa < eps || wb0 + kk * dwb < eps || wc0 + kk * dwc < eps) continue;
-      sx[row + static_cast<size_t>(k)] = static_cast<float>(p.x());
-      sy[row + static_cast<size_t>(k)] = static_cast<float>(p.y());
-      valid[row + static_cast<size_t>(k)] = 1;
-      ++covered;
+    float* row_x = sx + row;
+    float* row_y = sy + row;
+    const __m128d ax = _mm_set1_pd(p.x()), ay = _mm_set1_pd(p.y());
+    const __m128d bx = _mm_set1_pd(d1.x()), by = _mm_set1_pd(d1.y());
+    const __m128d cx = _mm_set1_pd(d2.x()), cy = _mm_set1_pd(d2.y());
+    const double m0 = k;
+    __m128d m = _mm_setr_pd(m0, m0 + 1.0);
+    const __m128d two = _mm_set1_pd(2.0);
+    int q = k;
+    for (; q + 1 <= end; q += 2, m = _mm_add_pd(m, two)) {
+      const __m128 fx = _mm_cvtpd_ps(_mm_add_pd(ax, _mm_mul_pd(m, _mm_add_pd(bx, _mm_mul_pd(m, cx)))));
+      const __m128 fy = _mm_cvtpd_ps(_mm_add_pd(ay, _mm_mul_pd(m, _mm_add_pd(by, _mm_mul_pd(m, cy)))));
+      _mm_storel_pi(reinterpret_cast<__m64*>(row_x + q), fx);
+      _mm_storel_pi(reinterpret_cast<__m64*>(row_y + q), fy);
     }
+    for (; q <= end; ++q) {
+      const double mm = q;
+      row_x[q] = static_cast<float>(p.x() + mm * (d1.x() + mm * d2.x()));
+      row_y[q] = static_cast<float>(p.y() + mm * (d1.y() + mm * d2.y()));
+    }
+    std::memset(valid + row + static_cast<size_t>(k), 1, static_cast<size_t>(end - k + 1));
+    covered += end - k + 1;
   }
   return covered;
 }
@@ -432,7 +461,9 @@ long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, 
   long long covered = 0;
   for (const int chunk : mesh.bands[static_cast<size_t>(y0 / kBandRows)]) {
     const int ci = chunk % mesh.chunks_x, cj = chunk / mesh.chunks_x;
-    for (int j = cj * kChunkCells; j < std::min(cells_y, (cj + 1) * kChunkCells); ++j)
+    for (int j = cj * kChunkCells; j < std::min(cells_y, (cj + 1) * kChunkCells); ++j) {
+      const std::array<double, 2>& span = mesh.row_spans[static_cast<size_t>(j) * static_cast<size_t>(mesh.chunks_x) + static_cast<size_t>(ci)];
+      if (!(span[0] <= span[1]) || span[1] < top || span[0] > bottom) continue;
       for (int i = ci * kChunkCells; i < std::min(cells_x, (ci + 1) * kChunkCells); ++i) {
         if (!mesh.cell_ok[static_cast<size_t>(j) * static_cast<size_t>(cells_x) + static_cast<size_t>(i)]) continue;
         const size_t v[4] = {mesh.at(i, j), mesh.at(i + 1, j), mesh.at(i, j + 1), mesh.at(i + 1, j + 1)};
@@ -452,6 +483,7 @@ long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, 
           if (ok) covered += rasterise(t, s, bend, y0, y1, width, sx, sy, valid);
         }
       }
+    }
   }
   return covered;
 }

@@ -11,8 +11,8 @@
 // the two triangles on the edge, so the mesh stays continuous). Linear triangles miss by
 // ~step²·|∂²s|/8 (a 24 MP fisheye: ~0.004 px at 4 px); quadratic ones by ~step³, so a lattice
 // of 32 px meets 1/256 px where the linear one needed 2 px. The step is chosen by measuring
-// (chooseMeshStep), and each band of rows walks its triangles' positions by forward
-// differences into the warp's span sampler.
+// (chooseMeshStep), and each band of rows evaluates its triangles' positions row by row
+// (a quadratic in x per row) into the warp's span sampler.
 #pragma once
 
 #include "core/model/image.h"

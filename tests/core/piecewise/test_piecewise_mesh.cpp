@@ -111,6 +111,29 @@ class TestPiecewiseMesh : public QObject {
     QVERIFY2(m.worst_px <= 2.0 * choice.error_px && choice.error_px <= 4.0 * m.worst_px,
              qPrintable(QString("measured %1, estimated %2").arg(m.worst_px).arg(choice.error_px)));
   }
+
+  void edgesThroughPixelCentresLeaveNoCrack() {
+    // The identity on a 4-px lattice: every cell's diagonal runs through pixel centres, which
+    // lie on the edge the cell's two triangles share (weight 0 in both). Each must still be
+    // drawn, by one triangle or both, at its own position: no transparent pixel inside.
+    const Camera identity = buildEffect("barrel", {{"k", {0.0}}}, kSize).main();
+    PiecewiseRenderOptions options;
+    options.mesh_step_px = 4.0;
+    const ImageF out = renderPiecewise(coordinateRamp(), fourPatchesOf(identity), options);
+    int holes = 0;
+    double worst = 0.0;
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) {
+        const float* p = out.pixel(x, y);
+        if (!(p[2] > 0.5f)) {  // a crack is transparent; the frame's edge only shaves coverage
+          ++holes;
+          continue;
+        }
+        worst = std::max(worst, std::hypot(p[0] - (x + 0.5), p[1] - (y + 0.5)));
+      }
+    QCOMPARE(holes, 0);
+    QVERIFY2(worst < 1e-4, qPrintable(QString::number(worst)));
+  }
 };
 
 QTEST_GUILESS_MAIN(TestPiecewiseMesh)
