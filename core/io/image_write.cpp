@@ -9,6 +9,7 @@
 #include "core/io/io_text.h"
 #include "core/io/photo_metadata.h"
 #include "core/colour/icc_profile.h"
+#include "core/colour/quantise8.h"
 #include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <set>
 
 namespace artcam {
@@ -237,6 +239,30 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       encode_icc->fromWorking(encoded.data(), encoded.size() / static_cast<size_t>(channels),
                               channels, alpha);
   };
+  // 8-bit output through a transfer (no profile to convert through): straight to bytes by the
+  // thresholds of quantise8.h, the same integers as encoding each sample and rounding it.
+  std::optional<Quantise8> to_byte, alpha_to_byte;
+  if (pixel_type == "uint8" && !encode_icc && !with_extra) {
+    to_byte.emplace(transfer);
+    if (keep_alpha) alpha_to_byte.emplace(Transfer::linear());
+  }
+  auto byteRows = [&](int y0, int y1, std::vector<std::uint8_t>& out_bytes) {
+    out_bytes.clear();
+    const size_t begin = static_cast<size_t>(y0) * static_cast<size_t>(image.width) * in_channels;
+    const size_t end = static_cast<size_t>(y1) * static_cast<size_t>(image.width) * in_channels;
+    for (size_t p = begin; p < end; p += in_channels) {
+      const float* px = image.data.data() + p;
+      const float a = image.alpha_channel >= 0 ? px[image.alpha_channel] : 1.0f;
+      for (size_t c = 0; c < in_channels; ++c) {
+        if (static_cast<int>(c) == image.alpha_channel) {
+          if (keep_alpha) out_bytes.push_back((*alpha_to_byte)(a));
+          continue;
+        }
+        const double linear = !divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0;
+        out_bytes.push_back((*to_byte)(linear));
+      }
+    }
+  };
   const OIIO::TypeDesc data_type = pixel_type == "uint8"    ? OIIO::TypeDesc::UINT8
                                    : pixel_type == "uint16" ? OIIO::TypeDesc::UINT16
                                                             : OIIO::TypeDesc::FLOAT;
@@ -259,6 +285,11 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
         return failure("cancelled");
       }
       const int y1 = std::min(image.height, y0 + kBand);
+      if (to_byte) {
+        byteRows(y0, y1, bytes);
+        ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, bytes.data());
+        continue;
+      }
       encodeRows(y0, y1, encoded);
       const void* data = encoded.data();
       if (with_extra) {  // OpenEXR only, so float samples
