@@ -167,7 +167,20 @@ class ProjectiveKernel final : public CoordinateKernel {
     const double dx = m_(0, 0), dy = m_(1, 0), dw = m_(2, 0);
     const ProjectiveRow r{h0.x(), h0.y(), h0.z(), dx, dy, dw, centre_positive_ ? 1.0 : -1.0};
 #if defined(__x86_64__)
-    // Affine maps too (W = 1, γ = 0): the float lanes beat the double loop below.
+    // Affine maps (W = 1 exactly, γ = 0): the float lanes, set up without the divisions below,
+    // which by W = 1 would give these same numbers (chromatic aberration runs three of these
+    // per pixel, so their set-up showed).
+    if (affine_ && !scalar_only_ && cpuHasAvx2()) {
+      const double u1 = r.x + (n - 1) * r.dx, v1 = r.y + (n - 1) * r.dy;
+      if (std::max({std::abs(r.x), std::abs(r.y), std::abs(u1), std::abs(v1)}) <= kFloatSpanLimit) {
+        const ProjectiveSpanF f{static_cast<float>(r.x), static_cast<float>(r.y), static_cast<float>(r.dx),
+                                static_cast<float>(r.dy), 0.0f};
+        projectiveSpanFloatAvx2<true>(f, sx, sy);
+        std::fill(valid, valid + n, static_cast<unsigned char>(1));
+        return 0;
+      }
+    }
+    // Homographies, and affine maps too: the float lanes beat the double loops below.
     if (!scalar_only_ && cpuHasAvx2()) {
       // W is linear along the span: on the centre's side at both ends means on it throughout,
       // and then each coordinate is monotone, so its ends bound it. Float only where it is
