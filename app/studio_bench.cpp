@@ -65,7 +65,8 @@ const char kUsage[] =
     "                       the final preview pass (median, min, p90); also\n"
     "                       first_preview_ms and first_final_preview_ms, from opening the\n"
     "                       photo as the studio opens it (a JPEG's first look, decoded\n"
-    "                       reduced) to its first and its final preview, full_photo_ms to\n"
+    "                       reduced; first_look_delivered_ms when it reaches the document)\n"
+    "                       to its first and its final preview, full_photo_ms to\n"
     "                       the full photo swapped in, and apart: decode_ms and prepare_ms\n"
     "                       (the whole read and its copies) and djpeg_ms (one libjpeg decode)\n"
     "  --drag               a mouse drag in the whole studio window: one target point of\n"
@@ -206,6 +207,7 @@ double djpegMs(const std::string& path) {
 // (any pass), its final pass, and the full photo swapped in.
 struct StudioOpen {
   int reduced_by = 1;
+  double delivered_ms = -1.0;  // the first photo (look or whole) handed to the document
   double first_preview_ms = -1.0;
   double first_final_preview_ms = -1.0;
   double full_photo_ms = -1.0;
@@ -217,9 +219,15 @@ std::optional<StudioOpen> openAsStudio(const std::string& path, double strength,
   bool failed = false, refined = false;
   ImageLoader loader(QString::fromStdString(path));
   loader.setFirstLook(true);
+  // As MainWindow does: the whole read waits for the first look's preview.
+  loader.setHoldWholeRead(true);
+  QObject::connect(&controller, &PreviewController::previewChanged, &loader, [&] {
+    if (controller.imageIsFinal()) loader.releaseWholeRead();
+  });
   QElapsedTimer clock;
   QObject::connect(&loader, &ImageLoader::loaded, [&](const PhotoPtr& photo) {
     out.reduced_by = photo->reduced_by;
+    out.delivered_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
     doc.reset(photo, latencyPairs(photo->size(), strength), ModelClass::Quadratic);
     if (photo->hasFullImage()) {
       refined = true;
@@ -311,10 +319,12 @@ int runLatencyFile(const Options& o) {
   // The whole read (readImage) and its copies (makePhoto) timed apart; libjpeg's decode alone.
   std::printf("decode_ms=%.0f\nprepare_ms=%.0f\ndjpeg_ms=%.0f\n", whole->decode_ms,
               whole->prepare_ms, djpeg_ms);
-  // From the open: the first look's preview shown (any pass, then its final pass), then the
-  // full photo swapped in. first_look_reduced_by 1: the file was read whole (no first look).
-  std::printf("first_look_reduced_by=%d\nfirst_look_read_ms=%.0f\nfirst_look_prepare_ms=%.0f\n",
-              opened->reduced_by, look_read_ms, look_prepare_ms);
+  // From the open: the first look handed to the document (first_look_delivered_ms), its
+  // preview shown (any pass, then its final pass), then the full photo swapped in.
+  // first_look_reduced_by 1: the file was read whole (no first look).
+  std::printf("first_look_reduced_by=%d\nfirst_look_read_ms=%.0f\nfirst_look_prepare_ms=%.0f\n"
+              "first_look_delivered_ms=%.0f\n",
+              opened->reduced_by, look_read_ms, look_prepare_ms, opened->delivered_ms);
   std::printf("first_preview_ms=%.0f\nfirst_final_preview_ms=%.0f\nfull_photo_ms=%.0f\n",
               opened->first_preview_ms, opened->first_final_preview_ms, opened->full_photo_ms);
   return runEdits(o, doc, controller);

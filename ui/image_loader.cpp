@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/image_loader.h"
 
+#include <QTimer>
+
 namespace artcam::ui {
 
 namespace {
@@ -72,13 +74,28 @@ void ImageLoader::start() {
           emit loaded(outcome.value->photo);
           // A receiver of loaded() may have cancelled this loader (a newer open).
           if (first_look && !cancelled_) {
-            startWholeRead();
+            if (!hold_whole_read_) {
+              startWholeRead();
+            } else {
+              whole_read_waiting_ = true;
+              QTimer::singleShot(hold_ms_, this, &ImageLoader::releaseWholeRead);
+            }
             return;
           }
         }
         emit finished();
       });
   connect(job_, &BackgroundJob::progressChanged, this, &ImageLoader::progressChanged);
+}
+
+void ImageLoader::releaseWholeRead() {
+  if (!whole_read_waiting_) return;
+  whole_read_waiting_ = false;
+  if (cancelled_) {
+    emit finished();
+    return;
+  }
+  startWholeRead();
 }
 
 void ImageLoader::startWholeRead() {

@@ -10,8 +10,11 @@
 // first look (Photo::reduced_by > 1, no full pixels, size() the whole photo's). Then a second
 // job reads the whole file and refined() brings the full photo, or refineFailed() says why
 // not. The second starts when the first is delivered, so the whole read does not compete with
-// the first look and its first preview for the cores. Any other file is read whole and only
-// loaded() comes.
+// the first look for the cores; with setHoldWholeRead it waits, too, until releaseWholeRead()
+// (the studio calls it when the first look's preview is shown: the whole read, a second of
+// decoding and copying, took a third of the cores and the memory bandwidth from that
+// render), or a quarter of a second at the latest. Any other file is read whole and only loaded()
+// comes.
 #pragma once
 
 #include "ui/background_job.h"
@@ -33,9 +36,19 @@ class ImageLoader : public QObject {
   const QString& path() const { return path_; }
   // Before start(): read a JPEG reduced first, the whole file after (see the top).
   void setFirstLook(bool on) { first_look_ = on; }
+  // Before start(): after a first look, the whole read waits for releaseWholeRead(), or
+  // `at_most_ms` (a preview that never comes must not keep the full photo away).
+  static constexpr int kWholeReadHoldMs = 250;
+  void setHoldWholeRead(bool on, int at_most_ms = kWholeReadHoldMs) {
+    hold_whole_read_ = on;
+    hold_ms_ = at_most_ms;
+  }
   // Starts the read off the GUI thread (once).
   void start();
   void cancel();
+  // Starts a held whole read now; nothing when none is waiting (before the first look is
+  // delivered, or after the whole read started).
+  void releaseWholeRead();
 
  signals:
   // Percent of the first read (the photo shown), then of the whole read after a first look.
@@ -53,6 +66,9 @@ class ImageLoader : public QObject {
 
   QString path_;
   bool first_look_ = false;
+  bool hold_whole_read_ = false;
+  int hold_ms_ = kWholeReadHoldMs;
+  bool whole_read_waiting_ = false;
   bool cancelled_ = false;
   QPointer<BackgroundJob> job_;
 };

@@ -67,6 +67,11 @@ MainWindow::MainWindow(QWidget* parent)
   canvas_->setTool(std::make_unique<PairTool>(canvas_, document_));
   canvas_->setDepthOverlay(depth_overlay_);
   canvas_->setPreview(preview_);  // the canvas shows the result of the same worker
+  // A JPEG's whole read starts once its first look's preview is in (image_loader.h).
+  session_->setHoldWholeRead(true);
+  connect(preview_, &PreviewController::previewChanged, this, [this] {
+    if (preview_->imageIsFinal()) session_->releaseWholeRead();
+  });
   setCentralWidget(canvas_);
   setAcceptDrops(true);
 

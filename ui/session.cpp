@@ -174,6 +174,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
   auto* loader = new ImageLoader(photo_path, this);
   // A JPEG shows its first look at once and its full photo a moment later (image_loader.h).
   loader->setFirstLook(true);
+  loader->setHoldWholeRead(hold_whole_read_);
   loader_ = loader;
   connect(loader, &ImageLoader::progressChanged, this, &Session::loadProgress);
   connect(loader, &ImageLoader::loaded, this, [this, loader](const PhotoPtr& photo) {

@@ -58,6 +58,12 @@ class Session : public QObject {
   const QString& projectPath() const { return project_path_; }
   QString displayName() const;
   bool isLoading() const { return loader_ != nullptr; }
+  // Opening a JPEG: its whole read waits for releaseWholeRead() after the first look
+  // (ImageLoader::setHoldWholeRead); MainWindow releases it when the first look's preview is in.
+  void setHoldWholeRead(bool on) { hold_whole_read_ = on; }
+  void releaseWholeRead() {
+    if (loader_) loader_->releaseWholeRead();
+  }
   QStringList recentFiles() const;
   Autosave* autosave() const { return autosave_; }
   // The state a save would write (no view state when no provider is set).
@@ -141,6 +147,7 @@ class Session : public QObject {
   ExportOptions export_options_;
   QString project_path_;
   QPointer<ImageLoader> loader_;
+  bool hold_whole_read_ = false;
   bool export_waits_ = false;  // an export waits for the full photo (exportImage)
   std::optional<Project> pending_project_;
   QString pending_project_path_;

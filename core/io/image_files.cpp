@@ -47,8 +47,9 @@ int firstLookReduction(int width, int height, int box_width, int box_height) {
   const double as_stored = std::min({1.0, bw / width, bh / height});
   const double turned = std::min({1.0, bw / height, bh / width});
   const double shrink = std::max(as_stored, turned);
-  const int need_w = static_cast<int>(std::ceil(width * shrink - 1e-9));
-  const int need_h = static_cast<int>(std::ceil(height * shrink - 1e-9));
+  const double cover = shrink * kFirstLookCover;
+  const int need_w = static_cast<int>(std::ceil(width * cover - 1e-9));
+  const int need_h = static_cast<int>(std::ceil(height * cover - 1e-9));
   for (const int n : {8, 4, 2})
     if ((width + n - 1) / n >= need_w && (height + n - 1) / n >= need_h) return n;
   return 1;

@@ -82,7 +82,8 @@ class TestFirstLook : public QObject {
     QCOMPARE(first->size().width, kWidth);
     QCOMPARE(first->size().height, kHeight);
     QCOMPARE(first->full.info.format_name, std::string("jpeg"));
-    // The first look's picture covers the live preview it feeds.
+    // The first look's picture covers 7/8 of the live preview it feeds, or more
+    // (firstLookReduction): here 1/2, 2000×200 for 1920×192.
     const FrameSize live = livePreviewSize(*first);
     QCOMPARE(live.width, 1920);
     QVERIFY(first->display.width() >= live.width && first->display.height() >= live.height);
@@ -96,6 +97,53 @@ class TestFirstLook : public QObject {
     QCOMPARE(full->size().height, kHeight);
     QCOMPARE(full->full.image.width, kWidth);
     QVERIFY(full->full.image.data == truth_.image.data);
+  }
+
+  // Held, the whole read waits for releaseWholeRead(): nothing of it comes while the first look
+  // is up (its own limit set far out of reach), then the full photo follows the release. Held
+  // and never released, it starts at its limit.
+  void heldWholeReadWaitsForTheRelease() {
+    ImageLoader loader(jpeg_);
+    loader.setFirstLook(true);
+    loader.setHoldWholeRead(true, 600000);
+    QSignalSpy loaded(&loader, &ImageLoader::loaded);
+    QSignalSpy refined(&loader, &ImageLoader::refined);
+    QSignalSpy finished(&loader, &ImageLoader::finished);
+    loader.start();
+    QTRY_COMPARE_WITH_TIMEOUT(loaded.size(), 1, 60000);
+    QTest::qWait(300);  // the whole read of this small photo takes a few ms, once begun
+    QCOMPARE(refined.size(), 0);
+    QCOMPARE(finished.size(), 0);
+    loader.releaseWholeRead();
+    QTRY_COMPARE_WITH_TIMEOUT(finished.size(), 1, 60000);
+    QCOMPARE(refined.size(), 1);
+    loader.releaseWholeRead();  // nothing waits any more: no second read
+    QTest::qWait(50);
+    QCOMPARE(refined.size(), 1);
+
+    ImageLoader unreleased(jpeg_);
+    unreleased.setFirstLook(true);
+    unreleased.setHoldWholeRead(true, 20);
+    QSignalSpy refined_anyway(&unreleased, &ImageLoader::refined);
+    unreleased.start();
+    QTRY_COMPARE_WITH_TIMEOUT(refined_anyway.size(), 1, 60000);
+  }
+
+  // Cancelled while held: finished() and nothing else.
+  void cancelWhileHeldFinishes() {
+    ImageLoader loader(jpeg_);
+    loader.setFirstLook(true);
+    loader.setHoldWholeRead(true, 50);
+    QSignalSpy loaded(&loader, &ImageLoader::loaded);
+    QSignalSpy refined(&loader, &ImageLoader::refined);
+    QSignalSpy finished(&loader, &ImageLoader::finished);
+    loader.start();
+    QTRY_COMPARE_WITH_TIMEOUT(loaded.size(), 1, 60000);
+    loader.cancel();
+    QTRY_COMPARE_WITH_TIMEOUT(finished.size(), 1, 60000);
+    QTest::qWait(50);
+    QCOMPARE(refined.size(), 0);
+    QCOMPARE(finished.size(), 1);
   }
 
   // A PNG has no DCT scaling: read whole, loaded() only.

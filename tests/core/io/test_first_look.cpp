@@ -80,14 +80,18 @@ class TestFirstLook : public QObject {
  private slots:
   void initTestCase() { QVERIFY(dir_.isValid()); }
 
-  // 4000×400 shrinks to 1920×192 in the box: 1/2 (2000×200) covers it, 1/4 (1000×100) does not.
+  // 4000×400 shrinks to 1920×192 in the box: 1/2 (2000×200) covers 7/8 of it (1680×168),
+  // 1/4 (1000×100) does not.
   void reductionCoversTheBox() {
     QCOMPARE(firstLookReduction(4000, 400, 1920, 1080), 2);
-    QCOMPARE(firstLookReduction(6000, 4000, 1920, 1080), 2);   // 3000×2000 ≥ 1620×1080
+    QCOMPARE(firstLookReduction(6000, 4000, 1920, 1080), 4);   // 1500×1000 ≥ 7/8 of 1620×1080
+    QCOMPARE(firstLookReduction(5000, 3000, 1920, 1080), 2);   // 1250×750 < 7/8 of 1800×1080
     QCOMPARE(firstLookReduction(16000, 9000, 1920, 1080), 8);  // 2000×1125 ≥ 1920×1080
-    QCOMPARE(firstLookReduction(2000, 1200, 1920, 1080), 1);   // 1000×600 < 1800×1080
-    // Stored sideways (either way up may be the upright one): covers both.
-    QCOMPARE(firstLookReduction(4000, 6000, 1920, 1080), 2);
+    QCOMPARE(firstLookReduction(2000, 1200, 1920, 1080), 1);   // 1000×600 < 7/8 of 1800×1080
+    // Stored sideways (either way up may be the upright one): covers both, as the same photo
+    // stored upright does.
+    QCOMPARE(firstLookReduction(4000, 6000, 1920, 1080), 4);
+    QCOMPARE(firstLookReduction(3000, 5000, 1920, 1080), 2);
   }
 
   void jpegFirstLookIsLibjpegsScaledDecode() {
