@@ -215,11 +215,12 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   }
 
   // Encoded values in the written channel order, a band of rows at a time: no whole-image
-  // copy beside the float image (big images).
+  // copy beside the float image (big images). Each written sample of rows [y0, y1) in order:
+  // colour as linear light (divided by alpha for unassociated output) to `colour`, a kept
+  // alpha as it is to `alpha_sample`.
   const size_t in_channels = static_cast<size_t>(image.channels);
   const bool divide = alpha >= 0 && !associated;  // unassociated output; alpha 0 has no colour
-  auto encodeRows = [&](int y0, int y1, std::vector<float>& encoded) {
-    encoded.clear();
+  auto forEachSample = [&](int y0, int y1, auto&& colour, auto&& alpha_sample) {
     const size_t begin = static_cast<size_t>(y0) * static_cast<size_t>(image.width) * in_channels;
     const size_t end = static_cast<size_t>(y1) * static_cast<size_t>(image.width) * in_channels;
     for (size_t p = begin; p < end; p += in_channels) {
@@ -227,14 +228,22 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       const float a = image.alpha_channel >= 0 ? px[image.alpha_channel] : 1.0f;
       for (size_t c = 0; c < in_channels; ++c) {
         if (static_cast<int>(c) == image.alpha_channel) {
-          if (keep_alpha) encoded.push_back(a);
+          if (keep_alpha) alpha_sample(a);
           continue;
         }
-        const double linear = !divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0;
-        encoded.push_back(encode_icc ? static_cast<float>(linear)
-                                     : static_cast<float>(transfer.encode(linear)));
+        colour(!divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0);
       }
     }
+  };
+  auto encodeRows = [&](int y0, int y1, std::vector<float>& encoded) {
+    encoded.clear();
+    forEachSample(
+        y0, y1,
+        [&](double linear) {
+          encoded.push_back(encode_icc ? static_cast<float>(linear)
+                                       : static_cast<float>(transfer.encode(linear)));
+        },
+        [&](float a) { encoded.push_back(a); });
     if (encode_icc)
       encode_icc->fromWorking(encoded.data(), encoded.size() / static_cast<size_t>(channels),
                               channels, alpha);
@@ -248,20 +257,9 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   }
   auto byteRows = [&](int y0, int y1, std::vector<std::uint8_t>& out_bytes) {
     out_bytes.clear();
-    const size_t begin = static_cast<size_t>(y0) * static_cast<size_t>(image.width) * in_channels;
-    const size_t end = static_cast<size_t>(y1) * static_cast<size_t>(image.width) * in_channels;
-    for (size_t p = begin; p < end; p += in_channels) {
-      const float* px = image.data.data() + p;
-      const float a = image.alpha_channel >= 0 ? px[image.alpha_channel] : 1.0f;
-      for (size_t c = 0; c < in_channels; ++c) {
-        if (static_cast<int>(c) == image.alpha_channel) {
-          if (keep_alpha) out_bytes.push_back((*alpha_to_byte)(a));
-          continue;
-        }
-        const double linear = !divide ? px[c] : a > 0.0f ? static_cast<double>(px[c]) / a : 0.0;
-        out_bytes.push_back((*to_byte)(linear));
-      }
-    }
+    forEachSample(
+        y0, y1, [&](double linear) { out_bytes.push_back((*to_byte)(linear)); },
+        [&](float a) { out_bytes.push_back((*alpha_to_byte)(a)); });
   };
   const OIIO::TypeDesc data_type = pixel_type == "uint8"    ? OIIO::TypeDesc::UINT8
                                    : pixel_type == "uint16" ? OIIO::TypeDesc::UINT16
