@@ -59,7 +59,7 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
   // patches then cost about one frame's check, not one each (the render checks every call).
   const double share = std::max((hi_px.x() - lo_px.x()) / source.width, (hi_px.y() - lo_px.y()) / source.height);
   const int whole = latticeFor(camera.stages().size());
-  const int lattice = std::clamp(static_cast<int>(std::ceil(whole * std::min(1.0, std::abs(share)))), std::min(whole, 5), whole);
+  const int lattice = std::clamp(static_cast<int>(std::ceil(whole * std::min(1.0, share))), 5, whole);
   std::vector<Sample> samples(static_cast<size_t>(lattice * lattice));
   for (int j = 0; j < lattice; ++j)
     for (int i = 0; i < lattice; ++i) {
