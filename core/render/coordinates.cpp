@@ -159,27 +159,34 @@ class ProjectiveKernel final : public CoordinateKernel {
       centre_positive_ = (h * centre).z() > 0.0;
     }
     if (!m_.allFinite()) throw std::invalid_argument("the camera's homography has no finite inverse");
+#if defined(__x86_64__)
+    affine_lanes_ = affine_ && !scalar_only_ && cpuHasAvx2();
+#endif
   }
 
   int span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
            RowState&) const override {
+#if defined(__x86_64__)
+    // Affine maps (W = 1 exactly, γ = 0): the float lanes, set up without the divisions below,
+    // which by W = 1 would give these same numbers, and before anything else (chromatic
+    // aberration runs three of these per pixel, so their set-up showed: ~45 cycles per span).
+    if (affine_lanes_) {
+      const double u0 = m_(0, 0) * (x0 + 0.5) + m_(0, 1) * (y + 0.5) + m_(0, 2);
+      const double v0 = m_(1, 0) * (x0 + 0.5) + m_(1, 1) * (y + 0.5) + m_(1, 2);
+      const double u1 = u0 + (n - 1) * m_(0, 0), v1 = v0 + (n - 1) * m_(1, 0);
+      if (std::max(std::max(std::abs(u0), std::abs(v0)), std::max(std::abs(u1), std::abs(v1))) <= kFloatSpanLimit) {
+        const ProjectiveSpanF f{static_cast<float>(u0), static_cast<float>(v0), static_cast<float>(m_(0, 0)),
+                                static_cast<float>(m_(1, 0)), 0.0f};
+        projectiveSpanFloatAvx2<true>(f, sx, sy);
+        std::memset(valid, 1, static_cast<size_t>(n));
+        return 0;
+      }
+    }
+#endif
     const Eigen::Vector3d h0 = m_ * Eigen::Vector3d(x0 + 0.5, y + 0.5, 1.0);
     const double dx = m_(0, 0), dy = m_(1, 0), dw = m_(2, 0);
     const ProjectiveRow r{h0.x(), h0.y(), h0.z(), dx, dy, dw, centre_positive_ ? 1.0 : -1.0};
 #if defined(__x86_64__)
-    // Affine maps (W = 1 exactly, γ = 0): the float lanes, set up without the divisions below,
-    // which by W = 1 would give these same numbers (chromatic aberration runs three of these
-    // per pixel, so their set-up showed).
-    if (affine_ && !scalar_only_ && cpuHasAvx2()) {
-      const double u1 = r.x + (n - 1) * r.dx, v1 = r.y + (n - 1) * r.dy;
-      if (std::max({std::abs(r.x), std::abs(r.y), std::abs(u1), std::abs(v1)}) <= kFloatSpanLimit) {
-        const ProjectiveSpanF f{static_cast<float>(r.x), static_cast<float>(r.y), static_cast<float>(r.dx),
-                                static_cast<float>(r.dy), 0.0f};
-        projectiveSpanFloatAvx2<true>(f, sx, sy);
-        std::fill(valid, valid + n, static_cast<unsigned char>(1));
-        return 0;
-      }
-    }
     // Homographies, and affine maps too: the float lanes beat the double loops below.
     if (!scalar_only_ && cpuHasAvx2()) {
       // W is linear along the span: on the centre's side at both ends means on it throughout,
@@ -244,6 +251,7 @@ class ProjectiveKernel final : public CoordinateKernel {
   bool scalar_only_ = false;
   Eigen::Matrix3d m_;  // source_from_target, column form, pixels
   bool affine_ = false;
+  bool affine_lanes_ = false;  // affine, SIMD allowed and present: span's first path
   bool centre_positive_ = true;
 };
 

@@ -492,7 +492,8 @@ long long SpanSampler::run(int y, int x0, int n, const float* sx, const float* s
 }
 
 bool SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
-                                      const float* const* sy, const unsigned char* const* valid) const {
+                                      const float* const* sy, const unsigned char* const* valid,
+                                      const ChannelShift* shift) const {
   const Context& k = context_;
   if (!u8_ || filter_ == Filter::Bicubic || !k.append_alpha || count < 1 || count > k.out_channels - 1) return false;
   const int w = k.width, h = k.height;
@@ -502,7 +503,15 @@ bool SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const flo
 #ifdef ARTCAM_HAVE_AVX2_SAMPLER
   if (simd_ && filter_ == Filter::Bilinear && src_channels == 3 && count == 3) {
     done = n & ~7;
-    if (!avx2::bilinearChannelsRgb8(k, out, done, sx, sy, valid)) return false;
+    // A whole-pixel shift's channel at pixel i is the source's at (x0 + dx + i, y + dy): the
+    // interior test (0 ≤ f < size − 1, f = position − ½) once for the span's vector part.
+    const std::uint8_t* direct[3] = {nullptr, nullptr, nullptr};
+    for (int c = 0; shift && c < 3; ++c) {
+      const int sx0 = x0 + shift[c].dx, sy0 = y + shift[c].dy;
+      if (shift[c].whole && sx0 >= 0 && sx0 + done - 1 < w - 1 && sy0 >= 0 && sy0 < h - 1)
+        direct[c] = k.src + static_cast<std::ptrdiff_t>(sy0) * k.src_row + 3 * static_cast<std::ptrdiff_t>(sx0) + c;
+    }
+    if (!avx2::bilinearChannelsRgb8(k, out, done, sx, sy, valid, direct)) return false;
   }
 #endif
   // interiorU8 without branches: the spans are nearly all inside.

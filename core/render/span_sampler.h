@@ -47,8 +47,17 @@ class SpanSampler {
   // there each channel gets exactly what run() would write from its camera's positions.
   // Returns false when the sampler is of another kind or a pixel is not interior; the span may
   // then be written in part (the caller writes all of it again another way).
+  // `shift` (optional, `count` entries): for a camera k whose positions are whole pixels moved
+  // by shift[k] (CoordinateKernel::wholePixelOffset, as lateral chromatic aberration leaves
+  // green), its channel is read straight from the source row; its sx[k], sy[k] must still hold
+  // those positions (the scalar tail reads them).
+  struct ChannelShift {
+    bool whole = false;
+    int dx = 0, dy = 0;
+  };
   bool runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
-                           const float* const* sy, const unsigned char* const* valid) const;
+                           const float* const* sy, const unsigned char* const* valid,
+                           const ChannelShift* shift = nullptr) const;
 
   struct Context {
     const unsigned char* src = nullptr;

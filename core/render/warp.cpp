@@ -242,6 +242,10 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
   // gives) and alpha is full, which is what the merge gives there: a third of the taps and no
   // merge. Only for 8-bit photos without alpha (an alpha would rescale the colours).
   const SpanSampler direct(source, out, options.filter, !options.coordinates.scalar_only);
+  SpanSampler::ChannelShift shifts[4];
+  for (int k = 0; k < count; ++k)
+    if (const auto offset = kernels[static_cast<size_t>(k)]->wholePixelOffset())
+      shifts[k] = {true, (*offset)[0], (*offset)[1]};
   const bool direct_ok = out.type == PixelType::UInt8 && source.alpha_channel < 0 && options.filter != Filter::Bicubic;
   const bool finished = parallelForRows(out_px.height, po, [&](int y0, int y1) {
     long long band_transparent = 0, band_newton = 0;
@@ -280,7 +284,7 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
           const float* xs[4] = {sx[0], sx[1], sx[2], sx[3]};
           const float* ys[4] = {sy[0], sy[1], sy[2], sy[3]};
           const unsigned char* vs[4] = {valid[0], valid[1], valid[2], valid[3]};
-          if (direct.runChannelsInterior(y, x0, n, count, xs, ys, vs)) continue;
+          if (direct.runChannelsInterior(y, x0, n, count, xs, ys, vs, shifts)) continue;
         }
         for (int k = 0; k < count; ++k)
           band_samplers[static_cast<size_t>(k)].run(0, 0, n, sx[k], sy[k], valid[k], ss[k], jac[k]);

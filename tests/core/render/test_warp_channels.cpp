@@ -59,17 +59,22 @@ class TestWarpChannels : public QObject {
     QTest::addColumn<QString>("filter");
     QTest::addColumn<bool>("sixteen");
     QTest::addColumn<bool>("scalar");
-    QTest::newRow("bilinear 8-bit") << "bilinear" << false << false;
-    QTest::newRow("bilinear 8-bit scalar") << "bilinear" << false << true;
-    QTest::newRow("nearest 8-bit") << "nearest" << false << false;
-    QTest::newRow("bicubic 8-bit") << "bicubic" << false << false;
-    QTest::newRow("bilinear 16-bit") << "bilinear" << true << false;
+    QTest::addColumn<double>("blue_scale");
+    QTest::newRow("bilinear 8-bit") << "bilinear" << false << false << 0.987;
+    QTest::newRow("bilinear 8-bit scalar") << "bilinear" << false << true << 0.987;
+    QTest::newRow("nearest 8-bit") << "nearest" << false << false << 0.987;
+    QTest::newRow("bicubic 8-bit") << "bicubic" << false << false << 0.987;
+    QTest::newRow("bilinear 16-bit") << "bilinear" << true << false << 0.987;
+    // Blue's source positions 1/0.68 px apart: four pixels' taps no longer fit one 16-byte
+    // window, so the AVX2 clone reads each tap by itself.
+    QTest::newRow("bilinear 8-bit, blue minified") << "bilinear" << false << false << 0.68;
   }
 
   void eachChannelIsItsCamerasWarp() {
     QFETCH(QString, filter);
     QFETCH(bool, sixteen);
     QFETCH(bool, scalar);
+    QFETCH(double, blue_scale);
     const int w = 301, h = 203;  // spans of 64 and a ragged last one
     const PixelType type = sixteen ? PixelType::UInt16 : PixelType::UInt8;
     const StoredImage photo = noise(w, h, 3, type);
@@ -78,7 +83,7 @@ class TestWarpChannels : public QObject {
     Eigen::Matrix3d red, green, blue;
     red << 1.013, 0, 0.002, 0, 1.013, -0.001, 0, 0, 1;
     green.setIdentity();
-    blue << 0.987, 0.001, -0.004, 0, 0.987, 0.003, 0, 0, 1;
+    blue << blue_scale, 0.001, -0.004, 0, blue_scale, 0.003, 0, 0, 1;
     const std::vector<Camera> cameras = {homographyCamera(red, {w, h}, {w, h}),
                                          homographyCamera(green, {w, h}, {w, h}),
                                          homographyCamera(blue, {w, h}, {w, h})};
@@ -113,7 +118,7 @@ class TestWarpChannels : public QObject {
         }
         mismatches += sample(out, x, y, 3) != least;
       }
-    QVERIFY(interior > w * h / 2);  // the test covers both kinds of pixel
+    QVERIFY(interior > w * h / 3);  // the test covers both kinds of pixel
     QVERIFY(border > 0);
     QCOMPARE(summary.transparent_pixels, transparent);
     QCOMPARE(mismatches, 0LL);
