@@ -491,45 +491,50 @@ long long SpanSampler::run(int y, int x0, int n, const float* sx, const float* s
   return fn_(context_, out, n, sx, sy, valid, supersample, jacobian);
 }
 
-bool SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
-                                      const float* const* sy, const unsigned char* const* valid,
-                                      const ChannelShift* shift) const {
+int SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
+                                     const float* const* sy, const unsigned char* const* valid,
+                                     const ChannelShift* shift, long long* transparent) const {
   const Context& k = context_;
-  if (!u8_ || filter_ == Filter::Bicubic || !k.append_alpha || count < 1 || count > k.out_channels - 1) return false;
+  if (!u8_ || filter_ == Filter::Bicubic || !k.append_alpha || count < 1 || count > k.out_channels - 1) return -1;
   const int w = k.width, h = k.height;
   const int stride = k.out_channels, src_channels = stride - 1;
   std::uint8_t* out = static_cast<std::uint8_t*>(dst_.row(y)) + static_cast<std::ptrdiff_t>(x0) * stride;
   int done = 0;
 #ifdef ARTCAM_HAVE_AVX2_SAMPLER
   if (simd_ && filter_ == Filter::Bilinear && src_channels == 3 && count == 3) {
-    done = n & ~7;
+    const int groups = n & ~7;
     // A whole-pixel shift's channel at pixel i is the source's at (x0 + dx + i, y + dy): the
     // interior test (0 ≤ f < size − 1, f = position − ½) once for the span's vector part.
     const std::uint8_t* direct[3] = {nullptr, nullptr, nullptr};
     for (int c = 0; shift && c < 3; ++c) {
       const int sx0 = x0 + shift[c].dx, sy0 = y + shift[c].dy;
-      if (shift[c].whole && sx0 >= 0 && sx0 + done - 1 < w - 1 && sy0 >= 0 && sy0 < h - 1)
+      if (shift[c].whole && sx0 >= 0 && sx0 + groups - 1 < w - 1 && sy0 >= 0 && sy0 < h - 1)
         direct[c] = k.src + static_cast<std::ptrdiff_t>(sy0) * k.src_row + 3 * static_cast<std::ptrdiff_t>(sx0) + c;
     }
-    if (!avx2::bilinearChannelsRgb8(k, out, done, sx, sy, valid, direct)) return false;
+    long long zeros = 0;
+    done = avx2::bilinearChannelsRgb8(k, out, groups, sx, sy, valid, direct, zeros);
+    if (transparent) *transparent += zeros;
+    if (done < groups) return done;
   }
 #endif
-  // interiorU8 without branches: the spans are nearly all inside.
+  // interiorU8 without branches per pixel: the pixels up to the first that is not interior.
   const float x_end = w - 1.0f, y_end = h - 1.0f;
-  for (int j = 0; j < count; ++j) {
+  int stop = done;
+  while (stop < n) {
     bool inside = true;
-    for (int i = done; i < n; ++i) {
-      const float fx = sx[j][i] - 0.5f, fy = sy[j][i] - 0.5f;
-      inside &= (valid[j][i] != 0) & (fx >= 0.0f) & (fy >= 0.0f) & (fx < x_end) & (fy < y_end);
+    for (int j = 0; j < count; ++j) {
+      const float fx = sx[j][stop] - 0.5f, fy = sy[j][stop] - 0.5f;
+      inside &= (valid[j][stop] != 0) & (fx >= 0.0f) & (fy >= 0.0f) & (fx < x_end) & (fy < y_end);
     }
-    if (!inside) return false;
+    if (!inside) break;
+    ++stop;
   }
-  for (int i = done; i < n; ++i) out[static_cast<std::ptrdiff_t>(i) * stride + stride - 1] = 255;
+  for (int i = done; i < stop; ++i) out[static_cast<std::ptrdiff_t>(i) * stride + stride - 1] = 255;
   for (int c = 0; c < src_channels; ++c) {
     const int j = c < count ? c : 0;
     const std::uint8_t* src = k.src + c;
     std::uint8_t* o = out + static_cast<std::ptrdiff_t>(done) * stride + c;
-    for (int i = done; i < n; ++i, o += stride) {
+    for (int i = done; i < stop; ++i, o += stride) {
       const float fx = sx[j][i] - 0.5f, fy = sy[j][i] - 0.5f;
       if (filter_ == Filter::Nearest) {  // run()'s rounding, to the same tap
         *o = src[static_cast<int>(fy + 0.5f) * k.src_row + static_cast<int>(fx + 0.5f) * src_channels];
@@ -540,7 +545,7 @@ bool SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const flo
       }
     }
   }
-  return true;
+  return stop;
 }
 
 }  // namespace artcam

@@ -45,8 +45,11 @@ class SpanSampler {
   // k = c < count ? c : 0, alpha full. 8-bit nearest or bilinear of a photo without alpha into
   // one with alpha appended, every pixel interior for every camera (valid, all taps inside):
   // there each channel gets exactly what run() would write from its camera's positions.
-  // Returns false when the sampler is of another kind or a pixel is not interior; the span may
-  // then be written in part (the caller writes all of it again another way).
+  // Returns how many of the span's first pixels it wrote: up to the first pixel (or, on the
+  // AVX2 path, the first group of eight) that is not interior, which the caller writes another
+  // way before calling again for the rest; −1 when the sampler is of another kind. The AVX2
+  // path also writes groups of eight where some camera has no tap inside for any of them
+  // (transparent, as the merge makes them), adding them to `transparent`.
   // `shift` (optional, `count` entries): for a camera k whose positions are whole pixels moved
   // by shift[k] (CoordinateKernel::wholePixelOffset, as lateral chromatic aberration leaves
   // green), its channel is read straight from the source row; its sx[k], sy[k] must still hold
@@ -55,9 +58,9 @@ class SpanSampler {
     bool whole = false;
     int dx = 0, dy = 0;
   };
-  bool runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
-                           const float* const* sy, const unsigned char* const* valid,
-                           const ChannelShift* shift = nullptr) const;
+  int runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
+                          const float* const* sy, const unsigned char* const* valid,
+                          const ChannelShift* shift = nullptr, long long* transparent = nullptr) const;
 
   struct Context {
     const unsigned char* src = nullptr;

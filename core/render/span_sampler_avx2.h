@@ -330,13 +330,16 @@ __attribute__((target("avx2"), always_inline)) inline __m256i consecutiveTimes25
 // case: chromatic aberration scales by a hair), one 16-byte load per half and row and byte
 // shuffles; elsewhere one 4-byte load per pixel and row at the left tap's byte, whose bytes 0
 // and 3 are the channel at taps x0 and x0 + 1 (nothing read past the taps). Groups of eight
-// while every channel's pixels are interior (allInterior); returns false at the first group
-// with a pixel that is not, having written the groups before it. n is a multiple of 8.
-__attribute__((target("avx2"))) inline bool bilinearChannelsRgb8(const SpanSampler::Context& k, std::uint8_t* out,
+// while every channel's pixels are interior (allInterior), or while some channel has no tap
+// inside for any of them (allOutside: its alpha is 0, so the merge's is, and the group is
+// zeros, counted in `transparent`); returns the pixels written: n, or the start of the first
+// group that is neither. n is a multiple of 8.
+__attribute__((target("avx2"))) inline int bilinearChannelsRgb8(const SpanSampler::Context& k, std::uint8_t* out,
                                                                  int n, const float* const* sx,
                                                                  const float* const* sy,
                                                                  const unsigned char* const* valid,
-                                                                 const std::uint8_t* const* direct) {
+                                                                 const std::uint8_t* const* direct,
+                                                                 long long& transparent) {
   const __m256 xmax = _mm256_set1_ps(static_cast<float>(k.width) - 1.0f);
   const __m256 ymax = _mm256_set1_ps(static_cast<float>(k.height) - 1.0f);
   const __m256 half = _mm256_set1_ps(0.5f);
@@ -375,6 +378,7 @@ __attribute__((target("avx2"))) inline bool bilinearChannelsRgb8(const SpanSampl
   for (int i = 0; i + 8 <= n; i += 8) {
     // Channel c's eight values before the division by 255 (so q / 255 is the result), in 32 bits.
     __m256i q[3];
+    bool outside = false;
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
       if (direct[c]) {
@@ -383,7 +387,11 @@ __attribute__((target("avx2"))) inline bool bilinearChannelsRgb8(const SpanSampl
       }
       const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx[c] + i), half);
       const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy[c] + i), half);
-      if (!allInterior(fx, fy, xmax, ymax, valid[c] + i)) return false;
+      if (!allInterior(fx, fy, xmax, ymax, valid[c] + i)) {
+        if (!allOutside(fx, fy, k, valid[c] + i)) return i;
+        outside = true;
+        break;
+      }
       const auto [x0, y0, ax, ay] = quantise(fx, fy, xlim);
       const __m256i off = _mm256_add_epi32(_mm256_mullo_epi32(y0, row),
                                            _mm256_add_epi32(_mm256_add_epi32(x0, _mm256_slli_epi32(x0, 1)),
@@ -438,13 +446,18 @@ __attribute__((target("avx2"))) inline bool bilinearChannelsRgb8(const SpanSampl
       const __m256i columns = _mm256_maddubs_epi16(wy, _mm256_xor_si256(taps, sign));
       q[c] = _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(columns, wx), bias), 8);
     }
+    if (outside) {
+      _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(out + 4 * i)), _mm256_setzero_si256());
+      transparent += 8;
+      continue;
+    }
     // ⌊q / 255⌋ = (q · 0x8081) >> 23 for every 16-bit q; per lane [R0–3 G0–3 | B0–3 0].
     const __m256i rg = _mm256_srli_epi16(_mm256_mulhi_epu16(_mm256_packus_epi32(q[0], q[1]), div255), 7);
     const __m256i b0 = _mm256_srli_epi16(_mm256_mulhi_epu16(_mm256_packus_epi32(q[2], _mm256_setzero_si256()), div255), 7);
     const __m256i rgba = _mm256_or_si256(_mm256_shuffle_epi8(_mm256_packus_epi16(rg, b0), to_pixels), opaque);
     _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(out + 4 * i)), rgba);
   }
-  return true;
+  return n;
 }
 
 }  // namespace artcam::avx2

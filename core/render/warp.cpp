@@ -280,18 +280,35 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
           if (options.antialias) ss[k] = spanFootprint(kernel, y, x0, n, sx[k], sy[k], valid[k], max_ss, jac[k]);
           one_tap = one_tap && ss[k] == 1;
         }
+        // Pixels at + 0 … at + m − 1 of the span: each channel's own sample, then the merge.
+        const auto sampleAndMerge = [&](int at, int m) {
+          for (int k = 0; k < count; ++k)
+            band_samplers[static_cast<size_t>(k)].run(0, 0, m, sx[k] + at, sy[k] + at, valid[k] + at, ss[k], jac[k]);
+          unsigned char* dst = static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0 + at) * pixel_bytes;
+          if (out.type == PixelType::UInt8) band_transparent += mergeChannels<std::uint8_t>(spans, count, out.channels, dst, m);
+          else if (out.type == PixelType::UInt16) band_transparent += mergeChannels<std::uint16_t>(spans, count, out.channels, dst, m);
+          else band_transparent += mergeChannels<float>(spans, count, out.channels, dst, m);
+        };
         if (direct_ok && one_tap) {
-          const float* xs[4] = {sx[0], sx[1], sx[2], sx[3]};
-          const float* ys[4] = {sy[0], sy[1], sy[2], sy[3]};
-          const unsigned char* vs[4] = {valid[0], valid[1], valid[2], valid[3]};
-          if (direct.runChannelsInterior(y, x0, n, count, xs, ys, vs, shifts)) continue;
+          // The interior pixels directly, and groups a channel leaves wholly (a strong
+          // aberration's margins: transparent); only a group of eight with a pixel on the
+          // frame's edge takes the merge.
+          int at = 0;
+          while (at < n) {
+            const float* xs[4] = {sx[0] + at, sx[1] + at, sx[2] + at, sx[3] + at};
+            const float* ys[4] = {sy[0] + at, sy[1] + at, sy[2] + at, sy[3] + at};
+            const unsigned char* vs[4] = {valid[0] + at, valid[1] + at, valid[2] + at, valid[3] + at};
+            const int done = direct.runChannelsInterior(y, x0 + at, n - at, count, xs, ys, vs, shifts, &band_transparent);
+            if (done < 0) break;
+            at += done;
+            if (at == n) break;
+            const int m = std::min(8, n - at);
+            sampleAndMerge(at, m);
+            at += m;
+          }
+          if (at == n) continue;
         }
-        for (int k = 0; k < count; ++k)
-          band_samplers[static_cast<size_t>(k)].run(0, 0, n, sx[k], sy[k], valid[k], ss[k], jac[k]);
-        unsigned char* dst = static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0) * pixel_bytes;
-        if (out.type == PixelType::UInt8) band_transparent += mergeChannels<std::uint8_t>(spans, count, out.channels, dst, n);
-        else if (out.type == PixelType::UInt16) band_transparent += mergeChannels<std::uint16_t>(spans, count, out.channels, dst, n);
-        else band_transparent += mergeChannels<float>(spans, count, out.channels, dst, n);
+        sampleAndMerge(0, n);
       }
     }
     transparent += band_transparent;
