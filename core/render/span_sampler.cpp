@@ -493,12 +493,13 @@ long long SpanSampler::run(int y, int x0, int n, const float* sx, const float* s
 
 int SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
                                      const float* const* sy, const unsigned char* const* valid,
-                                     const ChannelShift* shift, long long* transparent) const {
+                                     const ChannelShift* shift, long long* transparent,
+                                     unsigned char* out_at) const {
   const Context& k = context_;
   if (!u8_ || filter_ == Filter::Bicubic || !k.append_alpha || count < 1 || count > k.out_channels - 1) return -1;
   const int w = k.width, h = k.height;
   const int stride = k.out_channels, src_channels = stride - 1;
-  std::uint8_t* out = static_cast<std::uint8_t*>(dst_.row(y)) + static_cast<std::ptrdiff_t>(x0) * stride;
+  std::uint8_t* out = out_at ? out_at : static_cast<std::uint8_t*>(dst_.row(y)) + static_cast<std::ptrdiff_t>(x0) * stride;
   int done = 0;
 #ifdef ARTCAM_HAVE_AVX2_SAMPLER
   if (simd_ && filter_ == Filter::Bilinear && src_channels == 3 && count == 3) {

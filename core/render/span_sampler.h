@@ -49,7 +49,8 @@ class SpanSampler {
   // AVX2 path, the first group of eight) that is not interior, which the caller writes another
   // way before calling again for the rest; −1 when the sampler is of another kind. The AVX2
   // path also writes groups of eight where some camera has no tap inside for any of them
-  // (transparent, as the merge makes them), adding them to `transparent`.
+  // (transparent, as the merge makes them), adding them to `transparent`. `out`, if given, is
+  // where the span's first pixel goes (in dst's layout) instead of dst's pixel (x0, y).
   // `shift` (optional, `count` entries): for a camera k whose positions are whole pixels moved
   // by shift[k] (CoordinateKernel::wholePixelOffset, as lateral chromatic aberration leaves
   // green), its channel is read straight from the source row; its sx[k], sy[k] must still hold
@@ -60,7 +61,8 @@ class SpanSampler {
   };
   int runChannelsInterior(int y, int x0, int n, int count, const float* const* sx,
                           const float* const* sy, const unsigned char* const* valid,
-                          const ChannelShift* shift = nullptr, long long* transparent = nullptr) const;
+                          const ChannelShift* shift = nullptr, long long* transparent = nullptr,
+                          unsigned char* out = nullptr) const;
 
   struct Context {
     const unsigned char* src = nullptr;

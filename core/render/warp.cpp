@@ -213,10 +213,19 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
   if (count < 1 || count > colour_channels || (source.alpha_channel >= 0 && source.alpha_channel != source.channels - 1))
     throw std::invalid_argument("warpChannels needs one camera per colour channel, at most the photo's " +
                                 std::to_string(colour_channels) + ", and alpha (if any) last");
-  if (out.channels != colour_channels + 1 || out.alpha_channel != colour_channels)
-    throw std::invalid_argument("warpChannels writes the photo's colour channels and alpha (last)");
-  // Each channel's kernel samples into a span of its own, laid out like `out`.
-  const int pixel_bytes = out.pixelBytes();
+  const bool out_alpha = out.alpha_channel >= 0;
+  if (out_alpha ? out.channels != colour_channels + 1 || out.alpha_channel != colour_channels
+                : out.channels != colour_channels)
+    throw std::invalid_argument("warpChannels writes the photo's colour channels, and alpha last if any");
+  // Each channel's kernel samples into a span of its own, laid out like `merged`: out's colour
+  // channels and an alpha last. Without an alpha in `out`, each span is merged into a scratch
+  // span of that layout and its colours copied: the premultiplied colour, composited over
+  // black, as warpImage writes such an output.
+  ImageView merged = out;
+  merged.channels = colour_channels + 1;
+  merged.alpha_channel = colour_channels;
+  const int pixel_bytes = merged.pixelBytes();
+  const int sample_bytes = pixel_bytes / merged.channels;
   std::vector<std::unique_ptr<CoordinateKernel>> kernels;
   std::string names;
   const FrameSize source_px{source.width, source.height}, out_px{out.width, out.height};
@@ -241,7 +250,19 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
   // into `out` (SpanSampler::runChannelsInterior: the same integers the channel's full sample
   // gives) and alpha is full, which is what the merge gives there: a third of the taps and no
   // merge. Only for 8-bit photos without alpha (an alpha would rescale the colours).
-  const SpanSampler direct(source, out, options.filter, !options.coordinates.scalar_only);
+  // Without an alpha in `out` the direct sampler writes into the band's scratch span (its
+  // view here only fixes the layout; runChannelsInterior is given where to write).
+  std::vector<unsigned char> layout_only;
+  ImageView direct_view = out;
+  if (!out_alpha) {
+    layout_only.assign(static_cast<size_t>(kSpanPixels) * static_cast<size_t>(pixel_bytes), 0);
+    direct_view = merged;
+    direct_view.data = layout_only.data();
+    direct_view.width = kSpanPixels;
+    direct_view.height = 1;
+    direct_view.row_bytes = static_cast<std::ptrdiff_t>(kSpanPixels) * pixel_bytes;
+  }
+  const SpanSampler direct(source, direct_view, options.filter, !options.coordinates.scalar_only);
   SpanSampler::ChannelShift shifts[4];
   for (int k = 0; k < count; ++k)
     if (const auto offset = kernels[static_cast<size_t>(k)]->wholePixelOffset())
@@ -256,8 +277,9 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
     // One span per channel, in out's layout; each channel's sampler writes its own.
     std::vector<unsigned char> scratch(static_cast<size_t>(count) * kSpanPixels * static_cast<size_t>(pixel_bytes));
     std::vector<SpanSampler> band_samplers;
+    std::vector<unsigned char> merged_span(out_alpha ? 0 : static_cast<size_t>(kSpanPixels) * static_cast<size_t>(pixel_bytes));
     for (int k = 0; k < count; ++k) {
-      ImageView span = out;
+      ImageView span = merged;
       span.data = scratch.data() + static_cast<size_t>(k) * kSpanPixels * static_cast<size_t>(pixel_bytes);
       span.width = kSpanPixels;
       span.height = 1;
@@ -280,25 +302,31 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
           if (options.antialias) ss[k] = spanFootprint(kernel, y, x0, n, sx[k], sy[k], valid[k], max_ss, jac[k]);
           one_tap = one_tap && ss[k] == 1;
         }
+        // Where the span's pixel i goes in `merged`'s layout: out's row, or the scratch span.
+        unsigned char* const merged_row =
+            out_alpha ? static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0) * pixel_bytes
+                      : merged_span.data();
         // Pixels at + 0 … at + m − 1 of the span: each channel's own sample, then the merge.
         const auto sampleAndMerge = [&](int at, int m) {
           for (int k = 0; k < count; ++k)
             band_samplers[static_cast<size_t>(k)].run(0, 0, m, sx[k] + at, sy[k] + at, valid[k] + at, ss[k], jac[k]);
-          unsigned char* dst = static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0 + at) * pixel_bytes;
-          if (out.type == PixelType::UInt8) band_transparent += mergeChannels<std::uint8_t>(spans, count, out.channels, dst, m);
-          else if (out.type == PixelType::UInt16) band_transparent += mergeChannels<std::uint16_t>(spans, count, out.channels, dst, m);
-          else band_transparent += mergeChannels<float>(spans, count, out.channels, dst, m);
+          unsigned char* dst = merged_row + static_cast<std::ptrdiff_t>(at) * pixel_bytes;
+          if (out.type == PixelType::UInt8) band_transparent += mergeChannels<std::uint8_t>(spans, count, merged.channels, dst, m);
+          else if (out.type == PixelType::UInt16) band_transparent += mergeChannels<std::uint16_t>(spans, count, merged.channels, dst, m);
+          else band_transparent += mergeChannels<float>(spans, count, merged.channels, dst, m);
         };
+        int at = 0;
         if (direct_ok && one_tap) {
           // The interior pixels directly, and groups a channel leaves wholly (a strong
           // aberration's margins: transparent); only a group of eight with a pixel on the
           // frame's edge takes the merge.
-          int at = 0;
           while (at < n) {
             const float* xs[4] = {sx[0] + at, sx[1] + at, sx[2] + at, sx[3] + at};
             const float* ys[4] = {sy[0] + at, sy[1] + at, sy[2] + at, sy[3] + at};
             const unsigned char* vs[4] = {valid[0] + at, valid[1] + at, valid[2] + at, valid[3] + at};
-            const int done = direct.runChannelsInterior(y, x0 + at, n - at, count, xs, ys, vs, shifts, &band_transparent);
+            const int done = direct.runChannelsInterior(y, x0 + at, n - at, count, xs, ys, vs, shifts,
+                                                        &band_transparent,
+                                                        merged_row + static_cast<std::ptrdiff_t>(at) * pixel_bytes);
             if (done < 0) break;
             at += done;
             if (at == n) break;
@@ -306,9 +334,14 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
             sampleAndMerge(at, m);
             at += m;
           }
-          if (at == n) continue;
         }
-        sampleAndMerge(0, n);
+        if (at < n) sampleAndMerge(0, n);
+        if (!out_alpha) {
+          unsigned char* o = static_cast<unsigned char*>(out.row(y)) + static_cast<std::ptrdiff_t>(x0) * out.pixelBytes();
+          const size_t colour_bytes = static_cast<size_t>(colour_channels) * static_cast<size_t>(sample_bytes);
+          for (int i = 0; i < n; ++i, o += colour_bytes)
+            std::memcpy(o, merged_span.data() + static_cast<size_t>(i) * static_cast<size_t>(pixel_bytes), colour_bytes);
+        }
       }
     }
     transparent += band_transparent;

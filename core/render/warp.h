@@ -141,7 +141,9 @@ class BandWarp {
 // Chromatic aberration the way the paper's Fig 4 builds it, on the photo as stored: channel k
 // (k < channel_cameras.size() ≤ the source's colour channels) through its own position camera,
 // each by the kernel its structure picks; an alpha channel (the source's, or appended) is the
-// least coverage of the channels, so a channel moved inwards leaves no coloured frame. Same
+// least coverage of the channels, so a channel moved inwards leaves no coloured frame. An
+// output without alpha (a JPEG) gets those colours as they are, premultiplied: composited over
+// black, as warpImage writes such an output. Same
 // views, options and cancel contract as warpImage; summary->kernel joins the kernels' names.
 void warpChannels(const ConstImageView& source, const std::vector<Camera>& channel_cameras,
                   const ImageView& out, const WarpOptions& options = {}, WarpSummary* summary = nullptr);

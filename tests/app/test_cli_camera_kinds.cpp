@@ -258,6 +258,28 @@ class TestCliCameraKinds : public QObject {
     for (int c = 0; c < 3; ++c) QVERIFY2(std::abs(centre[c] - 0.4f) < 1e-3, qPrintable(QString::number(centre[c])));
   }
 
+  void chromaticAberrationWarpsAnEightBitPhotoToJpeg() {
+    // The photo as stored (8-bit RGB) into an output without alpha: the channels' merge
+    // composited over black, not a refusal for want of an alpha channel.
+    ImageF grey(kW, kH, 3);
+    std::fill(grey.data.begin(), grey.data.end(), 0.4f);
+    QVERIFY(writeImage(path("grey8.png").toStdString(), grey).ok);
+    for (const char* name : {"ca8.jpg", "ca8.png"}) {
+      const auto run = artcamCli({"warp", path("grey8.png"), path("layered.artcam"), "-o", path(name), "-q"});
+      QVERIFY2(run.exit_code == 0, qPrintable(run.err));
+      const auto out = readImage(path(name).toStdString());
+      QVERIFY(out.ok());
+      QCOMPARE(out->image.width, kW);
+      // The centre keeps the grey in all three channels (JPEG within its quantisation); the
+      // corners, where red leaves the frame, are black.
+      const float* centre = out->image.pixel(kW / 2, kH / 2);
+      for (int c = 0; c < 3; ++c)
+        QVERIFY2(std::abs(centre[c] - 0.4f) < 0.02f, qPrintable(QString("%1: %2").arg(name).arg(centre[c])));
+      const float* corner = out->image.pixel(0, 0);
+      QVERIFY2(corner[0] < 0.02f, qPrintable(QString("%1: %2").arg(name).arg(corner[0])));
+    }
+  }
+
   void aerialThenDepthOfFieldIsOneCamera() {
     // The paper's Fig 3 bottom right: aerial perspective then depth of field, composed into one
     // camera, renders as the two warps one after the other (up to the re-fitted σ², ½ %).

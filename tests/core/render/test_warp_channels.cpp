@@ -123,6 +123,58 @@ class TestWarpChannels : public QObject {
     QCOMPARE(summary.transparent_pixels, transparent);
     QCOMPARE(mismatches, 0LL);
   }
+
+  // An output without alpha (a JPEG's RGB) holds the colours of the output with alpha, as
+  // they are (premultiplied: over black), for every path that writes them.
+  void withoutAlphaTheColoursOfTheMerge_data() {
+    QTest::addColumn<QString>("filter");
+    QTest::addColumn<bool>("sixteen");
+    QTest::addColumn<bool>("scalar");
+    QTest::newRow("bilinear 8-bit") << "bilinear" << false << false;
+    QTest::newRow("bilinear 8-bit scalar") << "bilinear" << false << true;
+    QTest::newRow("nearest 8-bit") << "nearest" << false << false;
+    QTest::newRow("bilinear 16-bit") << "bilinear" << true << false;
+  }
+
+  void withoutAlphaTheColoursOfTheMerge() {
+    QFETCH(QString, filter);
+    QFETCH(bool, sixteen);
+    QFETCH(bool, scalar);
+    const int w = 301, h = 203;
+    const PixelType type = sixteen ? PixelType::UInt16 : PixelType::UInt8;
+    const StoredImage photo = noise(w, h, 3, type);
+    Eigen::Matrix3d red, blue;
+    // Margins of several pixels where red or blue leaves the frame (the camera's frames are
+    // normalised: 0.01 is about 1.5 px here).
+    red << 1.04, 0, 0.02, 0, 1.04, -0.015, 0, 0, 1;
+    blue << 0.96, 0.001, 0.025, 0, 0.96, 0.017, 0, 0, 1;
+    const std::vector<Camera> cameras = {homographyCamera(red, {w, h}, {w, h}),
+                                         homographyCamera(Eigen::Matrix3d::Identity(), {w, h}, {w, h}),
+                                         homographyCamera(blue, {w, h}, {w, h})};
+    WarpOptions options;
+    options.filter = *filterFromName(filter.toStdString());
+    options.coordinates.scalar_only = scalar;
+    StoredImage with_alpha = makeStoredImage(w, h, 4, 3, type);
+    StoredImage without = makeStoredImage(w, h, 3, -1, type, PixelBuffer::Init::Uninitialised);
+    std::memset(without.bytes.data(), 0xCD, without.bytes.size());
+    WarpSummary a, b;
+    warpChannels(photo.view(), cameras, with_alpha.view(), options, &a);
+    warpChannels(photo.view(), cameras, without.view(), options, &b);
+    const double full = pixelTypeFullScale(type);
+    long long mismatches = 0, transparent = 0, partial = 0, opaque = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double alpha = sample(with_alpha, x, y, 3);
+        (alpha == 0 ? transparent : alpha == full ? opaque : partial) += 1;
+        for (int c = 0; c < 3; ++c) mismatches += sample(without, x, y, c) != sample(with_alpha, x, y, c);
+      }
+    // Every kind of pixel is covered: the interior, the margins and (bilinear) the edge
+    // between them, where the taps straddle the frame.
+    QVERIFY2(opaque > w * h / 2 && transparent > 0 && (partial > 0 || filter == "nearest"),
+             qPrintable(QString("%1 opaque, %2 transparent, %3 partial").arg(opaque).arg(transparent).arg(partial)));
+    QCOMPARE(b.transparent_pixels, a.transparent_pixels);
+    QCOMPARE(mismatches, 0LL);
+  }
 };
 
 QTEST_GUILESS_MAIN(TestWarpChannels)
