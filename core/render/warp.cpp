@@ -274,7 +274,7 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
     unsigned char valid[4][kSpanPixels];
     int ss[4] = {1, 1, 1, 1};
     float jac[4][4];
-    // One span per channel, in out's layout; each channel's sampler writes its own.
+    // One span per channel, in merged's layout; each channel's sampler writes its own.
     std::vector<unsigned char> scratch(static_cast<size_t>(count) * kSpanPixels * static_cast<size_t>(pixel_bytes));
     std::vector<SpanSampler> band_samplers;
     std::vector<unsigned char> merged_span(out_alpha ? 0 : static_cast<size_t>(kSpanPixels) * static_cast<size_t>(pixel_bytes));
