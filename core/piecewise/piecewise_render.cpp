@@ -299,13 +299,32 @@ inline Eigen::Vector2d quadratic(double wa, double wb, double wc, const Eigen::V
 // pixels of the image rendered from. Triangles whose vertices several patches map, or
 // different ones, are left out: there the mesh blends patches that disagree by the fit's seam
 // gap (piecewise_fit.h reports it), which no step removes.
+// An edge's points depend only on the edge (its two vertices, its bend, their patch), so an
+// edge two drawn triangles share is measured once, by the cell's first triangle (kTriangles[0]:
+// top, right and diagonal edges) where that is drawn, else by the second (bottom, left,
+// diagonal): 8 evaluations a cell instead of 14 (the estimate took 6.2 of a 64.7 ms render).
 double meshError(const Mesh& mesh, const PiecewiseCamera& camera, int threads) {
   std::vector<RationalMap> maps;
   for (const CameraPatch& p : camera.patches) maps.emplace_back(p.camera, camera.source_size, camera.target_size);
   const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
   std::vector<double> row_worst(static_cast<size_t>(std::max(0, cells_y)), 0.0);
+  // The centroid, then two points on each edge: a–b, b–c, c–a.
   const double points[7][3] = {{1 / 3.0, 1 / 3.0, 1 / 3.0}, {0.75, 0.25, 0}, {0.25, 0.75, 0}, {0, 0.75, 0.25},
                                {0, 0.25, 0.75}, {0.25, 0, 0.75}, {0.75, 0, 0.25}};
+  // Whether triangle `shape` of cell (i, j) is drawn and measured: the cell is, and one patch
+  // maps all three vertices (its index in `patch`).
+  const auto drawn = [&](int i, int j, const TriangleShape& shape, int* patch_out) {
+    if (i < 0 || j < 0 || i >= cells_x || j >= cells_y) return false;
+    if (!mesh.cell_ok[static_cast<size_t>(j) * static_cast<size_t>(cells_x) + static_cast<size_t>(i)]) return false;
+    const int patch = mesh.patch[mesh.at(i + shape.v[0][0], j + shape.v[0][1])];
+    if (patch < 0) return false;
+    for (int q = 0; q < 3; ++q) {
+      const size_t v = mesh.at(i + shape.v[q][0], j + shape.v[q][1]);
+      if (!mesh.valid[v] || mesh.patch[v] != patch) return false;
+    }
+    if (patch_out) *patch_out = patch;
+    return true;
+  };
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 8;
@@ -313,20 +332,29 @@ double meshError(const Mesh& mesh, const PiecewiseCamera& camera, int threads) {
     for (int j = j0; j < j1; ++j) {
       double worst = 0.0;
       for (int i = 0; i < cells_x; ++i) {
-        if (!mesh.cell_ok[static_cast<size_t>(j) * static_cast<size_t>(cells_x) + static_cast<size_t>(i)]) continue;
-        for (const TriangleShape& shape : kTriangles) {
+        for (int k = 0; k < 2; ++k) {
+          const TriangleShape& shape = kTriangles[k];
+          int patch = -1;
+          if (!drawn(i, j, shape, &patch)) continue;
+          // Which of its edges this triangle measures: all of the first's; the second's (a–b
+          // the diagonal, b–c the bottom, c–a the left) where the first triangle across it is
+          // not drawn.
+          bool edge[3] = {true, true, true};
+          if (k == 1) {
+            edge[0] = !drawn(i, j, kTriangles[0], nullptr);
+            edge[1] = !drawn(i, j + 1, kTriangles[0], nullptr);
+            edge[2] = !drawn(i - 1, j, kTriangles[0], nullptr);
+          }
           Eigen::Vector2d s[3], t[3], bend[3];
-          const int patch = mesh.patch[mesh.at(i + shape.v[0][0], j + shape.v[0][1])];
-          bool ok = patch >= 0;
-          for (int q = 0; q < 3 && ok; ++q) {
+          for (int q = 0; q < 3; ++q) {
             const size_t v = mesh.at(i + shape.v[q][0], j + shape.v[q][1]);
-            ok = mesh.valid[v] && mesh.patch[v] == patch;
             s[q] = mesh.sourceAt(i + shape.v[q][0], j + shape.v[q][1]);
             t[q] = mesh.target[v].cwiseQuotient(mesh.out_scale);
             bend[q] = bendOf(mesh, i, j, shape.bend[q]);
           }
-          if (!ok) continue;
-          for (const auto& w : points) {
+          for (int p = 0; p < 7; ++p) {
+            if (p > 0 && !edge[(p - 1) / 2]) continue;
+            const double* w = points[p];
             const Eigen::Vector2d target = w[0] * t[0] + w[1] * t[1] + w[2] * t[2];
             const Eigen::Vector2d source = quadratic(w[0], w[1], w[2], s, bend);
             Eigen::Vector2d f;
