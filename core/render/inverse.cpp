@@ -110,14 +110,14 @@ NewtonInverse::NewtonInverse(RationalMap forward, FrameSize source_px, double re
 }
 
 bool NewtonInverse::solveFromCentre(const Eigen::Vector2d& t, Eigen::Vector2d& out,
-                                    int max_iterations) const {
+                                    int max_iterations, Eigen::Matrix2d* jacobian) const {
   if (!has_linear_) return false;
   return solve(t, centre_.source + centre_inverse_jacobian_ * (t - centre_.target), out,
-               max_iterations);
+               max_iterations, jacobian);
 }
 
 bool NewtonInverse::solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start,
-                          Eigen::Vector2d& out, int max_iterations) const {
+                          Eigen::Vector2d& out, int max_iterations, Eigen::Matrix2d* jacobian) const {
   if (!start.allFinite()) return false;
   Eigen::Vector2d s = start, f;
   Eigen::Matrix2d j;
@@ -162,6 +162,7 @@ bool NewtonInverse::solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start
   if (signs != centre_.denominator_signs) return false;               // beyond a pole curve
   if ((j.determinant() > 0.0) != centre_.det_positive) return false;  // folded over
   out = s;
+  if (jacobian) *jacobian = j;
   return true;
 }
 

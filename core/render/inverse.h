@@ -61,11 +61,13 @@ class NewtonInverse {
   NewtonInverse(RationalMap forward, FrameSize source_px, double residual_tolerance_px);
 
   // From `start`; false when it fails, misses t by more than the residual tolerance, or lands
-  // beyond a pole curve or across the fold.
+  // beyond a pole curve or across the fold. `jacobian`, if given, receives the forward
+  // Jacobian at `out` (the last evaluation's: the same numbers a new one there would give).
   bool solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out,
-             int max_iterations) const;
+             int max_iterations, Eigen::Matrix2d* jacobian = nullptr) const;
   // From the forward map linearised at the source centre (the start of last resort).
-  bool solveFromCentre(const Eigen::Vector2d& t, Eigen::Vector2d& out, int max_iterations) const;
+  bool solveFromCentre(const Eigen::Vector2d& t, Eigen::Vector2d& out, int max_iterations,
+                       Eigen::Matrix2d* jacobian = nullptr) const;
 
   const RationalMap& forward() const { return forward_; }
   const CentreReference& centre() const { return centre_; }

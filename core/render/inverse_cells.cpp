@@ -89,20 +89,18 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
 
 bool InverseCells::solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* start, Node& out) const {
   Eigen::Vector2d s;
-  bool ok = start && newton_.solve(t, *start, s, kNodeIterations);
+  Eigen::Matrix2d j;
+  bool ok = start && newton_.solve(t, *start, s, kNodeIterations, &j);
   if (!ok && seed_) {
     Eigen::Vector2d seeded;
     if (seed_->evaluate(t, seeded, nullptr) && seeded.allFinite())
-      ok = newton_.solve(t, seeded, s, kNodeIterations);
+      ok = newton_.solve(t, seeded, s, kNodeIterations, &j);
   }
-  if (!ok) ok = newton_.solveFromCentre(t, s, kNodeIterations);
-  return ok && finishNode(s, kCell, out);
+  if (!ok) ok = newton_.solveFromCentre(t, s, kNodeIterations, &j);
+  return ok && finishNode(s, j, kCell, out);
 }
 
-bool InverseCells::finishNode(const Eigen::Vector2d& s, double size, Node& out) const {
-  Eigen::Vector2d f;
-  Eigen::Matrix2d j;
-  if (!newton_.forward().evaluate(s, f, &j)) return false;
+bool InverseCells::finishNode(const Eigen::Vector2d& s, const Eigen::Matrix2d& j, double size, Node& out) const {
   const double det = j.determinant();
   if (!(std::abs(det) > 0.0)) return false;
   const Eigen::Matrix2d a = j.inverse();  // ∂s/∂t at the node (eq 2 inverted)

@@ -184,7 +184,8 @@ class InverseCells {
 
   bool solveNode(const Eigen::Vector2d& t, const Eigen::Vector2d* start, Node& out) const;
   // The node's derivatives at its solution s, scaled to a patch of `size` pixels.
-  bool finishNode(const Eigen::Vector2d& s, double size, Node& out) const;
+  // The node at the solution s, from the forward Jacobian j there (the solve's last one).
+  bool finishNode(const Eigen::Vector2d& s, const Eigen::Matrix2d& j, double size, Node& out) const;
   void crossDerivative(Node& n, double size) const;  // drops a node next to a pole
   void solveNodes(int threads);
   void crossDerivatives();

@@ -199,25 +199,26 @@ bool InverseCells::solveSubNode(int cx, int cy, int i, int j, Refined& r) const 
   // fails costs only its subcells, which take the per-pixel path.
   const Eigen::Vector2d t(cx * kCell + i * kSub, cy * kCell + j * kSub);
   Eigen::Vector2d s;
+  Eigen::Matrix2d jac;  // the forward Jacobian at s
   bool ok =
       hasPatch(cx, cy) && newton_.solve(t,
                                         patchAt(cellCorners(cx, cy), static_cast<double>(i) / kSubs,
                                                 static_cast<double>(j) / kSubs),
-                                        s, kSubIterations);
+                                        s, kSubIterations, &jac);
   for (int k = i - 1; k >= 0 && !ok; --k)
     if (const Node& m = r.nodes[j * w + k]; m.valid) {
-      ok = newton_.solve(t, m.s + (i - k) * m.su, s, kSubIterations);
+      ok = newton_.solve(t, m.s + (i - k) * m.su, s, kSubIterations, &jac);
       break;
     }
   for (int k = j - 1; k >= 0 && !ok; --k)
     if (const Node& m = r.nodes[k * w + i]; m.valid) {
-      ok = newton_.solve(t, m.s + (j - k) * m.sv, s, kSubIterations);
+      ok = newton_.solve(t, m.s + (j - k) * m.sv, s, kSubIterations, &jac);
       break;
     }
   Eigen::Vector2d seeded;
   if (!ok && seed_ && seed_->evaluate(t, seeded, nullptr) && seeded.allFinite())
-    ok = newton_.solve(t, seeded, s, kSubIterations);
-  if (!ok || !finishNode(s, kSub, n)) return false;
+    ok = newton_.solve(t, seeded, s, kSubIterations, &jac);
+  if (!ok || !finishNode(s, jac, kSub, n)) return false;
   crossDerivative(n, kSub);
   return n.valid;
 }
