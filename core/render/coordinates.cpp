@@ -169,7 +169,8 @@ class ProjectiveKernel final : public CoordinateKernel {
 #if defined(__x86_64__)
     // Affine maps (W = 1 exactly, γ = 0): the float lanes, set up without the divisions below,
     // which by W = 1 would give these same numbers, and before anything else (chromatic
-    // aberration runs three of these per pixel, so their set-up showed: ~45 cycles per span).
+    // aberration runs three of these per pixel, so their set-up showed: 7.5 % of perf's samples
+    // in a bench run of that camera and the homography, and the render 130 → 126 ms).
     if (affine_lanes_) {
       const double u0 = m_(0, 0) * (x0 + 0.5) + m_(0, 1) * (y + 0.5) + m_(0, 2);
       const double v0 = m_(1, 0) * (x0 + 0.5) + m_(1, 1) * (y + 0.5) + m_(1, 2);
