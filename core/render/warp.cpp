@@ -396,10 +396,9 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   ParallelOptions po;
   po.threads = options.threads;
   po.progress = options.progress;
-  // Tiles of kTileSpans spans × band rows: a rotated or curved map reads a source region of
-  // about the tile's size, which then stays in L1/L2 and in the TLB; a whole 6000-pixel output
-  // row would sweep hundreds of source rows (measured 2–3× slower for a 2° rotation).
-  constexpr int kTileSpans = 4;
+  // Tiles of one span × band rows: a rotated or curved map reads a source region of about the
+  // tile's size, which then stays in L1/L2 and in the TLB; a whole 6000-pixel output row
+  // would sweep hundreds of source rows (measured 2–3× slower for a 2° rotation).
   po.band_rows = kBandRows;
   const bool finished = parallelForRows(out_px.height, po, [&](int y0, int y1) {
     long long band_transparent = 0, band_newton = 0;
@@ -412,25 +411,22 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
       return;
     }
     RowState row_states[kBandRows];  // each row's spans still go left to right (coordinates.h)
-    // Span-major inside the tile: one span column goes down the band's rows, then the next.
+    // Span-major: one span column goes down the band's rows, then the next.
     // A software prefetch of the source lines the next rows will read (extrapolated from the
     // last two rows) used to pay here; with the AVX2 samplers it cost more than it saved
     // (~8 % of the CPU time of a 24 Mpix bilinear render, measured) and is gone, as is a
     // prefetch of the output lines two rows down (no gain measured). The 8-bit bilinear
     // samplers prefetch instead, from the taps they have just read, the same lines a few rows
     // down (span_sampler_avx2.h, prefetchRowsAhead): exact addresses, no extrapolation.
-    for (int tx = 0; tx < out_px.width; tx += kTileSpans * kSpanPixels) {
-      const int tile_end = std::min(out_px.width, tx + kTileSpans * kSpanPixels);
-      for (int x0 = tx; x0 < tile_end; x0 += kSpanPixels) {
-        const int n = std::min(kSpanPixels, out_px.width - x0);
-        for (int y = y0; y < y1; ++y) {
-          RowState& row_state = row_states[y - y0];
-          band_newton += kernel.span(y, x0, n, sx, sy, valid, row_state);
-          int ss = 1;
-          float jac[4] = {1, 0, 0, 1};
-          if (options.antialias) ss = spanFootprint(kernel, y, x0, n, sx, sy, valid, max_ss, jac);
-          band_transparent += sampler.run(y, x0, n, sx, sy, valid, ss, jac);
-        }
+    for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
+      const int n = std::min(kSpanPixels, out_px.width - x0);
+      for (int y = y0; y < y1; ++y) {
+        RowState& row_state = row_states[y - y0];
+        band_newton += kernel.span(y, x0, n, sx, sy, valid, row_state);
+        int ss = 1;
+        float jac[4] = {1, 0, 0, 1};
+        if (options.antialias) ss = spanFootprint(kernel, y, x0, n, sx, sy, valid, max_ss, jac);
+        band_transparent += sampler.run(y, x0, n, sx, sy, valid, ss, jac);
       }
     }
     transparent += band_transparent;
