@@ -521,22 +521,47 @@ class RationalKernel final : public CoordinateKernel {
 
   int span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
            RowState& state) const override {
+    // The span in runs of whole cells: cells whose row has a pixel for the per-pixel path
+    // (mixedSpan, in double, checked) apart from the rest, so a span of kSpanPixels does not
+    // take the slow path whole for one open subcell in one of its cells.
+    const InverseCells& cells = *cells_;
+    const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
+    const int sub_y =
+        std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
+    const auto patched = [&](int k) {
+      const int cx = std::min(x0 / kCellPixels + k, cells.cellsWide() - 1);
+      if (cells.kind(cx, cy) != InverseCells::kOpen) return true;
+      if (!cells.refined(cx, cy)) return false;
+      for (int sub_x = 0; sub_x < InverseCells::kSubs; ++sub_x)
+        if (cells.subKind(cx, cy, sub_x, sub_y) == InverseCells::kOpen) return false;
+      return true;
+    };
+    const int count = (n + kCellPixels - 1) / kCellPixels;
+    int newton = 0;
+    for (int k0 = 0; k0 < count;) {
+      const bool p = patched(k0);
+      int k1 = k0 + 1;
+      while (k1 < count && patched(k1) == p) ++k1;
+      const int a = k0 * kCellPixels, b = std::min(n, k1 * kCellPixels);
+      newton += spanRun(y, x0 + a, b - a, p, sx + a, sy + a, valid + a, state);
+      k0 = k1;
+    }
+    return newton;
+  }
+
+  // Cells x0 / kCell … of the row, alike in `all_patched` (span above).
+  int spanRun(int y, int x0, int n, bool all_patched, float* sx, float* sy, unsigned char* valid,
+              RowState& state) const {
     const InverseCells& cells = *cells_;
     const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
     const int first = x0 / kCellPixels, count = (n + kCellPixels - 1) / kCellPixels;
-    bool all_certified = true, all_empty = true, all_patched = true;
+    bool all_certified = true, all_empty = true;
     const int sub_y =
         std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
     for (int k = 0; k < count; ++k) {
-      const int cx = std::min(first + k, cells.cellsWide() - 1);
-      const InverseCells::Kind kind = cells.kind(cx, cy);
+      const InverseCells::Kind kind = cells.kind(std::min(first + k, cells.cellsWide() - 1), cy);
       all_certified = all_certified && kind == InverseCells::kCertified;
       all_empty = all_empty && kind == InverseCells::kEmpty;
-      if (kind == InverseCells::kOpen) {
-        if (!cells.refined(cx, cy)) all_patched = false;
-        for (int sub_x = 0; sub_x < InverseCells::kSubs && all_patched; ++sub_x)
-          all_patched = cells.subKind(cx, cy, sub_x, sub_y) != InverseCells::kOpen;
-      }
     }
     if (all_empty) {
       std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(0));
@@ -557,7 +582,7 @@ class RationalKernel final : public CoordinateKernel {
     } else {
       // Certified and empty cells and subcells only: no pixel needs a check.
       InverseCells::SubRow row;
-      int row_key = -1;  // cell · kSubs + subcell of `row`
+      int row_cell = -1;  // the cell of `row`
       for (int k = 0; k < count; ++k) {
         const int cx = std::min(first + k, cells.cellsWide() - 1), c0 = k * kCellPixels;
         const int c1 = std::min(n, c0 + kCellPixels);
@@ -576,12 +601,12 @@ class RationalKernel final : public CoordinateKernel {
             std::fill(sy + s0, sy + s1, 0.0f);
             continue;
           }
-          // The two subcells of a quadrant certified whole share its row.
+          // The subcells of a square certified whole share its row (the quadtree's squares
+          // are disjoint, so one holding this subcell's columns on this row is its square).
           const int sub_x = (s0 - c0) / InverseCells::kSub;
-          const int key = cx * InverseCells::kSubs + sub_x;
-          if (!(sub_x % 2 == 1 && row_key == key - 1 && row.size == 2 * InverseCells::kSub))
+          if (!(row_cell == cx && x0 + s0 >= row.x0 && x0 + s0 < row.x0 + row.size))
             cells.subRow(cx, sub_x, y, row);
-          row_key = key;
+          row_cell = cx;
           subcellPixels(row, x0 + s0, s1 - s0, sx + s0, sy + s0);
           std::fill(valid + s0, valid + s1, static_cast<unsigned char>(1));
         }

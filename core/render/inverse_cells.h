@@ -7,7 +7,7 @@
 //
 // Why Hermite: values and first derivatives at the corners make the patch exact to fourth
 // order, its error ~ G⁴/384 · |∂⁴s|; a fisheye's inverse, whose bilinear interpolation misses
-// by ~0.1 px at 32 px, is met to ~1e-6 px. The first derivatives are exact (the inverse of the
+// by ~0.1 px at 32 px, is met to ~1e-6 px (16 × that at 64 px, still far inside the budget). The first derivatives are exact (the inverse of the
 // forward Jacobian, eq 2, at the solved node); the cross derivative is the central difference
 // of the neighbouring nodes' derivatives (its error enters at the same fourth order).
 //
@@ -34,14 +34,21 @@
 // Open cells are split. Near a fold the inverse behaves like √d in the distance d to the
 // fold's image, so its fourth derivative, and a patch's error ~ G⁴ |∂⁴s|, grows as d^(−7/2):
 // a strong barrel's cells fail to certify hundreds of pixels inside its fold circle, where
-// the per-pixel path would run. Each open cell is cut into quadrants of 2 kSub pixels with
-// their own nodes (solved from the cell's patch or a neighbour in a few Newton steps; a node
-// that fails only leaves its subcells open) and certified by the same rule at half the
-// tolerance (a subcell certifies where its cell just failed, so without the margin its error
-// between the checked points would exceed the tolerance a little: 1.4 × on the strong barrel);
-// a quadrant that fails is cut into four subcells of kSub pixels, certified again. Only
-// subcells near enough to the fold or a pole run the per-pixel path: about a sixth of the
-// open cells' area for the benchmark's strong barrel (tests/core/render/test_inverse_cells).
+// the per-pixel path would run. Each open cell is cut as a quadtree: quadrants of kCell / 2
+// pixels with their own nodes (solved from the cell's patch or a neighbour in a few Newton
+// steps; a node that fails only leaves its squares open), certified by the same rule at half
+// the tolerance (a square certifies where its parent just failed, so without the margin its
+// error between the checked points would exceed the tolerance a little: 1.4 × on the strong
+// barrel); a square that fails is cut into four, down to subcells of kSub pixels. Only
+// subcells near enough to the fold or a pole run the per-pixel path: about 2 % of the strong
+// barrel's frame (tests/core/render/test_inverse_cells).
+//
+// Why cells of 64 pixels, not 32: building the cells (node solves, certification, the float
+// patches) is per cell, and on the benchmark's rational lens it was a fifth of a 24 Mpix
+// render. At 64 the lens still certifies (96.9 % of the frame, 96.3 % at 32) and its render
+// went 47.8 → 39.3 ms on 1 thread, 25.4 → 21.5 ms on 2 (AVX-512 machine). The strong barrel
+// pays: more of its frame lies in cells that fail near the fold and are refined, 56 → 72 ms
+// on 2 threads.
 // Open cells with a node without a preimage (the edge of what the camera sees crosses them)
 // get their own coverage at kFine pixels: the lattice quads whose boxes reach them, split into
 // quads of 8 source pixels, mark their images' boxes grown by half a pixel plus a quarter of
@@ -80,7 +87,7 @@ struct CellRow {
 // position rounded to float) in the power basis of the cell's local (u, v) ∈ [0, 1]²,
 //   s(u, v) = anchor + Σ_k u^k Σ_l v^l p[l][k]  (x in lanes 0–3, y in lanes 4–7).
 // A row's cubic in u is then one Horner step in v per power over eight lanes. Only the offset
-// from the anchor (a cell's stretch, ~32 px: its rounding ~1e-6 px) is a float sum; adding
+// from the anchor (a cell's stretch, ~64 px: its rounding ~4e-6 px) is a float sum; adding
 // the anchor rounds once, as any float position does (half an ulp ≤ 2.4e-4 px at 6000 px).
 struct alignas(32) CellPoly {
   float p[4][8];
@@ -89,7 +96,7 @@ struct alignas(32) CellPoly {
 
 class InverseCells {
  public:
-  static constexpr int kCell = 32;  // output pixels per cell side; divides kSpanPixels
+  static constexpr int kCell = 64;  // output pixels per cell side; divides kSpanPixels
   static constexpr int kBlock = 8;  // output pixels per coverage block side
   static constexpr int kSub = 8;    // output pixels per subcell side in an open cell
   static constexpr int kSubs = kCell / kSub;
@@ -163,15 +170,25 @@ class InverseCells {
   };
   struct Refined {
     Node nodes[(kSubs + 1) * (kSubs + 1)];  // kSub apart, derivatives per kSub
-    Node quads[3 * 3];                      // 2 kSub apart, derivatives per 2 kSub
-    bool quad_certified[4] = {false, false, false, false};
     Kind kinds[kSubs * kSubs];
+    // Per subcell: the side, in subcells (kSubs / 2, …, 2, 1), of the square of the quadtree
+    // that decided it, whose patch (its corner nodes) it takes — certified, or as the per-pixel
+    // path's start when open.
+    unsigned char side[kSubs * kSubs];
     unsigned char covered[kFines * kFines];
     bool fine = false;  // covered[] from the split lattice (else all covered)
-    Corners corners(int sx, int sy) const {
+    // The square of `size` subcells at subcell (sx, sy): its corner nodes with their
+    // derivatives scaled to the square (per size · kSub pixels).
+    void square(int sx, int sy, int size, Node out[4]) const {
       const int w = kSubs + 1;
-      return {&nodes[sy * w + sx], &nodes[sy * w + sx + 1], &nodes[(sy + 1) * w + sx],
-              &nodes[(sy + 1) * w + sx + 1]};
+      const Node* n[4] = {&nodes[sy * w + sx], &nodes[sy * w + sx + size], &nodes[(sy + size) * w + sx],
+                          &nodes[(sy + size) * w + sx + size]};
+      for (int k = 0; k < 4; ++k) {
+        out[k] = *n[k];
+        out[k].su *= size;
+        out[k].sv *= size;
+        out[k].suv *= static_cast<double>(size) * size;
+      }
     }
   };
 

@@ -26,27 +26,23 @@ constexpr int kSplit = 4;
 
 bool InverseCells::hasSubPatch(int cx, int cy, int sx, int sy) const {
   const Refined& r = refinedAt(cx, cy);
-  if (r.quad_certified[(sy / 2) * 2 + sx / 2]) return true;
-  const Corners n = r.corners(sx, sy);
-  return n.a->valid && n.b->valid && n.c->valid && n.d->valid;
+  const int size = r.side[sy * kSubs + sx], qx = sx / size * size, qy = sy / size * size;
+  const int w = kSubs + 1;
+  return r.nodes[qy * w + qx].valid && r.nodes[qy * w + qx + size].valid &&
+         r.nodes[(qy + size) * w + qx].valid && r.nodes[(qy + size) * w + qx + size].valid;
 }
 
 void InverseCells::subRow(int cx, int sx, int y, SubRow& out) const {
   const int cy = std::min(y / kCell, cells_h_ - 1);
   const int sy = std::min((y - cy * kCell) / kSub, kSubs - 1);
   const Refined& r = refinedAt(cx, cy);
-  const int qx = sx / 2, qy = sy / 2;
-  if (r.quad_certified[qy * 2 + qx]) {
-    out.size = 2 * kSub;
-    out.x0 = cx * kCell + qx * out.size;
-    const Corners n{&r.quads[qy * 3 + qx], &r.quads[qy * 3 + qx + 1], &r.quads[(qy + 1) * 3 + qx],
-                    &r.quads[(qy + 1) * 3 + qx + 1]};
-    rowOf(n, (y + 0.5 - cy * kCell - qy * out.size) / out.size, out.cubic);
-    return;
-  }
-  out.size = kSub;
-  out.x0 = cx * kCell + sx * kSub;
-  rowOf(r.corners(sx, sy), (y + 0.5 - cy * kCell - sy * kSub) / kSub, out.cubic);
+  // The square that decided the subcell: squares of the quadtree are aligned to their size.
+  const int size = r.side[sy * kSubs + sx], qx = sx / size * size, qy = sy / size * size;
+  Node n[4];
+  r.square(qx, qy, size, n);
+  out.size = size * kSub;
+  out.x0 = cx * kCell + qx * kSub;
+  rowOf({&n[0], &n[1], &n[2], &n[3]}, (y + 0.5 - cy * kCell - qy * kSub) / out.size, out.cubic);
 }
 
 void InverseCells::refineOpenCells(int threads) {
@@ -243,57 +239,43 @@ void InverseCells::refineCell(int cx, int cy, Refined& r) const {
         needed = needed || sub_covered(sx, sy);
     if (needed) solveSubNode(cx, cy, i, j, r);
   };
-  // Quadrants first (2 kSub pixels, the nodes at even positions): the same certification
-  // rule; only a quadrant that fails is split into its four subcells. At half the cells'
-  // tolerance: a subcell certifies where its cell just failed, so its error between the
+  // A quadtree below the cell, which has just failed: its quadrants (kCell / 2 pixels) first,
+  // each certified by the same rule; a square that fails is cut into four, down to subcells of
+  // kSub pixels, and only the subcells that fail run the per-pixel path. At half the cells'
+  // tolerance: a square certifies where its parent just failed, so its error between the
   // checked points sits nearer the tolerance than most cells' does. Measured on the strong
-  // barrel (tests/core/render/test_inverse_cells), worst certified subcell pixel and the
-  // frame's share left to the per-pixel path: at the cells' tolerance 3.3e-4 px (above the
-  // tolerance) and 1.6 %; at half 1.6e-4 px and 2.1 %; at a quarter 7.9e-5 px and 2.6 %, with
-  // the refinement a quarter slower than at the cells' tolerance.
+  // barrel (tests/core/render/test_inverse_cells; cells of 32, squares 16 and 8), worst
+  // certified subcell pixel and the frame's share left to the per-pixel path: at the cells'
+  // tolerance 3.3e-4 px (above the tolerance) and 1.6 %; at half 1.6e-4 px and 2.1 %; at a
+  // quarter 7.9e-5 px and 2.6 %, with the refinement a quarter slower than at the cells'.
   const double tol = options_.certify_tolerance_px / 2.0;
-  for (int j = 0; j < w; j += 2)
-    for (int i = 0; i < w; i += 2) {
-      solve(i, j);
-      Node& q = r.quads[(j / 2) * 3 + i / 2];
-      q = r.nodes[j * w + i];
-      q.su *= 2.0;
-      q.sv *= 2.0;
-      q.suv *= 4.0;
-    }
-  for (int qy = 0; qy < 2; ++qy)
-    for (int qx = 0; qx < 2; ++qx) {
-      const Corners n{&r.quads[qy * 3 + qx], &r.quads[qy * 3 + qx + 1], &r.quads[(qy + 1) * 3 + qx],
-                      &r.quads[(qy + 1) * 3 + qx + 1]};
-      bool covered = false;
-      for (int sy = 2 * qy; sy < 2 * qy + 2; ++sy)
-        for (int sx = 2 * qx; sx < 2 * qx + 2; ++sx) covered = covered || sub_covered(sx, sy);
-      Kind k = kOpen;
-      if (!covered)
-        k = kEmpty;
-      else if (n.a->valid && n.b->valid && n.c->valid && n.d->valid &&
-               certify(n, cx * kCell + qx * 2 * kSub, cy * kCell + qy * 2 * kSub, 2 * kSub, tol))
-        k = patchBeyondReach(n) ? kEmpty : kCertified;
-      r.quad_certified[qy * 2 + qx] = k == kCertified;
-      if (k == kOpen) {
-        for (int j = 2 * qy; j <= 2 * qy + 2; ++j)
-          for (int i = 2 * qx; i <= 2 * qx + 2; ++i) solve(i, j);
-        for (int sy = 2 * qy; sy < 2 * qy + 2; ++sy)
-          for (int sx = 2 * qx; sx < 2 * qx + 2; ++sx) {
-            const Corners m = r.corners(sx, sy);
-            Kind& ks = r.kinds[sy * kSubs + sx];
-            ks = kOpen;
-            if (!sub_covered(sx, sy))
-              ks = kEmpty;
-            else if (m.a->valid && m.b->valid && m.c->valid && m.d->valid &&
-                     certify(m, cx * kCell + sx * kSub, cy * kCell + sy * kSub, kSub, tol))
-              ks = patchBeyondReach(m) ? kEmpty : kCertified;
-          }
-      } else {
-        for (int sy = 2 * qy; sy < 2 * qy + 2; ++sy)
-          for (int sx = 2 * qx; sx < 2 * qx + 2; ++sx) r.kinds[sy * kSubs + sx] = k;
+  const auto decide = [&](int qx, int qy, int size, Kind k) {
+    for (int sy = qy; sy < qy + size; ++sy)
+      for (int sx = qx; sx < qx + size; ++sx) {
+        r.kinds[sy * kSubs + sx] = k;
+        r.side[sy * kSubs + sx] = static_cast<unsigned char>(size);
       }
-    }
+  };
+  const auto refine = [&](const auto& self, int qx, int qy, int size) -> void {
+    bool covered = false;
+    for (int sy = qy; sy < qy + size; ++sy)
+      for (int sx = qx; sx < qx + size; ++sx) covered = covered || sub_covered(sx, sy);
+    if (!covered) return decide(qx, qy, size, kEmpty);
+    for (int j = qy; j <= qy + size; j += size)
+      for (int i = qx; i <= qx + size; i += size) solve(i, j);
+    Node n[4];
+    r.square(qx, qy, size, n);
+    const Corners c{&n[0], &n[1], &n[2], &n[3]};
+    if (n[0].valid && n[1].valid && n[2].valid && n[3].valid &&
+        certify(c, cx * kCell + qx * kSub, cy * kCell + qy * kSub, size * kSub, tol))
+      return decide(qx, qy, size, patchBeyondReach(c) ? kEmpty : kCertified);
+    if (size == 1) return decide(qx, qy, 1, kOpen);
+    const int half = size / 2;
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) self(self, qx + dx * half, qy + dy * half, half);
+  };
+  for (int dy = 0; dy < 2; ++dy)
+    for (int dx = 0; dx < 2; ++dx) refine(refine, dx * kSubs / 2, dy * kSubs / 2, kSubs / 2);
 }
 
 }  // namespace artcam
