@@ -3,6 +3,7 @@
 #include "core/piecewise/piecewise_render.h"
 
 #include "core/model/image_view.h"
+#include "core/render/coordinates.h"
 #include "core/render/rational_map.h"
 #include "core/render/span_sampler.h"
 #include "core/util/parallel.h"
@@ -565,8 +566,8 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
     const long long band_covered = rasteriseBand(mesh, y0, y1, out.width, sx.data(), sy.data(), valid.data());
     for (int y = y0; y < y1; ++y) {
       const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(out.width);
-      for (int x0 = 0; x0 < out.width; x0 += 64) {
-        const int n = std::min(64, out.width - x0);
+      for (int x0 = 0; x0 < out.width; x0 += kSpanPixels) {  // the warp's spans (coordinates.h)
+        const int n = std::min(kSpanPixels, out.width - x0);
         sampler.run(y, x0, n, sx.data() + row + x0, sy.data() + row + x0, valid.data() + row + x0);
       }
     }
