@@ -7,7 +7,8 @@
 //
 // Why Hermite: values and first derivatives at the corners make the patch exact to fourth
 // order, its error ~ G⁴/384 · |∂⁴s|; a fisheye's inverse, whose bilinear interpolation misses
-// by ~0.1 px at 32 px, is met to ~1e-6 px (16 × that at 64 px, still far inside the budget). The first derivatives are exact (the inverse of the
+// by ~0.1 px at 32 px, is met to ~1e-6 px there (16 × that at 64 px, still far inside the
+// budget). The first derivatives are exact (the inverse of the
 // forward Jacobian, eq 2, at the solved node); the cross derivative is the central difference
 // of the neighbouring nodes' derivatives (its error enters at the same fourth order).
 //
