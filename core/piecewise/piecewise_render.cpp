@@ -12,6 +12,7 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#include <immintrin.h>
 #endif
 
 #include <algorithm>
@@ -402,6 +403,33 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
 // source position (quadratic(), in pixels of the image rendered from). Shared edges are drawn
 // by both triangles with the same value (the mesh is continuous), so the inclusive test costs
 // nothing but a second identical write.
+#if defined(__x86_64__)
+bool cpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+// A row's positions p(m) = p + m (d1 + m d2) for m = k … end, four at a time, with the SSE2
+// loop's operations (no FMA) so every bit agrees; returns the first m it left.
+__attribute__((target("avx2"))) int rowRunAvx2(double px, double py, double d1x, double d1y, double d2x,
+                                               double d2y, int k, int end, float* row_x, float* row_y) {
+  const __m256d ax = _mm256_set1_pd(px), ay = _mm256_set1_pd(py);
+  const __m256d bx = _mm256_set1_pd(d1x), by = _mm256_set1_pd(d1y);
+  const __m256d cx = _mm256_set1_pd(d2x), cy = _mm256_set1_pd(d2y);
+  const __m256d four = _mm256_set1_pd(4.0);
+  const double m0 = k;
+  __m256d m = _mm256_setr_pd(m0, m0 + 1.0, m0 + 2.0, m0 + 3.0);
+  int q = k;
+  for (; q + 3 <= end; q += 4, m = _mm256_add_pd(m, four)) {
+    const __m128 fx = _mm256_cvtpd_ps(_mm256_add_pd(ax, _mm256_mul_pd(m, _mm256_add_pd(bx, _mm256_mul_pd(m, cx)))));
+    const __m128 fy = _mm256_cvtpd_ps(_mm256_add_pd(ay, _mm256_mul_pd(m, _mm256_add_pd(by, _mm256_mul_pd(m, cy)))));
+    _mm_storeu_ps(row_x + q, fx);
+    _mm_storeu_ps(row_y + q, fy);
+  }
+  return q;
+}
+#endif
+
 long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], const Eigen::Vector2d bend[3], int y0,
                     int y1, int width, float* sx, float* sy, unsigned char* valid) {
   const Eigen::Vector2d &a = t[0], &b = t[1], &c = t[2];
@@ -449,7 +477,10 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
       else if (w0[q] < eps) k_hi = -1.0;
     }
     if (!(k_lo <= k_hi)) continue;
-    const int k = static_cast<int>(std::ceil(k_lo)), end = static_cast<int>(std::floor(k_hi));
+    // 0 ≤ k_lo ≤ k_hi ≤ k_max here: truncation is the floor, and the ceiling one more where
+    // it cut (std::ceil and std::floor are a dozen instructions each on the x86-64 baseline).
+    const int k_trunc = static_cast<int>(k_lo);
+    const int k = k_trunc + (static_cast<double>(k_trunc) < k_lo ? 1 : 0), end = static_cast<int>(k_hi);
     if (k > end) continue;
     // The position at the row's first pixel of the box (k = 0) and its slope there:
     // p(k) = p + k (d1 + k d2).
@@ -460,12 +491,16 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
     float* row_x = sx + row;
     float* row_y = sy + row;
     int q = k;
+#if defined(__x86_64__)
+    // Four pixels per step where the CPU has AVX2 (the same double arithmetic, so the same bits).
+    if (cpuHasAvx2()) q = rowRunAvx2(p.x(), p.y(), d1.x(), d1.y(), d2.x(), d2.y(), k, end, row_x, row_y);
+#endif
 #if defined(__SSE2__)
     // Two pixels per step (measured 123 against 139 ms for the scalar loop alone, one thread).
     const __m128d ax = _mm_set1_pd(p.x()), ay = _mm_set1_pd(p.y());
     const __m128d bx = _mm_set1_pd(d1.x()), by = _mm_set1_pd(d1.y());
     const __m128d cx = _mm_set1_pd(d2.x()), cy = _mm_set1_pd(d2.y());
-    const double m0 = k;
+    const double m0 = q;
     __m128d m = _mm_setr_pd(m0, m0 + 1.0);
     const __m128d two = _mm_set1_pd(2.0);
     for (; q + 1 <= end; q += 2, m = _mm_add_pd(m, two)) {
