@@ -391,6 +391,16 @@ long long bilinearRgb8Avx512(const Context& k, unsigned char* out, int n, const 
   return avx512::bilinearRgb8(k, out, n, sx, sy, valid, &sampleSpanU8<3, Filter::Bilinear>);
 }
 
+// The AVX-512 float bilinear (span_sampler_avx512.h) for float RGB → RGB without alpha; every
+// other layout, and every group it cannot take, runs the AVX2 clone.
+long long bilinearFloatRgbAvx512(const Context& k, unsigned char* out, int n, const float* sx,
+                                 const float* sy, const unsigned char* valid, int supersample,
+                                 const float* jac) {
+  if (supersample > 1 || k.append_alpha || k.out_channels != 3 || k.src_alpha >= 0)
+    return sampleSpanWideSimd<float, 3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
+  return avx512::bilinearFloatRgb(k, out, n, sx, sy, valid, &sampleSpanWideSimd<float, 3, Filter::Bilinear>);
+}
+
 bool cpuHasAvx512Sampler() {
   return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
          __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi");
@@ -406,6 +416,11 @@ SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter, bool allo
   if (src.type != PixelType::UInt8) {
     if (filter == Filter::Bicubic) return nullptr;
     if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
+#ifdef ARTCAM_HAVE_AVX512_SAMPLER
+    if (src.type == PixelType::Float && filter == Filter::Bilinear && src.channels == 3 && allow_avx512 &&
+        cpuHasAvx512Sampler())
+      return bilinearFloatRgbAvx512;
+#endif
     return src.type == PixelType::UInt16 ? pickWide<std::uint16_t>(filter, src.channels) : pickWide<float>(filter, src.channels);
   }
   if (filter == Filter::Bicubic) return src.channels == 3 ? cubicSpanU8Simd<3> : cubicSpanU8Simd<4>;
@@ -479,7 +494,7 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
       fn_ = simd;
       simd_ = true;
 #ifdef ARTCAM_HAVE_AVX512_SAMPLER
-      avx512_ = simd == bilinearRgb8Avx512;
+      avx512_ = simd == bilinearRgb8Avx512 || simd == bilinearFloatRgbAvx512;
 #endif
     }
 }
