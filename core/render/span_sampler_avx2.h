@@ -94,6 +94,19 @@ __attribute__((target("avx2"), always_inline)) inline void prefetchRowsAhead(con
   _mm_prefetch(reinterpret_cast<const char*>(ahead + static_cast<std::uintptr_t>(bytes - 1)), _MM_HINT_T0);
 }
 
+// bilinearTap's integers for eight lanes (fx, fy = position − ½), the 16-bit and float
+// kernels' taps: ⌊f⌋ as cvtt(f + 1) − 1 for f ≥ −1; a NaN or huge position converts to
+// INT_MIN, − 1 wraps to INT_MAX, outside any range the callers test.
+struct Floor8 {
+  __m256i x0, y0;
+};
+__attribute__((target("avx2"), always_inline)) inline Floor8 tapFloor(__m256 fx, __m256 fy) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m256i int_one = _mm256_set1_epi32(1);
+  return {_mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_add_ps(fx, one)), int_one),
+          _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_add_ps(fy, one)), int_one)};
+}
+
 // The scalar bilinear's fixed point for eight lanes (fx, fy = position − ½, interior): the
 // left tap x0, the row y0, column weight ax in 0 … 256 and row weight ay in 0 … 255, rounded
 // as span_sampler.cpp's BilinearQuanta rounds them (no FMA).

@@ -166,7 +166,7 @@ __attribute__((target("avx2"))) long long sampleWide(const SpanSampler::Context&
   const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   const __m256i row = _mm256_set1_epi32(static_cast<int>(k.src_row));
   const __m256i pixel_bytes = _mm256_set1_epi32(kPixel);
-  const __m256i minus_one = _mm256_set1_epi32(-1), int_one = _mm256_set1_epi32(1);
+  const __m256i minus_one = _mm256_set1_epi32(-1);
   const __m256i x_last = _mm256_set1_epi32(k.width - 1), y_last = _mm256_set1_epi32(k.height - 1);
   // The image's last byte + 1 as an offset from its first (row padding after the last pixel of
   // the last row is not ours to read). RGB loads read one sample past their pixel, so the taps
@@ -200,10 +200,7 @@ __attribute__((target("avx2"))) long long sampleWide(const SpanSampler::Context&
     __m256 wx0 = zero, wx1 = zero, wy0 = zero, wy1 = zero;
     bool inside;
     if constexpr (F == Filter::Bilinear) {
-      // bilinearTap's integers: a NaN or huge position converts to INT_MIN, − 1 wraps to
-      // INT_MAX, outside the range tested.
-      const __m256i x0 = _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_add_ps(fx, one)), int_one);
-      const __m256i y0 = _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_add_ps(fy, one)), int_one);
+      const auto [x0, y0] = tapFloor(fx, fy);
       const __m256i in = _mm256_and_si256(
           _mm256_and_si256(_mm256_cmpgt_epi32(x0, minus_one), _mm256_cmpgt_epi32(x_last, x0)),
           _mm256_and_si256(_mm256_cmpgt_epi32(y0, minus_one), _mm256_cmpgt_epi32(y_last, y0)));

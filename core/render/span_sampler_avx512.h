@@ -202,7 +202,7 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const Sp
                                                                         SpanSampler::SpanFn fallback) {
   constexpr int kOutPixel = 3 * static_cast<int>(sizeof(float));
   const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
-  const __m256i int_one = _mm256_set1_epi32(1), max_rel = _mm256_set1_epi32(8);
+  const __m256i max_rel = _mm256_set1_epi32(8);
   const __m256i x_limit = _mm256_set1_epi32(k.width - 2), y_limit = _mm256_set1_epi32(k.height - 2);
   // One past the image's last byte, from its first (row padding after it is not ours).
   const std::int64_t end = static_cast<std::int64_t>(k.height - 1) * k.src_row +
@@ -221,10 +221,7 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const Sp
     unsigned char* o = out + static_cast<std::ptrdiff_t>(i) * kOutPixel;
     const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx + i), half);
     const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy + i), half);
-    // The AVX2 clone's integers: a NaN or huge position converts to INT_MIN, − 1 wraps to
-    // INT_MAX, outside the range tested.
-    const __m256i x0 = _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_add_ps(fx, one)), int_one);
-    const __m256i y0 = _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_add_ps(fy, one)), int_one);
+    const auto [x0, y0] = avx2::tapFloor(fx, fy);  // the AVX2 clone's integers
     const int x_first = _mm_cvtsi128_si32(_mm256_castsi256_si128(x0));
     const int y_first = _mm_cvtsi128_si32(_mm256_castsi256_si128(y0));
     const __m256i rel = _mm256_sub_epi32(x0, _mm256_set1_epi32(x_first));
