@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// AVX-512 (BW + VBMI) bilinear for 8-bit RGB (span_sampler.cpp only; SIMD where it
-// pays). Runtime dispatch only, as span_sampler_avx2.h: these functions carry a target
+// AVX-512 (BW + VBMI) bilinear for 8-bit RGB, and for float RGB (bilinearFloatRgb, below)
+// (span_sampler.cpp only; SIMD where it pays). Runtime dispatch only, as span_sampler_avx2.h: these functions carry a target
 // attribute, span_sampler.cpp picks them when the CPU reports avx512bw, avx512vl and
 // avx512vbmi, and they compute EXACTLY the scalar 8-bit interior integers (the same
 // float → fixed-point rounding without FMA, rows by 1/255, columns by 1/256, one rounding), so
