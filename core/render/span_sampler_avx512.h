@@ -197,9 +197,9 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 bilinearBlend
 // the group's taps lie within 32 floats (ten pixels) of the upper row and of the lower row,
 // loaded once each as two 512-bit registers, and vpermt2ps picks them: red and green of the
 // left and right taps as four registers (red in lanes 0–7, green in 8–15), blue as one per
-// row (left in 0–7, right in 8–15). A group wider than the window (minified below 0.9×), one
-// crossing a source row, or one touching a border or an invalid pixel runs `fallback` (the
-// AVX2 clone). The loads are masked at the image's last float, so nothing past it is read.
+// row (left in 0–7, right in 8–15); a group crossing one source row also reads the row
+// below and blends. A group wider than the window (minified below 0.9×), one spanning more
+// rows, or one touching a border or an invalid pixel runs `fallback` (the AVX2 clone). The loads are masked at the image's last float, so nothing past it is read.
 __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const SpanSampler::Context& k,
                                                                         unsigned char* out, int n,
                                                                         const float* sx, const float* sy,
@@ -228,17 +228,21 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const Sp
     const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy + i), half);
     const auto [x0, y0] = avx2::tapFloor(fx, fy);  // the AVX2 clone's integers
     const int x_first = _mm_cvtsi128_si32(_mm256_castsi256_si128(x0));
-    const int y_first = _mm_cvtsi128_si32(_mm256_castsi256_si128(y0));
+    // The upper row: the lower of the first and last pixels' rows (as the 8-bit kernel).
+    const int y_first = std::min(_mm_cvtsi128_si32(_mm256_castsi256_si128(y0)),
+                                 _mm_extract_epi32(_mm256_extracti128_si256(y0, 1), 3));
     const __m256i rel = _mm256_sub_epi32(x0, _mm256_set1_epi32(x_first));
+    const __m256i dy = _mm256_sub_epi32(y0, _mm256_set1_epi32(y_first));
     std::uint64_t v;
     std::memcpy(&v, valid + i, 8);
-    // Interior (0 ≤ x0 ≤ w − 2, 0 ≤ y0 ≤ h − 2), one row pair, 0 ≤ rel ≤ 8 (taps in 30 floats).
+    // Interior (0 ≤ x0 ≤ w − 2, 0 ≤ y0 ≤ h − 2), rows y_first or one below (dy 0 or 1),
+    // 0 ≤ rel ≤ 8 (taps in 30 floats).
     const bool inside = v == 0x0101010101010101ull &&
                         _mm256_cmp_epi32_mask(x0, _mm256_setzero_si256(), _MM_CMPINT_LT) == 0 &&
                         _mm256_cmp_epi32_mask(x0, x_limit, _MM_CMPINT_LE) == 0xFF &&
                         _mm256_cmp_epi32_mask(y0, _mm256_setzero_si256(), _MM_CMPINT_LT) == 0 &&
                         _mm256_cmp_epi32_mask(y0, y_limit, _MM_CMPINT_LE) == 0xFF &&
-                        _mm256_cmp_epi32_mask(y0, _mm256_set1_epi32(y_first), _MM_CMPINT_EQ) == 0xFF &&
+                        _mm256_cmp_epu32_mask(dy, _mm256_set1_epi32(1), _MM_CMPINT_LE) == 0xFF &&
                         _mm256_cmp_epu32_mask(rel, max_rel, _MM_CMPINT_LE) == 0xFF;
     if (!inside) {
       transparent += fallback(k, o, 8, sx + i, sy + i, valid + i, 1, nullptr);
@@ -256,9 +260,23 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const Sp
     const __m512i rel3z = _mm512_inserti64x4(_mm512_castsi256_si512(rel3), rel3, 1);
     const __m512i rg_left = _mm512_add_epi32(rel3z, rg_offset), rg_right = _mm512_add_epi32(rg_left, three);
     const __m512i b_index = _mm512_add_epi32(rel3z, b_offset);
-    const __m512 tl = _mm512_permutex2var_ps(t0, rg_left, t1), tr = _mm512_permutex2var_ps(t0, rg_right, t1);
-    const __m512 bl = _mm512_permutex2var_ps(b0, rg_left, b1), br = _mm512_permutex2var_ps(b0, rg_right, b1);
-    const __m512 tb = _mm512_permutex2var_ps(t0, b_index, t1), bb = _mm512_permutex2var_ps(b0, b_index, b1);
+    __m512 tl = _mm512_permutex2var_ps(t0, rg_left, t1), tr = _mm512_permutex2var_ps(t0, rg_right, t1);
+    __m512 bl = _mm512_permutex2var_ps(b0, rg_left, b1), br = _mm512_permutex2var_ps(b0, rg_right, b1);
+    __m512 tb = _mm512_permutex2var_ps(t0, b_index, t1), bb = _mm512_permutex2var_ps(b0, b_index, b1);
+    // Pixels one row lower (the group crosses a source row): their upper taps are the lower
+    // row's, their lower ones row y_first + 2's (inside: their y0 ≤ h − 2). Lanes p and 8 + p
+    // are pixel p in every tap register.
+    if (const __mmask8 lower = _mm256_test_epi32_mask(dy, dy)) {
+      const __mmask16 both = static_cast<__mmask16>(lower | (lower << 8));
+      __m512 h0, h1;
+      floatWindow(k, end, upper + 2 * k.src_row, h0, h1);
+      tl = _mm512_mask_blend_ps(both, tl, bl);
+      tr = _mm512_mask_blend_ps(both, tr, br);
+      tb = _mm512_mask_blend_ps(both, tb, bb);
+      bl = _mm512_mask_blend_ps(both, bl, _mm512_permutex2var_ps(h0, rg_left, h1));
+      br = _mm512_mask_blend_ps(both, br, _mm512_permutex2var_ps(h0, rg_right, h1));
+      bb = _mm512_mask_blend_ps(both, bb, _mm512_permutex2var_ps(h0, b_index, h1));
+    }
     const __m512 tb_right = _mm512_shuffle_f32x4(tb, tb, 0x4E), bb_right = _mm512_shuffle_f32x4(bb, bb, 0x4E);
     const __m256 wx1 = _mm256_sub_ps(fx, _mm256_cvtepi32_ps(x0)), wy1 = _mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0));
     const __m512 bx0 = bothHalves(_mm256_sub_ps(one, wx1)), bx1 = bothHalves(wx1);
