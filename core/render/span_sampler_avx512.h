@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // AVX-512 (BW + VBMI) bilinear for 8-bit RGB, and for float RGB (bilinearFloatRgb, below)
-// (span_sampler.cpp only; SIMD where it pays). Runtime dispatch only, as span_sampler_avx2.h: these functions carry a target
-// attribute, span_sampler.cpp picks them when the CPU reports avx512bw, avx512vl and
-// avx512vbmi, and they compute EXACTLY the scalar 8-bit interior integers (the same
-// float → fixed-point rounding without FMA, rows by 1/255, columns by 1/256, one rounding), so
-// the tests demand bit-identical output.
+// (span_sampler.cpp only; SIMD where it pays). Runtime dispatch only, as span_sampler_avx2.h:
+// these functions carry a target attribute, span_sampler.cpp picks them when the CPU reports
+// avx512bw, avx512vl and avx512vbmi, and they compute EXACTLY the scalar path's numbers (8-bit:
+// the same float → fixed-point rounding without FMA, rows by 1/255, columns by 1/256, one
+// rounding; float: the same operations in the same order), so the tests demand bit-identical
+// output.
 //
 // Why it is faster than the AVX2 clone: that one spends two loads and an insert per pixel to
 // bring its taps in. Where a map is smooth — nearly everywhere in a photo warp — sixteen
@@ -199,7 +200,8 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 bilinearBlend
 // left and right taps as four registers (red in lanes 0–7, green in 8–15), blue as one per
 // row (left in 0–7, right in 8–15); a group crossing one source row also reads the row
 // below and blends. A group wider than the window (minified below 0.9×), one spanning more
-// rows, or one touching a border or an invalid pixel runs `fallback` (the AVX2 clone). The loads are masked at the image's last float, so nothing past it is read.
+// rows, or one touching a border or an invalid pixel runs `fallback` (the AVX2 clone). The
+// loads are masked at the image's last float, so nothing past it is read.
 __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const SpanSampler::Context& k,
                                                                         unsigned char* out, int n,
                                                                         const float* sx, const float* sy,
