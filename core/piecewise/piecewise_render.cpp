@@ -6,6 +6,7 @@
 #include "core/render/coordinates.h"
 #include "core/render/rational_map.h"
 #include "core/render/span_sampler.h"
+#include "core/util/cpu_features.h"
 #include "core/util/parallel.h"
 
 #include <Eigen/LU>
@@ -404,11 +405,6 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
 // by both triangles with the same value (the mesh is continuous), so the inclusive test costs
 // nothing but a second identical write.
 #if defined(__x86_64__)
-bool cpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
-
 // A row's positions p(m) = p + m (d1 + m d2) for m = k … end, four at a time, with the SSE2
 // loop's operations (no FMA) so every bit agrees; returns the first m it left.
 __attribute__((target("avx2"))) int rowRunAvx2(double px, double py, double d1x, double d1y, double d2x,

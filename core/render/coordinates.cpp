@@ -4,6 +4,7 @@
 #include "core/model/frames.h"
 #include "core/render/inverse_cells.h"
 #include "core/render/inverse_seed.h"
+#include "core/util/cpu_features.h"
 #include "core/util/parallel.h"
 
 #include <Eigen/LU>
@@ -108,14 +109,6 @@ __attribute__((target("avx2"))) void projectiveSpanFloatAvx2(const ProjectiveSpa
 
 #endif
 
-bool cpuHasAvx2() {
-#if defined(__x86_64__)
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-#else
-  return false;
-#endif
-}
 
 void projectiveSpanDispatched(const ProjectiveRow& r, float* sx, float* sy, std::int32_t* ok) {
 #if defined(__x86_64__)
@@ -407,16 +400,6 @@ void polyPixel(const CellPoly& c, float v, int j, Eigen::Vector2d& s) {
 }
 
 #if defined(__x86_64__)
-bool cpuHasFma() {
-  static const bool has = __builtin_cpu_supports("fma");
-  return has;
-}
-
-bool cpuHasAvx512f() {
-  static const bool has = __builtin_cpu_supports("avx512f");
-  return has;
-}
-
 __attribute__((target("avx2,fma"))) void polyCellsAvx2(const CellPoly* cells, int count, float v, float* sx,
                                                        float* sy) {
   const __m256 vv = _mm256_set1_ps(v);
@@ -537,11 +520,13 @@ class RationalKernel final : public CoordinateKernel {
       return true;
     };
     const int count = (n + kCellPixels - 1) / kCellPixels;
+    bool flags[kSpanPixels / kCellPixels];
+    for (int k = 0; k < count; ++k) flags[k] = patched(k);
     int newton = 0;
     for (int k0 = 0; k0 < count;) {
-      const bool p = patched(k0);
+      const bool p = flags[k0];
       int k1 = k0 + 1;
-      while (k1 < count && patched(k1) == p) ++k1;
+      while (k1 < count && flags[k1] == p) ++k1;
       const int a = k0 * kCellPixels, b = std::min(n, k1 * kCellPixels);
       newton += spanRun(y, x0 + a, b - a, p, sx + a, sy + a, valid + a, state);
       k0 = k1;

@@ -5,6 +5,7 @@
 #include "core/render/span_sampler_avx2_wide.h"
 #include "core/render/span_sampler_avx512.h"
 #include "core/render/span_sampler_cubic.h"
+#include "core/util/cpu_features.h"
 
 #include <algorithm>
 #include <cmath>
@@ -412,7 +413,7 @@ bool cpuHasAvx512Sampler() {
 // nearest and bilinear (their bicubic stays scalar).
 SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter, bool allow_avx512) {
   if (src.channels != 3 && src.channels != 4) return nullptr;
-  if (!__builtin_cpu_supports("avx2")) return nullptr;
+  if (!cpuHasAvx2()) return nullptr;
   if (src.type != PixelType::UInt8) {
     if (filter == Filter::Bicubic) return nullptr;
     if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
