@@ -48,7 +48,7 @@
 // patches) is per cell, and on the benchmark's rational lens it was a fifth of a 24 Mpix
 // render. At 64 the lens still certifies (96.9 % of the frame, 96.3 % at 32) and its render
 // went 47.8 → 39.3 ms on 1 thread, 25.4 → 21.5 ms on 2 (AVX-512 machine). The strong barrel
-// pays: more of its frame lies in cells that fail near the fold and are refined, 56 → 72 ms
+// pays: more of its frame lies in cells that fail near the fold and are refined, 56 → 69–72 ms
 // on 2 threads.
 // Open cells with a node without a preimage (the edge of what the camera sees crosses them)
 // get their own coverage at kFine pixels: the lattice quads whose boxes reach them, split into

@@ -176,8 +176,7 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline void floatWindow(con
     return;
   }
   const __mmask16 m0 = left >= 16 ? 0xFFFF : static_cast<__mmask16>((1u << left) - 1u);
-  const __mmask16 m1 =
-      left >= 32 ? 0xFFFF : left <= 16 ? 0 : static_cast<__mmask16>((1u << (left - 16)) - 1u);
+  const __mmask16 m1 = left <= 16 ? 0 : static_cast<__mmask16>((1u << (left - 16)) - 1u);
   a = _mm512_maskz_loadu_ps(m0, p);
   b = _mm512_maskz_loadu_ps(m1, p + 64);
 }
