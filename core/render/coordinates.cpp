@@ -316,48 +316,6 @@ void checkSpanScalar(const CheckInputs& in, double tx0, double ty, const double*
 constexpr int kCellPixels = InverseCells::kCell;
 static_assert(kSpanPixels % kCellPixels == 0, "a span holds whole cells");
 
-// A subcell's patch row in float (InverseCells::SubRow): c0 is rounded once to float like
-// every position (half an ulp ≤ 2.4e-4 px at 6000 px), the offset from it (≤ the subcell's
-// stretch) to ~1e-6 px. Certified whole cells take CellPoly instead (polyCellScalar).
-struct CellCubicF {
-  float x[4], y[4];
-  explicit CellCubicF(const CellRow& r) {
-    for (int k = 0; k < 4; ++k) {
-      x[k] = static_cast<float>(r.x[k]);
-      y[k] = static_cast<float>(r.y[k]);
-    }
-  }
-};
-
-// A certified subcell's eight pixels from x on its patch's row (InverseCells::SubRow), in
-// float like a cell's: u = (x + j − x0 + 0.5) / size.
-void cubicSubcellScalar(const CellCubicF& c, int offset, float scale, int count, float* sx,
-                        float* sy) {
-  for (int j = 0; j < count; ++j) {
-    const float u = (static_cast<float>(offset + j) + 0.5f) * scale;
-    sx[j] = c.x[0] + u * (c.x[1] + u * (c.x[2] + u * c.x[3]));
-    sy[j] = c.y[0] + u * (c.y[1] + u * (c.y[2] + u * c.y[3]));
-  }
-}
-
-#if defined(__x86_64__)
-// c[0] + u (c[1] + u (c[2] + u c[3])) in eight lanes, mul then add as the scalar code.
-__attribute__((target("avx2"), always_inline)) inline __m256 hornerAvx2(const float c[4], __m256 u) {
-  const __m256 inner = _mm256_add_ps(_mm256_set1_ps(c[2]), _mm256_mul_ps(u, _mm256_set1_ps(c[3])));
-  return _mm256_add_ps(_mm256_set1_ps(c[0]), _mm256_mul_ps(u, _mm256_add_ps(_mm256_set1_ps(c[1]), _mm256_mul_ps(u, inner))));
-}
-
-// The same for all eight, in the same order of operations (no FMA): bit-identical.
-__attribute__((target("avx2"))) void cubicSubcellAvx2(const CellCubicF& c, int offset, float scale,
-                                                      float* sx, float* sy) {
-  const __m256 j = _mm256_cvtepi32_ps(
-      _mm256_add_epi32(_mm256_set1_epi32(offset), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-  const __m256 u = _mm256_mul_ps(_mm256_add_ps(j, _mm256_set1_ps(0.5f)), _mm256_set1_ps(scale));
-  _mm256_storeu_ps(sx, hornerAvx2(c.x, u));
-  _mm256_storeu_ps(sy, hornerAvx2(c.y, u));
-}
-#endif
-
 // A certified cell's pixels on row v (local, 0 … 1) from its float patch (CellPoly): the row's
 // cubic by Horner in v, k_i = p0 + v (p1 + v (p2 + v p3)) per lane, then at u_j = (j + 0.5) /
 // kCell the cubic in u plus the anchor. Every step is a fused multiply-add, which rounds once
@@ -399,6 +357,25 @@ void polyPixel(const CellPoly& c, float v, int j, Eigen::Vector2d& s) {
                       c.anchor_y + std::fma(u, std::fma(u, std::fma(u, k[7], k[6]), k[5]), k[4]));
 }
 
+// A certified square of an open cell's quadtree (InverseCells::SubSquare), pixels j0 … j0 +
+// count − 1 of its row v: as a cell's, with u_j = (j + 0.5) · scale where scale = 1 / the
+// square's side, a power of two as 1 / kCell is, so u is exact and the clones agree bit for bit.
+[[gnu::always_inline]] inline void polySquareBody(const CellPoly& c, float v, float scale, int j0,
+                                                  int count, float* sx, float* sy) {
+  float k[8];
+  for (int i = 0; i < 8; ++i) k[i] = polyLane(c, v, i);
+  for (int j = 0; j < count; ++j) {
+    const float u = (static_cast<float>(j0 + j) + 0.5f) * scale;
+    sx[j] = c.anchor_x + std::fma(u, std::fma(u, std::fma(u, k[3], k[2]), k[1]), k[0]);
+    sy[j] = c.anchor_y + std::fma(u, std::fma(u, std::fma(u, k[7], k[6]), k[5]), k[4]);
+  }
+}
+
+__attribute__((target_clones("fma", "default"))) void polySquareScalar(const CellPoly& c, float v, float scale,
+                                                                       int j0, int count, float* sx, float* sy) {
+  polySquareBody(c, v, scale, j0, count, sx, sy);
+}
+
 #if defined(__x86_64__)
 __attribute__((target("avx2,fma"))) void polyCellsAvx2(const CellPoly* cells, int count, float v, float* sx,
                                                        float* sy) {
@@ -434,6 +411,35 @@ __attribute__((target("avx2,fma"))) void polyCellsAvx2(const CellPoly* cells, in
       _mm256_storeu_ps(sy + 8 * g, _mm256_add_ps(ay, py));
     }
   }
+}
+
+__attribute__((target("avx2,fma"))) void polySquareAvx2(const CellPoly& c, float v, float scale, int j0,
+                                                        int count, float* sx, float* sy) {
+  const __m256 vv = _mm256_set1_ps(v);
+  const __m256 k = _mm256_fmadd_ps(
+      vv, _mm256_fmadd_ps(vv, _mm256_fmadd_ps(vv, _mm256_load_ps(c.p[3]), _mm256_load_ps(c.p[2])), _mm256_load_ps(c.p[1])),
+      _mm256_load_ps(c.p[0]));
+  const __m256 x0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(0)),
+               x1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(1)),
+               x2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(2)),
+               x3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(3));
+  const __m256 y0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(4)),
+               y1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(5)),
+               y2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(6)),
+               y3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(7));
+  const __m256 ax = _mm256_set1_ps(c.anchor_x), ay = _mm256_set1_ps(c.anchor_y);
+  const __m256 half = _mm256_set1_ps(0.5f), sc = _mm256_set1_ps(scale);
+  int g = 0;
+  for (; g + 8 <= count; g += 8) {
+    const __m256 j = _mm256_cvtepi32_ps(
+        _mm256_add_epi32(_mm256_set1_epi32(j0 + g), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    const __m256 w = _mm256_mul_ps(_mm256_add_ps(j, half), sc);
+    const __m256 px = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, x3, x2), x1), x0);
+    const __m256 py = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, y3, y2), y1), y0);
+    _mm256_storeu_ps(sx + g, _mm256_add_ps(ax, px));
+    _mm256_storeu_ps(sy + g, _mm256_add_ps(ay, py));
+  }
+  if (g < count) polySquareBody(c, v, scale, j0 + g, count - g, sx + g, sy + g);
 }
 
 #pragma GCC diagnostic push
@@ -504,59 +510,63 @@ class RationalKernel final : public CoordinateKernel {
 
   int span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
            RowState& state) const override {
-    // The span in runs of whole cells: cells whose row has a pixel for the per-pixel path
-    // (mixedSpan, in double, checked) apart from the rest, so a span of kSpanPixels does not
-    // take the slow path whole for one open subcell in one of its cells.
+    // The span in runs of subcells: those whose row has a pixel for the per-pixel path
+    // (mixedSpan, in double, checked) apart from the rest, so that one open subcell sends only
+    // its own kSub pixels, not its cell's or the span's, down the slow path.
     const InverseCells& cells = *cells_;
+    constexpr int kSub = InverseCells::kSub;
     const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
-    const int sub_y =
-        std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
-    const auto patched = [&](int k) {
-      const int cx = std::min(x0 / kCellPixels + k, cells.cellsWide() - 1);
-      if (cells.kind(cx, cy) != InverseCells::kOpen) return true;
-      if (!cells.refined(cx, cy)) return false;
-      for (int sub_x = 0; sub_x < InverseCells::kSubs; ++sub_x)
-        if (cells.subKind(cx, cy, sub_x, sub_y) == InverseCells::kOpen) return false;
-      return true;
-    };
-    const int count = (n + kCellPixels - 1) / kCellPixels;
-    bool flags[kSpanPixels / kCellPixels];
-    for (int k = 0; k < count; ++k) flags[k] = patched(k);
+    const int sub_y = std::min((y - cy * kCellPixels) / kSub, InverseCells::kSubs - 1);
+    const int units = (n + kSub - 1) / kSub;
+    bool patched[kSpanPixels / kSub];
+    for (int k = 0; k < units;) {
+      const int x = x0 + k * kSub, cx = std::min(x / kCellPixels, cells.cellsWide() - 1);
+      const int end = std::min(units, k + (cx + 1) * InverseCells::kSubs - x / kSub);
+      const InverseCells::Kind kind = cells.kind(cx, cy);
+      if (kind != InverseCells::kOpen || !cells.refined(cx, cy)) {
+        std::fill(patched + k, patched + end, kind != InverseCells::kOpen);
+      } else {
+        for (int j = k; j < end; ++j)
+          patched[j] = cells.subKind(cx, cy, (x0 + j * kSub - cx * kCellPixels) / kSub, sub_y) !=
+                       InverseCells::kOpen;
+      }
+      k = end;
+    }
     int newton = 0;
-    for (int k0 = 0; k0 < count;) {
-      const bool p = flags[k0];
+    for (int k0 = 0; k0 < units;) {
+      const bool p = patched[k0];
       int k1 = k0 + 1;
-      while (k1 < count && flags[k1] == p) ++k1;
-      const int a = k0 * kCellPixels, b = std::min(n, k1 * kCellPixels);
-      newton += spanRun(y, x0 + a, b - a, p, sx + a, sy + a, valid + a, state);
+      while (k1 < units && patched[k1] == p) ++k1;
+      const int a = k0 * kSub, b = std::min(n, k1 * kSub);
+      newton += p ? patchedRun(y, x0 + a, b - a, sx + a, sy + a, valid + a, state)
+                  : mixedSpan(y, x0 + a, b - a, sx + a, sy + a, valid + a, state);
       k0 = k1;
     }
     return newton;
   }
 
-  // Cells x0 / kCell … of the row, alike in `all_patched` (span above).
-  int spanRun(int y, int x0, int n, bool all_patched, float* sx, float* sy, unsigned char* valid,
-              RowState& state) const {
+  // Pixels x0 … x0 + n − 1 of row y in certified and empty cells and subcells only (span
+  // above): no pixel needs a check. The run starts on a subcell and holds whole cells but
+  // where a refined cell cuts it (and at the frame's right edge).
+  int patchedRun(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
+                 RowState& state) const {
     const InverseCells& cells = *cells_;
     const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
-    const int first = x0 / kCellPixels, count = (n + kCellPixels - 1) / kCellPixels;
-    bool all_certified = true, all_empty = true;
-    const int sub_y =
-        std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
+    const int first = x0 / kCellPixels, count = (x0 + n - 1) / kCellPixels - first + 1;
+    bool all_certified = x0 % kCellPixels == 0, all_empty = true;
     for (int k = 0; k < count; ++k) {
       const InverseCells::Kind kind = cells.kind(std::min(first + k, cells.cellsWide() - 1), cy);
       all_certified = all_certified && kind == InverseCells::kCertified;
       all_empty = all_empty && kind == InverseCells::kEmpty;
     }
     if (all_empty) {
-      std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(0));
+      std::memset(valid, 0, static_cast<size_t>(n));
       state.run = 0;
       return 0;
     }
-    if (!all_patched) return mixedSpan(y, x0, n, sx, sy, valid, state);
     if (all_certified) {
       certifiedCells(first, count, y, sx, sy);
-      std::fill(valid, valid + std::max(n, 0), static_cast<unsigned char>(1));
+      std::memset(valid, 1, static_cast<size_t>(n));
       if (n >= 3) {
         // The row state names these pixels instead of copying them (settle).
         state.certified_end = x0 + n;
@@ -565,36 +575,24 @@ class RationalKernel final : public CoordinateKernel {
         return 0;
       }
     } else {
-      // Certified and empty cells and subcells only: no pixel needs a check.
-      InverseCells::SubRow row;
-      int row_cell = -1;  // the cell of `row`
-      for (int k = 0; k < count; ++k) {
-        const int cx = std::min(first + k, cells.cellsWide() - 1), c0 = k * kCellPixels;
-        const int c1 = std::min(n, c0 + kCellPixels);
-        const InverseCells::Kind kind = cells.kind(cx, cy);
-        if (kind == InverseCells::kCertified) {
-          certifiedCells(first + k, 1, y, sx + c0, sy + c0);
-          std::fill(valid + c0, valid + c1, static_cast<unsigned char>(1));
-          continue;
+      for (int c0 = 0; c0 < n;) {
+        const int cx = std::min((x0 + c0) / kCellPixels, cells.cellsWide() - 1);
+        const int c1 = std::min(n, (cx + 1) * kCellPixels - x0);
+        switch (cells.kind(cx, cy)) {
+          case InverseCells::kCertified:
+            // Whole: only a refined cell cuts a run (the frame's edge clips the last cell,
+            // whose pixels beyond it the span's buffers hold).
+            certifiedCells(cx, 1, y, sx + c0, sy + c0);
+            std::memset(valid + c0, 1, static_cast<size_t>(c1 - c0));
+            break;
+          case InverseCells::kEmpty:
+            emptyPixels(c0, c1, sx, sy, valid);
+            break;
+          case InverseCells::kOpen:
+            subcellRow(cx, cy, y, x0, c0, c1, sx, sy, valid);
+            break;
         }
-        for (int s0 = c0; s0 < c1; s0 += InverseCells::kSub) {
-          const int s1 = std::min(c1, s0 + InverseCells::kSub);
-          if (kind == InverseCells::kEmpty || cells.subKind(cx, cy, (s0 - c0) / InverseCells::kSub,
-                                                            sub_y) == InverseCells::kEmpty) {
-            std::fill(valid + s0, valid + s1, static_cast<unsigned char>(0));
-            std::fill(sx + s0, sx + s1, 0.0f);
-            std::fill(sy + s0, sy + s1, 0.0f);
-            continue;
-          }
-          // The subcells of a square certified whole share its row (the quadtree's squares
-          // are disjoint, so one holding this subcell's columns on this row is its square).
-          const int sub_x = (s0 - c0) / InverseCells::kSub;
-          if (!(row_cell == cx && x0 + s0 >= row.x0 && x0 + s0 < row.x0 + row.size))
-            cells.subRow(cx, sub_x, y, row);
-          row_cell = cx;
-          subcellPixels(row, x0 + s0, s1 - s0, sx + s0, sy + s0);
-          std::fill(valid + s0, valid + s1, static_cast<unsigned char>(1));
-        }
+        c0 = c1;
       }
     }
     // The row state as if these pixels had been solved (their solutions are these positions).
@@ -657,15 +655,45 @@ class RationalKernel final : public CoordinateKernel {
     for (int k = 0; k < count; ++k) polyCellScalar(polys[k], v, sx + k * kCellPixels, sy + k * kCellPixels);
   }
 
-  // A certified subcell's pixels x .. x + count − 1 on its patch's row, in float like a cell's.
-  void subcellPixels(const InverseCells::SubRow& r, int x, int count, float* sx, float* sy) const {
-    const CellCubicF c(r.cubic);
-    const float scale = 1.0f / static_cast<float>(r.size);
+  static void emptyPixels(int i0, int i1, float* sx, float* sy, unsigned char* valid) {
+    const size_t count = static_cast<size_t>(i1 - i0);
+    std::memset(valid + i0, 0, count);
+    std::memset(sx + i0, 0, count * sizeof(float));
+    std::memset(sy + i0, 0, count * sizeof(float));
+  }
+
+  // Pixels i0 … i1 − 1 (from x0) of row y in refined cell (cx, cy), whose subcells there are
+  // certified or empty: each certified square's row from its float patch, once per square.
+  void subcellRow(int cx, int cy, int y, int x0, int i0, int i1, float* sx, float* sy,
+                  unsigned char* valid) const {
+    const InverseCells& cells = *cells_;
+    constexpr int kSub = InverseCells::kSub;
+    const int sub_y = std::min((y - cy * kCellPixels) / kSub, InverseCells::kSubs - 1);
+    for (int s0 = i0; s0 < i1;) {
+      const int sub_x = (x0 + s0 - cx * kCellPixels) / kSub;
+      if (cells.subKind(cx, cy, sub_x, sub_y) == InverseCells::kEmpty) {
+        const int s1 = std::min(i1, cx * kCellPixels + (sub_x + 1) * kSub - x0);
+        emptyPixels(s0, s1, sx, sy, valid);
+        s0 = s1;
+        continue;
+      }
+      const InverseCells::SubSquare q = cells.subSquare(cx, cy, sub_x, sub_y);
+      const int s1 = std::min(i1, q.x0 + q.size - x0);
+      squarePixels(q, y, x0 + s0 - q.x0, s1 - s0, sx + s0, sy + s0);
+      std::memset(valid + s0, 1, static_cast<size_t>(s1 - s0));
+      s0 = s1;
+    }
+  }
+
+  // Pixels j0 … j0 + count − 1 of certified square q's row y, in float like a cell's.
+  void squarePixels(const InverseCells::SubSquare& q, int y, int j0, int count, float* sx,
+                    float* sy) const {
+    const float scale = 1.0f / static_cast<float>(q.size);
+    const float v = (static_cast<float>(y - q.y0) + 0.5f) * scale;
 #if defined(__x86_64__)
-    if (count == InverseCells::kSub && !scalar_only_ && cpuHasAvx2())
-      return cubicSubcellAvx2(c, x - r.x0, scale, sx, sy);
+    if (cells_simd_ > 0) return polySquareAvx2(*q.poly, v, scale, j0, count, sx, sy);
 #endif
-    cubicSubcellScalar(c, x - r.x0, scale, count, sx, sy);
+    polySquareScalar(*q.poly, v, scale, j0, count, sx, sy);
   }
 
   // A span with cells of different kinds: certified cells take their patch, empty cells and
@@ -680,9 +708,11 @@ class RationalKernel final : public CoordinateKernel {
     double bx[kSpanPixels], by[kSpanPixels], qx[kSpanPixels], qy[kSpanPixels];
     unsigned char mode[kSpanPixels], have[kSpanPixels], passed[kSpanPixels];
     bool need_seed = false;
-    for (int c0 = 0; c0 < n; c0 += kCellPixels) {
+    // The run may start and end inside a cell (span): positions are relative to x0.
+    for (int c0 = 0, c1 = 0; c0 < n; c0 = c1) {
       const int cx = std::min((x0 + c0) / kCellPixels, cells.cellsWide() - 1);
-      const int c1 = std::min(n, c0 + kCellPixels);
+      const int cell_x = cx * kCellPixels;
+      c1 = std::min(n, cell_x + kCellPixels - x0);
       const InverseCells::Kind kind = cells.kind(cx, cy);
       if (kind == InverseCells::kEmpty) {
         for (int i = c0; i < c1; ++i) mode[i] = kSkip, have[i] = 0, bx[i] = by[i] = 0.0;
@@ -696,29 +726,30 @@ class RationalKernel final : public CoordinateKernel {
         // run the per-pixel path from their patch, else the cell's.
         const int sub_y =
             std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
-        for (int s0 = c0; s0 < c1; s0 += InverseCells::kSub) {
-          const int sub_x = (s0 - c0) / InverseCells::kSub,
-                    s1 = std::min(c1, s0 + InverseCells::kSub);
+        for (int s0 = c0, s1 = c0; s0 < c1; s0 = s1) {
+          const int sub_x = (x0 + s0 - cell_x) / InverseCells::kSub;
+          s1 = std::min(c1, cell_x + (sub_x + 1) * InverseCells::kSub - x0);
           const InverseCells::Kind sub = cells.subKind(cx, cy, sub_x, sub_y);
           if (sub == InverseCells::kEmpty) {
             for (int i = s0; i < s1; ++i) mode[i] = kSkip, bx[i] = by[i] = 0.0;
             continue;
           }
-          const bool sub_patch = cells.hasSubPatch(cx, cy, sub_x, sub_y);
-          InverseCells::SubRow sr{};
-          if (sub_patch) cells.subRow(cx, sub_x, y, sr);
           if (sub == InverseCells::kCertified) {
             // In float as where no pixel needs a check (span), the solutions its neighbours
             // extrapolate from.
-            subcellPixels(sr, x0 + s0, s1 - s0, sx + s0, sy + s0);
+            const InverseCells::SubSquare q = cells.subSquare(cx, cy, sub_x, sub_y);
+            squarePixels(q, y, x0 + s0 - q.x0, s1 - s0, sx + s0, sy + s0);
             for (int i = s0; i < s1; ++i) mode[i] = kDirect, bx[i] = sx[i], by[i] = sy[i];
             continue;
           }
+          const bool sub_patch = cells.hasSubPatch(cx, cy, sub_x, sub_y);
+          InverseCells::SubRow sr{};
+          if (sub_patch) cells.subRow(cx, sub_x, y, sr);
           for (int i = s0; i < s1; ++i) {
             mode[i] = cells.covered(x0 + i, y) ? kCheck : kSkip;
             if (sub_patch || patch) {
-              const Eigen::Vector2d s =
-                  sub_patch ? cubicAt(sr.cubic, x0 + i - sr.x0, sr.size) : cubicAt(r, i - c0);
+              const Eigen::Vector2d s = sub_patch ? cubicAt(sr.cubic, x0 + i - sr.x0, sr.size)
+                                                  : cubicAt(r, x0 + i - cell_x);
               bx[i] = s.x();
               by[i] = s.y();
             } else {
@@ -732,7 +763,7 @@ class RationalKernel final : public CoordinateKernel {
       for (int i = c0; i < c1; ++i) {
         mode[i] = kind == InverseCells::kCertified ? kDirect : cells.covered(x0 + i, y) ? kCheck : kSkip;
         if (patch) {
-          const Eigen::Vector2d s = cubicAt(r, i - c0);
+          const Eigen::Vector2d s = cubicAt(r, x0 + i - cell_x);
           bx[i] = s.x();
           by[i] = s.y();
         } else {
@@ -763,7 +794,8 @@ class RationalKernel final : public CoordinateKernel {
     }
     for (int i = 0; i < n; ++i) have[i] = mode[i] != kSkip && std::isfinite(bx[i]) && std::isfinite(by[i]);
     if (forward_q_.size() == 3) {
-      for (int i = 0; i < kSpanPixels; ++i)
+      const int lanes = (n + kCheckLanes - 1) / kCheckLanes * kCheckLanes;
+      for (int i = 0; i < lanes; ++i)
         if (i >= n || !have[i]) bx[i] = by[i] = 0.0;  // the kernel runs all lanes
       std::int64_t accepted[kSpanPixels];
       const CheckInputs in{forward_q_[0], forward_q_[1], forward_q_[2],

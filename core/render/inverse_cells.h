@@ -62,6 +62,7 @@
 
 #include <Eigen/Core>
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -143,6 +144,14 @@ class InverseCells {
     int x0 = 0, size = 0;
   };
   void subRow(int cx, int sx, int y, SubRow& out) const;
+  // A certified subcell's square of the quadtree (the one whose patch it takes): its origin
+  // in output pixels, its side in pixels, and its patch in float as a certified cell's
+  // (CellPoly, over the square's local (u, v) ∈ [0, 1]²).
+  struct SubSquare {
+    const CellPoly* poly = nullptr;
+    int x0 = 0, y0 = 0, size = 0;
+  };
+  SubSquare subSquare(int cx, int cy, int sx, int sy) const;
 
   // Shares of the output area (cells and subcells by their pixels): the patch unchecked, and
   // transparent without a solve. The rest runs the per-pixel path.
@@ -178,6 +187,10 @@ class InverseCells {
     unsigned char side[kSubs * kSubs];
     unsigned char covered[kFines * kFines];
     bool fine = false;  // covered[] from the split lattice (else all covered)
+    // Per certified subcell: its square's float patch, square_polys_[poly_base + poly[…]]
+    // (made when the square certifies, so that a row of it costs no double Hermite blend).
+    unsigned char poly[kSubs * kSubs];
+    int poly_base = 0;
     // The square of `size` subcells at subcell (sx, sy): its corner nodes with their
     // derivatives scaled to the square (per size · kSub pixels).
     void square(int sx, int sy, int size, Node out[4]) const {
@@ -231,7 +244,8 @@ class InverseCells {
                       const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi);
   void coverQuadFine(int i, int j);
   void markFine(Eigen::Vector2d lo, Eigen::Vector2d hi);
-  void refineCell(int cx, int cy, Refined& r) const;
+  // Writes its certified squares' patches to square_polys_ from `next_poly` on.
+  void refineCell(int cx, int cy, Refined& r, std::atomic<int>& next_poly) const;
   bool solveSubNode(int cx, int cy, int i, int j, Refined& r) const;
 
   const NewtonInverse& newton_;
@@ -252,6 +266,9 @@ class InverseCells {
   std::vector<Eigen::Vector2d> lattice_mapped_;
   std::vector<int> refined_index_;  // per cell: into refined_, or −1
   std::vector<Refined> refined_;
+  // The certified squares' float patches, each refined cell's together (Refined::poly_base):
+  // room for every subcell's, of which only the pages written are ever touched.
+  std::unique_ptr<CellPoly[]> square_polys_;
 };
 
 }  // namespace artcam

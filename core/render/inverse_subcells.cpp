@@ -45,6 +45,13 @@ void InverseCells::subRow(int cx, int sx, int y, SubRow& out) const {
   rowOf({&n[0], &n[1], &n[2], &n[3]}, (y + 0.5 - cy * kCell - qy * kSub) / out.size, out.cubic);
 }
 
+InverseCells::SubSquare InverseCells::subSquare(int cx, int cy, int sx, int sy) const {
+  const Refined& r = refinedAt(cx, cy);
+  const int size = r.side[sy * kSubs + sx], qx = sx / size * size, qy = sy / size * size;
+  return {&square_polys_[static_cast<size_t>(r.poly_base + r.poly[sy * kSubs + sx])], cx * kCell + qx * kSub,
+          cy * kCell + qy * kSub, size * kSub};
+}
+
 void InverseCells::refineOpenCells(int threads) {
   refined_index_.assign(kinds_.size(), -1);
   int count = 0;
@@ -72,13 +79,16 @@ void InverseCells::refineOpenCells(int threads) {
   for (int cy = 0; cy < cells_h_; ++cy)
     for (int cx = 0; cx < cells_w_; ++cx)
       if (refined(cx, cy)) cells.push_back({cx, cy});
+  // Uninitialised: each cell writes its own squares' patches there.
+  square_polys_.reset(new CellPoly[static_cast<size_t>(count) * kSubs * kSubs]);
+  std::atomic<int> next_poly{0};
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 1;
   parallelForRows(static_cast<int>(cells.size()), po, [&](int k0, int k1) {
     for (int k = k0; k < k1; ++k) {
       const auto [cx, cy] = cells[static_cast<size_t>(k)];
-      refineCell(cx, cy, refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])]);
+      refineCell(cx, cy, refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])], next_poly);
     }
   });
 }
@@ -219,7 +229,7 @@ bool InverseCells::solveSubNode(int cx, int cy, int i, int j, Refined& r) const 
   return n.valid;
 }
 
-void InverseCells::refineCell(int cx, int cy, Refined& r) const {
+void InverseCells::refineCell(int cx, int cy, Refined& r, std::atomic<int>& next_poly) const {
   constexpr int w = kSubs + 1;
   const auto sub_covered = [&](int sx, int sy) {
     constexpr int per = kSub / kFine;
@@ -249,6 +259,8 @@ void InverseCells::refineCell(int cx, int cy, Refined& r) const {
   // tolerance 3.3e-4 px (above the tolerance) and 1.6 %; at half 1.6e-4 px and 2.1 %; at a
   // quarter 7.9e-5 px and 2.6 %, with the refinement a quarter slower than at the cells'.
   const double tol = options_.certify_tolerance_px / 2.0;
+  CellPoly local[kSubs * kSubs];  // the certified squares' patches, in the order made
+  int polys = 0;
   const auto decide = [&](int qx, int qy, int size, Kind k) {
     for (int sy = qy; sy < qy + size; ++sy)
       for (int sx = qx; sx < qx + size; ++sx) {
@@ -267,8 +279,13 @@ void InverseCells::refineCell(int cx, int cy, Refined& r) const {
     r.square(qx, qy, size, n);
     const Corners c{&n[0], &n[1], &n[2], &n[3]};
     if (n[0].valid && n[1].valid && n[2].valid && n[3].valid &&
-        certify(c, cx * kCell + qx * kSub, cy * kCell + qy * kSub, size * kSub, tol))
-      return decide(qx, qy, size, patchBeyondReach(c) ? kEmpty : kCertified);
+        certify(c, cx * kCell + qx * kSub, cy * kCell + qy * kSub, size * kSub, tol)) {
+      if (patchBeyondReach(c)) return decide(qx, qy, size, kEmpty);
+      for (int sy = qy; sy < qy + size; ++sy)
+        for (int sx = qx; sx < qx + size; ++sx) r.poly[sy * kSubs + sx] = static_cast<unsigned char>(polys);
+      polyOf(c, local[polys++]);
+      return decide(qx, qy, size, kCertified);
+    }
     if (size == 1) return decide(qx, qy, 1, kOpen);
     const int half = size / 2;
     for (int dy = 0; dy < 2; ++dy)
@@ -276,6 +293,9 @@ void InverseCells::refineCell(int cx, int cy, Refined& r) const {
   };
   for (int dy = 0; dy < 2; ++dy)
     for (int dx = 0; dx < 2; ++dx) refine(refine, dx * kSubs / 2, dy * kSubs / 2, kSubs / 2);
+  if (polys == 0) return;
+  r.poly_base = next_poly.fetch_add(polys, std::memory_order_relaxed);
+  std::copy(local, local + polys, &square_polys_[static_cast<size_t>(r.poly_base)]);
 }
 
 }  // namespace artcam

@@ -11,6 +11,7 @@
 //   a camera whose pole runs through the frame;
 // - stored-type images (core/io/stored_image.h) round-trip through a file, alpha included, and
 //   an identity warp of them reproduces the file.
+#include "core/effects/image_warps.h"
 #include "core/io/stored_image.h"
 #include "core/model/structure.h"
 #include "core/render/coordinates.h"
@@ -181,14 +182,18 @@ class TestFastPaths : public QObject {
   // cells of the rational kernel, homographies without a horizon in the span): every position
   // within 1/256 px of the exact double inverse and within 1e-3 px of the scalar double code,
   // with the same preimage flags. Cameras: the bench's mild lens (all cells certified), a
-  // strong perspective whose horizon crosses the frame (spans at the horizon take the double
-  // path), a milder one, and an affine map (W = 1).
+  // strong barrel whose fold circle cuts the frame's corners (refined cells), a strong
+  // perspective whose horizon crosses the frame (spans at the horizon take the double path),
+  // a milder one, and an affine map (W = 1).
   void floatSpansAgreeWithScalarAndReference_data() {
     QTest::addColumn<Camera>("camera");
     QTest::addColumn<bool>("avx512");
     const FrameSize size{1200, 800};
     QTest::newRow("mild lens") << benchLens(size) << true;
     QTest::newRow("mild lens, AVX2 lanes") << benchLens(size) << false;
+    // Open cells split into certified squares (float patches) and the per-pixel path, in runs
+    // that start and end inside cells.
+    QTest::newRow("strong barrel") << radialLensCamera(-0.6, size) << true;
     Eigen::Matrix3d h;
     h << 1.1, 0.2, 0.05, -0.1, 0.9, 0.02, 0.4, 0.9, 1.0;  // horizon 0.4 x + 0.9 y + 1 = 0 crosses
     QTest::newRow("perspective with horizon") << test::homographyCamera(h, size, size) << true;
