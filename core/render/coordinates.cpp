@@ -518,25 +518,30 @@ class RationalKernel final : public CoordinateKernel {
     const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
     const int sub_y = std::min((y - cy * kCellPixels) / kSub, InverseCells::kSubs - 1);
     const int units = (n + kSub - 1) / kSub;
-    bool patched[kSpanPixels / kSub];
+    // Bit k: subcell column k of the span needs no check (a mask, not an array of flags: bytes
+    // written in a fill and read back one by one stalled on store forwarding, a third of the
+    // span's own time on the strong barrel).
+    static_assert(kSpanPixels / kSub <= 32, "a span's subcells fit a 32-bit mask");
+    std::uint32_t patched = 0;
     for (int k = 0; k < units;) {
       const int x = x0 + k * kSub, cx = std::min(x / kCellPixels, cells.cellsWide() - 1);
       const int end = std::min(units, k + (cx + 1) * InverseCells::kSubs - x / kSub);
       const InverseCells::Kind kind = cells.kind(cx, cy);
-      if (kind != InverseCells::kOpen || !cells.refined(cx, cy)) {
-        std::fill(patched + k, patched + end, kind != InverseCells::kOpen);
-      } else {
+      if (kind != InverseCells::kOpen) {
+        patched |= static_cast<std::uint32_t>((std::uint64_t{1} << end) - (std::uint64_t{1} << k));
+      } else if (cells.refined(cx, cy)) {
         for (int j = k; j < end; ++j)
-          patched[j] = cells.subKind(cx, cy, (x0 + j * kSub - cx * kCellPixels) / kSub, sub_y) !=
-                       InverseCells::kOpen;
+          if (cells.subKind(cx, cy, (x0 + j * kSub - cx * kCellPixels) / kSub, sub_y) != InverseCells::kOpen)
+            patched |= std::uint32_t{1} << j;
       }
       k = end;
     }
     int newton = 0;
     for (int k0 = 0; k0 < units;) {
-      const bool p = patched[k0];
-      int k1 = k0 + 1;
-      while (k1 < units && patched[k1] == p) ++k1;
+      const bool p = (patched >> k0) & 1u;
+      // The run ends at the next bit that differs (or the span's end).
+      const std::uint64_t rest = (p ? ~std::uint64_t{patched} : std::uint64_t{patched}) >> k0;
+      const int k1 = std::min(units, k0 + (rest ? __builtin_ctzll(rest) : 64));
       const int a = k0 * kSub, b = std::min(n, k1 * kSub);
       newton += p ? patchedRun(y, x0 + a, b - a, sx + a, sy + a, valid + a, state)
                   : mixedSpan(y, x0 + a, b - a, sx + a, sy + a, valid + a, state);
@@ -564,9 +569,11 @@ class RationalKernel final : public CoordinateKernel {
       state.run = 0;
       return 0;
     }
+    int tail = 0;  // solved pixels at the run's end, counted as they are written
     if (all_certified) {
       certifiedCells(first, count, y, sx, sy);
       std::memset(valid, 1, static_cast<size_t>(n));
+      tail = n;
       if (n >= 3) {
         // The row state names these pixels instead of copying them (settle).
         state.certified_end = x0 + n;
@@ -584,12 +591,14 @@ class RationalKernel final : public CoordinateKernel {
             // whose pixels beyond it the span's buffers hold).
             certifiedCells(cx, 1, y, sx + c0, sy + c0);
             std::memset(valid + c0, 1, static_cast<size_t>(c1 - c0));
+            tail += c1 - c0;
             break;
           case InverseCells::kEmpty:
             emptyPixels(c0, c1, sx, sy, valid);
+            tail = 0;
             break;
           case InverseCells::kOpen:
-            subcellRow(cx, cy, y, x0, c0, c1, sx, sy, valid);
+            subcellRow(cx, cy, y, x0, c0, c1, sx, sy, valid, tail);
             break;
         }
         c0 = c1;
@@ -606,8 +615,6 @@ class RationalKernel final : public CoordinateKernel {
     state.before_previous = p2;
     state.third = p3;
     state.seed_offset = Eigen::Vector2d::Zero();
-    int tail = 0;  // solved pixels at the span's end
-    while (tail < n && valid[n - 1 - tail]) ++tail;
     state.run = tail == n ? state.run + n : tail;
     return 0;
   }
@@ -664,8 +671,9 @@ class RationalKernel final : public CoordinateKernel {
 
   // Pixels i0 … i1 − 1 (from x0) of row y in refined cell (cx, cy), whose subcells there are
   // certified or empty: each certified square's row from its float patch, once per square.
+  // `tail` counts the solved pixels at the end of what is written.
   void subcellRow(int cx, int cy, int y, int x0, int i0, int i1, float* sx, float* sy,
-                  unsigned char* valid) const {
+                  unsigned char* valid, int& tail) const {
     const InverseCells& cells = *cells_;
     constexpr int kSub = InverseCells::kSub;
     const int sub_y = std::min((y - cy * kCellPixels) / kSub, InverseCells::kSubs - 1);
@@ -674,6 +682,7 @@ class RationalKernel final : public CoordinateKernel {
       if (cells.subKind(cx, cy, sub_x, sub_y) == InverseCells::kEmpty) {
         const int s1 = std::min(i1, cx * kCellPixels + (sub_x + 1) * kSub - x0);
         emptyPixels(s0, s1, sx, sy, valid);
+        tail = 0;
         s0 = s1;
         continue;
       }
@@ -681,6 +690,7 @@ class RationalKernel final : public CoordinateKernel {
       const int s1 = std::min(i1, q.x0 + q.size - x0);
       squarePixels(q, y, x0 + s0 - q.x0, s1 - s0, sx + s0, sy + s0);
       std::memset(valid + s0, 1, static_cast<size_t>(s1 - s0));
+      tail += s1 - s0;
       s0 = s1;
     }
   }
