@@ -48,8 +48,12 @@
 // patches) is per cell, and on the benchmark's rational lens it was a fifth of a 24 Mpix
 // render. At 64 the lens still certifies (96.9 % of the frame, 96.3 % at 32) and its render
 // went 47.8 → 39.3 ms on 1 thread, 25.4 → 21.5 ms on 2 (AVX-512 machine). The strong barrel
-// pays: more of its frame lies in cells that fail near the fold and are refined, 56 → 69–72 ms
-// on 2 threads.
+// paid: more of its frame lies in cells that fail near the fold and are refined, 56 → 69–72 ms
+// on 2 threads, while its certified squares were rendered from a double Hermite row per square
+// and row and one open subcell sent its whole cell down the per-pixel path. Now each certified
+// square keeps a float patch as a cell does (made when it certifies) and only open subcells
+// take the per-pixel path: 77 → 59 ms on another AVX-512 machine, the quadtree's squares then
+// rendering about as fast as whole cells.
 // Open cells with a node without a preimage (the edge of what the camera sees crosses them)
 // get their own coverage at kFine pixels: the lattice quads whose boxes reach them, split into
 // quads of 8 source pixels, mark their images' boxes grown by half a pixel plus a quarter of
