@@ -377,6 +377,34 @@ __attribute__((target_clones("fma", "default"))) void polySquareScalar(const Cel
 }
 
 #if defined(__x86_64__)
+// A patch's row v, by Horner in v over its eight lanes, as broadcast coefficients of the cubic
+// in u (x: x0 … x3, y: y0 … y3) with the anchor: the cells' and the squares' AVX2 kernels.
+// Named, not arrays: GCC keeps an array of vectors on the stack.
+struct RowCubicAvx2 {
+  __m256 x0, x1, x2, x3, y0, y1, y2, y3, ax, ay;
+};
+
+__attribute__((target("avx2,fma"), always_inline)) inline RowCubicAvx2 rowCubicAvx2(const CellPoly& c, __m256 vv) {
+  const __m256 k = _mm256_fmadd_ps(
+      vv, _mm256_fmadd_ps(vv, _mm256_fmadd_ps(vv, _mm256_load_ps(c.p[3]), _mm256_load_ps(c.p[2])), _mm256_load_ps(c.p[1])),
+      _mm256_load_ps(c.p[0]));
+  // (A lambda here would not inherit the target: GCC would refuse to inline the intrinsics.)
+  return {_mm256_permutevar8x32_ps(k, _mm256_set1_epi32(0)), _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(1)),
+          _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(2)), _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(3)),
+          _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(4)), _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(5)),
+          _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(6)), _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(7)),
+          _mm256_set1_ps(c.anchor_x), _mm256_set1_ps(c.anchor_y)};
+}
+
+// Eight pixels at u = w of the row.
+__attribute__((target("avx2,fma"), always_inline)) inline void storeRowCubicAvx2(const RowCubicAvx2& r, __m256 w,
+                                                                                float* sx, float* sy) {
+  const __m256 px = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, r.x3, r.x2), r.x1), r.x0);
+  const __m256 py = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, r.y3, r.y2), r.y1), r.y0);
+  _mm256_storeu_ps(sx, _mm256_add_ps(r.ax, px));
+  _mm256_storeu_ps(sy, _mm256_add_ps(r.ay, py));
+}
+
 __attribute__((target("avx2,fma"))) void polyCellsAvx2(const CellPoly* cells, int count, float v, float* sx,
                                                        float* sy) {
   const __m256 vv = _mm256_set1_ps(v);
@@ -388,56 +416,21 @@ __attribute__((target("avx2,fma"))) void polyCellsAvx2(const CellPoly* cells, in
     u[g] = _mm256_mul_ps(_mm256_add_ps(j, half), scale);
   }
   for (int cell = 0; cell < count; ++cell, sx += kCellPixels, sy += kCellPixels) {
-    const CellPoly& c = cells[cell];
-    const __m256 k = _mm256_fmadd_ps(
-        vv, _mm256_fmadd_ps(vv, _mm256_fmadd_ps(vv, _mm256_load_ps(c.p[3]), _mm256_load_ps(c.p[2])), _mm256_load_ps(c.p[1])),
-        _mm256_load_ps(c.p[0]));
-    // Named, not an array: GCC keeps an array of vectors on the stack.
-    const __m256 x0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(0)),
-                 x1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(1)),
-                 x2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(2)),
-                 x3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(3));
-    const __m256 y0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(4)),
-                 y1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(5)),
-                 y2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(6)),
-                 y3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(7));
-    const __m256 ax = _mm256_set1_ps(c.anchor_x), ay = _mm256_set1_ps(c.anchor_y);
+    const RowCubicAvx2 r = rowCubicAvx2(cells[cell], vv);
 #pragma GCC unroll 4
-    for (int g = 0; g < kCellPixels / 8; ++g) {
-      const __m256 w = u[g];
-      const __m256 px = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, x3, x2), x1), x0);
-      const __m256 py = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, y3, y2), y1), y0);
-      _mm256_storeu_ps(sx + 8 * g, _mm256_add_ps(ax, px));
-      _mm256_storeu_ps(sy + 8 * g, _mm256_add_ps(ay, py));
-    }
+    for (int g = 0; g < kCellPixels / 8; ++g) storeRowCubicAvx2(r, u[g], sx + 8 * g, sy + 8 * g);
   }
 }
 
 __attribute__((target("avx2,fma"))) void polySquareAvx2(const CellPoly& c, float v, float scale, int j0,
                                                         int count, float* sx, float* sy) {
-  const __m256 vv = _mm256_set1_ps(v);
-  const __m256 k = _mm256_fmadd_ps(
-      vv, _mm256_fmadd_ps(vv, _mm256_fmadd_ps(vv, _mm256_load_ps(c.p[3]), _mm256_load_ps(c.p[2])), _mm256_load_ps(c.p[1])),
-      _mm256_load_ps(c.p[0]));
-  const __m256 x0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(0)),
-               x1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(1)),
-               x2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(2)),
-               x3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(3));
-  const __m256 y0 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(4)),
-               y1 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(5)),
-               y2 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(6)),
-               y3 = _mm256_permutevar8x32_ps(k, _mm256_set1_epi32(7));
-  const __m256 ax = _mm256_set1_ps(c.anchor_x), ay = _mm256_set1_ps(c.anchor_y);
+  const RowCubicAvx2 r = rowCubicAvx2(c, _mm256_set1_ps(v));
   const __m256 half = _mm256_set1_ps(0.5f), sc = _mm256_set1_ps(scale);
   int g = 0;
   for (; g + 8 <= count; g += 8) {
     const __m256 j = _mm256_cvtepi32_ps(
         _mm256_add_epi32(_mm256_set1_epi32(j0 + g), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-    const __m256 w = _mm256_mul_ps(_mm256_add_ps(j, half), sc);
-    const __m256 px = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, x3, x2), x1), x0);
-    const __m256 py = _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, _mm256_fmadd_ps(w, y3, y2), y1), y0);
-    _mm256_storeu_ps(sx + g, _mm256_add_ps(ax, px));
-    _mm256_storeu_ps(sy + g, _mm256_add_ps(ay, py));
+    storeRowCubicAvx2(r, _mm256_mul_ps(_mm256_add_ps(j, half), sc), sx + g, sy + g);
   }
   if (g < count) polySquareBody(c, v, scale, j0 + g, count - g, sx + g, sy + g);
 }
