@@ -595,10 +595,13 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
     if (sx.size() < cells) sx.resize(cells), sy.resize(cells), valid.resize(cells);
     std::memset(valid.data(), 0, cells);
     const long long band_covered = rasteriseBand(mesh, y0, y1, out.width, sx.data(), sy.data(), valid.data());
-    for (int y = y0; y < y1; ++y) {
-      const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(out.width);
-      for (int x0 = 0; x0 < out.width; x0 += kSpanPixels) {  // the warp's spans (coordinates.h)
-        const int n = std::min(kSpanPixels, out.width - x0);
+    // Span-major as the warp's tiles (warp.cpp): one span column down the band's rows, then
+    // the next, so the source region a tile reads stays in cache; a whole 6000-pixel row
+    // sweeps every source line its curve crosses.
+    for (int x0 = 0; x0 < out.width; x0 += kSpanPixels) {  // the warp's spans (coordinates.h)
+      const int n = std::min(kSpanPixels, out.width - x0);
+      for (int y = y0; y < y1; ++y) {
+        const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(out.width);
         sampler.run(y, x0, n, sx.data() + row + x0, sy.data() + row + x0, valid.data() + row + x0);
       }
     }
