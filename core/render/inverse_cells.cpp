@@ -276,21 +276,46 @@ bool InverseCells::certify(const Corners& n, double x0, double y0, double size, 
                                         {0.5, 3, {0.5, 0.0, 1.0}},
                                         {lo, 2, {lo, hi, 0}},
                                         {hi, 2, {lo, hi, 0}}};
+  // The points first, then one batch of forward evaluations (RationalMap::evaluateBatch):
+  // the nine Newton steps cost about what two or three do one at a time.
+  double pu[RationalMap::kBatch], pv[RationalMap::kBatch], tu[RationalMap::kBatch], tv[RationalMap::kBatch];
+  int m = 0;
   for (const PointRow& row : kRows) {
     if (!edges && (row.v == 0.0 || row.v == 1.0)) continue;
     Eigen::Vector2d f0, f1, d0, d1;
     edgesAt(n, row.v, f0, f1, d0, d1);
     // Without the edges, the middle row's points on them (u = 0, 1) are left out too.
     const int count = !edges && row.v == 0.5 ? 1 : row.count;
-    for (int k = 0; k < count; ++k) {
+    for (int k = 0; k < count; ++k, ++m) {
       const double u = row.u[k];
       const Hermite hu(u);
-      const Eigen::Vector2d t(x0 + u * size, y0 + row.v * size);
       const Eigen::Vector2d p = hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
-      if (!pointCertifies(p, t, tol)) return false;
+      pu[m] = p.x();
+      pv[m] = p.y();
+      tu[m] = x0 + u * size;
+      tv[m] = y0 + row.v * size;
     }
   }
-  return true;
+  RationalMap::Batch b;
+  for (int k = m; k < RationalMap::kBatch; ++k) pu[k] = pu[0], pv[k] = pv[0];
+  if (!newton_.forward().evaluateBatch(pu, pv, b)) {
+    for (int k = 0; k < m; ++k)
+      if (!pointCertifies(Eigen::Vector2d(pu[k], pv[k]), Eigen::Vector2d(tu[k], tv[k]), tol)) return false;
+    return true;
+  }
+  // pointCertifies' tests, point by point: on the centre's side of the pole curve and of the
+  // fold, one Newton step within the tolerance (false for NaN, as on the pole).
+  const CentreReference& centre = newton_.centre();
+  const bool den_negative = (centre.denominator_signs & 1u) != 0;
+  bool all = true;
+  for (int k = 0; k < m; ++k) {
+    const double det = b.j00[k] * b.j11[k] - b.j01[k] * b.j10[k];
+    const double rx = b.x[k] - tu[k], ry = b.y[k] - tv[k];
+    const double stepx = (b.j11[k] * rx - b.j01[k] * ry) / det, stepy = (b.j00[k] * ry - b.j10[k] * rx) / det;
+    all = all && (b.den[k] < 0.0) == den_negative && (det > 0.0) == centre.det_positive &&
+          std::abs(stepx) <= tol && std::abs(stepy) <= tol;
+  }
+  return all;
 }
 
 bool InverseCells::patchBeyondReach(const Corners& corners) const {
@@ -422,8 +447,8 @@ bool InverseCells::covered(int x, int y) const {
 double InverseCells::certifiedShare() const {
   if (kinds_.empty()) return 0.0;
   double cells = static_cast<double>(std::count(kinds_.begin(), kinds_.end(), kCertified));
-  for (const Refined& r : refined_)
-    cells += static_cast<double>(std::count(std::begin(r.kinds), std::end(r.kinds), kCertified)) /
+  for (int k = 0; k < refined_count_; ++k)
+    cells += static_cast<double>(std::count(std::begin(refined_[k].kinds), std::end(refined_[k].kinds), kCertified)) /
              (kSubs * kSubs);
   return cells / static_cast<double>(kinds_.size());
 }
@@ -431,8 +456,8 @@ double InverseCells::certifiedShare() const {
 double InverseCells::emptyShare() const {
   if (kinds_.empty()) return 0.0;
   double cells = static_cast<double>(std::count(kinds_.begin(), kinds_.end(), kEmpty));
-  for (const Refined& r : refined_)
-    cells += static_cast<double>(std::count(std::begin(r.kinds), std::end(r.kinds), kEmpty)) /
+  for (int k = 0; k < refined_count_; ++k)
+    cells += static_cast<double>(std::count(std::begin(refined_[k].kinds), std::end(refined_[k].kinds), kEmpty)) /
              (kSubs * kSubs);
   return cells / static_cast<double>(kinds_.size());
 }

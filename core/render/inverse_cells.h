@@ -190,11 +190,11 @@ class InverseCells {
     // path's start when open.
     unsigned char side[kSubs * kSubs];
     unsigned char covered[kFines * kFines];
-    bool fine = false;  // covered[] from the split lattice (else all covered)
+    bool fine;  // covered[] from the split lattice (else all covered)
     // Per certified subcell: its square's float patch, square_polys_[poly_base + poly[…]]
     // (made when the square certifies, so that a row of it costs no double Hermite blend).
     unsigned char poly[kSubs * kSubs];
-    int poly_base = 0;
+    int poly_base;  // set where the cell has a certified square
     // The square of `size` subcells at subcell (sx, sy): its corner nodes with their
     // derivatives scaled to the square (per size · kSub pixels).
     void square(int sx, int sy, int size, Node out[4]) const {
@@ -269,7 +269,13 @@ class InverseCells {
   int lattice_w_ = 0, lattice_h_ = 0;  // quads
   std::vector<Eigen::Vector2d> lattice_mapped_;
   std::vector<int> refined_index_;  // per cell: into refined_, or −1
-  std::vector<Refined> refined_;
+  // refined_count_ cells in refined_index_'s order, in storage the cells construct themselves
+  // in parallel (Refined is trivially destructible: freeing the storage ends them).
+  struct FreeStorage {
+    void operator()(Refined* p) const { ::operator delete(p); }
+  };
+  std::unique_ptr<Refined[], FreeStorage> refined_;
+  int refined_count_ = 0;
   // The certified squares' float patches, each refined cell's together (Refined::poly_base):
   // room for every subcell's, of which only the pages written are ever touched.
   std::unique_ptr<CellPoly[]> square_polys_;

@@ -71,6 +71,43 @@ bool RationalMap::evaluateSingle(const Eigen::Vector2d& source, Eigen::Vector2d&
   return true;
 }
 
+namespace {
+
+// evaluateSingle's arithmetic over RationalMap::kBatch points, without its branches.
+template <class Form>
+[[gnu::always_inline]] inline void batchBody(const Form* forms, const double* __restrict u, const double* __restrict v,
+                                             RationalMap::Batch& out) {
+  const Form f0 = forms[0], f1 = forms[1], f2 = forms[2];
+  for (int i = 0; i < RationalMap::kBatch; ++i) {
+    const double uu = u[i], vv = v[i];
+    const double den = (f2.a * uu + f2.b * vv + f2.c) * uu + (f2.d * vv + f2.e) * vv + f2.f;
+    const double inv = 1.0 / den;
+    const double x = ((f0.a * uu + f0.b * vv + f0.c) * uu + (f0.d * vv + f0.e) * vv + f0.f) * inv;
+    const double y = ((f1.a * uu + f1.b * vv + f1.c) * uu + (f1.d * vv + f1.e) * vv + f1.f) * inv;
+    const double du = 2 * f2.a * uu + f2.b * vv + f2.c, dv = f2.b * uu + 2 * f2.d * vv + f2.e;
+    out.x[i] = x;
+    out.y[i] = y;
+    out.j00[i] = (2 * f0.a * uu + f0.b * vv + f0.c - x * du) * inv;
+    out.j01[i] = (f0.b * uu + 2 * f0.d * vv + f0.e - x * dv) * inv;
+    out.j10[i] = (2 * f1.a * uu + f1.b * vv + f1.c - y * du) * inv;
+    out.j11[i] = (f1.b * uu + 2 * f1.d * vv + f1.e - y * dv) * inv;
+    out.den[i] = den;
+  }
+}
+
+}  // namespace
+
+bool RationalMap::evaluateBatch(const double* u, const double* v, Batch& out) const {
+  if (stages_.size() != 1) return false;
+  batchDispatched(single_, u, v, out);
+  return true;
+}
+
+__attribute__((target_clones("avx2", "default"))) void RationalMap::batchDispatched(
+    const Form* forms, const double* u, const double* v, Batch& out) {
+  batchBody(forms, u, v, out);
+}
+
 bool RationalMap::evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& target,
                            Eigen::Matrix2d* jacobian, unsigned* denominator_signs) const {
   if (stages_.size() == 1) return evaluateSingle(source, target, jacobian, denominator_signs);

@@ -33,6 +33,16 @@ class RationalMap {
   bool evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& target, Eigen::Matrix2d* jacobian,
                 unsigned* denominator_signs = nullptr) const;
 
+  // A one-stage map at kBatch points at once (false for a chain, which the caller then
+  // evaluates point by point): the target, the Jacobian's entries and the denominator n_3, in
+  // plain loops that vectorise (AVX2 by runtime dispatch). No check: a point on the pole gives
+  // infinities or NaN, which the caller's comparisons reject.
+  static constexpr int kBatch = 12;
+  struct Batch {
+    double x[kBatch], y[kBatch], j00[kBatch], j01[kBatch], j10[kBatch], j11[kBatch], den[kBatch];
+  };
+  bool evaluateBatch(const double* u, const double* v, Batch& out) const;
+
   int stageCount() const { return static_cast<int>(stages_.size()); }
   // Stage s's three symmetric 3×3 forms (u, v, homogeneous).
   const std::vector<Eigen::Matrix3d>& stage(int s) const { return stages_[s]; }
@@ -46,6 +56,7 @@ class RationalMap {
   };
   bool evaluateSingle(const Eigen::Vector2d& source, Eigen::Vector2d& target, Eigen::Matrix2d* jacobian,
                       unsigned* denominator_signs) const;
+  static void batchDispatched(const Form* forms, const double* u, const double* v, Batch& out);
 
   std::vector<std::vector<Eigen::Matrix3d>> stages_;
   Form single_[3];
