@@ -101,6 +101,41 @@ class TestFused : public QObject {
     QVERIFY2(worst < 1e-6, qPrintable(QString("drift %1 px").arg(worst)));
   }
 
+  // The batch form the cell certification uses (RationalMap::evaluateBatch) gives what
+  // evaluate() gives point by point (value, Jacobian, denominator's sign), to rounding; a
+  // chain has no batch form.
+  void batchEvaluationAgreesWithPointwise() {
+    const FrameSize size{6000, 4000};
+    test::rng().seed(23);
+    const RationalMap map(test::randomRationalCamera(size, size, 0.3), size, size);
+    double u[RationalMap::kBatch], v[RationalMap::kBatch];
+    std::uniform_real_distribution<double> along(-500.0, 6500.0);
+    int compared = 0;
+    for (int round = 0; round < 50; ++round) {
+      for (int k = 0; k < RationalMap::kBatch; ++k) u[k] = along(test::rng()), v[k] = along(test::rng());
+      RationalMap::Batch b;
+      QVERIFY(map.evaluateBatch(u, v, b));
+      for (int k = 0; k < RationalMap::kBatch; ++k) {
+        Eigen::Vector2d f;
+        Eigen::Matrix2d j;
+        unsigned signs = 0;
+        if (!map.evaluate(Eigen::Vector2d(u[k], v[k]), f, &j, &signs)) continue;
+        const double scale = 1.0 + f.norm();
+        QVERIFY(std::abs(b.x[k] - f.x()) <= 1e-12 * scale && std::abs(b.y[k] - f.y()) <= 1e-12 * scale);
+        const double jscale = 1.0 + j.cwiseAbs().maxCoeff();
+        QVERIFY(std::abs(b.j00[k] - j(0, 0)) <= 1e-12 * jscale && std::abs(b.j01[k] - j(0, 1)) <= 1e-12 * jscale);
+        QVERIFY(std::abs(b.j10[k] - j(1, 0)) <= 1e-12 * jscale && std::abs(b.j11[k] - j(1, 1)) <= 1e-12 * jscale);
+        QCOMPARE(b.den[k] < 0.0, signs != 0u);
+        ++compared;
+      }
+    }
+    QVERIFY(compared > 500);
+    Camera chain = test::randomRationalCamera(size, size, 0.1);
+    chain.stages().push_back(chain.stages().front());
+    RationalMap::Batch unused;
+    QVERIFY(!RationalMap(chain, size, size).evaluateBatch(u, v, unused));
+  }
+
   void kernelsAgreeWithExactReference_data() {
     QTest::addColumn<Camera>("camera");
     QTest::addColumn<bool>("force_rational");
