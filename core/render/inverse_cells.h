@@ -12,11 +12,14 @@
 // forward Jacobian, eq 2, at the solved node); the cross derivative is the central difference
 // of the neighbouring nodes' derivatives (its error enters at the same fourth order).
 //
-// Certification: a cell is certified when, at its centre and its four edge midpoints (where
-// a Hermite patch's error peaks), one Newton step from the patch's value (r = F(p) − t,
-// δ = J⁻¹ r: the distance to the exact inverse up to curvature · δ²) is within the tolerance,
-// and each point lies on the source centre's side of every pole curve and of the fold
-// (inverse.h). The tolerance is half the 1/256 px budget; the tests check every pixel.
+// Certification: a cell is certified when, at its centre, its four edge midpoints (where a
+// Hermite patch's error peaks) and the four points where an error in its cross derivatives
+// peaks, one Newton step from the patch's value (r = F(p) − t, δ = J⁻¹ r: the distance to the
+// exact inverse up to curvature · δ²) is within the tolerance, and each point lies on the
+// source centre's side of every pole curve and of the fold (inverse.h). The nine points go
+// through the forward map as one batch (RationalMap::evaluateBatch). The tolerance, 1/4096 px
+// by default, is a sixteenth of the 1/256 px budget, which leaves room for the error between
+// the checked points and for rounding the positions to float; the tests check every pixel.
 //
 // What has no preimage is known at once:
 // - a certified cell whose patch lies wholly beyond the source frame grown by the filters'
