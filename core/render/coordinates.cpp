@@ -748,8 +748,10 @@ class RationalKernel final : public CoordinateKernel {
           const bool sub_patch = cells.hasSubPatch(cx, cy, sub_x, sub_y);
           InverseCells::SubRow sr{};
           if (sub_patch) cells.subRow(cx, sub_x, y, sr);
+          unsigned char covered[InverseCells::kSub];
+          cells.coveredRun(x0 + s0, y, s1 - s0, covered);
           for (int i = s0; i < s1; ++i) {
-            mode[i] = cells.covered(x0 + i, y) ? kCheck : kSkip;
+            mode[i] = covered[i - s0] ? kCheck : kSkip;
             if (sub_patch || patch) {
               const Eigen::Vector2d s = sub_patch ? cubicAt(sr.cubic, x0 + i - sr.x0, sr.size)
                                                   : cubicAt(r, x0 + i - cell_x);
@@ -763,8 +765,10 @@ class RationalKernel final : public CoordinateKernel {
         }
         continue;
       }
+      unsigned char covered[kCellPixels];
+      if (kind != InverseCells::kCertified) cells.coveredRun(x0 + c0, y, c1 - c0, covered);
       for (int i = c0; i < c1; ++i) {
-        mode[i] = kind == InverseCells::kCertified ? kDirect : cells.covered(x0 + i, y) ? kCheck : kSkip;
+        mode[i] = kind == InverseCells::kCertified ? kDirect : covered[i - c0] ? kCheck : kSkip;
         if (patch) {
           const Eigen::Vector2d s = cubicAt(r, x0 + i - cell_x);
           bx[i] = s.x();

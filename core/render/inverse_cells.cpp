@@ -444,6 +444,22 @@ bool InverseCells::covered(int x, int y) const {
   return refinedAt(cx, cy).covered[fy * kFines + fx] != 0;
 }
 
+void InverseCells::coveredRun(int x, int y, int n, unsigned char* out) const {
+  if (!coverage_known_) {
+    std::fill(out, out + n, static_cast<unsigned char>(1));
+    return;
+  }
+  const unsigned char* blocks = &covered_[index(0, std::min(y / kBlock, blocks_h_ - 1), blocks_w_)];
+  const int cx = std::min(x / kCell, cells_w_ - 1), cy = std::min(y / kCell, cells_h_ - 1);
+  const unsigned char* fine =
+      refined(cx, cy) ? refinedAt(cx, cy).covered + std::min((y - cy * kCell) / kFine, kFines - 1) * kFines : nullptr;
+  for (int i = 0; i < n; ++i) {
+    const int px = x + i;
+    const bool block = blocks[std::min(px / kBlock, blocks_w_ - 1)] != 0;
+    out[i] = block && (!fine || fine[std::min((px - cx * kCell) / kFine, kFines - 1)] != 0) ? 1 : 0;
+  }
+}
+
 double InverseCells::certifiedShare() const {
   if (kinds_.empty()) return 0.0;
   double cells = static_cast<double>(std::count(kinds_.begin(), kinds_.end(), kCertified));

@@ -134,6 +134,8 @@ class InverseCells {
   const CellPoly& poly(int cx, int cy) const { return polys_[index(cx, cy, cells_w_)]; }
   // Output pixel (x, y) may have a preimage within reach (always true without coverage).
   bool covered(int x, int y) const;
+  // covered() for pixels x … x + n − 1 of row y, all in one cell, as 0 or 1 in out[0 … n − 1].
+  void coveredRun(int x, int y, int n, unsigned char* out) const;
 
   // An open cell split into kSubs × kSubs subcells of kSub pixels, each with its own kind and
   // patch: a quadrant's (2 kSub pixels) where that certifies, else the subcell's own.
