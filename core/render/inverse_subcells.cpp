@@ -65,7 +65,8 @@ void InverseCells::refineOpenCells(int threads) {
   }
   // Left uninitialised here and set up by the cells in parallel: a strong barrel refines a
   // third of its cells, ~13 MB that one thread zeroing and first touching cost a millisecond.
-  static_assert(std::is_trivially_destructible_v<Refined>);
+  static_assert(std::is_trivially_destructible_v<Refined> &&
+                alignof(Refined) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);  // plain operator new suffices
   refined_.reset(static_cast<Refined*>(::operator new(sizeof(Refined) * static_cast<size_t>(count))));
   refined_count_ = count;
   std::vector<std::array<int, 2>> cells;
