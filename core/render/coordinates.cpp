@@ -699,15 +699,18 @@ class RationalKernel final : public CoordinateKernel {
     polySquareScalar(*q.poly, v, scale, j0, count, sx, sy);
   }
 
-  // A span with cells of different kinds: certified cells take their patch, empty cells and
-  // uncovered blocks are transparent, the rest is checked per pixel from the best start.
+  // The per-pixel path on a run span() found unpatched: open subcells of refined cells and
+  // open cells left whole, never a certified or empty cell or subcell. Pixels in uncovered
+  // blocks are transparent; the rest are checked from the best start (their subcell's patch,
+  // else their cell's, else the fitted seed), and those the start misses are solved.
   int mixedSpan(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
                 RowState& state) const {
     settle(y, state);
     const InverseCells& cells = *cells_;
     const double ty = y + 0.5;
     const int cy = std::min(y / kCellPixels, cells.cellsHigh() - 1);
-    enum : unsigned char { kCheck = 0, kDirect = 1, kSkip = 2 };
+    const int sub_y = std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
+    enum : unsigned char { kCheck = 0, kSkip = 1 };
     double bx[kSpanPixels], by[kSpanPixels], qx[kSpanPixels], qy[kSpanPixels];
     unsigned char mode[kSpanPixels], have[kSpanPixels], passed[kSpanPixels];
     bool need_seed = false;
@@ -716,66 +719,30 @@ class RationalKernel final : public CoordinateKernel {
       const int cx = std::min((x0 + c0) / kCellPixels, cells.cellsWide() - 1);
       const int cell_x = cx * kCellPixels;
       c1 = std::min(n, cell_x + kCellPixels - x0);
-      const InverseCells::Kind kind = cells.kind(cx, cy);
-      if (kind == InverseCells::kEmpty) {
-        for (int i = c0; i < c1; ++i) mode[i] = kSkip, have[i] = 0, bx[i] = by[i] = 0.0;
-        continue;
-      }
-      const bool patch = cells.hasPatch(cx, cy);
+      const bool refined = cells.refined(cx, cy), patch = cells.hasPatch(cx, cy);
       CellRow r{};
-      if (patch) cells.row(cx, y, r);
-      if (kind == InverseCells::kOpen && cells.refined(cx, cy)) {
-        // Subcells: certified ones take their patch, empty ones are transparent, the others
-        // run the per-pixel path from their patch, else the cell's.
-        const int sub_y =
-            std::min((y - cy * kCellPixels) / InverseCells::kSub, InverseCells::kSubs - 1);
-        for (int s0 = c0, s1 = c0; s0 < c1; s0 = s1) {
-          const int sub_x = (x0 + s0 - cell_x) / InverseCells::kSub;
-          s1 = std::min(c1, cell_x + (sub_x + 1) * InverseCells::kSub - x0);
-          const InverseCells::Kind sub = cells.subKind(cx, cy, sub_x, sub_y);
-          if (sub == InverseCells::kEmpty) {
-            for (int i = s0; i < s1; ++i) mode[i] = kSkip, bx[i] = by[i] = 0.0;
-            continue;
+      bool have_row = false;  // r, made only for pixels that start from the cell's patch
+      // A refined cell subcell by subcell (each with its own patch), an unrefined one whole.
+      for (int s0 = c0, s1 = c0; s0 < c1; s0 = s1) {
+        const int sub_x = (x0 + s0 - cell_x) / InverseCells::kSub;
+        s1 = refined ? std::min(c1, cell_x + (sub_x + 1) * InverseCells::kSub - x0) : c1;
+        const bool sub_patch = refined && cells.hasSubPatch(cx, cy, sub_x, sub_y);
+        InverseCells::SubRow sr{};
+        if (sub_patch) cells.subRow(cx, sub_x, y, sr);
+        if (!sub_patch && patch && !have_row) cells.row(cx, y, r), have_row = true;
+        unsigned char covered[kCellPixels];
+        cells.coveredRun(x0 + s0, y, s1 - s0, covered);
+        for (int i = s0; i < s1; ++i) {
+          mode[i] = covered[i - s0] ? kCheck : kSkip;
+          if (sub_patch || patch) {
+            const Eigen::Vector2d s = sub_patch ? cubicAt(sr.cubic, x0 + i - sr.x0, sr.size)
+                                                : cubicAt(r, x0 + i - cell_x);
+            bx[i] = s.x();
+            by[i] = s.y();
+          } else {
+            bx[i] = by[i] = std::numeric_limits<double>::quiet_NaN();
+            need_seed = need_seed || mode[i] == kCheck;
           }
-          if (sub == InverseCells::kCertified) {
-            // In float as where no pixel needs a check (span), the solutions its neighbours
-            // extrapolate from.
-            const InverseCells::SubSquare q = cells.subSquare(cx, cy, sub_x, sub_y);
-            squarePixels(q, y, x0 + s0 - q.x0, s1 - s0, sx + s0, sy + s0);
-            for (int i = s0; i < s1; ++i) mode[i] = kDirect, bx[i] = sx[i], by[i] = sy[i];
-            continue;
-          }
-          const bool sub_patch = cells.hasSubPatch(cx, cy, sub_x, sub_y);
-          InverseCells::SubRow sr{};
-          if (sub_patch) cells.subRow(cx, sub_x, y, sr);
-          unsigned char covered[InverseCells::kSub];
-          cells.coveredRun(x0 + s0, y, s1 - s0, covered);
-          for (int i = s0; i < s1; ++i) {
-            mode[i] = covered[i - s0] ? kCheck : kSkip;
-            if (sub_patch || patch) {
-              const Eigen::Vector2d s = sub_patch ? cubicAt(sr.cubic, x0 + i - sr.x0, sr.size)
-                                                  : cubicAt(r, x0 + i - cell_x);
-              bx[i] = s.x();
-              by[i] = s.y();
-            } else {
-              bx[i] = by[i] = std::numeric_limits<double>::quiet_NaN();
-              need_seed = need_seed || mode[i] == kCheck;
-            }
-          }
-        }
-        continue;
-      }
-      unsigned char covered[kCellPixels];
-      if (kind != InverseCells::kCertified) cells.coveredRun(x0 + c0, y, c1 - c0, covered);
-      for (int i = c0; i < c1; ++i) {
-        mode[i] = kind == InverseCells::kCertified ? kDirect : covered[i - c0] ? kCheck : kSkip;
-        if (patch) {
-          const Eigen::Vector2d s = cubicAt(r, x0 + i - cell_x);
-          bx[i] = s.x();
-          by[i] = s.y();
-        } else {
-          bx[i] = by[i] = std::numeric_limits<double>::quiet_NaN();
-          need_seed = need_seed || mode[i] == kCheck;
         }
       }
     }
@@ -829,8 +796,6 @@ class RationalKernel final : public CoordinateKernel {
         qy[i] = q.y();
       }
     }
-    for (int i = 0; i < n; ++i)
-      if (mode[i] == kDirect) passed[i] = 1, qx[i] = bx[i], qy[i] = by[i];
 
     // Pass 2, in order along the row: the pixels the start missed try the extrapolation of
     // their solved neighbours, then Newton. The row state is brought up to date only where a

@@ -245,18 +245,30 @@ Eigen::Vector2d InverseCells::patchAt(const Corners& n, double u, double v) {
   return hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
 }
 
+namespace {
+
+// The certification test at one point whose forward map f and Jacobian j the caller has:
+// one Newton step δ = J⁻¹ (f − t) within `tol` on each axis, the Jacobian's determinant of the
+// centre's sign (the centre's fold; the pole side is the caller's). False for NaN, as on the
+// pole.
+bool stepCertifies(double fx, double fy, double j00, double j01, double j10, double j11,
+                   const Eigen::Vector2d& t, bool det_positive, double tol) {
+  const double det = j00 * j11 - j01 * j10;
+  const double rx = fx - t.x(), ry = fy - t.y();
+  const double stepx = (j11 * rx - j01 * ry) / det, stepy = (j00 * ry - j10 * rx) / det;
+  return (det > 0.0) == det_positive && std::abs(stepx) <= tol && std::abs(stepy) <= tol;
+}
+
+}  // namespace
+
 bool InverseCells::pointCertifies(const Eigen::Vector2d& p, const Eigen::Vector2d& t, double tol) const {
   const CentreReference& centre = newton_.centre();
   Eigen::Vector2d f;
   Eigen::Matrix2d j;
   unsigned signs = 0;
   if (!newton_.forward().evaluate(p, f, &j, &signs)) return false;
-  const double det = j.determinant();
-  if (signs != centre.denominator_signs || (det > 0.0) != centre.det_positive) return false;
-  const Eigen::Vector2d r = f - t;
-  const Eigen::Vector2d step((j(1, 1) * r.x() - j(0, 1) * r.y()) / det,
-                             (j(0, 0) * r.y() - j(1, 0) * r.x()) / det);
-  return step.cwiseAbs().maxCoeff() <= tol;
+  return signs == centre.denominator_signs &&
+         stepCertifies(f.x(), f.y(), j(0, 0), j(0, 1), j(1, 0), j(1, 1), t, centre.det_positive, tol);
 }
 
 bool InverseCells::certify(const Corners& n, double x0, double y0, double size, double tol,
@@ -303,19 +315,15 @@ bool InverseCells::certify(const Corners& n, double x0, double y0, double size, 
       if (!pointCertifies(Eigen::Vector2d(pu[k], pv[k]), Eigen::Vector2d(tu[k], tv[k]), tol)) return false;
     return true;
   }
-  // pointCertifies' tests, point by point: on the centre's side of the pole curve and of the
-  // fold, one Newton step within the tolerance (false for NaN, as on the pole).
+  // pointCertifies' tests on the batch (one stage: its denominator's sign is the pole test).
   const CentreReference& centre = newton_.centre();
   const bool den_negative = (centre.denominator_signs & 1u) != 0;
-  bool all = true;
-  for (int k = 0; k < m; ++k) {
-    const double det = b.j00[k] * b.j11[k] - b.j01[k] * b.j10[k];
-    const double rx = b.x[k] - tu[k], ry = b.y[k] - tv[k];
-    const double stepx = (b.j11[k] * rx - b.j01[k] * ry) / det, stepy = (b.j00[k] * ry - b.j10[k] * rx) / det;
-    all = all && (b.den[k] < 0.0) == den_negative && (det > 0.0) == centre.det_positive &&
-          std::abs(stepx) <= tol && std::abs(stepy) <= tol;
-  }
-  return all;
+  for (int k = 0; k < m; ++k)
+    if ((b.den[k] < 0.0) != den_negative ||
+        !stepCertifies(b.x[k], b.y[k], b.j00[k], b.j01[k], b.j10[k], b.j11[k], {tu[k], tv[k]},
+                       centre.det_positive, tol))
+      return false;
+  return true;
 }
 
 bool InverseCells::patchBeyondReach(const Corners& corners) const {
@@ -430,18 +438,6 @@ bool InverseCells::cellCovered(int cx, int cy) const {
     for (int bx = cx * per; bx < std::min(blocks_w_, (cx + 1) * per); ++bx)
       if (covered_[index(bx, by, blocks_w_)]) return true;
   return false;
-}
-
-bool InverseCells::covered(int x, int y) const {
-  if (!coverage_known_) return true;
-  if (!covered_[index(std::min(x / kBlock, blocks_w_ - 1), std::min(y / kBlock, blocks_h_ - 1),
-                      blocks_w_)])
-    return false;
-  const int cx = std::min(x / kCell, cells_w_ - 1), cy = std::min(y / kCell, cells_h_ - 1);
-  if (!refined(cx, cy)) return true;
-  const int fx = std::min((x - cx * kCell) / kFine, kFines - 1),
-            fy = std::min((y - cy * kCell) / kFine, kFines - 1);
-  return refinedAt(cx, cy).covered[fy * kFines + fx] != 0;
 }
 
 void InverseCells::coveredRun(int x, int y, int n, unsigned char* out) const {

@@ -132,9 +132,8 @@ class InverseCells {
   // A certified cell's patch in float (kind(cx, cy) == kCertified; cells (cx, cy), (cx + 1,
   // cy), … follow each other in memory).
   const CellPoly& poly(int cx, int cy) const { return polys_[index(cx, cy, cells_w_)]; }
-  // Output pixel (x, y) may have a preimage within reach (always true without coverage).
-  bool covered(int x, int y) const;
-  // covered() for pixels x … x + n − 1 of row y, all in one cell, as 0 or 1 in out[0 … n − 1].
+  // out[i] = 1 where output pixel (x + i, y) may have a preimage within reach (always without
+  // coverage), else 0; pixels x … x + n − 1 lie in one cell.
   void coveredRun(int x, int y, int n, unsigned char* out) const;
 
   // An open cell split into kSubs × kSubs subcells of kSub pixels, each with its own kind and

@@ -71,14 +71,17 @@ bool RationalMap::evaluateSingle(const Eigen::Vector2d& source, Eigen::Vector2d&
   return true;
 }
 
-namespace {
+bool RationalMap::evaluateBatch(const double* u, const double* v, Batch& out) const {
+  if (stages_.size() != 1) return false;
+  batchDispatched(single_, u, v, out);
+  return true;
+}
 
-// evaluateSingle's arithmetic over RationalMap::kBatch points, without its branches.
-template <class Form>
-[[gnu::always_inline]] inline void batchBody(const Form* forms, const double* __restrict u, const double* __restrict v,
-                                             RationalMap::Batch& out) {
+// evaluateSingle's arithmetic over kBatch points, without its branches, so that it vectorises.
+__attribute__((target_clones("avx2", "default"))) void RationalMap::batchDispatched(
+    const Form* forms, const double* __restrict u, const double* __restrict v, Batch& out) {
   const Form f0 = forms[0], f1 = forms[1], f2 = forms[2];
-  for (int i = 0; i < RationalMap::kBatch; ++i) {
+  for (int i = 0; i < kBatch; ++i) {
     const double uu = u[i], vv = v[i];
     const double den = (f2.a * uu + f2.b * vv + f2.c) * uu + (f2.d * vv + f2.e) * vv + f2.f;
     const double inv = 1.0 / den;
@@ -93,19 +96,6 @@ template <class Form>
     out.j11[i] = (f1.b * uu + 2 * f1.d * vv + f1.e - y * dv) * inv;
     out.den[i] = den;
   }
-}
-
-}  // namespace
-
-bool RationalMap::evaluateBatch(const double* u, const double* v, Batch& out) const {
-  if (stages_.size() != 1) return false;
-  batchDispatched(single_, u, v, out);
-  return true;
-}
-
-__attribute__((target_clones("avx2", "default"))) void RationalMap::batchDispatched(
-    const Form* forms, const double* u, const double* v, Batch& out) {
-  batchBody(forms, u, v, out);
 }
 
 bool RationalMap::evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& target,
