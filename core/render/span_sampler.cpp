@@ -392,14 +392,15 @@ long long bilinearRgb8Avx512(const Context& k, unsigned char* out, int n, const 
   return avx512::bilinearRgb8(k, out, n, sx, sy, valid, &sampleSpanU8<3, Filter::Bilinear>);
 }
 
-// The AVX-512 float bilinear (span_sampler_avx512.h) for float RGB → RGB without alpha; every
-// other layout, and every group it cannot take, runs the AVX2 clone.
-long long bilinearFloatRgbAvx512(const Context& k, unsigned char* out, int n, const float* sx,
-                                 const float* sy, const unsigned char* valid, int supersample,
-                                 const float* jac) {
+// The AVX-512 16-bit and float bilinear (span_sampler_avx512.h) for RGB → RGB without alpha;
+// every other layout, and every group it cannot take, runs the AVX2 clone.
+template <class T>
+long long bilinearWideRgbAvx512(const Context& k, unsigned char* out, int n, const float* sx,
+                                const float* sy, const unsigned char* valid, int supersample,
+                                const float* jac) {
   if (supersample > 1 || k.append_alpha || k.out_channels != 3 || k.src_alpha >= 0)
-    return sampleSpanWideSimd<float, 3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
-  return avx512::bilinearFloatRgb(k, out, n, sx, sy, valid, &sampleSpanWideSimd<float, 3, Filter::Bilinear>);
+    return sampleSpanWideSimd<T, 3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
+  return avx512::bilinearWideRgb<T>(k, out, n, sx, sy, valid, &sampleSpanWideSimd<T, 3, Filter::Bilinear>);
 }
 
 bool cpuHasAvx512Sampler() {
@@ -410,7 +411,7 @@ bool cpuHasAvx512Sampler() {
 
 // AVX2 when the CPU has it and the source's byte offsets fit the 32-bit offsets; AVX-512 for
 // RGB8 bilinear where the CPU has it and rows hold a 64-byte window. 16-bit and float: AVX2
-// nearest and bilinear (their bicubic stays scalar).
+// nearest and bilinear (their bicubic stays scalar), AVX-512 for RGB bilinear.
 SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter, bool allow_avx512) {
   if (src.channels != 3 && src.channels != 4) return nullptr;
   if (!cpuHasAvx2()) return nullptr;
@@ -418,9 +419,8 @@ SpanSampler::SpanFn pickSimd(const ConstImageView& src, Filter filter, bool allo
     if (filter == Filter::Bicubic) return nullptr;
     if (src.row_bytes <= 0 || static_cast<double>(src.row_bytes) * src.height > 2147483647.0 - 64.0) return nullptr;
 #ifdef ARTCAM_HAVE_AVX512_SAMPLER
-    if (src.type == PixelType::Float && filter == Filter::Bilinear && src.channels == 3 && allow_avx512 &&
-        cpuHasAvx512Sampler())
-      return bilinearFloatRgbAvx512;
+    if (filter == Filter::Bilinear && src.channels == 3 && allow_avx512 && cpuHasAvx512Sampler())
+      return src.type == PixelType::UInt16 ? bilinearWideRgbAvx512<std::uint16_t> : bilinearWideRgbAvx512<float>;
 #endif
     return src.type == PixelType::UInt16 ? pickWide<std::uint16_t>(filter, src.channels) : pickWide<float>(filter, src.channels);
   }
@@ -495,7 +495,8 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
       fn_ = simd;
       simd_ = true;
 #ifdef ARTCAM_HAVE_AVX512_SAMPLER
-      avx512_ = simd == bilinearRgb8Avx512 || simd == bilinearFloatRgbAvx512;
+      avx512_ = simd == bilinearRgb8Avx512 || simd == bilinearWideRgbAvx512<std::uint16_t> ||
+                simd == bilinearWideRgbAvx512<float>;
 #endif
     }
 }

@@ -27,8 +27,9 @@ class SpanSampler {
   // 8-bit one-tap paths and bicubic (span_sampler_avx2.h, span_sampler_cubic.h), the 16-bit and
   // float one-tap nearest and bilinear of 3 or 4 channels (span_sampler_avx2_wide.h); false
   // keeps the portable scalar code.
-  // `allow_avx512`: for RGB8 bilinear, the AVX-512 clone (span_sampler_avx512.h, also
-  // bit-identical) where the CPU has it; false stops at AVX2 (tests compare the two).
+  // `allow_avx512`: for RGB bilinear (8-bit, 16-bit, float), the AVX-512 clones
+  // (span_sampler_avx512.h, also bit-identical) where the CPU has them; false stops at AVX2
+  // (tests compare the two).
   SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter, bool allow_simd = true,
               bool allow_avx512 = true);
   bool usesSimd() const { return simd_; }

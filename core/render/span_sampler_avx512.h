@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// AVX-512 (BW + VBMI) bilinear for 8-bit RGB, and for float RGB (bilinearFloatRgb, below)
+// AVX-512 (BW + VBMI) bilinear for 8-bit RGB, and for 16-bit and float RGB (bilinearWideRgb, below)
 // (span_sampler.cpp only; SIMD where it pays). Runtime dispatch only, as span_sampler_avx2.h:
 // these functions carry a target attribute, span_sampler.cpp picks them when the CPU reports
 // avx512bw, avx512vl and avx512vbmi, and they compute EXACTLY the scalar path's numbers (8-bit:
@@ -15,7 +15,9 @@
 // byte pairs for _mm512_maddubs_epi16 — no per-pixel load. A group that crosses a source row
 // (upper rows y and y + 1) also loads row y + 2 and blends a second permute for the pixels one
 // row down. A group spanning more rows or more than 20 source columns (minified by more than
-// about 1.25×), or touching a border, runs the AVX2 clone (which owns the same integers).
+// about 1.25×) loads each pixel's taps on its own as the AVX2 clone does, sixteen at a time
+// (gatherWeigh); a group touching a border or an invalid pixel runs the AVX2 clone (which owns
+// the same integers and the border semantics).
 //
 // Memory: the 64-byte windows start at the group's leftmost tap and may run past the row's
 // last pixel into the next row; the interior test keeps the lower row off the image's last
@@ -27,14 +29,17 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #ifdef ARTCAM_HAVE_AVX2_SAMPLER
 #define ARTCAM_HAVE_AVX512_SAMPLER 1
 
 // GCC 12's AVX-512 intrinsics start from _mm512_undefined_*() (a self-initialised variable),
-// which -Wmaybe-uninitialized reports wherever they are inlined: a false positive.
+// which -Wmaybe-uninitialized (and, for _mm512_castsi128_si512, -Wuninitialized) reports
+// wherever they are inlined: a false positive.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 
 
 namespace artcam::avx512 {
@@ -47,6 +52,35 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 roundedProduc
   __m512 p = _mm512_mul_ps(x, s);
   asm("" : "+v"(p));
   return p;
+}
+
+// The sixteen pixels of a group the windows cannot take (minified by more than ~1.25×, or
+// crossing more than one source row: most of a strong barrel's frame) by the AVX2 clone's
+// per-pixel loads, at 512 bits: one 8-byte load per row and pixel, [upper | lower] in one
+// 128-bit lane, pixel 4 L + P in lane L of register P, so each pixel's weights are an in-lane
+// broadcast of its dword. The clone's integers (weighPair), so the same bytes; calling the clone
+// instead cost a strong barrel's sampling a third more than the clone alone (its set-up and
+// call per group, on three groups in five).
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m128i rowPairAt(const std::uint8_t* upper,
+                                                                             const std::uint8_t* lower, int at) {
+  const __m128i t = _mm_loadl_epi64(static_cast<const __m128i*>(static_cast<const void*>(upper + at)));
+  return _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(t), static_cast<const double*>(static_cast<const void*>(lower + at))));
+}
+
+template <int P>
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512i gatherWeigh(const std::uint8_t* upper,
+                                                                               const std::uint8_t* lower,
+                                                                               const int* at, __m512i wy, __m512i wx,
+                                                                               __m512i pairs, __m512i sign,
+                                                                               __m512i bias) {
+  __m512i taps = _mm512_castsi128_si512(rowPairAt(upper, lower, at[P]));
+  taps = _mm512_inserti32x4(taps, rowPairAt(upper, lower, at[P + 4]), 1);
+  taps = _mm512_inserti32x4(taps, rowPairAt(upper, lower, at[P + 8]), 2);
+  taps = _mm512_inserti32x4(taps, rowPairAt(upper, lower, at[P + 12]), 3);
+  const __m512i signed_taps = _mm512_xor_si512(_mm512_shuffle_epi8(taps, pairs), sign);
+  const __m512i columns = _mm512_maddubs_epi16(_mm512_shuffle_epi32(wy, static_cast<_MM_PERM_ENUM>(P * 0x55)), signed_taps);
+  return _mm512_srli_epi32(
+      _mm512_add_epi32(_mm512_madd_epi16(columns, _mm512_shuffle_epi32(wx, static_cast<_MM_PERM_ENUM>(P * 0x55))), bias), 8);
 }
 
 // Bilinear RGB8 → RGB8 (no alpha), sixteen pixels per group from two 64-byte windows.
@@ -90,6 +124,16 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
       23, 27, 32, 36, 40, 33, 37, 41, 34, 38, 42, 35, 39, 43, 48, 52, 56, 49, 53, 57, 50, 54,
       58, 51, 55, 59, 0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0};
   const __m512i interleave = _mm512_load_si512(kInterleave);
+  // The gathered groups (gatherWeigh): (upper, lower) byte pairs per channel and tap, as the
+  // AVX2 clone's; lane L of the packed result holds pixels 4 L … 4 L + 3 as RGBx.
+  const __m512i pairs = _mm512_broadcast_i32x4(_mm_setr_epi8(0, 8, 3, 11, 1, 9, 4, 12, 2, 10, 5, 13, -1, -1, -1, -1));
+  alignas(64) static constexpr std::uint8_t kSqueeze[64] = {
+      0,  1,  2,  4,  5,  6,  8,  9,  10, 12, 13, 14, 16, 17, 18, 20, 21, 22, 24, 25, 26, 28,
+      29, 30, 32, 33, 34, 36, 37, 38, 40, 41, 42, 44, 45, 46, 48, 49, 50, 52, 53, 54, 56, 57,
+      58, 60, 61, 62, 0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0};
+  const __m512i squeeze = _mm512_load_si512(kSqueeze);
+  const __m512i row_bytes = _mm512_set1_epi32(static_cast<int>(k.src_row));
+  const std::uint8_t* const lower_row = k.src + k.src_row;
   long long transparent = 0;
   int i = 0;
   for (; i + 16 <= n; i += 16) {
@@ -99,6 +143,13 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
     const __mmask16 inside = _mm512_cmp_ps_mask(fx, zero_ps, _CMP_GE_OQ) & _mm512_cmp_ps_mask(fy, zero_ps, _CMP_GE_OQ) &
                              _mm512_cmp_ps_mask(fx, xmax, _CMP_LT_OQ) & _mm512_cmp_ps_mask(fy, ymax, _CMP_LT_OQ);
     const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid + i)));
+    if (_mm_test_all_zeros(v, v)) {
+      // No pixel has a preimage (a strong barrel's corners: half its groups): zeros, as the
+      // AVX2 clone writes them, without its call.
+      std::memset(o, 0, 48);
+      transparent += 16;
+      continue;
+    }
     if (inside != 0xFFFF || _mm_cmpeq_epi8_mask(v, ones) != 0xFFFF) {
       transparent += avx2::bilinearU8<3>(k, o, 16, sx + i, sy + i, valid + i, scalar);
       continue;
@@ -109,28 +160,42 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
     const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(x0));
     // The upper row: the lower of the first and last pixels' rows, not a full reduction (a
     // smooth map's rows are monotone over sixteen pixels; where one in between is lower, its
-    // negative dy fails the 0 … 1 test below and the group goes to the AVX2 clone).
+    // negative dy fails the 0 … 1 test below and the group is gathered).
     const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(y0)),
                                  _mm_extract_epi32(_mm512_extracti32x4_epi32(y0, 3), 3));
     const __m512i rel = _mm512_sub_epi32(x0, _mm512_set1_epi32(x_first));
     const __m512i dy = _mm512_sub_epi32(y0, _mm512_set1_epi32(y_first));  // 0 or 1 below
     const __mmask16 lower_pair = _mm512_test_epi32_mask(dy, dy);
-    if (_mm512_cmple_epu32_mask(dy, _mm512_set1_epi32(1)) != 0xFFFF ||
-        _mm512_cmple_epu32_mask(rel, max_rel) != 0xFFFF) {
-      transparent += avx2::bilinearU8<3>(k, o, 16, sx + i, sy + i, valid + i, scalar);
-      continue;
-    }
     const __m512i ax = _mm512_sub_epi32(qx, _mm512_slli_epi32(x0, 8));  // 0 … 256
     const __m512i ay = _mm512_cvttps_epi32(
         _mm512_add_ps(roundedProduct(_mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0)), scale_y), half));  // 0 … 255
-    const std::uint8_t* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row + 3 * x_first;
-    const __m512i top = _mm512_loadu_si512(upper);
-    const __m512i bottom = _mm512_loadu_si512(upper + k.src_row);
-    avx2::prefetchRowsAhead(k, upper, 64);  // as the AVX2 clone: rows further down
     // Bytes (255 − ay, ay, 255 − ay, ay) and words (256 − ax, ax), one dword per pixel.
     const __m512i wy_pair = _mm512_or_si512(_mm512_sub_epi32(c255, ay), _mm512_slli_epi32(ay, 8));
     const __m512i wy = _mm512_or_si512(wy_pair, _mm512_slli_epi32(wy_pair, 16));
     const __m512i wx = _mm512_or_si512(_mm512_sub_epi32(c256, ax), _mm512_slli_epi32(ax, 16));
+    if (_mm512_cmple_epu32_mask(dy, _mm512_set1_epi32(1)) != 0xFFFF ||
+        _mm512_cmple_epu32_mask(rel, max_rel) != 0xFFFF) {
+      alignas(64) int at[16];  // each pixel's upper-left tap, bytes from k.src (32 bits: dispatch)
+      _mm512_store_si512(at, _mm512_add_epi32(_mm512_mullo_epi32(y0, row_bytes),
+                                              _mm512_add_epi32(x0, _mm512_slli_epi32(x0, 1))));
+      // As the AVX2 clone, which prefetches for each group of eight.
+      avx2::prefetchRowsAhead(k, k.src + at[0]);
+      avx2::prefetchRowsAhead(k, k.src + at[8]);
+      const __m512i p0 = gatherWeigh<0>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
+      const __m512i p1 = gatherWeigh<1>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
+      const __m512i p2 = gatherWeigh<2>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
+      const __m512i p3 = gatherWeigh<3>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
+      const __m512i q01 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(p0, p1), div255), 7);
+      const __m512i q23 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(p2, p3), div255), 7);
+      const __m512i rgb = _mm512_permutexvar_epi8(squeeze, _mm512_packus_epi16(q01, q23));
+      _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o)), _mm512_castsi512_si256(rgb));
+      _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 32)), _mm512_extracti32x4_epi32(rgb, 2));
+      continue;
+    }
+    const std::uint8_t* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row + 3 * x_first;
+    const __m512i top = _mm512_loadu_si512(upper);
+    const __m512i bottom = _mm512_loadu_si512(upper + k.src_row);
+    avx2::prefetchRowsAhead(k, upper, 64);  // as the AVX2 clone: rows further down
     // 3 × rel (≤ 57), the window offset of each pixel's first tap, in every byte of its dword.
     const __m512i base = _mm512_shuffle_epi8(_mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1)), byte0);
     // Pixels one row lower (the group crosses a source row): their taps from rows + 1, + 2.
@@ -164,21 +229,31 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 bothHalves(__
   return _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(d), d, 1));
 }
 
-// 32 floats from p, masked at the image's last float (`end`, bytes from k.src; at least six
-// floats remain from any tap's pixel): nothing past it is read.
-__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline void floatWindow(const SpanSampler::Context& k,
-                                                                            std::int64_t end, const unsigned char* p,
-                                                                            __m512& a, __m512& b) {
-  const std::int64_t left = (end - (p - k.src)) / 4;
-  if (left >= 32) {  // nearly always: plain loads (masked ones measured several times slower)
-    a = _mm512_loadu_ps(p);
-    b = _mm512_loadu_ps(p + 64);
-    return;
+// 32 samples from p as floats, masked at the image's last sample (`end`, bytes from k.src; at
+// least six samples remain from any tap's pixel): nothing past it is read. Float: two 512-bit
+// loads; 16-bit: one, widened (each sample exactly as the scalar code converts it).
+template <class T>
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline void sampleWindow(const SpanSampler::Context& k,
+                                                                             std::int64_t end, const unsigned char* p,
+                                                                             __m512& a, __m512& b) {
+  const std::int64_t left = (end - (p - k.src)) / static_cast<std::int64_t>(sizeof(T));
+  if constexpr (std::is_same_v<T, float>) {
+    if (left >= 32) {  // nearly always: plain loads (masked ones measured several times slower)
+      a = _mm512_loadu_ps(p);
+      b = _mm512_loadu_ps(p + 64);
+      return;
+    }
+    const __mmask16 m0 = left >= 16 ? 0xFFFF : static_cast<__mmask16>((1u << left) - 1u);
+    const __mmask16 m1 = left <= 16 ? 0 : static_cast<__mmask16>((1u << (left - 16)) - 1u);
+    a = _mm512_maskz_loadu_ps(m0, p);
+    b = _mm512_maskz_loadu_ps(m1, p + 64);
+  } else {
+    static_assert(std::is_same_v<T, std::uint16_t>);
+    const __m512i w = left >= 32 ? _mm512_loadu_si512(p)
+                                 : _mm512_maskz_loadu_epi16(static_cast<__mmask32>((1u << left) - 1u), p);
+    a = _mm512_cvtepi32_ps(_mm512_cvtepu16_epi32(_mm512_castsi512_si256(w)));
+    b = _mm512_cvtepi32_ps(_mm512_cvtepu16_epi32(_mm512_extracti64x4_epi64(w, 1)));
   }
-  const __mmask16 m0 = left >= 16 ? 0xFFFF : static_cast<__mmask16>((1u << left) - 1u);
-  const __mmask16 m1 = left <= 16 ? 0 : static_cast<__mmask16>((1u << (left - 16)) - 1u);
-  a = _mm512_maskz_loadu_ps(m0, p);
-  b = _mm512_maskz_loadu_ps(m1, p + 64);
 }
 
 // The AVX2 clone's bilinear in its order: rows of (left, right), then the two rows, + 0.
@@ -190,23 +265,26 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 bilinearBlend
   return _mm512_add_ps(_mm512_setzero_ps(), _mm512_add_ps(roundedProduct(by0, top), roundedProduct(by1, bottom)));
 }
 
-// Bilinear float RGB → float RGB (no alpha), eight pixels per group, with the AVX2 clone's
-// float operations in its order (each product rounded on its own, as roundedProduct), so the
-// tests demand the same bits. Why: the AVX2 clone loads every tap of every pixel on its own
-// (32 loads and 16 inserts a group) and ran at about a third of the 8-bit kernel's speed. Here
-// the group's taps lie within 32 floats (ten pixels) of the upper row and of the lower row,
-// loaded once each as two 512-bit registers, and vpermt2ps picks them: red and green of the
-// left and right taps as four registers (red in lanes 0–7, green in 8–15), blue as one per
-// row (left in 0–7, right in 8–15); a group crossing one source row also reads the row
-// below and blends. A group wider than the window (minified below 0.9×), one spanning more
+// Bilinear float or 16-bit RGB → RGB of the same type (no alpha), eight pixels per group,
+// with the AVX2 clone's float operations in its order (each product rounded on its own, as
+// roundedProduct), so the tests demand the same bits. Why: the AVX2 clone loads every tap of
+// every pixel on its own (32 loads and 16 inserts a group) and ran at about a third of the
+// 8-bit kernel's speed (float) and slower still for 16-bit, whose loads it widens one by one.
+// Here the group's taps lie within 32 samples (ten pixels) of the upper row and of the lower
+// row, loaded once each (sampleWindow) and widened to floats, and vpermt2ps picks them: red and
+// green of the left and right taps as four registers (red in lanes 0–7, green in 8–15), blue
+// as one per row (left in 0–7, right in 8–15); a group crossing one source row also reads the
+// row below and blends. A group wider than the window (minified below 0.9×), one spanning more
 // rows, or one touching a border or an invalid pixel runs `fallback` (the AVX2 clone). The
-// loads are masked at the image's last float, so nothing past it is read.
-__attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const SpanSampler::Context& k,
-                                                                        unsigned char* out, int n,
-                                                                        const float* sx, const float* sy,
-                                                                        const unsigned char* valid,
-                                                                        SpanSampler::SpanFn fallback) {
-  constexpr int kOutPixel = 3 * static_cast<int>(sizeof(float));
+// loads are masked at the image's last sample, so nothing past it is read. 16-bit stores as
+// store<uint16_t>: + ½, clamped to [0, 65535], truncated.
+template <class T>
+__attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const SpanSampler::Context& k,
+                                                                       unsigned char* out, int n,
+                                                                       const float* sx, const float* sy,
+                                                                       const unsigned char* valid,
+                                                                       SpanSampler::SpanFn fallback) {
+  constexpr int kOutPixel = 3 * static_cast<int>(sizeof(T));
   const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
   const __m256i max_rel = _mm256_set1_epi32(8);
   const __m256i x_limit = _mm256_set1_epi32(k.width - 2), y_limit = _mm256_set1_epi32(k.height - 2);
@@ -255,8 +333,8 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const Sp
     avx2::prefetchRowsAhead(k, upper, 128);
     avx2::prefetchRowsAhead(k, upper + 64, 1);
     __m512 t0, t1, b0, b1;
-    floatWindow(k, end, upper, t0, t1);
-    floatWindow(k, end, upper + k.src_row, b0, b1);
+    sampleWindow<T>(k, end, upper, t0, t1);
+    sampleWindow<T>(k, end, upper + k.src_row, b0, b1);
     const __m256i rel3 = _mm256_mullo_epi32(rel, _mm512_castsi512_si256(three));
     const __m512i rel3z = _mm512_inserti64x4(_mm512_castsi256_si512(rel3), rel3, 1);
     const __m512i rg_left = _mm512_add_epi32(rel3z, rg_offset), rg_right = _mm512_add_epi32(rg_left, three);
@@ -270,7 +348,7 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const Sp
     if (const __mmask8 lower = _mm256_test_epi32_mask(dy, dy)) {
       const __mmask16 both = static_cast<__mmask16>(lower | (lower << 8));
       __m512 h0, h1;
-      floatWindow(k, end, upper + 2 * k.src_row, h0, h1);
+      sampleWindow<T>(k, end, upper + 2 * k.src_row, h0, h1);
       tl = _mm512_mask_blend_ps(both, tl, bl);
       tr = _mm512_mask_blend_ps(both, tr, br);
       tb = _mm512_mask_blend_ps(both, tb, bb);
@@ -284,9 +362,19 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearFloatRgb(const Sp
     const __m512 by0 = bothHalves(_mm256_sub_ps(one, wy1)), by1 = bothHalves(wy1);
     const __m512 rg = bilinearBlend(bx0, bx1, by0, by1, tl, tr, bl, br);
     const __m512 blue = bilinearBlend(bx0, bx1, by0, by1, tb, tb_right, bb, bb_right);
-    float* of = static_cast<float*>(static_cast<void*>(o));
-    _mm512_storeu_ps(of, _mm512_permutex2var_ps(rg, interleave0, blue));
-    _mm256_storeu_ps(of + 16, _mm512_castps512_ps256(_mm512_permutex2var_ps(rg, interleave1, blue)));
+    if constexpr (std::is_same_v<T, float>) {
+      float* of = static_cast<float*>(static_cast<void*>(o));
+      _mm512_storeu_ps(of, _mm512_permutex2var_ps(rg, interleave0, blue));
+      _mm256_storeu_ps(of + 16, _mm512_castps512_ps256(_mm512_permutex2var_ps(rg, interleave1, blue)));
+    } else {
+      // Every value lies in [0, 65535] after the clamp, so vpmovdw's truncation to words is exact.
+      const __m512 full = _mm512_set1_ps(65535.0f), rounding = _mm512_set1_ps(0.5f);
+      const __m512i r = _mm512_cvttps_epi32(_mm512_min_ps(full, _mm512_max_ps(_mm512_setzero_ps(), _mm512_add_ps(rg, rounding))));
+      const __m512i b = _mm512_cvttps_epi32(_mm512_min_ps(full, _mm512_max_ps(_mm512_setzero_ps(), _mm512_add_ps(blue, rounding))));
+      _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o)), _mm512_cvtepi32_epi16(_mm512_permutex2var_epi32(r, interleave0, b)));
+      _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 32)),
+                       _mm256_castsi256_si128(_mm512_cvtepi32_epi16(_mm512_permutex2var_epi32(r, interleave1, b))));
+    }
   }
   if (i < n)
     transparent += fallback(k, out + static_cast<std::ptrdiff_t>(i) * kOutPixel, n - i, sx + i, sy + i, valid + i, 1, nullptr);
