@@ -9,6 +9,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <new>
 #include <type_traits>
@@ -180,18 +182,21 @@ void InverseCells::markFine(Eigen::Vector2d lo, Eigen::Vector2d hi) {
       std::min(cells_w_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kFine)));
   const int fy1 =
       std::min(cells_h_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kFine)));
-  for (int fy = fy0; fy <= fy1; ++fy)
-    for (int fx = fx0; fx <= fx1;) {
-      const int cx = fx / kFines, cy = fy / kFines;
-      const int end = std::min(fx1, (cx + 1) * kFines - 1);
-      if (refined(cx, cy) && refinedAt(cx, cy).fine) {
+  // Cell by cell: the lookups once per cell the box reaches, not once per row of it.
+  for (int cy = fy0 / kFines; cy <= fy1 / kFines; ++cy)
+    for (int cx = fx0 / kFines; cx <= fx1 / kFines; ++cx) {
+      if (!refined(cx, cy)) continue;
+      Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
+      if (!r.fine) continue;
+      const int x0 = std::max(fx0, cx * kFines) - cx * kFines;
+      const int x1 = std::min(fx1, (cx + 1) * kFines - 1) - cx * kFines;
+      const int y0 = std::max(fy0, cy * kFines) - cy * kFines;
+      const int y1 = std::min(fy1, (cy + 1) * kFines - 1) - cy * kFines;
+      for (int fy = y0; fy <= y1; ++fy) {
         // Bands of lattice rows mark concurrently; every write stores the same 1.
-        Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
-        unsigned char* row = r.covered + (fy - cy * kFines) * kFines;
-        for (int k = fx - cx * kFines; k <= end - cx * kFines; ++k)
-          std::atomic_ref<unsigned char>(row[k]).store(1, std::memory_order_relaxed);
+        unsigned char* row = r.covered + fy * kFines;
+        for (int k = x0; k <= x1; ++k) std::atomic_ref<unsigned char>(row[k]).store(1, std::memory_order_relaxed);
       }
-      fx = end + 1;
     }
 }
 
@@ -240,23 +245,40 @@ bool InverseCells::solveSubNode(int cx, int cy, int i, int j, Refined& r) const 
 
 void InverseCells::refineCell(int cx, int cy, Refined& r, std::atomic<int>& next_poly) const {
   constexpr int w = kSubs + 1;
-  const auto sub_covered = [&](int sx, int sy) {
-    constexpr int per = kSub / kFine;
-    for (int fy = sy * per; fy < (sy + 1) * per; ++fy)
-      for (int fx = sx * per; fx < (sx + 1) * per; ++fx)
-        if (r.covered[fy * kFines + fx]) return true;
-    return false;
+  static_assert(kSubs * kSubs == 64 && kSub / kFine == 4, "a cell's subcells fit a 64-bit mask");
+  // Bit sy · kSubs + sx: subcell (sx, sy) may show something (any of its kFine blocks is
+  // covered). Read once here: the quadtree and the nodes ask about a subcell many times.
+  std::uint64_t covered = ~std::uint64_t{0};
+  if (r.fine) {
+    covered = 0;
+    for (int sy = 0; sy < kSubs; ++sy)
+      for (int sx = 0; sx < kSubs; ++sx) {
+        std::uint32_t any = 0;
+        for (int fy = sy * 4; fy < sy * 4 + 4; ++fy) {
+          std::uint32_t four;
+          std::memcpy(&four, &r.covered[fy * kFines + sx * 4], 4);
+          any |= four;
+        }
+        if (any) covered |= std::uint64_t{1} << (sy * kSubs + sx);
+      }
+  }
+  // The subcells of the square (qx, qy) of side `size`, as bits of `covered`.
+  const auto square_bits = [](int qx, int qy, int size) {
+    const std::uint64_t row = ((std::uint64_t{1} << size) - 1) << qx;
+    std::uint64_t bits = 0;
+    for (int sy = qy; sy < qy + size; ++sy) bits |= row << (sy * kSubs);
+    return bits;
   };
   // A node is needed when a subcell it bounds may show something.
   bool tried[w * w] = {};
   const auto solve = [&](int i, int j) {
     if (tried[j * w + i]) return;
     tried[j * w + i] = true;
-    bool needed = false;
-    for (int sy = std::max(0, j - 1); sy <= std::min(kSubs - 1, j); ++sy)
-      for (int sx = std::max(0, i - 1); sx <= std::min(kSubs - 1, i); ++sx)
-        needed = needed || sub_covered(sx, sy);
-    if (needed) solveSubNode(cx, cy, i, j, r);
+    const int sx = std::max(0, i - 1), sy = std::max(0, j - 1);
+    const int nx = std::min(kSubs - 1, i) - sx + 1, ny = std::min(kSubs - 1, j) - sy + 1;
+    std::uint64_t around = 0;
+    for (int k = 0; k < ny; ++k) around |= ((std::uint64_t{1} << nx) - 1) << ((sy + k) * kSubs + sx);
+    if (covered & around) solveSubNode(cx, cy, i, j, r);
   };
   // A quadtree below the cell, which has just failed: its quadrants (kCell / 2 pixels) first,
   // each certified by the same rule; a square that fails is cut into four, down to subcells of
@@ -278,10 +300,7 @@ void InverseCells::refineCell(int cx, int cy, Refined& r, std::atomic<int>& next
       }
   };
   const auto refine = [&](const auto& self, int qx, int qy, int size) -> void {
-    bool covered = false;
-    for (int sy = qy; sy < qy + size; ++sy)
-      for (int sx = qx; sx < qx + size; ++sx) covered = covered || sub_covered(sx, sy);
-    if (!covered) return decide(qx, qy, size, kEmpty);
+    if (!(covered & square_bits(qx, qy, size))) return decide(qx, qy, size, kEmpty);
     for (int j = qy; j <= qy + size; j += size)
       for (int i = qx; i <= qx + size; i += size) solve(i, j);
     Node n[4];
