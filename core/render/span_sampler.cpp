@@ -382,12 +382,17 @@ __attribute__((target("avx2"))) long long cubicSpanU8Simd(const Context& k, unsi
 }
 
 #ifdef ARTCAM_HAVE_AVX512_SAMPLER
-// The AVX-512 bilinear (span_sampler_avx512.h) for RGB8 → RGB8 without alpha, the photo
-// case; every other layout, and every group it cannot take, runs the AVX2 clone.
+// The AVX-512 bilinear (span_sampler_avx512.h) for RGB8 → RGB8 without alpha (the photo
+// case) and RGB8 → RGBA8 with alpha appended (the render front door and the studio); every
+// other layout, and every group it cannot take, runs the AVX2 clone.
 long long bilinearRgb8Avx512(const Context& k, unsigned char* out, int n, const float* sx,
                              const float* sy, const unsigned char* valid, int supersample,
                              const float* jac) {
-  if (supersample > 1 || k.append_alpha || k.out_channels != 3 || k.src_alpha >= 0)
+  if (supersample > 1 || k.src_alpha >= 0)
+    return sampleSpanU8Simd<3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
+  if (k.append_alpha && k.out_channels == 4)
+    return avx512::bilinearRgb8<true>(k, out, n, sx, sy, valid, &sampleSpanU8<3, Filter::Bilinear, true>);
+  if (k.append_alpha || k.out_channels != 3)
     return sampleSpanU8Simd<3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
   return avx512::bilinearRgb8(k, out, n, sx, sy, valid, &sampleSpanU8<3, Filter::Bilinear>);
 }

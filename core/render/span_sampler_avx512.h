@@ -83,8 +83,9 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512i gatherWeigh(
       _mm512_add_epi32(_mm512_madd_epi16(columns, _mm512_shuffle_epi32(wx, static_cast<_MM_PERM_ENUM>(P * 0x55))), bias), 8);
 }
 
-// Bilinear RGB8 → RGB8 (no alpha), sixteen pixels per group from two 64-byte windows.
-// One channel at a time (planar): dword p of channel c's tap vector holds (upper x0, lower
+// Bilinear RGB8 → RGB8 (no alpha), or → RGBA8 with alpha full inside (kAppendAlpha: the
+// render front door's and the studio's layout), sixteen pixels per group from two 64-byte
+// windows. One channel at a time (planar): dword p of channel c's tap vector holds (upper x0, lower
 // x0, upper x0 + 1, lower x0 + 1) of pixel p, so every pixel's weights sit in its own dword
 // lane as the positions do and need no permute: one maddubs weighs the rows ((255 − ay, ay)
 // per byte pair, pixels − 128 as in the AVX2 clone), one madd the columns ((256 − ax, ax) per
@@ -92,6 +93,7 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512i gatherWeigh(
 // bytes, and one vpermb interleaves them into RGB. (The first version kept the taps in output
 // order, dword 3 p + c, and spent three permutes per channel spreading weights and indices: ~20
 // shuffles per group against 9 here.)
+template <bool kAppendAlpha = false>
 __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSampler::Context& k,
                                                                     std::uint8_t* out, int n,
                                                                     const float* sx, const float* sy,
@@ -123,7 +125,14 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
       0,  4,  8,  1,  5,  9,  2,  6,  10, 3,  7,  11, 16, 20, 24, 17, 21, 25, 18, 22, 26, 19,
       23, 27, 32, 36, 40, 33, 37, 41, 34, 38, 42, 35, 39, 43, 48, 52, 56, 49, 53, 57, 50, 54,
       58, 51, 55, 59, 0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0};
-  const __m512i interleave = _mm512_load_si512(kInterleave);
+  // RGBA: output byte 4 p + c from the same bytes (alpha's, from byte 0, is then set).
+  alignas(64) static constexpr std::uint8_t kInterleaveRgba[64] = {
+      0,  4,  8,  0, 1,  5,  9,  0, 2,  6,  10, 0, 3,  7,  11, 0, 16, 20, 24, 0, 17, 21,
+      25, 0,  18, 22, 26, 0, 19, 23, 27, 0, 32, 36, 40, 0, 33, 37, 41, 0, 34, 38, 42, 0,
+      35, 39, 43, 0,  48, 52, 56, 0, 49, 53, 57, 0, 50, 54, 58, 0, 51, 55, 59, 0};
+  const __m512i interleave = _mm512_load_si512(kAppendAlpha ? kInterleaveRgba : kInterleave);
+  const __m512i opaque = _mm512_set1_epi32(static_cast<int>(0xFF000000u));
+  constexpr int kOut = kAppendAlpha ? 4 : 3;
   // The gathered groups (gatherWeigh): (upper, lower) byte pairs per channel and tap, as the
   // AVX2 clone's; lane L of the packed result holds pixels 4 L … 4 L + 3 as RGBx.
   const __m512i pairs = _mm512_broadcast_i32x4(_mm_setr_epi8(0, 8, 3, 11, 1, 9, 4, 12, 2, 10, 5, 13, -1, -1, -1, -1));
@@ -137,7 +146,7 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
   long long transparent = 0;
   int i = 0;
   for (; i + 16 <= n; i += 16) {
-    std::uint8_t* o = out + i * 3;
+    std::uint8_t* o = out + i * kOut;
     const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx + i), half);
     const __m512 fy = _mm512_sub_ps(_mm512_loadu_ps(sy + i), half);
     const __mmask16 inside = _mm512_cmp_ps_mask(fx, zero_ps, _CMP_GE_OQ) & _mm512_cmp_ps_mask(fy, zero_ps, _CMP_GE_OQ) &
@@ -146,12 +155,12 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
     if (_mm_test_all_zeros(v, v)) {
       // No pixel has a preimage (a strong barrel's corners: half its groups): zeros, as the
       // AVX2 clone writes them, without its call.
-      std::memset(o, 0, 48);
+      std::memset(o, 0, 16 * kOut);
       transparent += 16;
       continue;
     }
     if (inside != 0xFFFF || _mm_cmpeq_epi8_mask(v, ones) != 0xFFFF) {
-      transparent += avx2::bilinearU8<3>(k, o, 16, sx + i, sy + i, valid + i, scalar);
+      transparent += avx2::bilinearU8<3, kAppendAlpha>(k, o, 16, sx + i, sy + i, valid + i, scalar);
       continue;
     }
     const __m512i qx = _mm512_cvttps_epi32(_mm512_add_ps(roundedProduct(fx, scale_x), half));
@@ -187,7 +196,12 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
       const __m512i p3 = gatherWeigh<3>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
       const __m512i q01 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(p0, p1), div255), 7);
       const __m512i q23 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(p2, p3), div255), 7);
-      const __m512i rgb = _mm512_permutexvar_epi8(squeeze, _mm512_packus_epi16(q01, q23));
+      const __m512i rgbx = _mm512_packus_epi16(q01, q23);
+      if constexpr (kAppendAlpha) {
+        _mm512_storeu_si512(o, _mm512_or_si512(rgbx, opaque));
+        continue;
+      }
+      const __m512i rgb = _mm512_permutexvar_epi8(squeeze, rgbx);
       _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o)), _mm512_castsi512_si256(rgb));
       _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 32)), _mm512_extracti32x4_epi32(rgb, 2));
       continue;
@@ -216,10 +230,14 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
     const __m512i rg255 = _mm512_srli_epi16(_mm512_mulhi_epu16(rg, div255), 7);
     const __m512i bb255 = _mm512_srli_epi16(_mm512_mulhi_epu16(bb, div255), 7);
     const __m512i rgb = _mm512_permutexvar_epi8(interleave, _mm512_packus_epi16(rg255, bb255));
+    if constexpr (kAppendAlpha) {
+      _mm512_storeu_si512(o, _mm512_or_si512(rgb, opaque));
+      continue;
+    }
     _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o)), _mm512_castsi512_si256(rgb));
     _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 32)), _mm512_extracti32x4_epi32(rgb, 2));
   }
-  if (i < n) transparent += avx2::bilinearU8<3>(k, out + i * 3, n - i, sx + i, sy + i, valid + i, scalar);
+  if (i < n) transparent += avx2::bilinearU8<3, kAppendAlpha>(k, out + i * kOut, n - i, sx + i, sy + i, valid + i, scalar);
   return transparent;
 }
 

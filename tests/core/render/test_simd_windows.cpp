@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// The AVX-512 8-bit, 16-bit and float RGB bilinear (span_sampler_avx512.h) against the portable scalar code and
-// the AVX2 clone, on the spans a warp actually produces: smooth runs of positions, where a
-// group of sixteen reads one 64-byte window per source row. Its cases, each bit-identical to
-// the scalar path (bytes and transparent counts):
+// The AVX-512 8-bit (to RGB and to RGBA), 16-bit and float RGB bilinear (span_sampler_avx512.h)
+// against the portable scalar code and the AVX2 clone, on the spans a warp actually produces:
+// smooth runs of positions, where a group of sixteen reads one 64-byte window per source row.
+// Its cases, each bit-identical to the scalar path (bytes and transparent counts):
 // - groups within one source row, and groups crossing one row (the blended second permute);
-// - groups it hands to the AVX2 clone: crossing two rows, wider than its window (minified),
-//   running right to left, touching a border or an invalid pixel, and the tails of spans
-//   whose length is not a multiple of sixteen; groups wholly outside the source (the AVX2
-//   clone writes their zeros without the scalar pass) and groups with no valid pixel;
+// - groups it gathers pixel by pixel (8-bit) or hands to the AVX2 clone: crossing two rows,
+//   wider than its window (minified), running right to left; groups touching a border or an
+//   invalid pixel, and the tails of spans whose length is not a multiple of sixteen (the
+//   clone); groups wholly outside the source (the AVX2 clone writes their zeros without the
+//   scalar pass) and groups with no valid pixel;
 // - the lower-row limit of the interior (positions just above and below h − 2.5).
 // On a CPU without AVX-512 the test still compares the AVX2 clone (or the scalar code, when
 // there is no SIMD at all) with the scalar path and says so.
@@ -50,6 +51,13 @@ class TestSimdWindows : public QObject {
     compareOnSmoothSpans(packedView<const void>(img.data(), w, h, 3, PixelType::UInt8, -1), 1);
   }
 
+  // RGB8 → RGBA8 with alpha appended (the render front door's layout), on the same spans.
+  void smoothSpansToRgbaMatchScalar() {
+    const int w = 150, h = 61;
+    const std::vector<std::uint8_t> img = noiseRgb(w, h);
+    compareOnSmoothSpans(packedView<const void>(img.data(), w, h, 3, PixelType::UInt8, -1), 1, 4);
+  }
+
   // The float kernel (eight pixels from 32-float windows) on the same spans, bit for bit.
   void smoothFloatSpansMatchScalar() {
     const int w = 150, h = 61;
@@ -71,13 +79,15 @@ class TestSimdWindows : public QObject {
   }
 
  private:
-  static void compareOnSmoothSpans(const ConstImageView& src, int sample_bytes) {
+  // `out_channels`: 3, or 4 for RGBA with alpha appended.
+  static void compareOnSmoothSpans(const ConstImageView& src, int sample_bytes, int out_channels = 3) {
     const int w = src.width, h = src.height;
-    std::vector<std::uint8_t> a(static_cast<size_t>(kSpanPixels) * 3 * sample_bytes), b(a.size()), c(a.size());
+    const int oc = out_channels, alpha = oc == 4 ? 3 : -1;
+    std::vector<std::uint8_t> a(static_cast<size_t>(kSpanPixels) * oc * sample_bytes), b(a.size()), c(a.size());
     const PixelType type = src.type;
-    const ImageView out_a = packedView<void>(a.data(), kSpanPixels, 1, 3, type, -1);
-    const ImageView out_b = packedView<void>(b.data(), kSpanPixels, 1, 3, type, -1);
-    const ImageView out_c = packedView<void>(c.data(), kSpanPixels, 1, 3, type, -1);
+    const ImageView out_a = packedView<void>(a.data(), kSpanPixels, 1, oc, type, alpha);
+    const ImageView out_b = packedView<void>(b.data(), kSpanPixels, 1, oc, type, alpha);
+    const ImageView out_c = packedView<void>(c.data(), kSpanPixels, 1, oc, type, alpha);
     const SpanSampler best(src, out_a, Filter::Bilinear, true, true);
     const SpanSampler avx2(src, out_b, Filter::Bilinear, true, false);
     const SpanSampler scalar(src, out_c, Filter::Bilinear, false);
@@ -124,7 +134,7 @@ class TestSimdWindows : public QObject {
       const long long tc = scalar.run(0, 0, n, sx, sy, valid);
       QCOMPARE(ta, tc);
       QCOMPARE(tb, tc);
-      const size_t bytes = static_cast<size_t>(n) * 3 * static_cast<size_t>(sample_bytes);
+      const size_t bytes = static_cast<size_t>(n) * oc * static_cast<size_t>(sample_bytes);
       QVERIFY2(std::equal(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(bytes), c.begin()),
                qPrintable(QString("round %1 (kind %2): the AVX-512 path differs from the scalar").arg(round).arg(kind)));
       QVERIFY2(std::equal(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(bytes), c.begin()),
