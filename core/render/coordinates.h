@@ -63,8 +63,8 @@ struct CoordinateOptions {
   bool force_rational = false;  // run the rational kernel on projective cameras (tests, bench)
   // Run the portable scalar code where a SIMD clone exists (tests and the benchmark compare).
   bool scalar_only = false;
-  // Let certified rational cells take the AVX-512 lanes where the CPU has them (false: AVX2;
-  // both give the scalar code's positions bit for bit).
+  // Let certified rational cells and the warp's samplers take the AVX-512 lanes where the CPU
+  // has them (false: AVX2; both give the scalar code's positions and pixels bit for bit).
   bool allow_avx512 = true;
 };
 

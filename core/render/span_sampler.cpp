@@ -535,7 +535,11 @@ int SpanSampler::runChannelsInterior(int y, int x0, int n, int count, const floa
         direct[c] = k.src + static_cast<std::ptrdiff_t>(sy0) * k.src_row + 3 * static_cast<std::ptrdiff_t>(sx0) + c;
     }
     long long zeros = 0;
-    done = avx2::bilinearChannelsRgb8(k, out, groups, sx, sy, valid, direct, zeros);
+#ifdef ARTCAM_HAVE_AVX512_SAMPLER
+    if (avx512_) done = avx512::bilinearChannelsRgb8(k, out, groups, sx, sy, valid, direct, zeros);
+    else
+#endif
+      done = avx2::bilinearChannelsRgb8(k, out, groups, sx, sy, valid, direct, zeros);
     if (transparent) *transparent += zeros;
     if (done < groups) return done;
   }

@@ -274,6 +274,118 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline void sampleWindow(co
   }
 }
 
+// Three colour channels, each at positions of its own (chromatic aberration), RGB8 → RGBA8
+// with alpha 255, sixteen pixels a group: each channel as bilinearRgb8's windows weigh one
+// channel (the taps of the channel's own sixteen positions picked by one vpermt2b from a
+// 64-byte window of its upper row and one of its lower row), so the AVX2 clone's integers and
+// the same bytes. A channel whose group the windows cannot take (minified, crossing more
+// than one row, on the lower border, not valid) sends the group to the AVX2 clone
+// (avx2::bilinearChannelsRgb8), which owns every other case, its whole-pixel channels
+// (`direct`) included: chromatic aberration scales by a hair, so nearly every group is a
+// window group. Returns the pixels written, as the clone does; n is a multiple of 8.
+__attribute__((ARTCAM_AVX512_TARGET)) inline int bilinearChannelsRgb8(const SpanSampler::Context& k, std::uint8_t* out,
+                                                                     int n, const float* const* sx,
+                                                                     const float* const* sy,
+                                                                     const unsigned char* const* valid,
+                                                                     const std::uint8_t* const* direct,
+                                                                     long long& transparent) {
+  const __m512 half = _mm512_set1_ps(0.5f), scale_x = _mm512_set1_ps(256.0f), scale_y = _mm512_set1_ps(255.0f);
+  const __m512 zero_ps = _mm512_setzero_ps();
+  const __m512 xmax = _mm512_set1_ps(static_cast<float>(k.width) - 1.0f);
+  const __m512 ymax = _mm512_set1_ps(static_cast<float>(k.height) - 2.5f);  // lower row not the last
+  const __m512i xlim = _mm512_set1_epi32(k.width - 2);
+  const __m512i c255 = _mm512_set1_epi32(255), c256 = _mm512_set1_epi32(256);
+  const __m512i max_rel = _mm512_set1_epi32(19);
+  const __m512i sign = _mm512_set1_epi8(static_cast<char>(0x80));
+  const __m512i bias = _mm512_set1_epi32(128 * 255 * 256 + 32640);
+  const __m512i div255 = _mm512_set1_epi16(static_cast<short>(0x8081));
+  const __m128i ones = _mm_set1_epi8(1);
+  const __m512i byte0 = _mm512_set_epi8(60, 60, 60, 60, 56, 56, 56, 56, 52, 52, 52, 52, 48, 48, 48, 48,
+                                        44, 44, 44, 44, 40, 40, 40, 40, 36, 36, 36, 36, 32, 32, 32, 32,
+                                        28, 28, 28, 28, 24, 24, 24, 24, 20, 20, 20, 20, 16, 16, 16, 16,
+                                        12, 12, 12, 12, 8, 8, 8, 8, 4, 4, 4, 4, 0, 0, 0, 0);
+  const __m512i offset[3] = {_mm512_set1_epi32(0x43034000), _mm512_set1_epi32(0x44044101),
+                             _mm512_set1_epi32(0x45054202)};
+  alignas(64) static constexpr std::uint8_t kInterleaveRgba[64] = {
+      0,  4,  8,  0, 1,  5,  9,  0, 2,  6,  10, 0, 3,  7,  11, 0, 16, 20, 24, 0, 17, 21,
+      25, 0,  18, 22, 26, 0, 19, 23, 27, 0, 32, 36, 40, 0, 33, 37, 41, 0, 34, 38, 42, 0,
+      35, 39, 43, 0,  48, 52, 56, 0, 49, 53, 57, 0, 50, 54, 58, 0, 51, 55, 59, 0};
+  const __m512i interleave = _mm512_load_si512(kInterleaveRgba);
+  const __m512i opaque = _mm512_set1_epi32(static_cast<int>(0xFF000000u));
+  int i = 0;
+  for (; i + 16 <= n; i += 16) {
+    __m512i q[3];
+    bool windows = true;
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx[c] + i), half);
+      const __m512 fy = _mm512_sub_ps(_mm512_loadu_ps(sy[c] + i), half);
+      const __mmask16 inside = _mm512_cmp_ps_mask(fx, zero_ps, _CMP_GE_OQ) & _mm512_cmp_ps_mask(fy, zero_ps, _CMP_GE_OQ) &
+                               _mm512_cmp_ps_mask(fx, xmax, _CMP_LT_OQ) & _mm512_cmp_ps_mask(fy, ymax, _CMP_LT_OQ);
+      const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid[c] + i)));
+      if (inside != 0xFFFF || _mm_cmpeq_epi8_mask(v, ones) != 0xFFFF) {
+        windows = false;
+        break;
+      }
+      const __m512i qx = _mm512_cvttps_epi32(_mm512_add_ps(roundedProduct(fx, scale_x), half));
+      const __m512i x0 = _mm512_min_epi32(_mm512_srai_epi32(qx, 8), xlim);
+      const __m512i y0 = _mm512_cvttps_epi32(fy);
+      const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(x0));
+      const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(y0)),
+                                   _mm_extract_epi32(_mm512_extracti32x4_epi32(y0, 3), 3));
+      const __m512i rel = _mm512_sub_epi32(x0, _mm512_set1_epi32(x_first));
+      const __m512i dy = _mm512_sub_epi32(y0, _mm512_set1_epi32(y_first));
+      if (_mm512_cmple_epu32_mask(dy, _mm512_set1_epi32(1)) != 0xFFFF ||
+          _mm512_cmple_epu32_mask(rel, max_rel) != 0xFFFF) {
+        windows = false;
+        break;
+      }
+      const __mmask16 lower_pair = _mm512_test_epi32_mask(dy, dy);
+      const __m512i ax = _mm512_sub_epi32(qx, _mm512_slli_epi32(x0, 8));
+      const __m512i ay = _mm512_cvttps_epi32(
+          _mm512_add_ps(roundedProduct(_mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0)), scale_y), half));
+      const __m512i wy_pair = _mm512_or_si512(_mm512_sub_epi32(c255, ay), _mm512_slli_epi32(ay, 8));
+      const __m512i wy = _mm512_or_si512(wy_pair, _mm512_slli_epi32(wy_pair, 16));
+      const __m512i wx = _mm512_or_si512(_mm512_sub_epi32(c256, ax), _mm512_slli_epi32(ax, 16));
+      const std::uint8_t* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row + 3 * x_first;
+      const __m512i top = _mm512_loadu_si512(upper);
+      const __m512i bottom = _mm512_loadu_si512(upper + k.src_row);
+      if (c == 0) avx2::prefetchRowsAhead(k, upper, 64);
+      const __m512i base = _mm512_shuffle_epi8(_mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1)), byte0);
+      const __m512i index = _mm512_add_epi8(base, offset[c]);
+      __m512i taps = _mm512_permutex2var_epi8(top, index, bottom);
+      if (lower_pair)
+        taps = _mm512_mask_blend_epi32(lower_pair, taps,
+                                       _mm512_permutex2var_epi8(bottom, index, _mm512_loadu_si512(upper + 2 * k.src_row)));
+      const __m512i rows = _mm512_maddubs_epi16(wy, _mm512_xor_si512(taps, sign));
+      q[c] = _mm512_srli_epi32(_mm512_add_epi32(_mm512_madd_epi16(rows, wx), bias), 8);
+    }
+    if (!windows) {
+      const float* xs[3] = {sx[0] + i, sx[1] + i, sx[2] + i};
+      const float* ys[3] = {sy[0] + i, sy[1] + i, sy[2] + i};
+      const unsigned char* vs[3] = {valid[0] + i, valid[1] + i, valid[2] + i};
+      const std::uint8_t* ds[3];
+      for (int c = 0; c < 3; ++c) ds[c] = direct[c] ? direct[c] + 3 * i : nullptr;
+      const int done = avx2::bilinearChannelsRgb8(k, out + 4 * i, 16, xs, ys, vs, ds, transparent);
+      if (done < 16) return i + done;
+      continue;
+    }
+    const __m512i rg = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(q[0], q[1]), div255), 7);
+    const __m512i bb = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(q[2], q[2]), div255), 7);
+    const __m512i rgba = _mm512_permutexvar_epi8(interleave, _mm512_packus_epi16(rg, bb));
+    _mm512_storeu_si512(out + 4 * i, _mm512_or_si512(rgba, opaque));
+  }
+  if (i < n) {
+    const float* xs[3] = {sx[0] + i, sx[1] + i, sx[2] + i};
+    const float* ys[3] = {sy[0] + i, sy[1] + i, sy[2] + i};
+    const unsigned char* vs[3] = {valid[0] + i, valid[1] + i, valid[2] + i};
+    const std::uint8_t* ds[3];
+    for (int c = 0; c < 3; ++c) ds[c] = direct[c] ? direct[c] + 3 * i : nullptr;
+    return i + avx2::bilinearChannelsRgb8(k, out + 4 * i, n - i, xs, ys, vs, ds, transparent);
+  }
+  return n;
+}
+
 // The AVX2 clone's bilinear in its order: rows of (left, right), then the two rows, + 0.
 __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 bilinearBlend(__m512 bx0, __m512 bx1, __m512 by0,
                                                                                 __m512 by1, __m512 tl, __m512 tr,

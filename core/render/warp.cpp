@@ -262,7 +262,8 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
     direct_view.height = 1;
     direct_view.row_bytes = static_cast<std::ptrdiff_t>(kSpanPixels) * pixel_bytes;
   }
-  const SpanSampler direct(source, direct_view, options.filter, !options.coordinates.scalar_only);
+  const SpanSampler direct(source, direct_view, options.filter, !options.coordinates.scalar_only,
+                           options.coordinates.allow_avx512);
   SpanSampler::ChannelShift shifts[4];
   for (int k = 0; k < count; ++k)
     if (const auto offset = kernels[static_cast<size_t>(k)]->wholePixelOffset())
@@ -284,7 +285,8 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
       span.width = kSpanPixels;
       span.height = 1;
       span.row_bytes = static_cast<std::ptrdiff_t>(kSpanPixels) * pixel_bytes;
-      band_samplers.emplace_back(source, span, options.filter, !options.coordinates.scalar_only);
+      band_samplers.emplace_back(source, span, options.filter, !options.coordinates.scalar_only,
+                                 options.coordinates.allow_avx512);
     }
     std::vector<RowState> states(static_cast<size_t>(count) * kBandRows);
     const unsigned char* spans[4] = {nullptr, nullptr, nullptr, nullptr};
@@ -362,7 +364,8 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
 
   camera.validate();
   checkOptions(options);
-  const SpanSampler sampler(source, out, options.filter, !options.coordinates.scalar_only);  // validates both images
+  const SpanSampler sampler(source, out, options.filter, !options.coordinates.scalar_only,
+                            options.coordinates.allow_avx512);  // validates both images
   const CameraStructure structure = analyseStructure(camera);
   checkCamera(camera, structure);
 
@@ -556,7 +559,8 @@ long long BandWarp::render(const ConstImageView& window, int window_first, int y
     for (int y = 0; y < out.height; ++y) std::memset(out.row(y), 0, row_bytes);
     return static_cast<long long>(out.width) * out.height;
   }
-  const SpanSampler sampler(window, out, st.options.filter, !st.options.coordinates.scalar_only);
+  const SpanSampler sampler(window, out, st.options.filter, !st.options.coordinates.scalar_only,
+                            st.options.coordinates.allow_avx512);
   std::atomic<long long> transparent{0};
   ParallelOptions po;
   po.threads = st.options.threads;

@@ -60,14 +60,20 @@ class TestWarpChannels : public QObject {
     QTest::addColumn<bool>("sixteen");
     QTest::addColumn<bool>("scalar");
     QTest::addColumn<double>("blue_scale");
-    QTest::newRow("bilinear 8-bit") << "bilinear" << false << false << 0.987;
-    QTest::newRow("bilinear 8-bit scalar") << "bilinear" << false << true << 0.987;
-    QTest::newRow("nearest 8-bit") << "nearest" << false << false << 0.987;
-    QTest::newRow("bicubic 8-bit") << "bicubic" << false << false << 0.987;
-    QTest::newRow("bilinear 16-bit") << "bilinear" << true << false << 0.987;
+    QTest::addColumn<bool>("avx512");
+    QTest::newRow("bilinear 8-bit") << "bilinear" << false << false << 0.987 << true;
+    // The AVX2 clone where the AVX-512 kernel would take the groups (the same on a CPU
+    // without AVX-512).
+    QTest::newRow("bilinear 8-bit AVX2") << "bilinear" << false << false << 0.987 << false;
+    QTest::newRow("bilinear 8-bit scalar") << "bilinear" << false << true << 0.987 << true;
+    QTest::newRow("nearest 8-bit") << "nearest" << false << false << 0.987 << true;
+    QTest::newRow("bicubic 8-bit") << "bicubic" << false << false << 0.987 << true;
+    QTest::newRow("bilinear 16-bit") << "bilinear" << true << false << 0.987 << true;
     // Blue's source positions 1/0.68 px apart: four pixels' taps no longer fit one 16-byte
-    // window, so the AVX2 clone reads each tap by itself.
-    QTest::newRow("bilinear 8-bit, blue minified") << "bilinear" << false << false << 0.68;
+    // window, so the AVX2 clone reads each tap by itself (and the AVX-512 kernel hands those
+    // groups to it).
+    QTest::newRow("bilinear 8-bit, blue minified") << "bilinear" << false << false << 0.68 << true;
+    QTest::newRow("bilinear 8-bit, blue minified, AVX2") << "bilinear" << false << false << 0.68 << false;
   }
 
   void eachChannelIsItsCamerasWarp() {
@@ -75,6 +81,7 @@ class TestWarpChannels : public QObject {
     QFETCH(bool, sixteen);
     QFETCH(bool, scalar);
     QFETCH(double, blue_scale);
+    QFETCH(bool, avx512);
     const int w = 301, h = 203;  // spans of 64 and a ragged last one
     const PixelType type = sixteen ? PixelType::UInt16 : PixelType::UInt8;
     const StoredImage photo = noise(w, h, 3, type);
@@ -90,6 +97,7 @@ class TestWarpChannels : public QObject {
     WarpOptions options;
     options.filter = *filterFromName(filter.toStdString());
     options.coordinates.scalar_only = scalar;  // also keeps the sampler off its SIMD clones
+    options.coordinates.allow_avx512 = avx512;
 
     StoredImage out = makeStoredImage(w, h, 4, 3, type, PixelBuffer::Init::Uninitialised);
     std::memset(out.bytes.data(), 0xCD, out.bytes.size());
