@@ -83,6 +83,118 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512i gatherWeigh(
       _mm512_add_epi32(_mm512_madd_epi16(columns, _mm512_shuffle_epi32(wx, static_cast<_MM_PERM_ENUM>(P * 0x55))), bias), 8);
 }
 
+// What the 8-bit window kernels (bilinearRgb8, bilinearChannelsRgb8) share.
+//
+// Sixteen pixels are interior (the window kernels' own test: the lower row is not the image's
+// last, so a 64-byte load from a tap stays inside) and valid.
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool interior16(__m512 fx, __m512 fy, const unsigned char* valid,
+                                                                           const SpanSampler::Context& k) {
+  const __m512 zero = _mm512_setzero_ps();
+  const __m512 xmax = _mm512_set1_ps(static_cast<float>(k.width) - 1.0f);
+  const __m512 ymax = _mm512_set1_ps(static_cast<float>(k.height) - 2.5f);  // lower row not the last
+  const __mmask16 inside = _mm512_cmp_ps_mask(fx, zero, _CMP_GE_OQ) & _mm512_cmp_ps_mask(fy, zero, _CMP_GE_OQ) &
+                           _mm512_cmp_ps_mask(fx, xmax, _CMP_LT_OQ) & _mm512_cmp_ps_mask(fy, ymax, _CMP_LT_OQ);
+  const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid)));
+  return inside == 0xFFFF && _mm_cmpeq_epi8_mask(v, _mm_set1_epi8(1)) == 0xFFFF;
+}
+
+// The scalar bilinear's fixed point for sixteen interior positions (fx, fy = position − ½),
+// as the AVX2 clone's quantise: the left tap x0 and row y0, bytes (255 − ay, ay, 255 − ay, ay)
+// and words (256 − ax, ax) per dword; and where the group lies for the windows.
+struct Quanta16 {
+  __m512i x0, y0, wy, wx;
+  __m512i rel;  // x0 − the first pixel's x0
+  __mmask16 lower_pair;  // pixels one row below y_first
+  int x_first, y_first;
+  bool fits;  // rows y_first or one below, taps within one 64-byte window per row
+};
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline Quanta16 quantise16(__m512 fx, __m512 fy,
+                                                                               const SpanSampler::Context& k) {
+  const __m512 half = _mm512_set1_ps(0.5f);
+  const __m512i c255 = _mm512_set1_epi32(255), c256 = _mm512_set1_epi32(256);
+  Quanta16 g;
+  const __m512i qx = _mm512_cvttps_epi32(_mm512_add_ps(roundedProduct(fx, _mm512_set1_ps(256.0f)), half));
+  g.x0 = _mm512_min_epi32(_mm512_srai_epi32(qx, 8), _mm512_set1_epi32(k.width - 2));
+  g.y0 = _mm512_cvttps_epi32(fy);
+  g.x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(g.x0));
+  // The upper row: the lower of the first and last pixels' rows, not a full reduction (a
+  // smooth map's rows are monotone over sixteen pixels; where one in between is lower, its
+  // negative dy fails the 0 … 1 test below and the group does not fit).
+  g.y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(g.y0)),
+                       _mm_extract_epi32(_mm512_extracti32x4_epi32(g.y0, 3), 3));
+  g.rel = _mm512_sub_epi32(g.x0, _mm512_set1_epi32(g.x_first));
+  const __m512i dy = _mm512_sub_epi32(g.y0, _mm512_set1_epi32(g.y_first));  // 0 or 1 where it fits
+  g.lower_pair = _mm512_test_epi32_mask(dy, dy);
+  // Taps x0 … x0 + 1 of sixteen pixels in 64 bytes: rel ≤ 19.
+  g.fits = _mm512_cmple_epu32_mask(dy, _mm512_set1_epi32(1)) == 0xFFFF &&
+           _mm512_cmple_epu32_mask(g.rel, _mm512_set1_epi32(19)) == 0xFFFF;
+  const __m512i ax = _mm512_sub_epi32(qx, _mm512_slli_epi32(g.x0, 8));  // 0 … 256
+  const __m512i ay = _mm512_cvttps_epi32(
+      _mm512_add_ps(roundedProduct(_mm512_sub_ps(fy, _mm512_cvtepi32_ps(g.y0)), _mm512_set1_ps(255.0f)), half));  // 0 … 255
+  const __m512i wy_pair = _mm512_or_si512(_mm512_sub_epi32(c255, ay), _mm512_slli_epi32(ay, 8));
+  g.wy = _mm512_or_si512(wy_pair, _mm512_slli_epi32(wy_pair, 16));
+  g.wx = _mm512_or_si512(_mm512_sub_epi32(c256, ax), _mm512_slli_epi32(ax, 16));
+  return g;
+}
+
+// The windows of a group that fits: 64 bytes of its upper row from its first tap, of the row
+// below, and (for pixels one row lower) of the row below that.
+struct Windows16 {
+  __m512i top, bottom, third;
+  __m512i base;  // 3 × rel (≤ 57), each pixel's first tap in the windows, in every byte of its dword
+};
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline Windows16 windows16(const Quanta16& g,
+                                                                               const SpanSampler::Context& k) {
+  // Each dword's low byte into all four of its bytes (vpshufb, within 128-bit lanes).
+  const __m512i byte0 = _mm512_set_epi8(60, 60, 60, 60, 56, 56, 56, 56, 52, 52, 52, 52, 48, 48, 48, 48,
+                                        44, 44, 44, 44, 40, 40, 40, 40, 36, 36, 36, 36, 32, 32, 32, 32,
+                                        28, 28, 28, 28, 24, 24, 24, 24, 20, 20, 20, 20, 16, 16, 16, 16,
+                                        12, 12, 12, 12, 8, 8, 8, 8, 4, 4, 4, 4, 0, 0, 0, 0);
+  const std::uint8_t* upper = k.src + static_cast<std::ptrdiff_t>(g.y_first) * k.src_row + 3 * g.x_first;
+  Windows16 w;
+  w.top = _mm512_loadu_si512(upper);
+  w.bottom = _mm512_loadu_si512(upper + k.src_row);
+  w.third = g.lower_pair ? _mm512_loadu_si512(upper + 2 * k.src_row) : w.bottom;
+  avx2::prefetchRowsAhead(k, upper, 64);  // as the AVX2 clone: rows further down
+  w.base = _mm512_shuffle_epi8(_mm512_add_epi32(g.rel, _mm512_slli_epi32(g.rel, 1)), byte0);
+  return w;
+}
+
+// Channel c of the sixteen pixels, before the division by 255: its taps picked from the windows
+// by one vpermt2b as (upper x0, lower x0, upper x0 + 1, lower x0 + 1) — bytes c, 64 + c, c + 3,
+// 64 + c + 3 of the two tables — one maddubs for the rows (pixels − 128, so exact in 16 bits),
+// one madd for the columns.
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512i windowChannel(const Windows16& w, const Quanta16& g,
+                                                                                 int c) {
+  const __m512i index = _mm512_add_epi8(w.base, _mm512_set1_epi32(0x43034000 + 0x01010101 * c));
+  __m512i taps = _mm512_permutex2var_epi8(w.top, index, w.bottom);
+  if (g.lower_pair)
+    taps = _mm512_mask_blend_epi32(g.lower_pair, taps, _mm512_permutex2var_epi8(w.bottom, index, w.third));
+  const __m512i rows = _mm512_maddubs_epi16(g.wy, _mm512_xor_si512(taps, _mm512_set1_epi8(static_cast<char>(0x80))));
+  // (X + 32640) >> 8 ≤ 65152 for X = (256 − ax) L + ax R: exact in 16 bits.
+  return _mm512_srli_epi32(_mm512_add_epi32(_mm512_madd_epi16(rows, g.wx), _mm512_set1_epi32(128 * 255 * 256 + 32640)), 8);
+}
+
+// Three channels' values divided by 255 ((q · 0x8081) >> 23, exact for every 16-bit q) and
+// packed to bytes within 128-bit lanes: lane L (pixels 4 L … 4 L + 3) holds R R R R G G G G
+// B B B B B B B B, for kInterleaveRgb or kInterleaveRgba to order.
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512i packChannels(__m512i r, __m512i g, __m512i b) {
+  const __m512i div255 = _mm512_set1_epi16(static_cast<short>(0x8081));
+  const __m512i rg255 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(r, g), div255), 7);
+  const __m512i bb255 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(b, b), div255), 7);
+  return _mm512_packus_epi16(rg255, bb255);
+}
+// Output byte 3 p + c (RGB) or 4 p + c (RGBA, alpha's byte then set) from packChannels' byte
+// 16 (p / 4) + 4 c + p % 4.
+alignas(64) inline constexpr std::uint8_t kInterleaveRgb[64] = {
+    0,  4,  8,  1,  5,  9,  2,  6,  10, 3,  7,  11, 16, 20, 24, 17, 21, 25, 18, 22, 26, 19,
+    23, 27, 32, 36, 40, 33, 37, 41, 34, 38, 42, 35, 39, 43, 48, 52, 56, 49, 53, 57, 50, 54,
+    58, 51, 55, 59, 0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0};
+alignas(64) inline constexpr std::uint8_t kInterleaveRgba[64] = {
+    0,  4,  8,  0, 1,  5,  9,  0, 2,  6,  10, 0, 3,  7,  11, 0, 16, 20, 24, 0, 17, 21,
+    25, 0,  18, 22, 26, 0, 19, 23, 27, 0, 32, 36, 40, 0, 33, 37, 41, 0, 34, 38, 42, 0,
+    35, 39, 43, 0,  48, 52, 56, 0, 49, 53, 57, 0, 50, 54, 58, 0, 51, 55, 59, 0};
+
 // Bilinear RGB8 → RGB8 (no alpha), or → RGBA8 with alpha full inside (kAppendAlpha: the
 // render front door's and the studio's layout), sixteen pixels per group from two 64-byte
 // windows. One channel at a time (planar): dword p of channel c's tap vector holds (upper x0, lower
@@ -99,38 +211,11 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
                                                                     const float* sx, const float* sy,
                                                                     const unsigned char* valid,
                                                                     avx2::ScalarSpanU8 scalar) {
-  const __m512 half = _mm512_set1_ps(0.5f), scale_x = _mm512_set1_ps(256.0f), scale_y = _mm512_set1_ps(255.0f);
-  const __m512 zero_ps = _mm512_setzero_ps();
-  const __m512 xmax = _mm512_set1_ps(static_cast<float>(k.width) - 1.0f);
-  const __m512 ymax = _mm512_set1_ps(static_cast<float>(k.height) - 2.5f);  // lower row not the last
-  const __m512i xlim = _mm512_set1_epi32(k.width - 2);
-  const __m512i c255 = _mm512_set1_epi32(255), c256 = _mm512_set1_epi32(256);
-  const __m512i max_rel = _mm512_set1_epi32(19);  // taps x0 … x0 + 1 of 16 pixels in 64 bytes
+  const __m512 half = _mm512_set1_ps(0.5f);
   const __m512i sign = _mm512_set1_epi8(static_cast<char>(0x80));
   const __m512i bias = _mm512_set1_epi32(128 * 255 * 256 + 32640);
   const __m512i div255 = _mm512_set1_epi16(static_cast<short>(0x8081));
-  const __m128i ones = _mm_set1_epi8(1);
-  // Each dword's low byte into all four of its bytes (vpshufb, within 128-bit lanes).
-  const __m512i byte0 = _mm512_set_epi8(60, 60, 60, 60, 56, 56, 56, 56, 52, 52, 52, 52, 48, 48, 48, 48,
-                                        44, 44, 44, 44, 40, 40, 40, 40, 36, 36, 36, 36, 32, 32, 32, 32,
-                                        28, 28, 28, 28, 24, 24, 24, 24, 20, 20, 20, 20, 16, 16, 16, 16,
-                                        12, 12, 12, 12, 8, 8, 8, 8, 4, 4, 4, 4, 0, 0, 0, 0);
-  // Channel c's taps within the window pair: (upper, lower) of tap x0, then of x0 + 1 — bytes
-  // c, 64 + c, c + 3, 64 + c + 3 of vpermt2b's two tables.
-  const __m512i offset[3] = {_mm512_set1_epi32(0x43034000), _mm512_set1_epi32(0x44044101),
-                             _mm512_set1_epi32(0x45054202)};
-  // After the packs, lane L (pixels 4 L … 4 L + 3) holds bytes R R R R G G G G B B B B B B B B;
-  // output byte 3 p + c comes from byte 16 (p / 4) + 4 c + p % 4.
-  alignas(64) static constexpr std::uint8_t kInterleave[64] = {
-      0,  4,  8,  1,  5,  9,  2,  6,  10, 3,  7,  11, 16, 20, 24, 17, 21, 25, 18, 22, 26, 19,
-      23, 27, 32, 36, 40, 33, 37, 41, 34, 38, 42, 35, 39, 43, 48, 52, 56, 49, 53, 57, 50, 54,
-      58, 51, 55, 59, 0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0};
-  // RGBA: output byte 4 p + c from the same bytes (alpha's, from byte 0, is then set).
-  alignas(64) static constexpr std::uint8_t kInterleaveRgba[64] = {
-      0,  4,  8,  0, 1,  5,  9,  0, 2,  6,  10, 0, 3,  7,  11, 0, 16, 20, 24, 0, 17, 21,
-      25, 0,  18, 22, 26, 0, 19, 23, 27, 0, 32, 36, 40, 0, 33, 37, 41, 0, 34, 38, 42, 0,
-      35, 39, 43, 0,  48, 52, 56, 0, 49, 53, 57, 0, 50, 54, 58, 0, 51, 55, 59, 0};
-  const __m512i interleave = _mm512_load_si512(kAppendAlpha ? kInterleaveRgba : kInterleave);
+  const __m512i interleave = _mm512_load_si512(kAppendAlpha ? kInterleaveRgba : kInterleaveRgb);
   const __m512i opaque = _mm512_set1_epi32(static_cast<int>(0xFF000000u));
   constexpr int kOut = kAppendAlpha ? 4 : 3;
   // The gathered groups (gatherWeigh): (upper, lower) byte pairs per channel and tap, as the
@@ -149,8 +234,6 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
     std::uint8_t* o = out + i * kOut;
     const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx + i), half);
     const __m512 fy = _mm512_sub_ps(_mm512_loadu_ps(sy + i), half);
-    const __mmask16 inside = _mm512_cmp_ps_mask(fx, zero_ps, _CMP_GE_OQ) & _mm512_cmp_ps_mask(fy, zero_ps, _CMP_GE_OQ) &
-                             _mm512_cmp_ps_mask(fx, xmax, _CMP_LT_OQ) & _mm512_cmp_ps_mask(fy, ymax, _CMP_LT_OQ);
     const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid + i)));
     if (_mm_test_all_zeros(v, v)) {
       // No pixel has a preimage (a strong barrel's corners: half its groups): zeros, as the
@@ -159,41 +242,22 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
       transparent += 16;
       continue;
     }
-    if (inside != 0xFFFF || _mm_cmpeq_epi8_mask(v, ones) != 0xFFFF) {
+    if (!interior16(fx, fy, valid + i, k)) {
       transparent += avx2::bilinearU8<3, kAppendAlpha>(k, o, 16, sx + i, sy + i, valid + i, scalar);
       continue;
     }
-    const __m512i qx = _mm512_cvttps_epi32(_mm512_add_ps(roundedProduct(fx, scale_x), half));
-    const __m512i x0 = _mm512_min_epi32(_mm512_srai_epi32(qx, 8), xlim);
-    const __m512i y0 = _mm512_cvttps_epi32(fy);
-    const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(x0));
-    // The upper row: the lower of the first and last pixels' rows, not a full reduction (a
-    // smooth map's rows are monotone over sixteen pixels; where one in between is lower, its
-    // negative dy fails the 0 … 1 test below and the group is gathered).
-    const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(y0)),
-                                 _mm_extract_epi32(_mm512_extracti32x4_epi32(y0, 3), 3));
-    const __m512i rel = _mm512_sub_epi32(x0, _mm512_set1_epi32(x_first));
-    const __m512i dy = _mm512_sub_epi32(y0, _mm512_set1_epi32(y_first));  // 0 or 1 below
-    const __mmask16 lower_pair = _mm512_test_epi32_mask(dy, dy);
-    const __m512i ax = _mm512_sub_epi32(qx, _mm512_slli_epi32(x0, 8));  // 0 … 256
-    const __m512i ay = _mm512_cvttps_epi32(
-        _mm512_add_ps(roundedProduct(_mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0)), scale_y), half));  // 0 … 255
-    // Bytes (255 − ay, ay, 255 − ay, ay) and words (256 − ax, ax), one dword per pixel.
-    const __m512i wy_pair = _mm512_or_si512(_mm512_sub_epi32(c255, ay), _mm512_slli_epi32(ay, 8));
-    const __m512i wy = _mm512_or_si512(wy_pair, _mm512_slli_epi32(wy_pair, 16));
-    const __m512i wx = _mm512_or_si512(_mm512_sub_epi32(c256, ax), _mm512_slli_epi32(ax, 16));
-    if (_mm512_cmple_epu32_mask(dy, _mm512_set1_epi32(1)) != 0xFFFF ||
-        _mm512_cmple_epu32_mask(rel, max_rel) != 0xFFFF) {
+    const Quanta16 g = quantise16(fx, fy, k);
+    if (!g.fits) {
       alignas(64) int at[16];  // each pixel's upper-left tap, bytes from k.src (32 bits: dispatch)
-      _mm512_store_si512(at, _mm512_add_epi32(_mm512_mullo_epi32(y0, row_bytes),
-                                              _mm512_add_epi32(x0, _mm512_slli_epi32(x0, 1))));
+      _mm512_store_si512(at, _mm512_add_epi32(_mm512_mullo_epi32(g.y0, row_bytes),
+                                              _mm512_add_epi32(g.x0, _mm512_slli_epi32(g.x0, 1))));
       // As the AVX2 clone, which prefetches for each group of eight.
       avx2::prefetchRowsAhead(k, k.src + at[0]);
       avx2::prefetchRowsAhead(k, k.src + at[8]);
-      const __m512i p0 = gatherWeigh<0>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
-      const __m512i p1 = gatherWeigh<1>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
-      const __m512i p2 = gatherWeigh<2>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
-      const __m512i p3 = gatherWeigh<3>(k.src, lower_row, at, wy, wx, pairs, sign, bias);
+      const __m512i p0 = gatherWeigh<0>(k.src, lower_row, at, g.wy, g.wx, pairs, sign, bias);
+      const __m512i p1 = gatherWeigh<1>(k.src, lower_row, at, g.wy, g.wx, pairs, sign, bias);
+      const __m512i p2 = gatherWeigh<2>(k.src, lower_row, at, g.wy, g.wx, pairs, sign, bias);
+      const __m512i p3 = gatherWeigh<3>(k.src, lower_row, at, g.wy, g.wx, pairs, sign, bias);
       const __m512i q01 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(p0, p1), div255), 7);
       const __m512i q23 = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(p2, p3), div255), 7);
       const __m512i rgbx = _mm512_packus_epi16(q01, q23);
@@ -206,30 +270,9 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearRgb8(const SpanSa
       _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 32)), _mm512_extracti32x4_epi32(rgb, 2));
       continue;
     }
-    const std::uint8_t* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row + 3 * x_first;
-    const __m512i top = _mm512_loadu_si512(upper);
-    const __m512i bottom = _mm512_loadu_si512(upper + k.src_row);
-    avx2::prefetchRowsAhead(k, upper, 64);  // as the AVX2 clone: rows further down
-    // 3 × rel (≤ 57), the window offset of each pixel's first tap, in every byte of its dword.
-    const __m512i base = _mm512_shuffle_epi8(_mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1)), byte0);
-    // Pixels one row lower (the group crosses a source row): their taps from rows + 1, + 2.
-    const __m512i third = lower_pair ? _mm512_loadu_si512(upper + 2 * k.src_row) : bottom;
-    __m512i q[3];
-#pragma GCC unroll 3
-    for (int c = 0; c < 3; ++c) {
-      const __m512i index = _mm512_add_epi8(base, offset[c]);
-      __m512i taps = _mm512_permutex2var_epi8(top, index, bottom);
-      if (lower_pair)
-        taps = _mm512_mask_blend_epi32(lower_pair, taps, _mm512_permutex2var_epi8(bottom, index, third));
-      const __m512i rows = _mm512_maddubs_epi16(wy, _mm512_xor_si512(taps, sign));
-      // (X + 32640) >> 8 ≤ 65152 for X = (256 − ax) L + ax R: exact in 16 bits.
-      q[c] = _mm512_srli_epi32(_mm512_add_epi32(_mm512_madd_epi16(rows, wx), bias), 8);
-    }
-    // ⌊q / 255⌋ = (q · 0x8081) >> 23 for every 16-bit q; packs stay within 128-bit lanes.
-    const __m512i rg = _mm512_packus_epi32(q[0], q[1]), bb = _mm512_packus_epi32(q[2], q[2]);
-    const __m512i rg255 = _mm512_srli_epi16(_mm512_mulhi_epu16(rg, div255), 7);
-    const __m512i bb255 = _mm512_srli_epi16(_mm512_mulhi_epu16(bb, div255), 7);
-    const __m512i rgb = _mm512_permutexvar_epi8(interleave, _mm512_packus_epi16(rg255, bb255));
+    const Windows16 w = windows16(g, k);
+    const __m512i rgb = _mm512_permutexvar_epi8(
+        interleave, packChannels(windowChannel(w, g, 0), windowChannel(w, g, 1), windowChannel(w, g, 2)));
     if constexpr (kAppendAlpha) {
       _mm512_storeu_si512(o, _mm512_or_si512(rgb, opaque));
       continue;
@@ -274,6 +317,18 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline void sampleWindow(co
   }
 }
 
+// avx2::bilinearChannelsRgb8 on the `count` pixels from pixel i (a multiple of 8).
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline int channelsClone(
+    const SpanSampler::Context& k, std::uint8_t* out, int i, int count, const float* const* sx, const float* const* sy,
+    const unsigned char* const* valid, const std::uint8_t* const* direct, long long& transparent) {
+  const float* xs[3] = {sx[0] + i, sx[1] + i, sx[2] + i};
+  const float* ys[3] = {sy[0] + i, sy[1] + i, sy[2] + i};
+  const unsigned char* vs[3] = {valid[0] + i, valid[1] + i, valid[2] + i};
+  const std::uint8_t* ds[3];
+  for (int c = 0; c < 3; ++c) ds[c] = direct[c] ? direct[c] + 3 * i : nullptr;
+  return avx2::bilinearChannelsRgb8(k, out + 4 * i, count, xs, ys, vs, ds, transparent);
+}
+
 // Three colour channels, each at positions of its own (chromatic aberration), RGB8 → RGBA8
 // with alpha 255, sixteen pixels a group: each channel as bilinearRgb8's windows weigh one
 // channel (the taps of the channel's own sixteen positions picked by one vpermt2b from a
@@ -289,27 +344,7 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline int bilinearChannelsRgb8(const Span
                                                                      const unsigned char* const* valid,
                                                                      const std::uint8_t* const* direct,
                                                                      long long& transparent) {
-  const __m512 half = _mm512_set1_ps(0.5f), scale_x = _mm512_set1_ps(256.0f), scale_y = _mm512_set1_ps(255.0f);
-  const __m512 zero_ps = _mm512_setzero_ps();
-  const __m512 xmax = _mm512_set1_ps(static_cast<float>(k.width) - 1.0f);
-  const __m512 ymax = _mm512_set1_ps(static_cast<float>(k.height) - 2.5f);  // lower row not the last
-  const __m512i xlim = _mm512_set1_epi32(k.width - 2);
-  const __m512i c255 = _mm512_set1_epi32(255), c256 = _mm512_set1_epi32(256);
-  const __m512i max_rel = _mm512_set1_epi32(19);
-  const __m512i sign = _mm512_set1_epi8(static_cast<char>(0x80));
-  const __m512i bias = _mm512_set1_epi32(128 * 255 * 256 + 32640);
-  const __m512i div255 = _mm512_set1_epi16(static_cast<short>(0x8081));
-  const __m128i ones = _mm_set1_epi8(1);
-  const __m512i byte0 = _mm512_set_epi8(60, 60, 60, 60, 56, 56, 56, 56, 52, 52, 52, 52, 48, 48, 48, 48,
-                                        44, 44, 44, 44, 40, 40, 40, 40, 36, 36, 36, 36, 32, 32, 32, 32,
-                                        28, 28, 28, 28, 24, 24, 24, 24, 20, 20, 20, 20, 16, 16, 16, 16,
-                                        12, 12, 12, 12, 8, 8, 8, 8, 4, 4, 4, 4, 0, 0, 0, 0);
-  const __m512i offset[3] = {_mm512_set1_epi32(0x43034000), _mm512_set1_epi32(0x44044101),
-                             _mm512_set1_epi32(0x45054202)};
-  alignas(64) static constexpr std::uint8_t kInterleaveRgba[64] = {
-      0,  4,  8,  0, 1,  5,  9,  0, 2,  6,  10, 0, 3,  7,  11, 0, 16, 20, 24, 0, 17, 21,
-      25, 0,  18, 22, 26, 0, 19, 23, 27, 0, 32, 36, 40, 0, 33, 37, 41, 0, 34, 38, 42, 0,
-      35, 39, 43, 0,  48, 52, 56, 0, 49, 53, 57, 0, 50, 54, 58, 0, 51, 55, 59, 0};
+  const __m512 half = _mm512_set1_ps(0.5f);
   const __m512i interleave = _mm512_load_si512(kInterleaveRgba);
   const __m512i opaque = _mm512_set1_epi32(static_cast<int>(0xFF000000u));
   int i = 0;
@@ -317,73 +352,24 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline int bilinearChannelsRgb8(const Span
     __m512i q[3];
     bool windows = true;
 #pragma GCC unroll 3
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3 && windows; ++c) {
       const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx[c] + i), half);
       const __m512 fy = _mm512_sub_ps(_mm512_loadu_ps(sy[c] + i), half);
-      const __mmask16 inside = _mm512_cmp_ps_mask(fx, zero_ps, _CMP_GE_OQ) & _mm512_cmp_ps_mask(fy, zero_ps, _CMP_GE_OQ) &
-                               _mm512_cmp_ps_mask(fx, xmax, _CMP_LT_OQ) & _mm512_cmp_ps_mask(fy, ymax, _CMP_LT_OQ);
-      const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid[c] + i)));
-      if (inside != 0xFFFF || _mm_cmpeq_epi8_mask(v, ones) != 0xFFFF) {
-        windows = false;
-        break;
-      }
-      const __m512i qx = _mm512_cvttps_epi32(_mm512_add_ps(roundedProduct(fx, scale_x), half));
-      const __m512i x0 = _mm512_min_epi32(_mm512_srai_epi32(qx, 8), xlim);
-      const __m512i y0 = _mm512_cvttps_epi32(fy);
-      const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(x0));
-      const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(y0)),
-                                   _mm_extract_epi32(_mm512_extracti32x4_epi32(y0, 3), 3));
-      const __m512i rel = _mm512_sub_epi32(x0, _mm512_set1_epi32(x_first));
-      const __m512i dy = _mm512_sub_epi32(y0, _mm512_set1_epi32(y_first));
-      if (_mm512_cmple_epu32_mask(dy, _mm512_set1_epi32(1)) != 0xFFFF ||
-          _mm512_cmple_epu32_mask(rel, max_rel) != 0xFFFF) {
-        windows = false;
-        break;
-      }
-      const __mmask16 lower_pair = _mm512_test_epi32_mask(dy, dy);
-      const __m512i ax = _mm512_sub_epi32(qx, _mm512_slli_epi32(x0, 8));
-      const __m512i ay = _mm512_cvttps_epi32(
-          _mm512_add_ps(roundedProduct(_mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0)), scale_y), half));
-      const __m512i wy_pair = _mm512_or_si512(_mm512_sub_epi32(c255, ay), _mm512_slli_epi32(ay, 8));
-      const __m512i wy = _mm512_or_si512(wy_pair, _mm512_slli_epi32(wy_pair, 16));
-      const __m512i wx = _mm512_or_si512(_mm512_sub_epi32(c256, ax), _mm512_slli_epi32(ax, 16));
-      const std::uint8_t* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row + 3 * x_first;
-      const __m512i top = _mm512_loadu_si512(upper);
-      const __m512i bottom = _mm512_loadu_si512(upper + k.src_row);
-      if (c == 0) avx2::prefetchRowsAhead(k, upper, 64);
-      const __m512i base = _mm512_shuffle_epi8(_mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1)), byte0);
-      const __m512i index = _mm512_add_epi8(base, offset[c]);
-      __m512i taps = _mm512_permutex2var_epi8(top, index, bottom);
-      if (lower_pair)
-        taps = _mm512_mask_blend_epi32(lower_pair, taps,
-                                       _mm512_permutex2var_epi8(bottom, index, _mm512_loadu_si512(upper + 2 * k.src_row)));
-      const __m512i rows = _mm512_maddubs_epi16(wy, _mm512_xor_si512(taps, sign));
-      q[c] = _mm512_srli_epi32(_mm512_add_epi32(_mm512_madd_epi16(rows, wx), bias), 8);
+      windows = interior16(fx, fy, valid[c] + i, k);
+      if (!windows) break;
+      const Quanta16 g = quantise16(fx, fy, k);
+      windows = g.fits;
+      if (windows) q[c] = windowChannel(windows16(g, k), g, c);
     }
     if (!windows) {
-      const float* xs[3] = {sx[0] + i, sx[1] + i, sx[2] + i};
-      const float* ys[3] = {sy[0] + i, sy[1] + i, sy[2] + i};
-      const unsigned char* vs[3] = {valid[0] + i, valid[1] + i, valid[2] + i};
-      const std::uint8_t* ds[3];
-      for (int c = 0; c < 3; ++c) ds[c] = direct[c] ? direct[c] + 3 * i : nullptr;
-      const int done = avx2::bilinearChannelsRgb8(k, out + 4 * i, 16, xs, ys, vs, ds, transparent);
+      const int done = channelsClone(k, out, i, 16, sx, sy, valid, direct, transparent);
       if (done < 16) return i + done;
       continue;
     }
-    const __m512i rg = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(q[0], q[1]), div255), 7);
-    const __m512i bb = _mm512_srli_epi16(_mm512_mulhi_epu16(_mm512_packus_epi32(q[2], q[2]), div255), 7);
-    const __m512i rgba = _mm512_permutexvar_epi8(interleave, _mm512_packus_epi16(rg, bb));
+    const __m512i rgba = _mm512_permutexvar_epi8(interleave, packChannels(q[0], q[1], q[2]));
     _mm512_storeu_si512(out + 4 * i, _mm512_or_si512(rgba, opaque));
   }
-  if (i < n) {
-    const float* xs[3] = {sx[0] + i, sx[1] + i, sx[2] + i};
-    const float* ys[3] = {sy[0] + i, sy[1] + i, sy[2] + i};
-    const unsigned char* vs[3] = {valid[0] + i, valid[1] + i, valid[2] + i};
-    const std::uint8_t* ds[3];
-    for (int c = 0; c < 3; ++c) ds[c] = direct[c] ? direct[c] + 3 * i : nullptr;
-    return i + avx2::bilinearChannelsRgb8(k, out + 4 * i, n - i, xs, ys, vs, ds, transparent);
-  }
-  return n;
+  return i < n ? i + channelsClone(k, out, i, n - i, sx, sy, valid, direct, transparent) : n;
 }
 
 // The AVX2 clone's bilinear in its order: rows of (left, right), then the two rows, + 0.
