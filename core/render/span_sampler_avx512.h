@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// AVX-512 (BW + VBMI) bilinear for 8-bit RGB, and for 16-bit and float RGB (bilinearWideRgb, below)
+// AVX-512 (BW + VBMI) bilinear for 8-bit RGB (to RGB or RGBA; and each colour channel at its
+// own positions, bilinearChannelsRgb8), and for 16-bit and float RGB (bilinearWideRgb, below)
 // (span_sampler.cpp only; SIMD where it pays). Runtime dispatch only, as span_sampler_avx2.h:
 // these functions carry a target attribute, span_sampler.cpp picks them when the CPU reports
 // avx512bw, avx512vl and avx512vbmi, and they compute EXACTLY the scalar path's numbers (8-bit:
