@@ -388,12 +388,11 @@ __attribute__((target("avx2"))) long long cubicSpanU8Simd(const Context& k, unsi
 long long bilinearRgb8Avx512(const Context& k, unsigned char* out, int n, const float* sx,
                              const float* sy, const unsigned char* valid, int supersample,
                              const float* jac) {
+  // A 3-channel source writes 3 channels, or 4 with alpha appended (SpanSampler's checks).
   if (supersample > 1 || k.src_alpha >= 0)
     return sampleSpanU8Simd<3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
-  if (k.append_alpha && k.out_channels == 4)
+  if (k.append_alpha)
     return avx512::bilinearRgb8<true>(k, out, n, sx, sy, valid, &sampleSpanU8<3, Filter::Bilinear, true>);
-  if (k.append_alpha || k.out_channels != 3)
-    return sampleSpanU8Simd<3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
   return avx512::bilinearRgb8(k, out, n, sx, sy, valid, &sampleSpanU8<3, Filter::Bilinear>);
 }
 
@@ -403,7 +402,7 @@ template <class T>
 long long bilinearWideRgbAvx512(const Context& k, unsigned char* out, int n, const float* sx,
                                 const float* sy, const unsigned char* valid, int supersample,
                                 const float* jac) {
-  if (supersample > 1 || k.append_alpha || k.out_channels != 3 || k.src_alpha >= 0)
+  if (supersample > 1 || k.append_alpha || k.src_alpha >= 0)
     return sampleSpanWideSimd<T, 3, Filter::Bilinear>(k, out, n, sx, sy, valid, supersample, jac);
   return avx512::bilinearWideRgb<T>(k, out, n, sx, sy, valid, &sampleSpanWideSimd<T, 3, Filter::Bilinear>);
 }
