@@ -386,24 +386,126 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
     else choice.error_px = -1.0;  // not measured
     return choice;
   }
-  // Coarsest first; the error falls as the step cubed, so one halving is nearly always the most.
-  for (const double step : {32.0, 16.0, 8.0, 4.0, 2.0}) {
+  // The error falls as the step cubed (quadratic triangles; the suite's fisheye measured
+  // 0.00114, 0.00221, 0.00379 and 0.00884 px at 32, 40, 48 and 64 px). So the coarsest lattice
+  // is measured first, the step that law predicts at kAim of the budget is measured next, and
+  // so on down: the step used is always one whose measured error is within the budget, and the
+  // rasteriser's work per pixel falls with the step (its rows are shorter the finer the mesh).
+  // A triangle is drawn only where its three vertices have data, so where the patches leave
+  // holes or a ragged edge a lattice leaves up to a step uncovered along it: there the step
+  // stays at most 32 px (as when 32 was the coarsest), and a coarser one is kept only where
+  // every vertex and cell has data (then the mesh covers the patches' extent exactly).
+  constexpr double kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8;
+  double step = kCoarsest;
+  for (int attempt = 0;; ++attempt) {
     Mesh mesh = buildMesh(camera, source_image, size, step, options.threads);
+    if (step > kCoarsestAtEdges &&
+        !(std::all_of(mesh.valid.begin(), mesh.valid.end(), [](unsigned char v) { return v != 0; }) &&
+          std::all_of(mesh.cell_ok.begin(), mesh.cell_ok.end(), [](unsigned char v) { return v != 0; }))) {
+      step = kCoarsestAtEdges;
+      continue;
+    }
     choice.step_px = step;
     choice.error_px = meshError(mesh, camera, options.threads);
-    if (choice.error_px <= options.max_error_px || step == 2.0) {
+    if (choice.error_px <= options.max_error_px || step <= kFinest) {
       if (built) built->emplace(std::move(mesh));
       break;
     }
+    // Whole pixels, at least a tenth finer each time, and halving once the law has missed
+    // twice (a camera whose error does not follow it still ends in a few meshes).
+    double next = std::floor(step * std::cbrt(kAim * options.max_error_px / choice.error_px));
+    next = std::min(next, std::floor(0.9 * step));
+    if (attempt >= 2) next = std::min(next, step / 2.0);
+    step = std::max(kFinest, next);
   }
   return choice;
 }
 
-// The pixel centres of output rows [y0, y1) inside triangle t[0..2] (output pixels) into the
-// band's position buffers (row r of the band at r · width), each the quadratic triangle's
-// source position (quadratic(), in pixels of the image rendered from). Shared edges are drawn
-// by both triangles with the same value (the mesh is continuous), so the inclusive test costs
-// nothing but a second identical write.
+// A triangle's pixel rows, set up once per band (triangleRows) and walked row by row (rowRun).
+// Each barycentric weight is affine in x along a row, so the position is quadratic in it:
+// p(k) = p0 + k (d1 + k d2), evaluated per pixel (no value carried from one pixel to the next).
+struct TriangleRows {
+  int row_begin = 0, row_end = -1, x_begin = 0;
+  double k_max = 0.0, eps = 0.0, eps_bound = 0.0;
+  double w_first[3] = {}, dy[3] = {}, dw[3] = {}, inv_dw[3] = {};
+  Eigen::Vector2d d_linear, d2;
+  const Eigen::Vector2d* s = nullptr;
+  const Eigen::Vector2d* bend = nullptr;
+};
+
+// False when the triangle has no pixel centre in rows [y0, y1).
+bool triangleRows(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], const Eigen::Vector2d bend[3], int y0,
+                  int y1, int width, TriangleRows& rows) {
+  const Eigen::Vector2d &a = t[0], &b = t[1], &c = t[2];
+  const double lo_y = std::min({a.y(), b.y(), c.y()}), hi_y = std::max({a.y(), b.y(), c.y()});
+  rows.row_begin = std::max(y0, static_cast<int>(std::ceil(lo_y - 0.5)));
+  rows.row_end = std::min(y1 - 1, static_cast<int>(std::floor(hi_y - 0.5)));
+  if (rows.row_begin > rows.row_end) return false;
+  const double lo_x = std::min({a.x(), b.x(), c.x()}), hi_x = std::max({a.x(), b.x(), c.x()});
+  rows.x_begin = std::max(0, static_cast<int>(std::ceil(lo_x - 0.5)));
+  const int x_end = std::min(width - 1, static_cast<int>(std::floor(hi_x - 0.5)));
+  if (rows.x_begin > x_end) return false;
+  const double area = edge(a, b, c.x(), c.y());
+  if (!(std::abs(area) > 1e-12)) return false;
+  rows.eps = -1e-9 * std::abs(area);
+  // The row's run of pixels inside is bounded by dividing: each weight w0 + k dw ≥ eps is a
+  // half-line in k. The bound is taken at twice eps, so rounding (~1e-16 of k) never drops a
+  // pixel the per-pixel test w ≥ eps would keep: a pixel on an edge shared by two triangles is
+  // drawn by both, with the same position to rounding (the mesh is continuous), never by neither.
+  rows.eps_bound = 2.0 * rows.eps;
+  rows.k_max = x_end - rows.x_begin;
+  const double inv = 1.0 / area;
+  const double dwa = -(c.y() - b.y()) * inv, dwb = -(a.y() - c.y()) * inv, dwc = -(b.y() - a.y()) * inv;
+  rows.d_linear = dwa * s[0] + dwb * s[1] + dwc * s[2];
+  rows.d2 = 4.0 * (dwa * dwb * bend[0] + dwb * dwc * bend[1] + dwc * dwa * bend[2]);
+  // And affine in y at the row's first pixel.
+  const double px0 = rows.x_begin + 0.5, py0 = rows.row_begin + 0.5;
+  rows.w_first[0] = edge(b, c, px0, py0) * inv;
+  rows.w_first[1] = edge(c, a, px0, py0) * inv;
+  rows.w_first[2] = edge(a, b, px0, py0) * inv;
+  rows.dy[0] = (c.x() - b.x()) * inv;
+  rows.dy[1] = (a.x() - c.x()) * inv;
+  rows.dy[2] = (b.x() - a.x()) * inv;
+  rows.dw[0] = dwa;
+  rows.dw[1] = dwb;
+  rows.dw[2] = dwc;
+  for (int q = 0; q < 3; ++q) rows.inv_dw[q] = rows.dw[q] != 0.0 ? 1.0 / rows.dw[q] : 0.0;
+  rows.s = s;
+  rows.bend = bend;
+  return true;
+}
+
+// Row y's run of pixels inside, k … end (offsets from x_begin), and its positions
+// p(m) = p + m (d1 + m d2); false when the row has none. Inline, so every clone of the row loop
+// computes the same bits (this file is built without floating-point contraction, CMakeLists).
+__attribute__((always_inline)) inline bool rowRun(const TriangleRows& rows, int y, int& k, int& end, Eigen::Vector2d& p, Eigen::Vector2d& d1) {
+  const double ry = y - rows.row_begin;
+  const double w0[3] = {rows.w_first[0] + ry * rows.dy[0], rows.w_first[1] + ry * rows.dy[1],
+                        rows.w_first[2] + ry * rows.dy[2]};
+  double k_lo = 0.0, k_hi = rows.k_max;
+  for (int q = 0; q < 3; ++q) {
+    const double at = (rows.eps_bound - w0[q]) * rows.inv_dw[q];
+    if (rows.dw[q] > 0.0) k_lo = std::max(k_lo, at);
+    else if (rows.dw[q] < 0.0) k_hi = std::min(k_hi, at);
+    else if (w0[q] < rows.eps) k_hi = -1.0;
+  }
+  if (!(k_lo <= k_hi)) return false;
+  // 0 ≤ k_lo ≤ k_hi ≤ k_max here: truncation is the floor, and the ceiling one more where
+  // it cut (std::ceil and std::floor are a dozen instructions each on the x86-64 baseline).
+  const int k_trunc = static_cast<int>(k_lo);
+  k = k_trunc + (static_cast<double>(k_trunc) < k_lo ? 1 : 0);
+  end = static_cast<int>(k_hi);
+  if (k > end) return false;
+  // The position at the row's first pixel of the box (k = 0) and its slope there.
+  const Eigen::Vector2d* s = rows.s;
+  const Eigen::Vector2d* bend = rows.bend;
+  const double* dw = rows.dw;
+  p = quadratic(w0[0], w0[1], w0[2], s, bend);
+  d1 = rows.d_linear + 4.0 * ((w0[0] * dw[1] + dw[0] * w0[1]) * bend[0] + (w0[1] * dw[2] + dw[1] * w0[2]) * bend[1] +
+                             (w0[2] * dw[0] + dw[2] * w0[0]) * bend[2]);
+  return true;
+}
+
 #if defined(__x86_64__)
 // A row's positions p(m) = p + m (d1 + m d2) for m = k … end, four at a time, with the SSE2
 // loop's operations (no FMA) so every bit agrees; returns the first m it left.
@@ -424,71 +526,77 @@ __attribute__((target("avx2"))) int rowRunAvx2(double px, double py, double d1x,
   }
   return q;
 }
-#endif
 
-long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], const Eigen::Vector2d bend[3], int y0,
-                    int y1, int width, float* sx, float* sy, unsigned char* valid) {
-  const Eigen::Vector2d &a = t[0], &b = t[1], &c = t[2];
-  const double lo_y = std::min({a.y(), b.y(), c.y()}), hi_y = std::max({a.y(), b.y(), c.y()});
-  const int row_begin = std::max(y0, static_cast<int>(std::ceil(lo_y - 0.5)));
-  const int row_end = std::min(y1 - 1, static_cast<int>(std::floor(hi_y - 0.5)));
-  if (row_begin > row_end) return 0;
-  const double lo_x = std::min({a.x(), b.x(), c.x()}), hi_x = std::max({a.x(), b.x(), c.x()});
-  const int x_begin = std::max(0, static_cast<int>(std::ceil(lo_x - 0.5)));
-  const int x_end = std::min(width - 1, static_cast<int>(std::floor(hi_x - 0.5)));
-  if (x_begin > x_end) return 0;
-  const double area = edge(a, b, c.x(), c.y());
-  if (!(std::abs(area) > 1e-12)) return 0;
-  const double eps = -1e-9 * std::abs(area);
-  const double inv = 1.0 / area;
-  // Each barycentric weight is affine in x along a row, so the position is quadratic in it:
-  // p(k) = p0 + k (d1 + k d2), evaluated two pixels at a time (no value carried from one pixel
-  // to the next).
-  const double dwa = -(c.y() - b.y()) * inv, dwb = -(a.y() - c.y()) * inv, dwc = -(b.y() - a.y()) * inv;
-  const Eigen::Vector2d d_linear = dwa * s[0] + dwb * s[1] + dwc * s[2];
-  const Eigen::Vector2d d2 = 4.0 * (dwa * dwb * bend[0] + dwb * dwc * bend[1] + dwc * dwa * bend[2]);
+#pragma GCC diagnostic push
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_*() (a self-initialised variable):
+// a false positive of both warnings.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+// The row loop eight pixels per step, the last step masked, and the coverage bytes by masked
+// stores: a band's triangles are short runs (~16 pixels a row at a 32 px lattice), where the
+// per-row set-up, the tails and a memset call per row were most of the rasteriser's time.
+// The same double operations as the portable loop (no FMA), so every bit agrees.
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) long long rowsAvx512(const TriangleRows& rows, int y0,
+                                                                                    int width, float* sx, float* sy,
+                                                                                    unsigned char* valid) {
   long long covered = 0;
-  // And affine in y at the row's first pixel.
-  const double dya = (c.x() - b.x()) * inv, dyb = (a.x() - c.x()) * inv, dyc = (b.x() - a.x()) * inv;
-  const double px0 = x_begin + 0.5, py0 = row_begin + 0.5;
-  const double wa_first = edge(b, c, px0, py0) * inv, wb_first = edge(c, a, px0, py0) * inv,
-               wc_first = edge(a, b, px0, py0) * inv;
-  const double dw[3] = {dwa, dwb, dwc};
-  const double inv_dw[3] = {dwa != 0.0 ? 1.0 / dwa : 0.0, dwb != 0.0 ? 1.0 / dwb : 0.0, dwc != 0.0 ? 1.0 / dwc : 0.0};
-  // The row's run of pixels inside is bounded by dividing: each weight w0 + k dw ≥ eps is a
-  // half-line in k. The bound is taken at twice eps, so rounding (~1e-16 of k) never drops a
-  // pixel the per-pixel test w ≥ eps would keep: a pixel on an edge shared by two triangles is
-  // drawn by both, with the same position to rounding (the mesh is continuous), never by neither.
-  const double eps_bound = 2.0 * eps;
-  const double k_max = x_end - x_begin;
-  for (int y = row_begin; y <= row_end; ++y) {
-    const double ry = y - row_begin;
-    const double wa0 = wa_first + ry * dya, wb0 = wb_first + ry * dyb, wc0 = wc_first + ry * dyc;
-    double k_lo = 0.0, k_hi = k_max;
-    const double w0[3] = {wa0, wb0, wc0};
-    for (int q = 0; q < 3; ++q) {
-      const double at = (eps_bound - w0[q]) * inv_dw[q];
-      if (dw[q] > 0.0) k_lo = std::max(k_lo, at);
-      else if (dw[q] < 0.0) k_hi = std::min(k_hi, at);
-      else if (w0[q] < eps) k_hi = -1.0;
-    }
-    if (!(k_lo <= k_hi)) continue;
-    // 0 ≤ k_lo ≤ k_hi ≤ k_max here: truncation is the floor, and the ceiling one more where
-    // it cut (std::ceil and std::floor are a dozen instructions each on the x86-64 baseline).
-    const int k_trunc = static_cast<int>(k_lo);
-    const int k = k_trunc + (static_cast<double>(k_trunc) < k_lo ? 1 : 0), end = static_cast<int>(k_hi);
-    if (k > end) continue;
-    // The position at the row's first pixel of the box (k = 0) and its slope there:
-    // p(k) = p + k (d1 + k d2).
-    const Eigen::Vector2d p = quadratic(wa0, wb0, wc0, s, bend);
-    const Eigen::Vector2d d1 = d_linear + 4.0 * ((wa0 * dwb + dwa * wb0) * bend[0] + (wb0 * dwc + dwb * wc0) * bend[1] +
-                                                 (wc0 * dwa + dwc * wa0) * bend[2]);
-    const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(x_begin);
+  const __m512d lanes = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
+  const __m512d eight = _mm512_set1_pd(8.0);
+  const __m512i ones = _mm512_set1_epi8(1);
+  for (int y = rows.row_begin; y <= rows.row_end; ++y) {
+    int k = 0, end = -1;
+    Eigen::Vector2d p, d1;
+    if (!rowRun(rows, y, k, end, p, d1)) continue;
+    const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(rows.x_begin);
     float* row_x = sx + row;
     float* row_y = sy + row;
+    const __m512d ax = _mm512_set1_pd(p.x()), ay = _mm512_set1_pd(p.y());
+    const __m512d bx = _mm512_set1_pd(d1.x()), by = _mm512_set1_pd(d1.y());
+    const __m512d cx = _mm512_set1_pd(rows.d2.x()), cy = _mm512_set1_pd(rows.d2.y());
+    __m512d m = _mm512_add_pd(_mm512_set1_pd(static_cast<double>(k)), lanes);
+    for (int q = k; q <= end; q += 8, m = _mm512_add_pd(m, eight)) {
+      const int left = end - q + 1;
+      const __mmask8 mask = left >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << left) - 1u);
+      const __m256 fx = _mm512_cvtpd_ps(_mm512_add_pd(ax, _mm512_mul_pd(m, _mm512_add_pd(bx, _mm512_mul_pd(m, cx)))));
+      const __m256 fy = _mm512_cvtpd_ps(_mm512_add_pd(ay, _mm512_mul_pd(m, _mm512_add_pd(by, _mm512_mul_pd(m, cy)))));
+      _mm256_mask_storeu_ps(row_x + q, mask, fx);
+      _mm256_mask_storeu_ps(row_y + q, mask, fy);
+    }
+    for (int q = k; q <= end; q += 64) {
+      const int left = end - q + 1;
+      const __mmask64 mask = left >= 64 ? ~__mmask64{0} : (__mmask64{1} << left) - 1;
+      _mm512_mask_storeu_epi8(valid + row + q, mask, ones);
+    }
+    covered += end - k + 1;
+  }
+  return covered;
+}
+#pragma GCC diagnostic pop
+#endif
+
+// The pixel centres of output rows [y0, y1) inside triangle t[0..2] (output pixels) into the
+// band's position buffers (row r of the band at r · width), each the quadratic triangle's
+// source position (quadratic(), in pixels of the image rendered from). Shared edges are drawn
+// by both triangles with the same value (the mesh is continuous), so the inclusive test costs
+// nothing but a second identical write.
+long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], const Eigen::Vector2d bend[3], int y0,
+                    int y1, int width, float* sx, float* sy, unsigned char* valid) {
+  TriangleRows rows;
+  if (!triangleRows(t, s, bend, y0, y1, width, rows)) return 0;
+#if defined(__x86_64__)
+  if (cpuHasAvx512bwvl()) return rowsAvx512(rows, y0, width, sx, sy, valid);
+#endif
+  long long covered = 0;
+  for (int y = rows.row_begin; y <= rows.row_end; ++y) {
+    int k = 0, end = -1;
+    Eigen::Vector2d p, d1;
+    if (!rowRun(rows, y, k, end, p, d1)) continue;
+    const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(rows.x_begin);
+    float* row_x = sx + row;
+    float* row_y = sy + row;
+    const Eigen::Vector2d& d2 = rows.d2;
     int q = k;
 #if defined(__x86_64__)
-    // Four pixels per step where the CPU has AVX2 (the same double arithmetic, so the same bits).
     if (cpuHasAvx2()) q = rowRunAvx2(p.x(), p.y(), d1.x(), d1.y(), d2.x(), d2.y(), k, end, row_x, row_y);
 #endif
 #if defined(__SSE2__)

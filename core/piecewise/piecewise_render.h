@@ -23,8 +23,9 @@
 namespace artcam {
 
 struct PiecewiseRenderOptions {
-  // The source lattice's spacing in the camera's source pixels; 0: the coarsest of 32, 16, 8, 4
-  // and 2 whose estimated error (chooseMeshStep) is within max_error_px.
+  // The source lattice's spacing in the camera's source pixels; 0: chosen by chooseMeshStep, the
+  // coarsest step (at most 64, or 32 where the patches leave holes, at least 2) whose measured
+  // error is within max_error_px.
   double mesh_step_px = 0.0;
   double max_error_px = 1.0 / 256.0;  // source pixels of the image rendered from
   Filter filter = Filter::Bilinear;
@@ -42,13 +43,15 @@ struct PiecewiseRenderStats {
   double error_px = 0.0;  // the step's estimated error (chooseMeshStep)
 };
 
-// The mesh's error, and the step that keeps it in bounds. Linear interpolation on a triangle
-// misses the exact preimage by about step² · |∂²s| / 8, largest at the edges' midpoints; there
-// the mesh gives the midpoint of the two source vertices, m, for the midpoint of their targets,
-// t̄, and the exact preimage of t̄ lies J⁻¹ (t̄ − f(m)) away (f the patch's map, J its Jacobian,
-// eq 2). That distance, in pixels of the image rendered from, is measured at every edge of a
-// 16-px lattice (the patches' averaged map where they meet, as at the vertices); the error of a
-// step h is then that maximum · (h / 16)². With a fixed step the measurement is made at it.
+// The mesh's error, and the step that keeps it in bounds. At a point of a triangle the mesh
+// gives source position m for target point t̄, and the exact preimage of t̄ lies J⁻¹ (t̄ − f(m))
+// away (f the patch's map, J its Jacobian, eq 2). That distance, in pixels of the image
+// rendered from, is measured where a quadratic triangle's error peaks (its centroid and its
+// edges' quarter points) on every drawn triangle one patch maps, and the largest is the
+// mesh's error. The error falls as the step cubed; the automatic step is the coarsest whose
+// measured error is within the budget, found by measuring a 64-px lattice (32 where the
+// patches leave holes, along whose edges a coarse lattice would leave pixels uncovered) and
+// then the steps that law predicts. With a fixed step the measurement is made at it.
 struct MeshChoice {
   double step_px = 0.0;
   double error_px = 0.0;

@@ -22,10 +22,19 @@ inline bool cpuHasAvx512f() {
   static const bool has = __builtin_cpu_supports("avx512f");
   return has;
 }
+
+// AVX-512 with byte and word lanes and masked 128/256-bit stores (BW, VL): every AVX-512 CPU
+// since Skylake-SP.
+inline bool cpuHasAvx512bwvl() {
+  static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                          __builtin_cpu_supports("avx512vl");
+  return has;
+}
 #else
 inline bool cpuHasAvx2() { return false; }
 inline bool cpuHasFma() { return false; }
 inline bool cpuHasAvx512f() { return false; }
+inline bool cpuHasAvx512bwvl() { return false; }
 #endif
 
 }  // namespace artcam

@@ -97,6 +97,28 @@ class TestPiecewiseMesh : public QObject {
     QVERIFY(stats.mesh_step_px >= 2.0);
   }
 
+  void aSmoothLensOverTheWholeFrameTakesACoarseLattice() {
+    // Patches tiling the frame leave no edge a coarse lattice could shave: the step may pass
+    // 32 px where the measured error allows, and the pixels still meet the budget.
+    const Camera lens = buildEffect("barrel", {{"k", {-0.005}}}, kSize).main();
+    PiecewiseRenderStats stats;
+    const ImageF out = renderPiecewise(coordinateRamp(), fourPatchesOf(lens), {}, &stats);
+    const Measured m = measure(out, lens);
+    QVERIFY(m.pixels > kSize.width * kSize.height / 2);
+    QVERIFY2(stats.mesh_step_px > 32.0, qPrintable(QString::number(stats.mesh_step_px)));
+    QVERIFY2(m.worst_px <= 1.0 / 256.0, qPrintable(QString::number(m.worst_px)));
+    QVERIFY2(m.worst_px <= 2.0 * stats.error_px + 1e-5,
+             qPrintable(QString("measured %1, estimated %2").arg(m.worst_px).arg(stats.error_px)));
+
+    // Without one patch the lattice would leave a step uncovered along the hole's edge: at
+    // most 32 px there, as the same lens otherwise gets.
+    PiecewiseCamera three = fourPatchesOf(lens);
+    three.patches.pop_back();
+    const MeshChoice holed = chooseMeshStep(three, kSize, kSize);
+    QVERIFY2(holed.step_px > 0.0 && holed.step_px <= 32.0, qPrintable(QString::number(holed.step_px)));
+    QVERIFY(holed.error_px <= 1.0 / 256.0);
+  }
+
   void theEstimateFollowsACoarseStep() {
     // A step far too coarse for the lens: the estimate must say so, and still bound what the
     // pixels show within a factor.
