@@ -63,7 +63,9 @@ const char* const kBenchUsage =
     "the homography (the yardstick), quadratic fits of a compact zoom's, a wide angle's and\n"
     "a fisheye's radial distortion, every image preset at its default and a strong setting\n"
     "(barrel-strong leaves the corners without a preimage), and the fisheye as a piecewise\n"
-    "camera; stderr gives each camera's time as a multiple of the homography's.\n"
+    "camera; stderr gives each camera's time as a multiple of the homography's: the median\n"
+    "of N ratios, each against a homography render made just before (a machine's speed\n"
+    "drifts; pairs taken side by side cancel it).\n"
     "  --size WxH       image size (default 6000x4000)\n"
     "  --reps N         renders per row, the median is reported (default 5)\n"
     "  --threads LIST   comma-separated thread counts (default 1,2)\n"
@@ -440,7 +442,16 @@ std::vector<Row> runSuite(const std::vector<SuiteCamera>& suite, const PixelBuff
   std::optional<ImageF> linear;
   std::unique_ptr<PixelBuffer> out8;
   std::optional<ImageF> outf;
-  std::map<int, double> homography_ms;
+  // The yardstick (suite[0], the homography) renders into its own buffer, once before each
+  // render of every other camera: on a shared machine whose speed drifts from one second to
+  // the next (the same camera measured 37 and 58 ms a minute apart), the multiple is the
+  // median of these side-by-side pairs, not of two medians taken at different moments.
+  const SuiteCamera& yardstick = suite.front();
+  const OutputFrame yardstick_frame = outputFrameFor(yardstick.camera, size);
+  PixelBuffer yardstick_out(static_cast<size_t>(yardstick_frame.size.width) *
+                            static_cast<size_t>(yardstick_frame.size.height) * 4);
+  const ImageView yardstick_view = packedView<void>(yardstick_out.data(), yardstick_frame.size.width,
+                                                    yardstick_frame.size.height, 4, PixelType::UInt8, 3);
   const double mpix = size.width * static_cast<double>(size.height) / 1e6;
   for (const SuiteCamera& c : suite) {
     const bool float_path = needsLinearPhoto(c.camera);
@@ -473,15 +484,24 @@ std::vector<Row> runSuite(const std::vector<SuiteCamera>& suite, const PixelBuff
         if (!out8 || out8->size() != bytes) out8 = std::make_unique<PixelBuffer>(bytes);
         out = packedView<void>(out8->data(), frame.size.width, frame.size.height, 4, PixelType::UInt8, 3);
       }
-      std::vector<double> times, cpu;
+      std::vector<double> times, cpu, yardstick_times, ratios;
       RenderSummary s;
+      const bool paired = &c != &yardstick;
+      RenderInputs yardstick_in;
+      yardstick_in.photo = src;
       try {
         render(in, c.camera, o, out, &s);  // warm-up
         for (int r = 0; r < reps; ++r) {
+          if (paired) {
+            RenderSummary ys;
+            render(yardstick_in, yardstick.camera, o, yardstick_view, &ys);
+            yardstick_times.push_back(ys.render_ms);
+          }
           const double c0 = processCpuMs();
           render(in, c.camera, o, out, &s);
           cpu.push_back(processCpuMs() - c0);
           times.push_back(s.render_ms);
+          if (paired) ratios.push_back(s.render_ms / yardstick_times.back());
         }
       } catch (const std::exception& e) {
         std::fprintf(stderr, "bench: %s: %s\n", c.name.c_str(), e.what());
@@ -498,13 +518,13 @@ std::vector<Row> runSuite(const std::vector<SuiteCamera>& suite, const PixelBuff
       row.max_err = err;
       printRow(row);
       rows.push_back(row);
-      if (c.name == "homography") homography_ms[threads] = row.ms;
-      const auto h = homography_ms.find(threads);
+      char multiple[96] = "x1.000 homography";
+      if (paired)
+        std::snprintf(multiple, sizeof multiple, "x%.3f homography (paired; it took %.1f ms)", medianOf(ratios),
+                      medianOf(yardstick_times));
       std::fprintf(stderr, "suite: %-28s %d thr %8.1f ms  %s  max err %s px  (%s, %s)\n", c.name.c_str(),
-                   threads, row.ms,
-                   h == homography_ms.end() ? "" : ("x" + std::to_string(row.ms / h->second).substr(0, 5) + " homography").c_str(),
-                   err < 0 ? "-" : std::to_string(err).c_str(), std::string(renderPathName(s.path)).c_str(),
-                   s.kernel.c_str());
+                   threads, row.ms, multiple, err < 0 ? "-" : std::to_string(err).c_str(),
+                   std::string(renderPathName(s.path)).c_str(), s.kernel.c_str());
     }
   }
   return rows;
