@@ -332,15 +332,34 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline int channelsClone(
   return avx2::bilinearChannelsRgb8(k, out + 4 * i, count, xs, ys, vs, ds, transparent);
 }
 
+// 255 × channel c of the sixteen consecutive RGB8 pixels from p (the channel's byte of the
+// first), one dword each: what windowChannel gives at whole-pixel positions, divided by 255
+// to the same byte (packChannels), as the AVX2 clone's consecutiveTimes255. The 48 bytes read
+// are the sixteen pixels' own (the caller's direct rows hold them).
+alignas(64) inline constexpr std::uint8_t kPickChannel[3][64] = {
+    {0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 39, 42, 45},
+    {1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 34, 37, 40, 43, 46},
+    {2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 32, 35, 38, 41, 44, 47}};
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512i consecutiveTimes255(const std::uint8_t* p, int c) {
+  const std::uint8_t* first = p - c;
+  const __m512i bytes =
+      _mm512_inserti32x4(_mm512_castsi256_si512(_mm256_loadu_si256(static_cast<const __m256i*>(static_cast<const void*>(first)))),
+                         _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(first + 32))), 2);
+  const __m512i v = _mm512_cvtepu8_epi32(
+      _mm512_castsi512_si128(_mm512_permutexvar_epi8(_mm512_load_si512(kPickChannel[c]), bytes)));
+  return _mm512_sub_epi32(_mm512_slli_epi32(v, 8), v);
+}
+
 // Three colour channels, each at positions of its own (chromatic aberration), RGB8 → RGBA8
 // with alpha 255, sixteen pixels a group: each channel as bilinearRgb8's windows weigh one
 // channel (the taps of the channel's own sixteen positions picked by one vpermt2b from a
 // 64-byte window of its upper row and one of its lower row), so the AVX2 clone's integers and
-// the same bytes. A channel whose group the windows cannot take (minified, crossing more
-// than one row, on the lower border, not valid) sends the group to the AVX2 clone
-// (avx2::bilinearChannelsRgb8), which owns every other case, its whole-pixel channels
-// (`direct`) included: chromatic aberration scales by a hair, so nearly every group is a
-// window group. Returns the pixels written, as the clone does; n is a multiple of 8.
+// the same bytes; a whole-pixel channel (`direct`, the caller checked its row) read straight
+// from its row, as the clone does. A channel whose group the windows cannot take (minified,
+// crossing more than one row, on the lower border, not valid) sends the group to the AVX2
+// clone (avx2::bilinearChannelsRgb8), which owns every other case: chromatic aberration
+// scales by a hair, so nearly every group is a window group. Returns the pixels written, as
+// the clone does; n is a multiple of 8.
 __attribute__((ARTCAM_AVX512_TARGET)) inline int bilinearChannelsRgb8(const SpanSampler::Context& k, std::uint8_t* out,
                                                                      int n, const float* const* sx,
                                                                      const float* const* sy,
@@ -352,16 +371,21 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline int bilinearChannelsRgb8(const Span
   int i = 0;
   for (; i + 16 <= n; i += 16) {
     __m512i q[3];
-    bool windows = true;
+    bool windows = true, prefetch = true;
 #pragma GCC unroll 3
     for (int c = 0; c < 3 && windows; ++c) {
+      if (direct[c]) {
+        q[c] = consecutiveTimes255(direct[c] + 3 * i, c);
+        continue;
+      }
       const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx[c] + i), half);
       const __m512 fy = _mm512_sub_ps(_mm512_loadu_ps(sy[c] + i), half);
       windows = interior16(fx, fy, _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid[c] + i))), k);
       if (!windows) break;
       const Quanta16 g = quantise16(fx, fy, k);
       windows = g.fits;
-      if (windows) q[c] = windowChannel(windows16(g, k, c == 0), g, c);
+      if (windows) q[c] = windowChannel(windows16(g, k, prefetch), g, c);
+      prefetch = false;  // once per group
     }
     if (!windows) {
       const int done = channelsClone(k, out, i, 16, sx, sy, valid, direct, transparent);
