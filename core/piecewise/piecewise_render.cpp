@@ -475,10 +475,16 @@ bool triangleRows(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], const 
   return true;
 }
 
-// Row y's run of pixels inside, k … end (offsets from x_begin), and its positions
-// p(m) = p + m (d1 + m d2); false when the row has none. Inline, so every clone of the row loop
-// computes the same bits (this file is built without floating-point contraction, CMakeLists).
-__attribute__((always_inline)) inline bool rowRun(const TriangleRows& rows, int y, int& k, int& end, Eigen::Vector2d& p, Eigen::Vector2d& d1) {
+// Row y's run of pixels inside, k … end (offsets from x_begin), where it starts in the band's
+// buffers (band rows from y0, `width` apart), and its positions p(m) = p + m (d1 + m d2).
+struct RowRun {
+  int k = 0, end = -1;
+  size_t at = 0;  // the band buffers' index of the row's pixel x_begin
+  Eigen::Vector2d p, d1;
+};
+// False when the row has none. Inline, so every clone of the row loop computes the same bits
+// (this file is built without floating-point contraction, CMakeLists).
+__attribute__((always_inline)) inline bool rowRun(const TriangleRows& rows, int y, int y0, int width, RowRun& run) {
   const double ry = y - rows.row_begin;
   const double w0[3] = {rows.w_first[0] + ry * rows.dy[0], rows.w_first[1] + ry * rows.dy[1],
                         rows.w_first[2] + ry * rows.dy[2]};
@@ -493,16 +499,17 @@ __attribute__((always_inline)) inline bool rowRun(const TriangleRows& rows, int 
   // 0 ≤ k_lo ≤ k_hi ≤ k_max here: truncation is the floor, and the ceiling one more where
   // it cut (std::ceil and std::floor are a dozen instructions each on the x86-64 baseline).
   const int k_trunc = static_cast<int>(k_lo);
-  k = k_trunc + (static_cast<double>(k_trunc) < k_lo ? 1 : 0);
-  end = static_cast<int>(k_hi);
-  if (k > end) return false;
+  run.k = k_trunc + (static_cast<double>(k_trunc) < k_lo ? 1 : 0);
+  run.end = static_cast<int>(k_hi);
+  if (run.k > run.end) return false;
+  run.at = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(rows.x_begin);
   // The position at the row's first pixel of the box (k = 0) and its slope there.
   const Eigen::Vector2d* s = rows.s;
   const Eigen::Vector2d* bend = rows.bend;
   const double* dw = rows.dw;
-  p = quadratic(w0[0], w0[1], w0[2], s, bend);
-  d1 = rows.d_linear + 4.0 * ((w0[0] * dw[1] + dw[0] * w0[1]) * bend[0] + (w0[1] * dw[2] + dw[1] * w0[2]) * bend[1] +
-                             (w0[2] * dw[0] + dw[2] * w0[0]) * bend[2]);
+  run.p = quadratic(w0[0], w0[1], w0[2], s, bend);
+  run.d1 = rows.d_linear + 4.0 * ((w0[0] * dw[1] + dw[0] * w0[1]) * bend[0] + (w0[1] * dw[2] + dw[1] * w0[2]) * bend[1] +
+                                 (w0[2] * dw[0] + dw[2] * w0[0]) * bend[2]);
   return true;
 }
 
@@ -544,30 +551,28 @@ __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) long long rowsAvx5
   const __m512d eight = _mm512_set1_pd(8.0);
   const __m512i ones = _mm512_set1_epi8(1);
   for (int y = rows.row_begin; y <= rows.row_end; ++y) {
-    int k = 0, end = -1;
-    Eigen::Vector2d p, d1;
-    if (!rowRun(rows, y, k, end, p, d1)) continue;
-    const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(rows.x_begin);
-    float* row_x = sx + row;
-    float* row_y = sy + row;
-    const __m512d ax = _mm512_set1_pd(p.x()), ay = _mm512_set1_pd(p.y());
-    const __m512d bx = _mm512_set1_pd(d1.x()), by = _mm512_set1_pd(d1.y());
+    RowRun r;
+    if (!rowRun(rows, y, y0, width, r)) continue;
+    float* row_x = sx + r.at;
+    float* row_y = sy + r.at;
+    const __m512d ax = _mm512_set1_pd(r.p.x()), ay = _mm512_set1_pd(r.p.y());
+    const __m512d bx = _mm512_set1_pd(r.d1.x()), by = _mm512_set1_pd(r.d1.y());
     const __m512d cx = _mm512_set1_pd(rows.d2.x()), cy = _mm512_set1_pd(rows.d2.y());
-    __m512d m = _mm512_add_pd(_mm512_set1_pd(static_cast<double>(k)), lanes);
-    for (int q = k; q <= end; q += 8, m = _mm512_add_pd(m, eight)) {
-      const int left = end - q + 1;
+    __m512d m = _mm512_add_pd(_mm512_set1_pd(static_cast<double>(r.k)), lanes);
+    for (int q = r.k; q <= r.end; q += 8, m = _mm512_add_pd(m, eight)) {
+      const int left = r.end - q + 1;
       const __mmask8 mask = left >= 8 ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>((1u << left) - 1u);
       const __m256 fx = _mm512_cvtpd_ps(_mm512_add_pd(ax, _mm512_mul_pd(m, _mm512_add_pd(bx, _mm512_mul_pd(m, cx)))));
       const __m256 fy = _mm512_cvtpd_ps(_mm512_add_pd(ay, _mm512_mul_pd(m, _mm512_add_pd(by, _mm512_mul_pd(m, cy)))));
       _mm256_mask_storeu_ps(row_x + q, mask, fx);
       _mm256_mask_storeu_ps(row_y + q, mask, fy);
     }
-    for (int q = k; q <= end; q += 64) {
-      const int left = end - q + 1;
+    for (int q = r.k; q <= r.end; q += 64) {
+      const int left = r.end - q + 1;
       const __mmask64 mask = left >= 64 ? ~__mmask64{0} : (__mmask64{1} << left) - 1;
-      _mm512_mask_storeu_epi8(valid + row + q, mask, ones);
+      _mm512_mask_storeu_epi8(valid + r.at + q, mask, ones);
     }
-    covered += end - k + 1;
+    covered += r.end - r.k + 1;
   }
   return covered;
 }
@@ -588,13 +593,12 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
 #endif
   long long covered = 0;
   for (int y = rows.row_begin; y <= rows.row_end; ++y) {
-    int k = 0, end = -1;
-    Eigen::Vector2d p, d1;
-    if (!rowRun(rows, y, k, end, p, d1)) continue;
-    const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(width) + static_cast<size_t>(rows.x_begin);
-    float* row_x = sx + row;
-    float* row_y = sy + row;
-    const Eigen::Vector2d& d2 = rows.d2;
+    RowRun r;
+    if (!rowRun(rows, y, y0, width, r)) continue;
+    float* row_x = sx + r.at;
+    float* row_y = sy + r.at;
+    const Eigen::Vector2d &p = r.p, &d1 = r.d1, &d2 = rows.d2;
+    const int k = r.k, end = r.end;
     int q = k;
 #if defined(__x86_64__)
     if (cpuHasAvx2()) q = rowRunAvx2(p.x(), p.y(), d1.x(), d1.y(), d2.x(), d2.y(), k, end, row_x, row_y);
@@ -619,7 +623,7 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
       row_x[q] = static_cast<float>(p.x() + mm * (d1.x() + mm * d2.x()));
       row_y[q] = static_cast<float>(p.y() + mm * (d1.y() + mm * d2.y()));
     }
-    std::memset(valid + row + static_cast<size_t>(k), 1, static_cast<size_t>(end - k + 1));
+    std::memset(valid + r.at + static_cast<size_t>(k), 1, static_cast<size_t>(end - k + 1));
     covered += end - k + 1;
   }
   return covered;
