@@ -389,15 +389,17 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
   // The error falls as the step cubed (quadratic triangles; the suite's fisheye measured
   // 0.00114, 0.00221, 0.00379 and 0.00884 px at 32, 40, 48 and 64 px). So the coarsest lattice
   // is measured first, the step that law predicts at kAim of the budget is measured next, and
-  // so on down: the step used is always one whose measured error is within the budget, and the
-  // rasteriser's work per pixel falls with the step (its rows are shorter the finer the mesh).
+  // so on down: the step used is one whose measured error is within the budget (or the finest,
+  // 2 px, whatever it measures), and the rasteriser's work per pixel falls with the step (its
+  // rows are shorter the finer the mesh).
   // A triangle is drawn only where its three vertices have data, so where the patches leave
   // holes or a ragged edge a lattice leaves up to a step uncovered along it: there the step
-  // stays at most 32 px (as when 32 was the coarsest), and a coarser one is kept only where
-  // every vertex and cell has data (then the mesh covers the patches' extent exactly).
+  // stays at most 32 px (as when 32 was the coarsest). A coarser one is kept only where every
+  // vertex and cell centre of its lattice has data, a test at the lattice's own spacing (a
+  // notch narrower than a step between those points could still pass it).
   constexpr double kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8;
   double step = kCoarsest;
-  for (int attempt = 0;; ++attempt) {
+  for (int measured = 0;;) {
     Mesh mesh = buildMesh(camera, source_image, size, step, options.threads);
     if (step > kCoarsestAtEdges &&
         !(std::all_of(mesh.valid.begin(), mesh.valid.end(), [](unsigned char v) { return v != 0; }) &&
@@ -407,15 +409,16 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
     }
     choice.step_px = step;
     choice.error_px = meshError(mesh, camera, options.threads);
+    ++measured;
     if (choice.error_px <= options.max_error_px || step <= kFinest) {
       if (built) built->emplace(std::move(mesh));
       break;
     }
-    // Whole pixels, at least a tenth finer each time, and halving once the law has missed
-    // twice (a camera whose error does not follow it still ends in a few meshes).
+    // Whole pixels, at least a tenth finer each time, and halving once the law's predictions
+    // have missed twice (a camera whose error does not follow it still ends in a few meshes).
     double next = std::floor(step * std::cbrt(kAim * options.max_error_px / choice.error_px));
     next = std::min(next, std::floor(0.9 * step));
-    if (attempt >= 2) next = std::min(next, step / 2.0);
+    if (measured >= 3) next = std::min(next, step / 2.0);
     step = std::max(kFinest, next);
   }
   return choice;
@@ -482,8 +485,9 @@ struct RowRun {
   size_t at = 0;  // the band buffers' index of the row's pixel x_begin
   Eigen::Vector2d p, d1;
 };
-// False when the row has none. Inline, so every clone of the row loop computes the same bits
-// (this file is built without floating-point contraction, CMakeLists).
+// False when the row has none. Inlined into each clone of the row loop (a call per row cost
+// more than the row's eight-wide steps); the clones agree bit for bit because this file is
+// built without floating-point contraction (CMakeLists), so no clone fuses a multiply-add.
 __attribute__((always_inline)) inline bool rowRun(const TriangleRows& rows, int y, int y0, int width, RowRun& run) {
   const double ry = y - rows.row_begin;
   const double w0[3] = {rows.w_first[0] + ry * rows.dy[0], rows.w_first[1] + ry * rows.dy[1],
@@ -543,7 +547,7 @@ __attribute__((target("avx2"))) int rowRunAvx2(double px, double py, double d1x,
 // stores: a band's triangles are short runs (~16 pixels a row at a 32 px lattice), where the
 // per-row set-up, the tails and a memset call per row were most of the rasteriser's time.
 // The same double operations as the portable loop (no FMA), so every bit agrees.
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) long long rowsAvx512(const TriangleRows& rows, int y0,
+__attribute__((target("avx512f,avx512vl,avx512bw"))) long long rowsAvx512(const TriangleRows& rows, int y0,
                                                                                     int width, float* sx, float* sy,
                                                                                     unsigned char* valid) {
   long long covered = 0;
@@ -585,11 +589,11 @@ __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) long long rowsAvx5
 // by both triangles with the same value (the mesh is continuous), so the inclusive test costs
 // nothing but a second identical write.
 long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], const Eigen::Vector2d bend[3], int y0,
-                    int y1, int width, float* sx, float* sy, unsigned char* valid) {
+                    int y1, int width, float* sx, float* sy, unsigned char* valid, bool avx512) {
   TriangleRows rows;
   if (!triangleRows(t, s, bend, y0, y1, width, rows)) return 0;
 #if defined(__x86_64__)
-  if (cpuHasAvx512bwvl()) return rowsAvx512(rows, y0, width, sx, sy, valid);
+  if (avx512) return rowsAvx512(rows, y0, width, sx, sy, valid);
 #endif
   long long covered = 0;
   for (int y = rows.row_begin; y <= rows.row_end; ++y) {
@@ -630,7 +634,8 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
 }
 
 // Every drawn triangle of the chunks listed for the band of output rows [y0, y1).
-long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, float* sy, unsigned char* valid) {
+long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, float* sy, unsigned char* valid,
+                        bool avx512) {
   const double top = y0 + 0.5 - 1e-9, bottom = y1 - 0.5 + 1e-9;  // the band's pixel centres
   const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
   long long covered = 0;
@@ -655,7 +660,7 @@ long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, 
             s[q] = mesh.sourceAt(i + shape.v[q][0], j + shape.v[q][1]).cwiseProduct(mesh.source_scale);
             bend[q] = bendOf(mesh, i, j, shape.bend[q]).cwiseProduct(mesh.source_scale);
           }
-          if (ok) covered += rasterise(t, s, bend, y0, y1, width, sx, sy, valid);
+          if (ok) covered += rasterise(t, s, bend, y0, y1, width, sx, sy, valid, avx512);
         }
       }
     }
@@ -677,7 +682,8 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
   if (source.empty()) throw std::invalid_argument("renderPiecewise: empty source image");
   if (!camera.target_size.isImage() || !camera.source_size.isImage())
     throw std::invalid_argument("renderPiecewise: the camera has no image frames");
-  const SpanSampler sampler(source, out, options.filter, options.allow_simd);  // validates both
+  const SpanSampler sampler(source, out, options.filter, options.allow_simd, options.allow_avx512);  // validates both
+  const bool avx512 = options.allow_avx512 && cpuHasAvx512bwvl();
   const FrameSize size{out.width, out.height};
   PiecewiseRenderStats stats;
   if (camera.patches.empty()) {
@@ -706,7 +712,7 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
     thread_local std::vector<unsigned char> valid;
     if (sx.size() < cells) sx.resize(cells), sy.resize(cells), valid.resize(cells);
     std::memset(valid.data(), 0, cells);
-    const long long band_covered = rasteriseBand(mesh, y0, y1, out.width, sx.data(), sy.data(), valid.data());
+    const long long band_covered = rasteriseBand(mesh, y0, y1, out.width, sx.data(), sy.data(), valid.data(), avx512);
     // Span-major as the warp's tiles (warp.cpp): one span column down the band's rows, then
     // the next, so the source region a tile reads stays in cache; a whole 6000-pixel row
     // sweeps every source line its curve crosses.

@@ -23,14 +23,17 @@
 namespace artcam {
 
 struct PiecewiseRenderOptions {
-  // The source lattice's spacing in the camera's source pixels; 0: chosen by chooseMeshStep, the
-  // coarsest step (at most 64, or 32 where the patches leave holes, at least 2) whose measured
-  // error is within max_error_px.
+  // The source lattice's spacing in the camera's source pixels; 0: chosen by chooseMeshStep, a
+  // step from 64 (32 where the patches leave holes) down to 2 whose measured error is within
+  // max_error_px.
   double mesh_step_px = 0.0;
   double max_error_px = 1.0 / 256.0;  // source pixels of the image rendered from
   Filter filter = Filter::Bilinear;
   int threads = 0;            // 0: every core
   bool allow_simd = true;     // the span sampler's SIMD clones (span_sampler.h)
+  // The AVX-512 clones (the rasteriser's rows and the sampler's) where the CPU has them; off,
+  // the AVX2 and portable code gives the same bytes (tests compare).
+  bool allow_avx512 = true;
   // The output size; 0×0: the camera's target frame. Another size scales the target frame to it
   // per axis (the output-frame rule of core/pipeline/render.h).
   FrameSize output;
@@ -48,10 +51,11 @@ struct PiecewiseRenderStats {
 // away (f the patch's map, J its Jacobian, eq 2). That distance, in pixels of the image
 // rendered from, is measured where a quadratic triangle's error peaks (its centroid and its
 // edges' quarter points) on every drawn triangle one patch maps, and the largest is the
-// mesh's error. The error falls as the step cubed; the automatic step is the coarsest whose
-// measured error is within the budget, found by measuring a 64-px lattice (32 where the
-// patches leave holes, along whose edges a coarse lattice would leave pixels uncovered) and
-// then the steps that law predicts. With a fixed step the measurement is made at it.
+// mesh's error. The error falls as the step cubed; the automatic step is found by measuring a
+// 64-px lattice (32 where the patches leave holes, along whose edges a coarse lattice would
+// leave pixels uncovered), then the step that law predicts at 0.8 of the budget, and so on
+// down, until one measures within the budget (2 px at the least): near the coarsest that
+// passes, not always it. With a fixed step the measurement is made at it.
 struct MeshChoice {
   double step_px = 0.0;
   double error_px = 0.0;

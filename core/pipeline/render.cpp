@@ -202,6 +202,10 @@ ImageF renderPieces(const RenderInputs& inputs, const Artcam& camera, const Rend
                     FrameSize size, RenderSummary& report) {
   PiecewiseRenderOptions p;
   p.mesh_step_px = options.mesh_step_px;
+  p.filter = options.warp.filter;
+  p.threads = options.warp.threads;
+  p.allow_simd = !options.warp.coordinates.scalar_only;
+  p.allow_avx512 = options.warp.coordinates.allow_avx512;
   p.output = size;
   report.path = RenderPath::Piecewise;
   report.kernel = std::to_string(camera.pieces->patches.size()) + " patches";
@@ -247,6 +251,7 @@ void renderGeometry(const ConstImageView& photo, const StoredMipPyramid* pyramid
     p.filter = options.warp.filter;
     p.threads = options.warp.threads;
     p.allow_simd = !options.warp.coordinates.scalar_only;
+    p.allow_avx512 = options.warp.coordinates.allow_avx512;
     report.path = RenderPath::Piecewise;
     report.kernel = std::to_string(camera.pieces->patches.size()) + " patches";
     // A preview reads the pyramid level of about the output's scale.

@@ -61,7 +61,7 @@ struct RenderOptions {
   // coordinate kernels' tolerances: every path takes them.
   WarpOptions warp;
   int splat_supersample = 3;  // cameras whose geometry reads colour or depth (splat.h)
-  // Piecewise cameras' source lattice (piecewise_render.h); 0: the coarsest within 1/256 px.
+  // Piecewise cameras' source lattice (piecewise_render.h); 0: chosen, within 1/256 px.
   double mesh_step_px = 0.0;
   std::string force_path;     // tests and benchmarks: "splat" or "gather"
 };

@@ -4,6 +4,7 @@
 // and what they run, they report as documented.
 #include "tests/app/cli_run.h"
 
+#include <QRegularExpression>
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
 
