@@ -60,6 +60,7 @@ struct Mesh {
   std::vector<int> patch;                 // the one patch that maps the vertex; −1: several
                                           // (their average is taken) or none
   std::vector<unsigned char> cell_ok;     // (nx − 1) · (ny − 1): the cell's centre has data
+  bool gaps = false;                      // some vertex or cell centre has no data
   // The bend of the lattice's edges from vertex (i, j): to its right, down and down-right
   // neighbour. The exact preimage of the midpoint of the edge's two targets, less the
   // midpoint of its two sources (camera source pixels): what makes the triangles quadratic.
@@ -124,8 +125,10 @@ bool preimageNear(const PiecewiseCamera& camera, const std::vector<RationalMap>&
   return start.allFinite();
 }
 
+// With `whole_only`, a lattice with a vertex or cell without data is returned as soon as that
+// is known (gaps set; no bends, chunks or bands): the step choice's test for coarse lattices.
 Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize size, double step,
-               int threads) {
+               int threads, bool whole_only = false) {
   Mesh mesh;
   mesh.step = step;
   PatchRect& all = mesh.all;
@@ -204,6 +207,9 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
       }
     }
   });
+  mesh.gaps = std::find(mesh.valid.begin(), mesh.valid.end(), 0) != mesh.valid.end() ||
+              std::find(mesh.cell_ok.begin(), mesh.cell_ok.end(), 0) != mesh.cell_ok.end();
+  if (whole_only && mesh.gaps) return mesh;
   // Chunks: the target bounding box of each chunk's drawn triangles, per cell row first (in
   // parallel), then merged; the triangle count on the way.
   const int cells_x = std::max(0, nx - 1), cells_y = std::max(0, ny - 1);
@@ -400,10 +406,9 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
   constexpr double kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8;
   double step = kCoarsest;
   for (int measured = 0;;) {
-    Mesh mesh = buildMesh(camera, source_image, size, step, options.threads);
-    if (step > kCoarsestAtEdges &&
-        !(std::all_of(mesh.valid.begin(), mesh.valid.end(), [](unsigned char v) { return v != 0; }) &&
-          std::all_of(mesh.cell_ok.begin(), mesh.cell_ok.end(), [](unsigned char v) { return v != 0; }))) {
+    const bool coarse = step > kCoarsestAtEdges;
+    Mesh mesh = buildMesh(camera, source_image, size, step, options.threads, /*whole_only=*/coarse);
+    if (coarse && mesh.gaps) {  // known before its bends are solved
       step = kCoarsestAtEdges;
       continue;
     }
