@@ -198,14 +198,21 @@ ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera,
   return std::move(out.colour);
 }
 
-ImageF renderPieces(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
-                    FrameSize size, RenderSummary& report) {
+// The mesh warp's options from the render's: one place, so the float and the stored-photo
+// paths cannot drift apart (the float path once ignored the thread count).
+PiecewiseRenderOptions piecewiseOptions(const RenderOptions& options) {
   PiecewiseRenderOptions p;
   p.mesh_step_px = options.mesh_step_px;
   p.filter = options.warp.filter;
   p.threads = options.warp.threads;
   p.allow_simd = !options.warp.coordinates.scalar_only;
   p.allow_avx512 = options.warp.coordinates.allow_avx512;
+  return p;
+}
+
+ImageF renderPieces(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options,
+                    FrameSize size, RenderSummary& report) {
+  PiecewiseRenderOptions p = piecewiseOptions(options);
   p.output = size;
   report.path = RenderPath::Piecewise;
   report.kernel = std::to_string(camera.pieces->patches.size()) + " patches";
@@ -246,12 +253,7 @@ void renderGeometry(const ConstImageView& photo, const StoredMipPyramid* pyramid
   warp.height = out.height;
   WarpSummary ws;
   if (camera.pieces) {
-    PiecewiseRenderOptions p;
-    p.mesh_step_px = options.mesh_step_px;
-    p.filter = options.warp.filter;
-    p.threads = options.warp.threads;
-    p.allow_simd = !options.warp.coordinates.scalar_only;
-    p.allow_avx512 = options.warp.coordinates.allow_avx512;
+    const PiecewiseRenderOptions p = piecewiseOptions(options);
     report.path = RenderPath::Piecewise;
     report.kernel = std::to_string(camera.pieces->patches.size()) + " patches";
     // A preview reads the pyramid level of about the output's scale.

@@ -407,10 +407,7 @@ long long bilinearWideRgbAvx512(const Context& k, unsigned char* out, int n, con
   return avx512::bilinearWideRgb<T>(k, out, n, sx, sy, valid, &sampleSpanWideSimd<T, 3, Filter::Bilinear>);
 }
 
-bool cpuHasAvx512Sampler() {
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi");
-}
+bool cpuHasAvx512Sampler() { return cpuHasAvx512bwvl() && __builtin_cpu_supports("avx512vbmi"); }
 #endif
 
 // AVX2 when the CPU has it and the source's byte offsets fit the 32-bit offsets; AVX-512 for
