@@ -42,6 +42,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -113,15 +114,31 @@ LoadedImage syntheticPhoto(int w, int h) {
   return loaded;
 }
 
-bool waitForFinal(const PreviewController& c, int timeout_ms) {
+// Runs the GUI thread's event loop until done() holds or timeout_ms pass; false on the
+// timeout. It sleeps between events as the studio's own loop does: processEvents with a
+// time limit returns at once when nothing is pending, so polling it would keep one of the
+// machine's cores spinning, away from the render's threads, and time the spin too.
+bool waitUntil(const std::function<bool()>& done, int timeout_ms) {
   QElapsedTimer t;
   t.start();
-  while (t.elapsed() < timeout_ms) {
-    if (c.imageIsFinal() && c.imageGeneration() == c.requestedGeneration() && !c.image().isNull())
-      return true;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
+  QTimer deadline;  // its timeout is an event: it wakes the wait
+  deadline.setSingleShot(true);
+  while (!done()) {
+    const qint64 left = timeout_ms - t.elapsed();
+    if (left <= 0) return false;
+    deadline.start(static_cast<int>(left));
+    QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
   }
-  return false;
+  return true;
+}
+
+bool waitForFinal(const PreviewController& c, int timeout_ms) {
+  return waitUntil(
+      [&c] {
+        return c.imageIsFinal() && c.imageGeneration() == c.requestedGeneration() &&
+               !c.image().isNull();
+      },
+      timeout_ms);
 }
 
 double percentile(std::vector<double> v, double q) {
@@ -247,14 +264,15 @@ std::optional<StudioOpen> openAsStudio(const std::string& path, double strength,
   QObject::connect(&loader, &ImageLoader::refineFailed, fail);
   clock.start();
   loader.start();
-  while (!failed && clock.elapsed() < 60000 && (!refined || out.first_final_preview_ms < 0.0)) {
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
-    if (out.first_preview_ms < 0.0 && !controller.image().isNull())
-      out.first_preview_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
-    if (out.first_final_preview_ms < 0.0 && controller.imageIsFinal() &&
-        !controller.image().isNull())
-      out.first_final_preview_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
-  }
+  // The preview's arrivals are stamped where they happen, not when a wait next looks.
+  QObject::connect(&controller, &PreviewController::previewChanged, &loader, [&] {
+    if (controller.image().isNull()) return;
+    const double now_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
+    if (out.first_preview_ms < 0.0) out.first_preview_ms = now_ms;
+    if (out.first_final_preview_ms < 0.0 && controller.imageIsFinal())
+      out.first_final_preview_ms = now_ms;
+  });
+  waitUntil([&] { return failed || (refined && out.first_final_preview_ms >= 0.0); }, 60000);
   if (failed || !refined || out.first_final_preview_ms < 0.0) {
     if (!failed) std::fprintf(stderr, "the photo or its first preview did not arrive\n");
     return std::nullopt;
@@ -345,8 +363,7 @@ int runLatency(const Options& o) {
   doc.reset(photo, latencyPairs(size, o.strength), ModelClass::Quadratic);
   // The first picture of any quality, then the final one, both counted from the made photo.
   double first_any_ms = -1.0;
-  while (clock.elapsed() < 60000 && controller.image().isNull())
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
+  waitUntil([&controller] { return !controller.image().isNull(); }, 60000);
   if (!controller.image().isNull()) first_any_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
   if (!waitForFinal(controller, 60000)) {
     std::fprintf(stderr, "the first preview did not arrive\n");
@@ -476,12 +493,12 @@ int runDrag(const Options& o) {
       start + toward * (2.0 * o.moves) + QPointF(toward.y(), -toward.x()) * (o.moves % 7);
   sendMouse(canvas, QEvent::MouseButtonRelease, end, Qt::LeftButton, Qt::NoButton);
   // Until the last edit's preview is shown.
-  QElapsedTimer wait;
-  wait.start();
-  while ((doc->fitPending() || !controller->imageIsFinal() ||
-          controller->imageGeneration() != controller->requestedGeneration()) &&
-         wait.elapsed() < 60000)
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
+  waitUntil(
+      [&] {
+        return !doc->fitPending() && controller->imageIsFinal() &&
+               controller->imageGeneration() == controller->requestedGeneration();
+      },
+      60000);
   const double settle_ms = msSince(clock, drag_end_ns);
   heartbeat.stop();
   const FitThreadCounts fits_after = fitThreadCounts();
@@ -541,8 +558,7 @@ int runExport(const Options& o) {
   QElapsedTimer clock;
   clock.start();
   session.openPath(QString::fromStdString(o.export_project));
-  while (clock.elapsed() < 120000 && (!doc.photo() || !doc.photo()->hasFullImage()))
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 1);
+  waitUntil([&doc] { return doc.photo() && doc.photo()->hasFullImage(); }, 120000);
   if (!doc.photo() || !doc.photo()->hasFullImage()) {
     std::fprintf(stderr, "the project's photo did not arrive\n");
     return 1;
@@ -558,8 +574,7 @@ int runExport(const Options& o) {
   });
   clock.restart();
   session.exportImage(QString::fromStdString(o.export_output));
-  while (!done && clock.elapsed() < 600000)
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+  waitUntil([&done] { return done; }, 600000);
   const double export_ms = static_cast<double>(clock.nsecsElapsed()) / 1e6;
   if (!ok) {
     std::fprintf(stderr, "%s\n", done ? qPrintable(message) : "the export did not finish");
