@@ -23,8 +23,8 @@ namespace {
 constexpr int kSubIterations = 8;
 
 // Lattice quads split kSplit × kSplit for the open cells' coverage (kLattice / kSplit source
-// pixels a side).
-constexpr int kSplit = 4;
+// pixels a side; coverFine).
+constexpr int kSplit = 2;
 
 }  // namespace
 
@@ -106,13 +106,14 @@ void InverseCells::refineOpenCells(int threads) {
 
 void InverseCells::coverFine(int threads) {
   // The open cells' coverage at kFine pixels: each lattice quad whose box (buildCoverage's)
-  // reaches a cell that needs it, split into kSplit² quads of kLattice / kSplit = 8 source
-  // pixels mapped forward, each marking its corners' bounding box grown for the edges'
-  // curvature as buildCoverage does. An 8-pixel edge's image sags from its chord by
-  // |∂²F| · 8 px² (64 px² / 8), and a fold inside the quad bulges its image by the same
-  // second-order term: within the half pixel added to the quarter of the quad's size for any
-  // map smooth at that scale. A split point beyond a pole curve falls back to the whole
-  // quad's box.
+  // reaches a cell that needs it, split into kSplit² quads of kLattice / kSplit = 16 source
+  // pixels mapped forward, each marking the blocks within a margin of its corners' polygon
+  // (markFineQuad). The margin: an edge's image sags from its chord by |∂²F| h² / 8, which
+  // the split points' second differences measure (twice over), and a fold inside the quad
+  // bulges its image by a term of the same order (the strong barrel's: 0.03 px at 16 px),
+  // within the half pixel added for any map smooth at that scale. A split point beyond a pole
+  // curve falls back to the whole quad's box. Quads of 8 pixels marked as tightly but, four
+  // times as many, cost the strong barrel 5 ms a build on one thread.
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 4;
@@ -160,18 +161,111 @@ void InverseCells::coverQuadFine(int i, int j) {
         return;
       }
     }
+  // How far a quad's image strays from its corners' polygon: a segment of length L in the
+  // quad bows from its chord by at most |∂²F along it| L² / 8, and the longest, a diagonal of
+  // √2 h, gives (|∂²F/∂u²|, |∂²F/∂v²| and |∂²F/∂u∂v| at most, over the quad) · h² / 4. The split
+  // points' second differences are those derivatives times h² (largest over the lattice quad).
+  double pure = 0.0, mixed = 0.0;
+  constexpr int w = kSplit + 1;
+  for (int v = 0; v <= kSplit; ++v)
+    for (int u = 0; u <= kSplit; ++u) {
+      const int k = v * w + u;
+      if (u > 0 && u < kSplit)
+        pure = std::max(pure, (fine[k - 1] - 2.0 * fine[k] + fine[k + 1]).norm());
+      if (v > 0 && v < kSplit)
+        pure = std::max(pure, (fine[k - w] - 2.0 * fine[k] + fine[k + w]).norm());
+      if (u < kSplit && v < kSplit)
+        mixed = std::max(mixed, (fine[k + w + 1] - fine[k + 1] - fine[k + w] + fine[k])
+                                    .norm());
+    }
+  const double grow = 0.5 + (pure + mixed) / 4.0;
   for (int v = 0; v < kSplit; ++v)
     for (int u = 0; u < kSplit; ++u) {
       const auto at = [&](int du, int dv) -> const Eigen::Vector2d& {
         return fine[(v + dv) * (kSplit + 1) + u + du];
       };
-      Eigen::Vector2d flo = at(0, 0).cwiseMin(at(1, 0)).cwiseMin(at(0, 1)).cwiseMin(at(1, 1));
-      Eigen::Vector2d fhi = at(0, 0).cwiseMax(at(1, 0)).cwiseMax(at(0, 1)).cwiseMax(at(1, 1));
-      const double fgrow = 0.5 + 0.25 * (fhi - flo).maxCoeff();
-      flo.array() -= fgrow;
-      fhi.array() += fgrow;
-      markFine(flo, fhi);
+      markFineQuad({at(0, 0), at(1, 0), at(1, 1), at(0, 1)}, grow);
     }
+}
+
+void InverseCells::markFineQuad(const std::array<Eigen::Vector2d, 4>& q, double grow) {
+  Eigen::Vector2d lo = q[0].cwiseMin(q[1]).cwiseMin(q[2]).cwiseMin(q[3]);
+  Eigen::Vector2d hi = q[0].cwiseMax(q[1]).cwiseMax(q[2]).cwiseMax(q[3]);
+  // The quad's image as the corners' polygon where it is convex: each edge's line moved out
+  // by `grow` bounds it (the mitred offset holds the polygon grown by that distance). A thin
+  // quad along a curve, whose box (the fallback) spreads diagonally, then marks only the blocks
+  // along it: the strong barrel's boxes reached 7 px beyond its fold circle, all of it
+  // per-pixel work in which every Newton start fails.
+  double cross[4];
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d e0 = q[(k + 1) % 4] - q[k], e1 = q[(k + 2) % 4] - q[(k + 1) % 4];
+    cross[k] = e0.x() * e1.y() - e0.y() * e1.x();
+  }
+  const bool ccw = cross[0] > 0 && cross[1] > 0 && cross[2] > 0 && cross[3] > 0;
+  const bool cw = cross[0] < 0 && cross[1] < 0 && cross[2] < 0 && cross[3] < 0;
+  if (!ccw && !cw) {  // folded or degenerate: the box, as the whole lattice quad's
+    const double fgrow = grow + 0.25 * (hi - lo).maxCoeff();
+    lo.array() -= fgrow;
+    hi.array() += fgrow;
+    return markFine(lo, hi);
+  }
+  lo.array() -= grow;
+  hi.array() += grow;
+  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return;
+  // Per edge: unit outward normal n and offset c, a point p outside by n·p − c. A block of
+  // kFine pixels is marked when, for every edge, its pixel centre nearest that edge's outside
+  // lies within `grow` (a bound: the nearest centre may differ from edge to edge). Along a row
+  // of blocks (centre y = py) edge k then bounds the centre's x: x ≤ at + slope · py where
+  // its normal points right, x ≥ … where left (a horizontal edge bounds py instead).
+  double at[4], slope[4];
+  bool upper[4];
+  double lo_always = -1e300, hi_always = 1e300;  // from horizontal edges: py's own bounds
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d e = q[(k + 1) % 4] - q[k];
+    const double len = e.norm();
+    if (!(len > 0.0)) return markFine(lo, hi);
+    const double nx = (ccw ? e.y() : -e.y()) / len, ny = (ccw ? -e.x() : e.x()) / len;
+    const double c = nx * q[k].x() + ny * q[k].y() + grow +
+                     0.5 * (kFine - 1) * (std::abs(nx) + std::abs(ny));
+    upper[k] = nx >= 0.0;
+    at[k] = nx != 0.0 ? c / nx : 1e300;
+    slope[k] = nx != 0.0 ? -ny / nx : 0.0;
+    if (nx == 0.0) {  // a horizontal edge bounds the row instead: ny · py ≤ c
+      if (ny > 0.0) hi_always = std::min(hi_always, c / ny);
+      else lo_always = std::max(lo_always, c / ny);
+    }
+  }
+  const int fx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kFine)));
+  const int fy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kFine)));
+  const int fx1 = std::min(cells_w_ * kFines - 1, static_cast<int>(std::floor(hi.x() / kFine)));
+  const int fy1 = std::min(cells_h_ * kFines - 1, static_cast<int>(std::floor(hi.y() / kFine)));
+  for (int fy = fy0; fy <= fy1; ++fy) {
+    const double py = fy * kFine + 0.5 * kFine;  // the row's blocks' centre
+    if (py < lo_always - 1e-9 || py > hi_always + 1e-9) continue;
+    double px_lo = -1e300, px_hi = 1e300;
+    for (int k = 0; k < 4; ++k) {
+      const double bound = at[k] + slope[k] * py;
+      if (upper[k]) px_hi = std::min(px_hi, bound);
+      else px_lo = std::max(px_lo, bound);
+    }
+    if (!(px_lo <= px_hi)) continue;
+    // Blocks whose centre (fx + ½) · kFine lies in [px_lo, px_hi], widened by a hair against
+    // rounding.
+    const double b_lo = std::ceil((px_lo - 1e-9) / kFine - 0.5);
+    const double b_hi = std::floor((px_hi + 1e-9) / kFine - 0.5);
+    const int a = b_lo > fx0 ? static_cast<int>(b_lo) : fx0;
+    const int b = b_hi < fx1 ? static_cast<int>(b_hi) : fx1;
+    const int cy = fy / kFines;
+    for (int cx = a / kFines; a <= b && cx <= b / kFines; ++cx) {
+      if (!refined(cx, cy)) continue;
+      Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
+      if (!r.fine) continue;
+      unsigned char* row = r.covered + (fy - cy * kFines) * kFines - cx * kFines;
+      // Bands of lattice rows mark concurrently; every write stores the same 1.
+      for (int fx = std::max(a, cx * kFines); fx <= std::min(b, (cx + 1) * kFines - 1); ++fx)
+        std::atomic_ref<unsigned char>(row[fx]).store(1, std::memory_order_relaxed);
+    }
+  }
 }
 
 void InverseCells::markFine(Eigen::Vector2d lo, Eigen::Vector2d hi) {

@@ -137,6 +137,46 @@ class TestInverseCells : public QObject {
     // Certified to 1/8192 px by one Newton step at the patch's error peaks; the budget is 1/256.
     QVERIFY2(worst <= 1.0 / 1024.0, qPrintable(QString("worst %1 px").arg(worst)));
   }
+
+  // Pixels beyond the fold circle in open subcells: the per-pixel path's coverage test must
+  // turn them away, or every Newton start fails on each in turn. Coverage is a bound (it may
+  // not miss a pixel with a preimage: the test above), so a thin band just beyond the circle
+  // stays; the mapped quads' bounding boxes, before their polygons, let 5.9k pixels through,
+  // in a band up to 7 px wide along the diagonals.
+  void coverageHugsTheFold() {
+    const FrameSize size{6000, 4000};
+    const Camera camera = radialLensCamera(kK, size);
+    const NewtonInverse newton(RationalMap(camera, size, size), size, 1e-3);
+    const InverseCells cells(newton, nullptr, size, size, InverseCellsOptions{});
+    long long let_through = 0, open_pixels = 0;
+    double widest = 0.0;  // beyond the circle, in output pixels
+    const double fold_radius = std::sqrt(-1.0 / (4.0 * kK));  // where the discriminant vanishes
+    unsigned char covered[InverseCells::kCell];
+    for (int y = 0; y < size.height; ++y) {
+      const int cy = std::min(y / InverseCells::kCell, cells.cellsHigh() - 1);
+      const int sub_y = std::min((y - cy * InverseCells::kCell) / InverseCells::kSub, InverseCells::kSubs - 1);
+      for (int cx = 0; cx < cells.cellsWide(); ++cx) {
+        if (cells.kind(cx, cy) != InverseCells::kOpen) continue;
+        const int x0 = cx * InverseCells::kCell, n = std::min(InverseCells::kCell, size.width - x0);
+        cells.coveredRun(x0, y, n, covered);
+        for (int i = 0; i < n; ++i) {
+          const int sub_x = i / InverseCells::kSub;
+          if (cells.refined(cx, cy) && cells.subKind(cx, cy, sub_x, sub_y) != InverseCells::kOpen) continue;
+          ++open_pixels;
+          const Eigen::Vector2d t(x0 + i + 0.5, y + 0.5);
+          if (!covered[i] || exactInverse(size, t)) continue;
+          ++let_through;
+          const double r = normalizedFromPixel(size, t).norm();
+          widest = std::max(widest, (r - fold_radius) / (r / (t - pixelFromNormalized(size, {0, 0})).norm()));
+        }
+      }
+    }
+    qInfo("open pixels %lld, beyond the fold but covered %lld, up to %.2f px beyond", open_pixels,
+          let_through, widest);
+    QVERIFY(open_pixels > 0);
+    QVERIFY2(let_through < 1500, qPrintable(QString::number(let_through)));
+    QVERIFY2(widest < 3.0, qPrintable(QString::number(widest)));
+  }
 };
 
 QTEST_GUILESS_MAIN(TestInverseCells)
