@@ -118,12 +118,37 @@ bool NewtonInverse::solveFromCentre(const Eigen::Vector2d& t, Eigen::Vector2d& o
 
 bool NewtonInverse::solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start,
                           Eigen::Vector2d& out, int max_iterations, Eigen::Matrix2d* jacobian) const {
+  return solveImpl(t, start, out, max_iterations, jacobian, 0.0, nullptr);
+}
+
+bool NewtonInverse::acceptOrSolve(const Eigen::Vector2d& t, const Eigen::Vector2d& start,
+                                  Eigen::Vector2d& out, int max_iterations, double accept_step,
+                                  bool& one_step) const {
+  one_step = false;
+  return solveImpl(t, start, out, max_iterations, nullptr, accept_step, &one_step);
+}
+
+bool NewtonInverse::solveImpl(const Eigen::Vector2d& t, const Eigen::Vector2d& start,
+                              Eigen::Vector2d& out, int max_iterations, Eigen::Matrix2d* jacobian,
+                              double accept_step, bool* one_step) const {
   if (!start.allFinite()) return false;
   Eigen::Vector2d s = start, f;
   Eigen::Matrix2d j;
   unsigned signs = 0;
   if (!forward_.evaluate(s, f, &j, &signs)) return false;
   Eigen::Vector2d r = f - t;
+  if (accept_step > 0.0 && signs == centre_.denominator_signs) {
+    const double det = j(0, 0) * j(1, 1) - j(0, 1) * j(1, 0);
+    if ((det > 0.0) == centre_.det_positive && det != 0.0) {
+      const Eigen::Vector2d step((j(1, 1) * r.x() - j(0, 1) * r.y()) / det,
+                                 (-j(1, 0) * r.x() + j(0, 0) * r.y()) / det);
+      if (std::abs(step.x()) <= accept_step && std::abs(step.y()) <= accept_step) {
+        out = s - step;
+        *one_step = true;
+        return true;
+      }
+    }
+  }
   double rn = r.norm();
   // Quadratic convergence takes a residual of 1e-3 px to far below this in one more step.
   const double converged = 1e-4 * residual_tolerance_px_;

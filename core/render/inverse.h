@@ -65,6 +65,12 @@ class NewtonInverse {
   // Jacobian at `out` (the last evaluation's: the same numbers a new one there would give).
   bool solve(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out,
              int max_iterations, Eigen::Matrix2d* jacobian = nullptr) const;
+  // As solve, but the first Newton step from `start` is taken without iterating on when it is
+  // at most `accept_step` source pixels on each axis and the start lies on the centre's side of
+  // every pole curve and of the fold: the fused kernel's check (coordinates.h). When the step
+  // is longer, the check's evaluation is Newton's first. `one_step` says which happened.
+  bool acceptOrSolve(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out,
+                     int max_iterations, double accept_step, bool& one_step) const;
   // From the forward map linearised at the source centre (the start of last resort).
   bool solveFromCentre(const Eigen::Vector2d& t, Eigen::Vector2d& out, int max_iterations,
                        Eigen::Matrix2d* jacobian = nullptr) const;
@@ -74,6 +80,11 @@ class NewtonInverse {
   double residualTolerance() const { return residual_tolerance_px_; }
 
  private:
+  // accept_step > 0: acceptOrSolve's early acceptance (one_step then not null).
+  bool solveImpl(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out,
+                 int max_iterations, Eigen::Matrix2d* jacobian, double accept_step,
+                 bool* one_step) const;
+
   RationalMap forward_;
   CentreReference centre_;
   double residual_tolerance_px_;
