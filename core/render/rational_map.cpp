@@ -71,6 +71,40 @@ bool RationalMap::evaluateSingle(const Eigen::Vector2d& source, Eigen::Vector2d&
   return true;
 }
 
+bool RationalMap::jacobianDerivative(const Eigen::Vector2d& source, const Eigen::Vector2d& direction,
+                                     Eigen::Matrix2d& out) const {
+  if (stages_.size() != 1) return false;
+  const double u = source.x(), v = source.y(), wu = direction.x(), wv = direction.y();
+  // Per form n: its value, gradient (n_u, n_v), and the gradient's and the value's derivative
+  // along w (the Hessian is constant: 2a, b, 2d).
+  struct Along {
+    double n, nu, nv, dn, dnu, dnv;
+  };
+  const auto along = [&](const Form& f) {
+    const double nu = 2 * f.a * u + f.b * v + f.c, nv = f.b * u + 2 * f.d * v + f.e;
+    return Along{(f.a * u + f.b * v + f.c) * u + (f.d * v + f.e) * v + f.f, nu, nv,
+                 nu * wu + nv * wv, 2 * f.a * wu + f.b * wv, f.b * wu + 2 * f.d * wv};
+  };
+  const Along x = along(single_[0]), y = along(single_[1]), d = along(single_[2]);
+  if (!(std::abs(d.n) > 0.0)) return false;
+  const double inv = 1.0 / d.n;
+  // With F = n / D: G_k = (n_k − F D_k) / D, and along w
+  // dG_k = (dn_k − dF D_k − F dD_k − G_k dD) / D, dF = G · w.
+  const auto row = [&](const Along& n, double* g, double* dg) {
+    const double f = n.n * inv;
+    g[0] = (n.nu - f * d.nu) * inv;
+    g[1] = (n.nv - f * d.nv) * inv;
+    const double df = g[0] * wu + g[1] * wv;
+    dg[0] = (n.dnu - df * d.nu - f * d.dnu - g[0] * d.dn) * inv;
+    dg[1] = (n.dnv - df * d.nv - f * d.dnv - g[1] * d.dn) * inv;
+  };
+  double g[2], dx[2], dy[2];
+  row(x, g, dx);
+  row(y, g, dy);
+  out << dx[0], dx[1], dy[0], dy[1];
+  return out.allFinite();
+}
+
 bool RationalMap::evaluateBatch(const double* u, const double* v, Batch& out) const {
   if (stages_.size() != 1) return false;
   batchDispatched(single_, u, v, out);

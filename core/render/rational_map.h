@@ -33,6 +33,13 @@ class RationalMap {
   bool evaluate(const Eigen::Vector2d& source, Eigen::Vector2d& target, Eigen::Matrix2d* jacobian,
                 unsigned* denominator_signs = nullptr) const;
 
+  // The forward Jacobian's derivative along `direction` (source pixels) at `source`:
+  // d/dλ J(source + λ direction) at λ = 0, from the forms' second derivatives (eq 2
+  // differentiated once more). False for a chain (the caller then differences) or where the
+  // map is undefined.
+  bool jacobianDerivative(const Eigen::Vector2d& source, const Eigen::Vector2d& direction,
+                          Eigen::Matrix2d& out) const;
+
   // A one-stage map at kBatch points at once (false for a chain, which the caller then
   // evaluates point by point): the target, the Jacobian's entries and the denominator n_3, in
   // plain loops that vectorise (AVX2 by runtime dispatch). No check: a point on the pole gives

@@ -136,6 +136,37 @@ class TestFused : public QObject {
     QVERIFY(!RationalMap(chain, size, size).evaluateBatch(u, v, unused));
   }
 
+  // The Jacobian's derivative along a direction (the cells' cross derivatives) against a
+  // central difference of evaluate()'s Jacobian, whose error ~h² |∂³F| is far below the
+  // tolerance at h = 1e-3 px; a chain has no analytic form.
+  void jacobianDerivativeAgreesWithDifferences() {
+    const FrameSize size{6000, 4000};
+    test::rng().seed(29);
+    const RationalMap map(test::randomRationalCamera(size, size, 0.3), size, size);
+    std::uniform_real_distribution<double> along(-500.0, 6500.0), turn(-1.0, 1.0);
+    constexpr double h = 1e-3;
+    int compared = 0;
+    for (int k = 0; k < 400; ++k) {
+      const Eigen::Vector2d s(along(test::rng()), along(test::rng()));
+      const Eigen::Vector2d w(turn(test::rng()), turn(test::rng()));
+      Eigen::Matrix2d analytic, jp, jm;
+      Eigen::Vector2d f;
+      if (!map.evaluate(s + h * w, f, &jp) || !map.evaluate(s - h * w, f, &jm)) continue;
+      QVERIFY(map.jacobianDerivative(s, w, analytic));
+      const Eigen::Matrix2d differenced = (jp - jm) / (2.0 * h);
+      const double scale = 1e-6 * (1.0 + differenced.cwiseAbs().maxCoeff());
+      QVERIFY2((analytic - differenced).cwiseAbs().maxCoeff() <= scale,
+               qPrintable(QString("at %1,%2: off by %3").arg(s.x()).arg(s.y())
+                              .arg((analytic - differenced).cwiseAbs().maxCoeff())));
+      ++compared;
+    }
+    QVERIFY(compared > 300);
+    Camera chain = test::randomRationalCamera(size, size, 0.1);
+    chain.stages().push_back(chain.stages().front());
+    Eigen::Matrix2d unused;
+    QVERIFY(!RationalMap(chain, size, size).jacobianDerivative({100, 100}, {1, 0}, unused));
+  }
+
   void kernelsAgreeWithExactReference_data() {
     QTest::addColumn<Camera>("camera");
     QTest::addColumn<bool>("force_rational");
