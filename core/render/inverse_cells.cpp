@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -404,31 +405,43 @@ void InverseCells::buildCoverage(int threads) {
   const double scale = std::min(kMaxScale, *std::max_element(band_scale.begin(), band_scale.end()));
   reach_px_ = options_.reach_px + 4.0 * scale;
   std::vector<unsigned char> covered(static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_), 0);
-  for (int j = 0; j < qh; ++j)
-    for (int i = 0; i < qw; ++i) {
-      // Only quads within the reach of the frame.
-      const Eigen::Vector2d lo_s = at(i, j), hi_s = at(i + 1, j + 1);
-      if (hi_s.x() < -reach_px_ || hi_s.y() < -reach_px_ || lo_s.x() > source_px_.width + reach_px_ ||
-          lo_s.y() > source_px_.height + reach_px_)
-        continue;
-      // A corner beyond a pole curve: the quad's image is unbounded, claim nothing.
-      if (!ok[index(i, j, pw)] || !ok[index(i + 1, j, pw)] || !ok[index(i, j + 1, pw)] || !ok[index(i + 1, j + 1, pw)])
-        return;
-      const Eigen::Vector2d& a = mapped[index(i, j, pw)];
-      const Eigen::Vector2d& b = mapped[index(i + 1, j, pw)];
-      const Eigen::Vector2d& c = mapped[index(i, j + 1, pw)];
-      const Eigen::Vector2d& d = mapped[index(i + 1, j + 1, pw)];
-      Eigen::Vector2d lo, hi;
-      quadBox(a, b, c, d, lo, hi);
-      if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) continue;
-      const int bx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kBlock)));
-      const int by0 = std::max(0, static_cast<int>(std::floor(lo.y() / kBlock)));
-      const int bx1 = std::min(blocks_w_ - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kBlock)));
-      const int by1 = std::min(blocks_h_ - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kBlock)));
-      for (int by = by0; by <= by1; ++by)
-        std::fill_n(covered.begin() + static_cast<std::ptrdiff_t>(index(bx0, by, blocks_w_)), bx1 - bx0 + 1,
-                    static_cast<unsigned char>(1));
-    }
+  // The quads in bands of rows on every thread (one thread took ~1.5 ms, a sixth of a mild
+  // lens's whole build on two).
+  std::atomic<bool> unbounded{false};
+  parallelForRows(qh, po, [&](int j0, int j1) {
+    for (int j = j0; j < j1 && !unbounded.load(std::memory_order_relaxed); ++j)
+      for (int i = 0; i < qw; ++i) {
+        // Only quads within the reach of the frame.
+        const Eigen::Vector2d lo_s = at(i, j), hi_s = at(i + 1, j + 1);
+        if (hi_s.x() < -reach_px_ || hi_s.y() < -reach_px_ || lo_s.x() > source_px_.width + reach_px_ ||
+            lo_s.y() > source_px_.height + reach_px_)
+          continue;
+        // A corner beyond a pole curve: the quad's image is unbounded, claim nothing.
+        if (!ok[index(i, j, pw)] || !ok[index(i + 1, j, pw)] || !ok[index(i, j + 1, pw)] ||
+            !ok[index(i + 1, j + 1, pw)]) {
+          unbounded.store(true, std::memory_order_relaxed);
+          return;
+        }
+        const Eigen::Vector2d& a = mapped[index(i, j, pw)];
+        const Eigen::Vector2d& b = mapped[index(i + 1, j, pw)];
+        const Eigen::Vector2d& c = mapped[index(i, j + 1, pw)];
+        const Eigen::Vector2d& d = mapped[index(i + 1, j + 1, pw)];
+        Eigen::Vector2d lo, hi;
+        quadBox(a, b, c, d, lo, hi);
+        if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) continue;
+        const int bx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kBlock)));
+        const int by0 = std::max(0, static_cast<int>(std::floor(lo.y() / kBlock)));
+        const int bx1 = std::min(blocks_w_ - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kBlock)));
+        const int by1 = std::min(blocks_h_ - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kBlock)));
+        // Bands mark concurrently; every write stores the same 1.
+        for (int by = by0; by <= by1; ++by) {
+          unsigned char* row = &covered[index(0, by, blocks_w_)];
+          for (int bx = bx0; bx <= bx1; ++bx)
+            std::atomic_ref<unsigned char>(row[bx]).store(1, std::memory_order_relaxed);
+        }
+      }
+  });
+  if (unbounded.load()) return;
   covered_ = std::move(covered);
   coverage_known_ = true;
   lattice_margin_ = margin;
