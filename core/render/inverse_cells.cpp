@@ -364,6 +364,13 @@ void InverseCells::quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, c
   hi.array() += grow;
 }
 
+bool InverseCells::latticeQuadBox(const std::vector<Eigen::Vector2d>& mapped, int pw, int i, int j,
+                                  Eigen::Vector2d& lo, Eigen::Vector2d& hi) const {
+  quadBox(mapped[index(i, j, pw)], mapped[index(i + 1, j, pw)], mapped[index(i, j + 1, pw)],
+          mapped[index(i + 1, j + 1, pw)], lo, hi);
+  return !(hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height);
+}
+
 void InverseCells::buildCoverage(int threads) {
   // The source frame grown by the largest reach, as a lattice of quads kLattice source pixels
   // apart, mapped forward with the Jacobian. The reach follows from the inverse's scale
@@ -422,13 +429,8 @@ void InverseCells::buildCoverage(int threads) {
           unbounded.store(true, std::memory_order_relaxed);
           return;
         }
-        const Eigen::Vector2d& a = mapped[index(i, j, pw)];
-        const Eigen::Vector2d& b = mapped[index(i + 1, j, pw)];
-        const Eigen::Vector2d& c = mapped[index(i, j + 1, pw)];
-        const Eigen::Vector2d& d = mapped[index(i + 1, j + 1, pw)];
         Eigen::Vector2d lo, hi;
-        quadBox(a, b, c, d, lo, hi);
-        if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) continue;
+        if (!latticeQuadBox(mapped, pw, i, j, lo, hi)) continue;
         const int bx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kBlock)));
         const int by0 = std::max(0, static_cast<int>(std::floor(lo.y() / kBlock)));
         const int bx1 = std::min(blocks_w_ - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kBlock)));

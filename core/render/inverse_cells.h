@@ -254,6 +254,10 @@ class InverseCells {
   // by 2 px and a quarter of its size for the edges' curvature.
   static void quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                       const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi);
+  // Lattice quad (i, j)'s box (quadBox) from its mapped corners, `pw` points a row; false
+  // when it misses the output.
+  bool latticeQuadBox(const std::vector<Eigen::Vector2d>& mapped, int pw, int i, int j, Eigen::Vector2d& lo,
+                      Eigen::Vector2d& hi) const;
   void coverQuadFine(int i, int j);
   void markFine(Eigen::Vector2d lo, Eigen::Vector2d hi);
   // Marks the fine blocks within `grow` of the mapped quad q (corners in order around it).

@@ -129,14 +129,8 @@ void InverseCells::coverQuadFine(int i, int j) {
   if (hi_s.x() < -reach_px_ || hi_s.y() < -reach_px_ || lo_s.x() > source_px_.width + reach_px_ ||
       lo_s.y() > source_px_.height + reach_px_)
     return;
-  const int pw = lattice_w_ + 1;
-  const Eigen::Vector2d& a = lattice_mapped_[index(i, j, pw)];
-  const Eigen::Vector2d& b = lattice_mapped_[index(i + 1, j, pw)];
-  const Eigen::Vector2d& c = lattice_mapped_[index(i, j + 1, pw)];
-  const Eigen::Vector2d& d = lattice_mapped_[index(i + 1, j + 1, pw)];
   Eigen::Vector2d lo, hi;
-  quadBox(a, b, c, d, lo, hi);
-  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return;
+  if (!latticeQuadBox(lattice_mapped_, lattice_w_ + 1, i, j, lo, hi)) return;
   const int cx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kCell)));
   const int cy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kCell)));
   const int cx1 =
