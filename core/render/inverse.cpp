@@ -137,18 +137,6 @@ bool NewtonInverse::solveImpl(const Eigen::Vector2d& t, const Eigen::Vector2d& s
   unsigned signs = 0;
   if (!forward_.evaluate(s, f, &j, &signs)) return false;
   Eigen::Vector2d r = f - t;
-  if (accept_step > 0.0 && signs == centre_.denominator_signs) {
-    const double det = j(0, 0) * j(1, 1) - j(0, 1) * j(1, 0);
-    if ((det > 0.0) == centre_.det_positive && det != 0.0) {
-      const Eigen::Vector2d step((j(1, 1) * r.x() - j(0, 1) * r.y()) / det,
-                                 (-j(1, 0) * r.x() + j(0, 0) * r.y()) / det);
-      if (std::abs(step.x()) <= accept_step && std::abs(step.y()) <= accept_step) {
-        out = s - step;
-        *one_step = true;
-        return true;
-      }
-    }
-  }
   double rn = r.norm();
   // Quadratic convergence takes a residual of 1e-3 px to far below this in one more step.
   const double converged = 1e-4 * residual_tolerance_px_;
@@ -159,6 +147,15 @@ bool NewtonInverse::solveImpl(const Eigen::Vector2d& t, const Eigen::Vector2d& s
         -Eigen::Vector2d(j(1, 1) * r.x() - j(0, 1) * r.y(), -j(1, 0) * r.x() + j(0, 0) * r.y()) /
         det;
     if (!step.allFinite()) return false;
+    // acceptOrSolve's check is the first step: taken as the check (coordinates.h) takes it when
+    // it is short enough (a start already converged is taken by the tests below instead).
+    if (it == 0 && accept_step > 0.0 && std::abs(step.x()) <= accept_step &&
+        std::abs(step.y()) <= accept_step && signs == centre_.denominator_signs &&
+        (det > 0.0) == centre_.det_positive) {
+      out = s + step;
+      *one_step = true;
+      return true;
+    }
     // Backtrack until the residual drops: keeps the iterate off the pole curve, where a full
     // step can jump to another branch of the rational map.
     double lambda = 1.0;

@@ -68,7 +68,8 @@ class NewtonInverse {
   // As solve, but the first Newton step from `start` is taken without iterating on when it is
   // at most `accept_step` source pixels on each axis and the start lies on the centre's side of
   // every pole curve and of the fold: the fused kernel's check (coordinates.h). When the step
-  // is longer, the check's evaluation is Newton's first. `one_step` says which happened.
+  // is longer, the check's evaluation is Newton's first. `one_step` says which happened (false
+  // also for a start that already meets the convergence test: it is returned as solve would).
   bool acceptOrSolve(const Eigen::Vector2d& t, const Eigen::Vector2d& start, Eigen::Vector2d& out,
                      int max_iterations, double accept_step, bool& one_step) const;
   // From the forward map linearised at the source centre (the start of last resort).

@@ -259,9 +259,15 @@ class InverseCells {
   bool latticeQuadBox(const std::vector<Eigen::Vector2d>& mapped, int pw, int i, int j, Eigen::Vector2d& lo,
                       Eigen::Vector2d& hi) const;
   void coverQuadFine(int i, int j);
-  void markFine(Eigen::Vector2d lo, Eigen::Vector2d hi);
-  // Marks the fine blocks within `grow` of the mapped quad q (corners in order around it).
+  // Marks the fine blocks of the open cells needing them (Refined::fine) that the output box
+  // lo … hi touches; markFineQuad those within `grow` of the mapped quad q (corners in order
+  // around it), a folded quad's box else. Both mark row by row (markFineRow: blocks a … b of
+  // fine row fy) within fineBlocks' range of the box, false when the box misses the output.
+  void markFine(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi);
   void markFineQuad(const std::array<Eigen::Vector2d, 4>& q, double grow);
+  void markFineRow(int fy, int a, int b);
+  bool fineBlocks(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int& fx0, int& fy0, int& fx1,
+                  int& fy1) const;
   // Writes its certified squares' patches to square_polys_ from `next_poly` on.
   void refineCell(int cx, int cy, Refined& r, std::atomic<int>& next_poly) const;
   bool solveSubNode(int cx, int cy, int i, int j, Refined& r) const;

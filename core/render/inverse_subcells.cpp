@@ -205,19 +205,20 @@ void InverseCells::markFineQuad(const std::array<Eigen::Vector2d, 4>& q, double 
   }
   lo.array() -= grow;
   hi.array() += grow;
-  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return;
+  int fx0, fy0, fx1, fy1;
+  if (!fineBlocks(lo, hi, fx0, fy0, fx1, fy1)) return;
   // Per edge: unit outward normal n and offset c, a point p outside by n·p − c. A block of
   // kFine pixels is marked when, for every edge, its pixel centre nearest that edge's outside
   // lies within `grow` (a bound: the nearest centre may differ from edge to edge). Along a row
   // of blocks (centre y = py) edge k then bounds the centre's x: x ≤ at + slope · py where
-  // its normal points right, x ≥ … where left (a horizontal edge bounds py instead).
+  // its normal points right, x ≥ … where left (a horizontal edge bounds py instead). No edge
+  // has length 0: both its cross products would be 0, which the convexity test refuses.
   double at[4], slope[4];
   bool upper[4];
   double lo_always = -1e300, hi_always = 1e300;  // from horizontal edges: py's own bounds
   for (int k = 0; k < 4; ++k) {
     const Eigen::Vector2d e = q[(k + 1) % 4] - q[k];
     const double len = e.norm();
-    if (!(len > 0.0)) return markFine(lo, hi);
     const double nx = (ccw ? e.y() : -e.y()) / len, ny = (ccw ? -e.x() : e.x()) / len;
     const double c = nx * q[k].x() + ny * q[k].y() + grow +
                      0.5 * (kFine - 1) * (std::abs(nx) + std::abs(ny));
@@ -229,10 +230,6 @@ void InverseCells::markFineQuad(const std::array<Eigen::Vector2d, 4>& q, double 
       else lo_always = std::max(lo_always, c / ny);
     }
   }
-  const int fx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kFine)));
-  const int fy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kFine)));
-  const int fx1 = std::min(cells_w_ * kFines - 1, static_cast<int>(std::floor(hi.x() / kFine)));
-  const int fy1 = std::min(cells_h_ * kFines - 1, static_cast<int>(std::floor(hi.y() / kFine)));
   for (int fy = fy0; fy <= fy1; ++fy) {
     const double py = fy * kFine + 0.5 * kFine;  // the row's blocks' centre
     if (py < lo_always - 1e-9 || py > hi_always + 1e-9) continue;
@@ -247,45 +244,38 @@ void InverseCells::markFineQuad(const std::array<Eigen::Vector2d, 4>& q, double 
     // rounding.
     const double b_lo = std::ceil((px_lo - 1e-9) / kFine - 0.5);
     const double b_hi = std::floor((px_hi + 1e-9) / kFine - 0.5);
-    const int a = b_lo > fx0 ? static_cast<int>(b_lo) : fx0;
-    const int b = b_hi < fx1 ? static_cast<int>(b_hi) : fx1;
-    const int cy = fy / kFines;
-    for (int cx = a / kFines; a <= b && cx <= b / kFines; ++cx) {
-      if (!refined(cx, cy)) continue;
-      Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
-      if (!r.fine) continue;
-      unsigned char* row = r.covered + (fy - cy * kFines) * kFines - cx * kFines;
-      // Bands of lattice rows mark concurrently; every write stores the same 1.
-      for (int fx = std::max(a, cx * kFines); fx <= std::min(b, (cx + 1) * kFines - 1); ++fx)
-        std::atomic_ref<unsigned char>(row[fx]).store(1, std::memory_order_relaxed);
-    }
+    markFineRow(fy, b_lo > fx0 ? static_cast<int>(b_lo) : fx0, b_hi < fx1 ? static_cast<int>(b_hi) : fx1);
   }
 }
 
-void InverseCells::markFine(Eigen::Vector2d lo, Eigen::Vector2d hi) {
-  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return;
-  const int fx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kFine)));
-  const int fy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kFine)));
-  const int fx1 =
-      std::min(cells_w_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kFine)));
-  const int fy1 =
-      std::min(cells_h_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kFine)));
-  // Cell by cell: the lookups once per cell the box reaches, not once per row of it.
-  for (int cy = fy0 / kFines; cy <= fy1 / kFines; ++cy)
-    for (int cx = fx0 / kFines; cx <= fx1 / kFines; ++cx) {
-      if (!refined(cx, cy)) continue;
-      Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
-      if (!r.fine) continue;
-      const int x0 = std::max(fx0, cx * kFines) - cx * kFines;
-      const int x1 = std::min(fx1, (cx + 1) * kFines - 1) - cx * kFines;
-      const int y0 = std::max(fy0, cy * kFines) - cy * kFines;
-      const int y1 = std::min(fy1, (cy + 1) * kFines - 1) - cy * kFines;
-      for (int fy = y0; fy <= y1; ++fy) {
-        // Bands of lattice rows mark concurrently; every write stores the same 1.
-        unsigned char* row = r.covered + fy * kFines;
-        for (int k = x0; k <= x1; ++k) std::atomic_ref<unsigned char>(row[k]).store(1, std::memory_order_relaxed);
-      }
-    }
+bool InverseCells::fineBlocks(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int& fx0, int& fy0,
+                              int& fx1, int& fy1) const {
+  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= target_px_.width || lo.y() >= target_px_.height) return false;
+  // Clamped before the conversion: near a pole a box's far side can pass any int.
+  fx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kFine)));
+  fy0 = std::max(0, static_cast<int>(std::floor(lo.y() / kFine)));
+  fx1 = std::min(cells_w_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kFine)));
+  fy1 = std::min(cells_h_ * kFines - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kFine)));
+  return true;
+}
+
+void InverseCells::markFine(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  int fx0, fy0, fx1, fy1;
+  if (!fineBlocks(lo, hi, fx0, fy0, fx1, fy1)) return;
+  for (int fy = fy0; fy <= fy1; ++fy) markFineRow(fy, fx0, fx1);
+}
+
+void InverseCells::markFineRow(int fy, int a, int b) {
+  const int cy = fy / kFines;
+  for (int cx = a / kFines; a <= b && cx <= b / kFines; ++cx) {
+    if (!refined(cx, cy)) continue;
+    Refined& r = refined_[static_cast<size_t>(refined_index_[index(cx, cy, cells_w_)])];
+    if (!r.fine) continue;
+    unsigned char* row = r.covered + (fy - cy * kFines) * kFines - cx * kFines;
+    // Bands of lattice rows mark concurrently; every write stores the same 1.
+    for (int fx = std::max(a, cx * kFines); fx <= std::min(b, (cx + 1) * kFines - 1); ++fx)
+      std::atomic_ref<unsigned char>(row[fx]).store(1, std::memory_order_relaxed);
+  }
 }
 
 bool InverseCells::solveSubNode(int cx, int cy, int i, int j, Refined& r) const {
