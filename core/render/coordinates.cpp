@@ -2,6 +2,7 @@
 #include "core/render/coordinates.h"
 
 #include "core/model/frames.h"
+#include "core/render/central_inverse.h"
 #include "core/render/inverse_cells.h"
 #include "core/render/inverse_seed.h"
 #include "core/util/cpu_features.h"
@@ -498,6 +499,12 @@ class RationalKernel final : public CoordinateKernel {
     // 0 turns certification off: every pixel takes the per-pixel path (tests compare).
     co.certify_tolerance_px = options.certify_tolerance_px > 0.0 ? options.certify_tolerance_px : -1.0;
     co.threads = threads;
+    // A central map's open cells take its closed-form inverse per pixel (central_inverse.h),
+    // which costs less than refining them would: no quadtree, no per-pixel Newton.
+    if (options.central_inverse)
+      central_ = CentralInverse::detect(newton_.forward(), source_px, newton_.centre());
+    if (central_) co.subdivide = false;
+    central_simd_ = scalar_only_ ? 0 : options.allow_avx512 ? 2 : 1;
     cells_.emplace(newton_, seed_ ? &*seed_ : nullptr, source_px, target_px, co);
   }
 
@@ -536,8 +543,12 @@ class RationalKernel final : public CoordinateKernel {
       const std::uint64_t rest = (p ? ~std::uint64_t{patched} : std::uint64_t{patched}) >> k0;
       const int k1 = std::min(units, k0 + (rest ? __builtin_ctzll(rest) : 64));
       const int a = k0 * kSub, b = std::min(n, k1 * kSub);
-      newton += p ? patchedRun(y, x0 + a, b - a, sx + a, sy + a, valid + a, state)
-                  : mixedSpan(y, x0 + a, b - a, sx + a, sy + a, valid + a, state);
+      if (p)
+        newton += patchedRun(y, x0 + a, b - a, sx + a, sy + a, valid + a, state);
+      else if (central_)
+        centralRun(y, x0 + a, b - a, sx + a, sy + a, valid + a, state);
+      else
+        newton += mixedSpan(y, x0 + a, b - a, sx + a, sy + a, valid + a, state);
       k0 = k1;
     }
     return newton;
@@ -697,6 +708,15 @@ class RationalKernel final : public CoordinateKernel {
     if (cells_simd_ > 0) return polySquareAvx2(*q.poly, v, scale, j0, count, sx, sy);
 #endif
     polySquareScalar(*q.poly, v, scale, j0, count, sx, sy);
+  }
+
+  // A run span() found unpatched, of a central map: its closed-form inverse per pixel. The row
+  // state, which only the per-pixel path's starts read, holds these positions as if solved.
+  void centralRun(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
+                  RowState& state) const {
+    central_->span(y, x0, n, sx, sy, valid, central_simd_);
+    state.certified_end = 0;
+    state.run = 0;
   }
 
   // The per-pixel path on a run span() found unpatched: open subcells of refined cells and
@@ -916,6 +936,8 @@ class RationalKernel final : public CoordinateKernel {
   bool scalar_only_;
   // The certified cells' clone: 0 scalar, 1 AVX2, 2 AVX-512 (CoordinateOptions::allow_avx512).
   int cells_simd_ = 0;
+  std::optional<CentralInverse> central_;
+  int central_simd_ = 0;  // CentralInverse::span's lanes
   std::optional<InverseCells> cells_;  // built last: it refers to newton_ and seed_
 };
 

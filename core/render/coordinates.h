@@ -66,6 +66,10 @@ struct CoordinateOptions {
   // Let certified rational cells and the warp's samplers take the AVX-512 lanes where the CPU
   // has them (false: AVX2; both give the scalar code's positions and pixels bit for bit).
   bool allow_avx512 = true;
+  // Central maps (radial lenses, central_inverse.h) take their closed-form inverse where the
+  // rational kernel's cells do not certify; false sends them down the general path (tests
+  // compare the two).
+  bool central_inverse = true;
 };
 
 // What the rational kernel carries along a row from span to span: the last solutions, whose
