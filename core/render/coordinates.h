@@ -25,7 +25,10 @@
 //   Newton of inverse.h. Certified cells (certify_tolerance_px, inverse_cells.h) skip the check:
 //   their float patch (CellPoly, an offset from an anchor) is evaluated by fused multiply-adds,
 //   sixteen lanes under AVX-512, eight under AVX2, bit-identical to the scalar code. The SIMD
-//   lanes are tested against the scalar code (≤ 1e-3 px) and the exact inverse.
+//   lanes are tested against the scalar code (≤ 1e-3 px) and the exact inverse;
+// - rational and central (radial lenses, central_inverse.h): the certified cells as above, and
+//   where a cell fails (near a fold or pole) the closed-form inverse per pixel, a root of a
+//   quadratic, instead of the quadtree and Newton.
 #pragma once
 
 #include "core/model/camera.h"

@@ -57,6 +57,9 @@
 // square keeps a float patch as a cell does (made when it certifies) and only open subcells
 // take the per-pixel path: 77 → 59 ms on another AVX-512 machine, the quadtree's squares then
 // rendering about as fast as whole cells.
+// A central map (a radial lens, central_inverse.h) builds no quadtree (subdivide = false): the
+// kernel gives its open cells' pixels the closed-form inverse, which costs the strong barrel
+// less than refining them did (its 2-thread render 49 → 30–33 ms on the AVX-512 machine).
 // Open cells with a node without a preimage (the edge of what the camera sees crosses them)
 // get their own coverage at kFine pixels: the lattice quads whose boxes reach them, split into
 // quads of 16 source pixels, mark the blocks near their images (the corners' polygon grown by
