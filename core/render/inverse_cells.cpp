@@ -400,7 +400,9 @@ void InverseCells::buildCoverage(int threads) {
         unsigned signs = 0;
         const bool good = newton_.forward().evaluate(s, f, &jac, &signs) && signs == centre_signs;
         mapped[index(i, j, pw)] = f;
-        ok[index(i, j, pw)] = good ? 1 : 0;
+        // 1: the centre's side of the pole curves and its fold; 2: beyond a fold.
+        const bool centre_fold = (jac(0, 0) * jac(1, 1) - jac(0, 1) * jac(1, 0) > 0.0) == newton_.centre().det_positive;
+        ok[index(i, j, pw)] = good ? (centre_fold ? 1 : 2) : 0;
         if (good && s.x() > -near && s.y() > -near && s.x() < source_px_.width + near &&
             s.y() < source_px_.height + near) {
           const double det = jac.determinant();
@@ -411,6 +413,7 @@ void InverseCells::buildCoverage(int threads) {
   });
   const double scale = std::min(kMaxScale, *std::max_element(band_scale.begin(), band_scale.end()));
   reach_px_ = options_.reach_px + 4.0 * scale;
+  if (frameInsideImage(mapped, ok, pw, qw, qh, margin)) return;  // every block covered: no coverage needed
   std::vector<unsigned char> covered(static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_), 0);
   // The quads in bands of rows on every thread (one thread took ~1.5 ms, a sixth of a mild
   // lens's whole build on two).
@@ -450,6 +453,35 @@ void InverseCells::buildCoverage(int threads) {
   lattice_w_ = qw;
   lattice_h_ = qh;
   lattice_mapped_ = std::move(mapped);
+}
+
+bool InverseCells::frameInsideImage(const std::vector<Eigen::Vector2d>& mapped, const std::vector<unsigned char>& ok,
+                                    int pw, int qw, int qh, double margin) const {
+  // The quads within the reach of the frame (buildCoverage's test) form a rectangle of lattice
+  // indices, i0 … i1 by j0 … j1.
+  const auto reaches = [&](int k, double size) {
+    const double lo = -margin + k * kLattice, hi = lo + kLattice;
+    return !(hi < -reach_px_ || lo > size + reach_px_);
+  };
+  int i0 = 0, i1 = qw - 1, j0 = 0, j1 = qh - 1;
+  while (i0 <= i1 && !reaches(i0, source_px_.width)) ++i0;
+  while (i1 >= i0 && !reaches(i1, source_px_.width)) --i1;
+  while (j0 <= j1 && !reaches(j0, source_px_.height)) ++j0;
+  while (j1 >= j0 && !reaches(j1, source_px_.height)) --j1;
+  if (i0 > i1 || j0 > j1) return false;
+  const Eigen::Vector2d& centre = newton_.centre().target;
+  if (!(centre.x() >= 0.0 && centre.y() >= 0.0 && centre.x() < target_px_.width && centre.y() < target_px_.height))
+    return false;
+  for (int j = j0; j <= j1 + 1; ++j)
+    for (int i = i0; i <= i1 + 1; ++i)
+      if (ok[index(i, j, pw)] != 1) return false;  // a pole curve or a fold within reach
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      if (j != j0 && j != j1 && i != i0 && i != i1) continue;  // the ring of quads only
+      Eigen::Vector2d lo, hi;
+      if (latticeQuadBox(mapped, pw, i, j, lo, hi)) return false;  // the boundary's image meets the output
+    }
+  return true;
 }
 
 bool InverseCells::cellCovered(int cx, int cy) const {

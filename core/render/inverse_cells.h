@@ -31,7 +31,10 @@
 //   bounding box, grown by a quarter of its size for the edges' curvature) is marked covered.
 //   Output pixels in blocks no quad touches have no preimage within reach: transparent without
 //   a Newton solve. A quad with a corner beyond a pole curve has an unbounded image: then no
-//   coverage is claimed at all and every uncertified pixel runs the per-pixel path.
+//   coverage is claimed at all and every uncertified pixel runs the per-pixel path. Where the
+//   frame lies wholly inside the lattice's image (a lens whose corners all see the photo:
+//   frameInsideImage), every block would be marked, and none is (0.7 ms of a mild lens's
+//   build at 2 threads).
 // Folds follow inverse.h's rule (a preimage must lie in the source centre's fold); the patch
 // interpolates only between nodes on that side, and a cell the fold crosses fails to certify.
 //
@@ -249,6 +252,14 @@ class InverseCells {
   bool pointCertifies(const Eigen::Vector2d& p, const Eigen::Vector2d& t, double tol) const;
   bool patchBeyondReach(const Corners& n) const;
   void buildCoverage(int threads);
+  // Whether the output frame lies inside the image of the source frame grown by the reach, so
+  // that every block is covered and marking them can be skipped: the centre's image is in the
+  // frame, the lattice within reach has no point beyond a pole curve or the fold, and its ring
+  // of boundary quads maps wholly outside the frame. Then the frame meets no image of the
+  // boundary, and a map without a fold covers all of it (its degree there is that at the
+  // centre's image, at least one). `ok` per lattice point: 1 on the centre's side of both.
+  bool frameInsideImage(const std::vector<Eigen::Vector2d>& mapped, const std::vector<unsigned char>& ok, int pw,
+                        int qw, int qh, double margin) const;
   bool cellCovered(int cx, int cy) const;
   static constexpr double kLattice = 32.0;  // source pixels between coverage lattice points
   void refineOpenCells(int threads);

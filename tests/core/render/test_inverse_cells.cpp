@@ -147,6 +147,27 @@ class TestInverseCells : public QObject {
     QVERIFY2(worst <= 1.0 / 1024.0, qPrintable(QString("worst %1 px").arg(worst)));
   }
 
+  // Coverage is skipped only where it would mark every block: a pin-cushion's frame lies inside
+  // the image of the source (every cell certifies, nothing is empty), a mild barrel's corners
+  // see beyond the photo (coverage is built and empties them), and so does the strong barrel's
+  // fold.
+  void coverageSkippedOnlyWhereFrameIsCovered() {
+    const FrameSize size{3000, 2000};
+    const struct {
+      double k;
+      bool covered;
+    } cases[] = {{0.15, true}, {-0.15, false}, {kK, false}};
+    for (const auto& c : cases) {
+      const NewtonInverse newton(RationalMap(radialLensCamera(c.k, size), size, size), size, 1e-3);
+      const InverseCells cells(newton, nullptr, size, size, InverseCellsOptions{});
+      qInfo("k %.2f: coverage %s, certified %.4f, empty %.4f", c.k, cells.coverageKnown() ? "built" : "skipped",
+            cells.certifiedShare(), cells.emptyShare());
+      QCOMPARE(cells.coverageKnown(), !c.covered);
+      if (c.covered) QCOMPARE(cells.certifiedShare(), 1.0);
+      else QVERIFY(cells.emptyShare() > 0.0);
+    }
+  }
+
   // Pixels beyond the fold circle in open subcells: the per-pixel path's coverage test must
   // turn them away, or every Newton start fails on each in turn. Coverage is a bound (it may
   // not miss a pixel with a preimage: the test above), so a thin band just beyond the circle
