@@ -160,7 +160,11 @@ void InverseCells::crossDerivative(Node& n, double size) const {
   // patch's). Exact to that where a neighbour difference would be first order at the frame's
   // edge.
   constexpr double h = 0.25;
-  const Eigen::Matrix2d a = (Eigen::Matrix2d() << n.su, n.sv).finished() / size;
+  // Column by column: the comma initialiser of two vectors went through a dynamic-size block
+  // assignment, not inlined (2 % of a strong lens's cell build).
+  Eigen::Matrix2d a;
+  a.col(0) = n.su / size;
+  a.col(1) = n.sv / size;
   Eigen::Matrix2d dj;
   if (!newton_.forward().jacobianDerivative(n.s, a.col(1), dj)) {
     const Eigen::Vector2d dir = h * a.col(1);
