@@ -9,6 +9,8 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <type_traits>
 
 namespace artcam {
 namespace {
@@ -39,7 +41,11 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
   nodes_h_ = cells_h_ + 1;
   blocks_w_ = std::max(1, (target_px.width + kBlock - 1) / kBlock);
   blocks_h_ = std::max(1, (target_px.height + kBlock - 1) / kBlock);
-  nodes_.assign(static_cast<size_t>(nodes_w_) * static_cast<size_t>(nodes_h_), Node{});
+  node_count_ = static_cast<size_t>(nodes_w_) * static_cast<size_t>(nodes_h_);
+  static_assert(std::is_trivially_destructible_v<Node> && alignof(Node) <= 64);
+  node_storage_ = takeScratch(sizeof(Node) * node_count_);
+  nodes_ = static_cast<Node*>(node_storage_.data());
+  std::uninitialized_fill_n(nodes_, node_count_, Node{});
   // Coverage first: the nodes of cells no part of the source frame reaches are never solved
   // (beyond a fold, a node without a preimage costs every Newton start in turn).
   buildCoverage(options.threads);
@@ -47,11 +53,12 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
   crossDerivatives();
 
   kinds_.assign(static_cast<size_t>(cells_w_) * static_cast<size_t>(cells_h_), kOpen);
-  polys_.reset(new CellPoly[kinds_.size()]);
+  poly_storage_ = takeScratch(sizeof(CellPoly) * kinds_.size());
+  polys_ = static_cast<CellPoly*>(poly_storage_.data());
   // Neighbouring cells share an edge and, along it, their patches (the edge's two nodes alone
   // define it): each edge midpoint is checked once here, not once by each cell.
   const double tol = options_.certify_tolerance_px;
-  std::vector<unsigned char> across(nodes_.size(), 0), down(nodes_.size(), 0);
+  std::vector<unsigned char> across(node_count_, 0), down(node_count_, 0);
   ParallelOptions po;
   po.threads = options.threads;
   po.band_rows = 2;

@@ -75,6 +75,7 @@
 
 #include "core/model/frames.h"
 #include "core/render/inverse.h"
+#include "core/util/scratch.h"
 
 #include <Eigen/Core>
 
@@ -292,10 +293,13 @@ class InverseCells {
   InverseCellsOptions options_;
   double reach_px_ = 0.0;
   int nodes_w_ = 0, nodes_h_ = 0, cells_w_ = 0, cells_h_ = 0, blocks_w_ = 0, blocks_h_ = 0;
-  std::vector<Node> nodes_;
+  // nodes_w_ × nodes_h_ nodes and cells_w_ × cells_h_ float patches (the latter written where
+  // kinds_ is kCertified only, so never filled first), in scratch blocks as the refined cells.
+  ScratchBlock node_storage_, poly_storage_;
+  Node* nodes_ = nullptr;
+  size_t node_count_ = 0;
   std::vector<Kind> kinds_;
-  // cells_w_ × cells_h_, written where kinds_ is kCertified only (so never zero-filled first).
-  std::unique_ptr<CellPoly[]> polys_;
+  CellPoly* polys_ = nullptr;
   bool coverage_known_ = false;
   std::vector<unsigned char> covered_;  // blocks_w_ × blocks_h_
   // The coverage lattice mapped forward (buildCoverage), for the open cells' finer coverage.
@@ -304,15 +308,15 @@ class InverseCells {
   std::vector<Eigen::Vector2d> lattice_mapped_;
   std::vector<int> refined_index_;  // per cell: into refined_, or −1
   // refined_count_ cells in refined_index_'s order, in storage the cells construct themselves
-  // in parallel (Refined is trivially destructible: freeing the storage ends them).
-  struct FreeStorage {
-    void operator()(Refined* p) const { ::operator delete(p); }
-  };
-  std::unique_ptr<Refined[], FreeStorage> refined_;
+  // in parallel (Refined is trivially destructible: releasing the storage ends them). Scratch
+  // blocks (core/util/scratch.h): megabytes a strong lens's every render would fault in afresh.
+  ScratchBlock refined_storage_;
+  Refined* refined_ = nullptr;
   int refined_count_ = 0;
   // The certified squares' float patches, each refined cell's together (Refined::poly_base):
   // room for every subcell's, of which only the pages written are ever touched.
-  std::unique_ptr<CellPoly[]> square_polys_;
+  ScratchBlock square_storage_;
+  CellPoly* square_polys_ = nullptr;
 };
 
 }  // namespace artcam

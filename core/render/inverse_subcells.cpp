@@ -67,9 +67,9 @@ void InverseCells::refineOpenCells(int threads) {
   }
   // Left uninitialised here and set up by the cells in parallel: a strong barrel refines a
   // third of its cells, ~13 MB that one thread zeroing and first touching cost a millisecond.
-  static_assert(std::is_trivially_destructible_v<Refined> &&
-                alignof(Refined) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);  // plain operator new suffices
-  refined_.reset(static_cast<Refined*>(::operator new(sizeof(Refined) * static_cast<size_t>(count))));
+  static_assert(std::is_trivially_destructible_v<Refined> && alignof(Refined) <= 64);  // a scratch block's
+  refined_storage_ = takeScratch(sizeof(Refined) * static_cast<size_t>(count));
+  refined_ = static_cast<Refined*>(refined_storage_.data());
   refined_count_ = count;
   std::vector<std::array<int, 2>> cells;
   cells.reserve(static_cast<size_t>(count));
@@ -93,7 +93,9 @@ void InverseCells::refineOpenCells(int threads) {
   });
   if (any_fine.load()) coverFine(threads);
   // Uninitialised: each cell writes its own squares' patches there.
-  square_polys_.reset(new CellPoly[static_cast<size_t>(count) * kSubs * kSubs]);
+  static_assert(std::is_trivially_default_constructible_v<CellPoly> && alignof(CellPoly) <= 64);
+  square_storage_ = takeScratch(sizeof(CellPoly) * static_cast<size_t>(count) * kSubs * kSubs);
+  square_polys_ = static_cast<CellPoly*>(square_storage_.data());
   std::atomic<int> next_poly{0};
   po.band_rows = 1;
   parallelForRows(static_cast<int>(cells.size()), po, [&](int k0, int k1) {
