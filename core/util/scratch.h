@@ -46,7 +46,7 @@ ScratchBlock takeScratch(std::size_t bytes);
 
 // What the pool keeps (tests).
 constexpr int kScratchKeepBlocks = 4;
-constexpr std::size_t kScratchKeepBytes = std::size_t{128} << 20;
+constexpr std::size_t kScratchKeepBytes = std::size_t{64} << 20;
 std::size_t scratchKeptBytes();
 
 }  // namespace artcam
