@@ -20,8 +20,11 @@
 // on the source centre's side of the pole curve and in its fold. Both signs come from the
 // root without evaluating the map: at a root, the denominator is μ (l · s̃) and the Jacobian
 // determinant is det H₂ · P′(μ) / (μ² (l · s̃)) (the matrix determinant lemma on
-// J = w H₂ + (H s̃) ∇wᵀ, w = (l · s̃) / (s̃ᵀ Q s̃)). Where both roots pass (a map whose centre
-// c_s is not the frame's, both inside one fold), the one nearer c_s is taken.
+// J = w H₂ + (H s̃) ∇wᵀ, w = (l · s̃) / (s̃ᵀ Q s̃)). The root −2C / (p₁ + sgn(p₁) √D), the one
+// that stays finite as the output nears c_t (the radial lenses' every preimage), is tried
+// first; where it fails the tests the other is. Where both would pass (a map whose centre c_s
+// is not the frame's, both on the centre's side), the first is taken: either is a preimage
+// by the rule, and Newton too would return whichever its start led to.
 //
 // Exactness: the roots come from the stable quadratic formula in double, so positions are
 // exact to rounding (about 1e-9 px of a 6000 px frame) except within ~1e-8 of the fold, where
