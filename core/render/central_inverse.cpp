@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -192,9 +193,9 @@ constexpr double kMaxMu = 1e15;
 
 bool signBit(double v) { return std::signbit(v); }
 
-// Output point (tx, the row's ty): the near root −2C / (p₁ + sgn(p₁) √D) (the stable form, finite where
-// p₂ → 0 near c_t), and where it fails the tests the far one. The vector code computes the
-// near root by the same operations in the same order (no FMA), so both give the same bits.
+// Output point (tx, the row's ty): the near root −2C / (p₁ + sgn(p₁) √D) (the stable form,
+// finite where p₂ → 0 near c_t), and where it fails the tests the far one. The vector code
+// computes the near root by the same operations in the same order (no FMA): the same bits.
 bool solvePixel(const RowPolys& r, double tx, double& u, double& v) {
   const double dx = tx - r.ctx;
   const double p1 = r.p1_0 + r.p1_1 * dx;
