@@ -76,6 +76,30 @@ bool isIdentityOutput(const Stage& stage, const BlockLayout& layout, int block, 
 
 }  // namespace
 
+std::vector<Eigen::VectorXd> realLineFactors(const Eigen::MatrixXd& q, double zero) {
+  // q = λ₁ e₁e₁ᵀ + λ₂ e₂e₂ᵀ (rank ≤ 2): with a = √|λ₁| e₁, b = √|λ₂| e₂ and opposite signs,
+  // ±(aaᵀ − bbᵀ) = ±sym((a + b)(a − b)ᵀ); rank 1 is the line e₁ twice.
+  const int k = static_cast<int>(q.rows());
+  if (k < 2) return {};
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(q);
+  std::vector<int> order(k);
+  for (int i = 0; i < k; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::abs(eig.eigenvalues()[a]) > std::abs(eig.eigenvalues()[b]);
+  });
+  const double l1 = eig.eigenvalues()[order[0]];
+  if (std::abs(l1) <= zero) return {};
+  for (int i = 2; i < k; ++i)
+    if (std::abs(eig.eigenvalues()[order[i]]) > zero) return {};  // rank > 2
+  const Eigen::VectorXd e1 = eig.eigenvectors().col(order[0]);
+  const double l2 = eig.eigenvalues()[order[1]];
+  if (std::abs(l2) <= zero) return {e1};
+  if (l1 * l2 > 0) return {};  // a pair of complex lines: no real factor
+  const Eigen::VectorXd a = std::sqrt(std::abs(l1)) * e1;
+  const Eigen::VectorXd b = std::sqrt(std::abs(l2)) * eig.eigenvectors().col(order[1]);
+  return {(a + b).normalized(), (a - b).normalized()};
+}
+
 std::optional<Eigen::MatrixXd> factorHomography(const std::vector<Eigen::MatrixXd>& q,
                                                 double relative_tolerance) {
   const int k = static_cast<int>(q.size());
@@ -85,30 +109,7 @@ std::optional<Eigen::MatrixXd> factorHomography(const std::vector<Eigen::MatrixX
   const double tol = relative_tolerance * scale;
 
   // Candidate factors l come from the denominator, which must be a product of real lines.
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(q.back());
-  std::vector<int> order(k);
-  for (int i = 0; i < k; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return std::abs(eig.eigenvalues()[a]) > std::abs(eig.eigenvalues()[b]);
-  });
-  const double l1 = eig.eigenvalues()[order[0]];
-  if (std::abs(l1) <= tol) return std::nullopt;
-  for (int i = 2; i < k; ++i)
-    if (std::abs(eig.eigenvalues()[order[i]]) > tol) return std::nullopt;  // rank > 2
-  std::vector<Eigen::VectorXd> candidates;
-  const Eigen::VectorXd e1 = eig.eigenvectors().col(order[0]);
-  const double l2 = eig.eigenvalues()[order[1]];
-  if (std::abs(l2) <= tol) {
-    candidates.push_back(e1);
-  } else {
-    if (l1 * l2 > 0) return std::nullopt;  // a pair of complex lines: no real factor
-    const Eigen::VectorXd a = std::sqrt(std::abs(l1)) * e1;
-    const Eigen::VectorXd b = std::sqrt(std::abs(l2)) * eig.eigenvectors().col(order[1]);
-    candidates.push_back((a + b).normalized());
-    candidates.push_back((a - b).normalized());
-  }
-
-  for (const Eigen::VectorXd& l : candidates) {
+  for (const Eigen::VectorXd& l : realLineFactors(q.back(), tol)) {
     Eigen::MatrixXd h(k, k);
     bool ok = true;
     for (int i = 0; i < k && ok; ++i) {

@@ -46,6 +46,11 @@ struct CameraStructure {
 
 CameraStructure analyseStructure(const Camera& camera, const StructureOptions& options = {});
 
+// The real lines l whose products make the symmetric form q, q = sym(l hᵀ) for some h: one
+// (rank 1), two (rank 2 with eigenvalues of opposite signs), else none. Eigenvalues within
+// `zero` of 0 count as 0.
+std::vector<Eigen::VectorXd> realLineFactors(const Eigen::MatrixXd& q, double zero);
+
 // If the k tensors (each k×k, symmetric) share a common real linear factor l, returns the k×k
 // matrix H (column form, rows h_iᵀ) with Q_i = sym(l h_iᵀ) up to one common scale; else empty.
 std::optional<Eigen::MatrixXd> factorHomography(const std::vector<Eigen::MatrixXd>& q,

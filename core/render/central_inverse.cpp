@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/render/central_inverse.h"
 
+#include "core/model/structure.h"
 #include "core/util/cpu_features.h"
 
 #include <Eigen/Eigenvalues>
@@ -81,22 +82,9 @@ std::optional<CentralInverse> CentralInverse::detect(const RationalMap& forward,
     if (std::abs(beta_r) < kRelativeTolerance || std::abs(alpha.imag()) > kRelativeTolerance * std::abs(beta_r))
       continue;
     const Eigen::Matrix3d m = u[0] - (alpha.real() / beta_r) * u[2];
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(m);
-    std::array<int, 3> order = {0, 1, 2};
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return std::abs(eig.eigenvalues()(a)) > std::abs(eig.eigenvalues()(b));
-    });
-    const double l1 = eig.eigenvalues()(order[0]), l2 = eig.eigenvalues()(order[1]);
-    if (std::abs(eig.eigenvalues()(order[2])) > kRelativeTolerance * std::abs(l1)) continue;
-    std::vector<Eigen::Vector3d> lines;
-    const Eigen::Vector3d e1 = eig.eigenvectors().col(order[0]), e2 = eig.eigenvectors().col(order[1]);
-    if (std::abs(l2) <= kRelativeTolerance * std::abs(l1)) {
-      lines.push_back(e1);
-    } else if (l1 * l2 < 0.0) {
-      lines.push_back((std::sqrt(std::abs(l1)) * e1 + std::sqrt(std::abs(l2)) * e2).normalized());
-      lines.push_back((std::sqrt(std::abs(l1)) * e1 - std::sqrt(std::abs(l2)) * e2).normalized());
-    }
-    for (const Eigen::Vector3d& l : lines) {
+    // Its lines (structure.h, as a homography's denominator's), to the forms' unit scale.
+    const std::vector<Eigen::VectorXd> lines = realLineFactors(m, kRelativeTolerance);
+    for (const Eigen::Vector3d l : lines) {
       Eigen::Vector3d h0, h1;
       double c0 = 0.0, c1 = 0.0;
       if (fitFactor(u[0], l, u[2], h0, c0) > kRelativeTolerance ||
@@ -241,8 +229,9 @@ constexpr std::uint32_t kValidBytes[16] = {
     0x01010101u, 0x01010100u, 0x01010001u, 0x01010000u, 0x01000101u, 0x01000100u, 0x01000001u, 0x01000000u,
     0x00010101u, 0x00010100u, 0x00010001u, 0x00010000u, 0x00000101u, 0x00000100u, 0x00000001u, 0x00000000u};
 
-// solvePixel's near root in four lanes; a group with a lane that fails it (beyond a fold or a
-// pole, or where the far root may be the preimage) is redone by solvePixel.
+// solvePixel's near root in four lanes. A lane with no root (D < 0) is written empty; a group
+// with a lane whose near root fails the tests where D ≥ 0 (the far root may be its preimage)
+// is redone by solvePixel.
 __attribute__((target("avx2"))) void spanAvx2(const RowPolys& r, int x0, int n, float* sx, float* sy,
                                               unsigned char* valid) {
   const __m256d zero = _mm256_setzero_pd(), two = _mm256_set1_pd(2.0), sign = _mm256_set1_pd(-0.0);

@@ -711,7 +711,8 @@ class RationalKernel final : public CoordinateKernel {
   }
 
   // A run span() found unpatched, of a central map: its closed-form inverse per pixel. The row
-  // state, which only the per-pixel path's starts read, holds these positions as if solved.
+  // state's solutions feed only the per-pixel path's starts, which a central map never takes:
+  // it is left as after a run with no solved pixel.
   void centralRun(int y, int x0, int n, float* sx, float* sy, unsigned char* valid,
                   RowState& state) const {
     central_->span(y, x0, n, sx, sy, valid, central_simd_);

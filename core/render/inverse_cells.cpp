@@ -412,11 +412,10 @@ void InverseCells::buildCoverage(int threads) {
         const bool good = newton_.forward().evaluate(s, f, &jac, &signs) && signs == centre_signs;
         mapped[index(i, j, pw)] = f;
         // 1: the centre's side of the pole curves and its fold; 2: beyond a fold.
-        const bool centre_fold = (jac(0, 0) * jac(1, 1) - jac(0, 1) * jac(1, 0) > 0.0) == newton_.centre().det_positive;
-        ok[index(i, j, pw)] = good ? (centre_fold ? 1 : 2) : 0;
+        const double det = jac.determinant();
+        ok[index(i, j, pw)] = good ? ((det > 0.0) == newton_.centre().det_positive ? 1 : 2) : 0;
         if (good && s.x() > -near && s.y() > -near && s.x() < source_px_.width + near &&
             s.y() < source_px_.height + near) {
-          const double det = jac.determinant();
           const double scale = std::abs(det) > 0.0 ? (jac.inverse()).cwiseAbs().maxCoeff() : kMaxScale;
           band_scale[static_cast<size_t>(j)] = std::max(band_scale[static_cast<size_t>(j)], std::isfinite(scale) ? scale : kMaxScale);
         }
@@ -433,10 +432,7 @@ void InverseCells::buildCoverage(int threads) {
     for (int j = j0; j < j1 && !unbounded.load(std::memory_order_relaxed); ++j)
       for (int i = 0; i < qw; ++i) {
         // Only quads within the reach of the frame.
-        const Eigen::Vector2d lo_s = at(i, j), hi_s = at(i + 1, j + 1);
-        if (hi_s.x() < -reach_px_ || hi_s.y() < -reach_px_ || lo_s.x() > source_px_.width + reach_px_ ||
-            lo_s.y() > source_px_.height + reach_px_)
-          continue;
+        if (!latticeReaches(i, margin, source_px_.width) || !latticeReaches(j, margin, source_px_.height)) continue;
         // A corner beyond a pole curve: the quad's image is unbounded, claim nothing.
         if (!ok[index(i, j, pw)] || !ok[index(i + 1, j, pw)] || !ok[index(i, j + 1, pw)] ||
             !ok[index(i + 1, j + 1, pw)]) {
@@ -466,19 +462,20 @@ void InverseCells::buildCoverage(int threads) {
   lattice_mapped_ = std::move(mapped);
 }
 
+bool InverseCells::latticeReaches(int k, double margin, double size) const {
+  const double lo = -margin + k * kLattice, hi = lo + kLattice;
+  return !(hi < -reach_px_ || lo > size + reach_px_);
+}
+
 bool InverseCells::frameInsideImage(const std::vector<Eigen::Vector2d>& mapped, const std::vector<unsigned char>& ok,
                                     int pw, int qw, int qh, double margin) const {
-  // The quads within the reach of the frame (buildCoverage's test) form a rectangle of lattice
-  // indices, i0 … i1 by j0 … j1.
-  const auto reaches = [&](int k, double size) {
-    const double lo = -margin + k * kLattice, hi = lo + kLattice;
-    return !(hi < -reach_px_ || lo > size + reach_px_);
-  };
+  // The quads within the reach of the frame form a rectangle of lattice indices, i0 … i1 by
+  // j0 … j1.
   int i0 = 0, i1 = qw - 1, j0 = 0, j1 = qh - 1;
-  while (i0 <= i1 && !reaches(i0, source_px_.width)) ++i0;
-  while (i1 >= i0 && !reaches(i1, source_px_.width)) --i1;
-  while (j0 <= j1 && !reaches(j0, source_px_.height)) ++j0;
-  while (j1 >= j0 && !reaches(j1, source_px_.height)) --j1;
+  while (i0 <= i1 && !latticeReaches(i0, margin, source_px_.width)) ++i0;
+  while (i1 >= i0 && !latticeReaches(i1, margin, source_px_.width)) --i1;
+  while (j0 <= j1 && !latticeReaches(j0, margin, source_px_.height)) ++j0;
+  while (j1 >= j0 && !latticeReaches(j1, margin, source_px_.height)) --j1;
   if (i0 > i1 || j0 > j1) return false;
   const Eigen::Vector2d& centre = newton_.centre().target;
   if (!(centre.x() >= 0.0 && centre.y() >= 0.0 && centre.x() < target_px_.width && centre.y() < target_px_.height))

@@ -269,6 +269,10 @@ class InverseCells {
   // by 2 px and a quarter of its size for the edges' curvature.
   static void quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                       const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi);
+  // Whether the coverage lattice's interval k along an axis (the lattice starting `margin`
+  // before a frame side `size` pixels long) lies within the reach of the frame: a quad (i, j)
+  // is drawn when both of its intervals are.
+  bool latticeReaches(int k, double margin, double size) const;
   // Lattice quad (i, j)'s box (quadBox) from its mapped corners, `pw` points a row; false
   // when it misses the output.
   bool latticeQuadBox(const std::vector<Eigen::Vector2d>& mapped, int pw, int i, int j, Eigen::Vector2d& lo,

@@ -126,10 +126,7 @@ void InverseCells::coverFine(int threads) {
 }
 
 void InverseCells::coverQuadFine(int i, int j) {
-  const Eigen::Vector2d lo_s(-lattice_margin_ + i * kLattice, -lattice_margin_ + j * kLattice);
-  const Eigen::Vector2d hi_s = lo_s + Eigen::Vector2d::Constant(kLattice);
-  if (hi_s.x() < -reach_px_ || hi_s.y() < -reach_px_ || lo_s.x() > source_px_.width + reach_px_ ||
-      lo_s.y() > source_px_.height + reach_px_)
+  if (!latticeReaches(i, lattice_margin_, source_px_.width) || !latticeReaches(j, lattice_margin_, source_px_.height))
     return;
   Eigen::Vector2d lo, hi;
   if (!latticeQuadBox(lattice_mapped_, lattice_w_ + 1, i, j, lo, hi)) return;
@@ -145,6 +142,7 @@ void InverseCells::coverQuadFine(int i, int j) {
       touches = refined(cx, cy) && refinedAt(cx, cy).fine;
   if (!touches) return;
   const unsigned centre_signs = newton_.centre().denominator_signs;
+  const Eigen::Vector2d lo_s(-lattice_margin_ + i * kLattice, -lattice_margin_ + j * kLattice);
   Eigen::Vector2d fine[(kSplit + 1) * (kSplit + 1)];
   for (int v = 0; v <= kSplit; ++v)
     for (int u = 0; u <= kSplit; ++u) {
