@@ -2,6 +2,7 @@
 #include "core/render/central_inverse.h"
 
 #include "core/model/structure.h"
+#include "core/render/central_lanes.h"
 #include "core/util/cpu_features.h"
 
 #include <Eigen/Eigenvalues>
@@ -75,8 +76,7 @@ std::optional<CentralInverse> CentralInverse::detect(const RationalMap& forward,
   // c_t's first coordinate makes u₀ − c u₂ a product of two lines: a real root of
   // det(u₀ − c u₂) = 0, a generalised eigenvalue.
   const Eigen::GeneralizedEigenSolver<Eigen::Matrix3d> pencil(u[0], u[2], false);
-  if (pencil.info() != Eigen::Success) return std::nullopt;
-  for (int r = 0; r < 3; ++r) {
+  for (int r = 0; r < 3 && pencil.info() == Eigen::Success; ++r) {
     const std::complex<double> alpha = pencil.alphas()(r);
     const double beta_r = pencil.betas()(r);
     if (std::abs(beta_r) < kRelativeTolerance || std::abs(alpha.imag()) > kRelativeTolerance * std::abs(beta_r))
@@ -134,7 +134,8 @@ std::optional<CentralInverse> CentralInverse::detect(const RationalMap& forward,
       if (same) return out;
     }
   }
-  return std::nullopt;
+  // No finite target centre: perhaps one at infinity.
+  return detectParallel(forward, source_px, centre, u, n, sigma);
 }
 
 namespace {
@@ -224,10 +225,8 @@ void spanScalar(const RowPolys& r, int x0, int i0, int n, float* sx, float* sy, 
 }
 
 #if defined(__x86_64__)
-// valid[i … i + 3] as one little-endian word, from the lanes that failed (bit k: lane k).
-constexpr std::uint32_t kValidBytes[16] = {
-    0x01010101u, 0x01010100u, 0x01010001u, 0x01010000u, 0x01000101u, 0x01000100u, 0x01000001u, 0x01000000u,
-    0x00010101u, 0x00010100u, 0x00010001u, 0x00010000u, 0x00000101u, 0x00000100u, 0x00000001u, 0x00000000u};
+using central_lanes::kValidBytes;
+using central_lanes::negative;
 
 // solvePixel's near root in four lanes. A lane with no root (D < 0) is written empty; a group
 // with a lane whose near root fails the tests where D ≥ 0 (the far root may be its preimage)
@@ -280,11 +279,6 @@ __attribute__((target("avx2"))) void spanAvx2(const RowPolys& r, int x0, int n, 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
-// Lanes whose sign bit is set.
-__attribute__((target("avx512f"), always_inline)) inline __mmask8 negative(__m512i v) {
-  return _mm512_cmplt_epi64_mask(v, _mm512_setzero_si512());
-}
-
 // spanAvx2 in eight lanes.
 __attribute__((target("avx512f"))) void spanAvx512(const RowPolys& r, int x0, int n, float* sx, float* sy,
                                                    unsigned char* valid) {
@@ -342,6 +336,7 @@ __attribute__((target("avx512f"))) void spanAvx512(const RowPolys& r, int x0, in
 }  // namespace
 
 bool CentralInverse::solve(const Eigen::Vector2d& t, Eigen::Vector2d& s) const {
+  if (parallel_) return solveParallel(t, s);
   double u = 0.0, v = 0.0;
   if (!solvePixel(rowPolys(rows_, t.y()), t.x(), u, v)) return false;
   s = Eigen::Vector2d(u, v);
@@ -349,6 +344,7 @@ bool CentralInverse::solve(const Eigen::Vector2d& t, Eigen::Vector2d& s) const {
 }
 
 void CentralInverse::span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid, int simd) const {
+  if (parallel_) return spanParallel(y, x0, n, sx, sy, valid, simd);
   const RowPolys r = rowPolys(rows_, y + 0.5);
 #if defined(__x86_64__)
   if (simd >= 2 && cpuHasAvx512f()) return spanAvx512(r, x0, n, sx, sy, valid);

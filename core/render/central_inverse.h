@@ -26,6 +26,19 @@
 // is not the frame's, both on the centre's side), the first is taken: either is a preimage
 // by the rule, and Newton too would return whichever its start led to.
 //
+// The parallel form (central_inverse_parallel.cpp): the target centre at infinity. Then one
+// target coordinate a = n · F is a 1D homography of the source, a = (k · s̃) / (g · s̃), and the
+// denominator factors as (l · s̃)(g · s̃): the twist preset (x′ = u, y′ = v (1 + r u)) and any
+// map that moves outputs along parallel lines, seen through affine frames. Output t's preimages
+// lie on the source line (k − a g) · s̃ = 0 of the pencil through c̃_s = k × g (possibly at
+// infinity, as the twist's is), parametrised projectively as s̃(μ) = p(a) + μ c̃_s; the other
+// coordinate b = d · F is a ratio of quadratics on it, so b(s̃(μ)) = b_t is again a quadratic
+// E(μ) = A μ² + B μ + C = 0 (A = c̃_sᵀ P c̃_s is the same for every output, 0 for the twist).
+// The rule's signs again come from the root: the denominator is (l · s̃)(g · s̃), and the
+// Jacobian determinant has the sign of E′(μ) · (l · s̃)(g · s̃) · det[p₀, p₁, c̃_s] · s̃_z
+// (the map (a, μ) ↦ (a, b) has determinant ∂b/∂μ = E′/((l · s̃)(g · s̃)), and (a, μ) ↦ s has
+// det[s̃, ∂s̃/∂a, ∂s̃/∂μ] / s̃_z³), E′ of the stable root having B's sign as above.
+//
 // Exactness: the roots come from the stable quadratic formula in double, so positions are
 // exact to rounding (about 1e-9 px of a 6000 px frame) except within ~1e-8 of the fold, where
 // the inverse itself turns with the square root of the distance (there too far below 1/256
@@ -37,6 +50,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <optional>
 
 namespace artcam {
@@ -49,6 +63,9 @@ class CentralInverse {
   static std::optional<CentralInverse> detect(const RationalMap& forward, FrameSize source_px,
                                               const CentreReference& centre);
 
+  // Whether the target centre is at infinity (the parallel form above).
+  bool parallel() const { return parallel_; }
+
   // The preimage of output point t (target pixels); false when it has none.
   bool solve(const Eigen::Vector2d& t, Eigen::Vector2d& s) const;
 
@@ -57,7 +74,7 @@ class CentralInverse {
   // them (else the next lower); all give the same bits.
   void span(int y, int x0, int n, float* sx, float* sy, unsigned char* valid, int simd) const;
 
-  // The factors, in pixel frames (tests).
+  // The factors, in pixel frames (tests; the finite form's).
   const Eigen::Vector2d& centreTarget() const { return rows_.ct; }
   Eigen::Vector2d centreSource() const { return {rows_.csx, rows_.csy}; }
 
@@ -75,9 +92,36 @@ class CentralInverse {
     bool det_positive = true;   // the centre's Jacobian determinant
   };
 
+  // The parallel form's factors: unit frames on both sides as detect() makes them (source
+  // s̃′ = N⁻¹ s̃, target t′ = (t − reference) / σ), the output's coordinates a = n · t′ and
+  // b = d · t′, the source line's point p(a) = p₀ + a p₁ and the pencil's centre c̃_s, the
+  // quadratic form P of b's numerator, and the denominator's lines l, g.
+  struct ParallelRows {
+    Eigen::Vector2d reference{0, 0};
+    double sigma = 1.0;
+    Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();  // N: unit source frame → pixels
+    Eigen::Vector2d n{1, 0}, d{0, 1};
+    Eigen::Vector3d p0{0, 0, 0}, p1{0, 0, 0}, cs{0, 0, 0};
+    Eigen::Matrix3d along = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d l{0, 0, 0}, g{0, 0, 0};
+    bool den_negative = false;  // the centre's denominator
+    bool fold_bit = false;      // sb(B) ⊕ sb(s̃_z) a near root must have
+  };
+
  private:
   CentralInverse() = default;
+  // `unit`: the forms in unit frames, numerators less the reference's image and over σ, all
+  // scaled to 1 (detect's); `frame`: N.
+  static std::optional<CentralInverse> detectParallel(const RationalMap& forward, FrameSize source_px,
+                                                      const CentreReference& centre,
+                                                      const std::array<Eigen::Matrix3d, 3>& unit,
+                                                      const Eigen::Matrix3d& frame, double sigma);
+  bool solveParallel(const Eigen::Vector2d& t, Eigen::Vector2d& s) const;
+  void spanParallel(int y, int x0, int n, float* sx, float* sy, unsigned char* valid, int simd) const;
+
+  bool parallel_ = false;
   Rows rows_;
+  ParallelRows parallel_rows_;
 };
 
 }  // namespace artcam

@@ -60,7 +60,23 @@ struct Case {
   bool far_roots;  // the frame centre lies beyond c_s's fold: the preimages are far roots
 };
 
+// The parallel form in normalised coordinates: a = n · F = (k · ũ) / (g · ũ) and
+// b = d · F = ũᵀ P ũ / ((l · ũ)(g · ũ)), n at 20°, a finite pencil centre and A = c̃ᵀ P c̃ ≠ 0.
+Camera parallelCamera() {
+  const double angle = 20.0 * M_PI / 180.0;
+  const Eigen::Vector2d n(std::cos(angle), std::sin(angle)), d(-n.y(), n.x());
+  const Eigen::Vector3d k(1.0, 0.1, 0.05), g(0.1, -0.05, 1.0), l(0.05, 0.1, 1.0);
+  Eigen::Matrix3d p = Eigen::Matrix3d::Zero();
+  p(0, 0) = 0.2;
+  p(0, 1) = p(1, 0) = 0.05;
+  p(1, 2) = p(2, 1) = 0.5;
+  const Eigen::Matrix3d lk = symmetricOuter(l, k);
+  return cameraOf(n.x() * lk + d.x() * p, n.y() * lk + d.y() * p, symmetricOuter(l, g));
+}
+
 Case caseNamed(const QByteArray& name) {
+  if (name == "twist-strong") return {twistCamera(1.0, kFrame), false};
+  if (name == "parallel") return {parallelCamera(), false};
   if (name == "barrel-strong") return {radialLensCamera(-0.6, kFrame), false};
   if (name == "pincushion-strong") return {radialLensCamera(0.4, kFrame), false};
   if (name == "decentred")
@@ -90,17 +106,42 @@ class TestCentralInverse : public QObject {
     }
   }
 
-  // A map whose numerators share no line with the denominator's pencil is not central, nor is a
-  // radial lens with a small twist added: the closed form would be a silently wrong inverse.
+  // The twist moves outputs along vertical lines: the parallel form, for any rate.
+  void twistIsParallel() {
+    for (double rate : {-1.0, -0.3, 0.3, 1.0}) {
+      const RationalMap map(twistCamera(rate, kFrame), kFrame, kFrame);
+      const std::optional<CentreReference> centre = centreReference(map, kFrame);
+      QVERIFY(centre);
+      const std::optional<CentralInverse> inverse = CentralInverse::detect(map, kFrame, *centre);
+      QVERIFY2(inverse && inverse->parallel(), qPrintable(QString("rate = %1").arg(rate)));
+    }
+    const RationalMap barrel(radialLensCamera(-0.6, kFrame), kFrame, kFrame);
+    const std::optional<CentralInverse> radial = CentralInverse::detect(barrel, kFrame, *centreReference(barrel, kFrame));
+    QVERIFY(radial && !radial->parallel());
+  }
+
+  // A radial lens with a small twist added is neither form, nor is a twist with a little
+  // barrel, nor a map whose numerators share no line with its denominator: the closed form
+  // would be a silently wrong inverse.
   void otherMapsAreNot() {
-    const Camera twist = twistCamera(0.3, kFrame);
     Camera bent = radialLensCamera(-0.6, kFrame);
     const Stage& stage = bent.stages().front();
     Eigen::Matrix3d qv = stage.q[1];
     qv(0, 1) += 1e-4;
     qv(1, 0) += 1e-4;
     const Camera nearly = cameraOf(stage.q[0], qv, stage.q[2]);
-    for (const Camera* camera : {&twist, &nearly}) {
+    const Stage twist = twistCamera(1.0, kFrame).stages().front();
+    Eigen::Matrix3d qw = twist.q[2];
+    qw(0, 0) += 1e-4;
+    qw(1, 1) += 1e-4;
+    const Camera twisted_barrel = cameraOf(twist.q[0], twist.q[1], qw);
+    Eigen::Matrix3d general_u = Eigen::Matrix3d::Zero(), general_v = Eigen::Matrix3d::Zero();
+    general_u(0, 2) = general_u(2, 0) = 0.5;
+    general_u(1, 1) = 0.1;
+    general_v(1, 2) = general_v(2, 1) = 0.5;
+    general_v(0, 0) = 0.1;
+    const Camera general = cameraOf(general_u, general_v, Eigen::Vector3d(0, 0, 1) * Eigen::RowVector3d(0, 0, 1));
+    for (const Camera* camera : {&nearly, &twisted_barrel, &general}) {
       const RationalMap map(*camera, kFrame, kFrame);
       const std::optional<CentreReference> centre = centreReference(map, kFrame);
       QVERIFY(centre);
@@ -110,7 +151,8 @@ class TestCentralInverse : public QObject {
 
   void roundTripsThroughForwardMap_data() {
     QTest::addColumn<QByteArray>("name");
-    for (const char* name : {"barrel-strong", "pincushion-strong", "decentred", "centre-beyond-fold"})
+    for (const char* name :
+         {"barrel-strong", "pincushion-strong", "decentred", "centre-beyond-fold", "twist-strong", "parallel"})
       QTest::newRow(name) << QByteArray(name);
   }
 
@@ -203,10 +245,17 @@ class TestCentralInverse : public QObject {
   }
 
   // Through the fused kernel: the central path and the general one (cells, quadtree, Newton)
-  // agree on every pixel of a strong barrel's frame, within the 1/256 px budget.
+  // agree on every pixel of a strong barrel's and a strong twist's frame, within the 1/256 px
+  // budget.
+  void kernelPathsAgree_data() {
+    QTest::addColumn<bool>("twist");
+    QTest::newRow("barrel-strong") << false;
+    QTest::newRow("twist-strong") << true;
+  }
   void kernelPathsAgree() {
+    QFETCH(bool, twist);
     const FrameSize size{1500, 1000};
-    const Camera camera = radialLensCamera(-0.6, size);
+    const Camera camera = twist ? twistCamera(1.0, size) : radialLensCamera(-0.6, size);
     const CameraStructure structure = analyseStructure(camera);
     CoordinateOptions general;
     general.central_inverse = false;
