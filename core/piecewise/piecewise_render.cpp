@@ -393,27 +393,42 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
     return choice;
   }
   // The error falls as the step cubed (quadratic triangles; the suite's fisheye measured
-  // 0.00114, 0.00221, 0.00379 and 0.00884 px at 32, 40, 48 and 64 px). So the coarsest lattice
-  // is measured first, the step that law predicts at kAim of the budget is measured next, and
-  // so on down: the step used is one whose measured error is within the budget (or the finest,
-  // 2 px, whatever it measures), and the rasteriser's work per pixel falls with the step (its
-  // rows are shorter the finer the mesh).
+  // 0.00114, 0.00221, 0.00379, 0.00884 and 0.0661 px at 32, 40, 48, 64 and 128 px). So a
+  // coarse lattice is measured first, the step that law predicts at kAim of the budget is
+  // measured next, and so on down: the step used is one whose measured error is within the
+  // budget (or the finest, 2 px, whatever it measures), and the rasteriser's work per pixel
+  // falls with the step (its rows are shorter the finer the mesh).
+  // The first lattice, 128 px, is only a probe, at a quarter of a 64-px one's cost (1 against
+  // 3 ms at 2 threads on that camera): the step used is at most 64 px, since so coarse a
+  // lattice may have too few triangles inside single patches to measure (a small insertion
+  // region's measured none), and its centroid-and-quarter-point estimate grows less certain.
+  // The law extrapolated from so far overestimates the step (a mild lens on a 320×240 frame:
+  // 0.0453 px at 128 predicted 0.0030 at 52, which measured 0.0039), so the probe's step aims
+  // at kProbeAim of the budget: the fisheye's 0.0661 px gives 45 px, as its 64-px lattice did.
   // A triangle is drawn only where its three vertices have data, so where the patches leave
   // holes or a ragged edge a lattice leaves up to a step uncovered along it: there the step
   // stays at most 32 px (as when 32 was the coarsest). A coarser one is kept only where every
   // vertex and cell centre of its lattice has data, a test at the lattice's own spacing (a
   // notch narrower than a step between those points could still pass it).
-  constexpr double kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8;
-  double step = kCoarsest;
+  constexpr double kProbe = 128.0, kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8,
+                   kProbeAim = 0.7;
+  double step = kProbe;
   for (int measured = 0;;) {
-    const bool coarse = step > kCoarsestAtEdges;
+    const bool coarse = step > kCoarsestAtEdges, probe = step > kCoarsest;
     Mesh mesh = buildMesh(camera, source_image, size, step, options.threads, /*whole_only=*/coarse);
     if (coarse && mesh.gaps) {  // known before its bends are solved
       step = kCoarsestAtEdges;
       continue;
     }
+    const double error = meshError(mesh, camera, options.threads);
+    if (probe) {
+      step = error > 0.0 ? std::min(kCoarsest, std::floor(step * std::cbrt(kProbeAim * options.max_error_px / error)))
+                         : kCoarsest;
+      step = std::max(kFinest, step);
+      continue;
+    }
     choice.step_px = step;
-    choice.error_px = meshError(mesh, camera, options.threads);
+    choice.error_px = error;
     ++measured;
     if (choice.error_px <= options.max_error_px || step <= kFinest) {
       if (built) built->emplace(std::move(mesh));

@@ -52,10 +52,10 @@ struct PiecewiseRenderStats {
 // rendered from, is measured where a quadratic triangle's error peaks (its centroid and its
 // edges' quarter points) on every drawn triangle one patch maps, and the largest is the
 // mesh's error. The error falls as the step cubed; the automatic step is found by measuring a
-// 64-px lattice (32 where the patches leave holes, along whose edges a coarse lattice would
-// leave pixels uncovered), then the step that law predicts at 0.8 of the budget, and so on
-// down, until one measures within the budget (2 px at the least): near the coarsest that
-// passes, not always it. With a fixed step the measurement is made at it.
+// 128-px probe lattice (straight to 32 px where the patches leave holes, along whose edges a
+// coarse lattice would leave pixels uncovered), then the step that law predicts at 0.8 of the
+// budget (64 px at most), and so on down, until one measures within the budget (2 px at the
+// least): near the coarsest that passes, not always it. With a fixed step the measurement is made at it.
 struct MeshChoice {
   double step_px = 0.0;
   double error_px = 0.0;
