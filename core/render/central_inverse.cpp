@@ -215,18 +215,14 @@ bool solvePixel(const RowPolys& r, double tx, double& u, double& v) {
 
 // Pixels x0 + i, i0 ≤ i < n.
 void spanScalar(const RowPolys& r, int x0, int i0, int n, float* sx, float* sy, unsigned char* valid) {
-  for (int i = i0; i < n; ++i) {
-    double u = 0.0, v = 0.0;
-    const bool ok = solvePixel(r, x0 + i + 0.5, u, v);
-    sx[i] = ok ? static_cast<float>(u) : 0.0f;
-    sy[i] = ok ? static_cast<float>(v) : 0.0f;
-    valid[i] = ok ? 1 : 0;
-  }
+  central_lanes::spanPixels(x0, i0, n, sx, sy, valid,
+                            [&r](double tx, double& u, double& v) { return solvePixel(r, tx, u, v); });
 }
 
 #if defined(__x86_64__)
-using central_lanes::kValidBytes;
 using central_lanes::negative;
+using central_lanes::storeEight;
+using central_lanes::storeFour;
 
 // solvePixel's near root in four lanes. A lane with no root (D < 0) is written empty; a group
 // with a lane whose near root fails the tests where D ≥ 0 (the far root may be its preimage)
@@ -267,10 +263,7 @@ __attribute__((target("avx2"))) void spanAvx2(const RowPolys& r, int x0, int n, 
     const __m256d u = _mm256_add_pd(csx, _mm256_mul_pd(mu, _mm256_add_pd(ex_0, _mm256_mul_pd(ex_1, dx))));
     const __m256d v = _mm256_add_pd(csy, _mm256_mul_pd(mu, _mm256_add_pd(ey_0, _mm256_mul_pd(ey_1, dx))));
     // No root (D < 0): position 0, as the scalar code writes.
-    _mm_storeu_ps(sx + i, _mm256_cvtpd_ps(_mm256_blendv_pd(u, zero, bad)));
-    _mm_storeu_ps(sy + i, _mm256_cvtpd_ps(_mm256_blendv_pd(v, zero, bad)));
-    const std::uint32_t good = kValidBytes[bad_bits];
-    std::memcpy(valid + i, &good, 4);
+    storeFour(u, v, bad, sx + i, sy + i, valid + i);
   }
   spanScalar(r, x0, whole, n, sx, sy, valid);
 }
@@ -319,14 +312,9 @@ __attribute__((target("avx512f"))) void spanAvx512(const RowPolys& r, int x0, in
       spanScalar(r, x0, i, i + 8, sx, sy, valid);
       continue;
     }
-    const __mmask8 good = static_cast<__mmask8>(~bad);
     const __m512d u = _mm512_add_pd(csx, _mm512_mul_pd(mu, _mm512_add_pd(ex_0, _mm512_mul_pd(ex_1, dx))));
     const __m512d v = _mm512_add_pd(csy, _mm512_mul_pd(mu, _mm512_add_pd(ey_0, _mm512_mul_pd(ey_1, dx))));
-    _mm256_storeu_ps(sx + i, _mm512_cvtpd_ps(_mm512_maskz_mov_pd(good, u)));
-    _mm256_storeu_ps(sy + i, _mm512_cvtpd_ps(_mm512_maskz_mov_pd(good, v)));
-    const std::uint32_t lo = kValidBytes[bad & 15], hi = kValidBytes[bad >> 4];
-    std::memcpy(valid + i, &lo, 4);
-    std::memcpy(valid + i + 4, &hi, 4);
+    storeEight(u, v, bad, sx + i, sy + i, valid + i);
   }
   spanScalar(r, x0, whole, n, sx, sy, valid);
 }

@@ -2,7 +2,8 @@
 // The closed-form inverse of a central rational map: one whose every output moves along a ray
 // from a fixed target point, as radial lenses do. The division model u' = u / (1 − k|u|²) (the
 // barrel and pin-cushion presets, the rational lens camera's radial member) is one; so is any
-// such lens seen through affine pixel frames on both sides.
+// such lens seen through affine pixel frames on both sides. With the target point at infinity
+// (outputs moving along parallel lines, as the twist preset's do) it is the parallel form below.
 //
 // The form (one stage, eq 1 in pixel frames, x̃ = (x, 1)):
 //   F(s) = c_t + (H s̃) · (l · s̃) / (s̃ᵀ Q s̃),   H a 2×3 map with an invertible 2×2 part,

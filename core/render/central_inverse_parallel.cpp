@@ -124,18 +124,14 @@ bool solvePixel(const ParallelRow& r, double tx, double& u, double& v) {
 
 // Pixels x0 + i, i0 ≤ i < n.
 void spanScalar(const ParallelRow& r, int x0, int i0, int n, float* sx, float* sy, unsigned char* valid) {
-  for (int i = i0; i < n; ++i) {
-    double u = 0.0, v = 0.0;
-    const bool ok = solvePixel(r, x0 + i + 0.5, u, v);
-    sx[i] = ok ? static_cast<float>(u) : 0.0f;
-    sy[i] = ok ? static_cast<float>(v) : 0.0f;
-    valid[i] = ok ? 1 : 0;
-  }
+  central_lanes::spanPixels(x0, i0, n, sx, sy, valid,
+                            [&r](double tx, double& u, double& v) { return solvePixel(r, tx, u, v); });
 }
 
 #if defined(__x86_64__)
-using central_lanes::kValidBytes;
 using central_lanes::negative;
+using central_lanes::storeEight;
+using central_lanes::storeFour;
 
 // solvePixel's stable root in four lanes. A lane without a root (D < 0) or whose root fails
 // is written empty when A = 0; otherwise a group with such a lane where D ≥ 0 (the other root
@@ -186,10 +182,8 @@ __attribute__((target("avx2"))) void spanAvx2(const ParallelRow& r, int x0, int 
       spanScalar(r, x0, i, i + 4, sx, sy, valid);
       continue;
     }
-    _mm_storeu_ps(sx + i, _mm256_cvtpd_ps(_mm256_blendv_pd(u, zero, bad)));
-    _mm_storeu_ps(sy + i, _mm256_cvtpd_ps(_mm256_blendv_pd(v, zero, bad)));
-    const std::uint32_t good = kValidBytes[bad_bits];
-    std::memcpy(valid + i, &good, 4);
+    // No root (D < 0): position 0, as the scalar code writes.
+    storeFour(u, v, bad, sx + i, sy + i, valid + i);
   }
   spanScalar(r, x0, whole, n, sx, sy, valid);
 }
@@ -250,12 +244,7 @@ __attribute__((target("avx512f"))) void spanAvx512(const ParallelRow& r, int x0,
       spanScalar(r, x0, i, i + 8, sx, sy, valid);
       continue;
     }
-    const __mmask8 good = static_cast<__mmask8>(~bad);
-    _mm256_storeu_ps(sx + i, _mm512_cvtpd_ps(_mm512_maskz_mov_pd(good, u)));
-    _mm256_storeu_ps(sy + i, _mm512_cvtpd_ps(_mm512_maskz_mov_pd(good, v)));
-    const std::uint32_t lo = kValidBytes[bad & 15], hi = kValidBytes[bad >> 4];
-    std::memcpy(valid + i, &lo, 4);
-    std::memcpy(valid + i + 4, &hi, 4);
+    storeEight(u, v, bad, sx + i, sy + i, valid + i);
   }
   spanScalar(r, x0, whole, n, sx, sy, valid);
 }

@@ -26,9 +26,10 @@
 //   their float patch (CellPoly, an offset from an anchor) is evaluated by fused multiply-adds,
 //   sixteen lanes under AVX-512, eight under AVX2, bit-identical to the scalar code. The SIMD
 //   lanes are tested against the scalar code (≤ 1e-3 px) and the exact inverse;
-// - rational and central (radial lenses, central_inverse.h): the certified cells as above, and
-//   where a cell fails (near a fold or pole) the closed-form inverse per pixel, a root of a
-//   quadratic, instead of the quadtree and Newton.
+// - rational and central (radial lenses; with the centre at infinity, the twist:
+//   central_inverse.h): the certified cells as above, and where a cell fails (near a fold or
+//   pole) the closed-form inverse per pixel, a root of a quadratic, instead of the quadtree and
+//   Newton.
 #pragma once
 
 #include "core/model/camera.h"
@@ -69,9 +70,9 @@ struct CoordinateOptions {
   // Let certified rational cells and the warp's samplers take the AVX-512 lanes where the CPU
   // has them (false: AVX2; both give the scalar code's positions and pixels bit for bit).
   bool allow_avx512 = true;
-  // Central maps (radial lenses, central_inverse.h) take their closed-form inverse where the
-  // rational kernel's cells do not certify; false sends them down the general path (tests
-  // compare the two).
+  // Central maps (radial lenses, and twists with their centre at infinity: central_inverse.h)
+  // take their closed-form inverse where the rational kernel's cells do not certify; false
+  // sends them down the general path (tests compare the two).
   bool central_inverse = true;
 };
 
