@@ -404,14 +404,15 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
   // region's measured none), and its centroid-and-quarter-point estimate grows less certain.
   // The law extrapolated from so far overestimates the step (a mild lens on a 320×240 frame:
   // 0.0453 px at 128 predicted 0.0030 at 52, which measured 0.0039), so the probe's step aims
-  // at kProbeAim of the budget: the fisheye's 0.0661 px gives 45 px, as its 64-px lattice did.
+  // at kProbeAim of the budget: the fisheye's 0.0661 px gives 45 px, as its 64-px lattice did
+  // (0.7 gave 44).
   // A triangle is drawn only where its three vertices have data, so where the patches leave
   // holes or a ragged edge a lattice leaves up to a step uncovered along it: there the step
   // stays at most 32 px (as when 32 was the coarsest). A coarser one is kept only where every
   // vertex and cell centre of its lattice has data, a test at the lattice's own spacing (a
   // notch narrower than a step between those points could still pass it).
   constexpr double kProbe = 128.0, kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8,
-                   kProbeAim = 0.7;
+                   kProbeAim = 0.75;
   double step = kProbe;
   for (int measured = 0;;) {
     const bool coarse = step > kCoarsestAtEdges, probe = step > kCoarsest;
