@@ -6,7 +6,9 @@
 // and the kernel faults and zeroes each one: the rational kernel's refined cells of a strong
 // twist took ~1,500 page faults a render, ~3 ms of a 37 ms render on two threads (AVX-512
 // machine). Kept here instead, a released block goes to the next request it fits, whose pages
-// are already mapped. At most kKeepBlocks blocks and kKeepBytes in all are kept; a block is
+// are already mapped. At most kKeepBlocks blocks and kKeepBytes in all are kept (8: a
+// piecewise render holds a probe mesh, its mesh and a band block per thread at once, and the
+// rational kernel up to four); a block is
 // handed out only for a request of at least half its size, so a small request never holds a
 // large block. Thread-safe; a block is uninitialised memory, aligned to 64 bytes.
 #pragma once
@@ -45,7 +47,7 @@ class ScratchBlock {
 ScratchBlock takeScratch(std::size_t bytes);
 
 // What the pool keeps (tests).
-constexpr int kScratchKeepBlocks = 4;
+constexpr int kScratchKeepBlocks = 8;
 constexpr std::size_t kScratchKeepBytes = std::size_t{64} << 20;
 std::size_t scratchKeptBytes();
 
