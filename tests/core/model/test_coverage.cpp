@@ -91,6 +91,39 @@ class TestCoverage : public QObject {
             std::string::npos);
   }
 
+  void aChainIsMeasuredThroughEveryStage() {
+    // Off the frame and back: each stage alone renders nothing, the chain is the identity.
+    Eigen::Matrix3d there = Eigen::Matrix3d::Identity(), back = there;
+    there(0, 2) = 6.0;
+    back(0, 2) = -6.0;
+    const Camera a = fromHomography(there), b = fromHomography(back);
+    const Camera chain({Block{BlockKind::Position, 3}}, {a.stages()[0], b.stages()[0]}, {64, 64}, {64, 64});
+    QCOMPARE(measureCoverage(chain).covering, kCells);
+    QCOMPARE(measureCoverage(a).covering, 0);
+  }
+
+  void aColourCameraIsMeasuredOnItsPositionBlock() {
+    // Colour first, position second (offset 4): the position forms are the homography's,
+    // embedded; the colour outputs pass colour through (c_i · w).
+    for (const double shift : {0.0, 6.0}) {
+      Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+      h(0, 2) = shift;
+      const Camera plain = fromHomography(h);
+      Stage stage;
+      const auto unit = [](int i) { return Eigen::VectorXd::Unit(7, i); };
+      for (int i = 0; i < 4; ++i) stage.q.push_back(symmetricOuter(unit(i), unit(6)));
+      for (int r = 0; r < 3; ++r) {
+        Eigen::MatrixXd q = Eigen::MatrixXd::Zero(7, 7);
+        q.block<3, 3>(4, 4) = plain.stages()[0].q[static_cast<size_t>(r)];
+        stage.q.push_back(q);
+      }
+      const Camera coloured({Block{BlockKind::Colour, 4}, Block{BlockKind::Position, 3}}, {stage}, {64, 64}, {64, 64});
+      const Coverage c = measureCoverage(coloured);
+      QVERIFY(c.checked);
+      QCOMPARE(c.covering, shift == 0.0 ? kCells : 0);
+    }
+  }
+
   void objectSpaceCamerasAreNotChecked() {
     const Camera c = Camera::identity({Block{BlockKind::Position, 4}}, {}, {});
     QVERIFY(!measureCoverage(c).checked);
