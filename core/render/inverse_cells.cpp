@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cstring>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -375,7 +376,7 @@ void InverseCells::quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, c
   hi.array() += grow;
 }
 
-bool InverseCells::latticeQuadBox(const std::vector<Eigen::Vector2d>& mapped, int pw, int i, int j,
+bool InverseCells::latticeQuadBox(const Eigen::Vector2d* mapped, int pw, int i, int j,
                                   Eigen::Vector2d& lo, Eigen::Vector2d& hi) const {
   quadBox(mapped[index(i, j, pw)], mapped[index(i + 1, j, pw)], mapped[index(i, j + 1, pw)],
           mapped[index(i + 1, j + 1, pw)], lo, hi);
@@ -394,8 +395,14 @@ void InverseCells::buildCoverage(int threads) {
   const auto at = [&](int i, int j) {
     return Eigen::Vector2d(-margin + i * kLattice, -margin + j * kLattice);
   };
-  std::vector<Eigen::Vector2d> mapped(static_cast<size_t>(pw) * static_cast<size_t>(ph));
-  std::vector<unsigned char> ok(mapped.size(), 0);
+  const size_t points = static_cast<size_t>(pw) * static_cast<size_t>(ph);
+  const size_t blocks = static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_);
+  const size_t points_bytes = (points * sizeof(Eigen::Vector2d) + 63) / 64 * 64;
+  coverage_storage_ = takeScratch(points_bytes + (points + 63) / 64 * 64 + blocks);
+  unsigned char* const storage = static_cast<unsigned char*>(coverage_storage_.data());
+  Eigen::Vector2d* const mapped = reinterpret_cast<Eigen::Vector2d*>(storage);  // every point written below
+  unsigned char* const ok = storage + points_bytes;                                // likewise
+  unsigned char* const covered = ok + (points + 63) / 64 * 64;
   std::vector<double> band_scale(static_cast<size_t>(ph), 1.0);
   const unsigned centre_signs = newton_.centre().denominator_signs;
   const double near = 2.0 * kCell;
@@ -424,7 +431,7 @@ void InverseCells::buildCoverage(int threads) {
   const double scale = std::min(kMaxScale, *std::max_element(band_scale.begin(), band_scale.end()));
   reach_px_ = options_.reach_px + 4.0 * scale;
   if (frameInsideImage(mapped, ok, pw, qw, qh, margin)) return;  // every block covered: no coverage needed
-  std::vector<unsigned char> covered(static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_), 0);
+  std::memset(covered, 0, blocks);
   // The quads in bands of rows on every thread (one thread took ~1.5 ms, a sixth of a mild
   // lens's whole build on two).
   std::atomic<bool> unbounded{false};
@@ -454,12 +461,12 @@ void InverseCells::buildCoverage(int threads) {
       }
   });
   if (unbounded.load()) return;
-  covered_ = std::move(covered);
+  covered_ = covered;
   coverage_known_ = true;
   lattice_margin_ = margin;
   lattice_w_ = qw;
   lattice_h_ = qh;
-  lattice_mapped_ = std::move(mapped);
+  lattice_mapped_ = mapped;
 }
 
 bool InverseCells::latticeReaches(int k, double margin, double size) const {
@@ -467,7 +474,7 @@ bool InverseCells::latticeReaches(int k, double margin, double size) const {
   return !(hi < -reach_px_ || lo > size + reach_px_);
 }
 
-bool InverseCells::frameInsideImage(const std::vector<Eigen::Vector2d>& mapped, const std::vector<unsigned char>& ok,
+bool InverseCells::frameInsideImage(const Eigen::Vector2d* mapped, const unsigned char* ok,
                                     int pw, int qw, int qh, double margin) const {
   // The quads within the reach of the frame form a rectangle of lattice indices, i0 … i1 by
   // j0 … j1.
