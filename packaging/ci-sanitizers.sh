@@ -105,13 +105,13 @@ tsan() {
   local build="${ARTCAM_TSAN_DIR:-$root/build-tsan}"
   timed "tsan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
     -DARTCAM_SANITIZE=thread -DARTCAM_SANITIZE_ONLY="$tsan_only" >/dev/null
-  timed "tsan build" cmake --build "$build" -j"$jobs" --target test_ui_preview
+  timed "tsan build" cmake --build "$build" -j"$jobs" --target test_ui_preview test_core_util_parallel
   # setarch -R: TSan's shadow layout does not fit high-entropy ASLR (Debian 12's kernels).
   (cd "$build" &&
     TSAN_OPTIONS="suppressions=$root/cmake/tsan.supp:halt_on_error=1:exitcode=66" \
     QT_QPA_PLATFORM=offscreen \
     timed "tsan tests" setarch "$(uname -m)" -R ctest --output-on-failure --no-tests=error \
-      -R '^ui/preview$')
+      -R '^(ui/preview|core/util/parallel)$')
 }
 
 for job in "${selected[@]}"; do
