@@ -14,7 +14,9 @@ namespace artcam {
 
 class CompiledCamera {
  public:
-  static constexpr int kMaxDimension = 12;
+  // The widest layout a camera may have (camera.cpp, isValidBlock): position 4, colour 4,
+  // depth 2, second colour 4.
+  static constexpr int kMaxDimension = 14;
   using Vector = std::array<double, kMaxDimension>;
 
   CompiledCamera() = default;

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/model/coverage.h"
 
+#include "core/model/compiled_camera.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -46,16 +46,19 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
   if (analyseStructure(camera).geometry_depends_on_attributes) return c;
   c.checked = true;
 
-  // Position reads position alone here (checked above), so each stage's three position forms
-  // restricted to the position block give the positions, as the renderers read them
-  // (rational_map.h): evaluating every output of a colour camera through its dynamic-size
-  // tensors cost ~0.6 ms a layer, three layers for chromatic aberration, on every render.
-  const int offset = camera.layout().offsets[static_cast<size_t>(block)];
-  std::vector<std::array<Eigen::Matrix3d, 3>> forms;
-  for (const Stage& stage : camera.stages()) {
-    std::array<Eigen::Matrix3d, 3>& f = forms.emplace_back();
-    for (int r = 0; r < 3; ++r) f[static_cast<size_t>(r)] = stage.q[static_cast<size_t>(offset + r)].block<3, 3>(offset, offset);
-  }
+  // Every block other than position gets a neutral value (mid grey, opaque; depth 1): only
+  // used to evaluate the chain, since position does not depend on them here. Compiled, and
+  // the last stage's position alone: Camera::evaluateHomogeneous allocates every product and
+  // computes every output (~0.6 ms a layer, three layers for chromatic aberration, on every
+  // render).
+  const CompiledCamera compiled(camera);
+  const BlockLayout& layout = camera.layout();
+  CompiledCamera::Vector x{}, z{};
+  std::fill(x.begin(), x.begin() + layout.dimension, 0.5);
+  for (size_t b = 0; b < layout.blocks.size(); ++b)
+    x[static_cast<size_t>(layout.homogeneousIndex(static_cast<int>(b)))] = 1.0;
+  const size_t offset = static_cast<size_t>(layout.offsets[static_cast<size_t>(block)]);
+  const size_t weight_index = static_cast<size_t>(layout.homogeneousIndex(block));
 
   // A part of the frame (a patch) is sampled as densely as the whole frame is: points per side
   // in proportion to its larger share of the frame's sides. A piecewise camera's dozens of
@@ -70,16 +73,14 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
       const double u = static_cast<double>(j) / (lattice - 1);
       const Eigen::Vector2d pixel = lo_px + Eigen::Vector2d(t, u).cwiseProduct(hi_px - lo_px);
       const Eigen::Vector2d n = normalizedFromPixel(source, pixel);
-      // Eq 3 per stage; between stages the position block is divided by its weight (eq 5).
-      Eigen::Vector3d x(n.x(), n.y(), 1.0), z = Eigen::Vector3d::Zero();
-      for (size_t st = 0; st < forms.size(); ++st) {
-        if (st > 0) x = Eigen::Vector3d(z.x() / z.z(), z.y() / z.z(), 1.0);
-        for (int r = 0; r < 3; ++r) z[r] = x.dot(forms[st][static_cast<size_t>(r)] * x);
-      }
+      x[offset] = n.x();
+      x[offset + 1] = n.y();
+      x[offset + 2] = 1.0;
+      compiled.evaluateHomogeneous(x, z, /*position_only=*/true);
       Sample& sample = samples[static_cast<size_t>(j * lattice + i)];
-      sample.weight = z.z();
+      sample.weight = z[weight_index];
       if (std::isfinite(sample.weight) && sample.weight != 0.0) {
-        sample.target = Eigen::Vector2d(z.x(), z.y()) / sample.weight;
+        sample.target = Eigen::Vector2d(z[offset], z[offset + 1]) / sample.weight;
         sample.finite = sample.target.allFinite();
       }
     }

@@ -124,6 +124,16 @@ class TestCoverage : public QObject {
     }
   }
 
+  void theWidestCameraIsChecked() {
+    // Position, colour, depth and second colour: 13 elements, evaluated compiled.
+    const Camera wide = Camera::identity({Block{BlockKind::Position, 3}, Block{BlockKind::Colour, 4},
+                                          Block{BlockKind::Depth, 2}, Block{BlockKind::SecondColour, 4}},
+                                         {64, 64}, {64, 64});
+    const Coverage c = measureCoverage(wide);
+    QVERIFY(c.checked);
+    QCOMPARE(c.covering, kCells);
+  }
+
   void objectSpaceCamerasAreNotChecked() {
     const Camera c = Camera::identity({Block{BlockKind::Position, 4}}, {}, {});
     QVERIFY(!measureCoverage(c).checked);
