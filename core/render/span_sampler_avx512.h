@@ -406,6 +406,108 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 bilinearBlend
   return _mm512_add_ps(_mm512_setzero_ps(), _mm512_add_ps(roundedProduct(by0, top), roundedProduct(by1, bottom)));
 }
 
+// 64 samples of 16-bit RGB from p (two 512-bit loads), masked at the image's last sample
+// (`end`, bytes from k.src): nothing past it is read.
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline void wordWindow(const SpanSampler::Context& k,
+                                                                           std::int64_t end, const unsigned char* p,
+                                                                           __m512i window[2]) {
+  const std::int64_t left = (end - (p - k.src)) / 2;
+  for (int r = 0; r < 2; ++r) {
+    const std::int64_t count = left - 32 * r;
+    window[r] = count >= 32 ? _mm512_loadu_si512(p + 64 * r)
+                            : _mm512_maskz_loadu_epi16(count <= 0 ? 0 : static_cast<__mmask32>((1u << count) - 1u), p + 64 * r);
+  }
+}
+
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 wordsToFloats(__m256i w) {
+  return _mm512_cvtepi32_ps(_mm512_cvtepu16_epi32(w));
+}
+
+// Sixteen pixels of bilinear 16-bit RGB, one channel at a time as bilinearRgb8 does: lane p of
+// every register is pixel p, so the blend's arithmetic fills all sixteen lanes (the eight-pixel
+// group below leaves half its blue lanes idle and sets up every eight pixels). A row's taps lie
+// within 64 samples of the group's first tap (rel ≤ 19: 3 rel + 5 < 64), two 64-byte loads;
+// one vpermt2w a row and channel picks the left taps (words 0–15) and the right ones (16–31),
+// widened to floats; the arithmetic per pixel is the AVX2 clone's in its order
+// (bilinearBlend), so the same bits. Returns false, writing nothing, for a group that is not
+// interior, valid, within two source rows and 20 columns (or for an image under 2 × 2): the
+// caller runs the eight-pixel path. Measured (24 MP, 2 threads): the 16-bit homography ~11 %
+// faster, the rational kernel's ~15 %. Float is not taken this way: its 64-sample window is
+// four registers, each tap two vpermt2ps and a blend, and it measured ~25 % slower than eights.
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool wordGroup16(const SpanSampler::Context& k,
+                                                                            std::int64_t end, unsigned char* o,
+                                                                            const float* sx, const float* sy,
+                                                                            const unsigned char* valid) {
+  const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid)));
+  if (_mm_cmpeq_epi8_mask(v, _mm_set1_epi8(1)) != 0xFFFF || k.width < 2 || k.height < 2) return false;
+  const __m512 half = _mm512_set1_ps(0.5f), one = _mm512_set1_ps(1.0f);
+  const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx), half), fy = _mm512_sub_ps(_mm512_loadu_ps(sy), half);
+  // avx2::tapFloor on sixteen lanes: a NaN or huge position gives INT_MIN or INT_MAX and a
+  // negative tap a huge unsigned one, so the unsigned limits below refuse them all.
+  const __m512i int_one = _mm512_set1_epi32(1);
+  const __m512i x0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fx, one)), int_one);
+  const __m512i y0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fy, one)), int_one);
+  const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(x0));
+  // The upper row: the lower of the first and last pixels' rows (as bilinearRgb8).
+  const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(y0)),
+                               _mm_extract_epi32(_mm512_extracti32x4_epi32(y0, 3), 3));
+  const __m512i rel = _mm512_sub_epi32(x0, _mm512_set1_epi32(x_first));
+  const __m512i dy = _mm512_sub_epi32(y0, _mm512_set1_epi32(y_first));
+  __mmask16 fits = _mm512_cmple_epu32_mask(x0, _mm512_set1_epi32(k.width - 2));
+  fits = _mm512_mask_cmple_epu32_mask(fits, y0, _mm512_set1_epi32(k.height - 2));
+  fits = _mm512_mask_cmple_epu32_mask(fits, dy, int_one);
+  fits = _mm512_mask_cmple_epu32_mask(fits, rel, _mm512_set1_epi32(19));
+  if (fits != 0xFFFF) return false;
+  const unsigned char* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row + static_cast<std::ptrdiff_t>(x_first) * 6;
+  // The lines the group's taps (17 pixels, 102 bytes) occupy prefetchRowsAhead's rows down.
+  const char* ahead = reinterpret_cast<const char*>(upper + static_cast<std::ptrdiff_t>(avx2::kPrefetchRows) * k.src_row);
+  _mm_prefetch(ahead, _MM_HINT_T0);
+  _mm_prefetch(ahead + 64, _MM_HINT_T0);
+  _mm_prefetch(ahead + 101, _MM_HINT_T0);
+  // Pixels one row down (the group crosses a source row): their upper taps are the lower
+  // row's, their lower ones row y_first + 2's (inside: their y0 ≤ h − 2).
+  const __mmask16 lower = _mm512_test_epi32_mask(dy, dy);
+  __m512i top[2], bottom[2], third[2];
+  wordWindow(k, end, upper, top);
+  wordWindow(k, end, upper + k.src_row, bottom);
+  if (lower) wordWindow(k, end, upper + 2 * k.src_row, third);
+  const __m256i left = _mm512_cvtepi32_epi16(_mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1)));  // 3 rel
+  const __m512i pair = _mm512_inserti64x4(_mm512_castsi256_si512(left), _mm256_add_epi16(left, _mm256_set1_epi16(3)), 1);
+  const __mmask32 lower_words = static_cast<__mmask32>(lower) | (static_cast<__mmask32>(lower) << 16);
+  const __m512 wx1 = _mm512_sub_ps(fx, _mm512_cvtepi32_ps(x0)), wy1 = _mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0));
+  const __m512 bx0 = _mm512_sub_ps(one, wx1), by0 = _mm512_sub_ps(one, wy1);
+  const __m512 full = _mm512_set1_ps(65535.0f);
+  __m256i word[3];
+  for (int c = 0; c < 3; ++c) {
+    const __m512i index = _mm512_add_epi16(pair, _mm512_set1_epi16(static_cast<short>(c)));
+    __m512i up = _mm512_permutex2var_epi16(top[0], index, top[1]);
+    __m512i down = _mm512_permutex2var_epi16(bottom[0], index, bottom[1]);
+    if (lower) {
+      up = _mm512_mask_blend_epi16(lower_words, up, down);
+      down = _mm512_mask_blend_epi16(lower_words, down, _mm512_permutex2var_epi16(third[0], index, third[1]));
+    }
+    const __m512 value = bilinearBlend(bx0, wx1, by0, wy1, wordsToFloats(_mm512_castsi512_si256(up)),
+                                       wordsToFloats(_mm512_extracti64x4_epi64(up, 1)),
+                                       wordsToFloats(_mm512_castsi512_si256(down)),
+                                       wordsToFloats(_mm512_extracti64x4_epi64(down, 1)));
+    // + ½, clamped to [0, 65535], truncated (store<uint16_t>); vpmovdw's truncation is exact.
+    word[c] = _mm512_cvtepi32_epi16(
+        _mm512_cvttps_epi32(_mm512_min_ps(full, _mm512_max_ps(_mm512_setzero_ps(), _mm512_add_ps(value, half)))));
+  }
+  // Output word 3 p + c: red p (word p of the first table), green p (16 + p), blue p (32 + p:
+  // the second table's word p).
+  alignas(64) static constexpr std::uint16_t kInterleave[64] = {
+      0,  16, 32, 1,  17, 33, 2,  18, 34, 3,  19, 35, 4,  20, 36, 5,  21, 37, 6,  22, 38, 7,
+      23, 39, 8,  24, 40, 9,  25, 41, 10, 26, 42, 11, 27, 43, 12, 28, 44, 13, 29, 45, 14, 30,
+      46, 15, 31, 47, 0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0,  0};
+  const __m512i rg = _mm512_inserti64x4(_mm512_castsi256_si512(word[0]), word[1], 1);
+  const __m512i b = _mm512_castsi256_si512(word[2]);
+  _mm512_storeu_si512(o, _mm512_permutex2var_epi16(rg, _mm512_load_si512(kInterleave), b));
+  _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o + 64)),
+                      _mm512_castsi512_si256(_mm512_permutex2var_epi16(rg, _mm512_load_si512(kInterleave + 32), b)));
+  return true;
+}
+
 // Bilinear float or 16-bit RGB → RGB of the same type (no alpha), eight pixels per group,
 // with the AVX2 clone's float operations in its order (each product rounded on its own, as
 // roundedProduct), so the tests demand the same bits. Why: the AVX2 clone loads every tap of
@@ -442,8 +544,16 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const Spa
   const __m512i interleave1 = _mm512_setr_epi32(13, 21, 6, 14, 22, 7, 15, 23, 0, 0, 0, 0, 0, 0, 0, 0);
   long long transparent = 0;
   int i = 0;
+  int eights_until = 0;  // after a group of sixteen that did not fit, its two eights
   for (; i + 8 <= n; i += 8) {
     unsigned char* o = out + static_cast<std::ptrdiff_t>(i) * kOutPixel;
+    if (std::is_same_v<T, std::uint16_t> && i >= eights_until && i + 16 <= n) {
+      if (wordGroup16(k, end, o, sx + i, sy + i, valid + i)) {
+        i += 8;
+        continue;
+      }
+      eights_until = i + 16;
+    }
     const __m256 fx = _mm256_sub_ps(_mm256_loadu_ps(sx + i), half);
     const __m256 fy = _mm256_sub_ps(_mm256_loadu_ps(sy + i), half);
     const auto [x0, y0] = avx2::tapFloor(fx, fy);  // the AVX2 clone's integers

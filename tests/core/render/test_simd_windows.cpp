@@ -9,7 +9,9 @@
 //   invalid pixel, and the tails of spans whose length is not a multiple of sixteen (the
 //   clone); groups wholly outside the source (the AVX2 clone writes their zeros without the
 //   scalar pass) and groups with no valid pixel;
-// - the lower-row limit of the interior (positions just above and below h − 2.5).
+// - the lower-row limit of the interior (positions just above and below h − 2.5);
+// - no read past the image's last byte: the image ends where an unreadable page begins, so a
+//   window load that is not masked there (the spans along the last rows' right end) faults.
 // On a CPU without AVX-512 the test still compares the AVX2 clone (or the scalar code, when
 // there is no SIMD at all) with the scalar path and says so.
 #include "core/model/image_view.h"
@@ -19,9 +21,13 @@
 
 #include <QtTest/QtTest>
 
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 using namespace artcam;
@@ -38,6 +44,30 @@ std::vector<std::uint8_t> noiseRgb(int w, int h) {
   }
   return img;
 }
+
+// A copy of `bytes` bytes that ends exactly where a page no process may read begins.
+class GuardedCopy {
+ public:
+  GuardedCopy(const void* data, size_t bytes) {
+    const size_t page = static_cast<size_t>(sysconf(_SC_PAGESIZE));
+    span_ = (bytes + page - 1) / page * page + page;
+    void* map = mmap(nullptr, span_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (map == MAP_FAILED) qFatal("mmap failed");
+    map_ = static_cast<unsigned char*>(map);
+    if (mprotect(map_ + span_ - page, page, PROT_NONE) != 0) qFatal("mprotect failed");
+    data_ = map_ + span_ - page - bytes;
+    std::memcpy(data_, data, bytes);
+  }
+  ~GuardedCopy() { munmap(map_, span_); }
+  GuardedCopy(const GuardedCopy&) = delete;
+  GuardedCopy& operator=(const GuardedCopy&) = delete;
+  const void* data() const { return data_; }
+
+ private:
+  unsigned char* map_ = nullptr;
+  unsigned char* data_ = nullptr;
+  size_t span_ = 0;
+};
 
 }  // namespace
 
@@ -80,8 +110,11 @@ class TestSimdWindows : public QObject {
 
  private:
   // `out_channels`: 3, or 4 for RGBA with alpha appended.
-  static void compareOnSmoothSpans(const ConstImageView& src, int sample_bytes, int out_channels = 3) {
-    const int w = src.width, h = src.height;
+  static void compareOnSmoothSpans(const ConstImageView& packed, int sample_bytes, int out_channels = 3) {
+    const int w = packed.width, h = packed.height;
+    const GuardedCopy guarded(packed.data, static_cast<size_t>(packed.row_bytes) * static_cast<size_t>(h));
+    ConstImageView src = packed;
+    src.data = guarded.data();
     const int oc = out_channels, alpha = oc == 4 ? 3 : -1;
     std::vector<std::uint8_t> a(static_cast<size_t>(kSpanPixels) * oc * sample_bytes), b(a.size()), c(a.size());
     const PixelType type = src.type;
