@@ -531,6 +531,7 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const Spa
   const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
   const __m256i max_rel = _mm256_set1_epi32(8);
   const __m256i x_limit = _mm256_set1_epi32(k.width - 2), y_limit = _mm256_set1_epi32(k.height - 2);
+  const bool sized = k.width >= 2 && k.height >= 2;
   // One past the image's last byte, from its first (row padding after it is not ours).
   const std::int64_t end = static_cast<std::int64_t>(k.height - 1) * k.src_row +
                            static_cast<std::int64_t>(k.width) * kOutPixel;
@@ -567,13 +568,12 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const Spa
     std::memcpy(&v, valid + i, 8);
     // Interior (0 ≤ x0 ≤ w − 2, 0 ≤ y0 ≤ h − 2), rows y_first or one below (dy 0 or 1),
     // 0 ≤ rel ≤ 8 (taps in 30 floats).
-    const bool inside = v == 0x0101010101010101ull &&
-                        _mm256_cmp_epi32_mask(x0, _mm256_setzero_si256(), _MM_CMPINT_LT) == 0 &&
-                        _mm256_cmp_epi32_mask(x0, x_limit, _MM_CMPINT_LE) == 0xFF &&
-                        _mm256_cmp_epi32_mask(y0, _mm256_setzero_si256(), _MM_CMPINT_LT) == 0 &&
-                        _mm256_cmp_epi32_mask(y0, y_limit, _MM_CMPINT_LE) == 0xFF &&
-                        _mm256_cmp_epu32_mask(dy, _mm256_set1_epi32(1), _MM_CMPINT_LE) == 0xFF &&
-                        _mm256_cmp_epu32_mask(rel, max_rel, _MM_CMPINT_LE) == 0xFF;
+    // Unsigned, a negative x0 or y0 exceeds any limit (an image under 2 × 2 takes the clone).
+    __mmask8 fits = _mm256_cmp_epu32_mask(x0, x_limit, _MM_CMPINT_LE);
+    fits = _mm256_mask_cmp_epu32_mask(fits, y0, y_limit, _MM_CMPINT_LE);
+    fits = _mm256_mask_cmp_epu32_mask(fits, dy, _mm256_set1_epi32(1), _MM_CMPINT_LE);
+    fits = _mm256_mask_cmp_epu32_mask(fits, rel, max_rel, _MM_CMPINT_LE);
+    const bool inside = sized && v == 0x0101010101010101ull && fits == 0xFF;
     if (!inside) {
       transparent += fallback(k, o, 8, sx + i, sy + i, valid + i, 1, nullptr);
       continue;
@@ -581,12 +581,14 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const Spa
     const unsigned char* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row +
                                  static_cast<std::ptrdiff_t>(x_first) * kOutPixel;
     // As the AVX2 clone: the lines a few rows down (the windows' 128 bytes: three lines).
-    avx2::prefetchRowsAhead(k, upper, 128);
-    avx2::prefetchRowsAhead(k, upper + 64, 1);
+    const char* ahead = reinterpret_cast<const char*>(upper + static_cast<std::ptrdiff_t>(avx2::kPrefetchRows) * k.src_row);
+    _mm_prefetch(ahead, _MM_HINT_T0);
+    _mm_prefetch(ahead + 64, _MM_HINT_T0);
+    _mm_prefetch(ahead + 127, _MM_HINT_T0);
     __m512 t0, t1, b0, b1;
     sampleWindow<T>(k, end, upper, t0, t1);
     sampleWindow<T>(k, end, upper + k.src_row, b0, b1);
-    const __m256i rel3 = _mm256_mullo_epi32(rel, _mm512_castsi512_si256(three));
+    const __m256i rel3 = _mm256_add_epi32(rel, _mm256_slli_epi32(rel, 1));
     const __m512i rel3z = _mm512_inserti64x4(_mm512_castsi256_si512(rel3), rel3, 1);
     const __m512i rg_left = _mm512_add_epi32(rel3z, rg_offset), rg_right = _mm512_add_epi32(rg_left, three);
     const __m512i b_index = _mm512_add_epi32(rel3z, b_offset);
