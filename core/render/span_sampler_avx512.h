@@ -508,6 +508,113 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool wordGroup16(con
   return true;
 }
 
+// The eight pixels of a group that fits (bilinearWideRgb's test) from their windows: `upper`
+// the group's first tap in its upper row, `rel3z` 3 × each pixel's column from the first tap
+// and `lower` the pixels one row down, both as lanes p and 8 + p; the weights (1 − wx, wx,
+// 1 − wy, wy) likewise.
+template <class T>
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline void wideEight(const SpanSampler::Context& k, std::int64_t end,
+                                                                          unsigned char* o, const unsigned char* upper,
+                                                                          __m512i rel3z, __mmask8 lower, __m512 bx0,
+                                                                          __m512 bx1, __m512 by0, __m512 by1) {
+  // Channel offsets within a pixel's taps: red | green (left; right is + 3), blue left | right.
+  const __m512i rg_offset = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1);
+  const __m512i b_offset = _mm512_setr_epi32(2, 2, 2, 2, 2, 2, 2, 2, 5, 5, 5, 5, 5, 5, 5, 5);
+  const __m512i three = _mm512_set1_epi32(3);
+  // Output float 3 p + c: red p (lane p), green p (lane 8 + p) of the first table, blue p
+  // (lane p of the second: index 16 + p).
+  const __m512i interleave0 = _mm512_setr_epi32(0, 8, 16, 1, 9, 17, 2, 10, 18, 3, 11, 19, 4, 12, 20, 5);
+  const __m512i interleave1 = _mm512_setr_epi32(13, 21, 6, 14, 22, 7, 15, 23, 0, 0, 0, 0, 0, 0, 0, 0);
+  // As the AVX2 clone: the lines a few rows down (the windows' 128 bytes: three lines).
+  const char* ahead = reinterpret_cast<const char*>(upper + static_cast<std::ptrdiff_t>(avx2::kPrefetchRows) * k.src_row);
+  _mm_prefetch(ahead, _MM_HINT_T0);
+  _mm_prefetch(ahead + 64, _MM_HINT_T0);
+  _mm_prefetch(ahead + 127, _MM_HINT_T0);
+  __m512 t0, t1, b0, b1;
+  sampleWindow<T>(k, end, upper, t0, t1);
+  sampleWindow<T>(k, end, upper + k.src_row, b0, b1);
+  const __m512i rg_left = _mm512_add_epi32(rel3z, rg_offset), rg_right = _mm512_add_epi32(rg_left, three);
+  const __m512i b_index = _mm512_add_epi32(rel3z, b_offset);
+  __m512 tl = _mm512_permutex2var_ps(t0, rg_left, t1), tr = _mm512_permutex2var_ps(t0, rg_right, t1);
+  __m512 bl = _mm512_permutex2var_ps(b0, rg_left, b1), br = _mm512_permutex2var_ps(b0, rg_right, b1);
+  __m512 tb = _mm512_permutex2var_ps(t0, b_index, t1), bb = _mm512_permutex2var_ps(b0, b_index, b1);
+  // Pixels one row lower (the group crosses a source row): their upper taps are the lower
+  // row's, their lower ones row y_first + 2's (inside: their y0 ≤ h − 2). Lanes p and 8 + p
+  // are pixel p in every tap register.
+  if (lower) {
+    const __mmask16 both = static_cast<__mmask16>(lower | (lower << 8));
+    __m512 h0, h1;
+    sampleWindow<T>(k, end, upper + 2 * k.src_row, h0, h1);
+    tl = _mm512_mask_blend_ps(both, tl, bl);
+    tr = _mm512_mask_blend_ps(both, tr, br);
+    tb = _mm512_mask_blend_ps(both, tb, bb);
+    bl = _mm512_mask_blend_ps(both, bl, _mm512_permutex2var_ps(h0, rg_left, h1));
+    br = _mm512_mask_blend_ps(both, br, _mm512_permutex2var_ps(h0, rg_right, h1));
+    bb = _mm512_mask_blend_ps(both, bb, _mm512_permutex2var_ps(h0, b_index, h1));
+  }
+  const __m512 tb_right = _mm512_shuffle_f32x4(tb, tb, 0x4E), bb_right = _mm512_shuffle_f32x4(bb, bb, 0x4E);
+  const __m512 rg = bilinearBlend(bx0, bx1, by0, by1, tl, tr, bl, br);
+  const __m512 blue = bilinearBlend(bx0, bx1, by0, by1, tb, tb_right, bb, bb_right);
+  if constexpr (std::is_same_v<T, float>) {
+    float* of = static_cast<float*>(static_cast<void*>(o));
+    _mm512_storeu_ps(of, _mm512_permutex2var_ps(rg, interleave0, blue));
+    _mm256_storeu_ps(of + 16, _mm512_castps512_ps256(_mm512_permutex2var_ps(rg, interleave1, blue)));
+  } else {
+    // Every value lies in [0, 65535] after the clamp, so vpmovdw's truncation to words is exact.
+    const __m512 full = _mm512_set1_ps(65535.0f), rounding = _mm512_set1_ps(0.5f);
+    const __m512i r = _mm512_cvttps_epi32(_mm512_min_ps(full, _mm512_max_ps(_mm512_setzero_ps(), _mm512_add_ps(rg, rounding))));
+    const __m512i b = _mm512_cvttps_epi32(_mm512_min_ps(full, _mm512_max_ps(_mm512_setzero_ps(), _mm512_add_ps(blue, rounding))));
+    _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o)), _mm512_cvtepi32_epi16(_mm512_permutex2var_epi32(r, interleave0, b)));
+    _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 32)),
+                     _mm256_castsi256_si128(_mm512_cvtepi32_epi16(_mm512_permutex2var_epi32(r, interleave1, b))));
+  }
+}
+
+// Sixteen float pixels as two groups of eight that both fit (bilinearWideRgb's test, each eight
+// against its own first tap and upper row): the positions, floors, tests and weights worked
+// out once on sixteen lanes instead of twice on eight, then each eight from its own windows
+// (wideEight), so the same operations per pixel as two eights. Returns false, writing nothing,
+// when either eight does not fit (or the image is under 2 × 2).
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool floatSixteen(const SpanSampler::Context& k,
+                                                                             std::int64_t end, unsigned char* o,
+                                                                             const float* sx, const float* sy,
+                                                                             const unsigned char* valid) {
+  const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid)));
+  if (_mm_cmpeq_epi8_mask(v, _mm_set1_epi8(1)) != 0xFFFF || k.width < 2 || k.height < 2) return false;
+  const __m512 half = _mm512_set1_ps(0.5f), one = _mm512_set1_ps(1.0f);
+  const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx), half), fy = _mm512_sub_ps(_mm512_loadu_ps(sy), half);
+  const __m512i int_one = _mm512_set1_epi32(1);  // avx2::tapFloor on sixteen lanes
+  const __m512i x0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fx, one)), int_one);
+  const __m512i y0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fy, one)), int_one);
+  // Each eight's first tap, and its upper row: the lower of its first and last pixels' rows.
+  const __m512i firsts = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 8, 8, 8, 8, 8, 8, 8, 8);
+  const __m512i lasts = _mm512_setr_epi32(7, 7, 7, 7, 7, 7, 7, 7, 15, 15, 15, 15, 15, 15, 15, 15);
+  const __m512i x_first = _mm512_permutexvar_epi32(firsts, x0);
+  const __m512i y_first = _mm512_min_epi32(_mm512_permutexvar_epi32(firsts, y0), _mm512_permutexvar_epi32(lasts, y0));
+  const __m512i rel = _mm512_sub_epi32(x0, x_first), dy = _mm512_sub_epi32(y0, y_first);
+  __mmask16 fits = _mm512_cmple_epu32_mask(x0, _mm512_set1_epi32(k.width - 2));
+  fits = _mm512_mask_cmple_epu32_mask(fits, y0, _mm512_set1_epi32(k.height - 2));
+  fits = _mm512_mask_cmple_epu32_mask(fits, dy, int_one);
+  fits = _mm512_mask_cmple_epu32_mask(fits, rel, _mm512_set1_epi32(8));
+  if (fits != 0xFFFF) return false;
+  const __m512i rel3 = _mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1));
+  const __m512 wx1 = _mm512_sub_ps(fx, _mm512_cvtepi32_ps(x0)), wy1 = _mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0));
+  const __m512 bx0 = _mm512_sub_ps(one, wx1), by0 = _mm512_sub_ps(one, wy1);
+  const __mmask16 lower = _mm512_test_epi32_mask(dy, dy);
+  const auto upper = [&k](int x, int y) {
+    return k.src + static_cast<std::ptrdiff_t>(y) * k.src_row + static_cast<std::ptrdiff_t>(x) * 12;
+  };
+  // 0x44: lanes 0–7 in both halves (the first eight); 0xEE: lanes 8–15 (the second).
+  wideEight<float>(k, end, o, upper(_mm_cvtsi128_si32(_mm512_castsi512_si128(x_first)), _mm_cvtsi128_si32(_mm512_castsi512_si128(y_first))),
+                   _mm512_shuffle_i32x4(rel3, rel3, 0x44), static_cast<__mmask8>(lower), _mm512_shuffle_f32x4(bx0, bx0, 0x44),
+                   _mm512_shuffle_f32x4(wx1, wx1, 0x44), _mm512_shuffle_f32x4(by0, by0, 0x44), _mm512_shuffle_f32x4(wy1, wy1, 0x44));
+  wideEight<float>(k, end, o + 96,
+                   upper(_mm_cvtsi128_si32(_mm512_extracti32x4_epi32(x_first, 2)), _mm_cvtsi128_si32(_mm512_extracti32x4_epi32(y_first, 2))),
+                   _mm512_shuffle_i32x4(rel3, rel3, 0xEE), static_cast<__mmask8>(lower >> 8), _mm512_shuffle_f32x4(bx0, bx0, 0xEE),
+                   _mm512_shuffle_f32x4(wx1, wx1, 0xEE), _mm512_shuffle_f32x4(by0, by0, 0xEE), _mm512_shuffle_f32x4(wy1, wy1, 0xEE));
+  return true;
+}
+
 // Bilinear float or 16-bit RGB → RGB of the same type (no alpha), eight pixels per group,
 // with the AVX2 clone's float operations in its order (each product rounded on its own, as
 // roundedProduct), so the tests demand the same bits. Why: the AVX2 clone loads every tap of
@@ -535,21 +642,14 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const Spa
   // One past the image's last byte, from its first (row padding after it is not ours).
   const std::int64_t end = static_cast<std::int64_t>(k.height - 1) * k.src_row +
                            static_cast<std::int64_t>(k.width) * kOutPixel;
-  // Channel offsets within a pixel's taps: red | green (left; right is + 3), blue left | right.
-  const __m512i rg_offset = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1);
-  const __m512i b_offset = _mm512_setr_epi32(2, 2, 2, 2, 2, 2, 2, 2, 5, 5, 5, 5, 5, 5, 5, 5);
-  const __m512i three = _mm512_set1_epi32(3);
-  // Output float 3 p + c: red p (lane p), green p (lane 8 + p) of the first table, blue p
-  // (lane p of the second: index 16 + p).
-  const __m512i interleave0 = _mm512_setr_epi32(0, 8, 16, 1, 9, 17, 2, 10, 18, 3, 11, 19, 4, 12, 20, 5);
-  const __m512i interleave1 = _mm512_setr_epi32(13, 21, 6, 14, 22, 7, 15, 23, 0, 0, 0, 0, 0, 0, 0, 0);
   long long transparent = 0;
   int i = 0;
   int eights_until = 0;  // after a group of sixteen that did not fit, its two eights
   for (; i + 8 <= n; i += 8) {
     unsigned char* o = out + static_cast<std::ptrdiff_t>(i) * kOutPixel;
-    if (std::is_same_v<T, std::uint16_t> && i >= eights_until && i + 16 <= n) {
-      if (wordGroup16(k, end, o, sx + i, sy + i, valid + i)) {
+    if (i >= eights_until && i + 16 <= n) {
+      if (std::is_same_v<T, std::uint16_t> ? wordGroup16(k, end, o, sx + i, sy + i, valid + i)
+                                          : floatSixteen(k, end, o, sx + i, sy + i, valid + i)) {
         i += 8;
         continue;
       }
@@ -580,54 +680,10 @@ __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const Spa
     }
     const unsigned char* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row +
                                  static_cast<std::ptrdiff_t>(x_first) * kOutPixel;
-    // As the AVX2 clone: the lines a few rows down (the windows' 128 bytes: three lines).
-    const char* ahead = reinterpret_cast<const char*>(upper + static_cast<std::ptrdiff_t>(avx2::kPrefetchRows) * k.src_row);
-    _mm_prefetch(ahead, _MM_HINT_T0);
-    _mm_prefetch(ahead + 64, _MM_HINT_T0);
-    _mm_prefetch(ahead + 127, _MM_HINT_T0);
-    __m512 t0, t1, b0, b1;
-    sampleWindow<T>(k, end, upper, t0, t1);
-    sampleWindow<T>(k, end, upper + k.src_row, b0, b1);
     const __m256i rel3 = _mm256_add_epi32(rel, _mm256_slli_epi32(rel, 1));
-    const __m512i rel3z = _mm512_inserti64x4(_mm512_castsi256_si512(rel3), rel3, 1);
-    const __m512i rg_left = _mm512_add_epi32(rel3z, rg_offset), rg_right = _mm512_add_epi32(rg_left, three);
-    const __m512i b_index = _mm512_add_epi32(rel3z, b_offset);
-    __m512 tl = _mm512_permutex2var_ps(t0, rg_left, t1), tr = _mm512_permutex2var_ps(t0, rg_right, t1);
-    __m512 bl = _mm512_permutex2var_ps(b0, rg_left, b1), br = _mm512_permutex2var_ps(b0, rg_right, b1);
-    __m512 tb = _mm512_permutex2var_ps(t0, b_index, t1), bb = _mm512_permutex2var_ps(b0, b_index, b1);
-    // Pixels one row lower (the group crosses a source row): their upper taps are the lower
-    // row's, their lower ones row y_first + 2's (inside: their y0 ≤ h − 2). Lanes p and 8 + p
-    // are pixel p in every tap register.
-    if (const __mmask8 lower = _mm256_test_epi32_mask(dy, dy)) {
-      const __mmask16 both = static_cast<__mmask16>(lower | (lower << 8));
-      __m512 h0, h1;
-      sampleWindow<T>(k, end, upper + 2 * k.src_row, h0, h1);
-      tl = _mm512_mask_blend_ps(both, tl, bl);
-      tr = _mm512_mask_blend_ps(both, tr, br);
-      tb = _mm512_mask_blend_ps(both, tb, bb);
-      bl = _mm512_mask_blend_ps(both, bl, _mm512_permutex2var_ps(h0, rg_left, h1));
-      br = _mm512_mask_blend_ps(both, br, _mm512_permutex2var_ps(h0, rg_right, h1));
-      bb = _mm512_mask_blend_ps(both, bb, _mm512_permutex2var_ps(h0, b_index, h1));
-    }
-    const __m512 tb_right = _mm512_shuffle_f32x4(tb, tb, 0x4E), bb_right = _mm512_shuffle_f32x4(bb, bb, 0x4E);
     const __m256 wx1 = _mm256_sub_ps(fx, _mm256_cvtepi32_ps(x0)), wy1 = _mm256_sub_ps(fy, _mm256_cvtepi32_ps(y0));
-    const __m512 bx0 = bothHalves(_mm256_sub_ps(one, wx1)), bx1 = bothHalves(wx1);
-    const __m512 by0 = bothHalves(_mm256_sub_ps(one, wy1)), by1 = bothHalves(wy1);
-    const __m512 rg = bilinearBlend(bx0, bx1, by0, by1, tl, tr, bl, br);
-    const __m512 blue = bilinearBlend(bx0, bx1, by0, by1, tb, tb_right, bb, bb_right);
-    if constexpr (std::is_same_v<T, float>) {
-      float* of = static_cast<float*>(static_cast<void*>(o));
-      _mm512_storeu_ps(of, _mm512_permutex2var_ps(rg, interleave0, blue));
-      _mm256_storeu_ps(of + 16, _mm512_castps512_ps256(_mm512_permutex2var_ps(rg, interleave1, blue)));
-    } else {
-      // Every value lies in [0, 65535] after the clamp, so vpmovdw's truncation to words is exact.
-      const __m512 full = _mm512_set1_ps(65535.0f), rounding = _mm512_set1_ps(0.5f);
-      const __m512i r = _mm512_cvttps_epi32(_mm512_min_ps(full, _mm512_max_ps(_mm512_setzero_ps(), _mm512_add_ps(rg, rounding))));
-      const __m512i b = _mm512_cvttps_epi32(_mm512_min_ps(full, _mm512_max_ps(_mm512_setzero_ps(), _mm512_add_ps(blue, rounding))));
-      _mm256_storeu_si256(static_cast<__m256i*>(static_cast<void*>(o)), _mm512_cvtepi32_epi16(_mm512_permutex2var_epi32(r, interleave0, b)));
-      _mm_storeu_si128(static_cast<__m128i*>(static_cast<void*>(o + 32)),
-                       _mm256_castsi256_si128(_mm512_cvtepi32_epi16(_mm512_permutex2var_epi32(r, interleave1, b))));
-    }
+    wideEight<T>(k, end, o, upper, _mm512_inserti64x4(_mm512_castsi256_si512(rel3), rel3, 1), _mm256_test_epi32_mask(dy, dy),
+                 bothHalves(_mm256_sub_ps(one, wx1)), bothHalves(wx1), bothHalves(_mm256_sub_ps(one, wy1)), bothHalves(wy1));
   }
   if (i < n)
     transparent += fallback(k, out + static_cast<std::ptrdiff_t>(i) * kOutPixel, n - i, sx + i, sy + i, valid + i, 1, nullptr);
