@@ -409,22 +409,48 @@ void InverseCells::buildCoverage(int threads) {
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 8;
+  const RationalMap& forward = newton_.forward();
   parallelForRows(ph, po, [&](int j0, int j1) {
+    // A one-stage map (all but chains) in batches along the row: evaluateBatch is
+    // evaluateSingle's arithmetic without its branches, so the same numbers at a third of the
+    // time (the lattice took a fifth of a mild lens's kernel build point by point).
+    RationalMap::Batch batch;
+    double bu[RationalMap::kBatch], bv[RationalMap::kBatch];
     for (int j = j0; j < j1; ++j)
-      for (int i = 0; i < pw; ++i) {
-        const Eigen::Vector2d s = at(i, j);
-        Eigen::Vector2d f;
-        Eigen::Matrix2d jac;
-        unsigned signs = 0;
-        const bool good = newton_.forward().evaluate(s, f, &jac, &signs) && signs == centre_signs;
-        mapped[index(i, j, pw)] = f;
-        // 1: the centre's side of the pole curves and its fold; 2: beyond a fold.
-        const double det = jac.determinant();
-        ok[index(i, j, pw)] = good ? ((det > 0.0) == newton_.centre().det_positive ? 1 : 2) : 0;
-        if (good && s.x() > -near && s.y() > -near && s.x() < source_px_.width + near &&
-            s.y() < source_px_.height + near) {
-          const double scale = std::abs(det) > 0.0 ? (jac.inverse()).cwiseAbs().maxCoeff() : kMaxScale;
-          band_scale[static_cast<size_t>(j)] = std::max(band_scale[static_cast<size_t>(j)], std::isfinite(scale) ? scale : kMaxScale);
+      for (int i0 = 0; i0 < pw; i0 += RationalMap::kBatch) {
+        const int count = std::min(RationalMap::kBatch, pw - i0);
+        for (int b = 0; b < RationalMap::kBatch; ++b) {
+          const Eigen::Vector2d s = at(i0 + std::min(b, count - 1), j);
+          bu[b] = s.x();
+          bv[b] = s.y();
+        }
+        const bool batched = forward.evaluateBatch(bu, bv, batch);
+        for (int b = 0; b < count; ++b) {
+          const int i = i0 + b;
+          const Eigen::Vector2d s(bu[b], bv[b]);
+          Eigen::Vector2d f;
+          Eigen::Matrix2d jac;
+          unsigned signs = 0;
+          bool good;
+          if (batched) {
+            // evaluateSingle's tests: a denominator that is not zero, a finite target and Jacobian.
+            f = Eigen::Vector2d(batch.x[b], batch.y[b]);
+            jac << batch.j00[b], batch.j01[b], batch.j10[b], batch.j11[b];
+            signs = batch.den[b] < 0.0 ? 1u : 0u;
+            good = std::abs(batch.den[b]) > 0.0 && f.allFinite() && jac.allFinite();
+          } else {
+            good = forward.evaluate(s, f, &jac, &signs);
+          }
+          good = good && signs == centre_signs;
+          mapped[index(i, j, pw)] = f;
+          // 1: the centre's side of the pole curves and its fold; 2: beyond a fold.
+          const double det = jac.determinant();
+          ok[index(i, j, pw)] = good ? ((det > 0.0) == newton_.centre().det_positive ? 1 : 2) : 0;
+          if (good && s.x() > -near && s.y() > -near && s.x() < source_px_.width + near &&
+              s.y() < source_px_.height + near) {
+            const double scale = std::abs(det) > 0.0 ? (jac.inverse()).cwiseAbs().maxCoeff() : kMaxScale;
+            band_scale[static_cast<size_t>(j)] = std::max(band_scale[static_cast<size_t>(j)], std::isfinite(scale) ? scale : kMaxScale);
+          }
         }
       }
   });
