@@ -44,6 +44,9 @@ bool spinUntil(const Ready& ready) {
 #endif
     }
     if (std::chrono::steady_clock::now() >= until) return ready();
+    // Let any thread that has work run first: with more threads than cores (the studio's
+    // render and fit workers, each with helpers) a spinner must not hold a core.
+    std::this_thread::yield();
   }
 }
 
