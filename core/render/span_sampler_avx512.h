@@ -627,7 +627,9 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool floatSixteen(co
 // row below and blends. A group wider than the window (minified below 0.9×), one spanning more
 // rows, or one touching a border or an invalid pixel runs `fallback` (the AVX2 clone). The
 // loads are masked at the image's last sample, so nothing past it is read. 16-bit stores as
-// store<uint16_t>: + ½, clamped to [0, 65535], truncated.
+// store<uint16_t>: + ½, clamped to [0, 65535], truncated. Sixteen pixels are tried first
+// (16-bit: wordGroup16, one channel at a time; float: floatSixteen, the set-up shared by two
+// eights); a sixteen that does not fit runs as two eights.
 template <class T>
 __attribute__((ARTCAM_AVX512_TARGET)) inline long long bilinearWideRgb(const SpanSampler::Context& k,
                                                                        unsigned char* out, int n,
