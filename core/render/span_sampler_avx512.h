@@ -423,6 +423,44 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline __m512 wordsToFloats
   return _mm512_cvtepi32_ps(_mm512_cvtepu16_epi32(w));
 }
 
+// What the sixteen-pixel groups (wordGroup16, floatSixteen) share: the taps x0, y0 of sixteen
+// positions as avx2::tapFloor gives them (fx, fy = position − ½; a NaN or huge position gives
+// INT_MIN or INT_MAX, a negative tap a huge unsigned one) and the bilinear weights
+// (1 − wx, wx, 1 − wy, wy) in the AVX2 clone's operations.
+struct Taps16 {
+  __m512i x0, y0;
+  __m512 bx0, wx1, by0, wy1;
+};
+// False where a pixel is not valid or the image is under 2 × 2 (fits16's unsigned limits
+// would then wrap).
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool taps16(const SpanSampler::Context& k, const float* sx,
+                                                                       const float* sy, const unsigned char* valid,
+                                                                       Taps16& t) {
+  const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid)));
+  if (_mm_cmpeq_epi8_mask(v, _mm_set1_epi8(1)) != 0xFFFF || k.width < 2 || k.height < 2) return false;
+  const __m512 half = _mm512_set1_ps(0.5f), one = _mm512_set1_ps(1.0f);
+  const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx), half), fy = _mm512_sub_ps(_mm512_loadu_ps(sy), half);
+  const __m512i int_one = _mm512_set1_epi32(1);
+  t.x0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fx, one)), int_one);
+  t.y0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fy, one)), int_one);
+  t.wx1 = _mm512_sub_ps(fx, _mm512_cvtepi32_ps(t.x0));
+  t.wy1 = _mm512_sub_ps(fy, _mm512_cvtepi32_ps(t.y0));
+  t.bx0 = _mm512_sub_ps(one, t.wx1);
+  t.by0 = _mm512_sub_ps(one, t.wy1);
+  return true;
+}
+// Every pixel interior (0 ≤ x0 ≤ w − 2, 0 ≤ y0 ≤ h − 2), on its upper row or one below
+// (dy 0 or 1) and at most max_rel columns right of its group's first tap (rel), each test
+// unsigned so that one compare also refuses negatives.
+__attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool fits16(const SpanSampler::Context& k, const Taps16& t,
+                                                                       __m512i rel, __m512i dy, int max_rel) {
+  __mmask16 fits = _mm512_cmple_epu32_mask(t.x0, _mm512_set1_epi32(k.width - 2));
+  fits = _mm512_mask_cmple_epu32_mask(fits, t.y0, _mm512_set1_epi32(k.height - 2));
+  fits = _mm512_mask_cmple_epu32_mask(fits, dy, _mm512_set1_epi32(1));
+  fits = _mm512_mask_cmple_epu32_mask(fits, rel, _mm512_set1_epi32(max_rel));
+  return fits == 0xFFFF;
+}
+
 // Sixteen pixels of bilinear 16-bit RGB, one channel at a time as bilinearRgb8 does: lane p of
 // every register is pixel p, so the blend's arithmetic fills all sixteen lanes (the eight-pixel
 // group below leaves half its blue lanes idle and sets up every eight pixels). A row's taps lie
@@ -438,26 +476,15 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool wordGroup16(con
                                                                             std::int64_t end, unsigned char* o,
                                                                             const float* sx, const float* sy,
                                                                             const unsigned char* valid) {
-  const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid)));
-  if (_mm_cmpeq_epi8_mask(v, _mm_set1_epi8(1)) != 0xFFFF || k.width < 2 || k.height < 2) return false;
-  const __m512 half = _mm512_set1_ps(0.5f), one = _mm512_set1_ps(1.0f);
-  const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx), half), fy = _mm512_sub_ps(_mm512_loadu_ps(sy), half);
-  // avx2::tapFloor on sixteen lanes: a NaN or huge position gives INT_MIN or INT_MAX and a
-  // negative tap a huge unsigned one, so the unsigned limits below refuse them all.
-  const __m512i int_one = _mm512_set1_epi32(1);
-  const __m512i x0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fx, one)), int_one);
-  const __m512i y0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fy, one)), int_one);
-  const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(x0));
+  Taps16 t;
+  if (!taps16(k, sx, sy, valid, t)) return false;
+  const int x_first = _mm_cvtsi128_si32(_mm512_castsi512_si128(t.x0));
   // The upper row: the lower of the first and last pixels' rows (as bilinearRgb8).
-  const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(y0)),
-                               _mm_extract_epi32(_mm512_extracti32x4_epi32(y0, 3), 3));
-  const __m512i rel = _mm512_sub_epi32(x0, _mm512_set1_epi32(x_first));
-  const __m512i dy = _mm512_sub_epi32(y0, _mm512_set1_epi32(y_first));
-  __mmask16 fits = _mm512_cmple_epu32_mask(x0, _mm512_set1_epi32(k.width - 2));
-  fits = _mm512_mask_cmple_epu32_mask(fits, y0, _mm512_set1_epi32(k.height - 2));
-  fits = _mm512_mask_cmple_epu32_mask(fits, dy, int_one);
-  fits = _mm512_mask_cmple_epu32_mask(fits, rel, _mm512_set1_epi32(19));
-  if (fits != 0xFFFF) return false;
+  const int y_first = std::min(_mm_cvtsi128_si32(_mm512_castsi512_si128(t.y0)),
+                               _mm_extract_epi32(_mm512_extracti32x4_epi32(t.y0, 3), 3));
+  const __m512i rel = _mm512_sub_epi32(t.x0, _mm512_set1_epi32(x_first));
+  const __m512i dy = _mm512_sub_epi32(t.y0, _mm512_set1_epi32(y_first));
+  if (!fits16(k, t, rel, dy, 19)) return false;
   const unsigned char* upper = k.src + static_cast<std::ptrdiff_t>(y_first) * k.src_row + static_cast<std::ptrdiff_t>(x_first) * 6;
   // The lines the group's taps (17 pixels, 102 bytes) occupy prefetchRowsAhead's rows down.
   const char* ahead = reinterpret_cast<const char*>(upper + static_cast<std::ptrdiff_t>(avx2::kPrefetchRows) * k.src_row);
@@ -474,9 +501,7 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool wordGroup16(con
   const __m256i left = _mm512_cvtepi32_epi16(_mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1)));  // 3 rel
   const __m512i pair = _mm512_inserti64x4(_mm512_castsi256_si512(left), _mm256_add_epi16(left, _mm256_set1_epi16(3)), 1);
   const __mmask32 lower_words = static_cast<__mmask32>(lower) | (static_cast<__mmask32>(lower) << 16);
-  const __m512 wx1 = _mm512_sub_ps(fx, _mm512_cvtepi32_ps(x0)), wy1 = _mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0));
-  const __m512 bx0 = _mm512_sub_ps(one, wx1), by0 = _mm512_sub_ps(one, wy1);
-  const __m512 full = _mm512_set1_ps(65535.0f);
+  const __m512 full = _mm512_set1_ps(65535.0f), half = _mm512_set1_ps(0.5f);
   __m256i word[3];
   for (int c = 0; c < 3; ++c) {
     const __m512i index = _mm512_add_epi16(pair, _mm512_set1_epi16(static_cast<short>(c)));
@@ -486,7 +511,7 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool wordGroup16(con
       up = _mm512_mask_blend_epi16(lower_words, up, down);
       down = _mm512_mask_blend_epi16(lower_words, down, _mm512_permutex2var_epi16(third[0], index, third[1]));
     }
-    const __m512 value = bilinearBlend(bx0, wx1, by0, wy1, wordsToFloats(_mm512_castsi512_si256(up)),
+    const __m512 value = bilinearBlend(t.bx0, t.wx1, t.by0, t.wy1, wordsToFloats(_mm512_castsi512_si256(up)),
                                        wordsToFloats(_mm512_extracti64x4_epi64(up, 1)),
                                        wordsToFloats(_mm512_castsi512_si256(down)),
                                        wordsToFloats(_mm512_extracti64x4_epi64(down, 1)));
@@ -579,39 +604,28 @@ __attribute__((ARTCAM_AVX512_TARGET, always_inline)) inline bool floatSixteen(co
                                                                              std::int64_t end, unsigned char* o,
                                                                              const float* sx, const float* sy,
                                                                              const unsigned char* valid) {
-  const __m128i v = _mm_loadu_si128(static_cast<const __m128i*>(static_cast<const void*>(valid)));
-  if (_mm_cmpeq_epi8_mask(v, _mm_set1_epi8(1)) != 0xFFFF || k.width < 2 || k.height < 2) return false;
-  const __m512 half = _mm512_set1_ps(0.5f), one = _mm512_set1_ps(1.0f);
-  const __m512 fx = _mm512_sub_ps(_mm512_loadu_ps(sx), half), fy = _mm512_sub_ps(_mm512_loadu_ps(sy), half);
-  const __m512i int_one = _mm512_set1_epi32(1);  // avx2::tapFloor on sixteen lanes
-  const __m512i x0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fx, one)), int_one);
-  const __m512i y0 = _mm512_sub_epi32(_mm512_cvttps_epi32(_mm512_add_ps(fy, one)), int_one);
+  Taps16 t;
+  if (!taps16(k, sx, sy, valid, t)) return false;
   // Each eight's first tap, and its upper row: the lower of its first and last pixels' rows.
   const __m512i firsts = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 8, 8, 8, 8, 8, 8, 8, 8);
   const __m512i lasts = _mm512_setr_epi32(7, 7, 7, 7, 7, 7, 7, 7, 15, 15, 15, 15, 15, 15, 15, 15);
-  const __m512i x_first = _mm512_permutexvar_epi32(firsts, x0);
-  const __m512i y_first = _mm512_min_epi32(_mm512_permutexvar_epi32(firsts, y0), _mm512_permutexvar_epi32(lasts, y0));
-  const __m512i rel = _mm512_sub_epi32(x0, x_first), dy = _mm512_sub_epi32(y0, y_first);
-  __mmask16 fits = _mm512_cmple_epu32_mask(x0, _mm512_set1_epi32(k.width - 2));
-  fits = _mm512_mask_cmple_epu32_mask(fits, y0, _mm512_set1_epi32(k.height - 2));
-  fits = _mm512_mask_cmple_epu32_mask(fits, dy, int_one);
-  fits = _mm512_mask_cmple_epu32_mask(fits, rel, _mm512_set1_epi32(8));
-  if (fits != 0xFFFF) return false;
+  const __m512i x_first = _mm512_permutexvar_epi32(firsts, t.x0);
+  const __m512i y_first = _mm512_min_epi32(_mm512_permutexvar_epi32(firsts, t.y0), _mm512_permutexvar_epi32(lasts, t.y0));
+  const __m512i rel = _mm512_sub_epi32(t.x0, x_first), dy = _mm512_sub_epi32(t.y0, y_first);
+  if (!fits16(k, t, rel, dy, 8)) return false;
   const __m512i rel3 = _mm512_add_epi32(rel, _mm512_slli_epi32(rel, 1));
-  const __m512 wx1 = _mm512_sub_ps(fx, _mm512_cvtepi32_ps(x0)), wy1 = _mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0));
-  const __m512 bx0 = _mm512_sub_ps(one, wx1), by0 = _mm512_sub_ps(one, wy1);
   const __mmask16 lower = _mm512_test_epi32_mask(dy, dy);
   const auto upper = [&k](int x, int y) {
     return k.src + static_cast<std::ptrdiff_t>(y) * k.src_row + static_cast<std::ptrdiff_t>(x) * 12;
   };
   // 0x44: lanes 0–7 in both halves (the first eight); 0xEE: lanes 8–15 (the second).
   wideEight<float>(k, end, o, upper(_mm_cvtsi128_si32(_mm512_castsi512_si128(x_first)), _mm_cvtsi128_si32(_mm512_castsi512_si128(y_first))),
-                   _mm512_shuffle_i32x4(rel3, rel3, 0x44), static_cast<__mmask8>(lower), _mm512_shuffle_f32x4(bx0, bx0, 0x44),
-                   _mm512_shuffle_f32x4(wx1, wx1, 0x44), _mm512_shuffle_f32x4(by0, by0, 0x44), _mm512_shuffle_f32x4(wy1, wy1, 0x44));
+                   _mm512_shuffle_i32x4(rel3, rel3, 0x44), static_cast<__mmask8>(lower), _mm512_shuffle_f32x4(t.bx0, t.bx0, 0x44),
+                   _mm512_shuffle_f32x4(t.wx1, t.wx1, 0x44), _mm512_shuffle_f32x4(t.by0, t.by0, 0x44), _mm512_shuffle_f32x4(t.wy1, t.wy1, 0x44));
   wideEight<float>(k, end, o + 96,
                    upper(_mm_cvtsi128_si32(_mm512_extracti32x4_epi32(x_first, 2)), _mm_cvtsi128_si32(_mm512_extracti32x4_epi32(y_first, 2))),
-                   _mm512_shuffle_i32x4(rel3, rel3, 0xEE), static_cast<__mmask8>(lower >> 8), _mm512_shuffle_f32x4(bx0, bx0, 0xEE),
-                   _mm512_shuffle_f32x4(wx1, wx1, 0xEE), _mm512_shuffle_f32x4(by0, by0, 0xEE), _mm512_shuffle_f32x4(wy1, wy1, 0xEE));
+                   _mm512_shuffle_i32x4(rel3, rel3, 0xEE), static_cast<__mmask8>(lower >> 8), _mm512_shuffle_f32x4(t.bx0, t.bx0, 0xEE),
+                   _mm512_shuffle_f32x4(t.wx1, t.wx1, 0xEE), _mm512_shuffle_f32x4(t.by0, t.by0, 0xEE), _mm512_shuffle_f32x4(t.wy1, t.wy1, 0xEE));
   return true;
 }
 
