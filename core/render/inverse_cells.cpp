@@ -93,6 +93,7 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
         if (k == kCertified) polyOf(cellCorners(cx, cy), polys_[index(cx, cy, cells_w_)]);
       }
   });
+  coverOpenCells(options.threads);
   if (options.subdivide) refineOpenCells(options.threads);
 }
 
@@ -345,6 +346,12 @@ bool InverseCells::certify(const Corners& n, double x0, double y0, double size, 
 }
 
 bool InverseCells::patchBeyondReach(const Corners& corners) const {
+  // The patch passes through its corners: one within reach and the patch is not beyond it
+  // (so the hull below is built only near the edge of what the frame reaches).
+  const double m = reach_px_ + options_.certify_tolerance_px;
+  const Eigen::Vector2d& first = corners.a->s;
+  if (first.x() >= -m && first.y() >= -m && first.x() <= source_px_.width + m && first.y() <= source_px_.height + m)
+    return false;
   // The Bézier control net of the bicubic Hermite patch: corners, corners ± derivative / 3,
   // and the inner four from the cross derivatives; the patch lies in its convex hull.
   const Node* n[2][2] = {{corners.a, corners.c}, {corners.b, corners.d}};
@@ -361,19 +368,22 @@ bool InverseCells::patchBeyondReach(const Corners& corners) const {
         hi = hi.cwiseMax(p);
       }
     }
-  const double m = reach_px_ + options_.certify_tolerance_px;
   return hi.x() < -m || hi.y() < -m || lo.x() > source_px_.width + m || lo.y() > source_px_.height + m;
 }
 
 void InverseCells::quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                            const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
-  lo = a.cwiseMin(b).cwiseMin(c).cwiseMin(d);
-  hi = a.cwiseMax(b).cwiseMax(c).cwiseMax(d);
+  // In plain doubles: through Eigen's expressions, with calls, the lattice's quads cost ~30 ns
+  // each.
+  const double lx = std::min(std::min(a.x(), b.x()), std::min(c.x(), d.x()));
+  const double ly = std::min(std::min(a.y(), b.y()), std::min(c.y(), d.y()));
+  const double hx = std::max(std::max(a.x(), b.x()), std::max(c.x(), d.x()));
+  const double hy = std::max(std::max(a.y(), b.y()), std::max(c.y(), d.y()));
   // The edges' curvature: a quarter of the quad's size is far beyond the chord's sag of any
   // map smooth at the lattice's scale (near a pole the corners spread and the box with them).
-  const double grow = 2.0 + 0.25 * (hi - lo).maxCoeff();
-  lo.array() -= grow;
-  hi.array() += grow;
+  const double grow = 2.0 + 0.25 * std::max(hx - lx, hy - ly);
+  lo = Eigen::Vector2d(lx - grow, ly - grow);
+  hi = Eigen::Vector2d(hx + grow, hy + grow);
 }
 
 bool InverseCells::latticeQuadBox(const Eigen::Vector2d* mapped, int pw, int i, int j,
@@ -397,12 +407,18 @@ void InverseCells::buildCoverage(int threads) {
   };
   const size_t points = static_cast<size_t>(pw) * static_cast<size_t>(ph);
   const size_t blocks = static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_);
-  const size_t points_bytes = (points * sizeof(Eigen::Vector2d) + 63) / 64 * 64;
-  coverage_storage_ = takeScratch(points_bytes + (points + 63) / 64 * 64 + blocks);
+  const size_t quads = static_cast<size_t>(qw) * static_cast<size_t>(qh);
+  const size_t cells = static_cast<size_t>(cells_w_) * static_cast<size_t>(cells_h_);
+  const auto lines = [](size_t bytes) { return (bytes + 63) / 64 * 64; };
+  const size_t points_bytes = lines(points * sizeof(Eigen::Vector2d));
+  const size_t quads_bytes = lines(quads * sizeof(QuadBlocks));
+  coverage_storage_ = takeScratch(points_bytes + quads_bytes + lines(points) + lines(cells) + blocks);
   unsigned char* const storage = static_cast<unsigned char*>(coverage_storage_.data());
   Eigen::Vector2d* const mapped = reinterpret_cast<Eigen::Vector2d*>(storage);  // every point written below
-  unsigned char* const ok = storage + points_bytes;                                // likewise
-  unsigned char* const covered = ok + (points + 63) / 64 * 64;
+  QuadBlocks* const quad_blocks = reinterpret_cast<QuadBlocks*>(storage + points_bytes);  // every quad, likewise
+  unsigned char* const ok = storage + points_bytes + quads_bytes;                         // every point, likewise
+  unsigned char* const covered_cells = ok + lines(points);
+  unsigned char* const covered = covered_cells + lines(cells);  // cleared by coverOpenCells
   std::vector<double> band_scale(static_cast<size_t>(ph), 1.0);
   const unsigned centre_signs = newton_.centre().denominator_signs;
   const double near = 2.0 * kCell;
@@ -416,7 +432,11 @@ void InverseCells::buildCoverage(int threads) {
     // time (the lattice took a fifth of a mild lens's kernel build point by point).
     RationalMap::Batch batch;
     double bu[RationalMap::kBatch], bv[RationalMap::kBatch];
-    for (int j = j0; j < j1; ++j)
+    for (int j = j0; j < j1; ++j) {
+      // The row's largest scale in a register, stored once: a store a point into band_scale,
+      // whose cache lines neighbouring bands share, made the lattice slower on two threads
+      // than on one.
+      double row_scale = 1.0;
       for (int i0 = 0; i0 < pw; i0 += RationalMap::kBatch) {
         const int count = std::min(RationalMap::kBatch, pw - i0);
         for (int b = 0; b < RationalMap::kBatch; ++b) {
@@ -449,45 +469,61 @@ void InverseCells::buildCoverage(int threads) {
           if (good && s.x() > -near && s.y() > -near && s.x() < source_px_.width + near &&
               s.y() < source_px_.height + near) {
             const double scale = std::abs(det) > 0.0 ? (jac.inverse()).cwiseAbs().maxCoeff() : kMaxScale;
-            band_scale[static_cast<size_t>(j)] = std::max(band_scale[static_cast<size_t>(j)], std::isfinite(scale) ? scale : kMaxScale);
+            row_scale = std::max(row_scale, std::isfinite(scale) ? scale : kMaxScale);
           }
         }
       }
+      band_scale[static_cast<size_t>(j)] = row_scale;
+    }
   });
   const double scale = std::min(kMaxScale, *std::max_element(band_scale.begin(), band_scale.end()));
   reach_px_ = options_.reach_px + 4.0 * scale;
   if (frameInsideImage(mapped, ok, pw, qw, qh, margin)) return;  // every block covered: no coverage needed
-  std::memset(covered, 0, blocks);
+  std::memset(covered_cells, 0, cells);
   // The quads in bands of rows on every thread (one thread took ~1.5 ms, a sixth of a mild
-  // lens's whole build on two).
+  // lens's whole build on two). Each marks the cells its box touches and keeps its blocks for
+  // coverOpenCells. The reach's rectangle is found once and the blocks by truncation, not
+  // floor (a call at this build's baseline ISA): the box meets the output, so hi ≥ 0, and lo is
+  // clamped to 0 first, where the two agree.
+  int i0 = 0, i1 = -1, j0 = 0, j1 = -1;
+  reachableQuads(margin, qw, qh, i0, i1, j0, j1);
+  const double width = target_px_.width, height = target_px_.height;
   std::atomic<bool> unbounded{false};
-  parallelForRows(qh, po, [&](int j0, int j1) {
-    for (int j = j0; j < j1 && !unbounded.load(std::memory_order_relaxed); ++j)
-      for (int i = 0; i < qw; ++i) {
-        // Only quads within the reach of the frame.
-        if (!latticeReaches(i, margin, source_px_.width) || !latticeReaches(j, margin, source_px_.height)) continue;
+  parallelForRows(qh, po, [&](int ja, int jb) {
+    constexpr int per = kCell / kBlock;
+    for (int j = ja; j < jb && !unbounded.load(std::memory_order_relaxed); ++j) {
+      QuadBlocks* const row = &quad_blocks[index(0, j, qw)];
+      std::fill(row, row + qw, QuadBlocks{});
+      if (j < j0 || j > j1) continue;  // only quads within the reach of the frame
+      const Eigen::Vector2d* const top = &mapped[index(0, j, pw)];
+      const Eigen::Vector2d* const bottom = top + pw;
+      const unsigned char* const ok_top = &ok[index(0, j, pw)];
+      const unsigned char* const ok_bottom = ok_top + pw;
+      for (int i = i0; i <= i1; ++i) {
         // A corner beyond a pole curve: the quad's image is unbounded, claim nothing.
-        if (!ok[index(i, j, pw)] || !ok[index(i + 1, j, pw)] || !ok[index(i, j + 1, pw)] ||
-            !ok[index(i + 1, j + 1, pw)]) {
+        if (!ok_top[i] || !ok_top[i + 1] || !ok_bottom[i] || !ok_bottom[i + 1]) {
           unbounded.store(true, std::memory_order_relaxed);
           return;
         }
         Eigen::Vector2d lo, hi;
-        if (!latticeQuadBox(mapped, pw, i, j, lo, hi)) continue;
-        const int bx0 = std::max(0, static_cast<int>(std::floor(lo.x() / kBlock)));
-        const int by0 = std::max(0, static_cast<int>(std::floor(lo.y() / kBlock)));
-        const int bx1 = std::min(blocks_w_ - 1, static_cast<int>(std::floor(std::min(hi.x(), 1e9) / kBlock)));
-        const int by1 = std::min(blocks_h_ - 1, static_cast<int>(std::floor(std::min(hi.y(), 1e9) / kBlock)));
+        quadBox(top[i], top[i + 1], bottom[i], bottom[i + 1], lo, hi);
+        if (hi.x() < 0 || hi.y() < 0 || lo.x() >= width || lo.y() >= height) continue;
+        QuadBlocks& q = row[i];
+        q.x0 = lo.x() <= 0.0 ? 0 : static_cast<int>(lo.x() / kBlock);
+        q.y0 = lo.y() <= 0.0 ? 0 : static_cast<int>(lo.y() / kBlock);
+        q.x1 = std::min(blocks_w_ - 1, static_cast<int>(std::min(hi.x(), 1e9) / kBlock));
+        q.y1 = std::min(blocks_h_ - 1, static_cast<int>(std::min(hi.y(), 1e9) / kBlock));
         // Bands mark concurrently; every write stores the same 1.
-        for (int by = by0; by <= by1; ++by) {
-          unsigned char* row = &covered[index(0, by, blocks_w_)];
-          for (int bx = bx0; bx <= bx1; ++bx)
-            std::atomic_ref<unsigned char>(row[bx]).store(1, std::memory_order_relaxed);
-        }
+        for (int cy = q.y0 / per; cy <= q.y1 / per; ++cy)
+          for (int cx = q.x0 / per; cx <= q.x1 / per; ++cx)
+            std::atomic_ref<unsigned char>(covered_cells[index(cx, cy, cells_w_)]).store(1, std::memory_order_relaxed);
       }
+    }
   });
   if (unbounded.load()) return;
+  covered_cells_ = covered_cells;
   covered_ = covered;
+  quad_blocks_ = quad_blocks;
   coverage_known_ = true;
   lattice_margin_ = margin;
   lattice_w_ = qw;
@@ -500,15 +536,18 @@ bool InverseCells::latticeReaches(int k, double margin, double size) const {
   return !(hi < -reach_px_ || lo > size + reach_px_);
 }
 
-bool InverseCells::frameInsideImage(const Eigen::Vector2d* mapped, const unsigned char* ok,
-                                    int pw, int qw, int qh, double margin) const {
-  // The quads within the reach of the frame form a rectangle of lattice indices, i0 … i1 by
-  // j0 … j1.
-  int i0 = 0, i1 = qw - 1, j0 = 0, j1 = qh - 1;
+void InverseCells::reachableQuads(double margin, int qw, int qh, int& i0, int& i1, int& j0, int& j1) const {
+  i0 = 0, i1 = qw - 1, j0 = 0, j1 = qh - 1;
   while (i0 <= i1 && !latticeReaches(i0, margin, source_px_.width)) ++i0;
   while (i1 >= i0 && !latticeReaches(i1, margin, source_px_.width)) --i1;
   while (j0 <= j1 && !latticeReaches(j0, margin, source_px_.height)) ++j0;
   while (j1 >= j0 && !latticeReaches(j1, margin, source_px_.height)) --j1;
+}
+
+bool InverseCells::frameInsideImage(const Eigen::Vector2d* mapped, const unsigned char* ok,
+                                    int pw, int qw, int qh, double margin) const {
+  int i0, i1, j0, j1;
+  reachableQuads(margin, qw, qh, i0, i1, j0, j1);
   if (i0 > i1 || j0 > j1) return false;
   const Eigen::Vector2d& centre = newton_.centre().target;
   if (!(centre.x() >= 0.0 && centre.y() >= 0.0 && centre.x() < target_px_.width && centre.y() < target_px_.height))
@@ -525,12 +564,33 @@ bool InverseCells::frameInsideImage(const Eigen::Vector2d* mapped, const unsigne
   return true;
 }
 
-bool InverseCells::cellCovered(int cx, int cy) const {
-  constexpr int per = kCell / kBlock;
-  for (int by = cy * per; by < std::min(blocks_h_, (cy + 1) * per); ++by)
-    for (int bx = cx * per; bx < std::min(blocks_w_, (cx + 1) * per); ++bx)
-      if (covered_[index(bx, by, blocks_w_)]) return true;
-  return false;
+bool InverseCells::cellCovered(int cx, int cy) const { return covered_cells_[index(cx, cy, cells_w_)] != 0; }
+
+void InverseCells::coverOpenCells(int threads) {
+  if (!coverage_known_ || std::find(kinds_.begin(), kinds_.end(), kOpen) == kinds_.end()) return;
+  const size_t blocks = static_cast<size_t>(blocks_w_) * static_cast<size_t>(blocks_h_);
+  std::memset(covered_, 0, blocks);
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = 8;
+  parallelForRows(lattice_h_, po, [&](int j0, int j1) {
+    constexpr int per = kCell / kBlock;
+    for (int j = j0; j < j1; ++j)
+      for (int i = 0; i < lattice_w_; ++i) {
+        const QuadBlocks& q = quad_blocks_[index(i, j, lattice_w_)];
+        // The quad's blocks in each open cell its box touches (none when x0 > x1).
+        for (int cy = q.y0 / per; cy <= q.y1 / per && q.x0 <= q.x1; ++cy)
+          for (int cx = q.x0 / per; cx <= q.x1 / per; ++cx) {
+            if (kind(cx, cy) != kOpen) continue;
+            // Bands mark concurrently; every write stores the same 1.
+            for (int by = std::max(q.y0, cy * per); by <= std::min(q.y1, cy * per + per - 1); ++by) {
+              unsigned char* row = &covered_[index(0, by, blocks_w_)];
+              for (int bx = std::max(q.x0, cx * per); bx <= std::min(q.x1, cx * per + per - 1); ++bx)
+                std::atomic_ref<unsigned char>(row[bx]).store(1, std::memory_order_relaxed);
+            }
+          }
+      }
+  });
 }
 
 void InverseCells::coveredRun(int x, int y, int n, unsigned char* out) const {

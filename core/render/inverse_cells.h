@@ -28,9 +28,11 @@
 // - where cells are not certified (nodes without a preimage: a fold or pole nearby, the edge of
 //   what the camera can see), the source frame grown by the reach is mapped forward as a lattice
 //   of quads, and every output block of kBlock pixels touched by a quad's image (its corners'
-//   bounding box, grown by a quarter of its size for the edges' curvature) is marked covered.
+//   bounding box, grown by a quarter of its size for the edges' curvature) is covered.
 //   Output pixels in blocks no quad touches have no preimage within reach: transparent without
-//   a Newton solve. A quad with a corner beyond a pole curve has an unbounded image: then no
+//   a Newton solve. The boxes mark cells first (a cell no box touches is empty, its nodes never
+//   solved) and the blocks only of the cells left open, the only ones that read them: marking
+//   every block was a third of a mild lens's build. A quad with a corner beyond a pole curve has an unbounded image: then no
 //   coverage is claimed at all and every uncertified pixel runs the per-pixel path. Where the
 //   frame lies wholly inside the lattice's image (a lens whose corners all see the photo:
 //   frameInsideImage), every block would be marked, and none is (0.7 ms of a mild lens's
@@ -262,6 +264,9 @@ class InverseCells {
   bool frameInsideImage(const Eigen::Vector2d* mapped, const unsigned char* ok, int pw,
                         int qw, int qh, double margin) const;
   bool cellCovered(int cx, int cy) const;
+  // Marks the blocks of the open cells (coveredRun reads no other) that the lattice quads'
+  // boxes touch, from the block ranges buildCoverage kept.
+  void coverOpenCells(int threads);
   static constexpr double kLattice = 32.0;  // source pixels between coverage lattice points
   void refineOpenCells(int threads);
   void coverFine(int threads);
@@ -273,6 +278,9 @@ class InverseCells {
   // before a frame side `size` pixels long) lies within the reach of the frame: a quad (i, j)
   // is drawn when both of its intervals are.
   bool latticeReaches(int k, double margin, double size) const;
+  // The quads within the reach of the frame: a rectangle of lattice indices, i0 … i1 by
+  // j0 … j1 (empty when i0 > i1 or j0 > j1).
+  void reachableQuads(double margin, int qw, int qh, int& i0, int& i1, int& j0, int& j1) const;
   // Lattice quad (i, j)'s box (quadBox) from its mapped corners, `pw` points a row; false
   // when it misses the output.
   bool latticeQuadBox(const Eigen::Vector2d* mapped, int pw, int i, int j, Eigen::Vector2d& lo,
@@ -310,7 +318,13 @@ class InverseCells {
   // vectors their ~0.9 MB came back from the system page by page every build (a mild lens's
   // build 4.7 → 2.9 ms at 2 threads with glibc keeping such blocks, the same as this).
   ScratchBlock coverage_storage_;
-  unsigned char* covered_ = nullptr;  // blocks_w_ × blocks_h_
+  // A lattice quad's box in blocks (x0 > x1: it marks nothing).
+  struct QuadBlocks {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  };
+  unsigned char* covered_cells_ = nullptr;  // cells_w_ × cells_h_: a quad's box touches the cell
+  unsigned char* covered_ = nullptr;        // blocks_w_ × blocks_h_, in open cells only
+  QuadBlocks* quad_blocks_ = nullptr;       // lattice_w_ × lattice_h_
   double lattice_margin_ = 0.0;
   int lattice_w_ = 0, lattice_h_ = 0;  // quads
   Eigen::Vector2d* lattice_mapped_ = nullptr;
