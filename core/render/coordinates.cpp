@@ -328,9 +328,19 @@ static_assert(kSpanPixels % kCellPixels == 0, "a span holds whole cells");
   return std::fma(v, std::fma(v, std::fma(v, c.p[3][i], c.p[2][i]), c.p[1][i]), c.p[0][i]);
 }
 
-[[gnu::always_inline]] inline float polyU(int j) {
+[[gnu::always_inline]] inline constexpr float polyU(int j) {
   return (static_cast<float>(j) + 0.5f) * (1.0f / kCellPixels);
 }
+
+// polyU of every pixel of a cell, for the SIMD kernels to load (exact, as polyU: j + 0.5 and
+// the power of two are exact in float); computing them at every call was a sixth of a call.
+struct CellU {
+  alignas(64) float u[kCellPixels];
+  constexpr CellU() : u{} {
+    for (int j = 0; j < kCellPixels; ++j) u[j] = polyU(j);
+  }
+};
+constexpr CellU kCellU;
 
 [[gnu::always_inline]] inline void polyCellBody(const CellPoly& c, float v, float* sx, float* sy) {
   float k[8];
@@ -409,17 +419,10 @@ __attribute__((target("avx2,fma"), always_inline)) inline void storeRowCubicAvx2
 __attribute__((target("avx2,fma"))) void polyCellsAvx2(const CellPoly* cells, int count, float v, float* sx,
                                                        float* sy) {
   const __m256 vv = _mm256_set1_ps(v);
-  const __m256 half = _mm256_set1_ps(0.5f), scale = _mm256_set1_ps(1.0f / kCellPixels);
-  __m256 u[kCellPixels / 8];
-#pragma GCC unroll 4
-  for (int g = 0; g < kCellPixels / 8; ++g) {
-    const __m256 j = _mm256_add_ps(_mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_ps(8.0f * static_cast<float>(g)));
-    u[g] = _mm256_mul_ps(_mm256_add_ps(j, half), scale);
-  }
   for (int cell = 0; cell < count; ++cell, sx += kCellPixels, sy += kCellPixels) {
     const RowCubicAvx2 r = rowCubicAvx2(cells[cell], vv);
 #pragma GCC unroll 4
-    for (int g = 0; g < kCellPixels / 8; ++g) storeRowCubicAvx2(r, u[g], sx + 8 * g, sy + 8 * g);
+    for (int g = 0; g < kCellPixels / 8; ++g) storeRowCubicAvx2(r, _mm256_load_ps(kCellU.u + 8 * g), sx + 8 * g, sy + 8 * g);
   }
 }
 
@@ -444,12 +447,6 @@ __attribute__((target("avx2,fma"))) void polySquareAvx2(const CellPoly& c, float
 __attribute__((target("avx512f,avx512vl,fma"))) void polyCellsAvx512(const CellPoly* cells, int count, float v,
                                                                     float* sx, float* sy) {
   const __m256 vv = _mm256_set1_ps(v);
-  const __m512 half = _mm512_set1_ps(0.5f), scale = _mm512_set1_ps(1.0f / kCellPixels);
-  const __m512 j0 = _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  __m512 u[kCellPixels / 16];
-#pragma GCC unroll 2
-  for (int g = 0; g < kCellPixels / 16; ++g)
-    u[g] = _mm512_mul_ps(_mm512_add_ps(_mm512_add_ps(j0, _mm512_set1_ps(16.0f * static_cast<float>(g))), half), scale);
   for (int cell = 0; cell < count; ++cell, sx += kCellPixels, sy += kCellPixels) {
     const CellPoly& c = cells[cell];
     const __m512 k = _mm512_castps256_ps512(_mm256_fmadd_ps(
@@ -462,7 +459,7 @@ __attribute__((target("avx512f,avx512vl,fma"))) void polyCellsAvx512(const CellP
     const __m512 ax = _mm512_set1_ps(c.anchor_x), ay = _mm512_set1_ps(c.anchor_y);
 #pragma GCC unroll 2
     for (int g = 0; g < kCellPixels / 16; ++g) {
-      const __m512 w = u[g];
+      const __m512 w = _mm512_load_ps(kCellU.u + 16 * g);
       const __m512 px = _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, x3, x2), x1), x0);
       const __m512 py = _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, _mm512_fmadd_ps(w, y3, y2), y1), y0);
       _mm512_storeu_ps(sx + 16 * g, _mm512_add_ps(ax, px));
