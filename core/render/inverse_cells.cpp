@@ -371,21 +371,6 @@ bool InverseCells::patchBeyondReach(const Corners& corners) const {
   return hi.x() < -m || hi.y() < -m || lo.x() > source_px_.width + m || lo.y() > source_px_.height + m;
 }
 
-void InverseCells::quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                           const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
-  // In plain doubles: through Eigen's expressions, with calls, the lattice's quads cost ~30 ns
-  // each.
-  const double lx = std::min(std::min(a.x(), b.x()), std::min(c.x(), d.x()));
-  const double ly = std::min(std::min(a.y(), b.y()), std::min(c.y(), d.y()));
-  const double hx = std::max(std::max(a.x(), b.x()), std::max(c.x(), d.x()));
-  const double hy = std::max(std::max(a.y(), b.y()), std::max(c.y(), d.y()));
-  // The edges' curvature: a quarter of the quad's size is far beyond the chord's sag of any
-  // map smooth at the lattice's scale (near a pole the corners spread and the box with them).
-  const double grow = 2.0 + 0.25 * std::max(hx - lx, hy - ly);
-  lo = Eigen::Vector2d(lx - grow, ly - grow);
-  hi = Eigen::Vector2d(hx + grow, hy + grow);
-}
-
 bool InverseCells::latticeQuadBox(const Eigen::Vector2d* mapped, int pw, int i, int j,
                                   Eigen::Vector2d& lo, Eigen::Vector2d& hi) const {
   quadBox(mapped[index(i, j, pw)], mapped[index(i + 1, j, pw)], mapped[index(i, j + 1, pw)],
@@ -508,15 +493,17 @@ void InverseCells::buildCoverage(int threads) {
         Eigen::Vector2d lo, hi;
         quadBox(top[i], top[i + 1], bottom[i], bottom[i + 1], lo, hi);
         if (hi.x() < 0 || hi.y() < 0 || lo.x() >= width || lo.y() >= height) continue;
-        QuadBlocks& q = row[i];
-        q.x0 = lo.x() <= 0.0 ? 0 : static_cast<int>(lo.x() / kBlock);
-        q.y0 = lo.y() <= 0.0 ? 0 : static_cast<int>(lo.y() / kBlock);
-        q.x1 = std::min(blocks_w_ - 1, static_cast<int>(std::min(hi.x(), 1e9) / kBlock));
-        q.y1 = std::min(blocks_h_ - 1, static_cast<int>(std::min(hi.y(), 1e9) / kBlock));
+        const QuadBlocks q{lo.x() <= 0.0 ? 0 : static_cast<int>(lo.x() / kBlock),
+                           lo.y() <= 0.0 ? 0 : static_cast<int>(lo.y() / kBlock),
+                           std::min(blocks_w_ - 1, static_cast<int>(std::min(hi.x(), 1e9) / kBlock)),
+                           std::min(blocks_h_ - 1, static_cast<int>(std::min(hi.y(), 1e9) / kBlock))};
+        row[i] = q;
         // Bands mark concurrently; every write stores the same 1.
         for (int cy = q.y0 / per; cy <= q.y1 / per; ++cy)
-          for (int cx = q.x0 / per; cx <= q.x1 / per; ++cx)
-            std::atomic_ref<unsigned char>(covered_cells[index(cx, cy, cells_w_)]).store(1, std::memory_order_relaxed);
+          for (int cx = q.x0 / per; cx <= q.x1 / per; ++cx) {
+            std::atomic_ref<unsigned char> cell(covered_cells[index(cx, cy, cells_w_)]);
+            if (!cell.load(std::memory_order_relaxed)) cell.store(1, std::memory_order_relaxed);
+          }
       }
     }
   });
