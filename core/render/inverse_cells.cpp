@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <atomic>
 #include <cmath>
@@ -50,7 +51,14 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
   // Coverage first: the nodes of cells no part of the source frame reaches are never solved
   // (beyond a fold, a node without a preimage costs every Newton start in turn).
   buildCoverage(options.threads);
-  solveNodes(options.threads);
+  // Nodes every other kCell first, and 2 × 2 cells certified as one (certifySupers): where
+  // that holds, the nodes between are the patch's own (deriveNodes), with no Newton solve, and
+  // the four cells no certification of their own. The rest are solved and certified one by one.
+  solveNodes(options.threads, 2);
+  crossDerivatives();
+  certifySupers(options.threads);
+  deriveNodes(options.threads);
+  solveNodes(options.threads, 1);
   crossDerivatives();
 
   kinds_.assign(static_cast<size_t>(cells_w_) * static_cast<size_t>(cells_h_), kOpen);
@@ -63,18 +71,22 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
   ParallelOptions po;
   po.threads = options.threads;
   po.band_rows = 2;
+  // An edge only cells of certified pairs of cells share needs no check.
+  const auto alone = [&](int cx, int cy) {
+    return cx >= 0 && cy >= 0 && cx < cells_w_ && cy < cells_h_ && !inSuper(cx, cy);
+  };
   parallelForRows(nodes_h_, po, [&](int j0, int j1) {
     const Hermite mid(0.5);
     for (int j = j0; j < j1; ++j)
       for (int i = 0; i < nodes_w_; ++i) {
         const Node& a = node(i, j);
         if (!a.valid) continue;
-        if (i + 1 < nodes_w_ && node(i + 1, j).valid) {
+        if (i + 1 < nodes_w_ && node(i + 1, j).valid && (alone(i, j - 1) || alone(i, j))) {
           const Node& b = node(i + 1, j);
           const Eigen::Vector2d p = mid.h0 * a.s + mid.h1 * b.s + mid.h2 * a.su + mid.h3 * b.su;
           across[index(i, j, nodes_w_)] = pointCertifies(p, Eigen::Vector2d((i + 0.5) * kCell, j * kCell), tol);
         }
-        if (j + 1 < nodes_h_ && node(i, j + 1).valid) {
+        if (j + 1 < nodes_h_ && node(i, j + 1).valid && (alone(i - 1, j) || alone(i, j))) {
           const Node& c = node(i, j + 1);
           const Eigen::Vector2d p = mid.h0 * a.s + mid.h1 * c.s + mid.h2 * a.sv + mid.h3 * c.sv;
           down[index(i, j, nodes_w_)] = pointCertifies(p, Eigen::Vector2d(i * kCell, (j + 0.5) * kCell), tol);
@@ -86,6 +98,7 @@ InverseCells::InverseCells(const NewtonInverse& newton, const RationalMap* seed,
       for (int cx = 0; cx < cells_w_; ++cx) {
         Kind& k = kinds_[index(cx, cy, cells_w_)];
         if (coverage_known_ && !cellCovered(cx, cy)) k = kEmpty;
+        else if (inSuper(cx, cy)) k = patchBeyondReach(cellCorners(cx, cy)) ? kEmpty : kCertified;
         else if (hasPatch(cx, cy) && across[index(cx, cy, nodes_w_)] && across[index(cx, cy + 1, nodes_w_)] &&
                  down[index(cx, cy, nodes_w_)] && down[index(cx + 1, cy, nodes_w_)] &&
                  certify(cellCorners(cx, cy), cx * kCell, cy * kCell, kCell, tol, false))
@@ -122,7 +135,7 @@ bool InverseCells::finishNode(const Eigen::Vector2d& s, const Eigen::Matrix2d& j
   return true;
 }
 
-void InverseCells::solveNodes(int threads) {
+void InverseCells::solveNodes(int threads, int stride) {
   // A node is needed when a cell it bounds may show something.
   const auto needed = [&](int i, int j) {
     if (!coverage_known_) return true;
@@ -134,8 +147,14 @@ void InverseCells::solveNodes(int threads) {
   // Continuation: each node starts from the last solved node of its row (or, in the first
   // column, of the column) stepped by that node's derivative, two or three Newton iterations.
   // The first column runs down the frame, then the rows run across it in parallel.
+  // `stride` 2: the nodes of even rows and columns only; 1: every node not yet valid (solved
+  // or derived), each from the last valid one before it.
   int last = -1;
-  for (int j = 0; j < nodes_h_; ++j) {
+  for (int j = 0; j < nodes_h_; j += stride) {
+    if (node(0, j).valid) {
+      last = j;
+      continue;
+    }
     if (!needed(0, j)) continue;
     const Eigen::Vector2d t(0.0, static_cast<double>(j * kCell));
     Eigen::Vector2d start;
@@ -145,10 +164,14 @@ void InverseCells::solveNodes(int threads) {
   ParallelOptions po;
   po.threads = threads;
   po.band_rows = 2;
-  parallelForRows(nodes_h_, po, [&](int j0, int j1) {
-    for (int j = j0; j < j1; ++j) {
+  parallelForRows((nodes_h_ + stride - 1) / stride, po, [&](int r0, int r1) {
+    for (int j = r0 * stride; j < r1 * stride && j < nodes_h_; j += stride) {
       int prev = node(0, j).valid ? 0 : -1;
-      for (int i = 1; i < nodes_w_; ++i) {
+      for (int i = stride; i < nodes_w_; i += stride) {
+        if (node(i, j).valid) {
+          prev = i;
+          continue;
+        }
         if (!needed(i, j)) continue;
         const Eigen::Vector2d t(static_cast<double>(i * kCell), static_cast<double>(j * kCell));
         Eigen::Vector2d start;
@@ -188,6 +211,7 @@ void InverseCells::crossDerivative(Node& n, double size) const {
   }
   const Eigen::Matrix2d da = -a * dj * a;
   n.suv = size * size * da.col(0);
+  n.cross = true;
   if (!n.suv.allFinite()) n.valid = false;
 }
 
@@ -198,8 +222,103 @@ void InverseCells::crossDerivatives() {
   parallelForRows(nodes_h_, po, [&](int j0, int j1) {
     for (int j = j0; j < j1; ++j)
       for (int i = 0; i < nodes_w_; ++i)
-        if (node(i, j).valid) crossDerivative(node(i, j), kCell);
+        if (node(i, j).valid && !node(i, j).cross) crossDerivative(node(i, j), kCell);
   });
+}
+
+void InverseCells::certifySupers(int threads) {
+  supers_w_ = cells_w_ / 2;
+  supers_h_ = cells_h_ / 2;
+  supers_.assign(static_cast<size_t>(supers_w_) * static_cast<size_t>(supers_h_), 0);
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = 1;
+  parallelForRows(supers_h_, po, [&](int b0, int b1) {
+    for (int b = b0; b < b1; ++b)
+      for (int a = 0; a < supers_w_; ++a) {
+        const int cx = 2 * a, cy = 2 * b;
+        if (coverage_known_ && !cellCovered(cx, cy) && !cellCovered(cx + 1, cy) && !cellCovered(cx, cy + 1) &&
+            !cellCovered(cx + 1, cy + 1))
+          continue;  // four empty cells
+        Node n[4];
+        if (!superCorners(a, b, n)) continue;
+        // At half the tolerance, as the quadtree's squares (inverse_subcells.cpp): the error
+        // between the checked points of the larger square may exceed what they show a little.
+        supers_[index(a, b, supers_w_)] = certify({&n[0], &n[1], &n[2], &n[3]}, cx * kCell, cy * kCell, 2 * kCell,
+                                                  0.5 * options_.certify_tolerance_px)
+                                              ? 1
+                                              : 0;
+      }
+  });
+}
+
+bool InverseCells::superCorners(int a, int b, Node out[4]) const {
+  const Node* n[4] = {&node(2 * a, 2 * b), &node(2 * a + 2, 2 * b), &node(2 * a, 2 * b + 2),
+                      &node(2 * a + 2, 2 * b + 2)};
+  for (int k = 0; k < 4; ++k) {
+    if (!n[k]->valid) return false;
+    out[k] = *n[k];  // derivatives per two cells
+    out[k].su *= 2.0;
+    out[k].sv *= 2.0;
+    out[k].suv *= 4.0;
+  }
+  return true;
+}
+
+void InverseCells::deriveNodes(int threads) {
+  // Node (i, j) of a certified pair of cells, the patch's value and derivatives at local
+  // (u, v) ∈ {0, ½, 1}² of it (per cell: half and a quarter of the pair's). On an edge the
+  // patch and its derivatives there are the edge's two nodes' alone (the Hermite weights of
+  // the far ones are exactly 0), so both pairs that share it give the same bits.
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = 2;
+  parallelForRows(nodes_h_, po, [&](int j0, int j1) {
+    for (int j = j0; j < j1; ++j)
+      for (int i = 0; i < nodes_w_; ++i) {
+        Node& out = node(i, j);
+        if (out.valid || (i % 2 == 0 && j % 2 == 0)) continue;  // solved, or a pair's corner
+        // The pairs that hold it (one or two along each axis), the first certified.
+        const int a_lo = (i - 1) / 2, a_hi = i / 2, b_lo = (j - 1) / 2, b_hi = j / 2;
+        for (int b = std::max(0, b_lo); b <= std::min(supers_h_ - 1, b_hi) && !out.valid; ++b)
+          for (int a = std::max(0, a_lo); a <= std::min(supers_w_ - 1, a_hi) && !out.valid; ++a) {
+            if (i < 2 * a || i > 2 * a + 2 || j < 2 * b || j > 2 * b + 2 || !supers_[index(a, b, supers_w_)]) continue;
+            Node n[4];
+            superCorners(a, b, n);
+            patchNode({&n[0], &n[1], &n[2], &n[3]}, 0.5 * (i - 2 * a), 0.5 * (j - 2 * b), out);
+          }
+      }
+  });
+}
+
+void InverseCells::patchNode(const Corners& n, double u, double v, Node& out) {
+  const Node &a = *n.a, &b = *n.b, &c = *n.c, &d = *n.d;
+  const Hermite hu(u), hv(v);
+  // The Hermite basis's derivatives at t.
+  const auto slope = [](double t) {
+    return std::array<double, 4>{6 * t * t - 6 * t, -6 * t * t + 6 * t, 3 * t * t - 4 * t + 1, 3 * t * t - 2 * t};
+  };
+  const std::array<double, 4> du = slope(u), dv = slope(v);
+  // Along the left (a, c) and right (b, d) edges at v: values and ∂/∂u, then their ∂/∂v.
+  const Eigen::Vector2d f0 = hv.h0 * a.s + hv.h1 * c.s + hv.h2 * a.sv + hv.h3 * c.sv;
+  const Eigen::Vector2d f1 = hv.h0 * b.s + hv.h1 * d.s + hv.h2 * b.sv + hv.h3 * d.sv;
+  const Eigen::Vector2d d0 = hv.h0 * a.su + hv.h1 * c.su + hv.h2 * a.suv + hv.h3 * c.suv;
+  const Eigen::Vector2d d1 = hv.h0 * b.su + hv.h1 * d.su + hv.h2 * b.suv + hv.h3 * d.suv;
+  const Eigen::Vector2d f0v = dv[0] * a.s + dv[1] * c.s + dv[2] * a.sv + dv[3] * c.sv;
+  const Eigen::Vector2d f1v = dv[0] * b.s + dv[1] * d.s + dv[2] * b.sv + dv[3] * d.sv;
+  const Eigen::Vector2d d0v = dv[0] * a.su + dv[1] * c.su + dv[2] * a.suv + dv[3] * c.suv;
+  const Eigen::Vector2d d1v = dv[0] * b.su + dv[1] * d.su + dv[2] * b.suv + dv[3] * d.suv;
+  out.s = hu.h0 * f0 + hu.h1 * f1 + hu.h2 * d0 + hu.h3 * d1;
+  out.su = 0.5 * (du[0] * f0 + du[1] * f1 + du[2] * d0 + du[3] * d1);
+  out.sv = 0.5 * (hu.h0 * f0v + hu.h1 * f1v + hu.h2 * d0v + hu.h3 * d1v);
+  out.suv = 0.25 * (du[0] * f0v + du[1] * f1v + du[2] * d0v + du[3] * d1v);
+  out.cross = true;
+  out.valid = out.s.allFinite() && out.su.allFinite() && out.sv.allFinite() && out.suv.allFinite();
+}
+
+bool InverseCells::inSuper(int cx, int cy) const {
+  const int a = cx / 2, b = cy / 2;
+  return a < supers_w_ && b < supers_h_ && supers_[index(a, b, supers_w_)] != 0 && hasPatch(cx, cy);
 }
 
 bool InverseCells::hasPatch(int cx, int cy) const {

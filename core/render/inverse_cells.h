@@ -188,6 +188,7 @@ class InverseCells {
     Eigen::Vector2d sv{0, 0};   // kCell · ∂s/∂y
     Eigen::Vector2d suv{0, 0};  // kCell² · ∂²s/∂x∂y
     bool valid = false;
+    bool cross = false;  // suv set (crossDerivative, or a certified patch's: patchNode)
   };
 
   static size_t index(int i, int j, int w) {
@@ -240,8 +241,20 @@ class InverseCells {
   // The node at the solution s, from the forward Jacobian j there (the solve's last one).
   bool finishNode(const Eigen::Vector2d& s, const Eigen::Matrix2d& j, double size, Node& out) const;
   void crossDerivative(Node& n, double size) const;  // drops a node next to a pole
-  void solveNodes(int threads);
-  void crossDerivatives();
+  // The nodes not yet valid on rows and columns that are multiples of `stride` (where a cell
+  // they bound may show something), each from the last valid node before it on its row.
+  void solveNodes(int threads, int stride);
+  void crossDerivatives();  // of the valid nodes without one
+  // Pairs of cells: 2 × 2 cells (pair a, b: cells 2a, 2a + 1 by 2b, 2b + 1) whose patch from
+  // its corner nodes certifies as one square of 2 kCell pixels. Each of its cells is then that
+  // patch over its quarter (a bicubic restricted to a square is one), its nodes between the
+  // corners taken from the patch (deriveNodes, patchNode): no solve and no certification.
+  void certifySupers(int threads);
+  bool superCorners(int a, int b, Node out[4]) const;  // false where a corner is not valid
+  void deriveNodes(int threads);
+  static void patchNode(const Corners& n, double u, double v, Node& out);
+  // Cell (cx, cy) lies in a certified pair and has its patch.
+  bool inSuper(int cx, int cy) const;
   static void edgesAt(const Corners& n, double v, Eigen::Vector2d& f0, Eigen::Vector2d& f1,
                       Eigen::Vector2d& d0, Eigen::Vector2d& d1);
   static void rowOf(const Corners& n, double v, CellRow& out);
@@ -323,6 +336,8 @@ class InverseCells {
   Node* nodes_ = nullptr;
   size_t node_count_ = 0;
   std::vector<Kind> kinds_;
+  int supers_w_ = 0, supers_h_ = 0;
+  std::vector<unsigned char> supers_;  // per pair of cells: 1 certified
   CellPoly* polys_ = nullptr;
   bool coverage_known_ = false;
   // The coverage lattice mapped forward (buildCoverage), for the open cells' finer coverage,
