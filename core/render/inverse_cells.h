@@ -21,6 +21,15 @@
 // by default, is a sixteenth of the 1/256 px budget, which leaves room for the error between
 // the checked points and for rounding the positions to float; the tests check every pixel.
 //
+// Pairs: the nodes are solved every other cell first and each 2 × 2 block of cells is certified
+// as one square of 2 kCell pixels (at half the tolerance, as the quadtree's squares below). Where
+// it certifies, the five nodes between its corners are its patch's values and derivatives, not
+// Newton solves, and each of the four cells is that patch over its quarter (a bicubic restricted
+// to a square is a bicubic), certified with it. On an edge the patch is the edge's two nodes'
+// alone, so the two pairs that share it derive the same node. A mild lens certifies 97 % of its
+// pairs and its build costs a quarter less (the peer lens 1.2 → 0.9 ms at 2 threads); the
+// cells of pairs that fail are solved and certified one by one as before.
+//
 // What has no preimage is known at once:
 // - a certified cell whose patch lies wholly beyond the source frame grown by the filters'
 //   reach is empty (the patch lies in the convex hull of its Bézier control points, so their
