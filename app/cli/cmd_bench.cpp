@@ -71,7 +71,11 @@ const char* const kBenchUsage =
     "  --threads LIST   comma-separated thread counts (default 1,2)\n"
     "  --plot OUT.png   a PNG of speed (x, log) against error (y, log), one colour per kernel\n"
     "  --overwrite      replace an existing OUT.png (--force is the same; bench fit too)\n"
-    "  --peer DIR       also run DIR/cvwarp (the OpenCV maps + remap peer) on the same image\n"
+    "  --peer DIR       also run DIR/cvwarp (the OpenCV maps + remap peer) on the same image,\n"
+    "                   then five rounds of the rational kernel's bilinear render and the\n"
+    "                   peer's in turn (median of 3 each): stderr gives the median of the\n"
+    "                   five ratios per thread count (a machine's speed drifts; pairs cancel it;\n"
+    "                   the peer times all its filters and map loops: minutes, not seconds)\n"
     "  --cameras FILE…  time these .artcam files (after the homography yardstick) instead of\n"
     "                   the kernel rows and the suite, e.g. lenses from `artcam lens camera`\n"
     "  --no-suite       skip the camera suite\n"
@@ -350,6 +354,44 @@ double medianOf(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
 }
+
+// The rational kernel against the peer in rounds, each ours then the peer's, so a drift of the
+// machine's speed between the two (a third here from minute to minute) cancels in each round's
+// ratio, as the suite's ratios against the homography do.
+void pairedPeer(const std::string& dir, const PixelBuffer& pixels, const ConstImageView& src, const ImageView& dst,
+                FrameSize size, const Camera& rational, const std::vector<int>& thread_counts) {
+  constexpr int kRounds = 5, kReps = 3;
+  std::map<int, std::vector<double>> ratios;
+  for (int round = 0; round < kRounds; ++round) {
+    std::map<int, double> ours;
+    for (int threads : thread_counts) {
+      WarpOptions o;
+      o.threads = threads;
+      WarpSummary s;
+      warpImage(src, rational, dst, o, &s);  // warm-up
+      std::vector<double> times;
+      for (int r = 0; r < kReps; ++r) {
+        warpImage(src, rational, dst, o, &s);
+        times.push_back(s.render_ms);
+      }
+      ours[threads] = medianOf(times);
+    }
+    for (const Row& peer : runPeer(dir, pixels, size, kReps))
+      if (peer.filter == "bilinear" && ours.count(peer.threads))
+        ratios[peer.threads].push_back(peer.ms / ours[peer.threads]);
+  }
+  for (const auto& [threads, r] : ratios) {
+    std::string list;
+    for (double x : r) {
+      char one[32];
+      std::snprintf(one, sizeof one, "%s%.2f", list.empty() ? "" : " ", x);
+      list += one;
+    }
+    std::fprintf(stderr, "peer pairs: rational bilinear, %d thread%s: opencv maps+remap / artcam = %.2f "
+                 "(median of %zu rounds: %s)\n", threads, threads == 1 ? "" : "s", medianOf(r), r.size(), list.c_str());
+  }
+}
+
 
 // What `artcam warp` does with a JPEG, timed by part: decode into the file's 8-bit samples
 // (stored_image.h), the render alone, encode. One run each; the shares say where an export's
@@ -684,11 +726,14 @@ int benchCommand(const std::vector<std::string>& argv) {
       }
     }
   }
-  if (args.has("--peer"))
+  if (args.has("--peer")) {
     for (const Row& r : runPeer(*args.value("--peer"), pixels, size, reps)) {
       printRow(r);
       rows.push_back(r);
     }
+    if (type == PixelType::UInt8)
+      pairedPeer(*args.value("--peer"), pixels, src, dst, size, makeCases(size)[4].camera, thread_counts);
+  }
   if (files_only || !args.has("--no-suite")) {
     std::vector<SuiteCamera> suite = benchCameraSuite(size);
     if (files_only) {
