@@ -278,11 +278,11 @@ void InverseCells::deriveNodes(int threads) {
       for (int i = 0; i < nodes_w_; ++i) {
         Node& out = node(i, j);
         if (out.valid || (i % 2 == 0 && j % 2 == 0)) continue;  // solved, or a pair's corner
-        // The pairs that hold it (one or two along each axis), the first certified.
-        const int a_lo = (i - 1) / 2, a_hi = i / 2, b_lo = (j - 1) / 2, b_hi = j / 2;
-        for (int b = std::max(0, b_lo); b <= std::min(supers_h_ - 1, b_hi) && !out.valid; ++b)
-          for (int a = std::max(0, a_lo); a <= std::min(supers_w_ - 1, a_hi) && !out.valid; ++a) {
-            if (i < 2 * a || i > 2 * a + 2 || j < 2 * b || j > 2 * b + 2 || !supers_[index(a, b, supers_w_)]) continue;
+        // The pairs that hold it (one or two along each axis: pair a spans nodes 2a … 2a + 2),
+        // the first certified.
+        for (int b = std::max(0, (j - 1) / 2); b <= std::min(supers_h_ - 1, j / 2) && !out.valid; ++b)
+          for (int a = std::max(0, (i - 1) / 2); a <= std::min(supers_w_ - 1, i / 2) && !out.valid; ++a) {
+            if (!supers_[index(a, b, supers_w_)]) continue;
             Node n[4];
             superCorners(a, b, n);
             patchNode({&n[0], &n[1], &n[2], &n[3]}, 0.5 * (i - 2 * a), 0.5 * (j - 2 * b), out);
@@ -582,15 +582,14 @@ void InverseCells::buildCoverage(int threads) {
   });
   const double scale = std::min(kMaxScale, *std::max_element(band_scale.begin(), band_scale.end()));
   reach_px_ = options_.reach_px + 4.0 * scale;
-  if (frameInsideImage(mapped, ok, pw, qw, qh, margin)) return;  // every block covered: no coverage needed
+  int i0 = 0, i1 = -1, j0 = 0, j1 = -1;  // the quads within reach
+  reachableQuads(margin, qw, qh, i0, i1, j0, j1);
+  if (frameInsideImage(mapped, ok, pw, i0, i1, j0, j1)) return;  // every block covered: no coverage needed
   std::memset(covered_cells, 0, cells);
   // The quads in bands of rows on every thread (one thread took ~1.5 ms, a sixth of a mild
   // lens's whole build on two). Each marks the cells its box touches and keeps its blocks for
-  // coverOpenCells. The reach's rectangle is found once and the blocks by truncation, not
-  // floor (a call at this build's baseline ISA): the box meets the output, so hi ≥ 0, and lo is
-  // clamped to 0 first, where the two agree.
-  int i0 = 0, i1 = -1, j0 = 0, j1 = -1;
-  reachableQuads(margin, qw, qh, i0, i1, j0, j1);
+  // coverOpenCells. The blocks by truncation, not floor (a call at this build's baseline ISA):
+  // the box meets the output, so hi ≥ 0, and lo is clamped to 0 first, where the two agree.
   const double width = target_px_.width, height = target_px_.height;
   std::atomic<bool> unbounded{false};
   parallelForRows(qh, po, [&](int ja, int jb) {
@@ -651,9 +650,7 @@ void InverseCells::reachableQuads(double margin, int qw, int qh, int& i0, int& i
 }
 
 bool InverseCells::frameInsideImage(const Eigen::Vector2d* mapped, const unsigned char* ok,
-                                    int pw, int qw, int qh, double margin) const {
-  int i0, i1, j0, j1;
-  reachableQuads(margin, qw, qh, i0, i1, j0, j1);
+                                    int pw, int i0, int i1, int j0, int j1) const {
   if (i0 > i1 || j0 > j1) return false;
   const Eigen::Vector2d& centre = newton_.centre().target;
   if (!(centre.x() >= 0.0 && centre.y() >= 0.0 && centre.x() < target_px_.width && centre.y() < target_px_.height))

@@ -284,8 +284,9 @@ class InverseCells {
   // of boundary quads maps wholly outside the frame. Then the frame meets no image of the
   // boundary, and a map without a fold covers all of it (its degree there is that at the
   // centre's image, at least one). `ok` per lattice point: 1 on the centre's side of both.
+  // i0 … i1 by j0 … j1: the quads within reach (reachableQuads).
   bool frameInsideImage(const Eigen::Vector2d* mapped, const unsigned char* ok, int pw,
-                        int qw, int qh, double margin) const;
+                        int i0, int i1, int j0, int j1) const;
   bool cellCovered(int cx, int cy) const;
   // Marks the blocks of the open cells (coveredRun reads no other) that the lattice quads'
   // boxes touch, from the block ranges buildCoverage kept.
@@ -295,7 +296,8 @@ class InverseCells {
   void coverFine(int threads);
   // The output box a source lattice quad may cover: its mapped corners' bounding box, grown
   // by 2 px and a quarter of its size for the edges' curvature. Inline and in plain doubles:
-  // through Eigen's expressions and a call, its box went through memory, ~20–30 ns a quad.
+  // through Eigen's expressions and a call, its box went through memory (the marking loop
+  // took ~30 ns a quad with it).
   static void quadBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                       const Eigen::Vector2d& d, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
     const double lx = std::min(std::min(a.x(), b.x()), std::min(c.x(), d.x()));
