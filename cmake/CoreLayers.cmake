@@ -2,7 +2,7 @@
 # The engine's layers, lowest first. A file in core/<layer>/ may include its own layer and the
 # layers before it, never one after it: the order is what keeps core free of include cycles
 # (docs/architecture.md explains what lives where). Configuring fails on a violation.
-set(ARTCAM_CORE_LAYERS util model colour depth fit render cameras cloud effects piecewise io lens pipeline project)
+set(ARTCAM_CORE_LAYERS util model colour depth fit mapping sampling render cameras cloud effects piecewise io lens pipeline project)
 
 function(artcam_check_core_layers sources)
   set(_violations "")

@@ -56,7 +56,6 @@ function(_artcam_instrument_sources)
   endif()
   set(_dirs ${PROJECT_SOURCE_DIR})
   set(_count 0)
-  set(_skipped "")
   while(_dirs)
     list(POP_FRONT _dirs _dir)
     get_property(_subdirs DIRECTORY ${_dir} PROPERTY SUBDIRECTORIES)
@@ -84,27 +83,16 @@ function(_artcam_instrument_sources)
         if(NOT _hit)
           continue()
         endif()
-        if(ARTCAM_SANITIZE MATCHES "thread")
-          # GCC makes an ifunc resolver for every target_clones function (runtime CPU dispatch);
-          # TSan instruments it, and the dynamic loader runs it before the TSan runtime exists:
-          # the program dies before main. Those files stay uninstrumented (their races unseen).
-          file(STRINGS ${_abs} _clones REGEX "target_clones")
-          if(_clones)
-            list(APPEND _skipped ${_rel})
-            continue()
-          endif()
-        endif()
         set_property(SOURCE ${_abs} TARGET_DIRECTORY ${_target} APPEND PROPERTY COMPILE_OPTIONS
                      ${_flags})
+        # The target's precompiled header is built without the sanitizer: GCC would refuse it
+        # here (-Winvalid-pch) and parse the headers anyway.
+        set_property(SOURCE ${_abs} TARGET_DIRECTORY ${_target} PROPERTY SKIP_PRECOMPILE_HEADERS ON)
         math(EXPR _count "${_count} + 1")
       endforeach()
     endforeach()
   endwhile()
-  list(REMOVE_DUPLICATES _skipped)
   message(STATUS "ARTcam: ${ARTCAM_SANITIZE} on ${_count} sources under ${_only}")
-  if(_skipped)
-    message(STATUS "ARTcam: without TSan (target_clones): ${_skipped}")
-  endif()
 endfunction()
 
 if(ARTCAM_SANITIZE)

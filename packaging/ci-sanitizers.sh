@@ -42,39 +42,33 @@ flags_o1=(-DCMAKE_BUILD_TYPE="${ARTCAM_BUILD_TYPE:-RelWithDebInfo}" "-DARTCAM_SA
 asan_only="${ARTCAM_CI_ASAN_ONLY:-core/io;core/model;core/project;core/lens;core/render;core/piecewise;core/pipeline;core/util;app}"
 tsan_only="${ARTCAM_CI_TSAN_ONLY:-ui;tests/ui;core/util}"
 
-timed() {  # timed NAME COMMAND...: runs it and prints how long it took
-  local name="$1" start
-  shift
-  start=$(date +%s)
-  "$@"
-  echo "ci-sanitizers: $name took $(($(date +%s) - start)) s"
-}
+source "$root/packaging/stage-timer.sh"
 
 asan() {
   local build="${ARTCAM_ASAN_DIR:-$root/build-asan}"
-  timed "asan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
+  stage "asan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
     -DARTCAM_SANITIZE=address,undefined -DARTCAM_SANITIZE_ONLY="$asan_only" \
     -DARTCAM_BUILD_GUI=OFF >/dev/null
   local targets=(artcam test_app_hostile_warp)
   targets+=($(ninja -C "$build" -t targets all | grep -oE '^test_core_io_[a-z0-9_]+' | sort -u))
   targets+=(test_core_model_artcam test_core_model_coverage)
-  timed "asan build (${#targets[@]} targets)" cmake --build "$build" -j"$jobs" --target "${targets[@]}"
+  stage "asan build (${#targets[@]} targets)" cmake --build "$build" -j"$jobs" --target "${targets[@]}"
   # The tests with leak checking: LSan's suppression (cmake/lsan.supp, a leak inside OIIO's PNG
   # reader) needs the slow unwinder on every malloc.
-  (cd "$build" &&
+  stage "asan tests" env -C "$build" \
     ASAN_OPTIONS="fast_unwind_on_malloc=0:detect_leaks=1:exitcode=86" \
     LSAN_OPTIONS="suppressions=$root/cmake/lsan.supp:print_suppressions=0" \
     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87" \
     QT_QPA_PLATFORM=offscreen \
-    timed "asan tests" ctest --output-on-failure --no-tests=error -j"$jobs" -R '^(core/io/.*|core/model/(artcam|coverage)|app/hostile_warp)$')
+    ctest --output-on-failure --no-tests=error -j"$jobs" -R '^(core/io/.*|core/model/(artcam|coverage)|app/hostile_warp)$'
   # The hostile corpus (about 300 runs of artcam) without leak checking, which would triple its
   # time: memory errors and undefined behaviour are still fatal; the readers' leaks are the tests'
   # above, which read the same kinds of files.
-  (cd "$build" &&
+  stage "asan hostile corpus" env -C "$build" \
     ASAN_OPTIONS="detect_leaks=0:exitcode=86" \
     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87" \
     ARTCAM_HOSTILE_SANITIZED=1 ARTCAM_HOSTILE_JOBS="$jobs" QT_QPA_PLATFORM=offscreen \
-    timed "asan hostile corpus" ctest --output-on-failure --no-tests=error -R '^hostile/corpus$')
+    ctest --output-on-failure --no-tests=error -R '^hostile/corpus$'
 }
 
 fuzz() {
@@ -82,16 +76,16 @@ fuzz() {
   local cxx="${ARTCAM_FUZZ_CXX:-clang++-14}"
   local names=(artcam piecewise matches_csv colour_csv ply)
   [[ "${ARTCAM_CI_FUZZ_PROJECT:-0}" == 1 ]] && names+=(project)
-  CXX="$cxx" timed "fuzz configure" cmake -S "$root" -B "$build" -G Ninja \
+  CXX="$cxx" stage "fuzz configure" cmake -S "$root" -B "$build" -G Ninja \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARTCAM_FUZZ=ON -DARTCAM_BUILD_GUI=OFF \
     -DARTCAM_BUILD_TESTS=OFF -DARTCAM_FUZZ_SECONDS="${ARTCAM_CI_FUZZ_SECONDS:-5}" >/dev/null
-  timed "fuzz build (${#names[@]} fuzzers)" cmake --build "$build" -j"$jobs" \
+  stage "fuzz build (${#names[@]} fuzzers)" cmake --build "$build" -j"$jobs" \
     --target "${names[@]/#/fuzz_}"
   local pattern
   pattern="^fuzz/($(IFS='|'; echo "${names[*]}"))$"
   local status=0
   # The fuzz tests live in build-fuzz/fuzz (the root enables no tests without ARTCAM_BUILD_TESTS).
-  (cd "$build/fuzz" && timed "fuzz runs" ctest --output-on-failure --no-tests=error -R "$pattern") ||
+  stage "fuzz runs" env -C "$build/fuzz" ctest --output-on-failure --no-tests=error -R "$pattern" ||
     status=$?
   if compgen -G "$build/fuzz/findings/*" >/dev/null; then
     echo "ci-sanitizers: the fuzzers found inputs to keep as regression seeds" \
@@ -103,15 +97,15 @@ fuzz() {
 
 tsan() {
   local build="${ARTCAM_TSAN_DIR:-$root/build-tsan}"
-  timed "tsan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
+  stage "tsan configure" cmake -S "$root" -B "$build" -G Ninja "${flags_o1[@]}" \
     -DARTCAM_SANITIZE=thread -DARTCAM_SANITIZE_ONLY="$tsan_only" >/dev/null
-  timed "tsan build" cmake --build "$build" -j"$jobs" --target test_ui_preview test_core_util_parallel
+  stage "tsan build" cmake --build "$build" -j"$jobs" --target test_ui_preview test_core_util_parallel
   # setarch -R: TSan's shadow layout does not fit high-entropy ASLR (Debian 12's kernels).
-  (cd "$build" &&
+  stage "tsan tests" env -C "$build" \
     TSAN_OPTIONS="suppressions=$root/cmake/tsan.supp:halt_on_error=1:exitcode=66" \
     QT_QPA_PLATFORM=offscreen \
-    timed "tsan tests" setarch "$(uname -m)" -R ctest --output-on-failure --no-tests=error \
-      -R '^(ui/preview|core/util/parallel)$')
+    setarch "$(uname -m)" -R ctest --output-on-failure --no-tests=error \
+      -R '^(ui/preview|core/util/parallel)$'
 }
 
 for job in "${selected[@]}"; do
@@ -120,3 +114,4 @@ for job in "${selected[@]}"; do
     *) echo "ci-sanitizers: unknown job $job (asan, fuzz, tsan)" >&2; exit 2 ;;
   esac
 done
+stage_summary

@@ -14,7 +14,7 @@
 
 #include "core/model/artcam.h"
 #include "core/model/image.h"
-#include "core/render/mip_pyramid.h"
+#include "core/sampling/mip_pyramid.h"
 #include "core/render/warp.h"
 #include "ui/newest_request_slot.h"
 

@@ -15,8 +15,8 @@
 #include "core/model/structure.h"
 #include "core/piecewise/piecewise_render.h"
 #include "core/pipeline/render.h"
-#include "core/render/coordinates.h"
-#include "core/render/mip_pyramid.h"
+#include "core/mapping/coordinates.h"
+#include "core/render/preview.h"
 #include "core/model/pixel_buffer.h"
 #include "core/render/warp.h"
 

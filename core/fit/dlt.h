@@ -29,7 +29,8 @@ struct DltSolution {
 // Relative singular value below which a direction counts as null.
 inline constexpr double kNullTolerance = 1e-9;
 // From this many 2D matches on, the quadratic DLT solves its normal matrix instead of an SVD of
-// the design matrix (O(m) and ~10× faster; exact small problems keep the SVD's accuracy).
+// the design matrix (O(m) sums and a fixed-size solve; exact small problems keep the SVD's
+// accuracy).
 inline constexpr size_t kNormalEquationsFrom = 40;
 // The same for object space and colour (n = 4, 40 unknowns, 3 rows per match): the design
 // matrix is 3m × 40, and its SVD (QR first) cost grows with m·40².

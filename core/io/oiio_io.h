@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The image-file entry points that need OpenImageIO, as the module libartcam_io_oiio.so
 // implements them (io room only). OpenImageIO pulls some 250 shared libraries into a process
-// (codecs, OpenVDB, ffmpeg, DICOM, …) and resolving their symbols cost ~150 ms of every
-// `artcam` run, whether or not it touched an image; so the engine links it only through this
+// (codecs, OpenVDB, ffmpeg, DICOM, …) and resolving their symbols would delay every `artcam`
+// run, whether or not it touched an image; so the engine links it only through this
 // module, which io_module.cpp loads with dlopen the first time an image is read or written.
 //
 // Each function here is the one its public declaration (image_io.h, stored_image.h, …)

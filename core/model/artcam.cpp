@@ -2,6 +2,7 @@
 #include "core/model/artcam.h"
 
 #include "core/model/coverage.h"
+#include "core/model/structure.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -85,8 +86,10 @@ bool hasZeroStage(const Camera& camera) {
 }
 
 // `rect_px`: the source rectangle the camera answers for (a patch's), else the whole frame.
+// `structure` (may be null) receives the camera's structure analysis, made here once for the
+// coverage check and kept for the caller's render.
 Status checkCamera(const Camera& camera, const std::string& where,
-                   const PatchRect* rect_px = nullptr) {
+                   const PatchRect* rect_px = nullptr, CameraStructure* structure = nullptr) {
   try {
     camera.validate();
   } catch (const std::invalid_argument& e) {
@@ -95,9 +98,11 @@ Status checkCamera(const Camera& camera, const std::string& where,
   if (camera.stages().empty()) return Status::failure(where + "no stages");
   if (hasZeroStage(camera))
     return Status::failure(where + "every tensor of a stage is zero (the camera maps nothing)");
+  CameraStructure analysed = analyseStructure(camera);
   const Coverage coverage =
-      rect_px ? measureCoverage(camera, {rect_px->x0, rect_px->y0}, {rect_px->x1, rect_px->y1})
-              : measureCoverage(camera);
+      rect_px ? measureCoverage(camera, analysed, {rect_px->x0, rect_px->y0}, {rect_px->x1, rect_px->y1})
+              : measureCoverage(camera, analysed);
+  if (structure) *structure = std::move(analysed);
   if (const Status s = coverage.status(); !s) return Status::failure(where + s.message);
   return Status::success();
 }
@@ -156,12 +161,14 @@ Status checkPieces(const Artcam& camera) {
 
 }  // namespace
 
-Status validateArtcam(const Artcam& camera) {
+Status validateArtcam(const Artcam& camera, std::vector<CameraStructure>* layer_structures) {
   if (camera.layers.empty()) return Status::failure("/stages: the camera has no layers");
   const Camera& main = camera.main();
+  if (layer_structures) layer_structures->assign(camera.layers.size(), CameraStructure{});
   for (size_t i = 0; i < camera.layers.size(); ++i) {
     const std::string where = i == 0 ? std::string("/stages: ") : "/layers/" + std::to_string(i - 1) + ": ";
-    if (Status s = checkCamera(camera.layers[i], where); !s) return s;
+    CameraStructure* structure = layer_structures ? &(*layer_structures)[i] : nullptr;
+    if (Status s = checkCamera(camera.layers[i], where, nullptr, structure); !s) return s;
     if (i > 0 && (camera.layers[i].blocks() != main.blocks() ||
                   camera.layers[i].sourceSize() != main.sourceSize() ||
                   camera.layers[i].targetSize() != main.targetSize()))

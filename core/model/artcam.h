@@ -20,6 +20,7 @@
 #pragma once
 
 #include "core/model/camera.h"
+#include "core/model/structure.h"
 #include "core/model/fit_record.h"
 #include "core/model/piecewise_camera.h"
 #include "core/model/status.h"
@@ -77,7 +78,9 @@ bool readsDepth(const Artcam& camera);
 // The invariants above; the message names the part ("layer 2: …", "patch 3: rect …").
 // The file's invariants, and that every camera in it renders something (coverage.h): a camera
 // whose pole crosses the whole frame, or that maps it onto a line, is refused with the reason.
-Status validateArtcam(const Artcam& camera);
+// `layer_structures` (may be null) receives each layer's structure analysis, in layer order:
+// the analysis the check makes anyway, kept so a render analyses its camera once.
+Status validateArtcam(const Artcam& camera, std::vector<CameraStructure>* layer_structures = nullptr);
 // What validateArtcam lets through but a user should hear: a pole that takes part of the frame.
 std::vector<std::string> cameraWarnings(const Artcam& camera);
 

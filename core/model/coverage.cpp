@@ -36,6 +36,19 @@ Coverage measureCoverage(const Camera& camera) {
 
 Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
                          const Eigen::Vector2d& hi_px) {
+  const int block = camera.layout().find(BlockKind::Position);
+  if (block < 0 || camera.blocks()[static_cast<size_t>(block)].size != 3 || camera.stages().empty())
+    return {};
+  return measureCoverage(camera, analyseStructure(camera), lo_px, hi_px);
+}
+
+Coverage measureCoverage(const Camera& camera, const CameraStructure& structure) {
+  const FrameSize s = camera.sourceSize();
+  return measureCoverage(camera, structure, Eigen::Vector2d::Zero(), Eigen::Vector2d(s.width, s.height));
+}
+
+Coverage measureCoverage(const Camera& camera, const CameraStructure& structure,
+                         const Eigen::Vector2d& lo_px, const Eigen::Vector2d& hi_px) {
   Coverage c;
   const FrameSize source = camera.sourceSize();
   const FrameSize target = camera.targetSize();
@@ -43,13 +56,13 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
   if (!source.isImage() || !target.isImage() || block < 0 ||
       camera.blocks()[static_cast<size_t>(block)].size != 3 || camera.stages().empty())
     return c;
-  if (analyseStructure(camera).geometry_depends_on_attributes) return c;
+  if (structure.geometry_depends_on_attributes) return c;
   c.checked = true;
 
   // Every block other than position gets a neutral value (mid grey, opaque; depth 1): only
   // used to evaluate the chain, since position does not depend on them here. Compiled, and
   // the last stage's position alone: Camera::evaluateHomogeneous allocates every product and
-  // computes every output (~0.6 ms a layer, three layers for chromatic aberration, on every
+  // computes every output (per layer, three layers for chromatic aberration, on every
   // render).
   const CompiledCamera compiled(camera);
   const BlockLayout& layout = camera.layout();

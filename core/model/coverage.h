@@ -18,6 +18,7 @@
 
 #include "core/model/camera.h"
 #include "core/model/status.h"
+#include "core/model/structure.h"
 
 #include <Eigen/Core>
 
@@ -46,5 +47,9 @@ Coverage measureCoverage(const Camera& camera, const Eigen::Vector2d& lo_px,
                          const Eigen::Vector2d& hi_px);
 // Over the whole source frame.
 Coverage measureCoverage(const Camera& camera);
+// The same two for a camera whose structure the caller has analysed (structure.h).
+Coverage measureCoverage(const Camera& camera, const CameraStructure& structure,
+                         const Eigen::Vector2d& lo_px, const Eigen::Vector2d& hi_px);
+Coverage measureCoverage(const Camera& camera, const CameraStructure& structure);
 
 }  // namespace artcam

@@ -46,6 +46,14 @@ struct CameraStructure {
 
 CameraStructure analyseStructure(const Camera& camera, const StructureOptions& options = {});
 
+// A camera with its structure, analysed once where a render starts (validateArtcam hands the
+// layers' analyses out, core/pipeline/render.cpp keeps them) and passed to every renderer below,
+// which reads the structure instead of analysing the camera again. Both are borrowed.
+struct AnalysedCamera {
+  const Camera& camera;
+  const CameraStructure& structure;
+};
+
 // The real lines l whose products make the symmetric form q, q = sym(l hᵀ) for some h: one
 // (rank 1), two (rank 2 with eigenvalues of opposite signs), else none. Eigenvalues within
 // `zero` of 0 count as 0.

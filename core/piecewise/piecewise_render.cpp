@@ -3,9 +3,9 @@
 #include "core/piecewise/piecewise_render.h"
 
 #include "core/model/image_view.h"
-#include "core/render/coordinates.h"
-#include "core/render/rational_map.h"
-#include "core/render/span_sampler.h"
+#include "core/mapping/coordinates.h"
+#include "core/mapping/rational_map.h"
+#include "core/sampling/span_sampler.h"
 #include "core/util/cpu_features.h"
 #include "core/util/parallel.h"
 #include "core/util/scratch.h"
@@ -50,9 +50,8 @@ struct Box {
 };
 
 // `count` values carved from a scratch block (scratch.h): the mesh's arrays are rebuilt every
-// render, and as vectors their ~1 MB at a 45 px lattice on 24 MP came back from the system
-// with every page faulted and zeroed again. With the band buffers' blocks (renderPiecewise)
-// the suite's fisheye went from 36.3 to 32.8 ms a render (2 threads, AVX-512 machine).
+// render, and as vectors their ~1 MB at a 45 px lattice on 24 MP would come back from the
+// system with every page faulted and zeroed again (so do the band buffers, renderPiecewise).
 template <typename T>
 struct ScratchArray {
   T* data = nullptr;
@@ -348,7 +347,7 @@ inline Eigen::Vector2d quadratic(double wa, double wb, double wc, const Eigen::V
 // An edge's points depend only on the edge (its two vertices, its bend, their patch), so an
 // edge two drawn triangles share is measured once, by the cell's first triangle (kTriangles[0]:
 // top, right and diagonal edges) where that is drawn, else by the second (bottom, left,
-// diagonal): 8 evaluations a cell instead of 14 (the estimate took 6.2 of a 64.7 ms render).
+// diagonal): 8 evaluations a cell instead of 14.
 double meshError(const Mesh& mesh, const PiecewiseCamera& camera, int threads) {
   std::vector<RationalMap> maps;
   for (const CameraPatch& p : camera.patches) maps.emplace_back(p.camera, camera.source_size, camera.target_size);
@@ -429,25 +428,22 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
     else choice.error_px = -1.0;  // not measured
     return choice;
   }
-  // The error falls as the step cubed (quadratic triangles; the suite's fisheye measured
-  // 0.00114, 0.00221, 0.00379, 0.00884 and 0.0661 px at 32, 40, 48, 64 and 128 px). So a
-  // coarse lattice is measured first, the step that law predicts at kAim of the budget is
-  // measured next, and so on down: the step used is one whose measured error is within the
-  // budget (or the finest, 2 px, whatever it measures), and the rasteriser's work per pixel
-  // falls with the step (its rows are shorter the finer the mesh).
-  // The first lattice, 128 px, is only a probe, at a quarter of a 64-px one's cost (1 against
-  // 3 ms at 2 threads on that camera): the step used is at most 64 px, since so coarse a
-  // lattice may have too few triangles inside single patches to measure (a small insertion
-  // region's measured none), and its centroid-and-quarter-point estimate grows less certain.
-  // The law extrapolated from so far overestimates the step (a mild lens on a 320×240 frame:
-  // 0.0453 px at 128 predicted 0.0030 at 52, which measured 0.0039), so the probe's step aims
-  // at kProbeAim of the budget: the fisheye's 0.0661 px gives 45 px, as its 64-px lattice did
-  // (0.7 gave 44).
+  // The error falls as the step cubed (quadratic triangles). So a coarse lattice is measured
+  // first, the step that law predicts at kAim of the budget is measured next, and so on down:
+  // the step used is one whose measured error is within the budget (or the finest, 2 px,
+  // whatever it measures), and the rasteriser's work per pixel falls with the step (its rows
+  // are shorter the finer the mesh).
+  // The first lattice, 128 px, is only a probe, cheap beside a 64-px one: the step used is at
+  // most 64 px, since so coarse a lattice may have too few triangles inside single patches to
+  // measure (a small insertion region's measured none), and its centroid-and-quarter-point
+  // estimate grows less certain. The law extrapolated from so far overestimates the step (a
+  // mild lens on a 320×240 frame: 0.0453 px at 128 predicted 0.0030 at 52, which measured
+  // 0.0039), so the probe's step aims at kProbeAim of the budget.
   // A triangle is drawn only where its three vertices have data, so where the patches leave
   // holes or a ragged edge a lattice leaves up to a step uncovered along it: there the step
-  // stays at most 32 px (as when 32 was the coarsest). A coarser one is kept only where every
-  // vertex and cell centre of its lattice has data, a test at the lattice's own spacing (a
-  // notch narrower than a step between those points could still pass it).
+  // stays at most 32 px. A coarser one is kept only where every vertex and cell centre of its
+  // lattice has data, a test at the lattice's own spacing (a notch narrower than a step
+  // between those points could still pass it).
   constexpr double kProbe = 128.0, kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8,
                    kProbeAim = 0.75;
   double step = kProbe;
@@ -561,7 +557,7 @@ __attribute__((always_inline)) inline void rowStart(const TriangleRows& rows, co
   }
 }
 
-// False when the row has none. Inlined into each clone of the row loop (a call per row cost
+// False when the row has none. Inlined into each clone of the row loop (a call per row costs
 // more than the row's eight-wide steps); the clones agree bit for bit because this file is
 // built without floating-point contraction (CMakeLists), so no clone fuses a multiply-add.
 __attribute__((always_inline)) inline bool rowRun(const TriangleRows& rows, int y, int y0, int width, RowRun& run) {
@@ -616,8 +612,7 @@ __attribute__((target("avx2"))) int rowRunAvx2(double px, double py, double d1x,
 // The rows' set-up eight rows at a time, the row loop eight pixels per step, the last step
 // masked, and the coverage bytes by masked stores: a band's triangles are short runs (~16
 // pixels a row at a 32 px lattice, ~22 at 45 px), where the per-row set-up, the tails and a
-// memset call per row were most of the rasteriser's time. Set up a row at a time, the suite's
-// fisheye rendered in 32.8 ms; eight at a time, 26.0 (2 threads).
+// memset call per row would be most of the rasteriser's time.
 // The same double operations as the portable loop (no FMA), so every bit agrees.
 __attribute__((target("avx512f,avx512vl,avx512bw"))) long long rowsAvx512(const TriangleRows& rows, int y0,
                                                                                     int width, float* sx, float* sy,
@@ -628,8 +623,8 @@ __attribute__((target("avx512f,avx512vl,avx512bw"))) long long rowsAvx512(const 
   const __m512i ones = _mm512_set1_epi8(1);
   const __m512d cx = _mm512_set1_pd(rows.d2.x()), cy = _mm512_set1_pd(rows.d2.y());  // the triangle's
   // rowRun's set-up for eight rows at once, lane r for row y + r: each lane does the scalar
-  // code's operations in its order (rowRun, rowStart), so every bit agrees. Per row it was most
-  // of the rasteriser's time: ~1.1 M runs of ~22 pixels a 24 MP render at a 45 px lattice.
+  // code's operations in its order (rowRun, rowStart), so every bit agrees. Per row it would be
+  // most of the rasteriser's time: ~1.1 M runs of ~22 pixels a 24 MP render at a 45 px lattice.
   const __m512d four = _mm512_set1_pd(4.0), eps_bound = _mm512_set1_pd(rows.eps_bound), eps = _mm512_set1_pd(rows.eps);
   const __m512d k_max = _mm512_set1_pd(rows.k_max);
   __m512d wf[3], dy[3], dw[3], inv_dw[3];
@@ -732,7 +727,7 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
     if (cpuHasAvx2()) q = rowRunAvx2(p.x(), p.y(), d1.x(), d1.y(), d2.x(), d2.y(), k, end, row_x, row_y);
 #endif
 #if defined(__SSE2__)
-    // Two pixels per step (measured 123 against 139 ms for the scalar loop alone, one thread).
+    // Two pixels per step.
     const __m128d ax = _mm_set1_pd(p.x()), ay = _mm_set1_pd(p.y());
     const __m128d bx = _mm_set1_pd(d1.x()), by = _mm_set1_pd(d1.y());
     const __m128d cx = _mm_set1_pd(d2.x()), cy = _mm_set1_pd(d2.y());
@@ -831,8 +826,8 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
   parallelForRows(out.height, po, [&](int y0, int y1) {
     const size_t cells = static_cast<size_t>(kBandRows) * static_cast<size_t>(out.width);
     // The band's positions and coverage in a scratch block (scratch.h), the same blocks band
-    // after band and render after render: per thread they were reallocated, and page-faulted,
-    // every render by the threads parallelForRows starts (~0.8 ms of a 2-thread render).
+    // after band and render after render, not reallocated and page-faulted afresh by the
+    // threads parallelForRows starts.
     const ScratchBlock buffers = takeScratch(cells * (2 * sizeof(float) + 1));
     float* const sx = static_cast<float*>(buffers.data());
     float* const sy = sx + cells;

@@ -5,6 +5,7 @@
 #include "core/model/structure.h"
 #include "core/piecewise/piecewise_render.h"
 #include "core/render/attributed.h"
+#include "core/render/preview.h"
 
 #include <algorithm>
 #include <chrono>
@@ -69,12 +70,27 @@ OutputFrame outputFrameFor(const Artcam& camera, FrameSize photo, int width, int
 
 namespace {
 
+// What a render needs to know of its camera, found once per render (docs/architecture.md).
 struct Analysis {
   bool linear = false;       // renders from the linear float photo
   bool attributes = false;   // some layer changes or reads colour/depth
+  // Each layer's structure (analyseStructure), in layer order: validateArtcam's.
+  std::vector<CameraStructure> layers;
   // Layers that each pass one colour channel through a position camera (chromatic
-  // aberration, Fig 4): those cameras in channel order, rendered by warpChannels.
+  // aberration, Fig 4): those cameras in channel order, rendered by warpChannels, and theirs.
   std::vector<Camera> channels;
+  std::vector<CameraStructure> channel_structures;
+
+  std::vector<AnalysedCamera> analysedLayers(const Artcam& camera) const {
+    std::vector<AnalysedCamera> out;
+    for (size_t l = 0; l < camera.layers.size(); ++l) out.push_back({camera.layers[l], layers[l]});
+    return out;
+  }
+  std::vector<AnalysedCamera> analysedChannels() const {
+    std::vector<AnalysedCamera> out;
+    for (size_t k = 0; k < channels.size(); ++k) out.push_back({channels[k], channel_structures[k]});
+    return out;
+  }
 };
 
 // A layer [position 3 | colour 4] whose position forms read position alone and whose colour
@@ -121,14 +137,21 @@ std::vector<Camera> channelCameras(const Artcam& camera) {
   return cameras;
 }
 
-Analysis analyse(const Artcam& camera) {
+// `layers`: each layer's structure when the caller has it (validateArtcam's), else found here.
+Analysis analyse(const Artcam& camera, std::vector<CameraStructure> layers = {}) {
   Analysis a;
-  a.channels = channelCameras(camera);
-  if (!a.channels.empty()) return a;  // the stored photo, per channel
-  for (const Camera& layer : camera.layers) {
-    const CameraStructure s = analyseStructure(layer);
-    a.attributes = a.attributes || s.attributes_change || s.geometry_depends_on_attributes;
+  if (layers.size() != camera.layers.size()) {
+    layers.clear();
+    for (const Camera& layer : camera.layers) layers.push_back(analyseStructure(layer));
   }
+  a.layers = std::move(layers);
+  a.channels = channelCameras(camera);
+  if (!a.channels.empty()) {  // the stored photo, per channel
+    for (const Camera& channel : a.channels) a.channel_structures.push_back(analyseStructure(channel));
+    return a;
+  }
+  for (const CameraStructure& s : a.layers)
+    a.attributes = a.attributes || s.attributes_change || s.geometry_depends_on_attributes;
   // Patches render from the stored photo like one camera (the mesh feeds the warp's sampler);
   // with layers, attributes or depth of field they are refused by validateArtcam anyway.
   a.linear = camera.layers.size() > 1 || a.attributes || camera.depth_output != DepthOutput::Depth;
@@ -160,7 +183,7 @@ double msSince(std::chrono::steady_clock::time_point start) {
 
 // Layers (or one attributed camera), then the depth-of-field blur when the depth output is the
 // blur variance σ² (effects/depth_of_field.h).
-ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera,
+ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera, const Analysis& analysis,
                               const RenderOptions& options, FrameSize size, RenderSummary& report,
                               ImageF* depth_out) {
   AttributedOptions a;
@@ -172,8 +195,8 @@ ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera,
   AttributedSummary as;
   const AttributedSources sources{*inputs.linear, inputs.depth, inputs.second};
   AttributedImage out = camera.layers.size() > 1
-                            ? renderLayers(sources, camera.layers, a, &as)
-                            : renderAttributed(sources, camera.main(), a, &as);
+                            ? renderLayers(sources, analysis.analysedLayers(camera), a, &as)
+                            : renderAttributed(sources, AnalysedCamera{camera.main(), analysis.layers[0]}, a, &as);
   report.path = camera.layers.size() > 1 ? RenderPath::Layered : attributedPath(as.path);
   report.kernel = as.kernel;
   report.note = as.note;
@@ -263,14 +286,15 @@ void renderGeometry(const ConstImageView& photo, const StoredMipPyramid* pyramid
     report.cancelled = options.warp.progress && !options.warp.progress(1.0);
     return;
   }
+  const AnalysedCamera main{camera.main(), analysis.layers[0]};
   if (pyramid) {
-    if (analysis.channels.empty()) warpPreview(*pyramid, camera.main(), out, warp, &ws);
-    else warpPreview(*pyramid, analysis.channels, out, warp, &ws);
+    if (analysis.channels.empty()) warpPreview(*pyramid, main, out, warp, &ws);
+    else warpPreview(*pyramid, analysis.analysedChannels(), out, warp, &ws);
     report.path = RenderPath::Preview;
   } else {
     if (photo.empty()) throw std::invalid_argument("render: no photo given");
-    if (analysis.channels.empty()) warpImage(photo, camera.main(), out, warp, &ws);
-    else warpChannels(photo, analysis.channels, out, warp, &ws);
+    if (analysis.channels.empty()) warpImage(photo, main, out, warp, &ws);
+    else warpChannels(photo, analysis.analysedChannels(), out, warp, &ws);
     report.path = analysis.channels.empty() ? RenderPath::Geometry : RenderPath::Layered;
   }
   report.kernel = ws.kernel;
@@ -279,13 +303,48 @@ void renderGeometry(const ConstImageView& photo, const StoredMipPyramid* pyramid
   report.cancelled = ws.cancelled;
 }
 
-// The caller's summary (or a local one) reset, after the camera's invariants are checked.
-RenderSummary& startReport(RenderSummary* summary, RenderSummary& local, const Artcam& camera) {
+// The caller's summary (or a local one) reset, after the camera's invariants are checked; the
+// check's analysis of each layer goes into `analysis`, the render's one analysis.
+RenderSummary& startReport(RenderSummary* summary, RenderSummary& local, const Artcam& camera,
+                           Analysis& analysis) {
   RenderSummary& report = summary ? *summary : local;
   report = RenderSummary{};
-  if (const Status s = validateArtcam(camera); !s)
+  std::vector<CameraStructure> layers;
+  if (const Status s = validateArtcam(camera, &layers); !s)
     throw std::invalid_argument("invalid camera: " + s.message);
+  analysis = analyse(camera, std::move(layers));
   return report;
+}
+
+// The float render after startReport: the linear paths, or the geometry kernels on a float photo.
+ImageF renderFloat(const RenderInputs& inputs, const Artcam& camera, const Analysis& analysis,
+                   const RenderOptions& options, RenderSummary& report, ImageF* depth_out) {
+  const ConstImageView photo = inputs.linear ? viewOf(*inputs.linear) : inputs.photo;
+  // The output frame follows the full photo even when a smaller linear copy renders it.
+  const FrameSize photo_size = inputs.photo.empty() ? FrameSize{photo.width, photo.height}
+                                                    : FrameSize{inputs.photo.width, inputs.photo.height};
+  const OutputFrame frame =
+      outputFrameFor(camera, photo_size, options.warp.width, options.warp.height);
+  report.size = frame.size;
+  ImageF out;
+  if (analysis.linear) {
+    requireLinear(inputs);
+    out = camera.pieces ? renderPieces(inputs, camera, options, frame.size, report)
+                        : renderAttributedCamera(inputs, camera, analysis, options, frame.size, report,
+                                                 depth_out);
+  } else {
+    if (photo.empty()) throw std::invalid_argument("render: no photo given");
+    if (photo.type != PixelType::Float)
+      throw std::invalid_argument(
+          "render: a float output needs the photo as float (RenderInputs::linear)");
+    const int channels = photo.alpha_channel >= 0 ? photo.channels : photo.channels + 1;
+    out = ImageF(frame.size.width, frame.size.height, channels, channels - 1);
+    renderGeometry(photo, nullptr, camera, analysis, options, viewOf(out), report);
+    if (report.cancelled) out = {};
+  }
+  if (!frame.warning.empty()) report.note = frame.warning + (report.note.empty() ? "" : "; " + report.note);
+  report.transparent_pixels = countTransparent(out);
+  return out;
 }
 
 }  // namespace
@@ -312,11 +371,11 @@ void render(const RenderInputs& inputs, const Artcam& camera, const RenderOption
             const ImageView& out, RenderSummary* summary) {
   const auto start = std::chrono::steady_clock::now();
   RenderSummary local;
-  RenderSummary& report = startReport(summary, local, camera);
+  Analysis analysis;
+  RenderSummary& report = startReport(summary, local, camera, analysis);
   report.size = {out.width, out.height};
-  const Analysis analysis = analyse(camera);
   if (analysis.linear) {
-    ImageF image = render(inputs, camera, options, &report);
+    ImageF image = renderFloat(inputs, camera, analysis, options, report, nullptr);
     if (report.cancelled) return;
     copyInto(image, out);
   } else {
@@ -329,33 +388,9 @@ ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOpti
               RenderSummary* summary, ImageF* depth_out) {
   const auto start = std::chrono::steady_clock::now();
   RenderSummary local;
-  RenderSummary& report = startReport(summary, local, camera);
-  const Analysis analysis = analyse(camera);
-  const ConstImageView photo = inputs.linear ? viewOf(*inputs.linear) : inputs.photo;
-  // The output frame follows the full photo even when a smaller linear copy renders it.
-  const FrameSize photo_size = inputs.photo.empty() ? FrameSize{photo.width, photo.height}
-                                                    : FrameSize{inputs.photo.width, inputs.photo.height};
-  const OutputFrame frame =
-      outputFrameFor(camera, photo_size, options.warp.width, options.warp.height);
-  report.size = frame.size;
-  ImageF out;
-  if (analysis.linear) {
-    requireLinear(inputs);
-    out = camera.pieces ? renderPieces(inputs, camera, options, frame.size, report)
-                        : renderAttributedCamera(inputs, camera, options, frame.size, report,
-                                                 depth_out);
-  } else {
-    if (photo.empty()) throw std::invalid_argument("render: no photo given");
-    if (photo.type != PixelType::Float)
-      throw std::invalid_argument(
-          "render: a float output needs the photo as float (RenderInputs::linear)");
-    const int channels = photo.alpha_channel >= 0 ? photo.channels : photo.channels + 1;
-    out = ImageF(frame.size.width, frame.size.height, channels, channels - 1);
-    renderGeometry(photo, nullptr, camera, analysis, options, viewOf(out), report);
-    if (report.cancelled) out = {};
-  }
-  if (!frame.warning.empty()) report.note = frame.warning + (report.note.empty() ? "" : "; " + report.note);
-  report.transparent_pixels = countTransparent(out);
+  Analysis analysis;
+  RenderSummary& report = startReport(summary, local, camera, analysis);
+  ImageF out = renderFloat(inputs, camera, analysis, options, report, depth_out);
   report.render_ms = msSince(start);
   return out;
 }

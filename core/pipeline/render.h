@@ -29,7 +29,7 @@
 #include "core/model/artcam.h"
 #include "core/model/image.h"
 #include "core/model/image_view.h"
-#include "core/render/mip_pyramid.h"
+#include "core/sampling/mip_pyramid.h"
 #include "core/render/warp.h"
 
 #include <string>

@@ -76,7 +76,7 @@ struct DocumentArtcam {
 };
 
 // The effect stack composed on its own, in order: the costly part (aerial perspective then
-// depth of field fits a bridge stage, about 120 ms), so the studio makes it once per change of
+// depth of field fits a bridge stage), so the studio makes it once per change of
 // the stack or of whether there is depth, not on every refit of the geometry. `camera` is
 // empty when no effect could be applied. `has_depth`: the document has depth to read (painted
 // planes with their three depths, or a depth map); without it, effects that read depth are

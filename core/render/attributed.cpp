@@ -4,9 +4,9 @@
 #include "core/render/attributed.h"
 
 #include "core/model/frames.h"
-#include "core/render/coordinates.h"
+#include "core/mapping/coordinates.h"
 #include "core/util/parallel.h"
-#include "core/render/sampling.h"
+#include "core/sampling/sampling.h"
 #include "core/render/splat.h"
 #include "core/render/warp.h"
 
@@ -287,11 +287,21 @@ bool colourOnly(const ImageF& rgba, const ImageF* depth, const SecondReader& sec
 
 // Positions from position alone: the gather kernels find the source point, the camera then
 // maps [source point | sampled colour | sampled depth].
+// `camera_structure` is the whole camera's: its geometry (class, homography) is the position
+// part's, since the position forms read position alone on this path.
 bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
-            const Camera& camera, const AttributeEvaluator& eval,
+            const Camera& camera, const CameraStructure& camera_structure, const AttributeEvaluator& eval,
             const AttributedOptions& options, AttributedImage& out, AttributedSummary& report) {
   const Camera geometry = positionPart(camera);
-  const CameraStructure structure = analyseStructure(geometry);
+  CameraStructure structure = camera_structure;
+  // The position part's own denominator (analyseStructure's rule, on the part alone): zero in
+  // every entry of some stage is a camera that maps nothing.
+  const int p = geometry.layout().find(BlockKind::Position);
+  if (p >= 0) {
+    const size_t den = static_cast<size_t>(geometry.layout().offsets[p] + geometry.blocks()[p].size - 1);
+    for (const Stage& stage : geometry.stages())
+      if (stage.q[den].cwiseAbs().maxCoeff() == 0.0) structure.degenerate = true;
+  }
   const FrameSize source_px{rgba.width, rgba.height};
   const FrameSize out_px{out.colour.width, out.colour.height};
   if (structure.degenerate) {
@@ -341,6 +351,15 @@ bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
 
 AttributedImage renderAttributed(const AttributedSources& sources, const Camera& camera,
                                  const AttributedOptions& options, AttributedSummary* summary) {
+  camera.validate();
+  const CameraStructure structure = analyseStructure(camera);
+  return renderAttributed(sources, AnalysedCamera{camera, structure}, options, summary);
+}
+
+AttributedImage renderAttributed(const AttributedSources& sources, const AnalysedCamera& analysed,
+                                 const AttributedOptions& options, AttributedSummary* summary) {
+  const Camera& camera = analysed.camera;
+  const CameraStructure& structure = analysed.structure;
   const ImageF& source = sources.colour;
   const ImageF* depth = sources.depth;
   const auto start = std::chrono::steady_clock::now();
@@ -351,7 +370,6 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Camera&
   checkSourceImage(source);
   const FrameSize out_px = outputSizeFor(camera, options.warp.width, options.warp.height);
   const FrameSize source_px{source.width, source.height};
-  const CameraStructure structure = analyseStructure(camera);
   AttributedPath path = chooseAttributedPath(camera, structure, source_px, out_px);
   if (!options.force_path.empty()) {
     if (options.force_path == "splat") path = AttributedPath::Splat;
@@ -388,7 +406,7 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Camera&
     wo.width = out_px.width;
     wo.height = out_px.height;
     WarpSummary ws;
-    out.colour = warpImage(rgba, camera, wo, &ws);
+    out.colour = warpImage(rgba, analysed, wo, &ws);
     report.kernel = ws.kernel;
     report.note = ws.note;
     finished = !ws.cancelled;
@@ -410,7 +428,7 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Camera&
       report.kernel = "colour-only";
       finished = colourOnly(rgba, depth, second, eval, options, out);
     } else {
-      finished = gather(rgba, depth, second, camera, eval, options, out, report);
+      finished = gather(rgba, depth, second, camera, structure, eval, options, out, report);
     }
   }
   report.render_ms =
@@ -424,6 +442,18 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Camera&
 }
 
 AttributedImage renderLayers(const AttributedSources& sources, const std::vector<Camera>& layers,
+                             const AttributedOptions& options, AttributedSummary* summary) {
+  std::vector<CameraStructure> structures;
+  for (const Camera& layer : layers) {
+    layer.validate();
+    structures.push_back(analyseStructure(layer));
+  }
+  std::vector<AnalysedCamera> analysed;
+  for (size_t l = 0; l < layers.size(); ++l) analysed.push_back({layers[l], structures[l]});
+  return renderLayers(sources, analysed, options, summary);
+}
+
+AttributedImage renderLayers(const AttributedSources& sources, const std::vector<AnalysedCamera>& layers,
                              const AttributedOptions& options, AttributedSummary* summary) {
   if (layers.empty()) throw std::invalid_argument("a layered camera needs at least one layer");
   AttributedSummary local;

@@ -101,6 +101,10 @@ AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure&
 AttributedImage renderAttributed(const AttributedSources& sources, const Camera& camera,
                                  const AttributedOptions& options = {},
                                  AttributedSummary* summary = nullptr);
+// The same for a camera already analysed (AnalysedCamera, structure.h).
+AttributedImage renderAttributed(const AttributedSources& sources, const AnalysedCamera& camera,
+                                 const AttributedOptions& options = {},
+                                 AttributedSummary* summary = nullptr);
 inline AttributedImage renderAttributed(const ImageF& source, const ImageF* depth,
                                         const Camera& camera,
                                         const AttributedOptions& options = {},
@@ -116,6 +120,9 @@ inline AttributedImage renderAttributed(const ImageF& source, const ImageF* dept
 // keeping the other layers' channels as a frame of the complementary colour. The depth is that
 // of the layer with the largest alpha. All layers must share the output size.
 AttributedImage renderLayers(const AttributedSources& sources, const std::vector<Camera>& layers,
+                             const AttributedOptions& options = {},
+                             AttributedSummary* summary = nullptr);
+AttributedImage renderLayers(const AttributedSources& sources, const std::vector<AnalysedCamera>& layers,
                              const AttributedOptions& options = {},
                              AttributedSummary* summary = nullptr);
 inline AttributedImage renderLayers(const ImageF& source, const ImageF* depth,

@@ -15,7 +15,7 @@
 #pragma once
 
 #include "core/model/camera.h"
-#include "core/render/coordinates.h"
+#include "core/mapping/coordinates.h"
 
 #include <string>
 #include <vector>

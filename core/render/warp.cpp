@@ -7,10 +7,10 @@
 
 #include "core/model/frames.h"
 #include "core/model/structure.h"
-#include "core/render/coordinates.h"
+#include "core/mapping/coordinates.h"
 #include "core/util/parallel.h"
-#include "core/render/sampling.h"
-#include "core/render/span_sampler.h"
+#include "core/sampling/sampling.h"
+#include "core/sampling/span_sampler.h"
 
 #include <algorithm>
 #include <array>
@@ -26,22 +26,6 @@
 #include <vector>
 
 namespace artcam {
-
-std::string_view filterName(Filter filter) {
-  switch (filter) {
-    case Filter::Nearest: return "nearest";
-    case Filter::Bilinear: return "bilinear";
-    case Filter::Bicubic: return "bicubic";
-  }
-  return "unknown";
-}
-
-std::optional<Filter> filterFromName(std::string_view name) {
-  if (name == "nearest") return Filter::Nearest;
-  if (name == "bilinear" || name == "linear") return Filter::Bilinear;
-  if (name == "bicubic" || name == "cubic") return Filter::Bicubic;
-  return std::nullopt;
-}
 
 FrameSize outputSizeFor(const Camera& camera, int width, int height) {
   if (width < 0 || height < 0) throw std::invalid_argument("output size must not be negative");
@@ -203,6 +187,19 @@ long long mergeChannels(const unsigned char* const* spans, int count, int channe
 
 void warpChannels(const ConstImageView& source, const std::vector<Camera>& channel_cameras,
                   const ImageView& out, const WarpOptions& options, WarpSummary* summary) {
+  std::vector<CameraStructure> structures;
+  structures.reserve(channel_cameras.size());
+  for (const Camera& camera : channel_cameras) {
+    camera.validate();
+    structures.push_back(analyseStructure(camera));
+  }
+  std::vector<AnalysedCamera> analysed;
+  for (size_t k = 0; k < channel_cameras.size(); ++k) analysed.push_back({channel_cameras[k], structures[k]});
+  warpChannels(source, analysed, out, options, summary);
+}
+
+void warpChannels(const ConstImageView& source, const std::vector<AnalysedCamera>& channel_cameras,
+                  const ImageView& out, const WarpOptions& options, WarpSummary* summary) {
   const auto start = std::chrono::steady_clock::now();
   WarpSummary local;
   WarpSummary& report = summary ? *summary : local;
@@ -229,9 +226,10 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
   std::vector<std::unique_ptr<CoordinateKernel>> kernels;
   std::string names;
   const FrameSize source_px{source.width, source.height}, out_px{out.width, out.height};
-  for (const Camera& camera : channel_cameras) {
+  for (const AnalysedCamera& analysed : channel_cameras) {
+    const Camera& camera = analysed.camera;
+    const CameraStructure& structure = analysed.structure;
     camera.validate();
-    const CameraStructure structure = analyseStructure(camera);
     checkCamera(camera, structure);
     if (structure.degenerate) throw std::invalid_argument("a channel's camera has a zero position denominator");
     KernelChoice choice = makeCoordinateKernel(camera, structure, source_px, out_px, options.coordinates, options.threads);
@@ -357,6 +355,15 @@ void warpChannels(const ConstImageView& source, const std::vector<Camera>& chann
 
 void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
                const WarpOptions& options, WarpSummary* summary) {
+  camera.validate();
+  const CameraStructure structure = analyseStructure(camera);
+  warpImage(source, AnalysedCamera{camera, structure}, out, options, summary);
+}
+
+void warpImage(const ConstImageView& source, const AnalysedCamera& analysed, const ImageView& out,
+               const WarpOptions& options, WarpSummary* summary) {
+  const Camera& camera = analysed.camera;
+  const CameraStructure& structure = analysed.structure;
   const auto start = std::chrono::steady_clock::now();
   WarpSummary local;
   WarpSummary& report = summary ? *summary : local;
@@ -366,7 +373,6 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   checkOptions(options);
   const SpanSampler sampler(source, out, options.filter, !options.coordinates.scalar_only,
                             options.coordinates.allow_avx512);  // validates both images
-  const CameraStructure structure = analyseStructure(camera);
   checkCamera(camera, structure);
 
   const FrameSize source_px{source.width, source.height};
@@ -401,7 +407,7 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
   po.progress = options.progress;
   // Tiles of one span × band rows: a rotated or curved map reads a source region of about the
   // tile's size, which then stays in L1/L2 and in the TLB; a whole 6000-pixel output row
-  // would sweep hundreds of source rows (measured 2–3× slower for a 2° rotation).
+  // would sweep hundreds of source rows (several times slower even for a small rotation).
   po.band_rows = kBandRows;
   const bool finished = parallelForRows(out_px.height, po, [&](int y0, int y1) {
     long long band_transparent = 0, band_newton = 0;
@@ -415,10 +421,8 @@ void warpImage(const ConstImageView& source, const Camera& camera, const ImageVi
     }
     RowState row_states[kBandRows];  // each row's spans still go left to right (coordinates.h)
     // Span-major: one span column goes down the band's rows, then the next.
-    // A software prefetch of the source lines the next rows will read (extrapolated from the
-    // last two rows) used to pay here; with the AVX2 samplers it cost more than it saved
-    // (~8 % of the CPU time of a 24 Mpix bilinear render, measured) and is gone, as is a
-    // prefetch of the output lines two rows down (no gain measured). The 8-bit bilinear
+    // No software prefetch here (source lines extrapolated from the last rows, or output lines
+    // a few rows down): with the AVX2 samplers it costs more than it saves. The 8-bit bilinear
     // samplers prefetch instead, from the taps they have just read, the same lines a few rows
     // down (span_sampler_avx2.h, prefetchRowsAhead): exact addresses, no extrapolation.
     for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
@@ -601,6 +605,14 @@ long long BandWarp::render(const ConstImageView& window, int window_first, int y
 
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options,
                  WarpSummary* summary) {
+  camera.validate();
+  const CameraStructure structure = analyseStructure(camera);
+  return warpImage(source, AnalysedCamera{camera, structure}, options, summary);
+}
+
+ImageF warpImage(const ImageF& source, const AnalysedCamera& analysed, const WarpOptions& options,
+                 WarpSummary* summary) {
+  const Camera& camera = analysed.camera;
   checkSourceImage(source);
   camera.validate();
   const FrameSize out_px = warpOutputSize(camera, options);
@@ -609,7 +621,7 @@ ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& 
   ImageF out(out_px.width, out_px.height, channels, alpha);
   WarpSummary local;
   WarpSummary& report = summary ? *summary : local;
-  warpImage(viewOf(source), camera, viewOf(out), options, &report);
+  warpImage(viewOf(source), analysed, viewOf(out), options, &report);
   if (report.cancelled) return ImageF{};
   return out;
 }

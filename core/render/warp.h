@@ -19,7 +19,9 @@
 #include "core/model/camera.h"
 #include "core/model/image.h"
 #include "core/model/image_view.h"
-#include "core/render/coordinates.h"
+#include "core/model/structure.h"
+#include "core/mapping/coordinates.h"
+#include "core/sampling/filter.h"
 
 #include <functional>
 #include <memory>
@@ -29,10 +31,6 @@
 #include <string_view>
 
 namespace artcam {
-
-enum class Filter { Nearest, Bilinear, Bicubic };
-std::string_view filterName(Filter filter);
-std::optional<Filter> filterFromName(std::string_view name);
 
 // What an interactive preview accepts as position error (source pixels of the level it
 // samples): invisible at screen size, and it lets strong lenses skip the per-pixel check.
@@ -89,6 +87,8 @@ FrameSize warpOutputSize(const Camera& camera, const WarpOptions& options);
 // The progress callback runs on the calling thread, never on a worker.
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options = {},
                  WarpSummary* summary = nullptr);
+ImageF warpImage(const ImageF& source, const AnalysedCamera& camera, const WarpOptions& options = {},
+                 WarpSummary* summary = nullptr);
 
 // The same warp on typed, strided views (image_view.h): 8-bit, 16-bit or float, 1–4 channels,
 // read in place. `out` gives the output size (options.width/height are ignored) and must have
@@ -96,6 +96,10 @@ ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& 
 // without alpha the output is composited over black. On cancel, `out` holds a partial render
 // and summary->cancelled is set; the caller discards it.
 void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
+               const WarpOptions& options = {}, WarpSummary* summary = nullptr);
+// The same for a camera already analysed (AnalysedCamera, structure.h): what a render pipeline
+// calls, having analysed its camera once.
+void warpImage(const ConstImageView& source, const AnalysedCamera& camera, const ImageView& out,
                const WarpOptions& options = {}, WarpSummary* summary = nullptr);
 
 // The gather warp prepared once (kernel chosen, rational cells solved) and rendered band by band
@@ -146,6 +150,8 @@ class BandWarp {
 // black, as warpImage writes such an output. Same
 // views, options and cancel contract as warpImage; summary->kernel joins the kernels' names.
 void warpChannels(const ConstImageView& source, const std::vector<Camera>& channel_cameras,
+                  const ImageView& out, const WarpOptions& options = {}, WarpSummary* summary = nullptr);
+void warpChannels(const ConstImageView& source, const std::vector<AnalysedCamera>& channel_cameras,
                   const ImageView& out, const WarpOptions& options = {}, WarpSummary* summary = nullptr);
 
 }  // namespace artcam

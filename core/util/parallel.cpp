@@ -15,21 +15,20 @@ namespace artcam {
 namespace {
 
 // Helper threads that outlive the calls they serve. Why: a render makes several parallel
-// passes (seven for a rational lens or a piecewise camera, counted with a debugger's
-// breakpoint) and starting and joining a thread for each took ~55 µs on a 2-core VM, ~0.4 ms
-// of a 21 ms render and more of a studio preview's 5 ms. A call posts a Job asking for some helpers and works on it itself;
-// idle pool threads join it. The pool starts a thread whenever the helpers asked for exceed
-// the idle threads, so it grows to the most ever wanted at once and a posted job never waits
-// for another job's helpers. A call closes its job when it has run out of bands: helpers that
-// had not joined by then never will, and the call waits only for those inside.
+// passes (seven for a rational lens or a piecewise camera), and starting and joining a thread
+// for each is not small beside a render's time, still less a studio preview's. A call posts a
+// Job asking for some helpers and works on it itself; idle pool threads join it. The pool
+// starts a thread whenever the helpers asked for exceed the idle threads, so it grows to the
+// most ever wanted at once and a posted job never waits for another job's helpers. A call
+// closes its job when it has run out of bands: helpers that had not joined by then never
+// will, and the call waits only for those inside.
 //
 // Waiting spins before it sleeps: an idle helper polls for a new job for kSpin before it waits
 // on the condition variable, and a closing call polls for its helpers to leave before it does.
-// Why: a render's passes follow each other within microseconds, and on this project's 2-core
-// VM a futex wake-up cost 40–100 µs a pass (the caller's first band started that late after
-// posting, the helper's later still: timed inside the lens kernel's build, whose passes take
-// 0.3–0.5 ms). Posting only wakes threads that sleep, so back-to-back passes make no system
-// call. The spin costs at most kSpin of one core after each burst of work.
+// Why: a render's passes follow each other within microseconds, sooner than a sleeping
+// thread's futex wake-up would let it start its first band. Posting only wakes threads that
+// sleep, so back-to-back passes make no system call. The spin costs at most kSpin of one core
+// after each burst of work.
 constexpr auto kSpin = std::chrono::microseconds(200);
 
 // Polls `ready` (pausing the core between polls) until it is true or kSpin has passed.

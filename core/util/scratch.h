@@ -3,14 +3,13 @@
 //
 // Why: freed, a block of megabytes goes back to the system (glibc unmaps large blocks and trims
 // the heap's top), so the next render touches every page of its new block for the first time
-// and the kernel faults and zeroes each one: the rational kernel's refined cells of a strong
-// twist took ~1,500 page faults a render, ~3 ms of a 37 ms render on two threads (AVX-512
-// machine). Kept here instead, a released block goes to the next request it fits, whose pages
-// are already mapped. At most kKeepBlocks blocks and kKeepBytes in all are kept (8: a
-// piecewise render holds a probe mesh, its mesh and a band block per thread at once, and the
-// rational kernel up to four); a block is
-// handed out only for a request of at least half its size, so a small request never holds a
-// large block. Thread-safe; a block is uninitialised memory, aligned to 64 bytes.
+// and the kernel faults and zeroes each one (the rational kernel's refined cells of a strong
+// twist: about 1,500 pages a render). Kept here instead, a released block goes to the next
+// request it fits, whose pages are already mapped. At most kKeepBlocks blocks and kKeepBytes
+// in all are kept (8: a piecewise render holds a probe mesh, its mesh and a band block per
+// thread at once, and the rational kernel up to four); a block is handed out only for a
+// request of at least half its size, so a small request never holds a large block.
+// Thread-safe; a block is uninitialised memory, aligned to 64 bytes.
 #pragma once
 
 #include <cstddef>

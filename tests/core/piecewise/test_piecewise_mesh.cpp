@@ -6,7 +6,7 @@
 // it. Each is compared with the preimage solved to convergence through the lens.
 #include "core/effects/effect_table.h"
 #include "core/piecewise/piecewise_render.h"
-#include "core/render/rational_map.h"
+#include "core/mapping/rational_map.h"
 
 #include <QtTest/QtTest>
 

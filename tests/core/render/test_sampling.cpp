@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Filters (sampling.h): pixel centres at i + 0.5, exact reproduction where the theory says so,
 // transparent outside the source.
-#include "core/render/sampling.h"
+#include "core/sampling/sampling.h"
 #include "core/render/warp.h"
 #include "tests/core/render/render_fixtures.h"
 
