@@ -29,7 +29,7 @@ if(ARTCAM_BUILD_GUI)
   endforeach()
 endif()
 
-# The bundled sample (README, "Two commands"): a photo (CC0, resources/README.md), a camera, its
+# The bundled sample (README, "Install"): a photo (CC0, resources/README.md), a camera, its
 # matches and a project that opens the photo by its relative path.
 install(FILES ${PROJECT_SOURCE_DIR}/resources/coffee.png ${PROJECT_SOURCE_DIR}/resources/sample.artcam
   ${PROJECT_SOURCE_DIR}/resources/sample.artcamproj ${PROJECT_SOURCE_DIR}/resources/sample-matches.csv

@@ -6,8 +6,8 @@
 #   CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DARTCAM_FUZZ=ON -DARTCAM_BUILD_GUI=OFF
 #
 # ARTCAM_FUZZ builds fuzz/ (libFuzzer targets, one per reader of untrusted files) with clang,
-# everything instrumented with -fsanitize=fuzzer-no-link,address,undefined. README, "Hostile
-# input, fuzzing and sanitizers", has the commands to run them.
+# everything instrumented with -fsanitize=fuzzer-no-link,address,undefined. docs/robustness.md
+# ("Fuzzing", "Sanitizers") has the commands to run them.
 #
 # Decision: in these builds warnings no longer stop the build (-Wno-error). The GCC release
 # build is the warning gate; instrumented code at other optimisation levels, or clang's own

@@ -62,7 +62,7 @@ class TestCliHelp : public QObject {
 
  private slots:
   // The source scan itself: if the patterns stopped matching, every later check would pass
-  // vacuously. These commands and options are the ones README's tour uses.
+  // vacuously. These commands and options are the ones the user guide's tour uses.
   void sourceScanFindsKnownCommandsAndOptions() {
     const QStringList commands = commandsFromDispatch();
     for (const char* c :

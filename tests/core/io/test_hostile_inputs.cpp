@@ -4,7 +4,7 @@
 // readers of the normal build. Each must parse or be refused with ONE line that names the file
 // and gives a cause; a crash, hang (CTest's timeout) or giant allocation (ASan/RSS) fails the
 // test. Known nasty inputs must also be refused for the reason they were kept.
-// The fuzz targets themselves are in fuzz/ (a clang build, README "Hostile input").
+// The fuzz targets themselves are in fuzz/ (a clang build, docs/robustness.md, "Fuzzing").
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
 #include "core/io/artcam_file.h"
