@@ -7,7 +7,6 @@
 #include <QElapsedTimer>
 
 #include <algorithm>
-#include <exception>
 
 namespace artcam::ui {
 
@@ -39,39 +38,26 @@ std::optional<ImageF> CloudRenderWorker::renderPass(const CloudRenderRequest& re
   return out;
 }
 
-CloudRenderWorker::CloudRenderWorker(QObject* parent) : QThread(parent) {}
+CloudRenderWorker::CloudRenderWorker(QObject* parent)
+    : NewestRequestWorker(QStringLiteral("the 3D view renderer"), parent) {}
 
 CloudRenderWorker::~CloudRenderWorker() { shutdown(); }
 
-void CloudRenderWorker::request(CloudRenderRequest request) { slot_.put(std::move(request), *this); }
-
-void CloudRenderWorker::shutdown() { slot_.shutdown(*this); }
-
-void CloudRenderWorker::run() {
-  for (;;) {
-    std::optional<CloudRenderRequest> next = slot_.take();
-    if (!next) return;
-    CloudRenderRequest job = std::move(*next);
-    try {
-      if (!job.cloud || job.width <= 0 || job.height <= 0) continue;
-      const bool coarse_worth_it = std::min(job.width, job.height) >= 8 * kCoarseFactor;
-      for (int pass = coarse_worth_it ? 0 : 1; pass < 2 && keepGoing(); ++pass) {
-        const bool final_pass = pass == 1;
-        const int w = final_pass ? job.width : std::max(1, job.width / kCoarseFactor);
-        const int h = final_pass ? job.height : std::max(1, job.height / kCoarseFactor);
-        QElapsedTimer timer;
-        timer.start();
-        const std::optional<ImageF> out = renderPass(job, w, h, [this] { return keepGoing(); });
-        if (!out) break;
-        const QImage image = qimageFromLinear(*out);
-        if (!keepGoing()) break;  // a newer request arrived while converting: drop this one
-        emit rendered(image, job.generation, final_pass, static_cast<double>(timer.nsecsElapsed()) / 1e6);
-      }
-    } catch (const std::exception& e) {
-      emit failed(QString::fromUtf8(e.what()), job.generation);
-    } catch (...) {
-      emit failed(QStringLiteral("unknown error in the 3D view renderer"), job.generation);
-    }
+void CloudRenderWorker::serve(CloudRenderRequest& job) {
+  if (!job.cloud || job.width <= 0 || job.height <= 0) return;
+  const bool coarse_worth_it = std::min(job.width, job.height) >= 8 * kCoarseFactor;
+  for (int pass = coarse_worth_it ? 0 : 1; pass < 2 && keepGoing(); ++pass) {
+    const bool final_pass = pass == 1;
+    const int w = final_pass ? job.width : std::max(1, job.width / kCoarseFactor);
+    const int h = final_pass ? job.height : std::max(1, job.height / kCoarseFactor);
+    QElapsedTimer timer;
+    timer.start();
+    const std::optional<ImageF> out = renderPass(job, w, h, [this] { return keepGoing(); });
+    if (!out) return;
+    const QImage image = qimageFromLinear(*out);
+    if (!keepGoing()) return;  // a newer request arrived while converting: drop this one
+    emit rendered(image, job.generation, final_pass,
+                  static_cast<double>(timer.nsecsElapsed()) / 1e6);
   }
 }
 

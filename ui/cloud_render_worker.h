@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// The 3D view's renderer, shaped like RenderWorker (after Qt's Mandelbrot
-// example): one pending request slot where the newest wins, std::atomic restart/abort flags
-// polled between row bands through the renderers' progress hooks, a coarse pass (1/4 size)
-// before the full one, results by queued signal with the request's generation stamp. No
-// exception leaves run().
+// The 3D view's renderer, a newest-request worker like RenderWorker (newest_request_worker.h,
+// after Qt's Mandelbrot example): one pending request slot where the newest wins, std::atomic
+// restart/abort flags polled between row bands through the renderers' progress hooks, a coarse
+// pass (1/4 size) before the full one, results by queued signal with the request's generation
+// stamp; a pass that throws is a `failed` signal and the next request is served.
 //
 // A pass: the cloud through the 3D effect (object space) and the orbit's pinhole
 // (core/cloud/cloud_render.h), then, when the document has a non-identity image camera, that
@@ -13,11 +13,10 @@
 #include "core/cloud/cloud_render.h"
 #include "core/cloud/point_cloud.h"
 #include "core/model/camera.h"
-#include "ui/newest_request_slot.h"
+#include "ui/newest_request_worker.h"
 
 #include <QImage>
 #include <QString>
-#include <QThread>
 
 #include <functional>
 #include <memory>
@@ -38,7 +37,7 @@ struct CloudRenderRequest {
   quint64 generation = 0;
 };
 
-class CloudRenderWorker : public QThread {
+class CloudRenderWorker : public NewestRequestWorker<CloudRenderRequest> {
   Q_OBJECT
 
  public:
@@ -49,23 +48,15 @@ class CloudRenderWorker : public QThread {
   static std::optional<ImageF> renderPass(const CloudRenderRequest& request, int width,
                                           int height, const std::function<bool()>& keep_going);
 
+  // request() (GUI thread) and shutdown() (idempotent) are NewestRequestWorker's.
   explicit CloudRenderWorker(QObject* parent = nullptr);
   ~CloudRenderWorker() override;  // aborts any render and joins the thread
 
-  void request(CloudRenderRequest request);  // GUI thread
-  void shutdown();                           // idempotent
-
  signals:
   void rendered(const QImage& image, quint64 generation, bool final_pass, double render_ms);
-  void failed(const QString& message, quint64 generation);
 
  protected:
-  void run() override;
-
- private:
-  bool keepGoing() const { return slot_.keepGoing(); }
-
-  NewestRequestSlot<CloudRenderRequest> slot_;
+  void serve(CloudRenderRequest& job) override;
 };
 
 }  // namespace artcam::ui

@@ -3,7 +3,6 @@
 
 #include "core/render/attributed.h"
 
-#include "core/cameras/effects_3d.h"
 #include "core/cameras/projective_cameras.h"
 #include "core/io/ply.h"
 #include "core/model/structure.h"
@@ -56,17 +55,16 @@ CloudView::CloudView(Document* document, QWidget* parent)
   setMinimumSize(200, 150);
   setAttribute(Qt::WA_OpaquePaintEvent);
   setToolTip(tr("Drag to orbit, wheel to zoom; the image camera applies as a lens"));
-  effect_box_->addItem(tr("No 3D effect"), static_cast<int>(CloudEffect::None));
-  effect_box_->addItem(tr("Twist"), static_cast<int>(CloudEffect::Twist));
-  effect_box_->addItem(tr("Pin-cushion"), static_cast<int>(CloudEffect::Pincushion));
-  effect_box_->addItem(tr("Inverse perspective"), static_cast<int>(CloudEffect::InversePerspective));
-  effect_box_->addItem(tr("Colour scale"), static_cast<int>(CloudEffect::ColourScale));
-  effect_box_->addItem(tr("Chromatic aberration"),
-                       static_cast<int>(CloudEffect::ChromaticAberration));
+  effect_box_->addItem(tr("No 3D effect"), QString());
+  for (const Effect3dSpec& spec : effect3dSpecs()) {
+    effect_box_->addItem(QString::fromStdString(spec.label), QString::fromStdString(spec.name));
+    effect_box_->setItemData(effect_box_->count() - 1, QString::fromStdString(spec.summary),
+                             Qt::ToolTipRole);
+  }
   effect_box_->setToolTip(tr("An object-space effect of the paper's Fig 1, before the view"));
   effect_box_->move(8, 8);
   connect(effect_box_, &QComboBox::currentIndexChanged, this, [this](int index) {
-    setEffect(static_cast<CloudEffect>(effect_box_->itemData(index).toInt()));
+    setEffect(effect_box_->itemData(index).toString().toStdString());
   });
   connect(&worker_, &CloudRenderWorker::rendered, this, &CloudView::onRendered,
           Qt::QueuedConnection);
@@ -98,12 +96,37 @@ void CloudView::setOrbit(double yaw, double pitch, double distance) {
   schedule();
 }
 
-void CloudView::setEffect(CloudEffect effect) {
+void CloudView::setEffect(const std::string& name) {
+  const std::string effect = findEffect3d(name) ? name : std::string();
   if (effect == effect_) return;
   effect_ = effect;
-  const int index = effect_box_->findData(static_cast<int>(effect));
+  const int index = effect_box_->findData(QString::fromStdString(effect));
   if (index >= 0 && effect_box_->currentIndex() != index) effect_box_->setCurrentIndex(index);
   schedule();
+}
+
+Eigen::Vector3d CloudView::orbitEye() const {
+  return cloud_.bounds.centre() + distance_ * orbitDirection(yaw_, pitch_);
+}
+
+ObjectFrame CloudView::effectFrame() const {
+  const double radius = cloud_.bounds.radius();
+  return {cloud_.bounds.centre(), radius > 0 ? radius : 1.0};
+}
+
+EffectValues CloudView::effectValues() const {
+  EffectValues values;
+  const Effect3dSpec* spec = findEffect3d(effect_);
+  if (!spec) return values;
+  for (const EffectParam& p : spec->params) values[p.name] = p.value;
+  if (spec->viewer) {
+    const ObjectFrame frame = effectFrame();
+    const Eigen::Vector3d eye = frame.fromWorld(orbitEye());
+    const Eigen::Vector3d at = frame.fromWorld(cloud_.bounds.centre());
+    values["eye"] = {eye.x(), eye.y(), eye.z()};
+    values["at"] = {at.x(), at.y(), at.z()};
+  }
+  return values;
 }
 
 QSize CloudView::renderSize() const {
@@ -122,40 +145,16 @@ CloudRenderRequest CloudView::currentRequest() const {
   r.height = s.height();
   if (!cloud_.cloud) return r;
   const Eigen::Vector3d centre = cloud_.bounds.centre();
-  const Eigen::Vector3d eye = centre + distance_ * orbitDirection(yaw_, pitch_);
+  const Eigen::Vector3d eye = orbitEye();
   PinholeParams pinhole;
   pinhole.pose = CameraPose::lookAt(eye, centre);
   // The focal was made for a square frame; the normalised frame's shorter half-side is
   // min/max of the sides, so scale it to keep the same framing.
   pinhole.focal = cloud_.focal * std::min(r.width, r.height) / std::max(r.width, r.height);
   r.view = pinholeCamera(pinhole);
-  const double radius = cloud_.bounds.radius();
-  switch (effect_) {
-    case CloudEffect::None:
-      break;
-    case CloudEffect::Twist:
-      r.effects.push_back(twistEffect({0.35 / std::max(radius, 1e-9)}));
-      break;
-    case CloudEffect::Pincushion:
-      r.effects.push_back(pincushionEffect({0.12 / (radius * radius), centre}));
-      break;
-    case CloudEffect::InversePerspective: {
-      InversePerspectiveParams p;
-      p.eye = eye;
-      p.target = centre;
-      r.effects.push_back(inversePerspectiveEffect(p));
-      break;
-    }
-    case CloudEffect::ColourScale:
-      r.effects.push_back(colourScaleEffect({0.35, centre}));
-      break;
-    case CloudEffect::ChromaticAberration: {
-      ChromaticAberrationParams p;
-      p.centre = centre;
-      r.effects.push_back(chromaticAberrationEffect(p));
-      r.layers = RenderLayers::Rgb;
-      break;
-    }
+  if (const Effect3dSpec* spec = findEffect3d(effect_)) {
+    r.effects.push_back(buildEffect3d(spec->name, effectValues(), effectFrame()));
+    if (spec->colour_layers) r.layers = RenderLayers::Rgb;
   }
   // The document's image camera as a lens, unless it is the identity (nothing to apply).
   // Its geometry only: the lens warp is a gather of positions (a colour block is the photo's).
@@ -167,7 +166,13 @@ CloudRenderRequest CloudView::currentRequest() const {
 
 void CloudView::schedule() {
   if (!cloud_.cloud) return;
-  CloudRenderRequest r = currentRequest();
+  CloudRenderRequest r;
+  try {
+    r = currentRequest();
+  } catch (const std::exception& e) {  // an effect the table refuses in this view
+    emit renderFailed(QString::fromUtf8(e.what()));
+    return;
+  }
   r.generation = ++generation_;
   worker_.request(std::move(r));
 }

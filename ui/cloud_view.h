@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // The 3D view of a point cloud: orbit by dragging (left button: yaw and
 // pitch about the cloud's centre), zoom by the wheel (distance to the centre), a 3D effect of
-// the paper's Fig 1 chosen from a list, and the document's current image camera applied live
-// to the view as a lens (so moving a pair re-renders the cloud too). Renders in a
-// CloudRenderWorker like the image preview: coarse first, newest request wins.
+// the paper's Fig 1 chosen from a list (the rows of core's 3D effects table at their defaults,
+// built in the object frame of the cloud's bounds: effects_3d_table.h), and the document's
+// current image camera applied live to the view as a lens (so moving a pair re-renders the
+// cloud too). Renders in a CloudRenderWorker like the image preview: coarse first, newest
+// request wins.
 //
 // Frames: the orbit looks at the cloud's bounding-box centre from
 //   eye = centre + distance · (cos p · sin y, sin p, −cos p · cos y)
@@ -16,6 +18,7 @@
 
 #include "core/cloud/cloud_render.h"
 #include "core/cloud/point_cloud.h"
+#include "core/effects/effects_3d_table.h"
 #include "core/model/status.h"
 #include "ui/cloud_render_worker.h"
 
@@ -24,6 +27,7 @@
 #include <QWidget>
 
 #include <memory>
+#include <string>
 
 class QComboBox;
 
@@ -38,8 +42,6 @@ struct LoadedCloud {
   double point_spacing = 0.0;
   double focal = 2.0;  // for a square view at the default distance
 };
-
-enum class CloudEffect { None, Twist, Pincushion, InversePerspective, ColourScale, ChromaticAberration };
 
 class CloudView : public QWidget {
   Q_OBJECT
@@ -63,9 +65,17 @@ class CloudView : public QWidget {
   double yaw() const { return yaw_; }
   double pitch() const { return pitch_; }
   double distance() const { return distance_; }  // object units
-  CloudEffect effect() const { return effect_; }
   void setOrbit(double yaw, double pitch, double distance);
-  void setEffect(CloudEffect effect);
+
+  // The 3D effect shown: a row of core's 3D effects table by name, "" for none (so is a name
+  // the table does not have).
+  const std::string& effect() const { return effect_; }
+  void setEffect(const std::string& name);
+  // What the view builds the effect with: the table's defaults, a viewer row's eye and at put
+  // at the orbit's eye and the cloud's centre; in effectFrame(), the cloud's bounds (centre and
+  // bounding radius; radius 1 for a cloud of one point).
+  EffectValues effectValues() const;
+  ObjectFrame effectFrame() const;
 
   // The request the current state makes (tests render it directly to compare).
   CloudRenderRequest currentRequest() const;
@@ -95,6 +105,7 @@ class CloudView : public QWidget {
 
  private:
   void onRendered(const QImage& image, quint64 generation, bool final_pass, double ms);
+  Eigen::Vector3d orbitEye() const;
 
   Document* document_;
   QComboBox* effect_box_;
@@ -103,7 +114,7 @@ class CloudView : public QWidget {
   double yaw_ = 0.0;
   double pitch_ = 0.0;
   double distance_ = 1.0;
-  CloudEffect effect_ = CloudEffect::None;
+  std::string effect_;
   bool dragging_ = false;
   QPoint drag_last_;
   quint64 generation_ = 0;

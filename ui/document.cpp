@@ -162,10 +162,20 @@ std::optional<LineBow> Document::lineBow(int index) const {
 // follow from the worker.
 void Document::refitInWorker() {
   ++edit_revision_;
-  if (!fit_worker_)
+  if (!fit_worker_) {
     fit_worker_ = std::make_unique<FitWorker>([this](FittedCamera fitted, quint64 revision) {
       onWorkerFit(std::move(fitted), revision);
     });
+    // fitDocumentCamera turns the engine's exceptions into a failed fit; anything else the
+    // worker reports would leave fitPending() true with no fit on its way, so the newest
+    // revision is fitted here instead (its inputs are still fitInputs()).
+    connect(
+        fit_worker_.get(), &FitWorker::failed, this,
+        [this](const QString&, quint64 revision) {
+          if (revision == edit_revision_) onWorkerFit(fitDocumentCamera(fitInputs()), revision);
+        },
+        Qt::QueuedConnection);
+  }
   fit_worker_->request({fitInputs(), edit_revision_});
 }
 

@@ -8,22 +8,18 @@
 namespace artcam::ui {
 
 FitWorker::FitWorker(Delivery deliver, QObject* parent)
-    : QThread(parent), deliver_(std::move(deliver)) {}
+    : NewestRequestWorker(QStringLiteral("the fit worker"), parent), deliver_(std::move(deliver)) {}
 
-FitWorker::~FitWorker() { slot_.shutdown(*this); }
+FitWorker::~FitWorker() { shutdown(); }
 
-void FitWorker::run() {
-  for (;;) {
-    std::optional<FitRequest> next = slot_.take();
-    if (!next) return;
-    auto fitted = std::make_shared<FittedCamera>(fitDocumentCamera(next->inputs));
-    const quint64 revision = next->revision;
-    if (!slot_.keepGoing()) continue;  // a newer request is waiting: it supersedes this one
-    // Queued to this object, which lives on the GUI thread; dropped if it is destroyed first.
-    QMetaObject::invokeMethod(
-        this, [this, fitted, revision] { deliver_(std::move(*fitted), revision); },
-        Qt::QueuedConnection);
-  }
+void FitWorker::serve(FitRequest& request) {
+  auto fitted = std::make_shared<FittedCamera>(fitDocumentCamera(request.inputs));
+  const quint64 revision = request.generation;
+  if (!keepGoing()) return;  // a newer request is waiting: it supersedes this one
+  // Queued to this object, which lives on the GUI thread; dropped if it is destroyed first.
+  QMetaObject::invokeMethod(
+      this, [this, fitted, revision] { deliver_(std::move(*fitted), revision); },
+      Qt::QueuedConnection);
 }
 
 }  // namespace artcam::ui

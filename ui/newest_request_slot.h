@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// The request half of the studio's newest-request workers (after Qt's Mandelbrot example),
-// shared by the preview, 3D view, insertion, effects and fit workers: one pending slot where the
-// newest request wins, atomic restart/abort flags the job in flight polls between tiles, and
-// the thread started on the first request and joined on shutdown (the only wait, when the
-// owner goes). The worker's run() loops on take(). One-shot jobs use background_job.h instead.
+// The request half of the studio's newest-request workers (after Qt's Mandelbrot example): one
+// pending slot where the newest request wins, atomic restart/abort flags the job in flight
+// polls between tiles, and the thread started on the first request and joined on shutdown (the
+// only wait, when the owner goes). NewestRequestWorker (newest_request_worker.h) loops on
+// take() and is every worker's exception boundary. One-shot jobs use background_job.h instead.
 //
 // The slot's lock and wait are std::mutex and std::condition_variable, not QMutex and
 // QWaitCondition: QWaitCondition::wait releases and retakes the mutex inside libQt6Core, where

@@ -11,7 +11,7 @@
 #include "core/io/image_io.h"
 #include "core/model/camera.h"
 #include "core/model/image.h"
-#include "core/render/mip_pyramid.h"
+#include "core/sampling/mip_pyramid.h"
 
 #include <QImage>
 #include <QMetaType>

@@ -5,8 +5,6 @@
 #include "ui/image_convert.h"
 
 #include <algorithm>
-#include <exception>
-#include <stdexcept>
 #include <string>
 
 namespace artcam::ui {
@@ -63,41 +61,27 @@ QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& opt
   return image;
 }
 
-RenderWorker::RenderWorker(QObject* parent) : QThread(parent) {}
+RenderWorker::RenderWorker(QObject* parent)
+    : NewestRequestWorker(QStringLiteral("the preview renderer"), parent) {}
 
 RenderWorker::~RenderWorker() { shutdown(); }
 
-void RenderWorker::request(RenderRequest request) { slot_.put(std::move(request), *this); }
-
-void RenderWorker::shutdown() { slot_.shutdown(*this); }
-
-void RenderWorker::run() {
-  for (;;) {
-    std::optional<RenderRequest> next = slot_.take();
-    if (!next) return;
-    RenderRequest job = std::move(*next);
-    try {
-      const bool has_source = job.pyramid || (job.source && !job.source->empty());
-      if (!has_source || job.width <= 0 || job.height <= 0) continue;
-      const bool coarse_worth_it = std::min(job.width, job.height) >= 8 * kCoarseFactor &&
-                                   last_final_ms_ > kCoarseAboveMs;
-      for (int pass = coarse_worth_it ? 0 : 1; pass < 2 && keepGoing(); ++pass) {
-        const bool final_pass = pass == 1;
-        WarpOptions options = final_pass ? passOptions(job.width, job.height)
-                                         : passOptions(std::max(1, job.width / kCoarseFactor),
-                                                       std::max(1, job.height / kCoarseFactor));
-        options.progress = [this](double) { return keepGoing(); };
-        WarpSummary summary;
-        const QImage image = renderPass(job, options, &summary);
-        if (summary.cancelled || !keepGoing()) break;  // a newer request arrived: drop this one
-        if (final_pass) last_final_ms_ = summary.render_ms;
-        emit rendered(image, job.generation, final_pass, summary.render_ms);
-      }
-    } catch (const std::exception& e) {
-      emit failed(QString::fromUtf8(e.what()), job.generation);
-    } catch (...) {
-      emit failed(QStringLiteral("unknown error in the preview renderer"), job.generation);
-    }
+void RenderWorker::serve(RenderRequest& job) {
+  const bool has_source = job.pyramid || (job.source && !job.source->empty());
+  if (!has_source || job.width <= 0 || job.height <= 0) return;
+  const bool coarse_worth_it =
+      std::min(job.width, job.height) >= 8 * kCoarseFactor && last_final_ms_ > kCoarseAboveMs;
+  for (int pass = coarse_worth_it ? 0 : 1; pass < 2 && keepGoing(); ++pass) {
+    const bool final_pass = pass == 1;
+    WarpOptions options = final_pass ? passOptions(job.width, job.height)
+                                     : passOptions(std::max(1, job.width / kCoarseFactor),
+                                                   std::max(1, job.height / kCoarseFactor));
+    options.progress = [this](double) { return keepGoing(); };
+    WarpSummary summary;
+    const QImage image = renderPass(job, options, &summary);
+    if (summary.cancelled || !keepGoing()) return;  // a newer request arrived: drop this one
+    if (final_pass) last_final_ms_ = summary.render_ms;
+    emit rendered(image, job.generation, final_pass, summary.render_ms);
   }
 }
 

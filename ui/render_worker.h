@@ -4,7 +4,8 @@
 // tiles through WarpOptions::progress, a coarse pass (1/4 size) before the full preview while
 // full passes are slow (kCoarseAboveMs), and
 // results delivered by queued signals carrying a QImage and the request's generation stamp.
-// Every exception stops at run(); it becomes a `failed` signal, never reaches the event loop.
+// The loop and its exception boundary are NewestRequestWorker's (newest_request_worker.h): a
+// throwing pass becomes a `failed` signal, and the next request is served.
 //
 // Cameras that change colour or depth (a fitted colour block) render through core's
 // render front door (core/pipeline/render.h) from the float preview copy: the colour-only
@@ -16,11 +17,10 @@
 #include "core/model/image.h"
 #include "core/sampling/mip_pyramid.h"
 #include "core/render/warp.h"
-#include "ui/newest_request_slot.h"
+#include "ui/newest_request_worker.h"
 
 #include <QImage>
 #include <QString>
-#include <QThread>
 
 #include <memory>
 #include <optional>
@@ -40,7 +40,7 @@ struct RenderRequest {
   quint64 generation = 0;
 };
 
-class RenderWorker : public QThread {
+class RenderWorker : public NewestRequestWorker<RenderRequest> {
   Q_OBJECT
 
  public:
@@ -58,26 +58,20 @@ class RenderWorker : public QThread {
   static QImage renderPass(const RenderRequest& job, const WarpOptions& options,
                            WarpSummary* summary);
 
+  // request() replaces the pending request and cancels the one in flight at its next tile;
+  // shutdown() stops the thread (idempotent; the destructor calls it). A pass that throws is
+  // `failed(message, generation)`.
   explicit RenderWorker(QObject* parent = nullptr);
   ~RenderWorker() override;  // aborts any render and joins the thread
-
-  // GUI thread. Replaces the pending request; cancels the one in flight at its next tile.
-  void request(RenderRequest request);
-  // Stops the thread (idempotent); called by the destructor.
-  void shutdown();
 
  signals:
   // `final_pass` is false for the coarse pass. render_ms is the warp time of that pass.
   void rendered(const QImage& image, quint64 generation, bool final_pass, double render_ms);
-  void failed(const QString& message, quint64 generation);
 
  protected:
-  void run() override;
+  void serve(RenderRequest& job) override;
 
  private:
-  bool keepGoing() const { return slot_.keepGoing(); }
-
-  NewestRequestSlot<RenderRequest> slot_;
   double last_final_ms_ = 1e300;  // worker thread only: the last final pass's render time
 };
 

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <string_view>
 
 namespace artcam::cli {
@@ -59,17 +61,70 @@ void Args::expectPositional(size_t count, const std::string& what) const {
 FrameSize parseSize(const std::string& text, const std::string& option, bool legacy_comma) {
   const size_t x = text.find_first_of(legacy_comma ? "xX," : "xX");
   FrameSize size;
-  const auto parse = [](const std::string& s, int& out) {
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
-    return r.ec == std::errc() && r.ptr == s.data() + s.size() && out > 0 && out <= 1000000;
+  const auto parse = [](std::string_view s, int& out) {
+    const auto v = readInteger(s);
+    if (!v || *v <= 0 || *v > 1000000) return false;
+    out = static_cast<int>(*v);
+    return true;
   };
-  if (x == std::string::npos || !parse(text.substr(0, x), size.width) ||
-      !parse(text.substr(x + 1), size.height))
+  const std::string_view whole(text);
+  if (x == std::string::npos || !parse(whole.substr(0, x), size.width) ||
+      !parse(whole.substr(x + 1), size.height))
     throw UsageError(option + " expects WxH in pixels (1…1000000), got \"" + text + "\"");
   return size;
 }
 
 namespace {
+
+// An end of a range as users read it: whole values without a decimal point or exponent.
+std::string endText(double v) {
+  char buf[32];
+  if (v == std::floor(v) && std::abs(v) < 1e15)
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else
+    std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// "from 0 to 1024", "above 0, below 180", "of at least 0", "" (no bound).
+std::string rangeText(double min, double max, Ends ends) {
+  const bool open_min = ends == Ends::OpenMin || ends == Ends::Open;
+  const bool open_max = ends == Ends::OpenMax || ends == Ends::Open;
+  const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+  if (has_min && has_max && !open_min && !open_max)
+    return "from " + endText(min) + " to " + endText(max);
+  std::string text;
+  if (has_min) text = (open_min ? "above " : "of at least ") + endText(min);
+  if (has_max)
+    text += (text.empty() ? (open_max ? "below " : "of at most ")
+                          : (open_max ? ", below " : ", at most ")) +
+            endText(max);
+  return text;
+}
+
+[[noreturn]] void refuse(const std::string& option, const std::string& kind, double min, double max,
+                         Ends ends, std::string_view text) {
+  const std::string range = rangeText(min, max, ends);
+  throw UsageError(option + " expects " + kind + (range.empty() ? "" : " " + range) + ", got \"" +
+                   std::string(text) + "\"");
+}
+
+bool inRange(double v, double min, double max, Ends ends) {
+  const bool open_min = ends == Ends::OpenMin || ends == Ends::Open;
+  const bool open_max = ends == Ends::OpenMax || ends == Ends::Open;
+  return (open_min ? v > min : v >= min) && (open_max ? v < max : v <= max);
+}
+
+std::vector<std::string_view> commaItems(std::string_view text) {
+  std::vector<std::string_view> items;
+  for (size_t start = 0;;) {
+    const size_t comma = text.find(',', start);
+    items.push_back(
+        text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
+    if (comma == std::string_view::npos) return items;
+    start = comma + 1;
+  }
+}
 
 std::string_view withoutDashes(std::string_view s) {
   while (!s.empty() && s.front() == '-') s.remove_prefix(1);
@@ -93,6 +148,75 @@ size_t editDistance(std::string_view a, std::string_view b) {
 }
 
 }  // namespace
+
+std::optional<long long> readInteger(std::string_view text) {
+  long long v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size())
+    return std::nullopt;
+  return v;
+}
+
+std::optional<double> readNumber(std::string_view text) {
+  double v = 0.0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() ||
+      !std::isfinite(v))
+    return std::nullopt;
+  return v;
+}
+
+long long parseInteger(std::string_view text, const std::string& option, long long min,
+                       long long max) {
+  const auto v = readInteger(text);
+  if (!v || *v < min || *v > max)
+    refuse(option, "a whole number", static_cast<double>(min), static_cast<double>(max),
+           Ends::Closed, text);
+  return *v;
+}
+
+double parseNumber(std::string_view text, const std::string& option, double min, double max,
+                   Ends ends) {
+  const auto v = readNumber(text);
+  if (!v || !inRange(*v, min, max, ends)) refuse(option, "a number", min, max, ends, text);
+  return *v;
+}
+
+std::vector<long long> parseIntegerList(std::string_view text, const std::string& option,
+                                        long long min, long long max) {
+  std::vector<long long> out;
+  for (const std::string_view item : commaItems(text)) {
+    const auto v = readInteger(item);
+    if (!v || *v < min || *v > max)
+      refuse(option, "comma-separated whole numbers", static_cast<double>(min),
+             static_cast<double>(max), Ends::Closed, text);
+    out.push_back(*v);
+  }
+  return out;
+}
+
+std::vector<double> parseNumberList(std::string_view text, const std::string& option, double min,
+                                    double max, Ends ends) {
+  std::vector<double> out;
+  for (const std::string_view item : commaItems(text)) {
+    const auto v = readNumber(item);
+    if (!v || !inRange(*v, min, max, ends))
+      refuse(option, "comma-separated numbers", min, max, ends, text);
+    out.push_back(*v);
+  }
+  return out;
+}
+
+int intOption(const Args& args, const std::string& option, int fallback, int min, int max) {
+  const auto text = args.value(option);
+  return text ? static_cast<int>(parseInteger(*text, option, min, max)) : fallback;
+}
+
+double numberOption(const Args& args, const std::string& option, double fallback, double min,
+                    double max, Ends ends) {
+  const auto text = args.value(option);
+  return text ? parseNumber(*text, option, min, max, ends) : fallback;
+}
 
 std::string closestName(const std::string& typed, const std::vector<std::string>& candidates) {
   const std::string_view word = withoutDashes(typed);

@@ -6,10 +6,12 @@
 
 #include "core/model/camera.h"
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -47,6 +49,39 @@ class Args {
 // "W,H", for the options that took it before WxH was everywhere (preset --size). Throws
 // UsageError naming the option.
 FrameSize parseSize(const std::string& text, const std::string& option, bool legacy_comma = false);
+
+// Numbers on the command line have one spelling, so every option refuses the same things:
+// the WHOLE text is the number (std::from_chars: no leading space or '+', no trailing unit, no
+// hex), finite, and within the option's range. Otherwise a UsageError names the option, the
+// range and the text given, in the CLI's words:
+//   --threads expects a whole number from 0 to 1024, got "2x"
+//   --max-error expects a number above 0, got "1px"
+// An infinite end is no bound ("above 0"); `Ends` says whether a finite end itself is taken.
+enum class Ends { Closed, OpenMin, OpenMax, Open };
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+
+long long parseInteger(std::string_view text, const std::string& option, long long min,
+                       long long max);
+double parseNumber(std::string_view text, const std::string& option, double min, double max,
+                   Ends ends = Ends::Closed);
+// Comma-separated lists of the same ("1,2", one number is a list of one; an empty item is
+// refused): --threads expects comma-separated whole numbers from 1 to 1024, got "1,2x".
+std::vector<long long> parseIntegerList(std::string_view text, const std::string& option,
+                                        long long min, long long max);
+std::vector<double> parseNumberList(std::string_view text, const std::string& option, double min,
+                                    double max, Ends ends = Ends::Closed);
+// The option's value parsed as above, or `fallback` when the option is not given.
+int intOption(const Args& args, const std::string& option, int fallback, int min, int max);
+double numberOption(const Args& args, const std::string& option, double fallback, double min,
+                    double max, Ends ends = Ends::Closed);
+// The same spelling for text that is not the user's (another program's output): the number,
+// or nothing.
+std::optional<long long> readInteger(std::string_view text);
+std::optional<double> readNumber(std::string_view text);
+
+// Worker threads an option may ask for (0: all cores). More than any machine this runs on
+// has, so a slip such as --threads 20000 is refused instead of starting 20000 threads.
+constexpr int kMaxThreads = 1024;
 
 // The name a mistyped `typed` most likely meant: the one candidate of which it is a prefix, or
 // else the one candidate nearest by optimal-string-alignment (Damerau–Levenshtein) distance

@@ -4,9 +4,11 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <regex>
+#include <string_view>
 #include <system_error>
 
 namespace artcam::cli {
@@ -18,6 +20,19 @@ struct Pattern {
   std::string before, after;
   size_t width = 0;  // zero padding
 };
+
+// The width of "%0Nd" from its flag and digits "0N" ("" and "0": none). Throws UsageError
+// past kMaxFramePadding.
+size_t padding(const std::string& pattern, const std::string& flag) {
+  const std::string_view digits = std::string_view(flag).substr(std::min<size_t>(flag.size(), 1));
+  if (digits.empty()) return 0;
+  const auto width = readInteger(digits);
+  if (!width || *width > kMaxFramePadding)
+    throw UsageError("\"" + pattern + "\": a frame pattern pads to at most " +
+                     std::to_string(kMaxFramePadding) + " digits (%0" +
+                     std::to_string(kMaxFramePadding) + "d), got %" + flag + "d");
+  return static_cast<size_t>(*width);
+}
 
 // Parsed by hand rather than handed to printf: the pattern comes from the user.
 std::optional<Pattern> parsePattern(const std::string& text) {
@@ -39,7 +54,7 @@ std::optional<Pattern> parsePattern(const std::string& text) {
     if (pattern || !std::regex_search(rest, m, kNumber, std::regex_constants::match_continuous))
       throw UsageError("\"" + text +
                        "\": a frame pattern takes one %d or %0Nd (%% for a literal %)");
-    pattern = Pattern{literal, "", m[1].length() > 1 ? std::stoul(m[1].str().substr(1)) : 0};
+    pattern = Pattern{literal, "", padding(text, m[1].str())};
     literal.clear();
     k += static_cast<size_t>(m.length(0)) - 1;
   }

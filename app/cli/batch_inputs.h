@@ -20,6 +20,12 @@ struct BatchItem {
   std::string output;
 };
 
+// Frame numbers (--first and up) stay within ±kMaxFrameNumber, far from overflowing as they
+// count up; %0Nd pads to at most kMaxFramePadding digits, more than any frame number has, so
+// a width such as %099999999999999999999d is a mistake to refuse, not a name to build.
+constexpr long kMaxFrameNumber = 1000000000;
+constexpr int kMaxFramePadding = 32;
+
 // Expands "name_%04d.ext" (one %d, optionally %0Nd; "%%" for a literal %) from `first` upward
 // until a number has no file (first: 0, or 1 when there is no frame 0). Other arguments are
 // taken as they are. Throws UsageError for a malformed pattern, CommandError when a pattern

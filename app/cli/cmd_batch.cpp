@@ -122,13 +122,8 @@ int batchCommand(const std::vector<std::string>& argv) {
   BatchNaming naming{*folder, args.valueOr("--suffix", ""), args.valueOr("--format", "")};
   if (!naming.format.empty() && naming.format.front() == '.') naming.format.erase(0, 1);
   std::optional<long> first;
-  if (args.has("--first")) {
-    try {
-      first = std::stol(*args.value("--first"));
-    } catch (const std::exception&) {
-      throw UsageError("--first expects a whole number");
-    }
-  }
+  if (const auto text = args.value("--first"))
+    first = static_cast<long>(parseInteger(*text, "--first", -kMaxFrameNumber, kMaxFrameNumber));
   const WarpRequest request = parseWarpRequest(args);
   const bool quiet = args.has("--quiet");
 

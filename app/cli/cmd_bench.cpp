@@ -253,17 +253,13 @@ std::vector<Row> runPeer(const std::string& dir, const PixelBuffer& img, FrameSi
     for (char* tok = std::strtok(line, " \t\n"); tok; tok = std::strtok(nullptr, " \t\n"))
       words.emplace_back(tok);
     if (words.size() < 4) continue;
-    int thr = 0;
-    double t = 0;
-    try {
-      thr = std::stoi(words[words.size() - 3]);
-      t = std::stod(words[words.size() - 2]);
-    } catch (const std::exception&) {
-      continue;
-    }
+    const auto threads = readInteger(words[words.size() - 3]);
+    const auto t = readNumber(words[words.size() - 2]);
+    if (!threads || !t || *threads < 1 || *threads > kMaxThreads) continue;  // not a timing line
+    const int thr = static_cast<int>(*threads);
     std::string name;
     for (size_t i = 0; i + 3 < words.size(); ++i) name += (i ? " " : "") + words[i];
-    ms[{name, thr}] = t;
+    ms[{name, thr}] = *t;
   }
   pclose(pipe);
   const double mpix = size.width * static_cast<double>(size.height) / 1e6;
@@ -598,23 +594,12 @@ int benchCommand(const std::vector<std::string>& argv) {
   const FrameSize size = args.has("--size") ? parseSize(*args.value("--size"), "--size")
                                             : FrameSize{6000, 4000};
   checkImageMemory(size, "--size");
-  int reps = 5;
-  std::vector<int> thread_counts;
-  try {
-    reps = std::stoi(args.valueOr("--reps", "5"));
-    std::string list = args.valueOr("--threads", "1,2");
-    for (size_t p = 0; p < list.size();) {
-      const size_t comma = list.find(',', p);
-      thread_counts.push_back(std::stoi(list.substr(p, comma - p)));
-      p = comma == std::string::npos ? list.size() : comma + 1;
-    }
-  } catch (const std::exception&) {
-    throw UsageError("--reps and --threads expect whole numbers (--threads 1,2)");
-  }
   // Refused, not clamped: a benchmark of other settings than asked would be silently wrong.
-  if (reps < 1) throw UsageError("--reps expects a whole number ≥ 1");
-  for (const int t : thread_counts)
-    if (t < 1) throw UsageError("--threads expects whole numbers ≥ 1 (--threads 1,2)");
+  const int reps = intOption(args, "--reps", 5, 1, 1000);
+  std::vector<int> thread_counts;
+  for (const long long t :
+       parseIntegerList(args.valueOr("--threads", "1,2"), "--threads", 1, kMaxThreads))
+    thread_counts.push_back(static_cast<int>(t));
 
   const std::string type_name = args.valueOr("--type", "uint8");
   PixelType type = PixelType::UInt8;

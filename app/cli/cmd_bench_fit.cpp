@@ -92,23 +92,6 @@ void mapError(const Camera& fit, const Camera& truth, double& rms, double& max) 
   rms = std::sqrt(sum / n);
 }
 
-std::vector<double> parseList(const std::string& text, const std::string& option) {
-  std::vector<double> out;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t comma = text.find(',', start);
-    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    try {
-      out.push_back(std::stod(item));
-    } catch (const std::exception&) {
-      throw UsageError(option + " expects a comma-separated list of numbers");
-    }
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return out;
-}
-
 struct Row {
   std::string method;
   int matches;
@@ -227,21 +210,14 @@ int benchFitCommand(const std::vector<std::string>& argv) {
                          {"--overwrite", "", false}, {"--force", "", false}});
   args.expectPositional(0, "");
   if (const auto plot = args.value("--plot")) checkOutputs(args, {*plot}, {});
-  const std::vector<double> counts =
-      parseList(args.valueOr("--counts", "9,30,100,1000,10000,100000"), "--counts");
-  const std::vector<double> noises = parseList(args.valueOr("--noise", "0,0.5,2"), "--noise");
-  const double seconds = parseList(args.valueOr("--seconds", "0.3"), "--seconds").front();
   // A run that measures nothing is a usage mistake, not an empty table: every count is a whole
   // number of matches the quadratic can be fitted to (9) up to a million, noise is a finite
   // non-negative px, and each row gets a positive time budget of at most an hour.
-  for (double count : counts)
-    if (!(count >= 9 && count <= 1e6) || count != std::floor(count))
-      throw UsageError("--counts expects whole numbers of matches from 9 to 1000000");
-  for (double noise : noises)
-    if (!(noise >= 0 && std::isfinite(noise)))
-      throw UsageError("--noise expects finite numbers ≥ 0 (px)");
-  if (!(seconds > 0 && seconds <= 3600))
-    throw UsageError("--seconds expects a number of seconds above 0, at most 3600");
+  const std::vector<long long> counts = parseIntegerList(
+      args.valueOr("--counts", "9,30,100,1000,10000,100000"), "--counts", 9, 1000000);
+  const std::vector<double> noises =
+      parseNumberList(args.valueOr("--noise", "0,0.5,2"), "--noise", 0, kUnbounded);
+  const double seconds = numberOption(args, "--seconds", 0.3, 0, 3600, Ends::OpenMin);
   const std::string only = args.valueOr("--methods", "raw-dlt,dlt,refine,robust,auto");
   for (size_t p = 0; p <= only.size();) {
     const size_t comma = std::min(only.find(',', p), only.size());
@@ -274,7 +250,7 @@ int benchFitCommand(const std::vector<std::string>& argv) {
   std::vector<Row> rows;
   std::printf("method,matches,noise_px,median_us,median_cpu_us,reps,rms_err_px,max_err_px\n");
   for (const Method& method : methods)
-    for (double count : counts) {
+    for (const long long count : counts) {
       if (!wanted(method.name)) continue;
       for (double noise : noises) {
         const int n = static_cast<int>(count);

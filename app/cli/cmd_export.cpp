@@ -14,10 +14,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
-#include <sstream>
 #include <string>
+#include <vector>
 
 namespace artcam::cli {
 
@@ -62,25 +63,19 @@ const char* const kExportUsage =
 
 namespace {
 
+// One message for a wrong count and a wrong number alike: it states both rules.
 std::array<float, 4> parseFill(const std::string& text) {
-  std::vector<float> v;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      const float f = std::stof(item, &used);
-      if (used != item.size() || !(f >= 0.0f && f <= 1.0f)) throw std::invalid_argument(item);
-      v.push_back(f);
-    } catch (const std::exception&) {
-      throw UsageError("--fill expects 3 or 4 comma-separated numbers from 0 to 1, not \"" + text +
-                       "\"");
-    }
+  const UsageError refused("--fill expects 3 or 4 comma-separated numbers from 0 to 1, got \"" +
+                           text + "\"");
+  std::vector<double> v;
+  try {
+    v = parseNumberList(text, "--fill", 0.0, 1.0);
+  } catch (const UsageError&) {
+    throw refused;
   }
-  if (v.size() != 3 && v.size() != 4)
-    throw UsageError("--fill expects 3 or 4 comma-separated numbers from 0 to 1, not \"" + text +
-                     "\"");
-  return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0f};
+  if (v.size() != 3 && v.size() != 4) throw refused;
+  const auto f = [&v](size_t k) { return static_cast<float>(v[k]); };
+  return {f(0), f(1), f(2), v.size() == 4 ? f(3) : 1.0f};
 }
 
 }  // namespace

@@ -112,15 +112,11 @@ int fitColourCommand(const Args& args, const std::string& output) {
                      "it; use --model auto to compare it with the models that can be stored");
   options.model = *model;
   options.robust = args.has("--robust");
-  if (args.has("--threshold")) {
-    if (!options.robust) throw UsageError("--threshold goes with --robust");
-    try {
-      options.robust_threshold_de = std::stod(*args.value("--threshold"));
-    } catch (const std::exception&) {
-      throw UsageError("--threshold expects a CIEDE2000 difference");
-    }
-    if (!(options.robust_threshold_de > 0)) throw UsageError("--threshold must be positive");
-  }
+  if (args.has("--threshold") && !options.robust)
+    throw UsageError("--threshold goes with --robust");
+  options.robust_threshold_de = numberOption(args, "--threshold", options.robust_threshold_de, 0,
+                                             kUnbounded, Ends::OpenMin);  // dE00
+  checkFitOptions(options, {{"model", "--model"}, {"robust_threshold_de", "--threshold"}});
   // No core hook here: the bar names the stage and Ctrl-C exits at once (interrupt.h).
   return runJobStages("fit", args.has("--quiet"), [&](JobStages& job) {
     const std::string& csv = args.positional()[0];
@@ -254,15 +250,11 @@ int fitPositionCommand(const Args& args, const std::string& output, FrameSize so
   options.refine = !args.has("--no-refine");
   options.require_pole_free = !args.has("--allow-poles");
   options.robust = args.has("--robust");
-  if (args.has("--threshold")) {
-    if (!options.robust) throw UsageError("--threshold goes with --robust");
-    try {
-      options.robust_threshold_px = std::stod(*args.value("--threshold"));
-    } catch (const std::exception&) {
-      throw UsageError("--threshold expects a number of pixels");
-    }
-    if (!(options.robust_threshold_px > 0)) throw UsageError("--threshold must be positive");
-  }
+  if (args.has("--threshold") && !options.robust)
+    throw UsageError("--threshold goes with --robust");
+  options.robust_threshold_px =
+      numberOption(args, "--threshold", options.robust_threshold_px, 0, kUnbounded, Ends::OpenMin);
+  checkFitOptions(options, {{"model", "--model"}, {"robust_threshold_px", "--threshold"}});
 
   // No core hook here (the robust fit's RANSAC included): the bar names the stage and Ctrl-C
   // exits at once, the handler removing the atomic writer's temporary (interrupt.h).

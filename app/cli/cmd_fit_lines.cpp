@@ -3,6 +3,7 @@
 // pairs when MATCHES.csv is given too. Parses, calls core, prints each line's remaining bow.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/fit_input.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
 #include "core/fit/fit_lines.h"
@@ -40,6 +41,7 @@ int fitLinesCommand(const Args& args, const std::string& lines_path) {
   checkOutputs(args, {*output}, inputs);
   LinesFitOptions options;
   options.model = *model;
+  checkFitOptions(options, {{"model", "--model"}});
 
   return runJobStages("fit", args.has("--quiet"), [&](JobStages& job) {
     job.stage("reading");

@@ -20,14 +20,8 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
   if (args.has("--robust") || args.has("--allow-poles"))
     throw UsageError("--robust and --allow-poles do not apply to --piecewise");
   PiecewiseOptions options;
-  if (args.has("--max-error")) {
-    try {
-      options.max_error_px = std::stod(*args.value("--max-error"));
-    } catch (const std::exception&) {
-      throw UsageError("--max-error expects a number of pixels");
-    }
-    if (!(options.max_error_px > 0)) throw UsageError("--max-error must be positive");
-  }
+  options.max_error_px =
+      numberOption(args, "--max-error", options.max_error_px, 0, kUnbounded, Ends::OpenMin);
   if (args.has("--model")) {
     const auto model = modelClassFromName(*args.value("--model"));
     if (!model) throw UsageError("unknown --model \"" + *args.value("--model") + "\"");

@@ -53,22 +53,6 @@ const char* const kInsertUsage =
     "      --table demo/mirror-sphere-table.csv --region demo/mirror-sphere-region.csv \\\n"
     "      -o inserted.png\n";
 
-namespace {
-
-double positiveNumber(const Args& args, const std::string& name, double fallback) {
-  if (!args.has(name)) return fallback;
-  double v = 0.0;
-  try {
-    v = std::stod(*args.value(name));
-  } catch (const std::exception&) {
-    throw UsageError(name + " expects a number");
-  }
-  if (!(v > 0.0)) throw UsageError(name + " must be positive");
-  return v;
-}
-
-}  // namespace
-
 int insertCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
                          {"--matches", "", true},
@@ -98,6 +82,16 @@ int insertCommand(const std::vector<std::string>& argv) {
       if (const auto path = args.value(read)) inputs.push_back(*path);
     checkOutputs(args, outputs, inputs);
   }
+  // Numbers and sizes are refused before any file is read.
+  PiecewiseOptions fit_options;
+  fit_options.max_error_px =
+      numberOption(args, "--max-error", fit_options.max_error_px, 0, kUnbounded, Ends::OpenMin);
+  RenderOptions render_options;  // mesh step 0: chosen by the renderer
+  render_options.mesh_step_px =
+      numberOption(args, "--mesh-step", render_options.mesh_step_px, 0, kUnbounded, Ends::OpenMin);
+  std::optional<FrameSize> canonical_asked;
+  if (const auto size = args.value("--canonical"))
+    canonical_asked = parseSize(*size, "--canonical");
 
   // The image reads and the final write poll for Ctrl-C; the fit, the mesh render and the
   // camera file have no hook in core (a signal there exits at once, removing temporaries).
@@ -110,9 +104,8 @@ int insertCommand(const std::vector<std::string>& argv) {
     const auto graphic = readImage(args.positional()[1], read);
     if (!graphic) throw CommandError(graphic.status.message);
     const FrameSize photo_size{photo->image.width, photo->image.height};
-    const FrameSize canonical = args.has("--canonical")
-                                    ? parseSize(*args.value("--canonical"), "--canonical")
-                                    : FrameSize{graphic->image.width, graphic->image.height};
+    const FrameSize canonical =
+        canonical_asked.value_or(FrameSize{graphic->image.width, graphic->image.height});
 
     InsertionCameras cameras;
     std::string table_report;  // printed after the bar is gone
@@ -156,10 +149,8 @@ int insertCommand(const std::vector<std::string>& argv) {
           m.source = *board;
         }
       }
-      PiecewiseOptions options;
-      options.max_error_px = positiveNumber(args, "--max-error", options.max_error_px);
       job.stage("fitting");
-      const PiecewiseSummary fit = fitPiecewise(*matches, canonical, photo_size, options);
+      const PiecewiseSummary fit = fitPiecewise(*matches, canonical, photo_size, fit_options);
       if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
       fit_report = fit.report();
       camera = fit.camera;
@@ -205,8 +196,6 @@ int insertCommand(const std::vector<std::string>& argv) {
                          std::to_string(camera.source_size.height) + " (set --canonical)");
 
     // One entry point with the studio's Insertion mode: the table's copy, then the reflection.
-    RenderOptions render_options;
-    render_options.mesh_step_px = positiveNumber(args, "--mesh-step", render_options.mesh_step_px);
     job.stage("rendering");
     InsertSummary summary;
     ImageF composited;

@@ -65,29 +65,12 @@ nlohmann::json lensJson(const LensEntry& e) {
           {"vignetting", e.vignetting}};
 }
 
-double number(const Args& args, const std::string& option, const std::string& what) {
-  try {
-    size_t used = 0;
-    const std::string text = *args.value(option);
-    const double v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument(text);
-    return v;
-  } catch (const std::exception&) {
-    throw UsageError(option + " expects " + what);
-  }
-}
-
 int searchCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--limit", "", true}, {"--json", "", false}});
   if (args.positional().empty()) throw UsageError("missing the TEXT to search for");
   std::string text;
   for (const std::string& w : args.positional()) text += (text.empty() ? "" : " ") + w;
-  int limit = 50;
-  if (args.has("--limit")) {
-    const double l = number(args, "--limit", "a count");
-    if (l < 0 || l != static_cast<int>(l)) throw UsageError("--limit expects a count (0: all)");
-    limit = static_cast<int>(l);
-  }
+  const int limit = intOption(args, "--limit", 50, 0, 1000000);  // 0: all
   const auto db = loadDatabase();
   const std::vector<LensEntry> hits = db->search(text, 0);
   const size_t shown = limit > 0 ? std::min(hits.size(), static_cast<size_t>(limit)) : hits.size();
@@ -126,19 +109,13 @@ int cameraCommand(const std::vector<std::string>& argv) {
   if (!lens) throw UsageError("missing --lens NAME (artcam lens search lists names)");
   options.lens = *lens;
   if (!args.has("--focal")) throw UsageError("missing --focal MM (the focal length)");
-  options.focal_mm = number(args, "--focal", "a focal length in millimetres");
-  if (!(options.focal_mm > 0)) throw UsageError("--focal must be positive");
-  if (args.has("--crop")) {
-    options.crop = number(args, "--crop", "a crop factor");
-    if (!(options.crop > 0)) throw UsageError("--crop must be positive");
-  }
+  options.focal_mm = parseNumber(*args.value("--focal"), "--focal", 0, kUnbounded, Ends::OpenMin);
+  options.crop = numberOption(args, "--crop", options.crop, 0, kUnbounded, Ends::OpenMin);
   const auto size = args.value("--size");
   if (!size) throw UsageError("missing --size WxH (the photo's size)");
   options.size = parseSize(*size, "--size");
-  if (args.has("--max-error")) {
-    options.max_error_px = number(args, "--max-error", "a number of pixels");
-    if (!(options.max_error_px > 0)) throw UsageError("--max-error must be positive");
-  }
+  options.max_error_px =
+      numberOption(args, "--max-error", options.max_error_px, 0, kUnbounded, Ends::OpenMin);
   options.distort = args.has("--distort");
   options.tca = !args.has("--no-tca");
   const auto output = args.value("--output");

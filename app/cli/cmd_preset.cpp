@@ -2,24 +2,24 @@
 // artcam preset: cameras made from a few numbers (the paper's Fig 1 set by "explicitly setting
 // numbers"), and the project's sample clouds.
 //
-// Adding a view or 3D preset is one line in kPresets: its name, a summary, its parameters as
+// Adding a view camera is one line in kPresets: its name, a summary, its parameters as
 // "name=default …" (numbers, or comma-separated vectors), and a function from the parsed
-// parameters to a Camera. The image effects are core's table (effects/effect_table.h): their
-// options, ranges, listing and help pages are made from its rows, and their cameras by its
-// builders.
+// parameters to a Camera. The image effects and the 3D effects of Fig 1 are core's tables
+// (effects/effect_table.h, effects/effects_3d_table.h, which the studio's panels and 3D view
+// read too): their options, ranges, listing and help pages are made from its rows, and their
+// cameras by its builders.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
-#include "core/cameras/effects_3d.h"
 #include "core/cameras/glc.h"
 #include "core/cameras/projective_cameras.h"
 #include "core/cloud/sample_clouds.h"
 #include "core/effects/effect_table.h"
+#include "core/effects/effects_3d_table.h"
 #include "core/io/artcam_file.h"
 #include "core/io/ply.h"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -55,20 +55,10 @@ class Params {
   std::map<std::string, std::vector<double>> values_;
 };
 
+// Every parameter is a number or a list; its range, where it has one, is the effects table's
+// (checkEffectValue) or the camera builder's.
 std::vector<double> parseNumbers(const std::string& text, const std::string& name) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    double v = 0;
-    const auto r = std::from_chars(item.data(), item.data() + item.size(), v);
-    if (r.ec != std::errc() || r.ptr != item.data() + item.size() || !std::isfinite(v))
-      throw UsageError("--" + name + ": \"" + text +
-                       "\" is not a number or a comma-separated list");
-    out.push_back(v);
-  }
-  if (out.empty()) throw UsageError("--" + name + " needs a value");
-  return out;
+  return parseNumberList(text, "--" + name, -kUnbounded, kUnbounded);
 }
 
 CameraPose pose(const Params& p) {
@@ -121,18 +111,6 @@ Camera rationalLens(const Params& p) {
     throw UsageError("--matrix expects the 3×6 matrix A of [CF05], 18 numbers by rows");
   return rationalLensCamera(Eigen::Matrix<double, 3, 6, Eigen::RowMajor>(m.data()), c.pose);
 }
-Camera twist(const Params& p) { return twistEffect({p.number("rate")}); }
-Camera pincushion(const Params& p) { return pincushionEffect({p.number("k"), p.vec3("centre")}); }
-Camera inversePerspective(const Params& p) {
-  return inversePerspectiveEffect({p.vec3("eye"), p.vec3("at"), p.vec3("up"), p.number("gain")});
-}
-Camera colourScale(const Params& p) {
-  return colourScaleEffect({p.number("strength"), p.vec3("centre")});
-}
-Camera chromaticAberration(const Params& p) {
-  return chromaticAberrationEffect(
-      {p.number("red"), p.number("green"), p.number("blue"), p.vec3("centre")});
-}
 Camera identity3d(const Params&) {
   return Camera::identity({Block{BlockKind::Position, 4}, Block{BlockKind::Colour, 4}}, {}, {});
 }
@@ -144,7 +122,8 @@ struct Preset {
   Camera (*build)(const Params&);
 };
 
-// View cameras default to the view of the sample cube (cloud_render.h defaultViewPose of
+// View cameras (and identity, the 3D camera that does nothing; the Fig 1 effects are core's 3D
+// table) default to the view of the sample cube (cloud_render.h defaultViewPose of
 // [-1, 1]³), so `artcam render cube.ply … --view` frames it.
 const Preset kPresets[] = {
     {"pinhole", "3D→image: central projection, u = f·X/Z (view camera)",
@@ -164,15 +143,6 @@ const Preset kPresets[] = {
      "3D→image: Claus–Fitzgibbon rational lens, u = f·x/(1 + k|x|²), or --matrix A (view camera)",
      "focal=2.4 k=0.5 matrix=0 eye=2.744,2.058,-3.430 at=0,0,0 up=0,1,0", rationalLens},
     {"identity", "3D: leaves points and colours as they are", "", identity3d},
-    {"twist-3d", "3D (Fig 1): twist about y, atan(rate·Y)", "rate=0.35", twist},
-    {"pincushion-3d", "3D (Fig 1): P/(1 - k|P - c|²); k < 0 barrel", "k=0.12 centre=0,0,0",
-     pincushion},
-    {"inverse-perspective-3d", "3D (Fig 1): objects magnify as they recede from eye",
-     "eye=2.744,2.058,-3.430 at=0,0,0 up=0,1,0 gain=0", inversePerspective},
-    {"colour-scale", "3D (Fig 1): warm expands, cold shrinks, scale 1 + s(r - b)",
-     "strength=0.35 centre=0,0,0", colourScale},
-    {"chromatic-aberration-3d", "3D (Fig 1): per-layer scale; render with --layers rgb",
-     "red=0.06 green=0 blue=-0.06 centre=0,0,0", chromaticAberration},
 };
 
 // Image effects (effect_table.h): 2D cameras over [position 3 (| colour 4) (| depth 2)] in the
@@ -189,12 +159,31 @@ std::string effectSummary(const EffectSpec& effect) {
 }
 
 // "k=-0.15 [-1 … 0]" for each parameter, then the frame.
-std::vector<std::string> effectParamWords(const EffectSpec& effect) {
+std::vector<std::string> effectParamWords(const std::vector<EffectParam>& params,
+                                          const std::vector<std::string>& frame_words) {
   std::vector<std::string> words;
-  for (const EffectParam& p : effect.params)
+  for (const EffectParam& p : params)
     words.push_back(p.name + "=" + defaultText(p) + " [" + rangeText(p) + "]");
-  words.push_back(std::string("size=") + kDefaultEffectSize);
+  words.insert(words.end(), frame_words.begin(), frame_words.end());
   return words;
+}
+
+// 3D effects (effects_3d_table.h): their parameters are in the object frame given by these two
+// options (default: the origin and 1, object units). Like the parameters, they are offered per
+// preset from `artcam preset list` (the shell completions read it), not as literals.
+constexpr const char* kObjectCentre = "object-centre";
+constexpr const char* kObjectRadius = "object-radius";
+constexpr const char* kDefaultObjectCentre = "0,0,0";
+constexpr const char* kDefaultObjectRadius = "1";
+
+std::string effect3dSummary(const Effect3dSpec& effect) {
+  return "3D (Fig 1): " + effect.summary +
+         (effect.colour_layers ? " (render with --layers rgb)" : "");
+}
+
+std::vector<std::string> objectFrameWords() {
+  return {std::string(kObjectCentre) + "=" + kDefaultObjectCentre,
+          std::string(kObjectRadius) + "=" + kDefaultObjectRadius};
 }
 
 struct CloudPreset {
@@ -256,7 +245,11 @@ std::string listing() {
     return out;
   };
   for (const Preset& p : kPresets) add(p.name, p.summary, words(p.params));
-  for (const EffectSpec& e : effectSpecs()) add(e.name, effectSummary(e), effectParamWords(e));
+  for (const Effect3dSpec& e : effect3dSpecs())
+    add(e.name, effect3dSummary(e), effectParamWords(e.params, objectFrameWords()));
+  for (const EffectSpec& e : effectSpecs())
+    add(e.name, effectSummary(e),
+        effectParamWords(e.params, {std::string("size=") + kDefaultEffectSize}));
   for (const CloudPreset& p : kCloudPresets) add(p.name, p.summary, words(p.params));
   return s;
 }
@@ -288,23 +281,12 @@ Params parseParams(const char* spec, const std::vector<std::string>& argv, std::
   return Params(std::move(values));
 }
 
-// `artcam preset EFFECT [--PARAM VALUE …] [--size WxH] -o OUT` for a row of the effects table.
-int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) {
-  std::vector<OptionSpec> specs = {{"--output", "-o", true},
-                                   {"--size", "", true},
-                                   {"--overwrite", "", false},
-                                   {"--force", "", false}};
-  for (const EffectParam& p : effect.params) specs.push_back({"--" + p.name, "", true});
-  const Args args(argv, specs);
-  args.expectPositional(1, "NAME");
-  const auto output = args.value("--output");
-  if (!output) throw UsageError("missing -o OUT");
-  checkOutputs(args, {*output}, {});
-  const std::string size = args.valueOr("--size", kDefaultEffectSize);
-  const FrameSize frame = effectFrame(size);
+// The values of a table row's parameters from "--NAME VALUE" options (its defaults for the
+// missing ones), each checked against its range; `summary` gets "name=value " for each.
+EffectValues parseEffectValues(const std::vector<EffectParam>& params, const Args& args,
+                               std::string& summary) {
   EffectValues values;
-  std::string summary;
-  for (const EffectParam& p : effect.params) {
+  for (const EffectParam& p : params) {
     const std::string text = args.valueOr("--" + p.name, defaultText(p));
     if (p.isChoice()) {
       const auto index = choiceValue(p, text);
@@ -319,15 +301,75 @@ int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) 
     summary += p.name + "=" +
                (p.isChoice() ? p.choices[static_cast<size_t>(values[p.name][0])] : text) + " ";
   }
+  return values;
+}
+
+// The options of a table row's preset: -o, --overwrite/--force, its parameters, then `extra`.
+Args effectArgs(const std::vector<EffectParam>& params, const std::vector<std::string>& argv,
+                std::vector<OptionSpec> specs) {
+  specs.insert(specs.end(),
+               {{"--output", "-o", true}, {"--overwrite", "", false}, {"--force", "", false}});
+  for (const EffectParam& p : params) specs.push_back({"--" + p.name, "", true});
+  Args args(argv, specs);
+  args.expectPositional(1, "NAME");
+  return args;
+}
+
+std::string requiredOutput(const Args& args) {
+  const auto output = args.value("--output");
+  if (!output) throw UsageError("missing -o OUT");
+  checkOutputs(args, {*output}, {});
+  return *output;
+}
+
+// `artcam preset EFFECT [--PARAM VALUE …] [--size WxH] -o OUT` for a row of the effects table.
+int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) {
+  const Args args = effectArgs(effect.params, argv, {{"--size", "", true}});
+  const std::string output = requiredOutput(args);
+  const std::string size = args.valueOr("--size", kDefaultEffectSize);
+  const FrameSize frame = effectFrame(size);
+  std::string summary;
+  const EffectValues values = parseEffectValues(effect.params, args, summary);
   Artcam camera;
   try {
     camera = buildEffect(effect.name, values, frame);
   } catch (const std::invalid_argument& e) {
     throw CommandError("preset " + effect.name + ": " + e.what());
   }
-  if (const Status s = writeArtcam(*output, camera); !s) throw CommandError(s.message);
-  std::printf("wrote %s (%s: %ssize=%s)\n", output->c_str(), effect.name.c_str(), summary.c_str(),
+  if (const Status s = writeArtcam(output, camera); !s) throw CommandError(s.message);
+  std::printf("wrote %s (%s: %ssize=%s)\n", output.c_str(), effect.name.c_str(), summary.c_str(),
               size.c_str());
+  return 0;
+}
+
+// `artcam preset EFFECT-3D [--PARAM VALUE …] [--object-centre X,Y,Z] [--object-radius R] -o OUT`
+// for a row of the 3D effects table.
+int writeEffect3d(const Effect3dSpec& effect, const std::vector<std::string>& argv) {
+  const std::string centre_option = std::string("--") + kObjectCentre;
+  const std::string radius_option = std::string("--") + kObjectRadius;
+  const Args args =
+      effectArgs(effect.params, argv, {{centre_option, "", true}, {radius_option, "", true}});
+  const std::string output = requiredOutput(args);
+  const std::string centre = args.valueOr(centre_option, kDefaultObjectCentre);
+  const std::string radius = args.valueOr(radius_option, kDefaultObjectRadius);
+  ObjectFrame frame;
+  const std::vector<double> c = parseNumberList(centre, centre_option, -kUnbounded, kUnbounded);
+  if (c.size() != 3) throw UsageError(centre_option + " expects X,Y,Z, got \"" + centre + "\"");
+  frame.centre = {c[0], c[1], c[2]};
+  frame.radius = parseNumber(radius, radius_option, 0, kUnbounded, Ends::OpenMin);
+  std::string summary;
+  const EffectValues values = parseEffectValues(effect.params, args, summary);
+  Camera camera;
+  try {
+    camera = buildEffect3d(effect.name, values, frame);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError("preset " + effect.name + ": " + e.what());
+  }
+  if (const Status s = writeArtcam(output, Artcam(camera)); !s) throw CommandError(s.message);
+  std::printf("wrote %s (%s: %s%s=%s %s=%s)\n", output.c_str(), effect.name.c_str(),
+              summary.c_str(), kObjectCentre, centre.c_str(), kObjectRadius, radius.c_str());
+  if (effect.colour_layers)
+    std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
   return 0;
 }
 
@@ -342,40 +384,56 @@ const char* const kPresetUsage =
     "space to the image: outputs (u, v, nearness), (u, v) in the normalised frame (the larger\n"
     "image side spans [-1, 1], v down); use them with artcam render --view. 3D cameras (identity,\n"
     "twist-3d, pincushion-3d, inverse-perspective-3d, colour-scale, chromatic-aberration-3d) move\n"
-    "points and colours before the view. cube-of-cubes writes the sample cloud of the paper's\n"
-    "Fig 1. Image effects (artcam preset --help lists them with their parameters) apply to\n"
-    "photos with artcam warp (those marked \"needs --depth\" with --depth FILE, \"needs\n"
-    "--second\" with --second FILE); --size WxH is the photo's size (default 600x400; W,H also\n"
-    "accepted). A NAME parameter takes one of the names its range lists (--op over).\n"
-    "Vectors are comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with\n"
-    "its parameters and defaults; every parameter is optional, and an image effect's parameter\n"
-    "outside its range is refused. -o/--output names OUT (required); an existing OUT is\n"
-    "refused unless --overwrite (--force is the same).\n\n"
+    "points and colours before the view; the Fig 1 effects' lengths are in radii of the object\n"
+    "frame --object-radius R about --object-centre X,Y,Z (default 1 about the origin: object\n"
+    "units). cube-of-cubes writes the sample cloud of the paper's Fig 1. Image effects (artcam\n"
+    "preset --help lists them and the 3D effects with their parameters) apply to photos with\n"
+    "artcam warp (those marked \"needs --depth\" with --depth FILE, \"needs --second\" with\n"
+    "--second FILE); --size WxH is the photo's size (default 600x400; W,H also accepted). A\n"
+    "NAME parameter takes one of the names its range lists (--op over). Vectors are\n"
+    "comma-separated (--eye 3,2,-4). `artcam preset list` shows every preset with its\n"
+    "parameters and defaults; every parameter is optional, and an effect's parameter outside\n"
+    "its range is refused. -o/--output names OUT (required); an existing OUT is refused unless\n"
+    "--overwrite (--force is the same).\n\n"
     "Examples:\n"
     "  artcam preset list\n"
     "  artcam preset barrel --k -0.2 --size 6000x4000 -o barrel.artcam\n"
     "  artcam preset aerial-perspective --haze 0.6,0.7,0.9 --far 50 -o haze.artcam\n"
     "  artcam preset composite --op over --size 1920x1080 -o over.artcam\n"
-    "  artcam preset pinhole --eye 3,2,-4 -o view.artcam\n";
+    "  artcam preset pinhole --eye 3,2,-4 -o view.artcam\n"
+    "  artcam preset pincushion-3d --k 0.3 --object-radius 1.8 -o swell.artcam\n";
 
-// The usage above, then every image effect of the table with its parameters: type, range,
-// default and meaning ("norm": normalised units, 1 = half the larger image side).
+// One help row per parameter: "--k  N  radial coefficient; -1 … 0, default -0.15", indented.
+std::string paramRows(const std::vector<EffectParam>& params) {
+  std::string s;
+  for (const EffectParam& p : params) {
+    std::string value = p.isChoice() ? "NAME" : "N";
+    for (int i = 1; i < p.size(); ++i) value += ",N";
+    char line[512];
+    std::snprintf(line, sizeof line, "      --%-10s %-6s %s; %s, default %s\n", p.name.c_str(),
+                  value.c_str(), p.meaning.c_str(), rangeText(p).c_str(), defaultText(p).c_str());
+    s += line;
+  }
+  return s;
+}
+
+// The usage above, then every image effect and every 3D effect of the tables with its
+// parameters: type, range, default and meaning ("norm": normalised units, 1 = half the larger
+// image side; "radii": units of the object frame).
 std::string presetHelp() {
   std::string s = kPresetUsage;
   s += "\nImage effects (--PARAM VALUE, ranges inclusive; norm = normalised units, 1 = half the\n"
        "larger image side; depth units = those of the --depth file given to artcam warp):\n";
-  for (const EffectSpec& e : effectSpecs()) {
+  for (const EffectSpec& e : effectSpecs())
     s += "  " + e.name + "  " + e.summary + (e.needs_depth ? " (needs --depth)" : "") +
-         (e.needs_second ? " (needs --second)" : "") + "\n";
-    for (const EffectParam& p : e.params) {
-      std::string value = p.isChoice() ? "NAME" : "N";
-      for (int i = 1; i < p.size(); ++i) value += ",N";
-      char line[512];
-      std::snprintf(line, sizeof line, "      --%-10s %-6s %s; %s, default %s\n", p.name.c_str(),
-                    value.c_str(), p.meaning.c_str(), rangeText(p).c_str(), defaultText(p).c_str());
-      s += line;
-    }
-  }
+         (e.needs_second ? " (needs --second)" : "") + "\n" + paramRows(e.params);
+  s += "\n3D effects of Fig 1 (--PARAM VALUE, ranges inclusive) in the object frame:\n"
+       "--object-centre X,Y,Z (default 0,0,0) and --object-radius R (default 1); radii = units of\n"
+       "R from the centre, every length scales with R, so the defaults are object units (the\n"
+       "studio's 3D view builds them in its cloud's frame: the centre and radius of its bounds):\n";
+  for (const Effect3dSpec& e : effect3dSpecs())
+    s += "  " + e.name + "  " + e.summary + (e.colour_layers ? " (render with --layers rgb)" : "") +
+         "\n" + paramRows(e.params);
   return s;
 }
 
@@ -399,10 +457,9 @@ int presetCommand(const std::vector<std::string>& argv) {
     if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     std::printf("wrote %s (%s%s%s)\n", output.c_str(), p.name, summary.empty() ? "" : ": ",
                 summary.c_str());
-    if (name == "chromatic-aberration-3d")
-      std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
     return 0;
   }
+  if (const Effect3dSpec* effect = findEffect3d(name)) return writeEffect3d(*effect, argv);
   if (const EffectSpec* effect = findEffect(name)) return writeEffect(*effect, argv);
   for (const CloudPreset& p : kCloudPresets) {
     if (name != p.name) continue;
@@ -420,6 +477,7 @@ int presetCommand(const std::vector<std::string>& argv) {
   }
   std::vector<std::string> names = {"list"};
   for (const Preset& p : kPresets) names.push_back(p.name);
+  for (const Effect3dSpec& e : effect3dSpecs()) names.push_back(e.name);
   for (const EffectSpec& e : effectSpecs()) names.push_back(e.name);
   for (const CloudPreset& p : kCloudPresets) names.push_back(p.name);
   throw UsageError("unknown preset \"" + name + "\" (artcam preset list shows them)",

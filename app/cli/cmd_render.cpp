@@ -15,11 +15,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <sstream>
+#include <optional>
+#include <vector>
 
 namespace artcam::cli {
 
@@ -29,7 +29,7 @@ const char* const kRenderUsage =
     "                     [--layers whole|rgb] [--point-size H] [--splat-scale S]\n"
     "                     [--threads N] [--stats] [--json] [--overwrite]\n\n"
     "Moves every point of CLOUD (and its colour) through CAM, an object-space ARTcam (a 3D\n"
-    "preset such as twist, or a camera fitted with artcam fit --dim 3; `artcam preset identity`\n"
+    "preset such as twist-3d, or a camera fitted with artcam fit --dim 3; `artcam preset identity`\n"
     "for none). With -o OUT.ply the moved cloud is written. Otherwise it is seen through the\n"
     "view camera and splatted into OUT (any image format; transparent background):\n"
     "  --view VIEW.artcam  a projecting camera (artcam preset pinhole|orthographic|pushbroom|\n"
@@ -54,26 +54,19 @@ const char* const kRenderUsage =
 
 namespace {
 
-Eigen::Vector3d parseVector(const std::string& text, const std::string& option) {
-  std::stringstream ss(text);
-  std::string item;
+// One message for a wrong count and a wrong number alike.
+std::optional<Eigen::Vector3d> vectorOption(const Args& args, const std::string& option) {
+  const auto text = args.value(option);
+  if (!text) return std::nullopt;
+  const UsageError refused(option + " expects X,Y,Z, got \"" + *text + "\"");
   std::vector<double> v;
-  while (std::getline(ss, item, ',')) {
-    double x = 0;
-    const auto r = std::from_chars(item.data(), item.data() + item.size(), x);
-    if (r.ec != std::errc() || r.ptr != item.data() + item.size() || !std::isfinite(x)) break;
-    v.push_back(x);
+  try {
+    v = parseNumberList(*text, option, -kUnbounded, kUnbounded);
+  } catch (const UsageError&) {
+    throw refused;
   }
-  if (v.size() != 3) throw UsageError(option + " expects X,Y,Z, got \"" + text + "\"");
-  return {v[0], v[1], v[2]};
-}
-
-double parsePositive(const std::string& text, const std::string& option) {
-  double x = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), x);
-  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !(x > 0) || !std::isfinite(x))
-    throw UsageError(option + " expects a positive number, got \"" + text + "\"");
-  return x;
+  if (v.size() != 3) throw refused;
+  return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
 Camera readObjectCamera(const std::string& path) {
@@ -135,20 +128,18 @@ int renderCommand(const std::vector<std::string>& argv) {
     options.layers = RenderLayers::Rgb;
   else if (layers != "whole")
     throw UsageError("--layers expects whole or rgb");
-  if (args.has("--point-size"))
-    options.point_spacing = parsePositive(*args.value("--point-size"), "--point-size");
-  if (args.has("--splat-scale"))
-    options.splat_scale = parsePositive(*args.value("--splat-scale"), "--splat-scale");
-  if (args.has("--threads")) {
-    try {
-      options.threads = std::stoi(*args.value("--threads"));
-    } catch (const std::exception&) {
-      throw UsageError("--threads expects a whole number");
-    }
-    if (options.threads < 0) throw UsageError("--threads expects a whole number ≥ 0");
-  }
+  options.point_spacing =
+      numberOption(args, "--point-size", options.point_spacing, 0, kUnbounded, Ends::OpenMin);
+  options.splat_scale =
+      numberOption(args, "--splat-scale", options.splat_scale, 0, kUnbounded, Ends::OpenMin);
+  options.threads = intOption(args, "--threads", options.threads, 0, kMaxThreads);
   if (args.has("--view") && (args.has("--eye") || args.has("--at") || args.has("--fov")))
     throw UsageError("--view replaces --eye, --at and --fov");
+  // The view's numbers are refused before the cloud is read; their defaults come from it.
+  const std::optional<Eigen::Vector3d> eye_asked = vectorOption(args, "--eye");
+  const std::optional<Eigen::Vector3d> at_asked = vectorOption(args, "--at");
+  std::optional<double> fov;
+  if (const auto text = args.value("--fov")) fov = parseNumber(*text, "--fov", 0, 180, Ends::Open);
 
   return runJobStages("render", args.has("--quiet"), [&](JobStages& job) {
     job.stage("reading");
@@ -180,11 +171,9 @@ int renderCommand(const std::vector<std::string>& argv) {
     } else {
       const CloudBounds bounds = cloudBounds(*cloud);
       const CameraPose fallback = defaultViewPose(bounds);
-      const Eigen::Vector3d at = args.has("--at")
-                                     ? parseVector(*args.value("--at"), "--at")
-                                     : (bounds.empty ? Eigen::Vector3d::Zero() : bounds.centre());
-      const Eigen::Vector3d eye = args.has("--eye") ? parseVector(*args.value("--eye"), "--eye")
-                                                    : at + (fallback.centre - bounds.centre());
+      const Eigen::Vector3d at =
+          at_asked.value_or(bounds.empty ? Eigen::Vector3d::Zero() : bounds.centre());
+      const Eigen::Vector3d eye = eye_asked.value_or(at + (fallback.centre - bounds.centre()));
       CameraPose pose;
       try {
         pose = CameraPose::lookAt(eye, at);
@@ -192,10 +181,8 @@ int renderCommand(const std::vector<std::string>& argv) {
         throw UsageError(std::string("--eye/--at: ") + e.what());
       }
       PinholeParams pin;
-      if (args.has("--fov")) {
-        const double fov = parsePositive(*args.value("--fov"), "--fov");
-        if (fov >= 180) throw UsageError("--fov expects degrees below 180");
-        pin.focal = 1.0 / std::tan(fov * std::numbers::pi / 360.0);
+      if (fov) {
+        pin.focal = 1.0 / std::tan(*fov * std::numbers::pi / 360.0);
         pin.pose = pose;
       } else {
         job.stage("framing");

@@ -103,15 +103,7 @@ int sampleCommand(const std::vector<std::string>& argv) {
   args.expectPositional(1, "the sample's name");
   const auto dir = args.value("--output");
   if (!dir) throw UsageError("missing -o DIR");
-  int squares = 24;
-  if (args.has("--squares")) {
-    try {
-      squares = std::stoi(*args.value("--squares"));
-    } catch (const std::exception&) {
-      throw UsageError("--squares expects a whole number");
-    }
-    if (squares < 2 || squares > 256) throw UsageError("--squares must be between 2 and 256");
-  }
+  const int squares = intOption(args, "--squares", 24, 2, 256);
   const std::string& name = args.positional()[0];
   if (name != "mirror-sphere" && name != "water-glass" && name != "specular-pair")
     throw UsageError("unknown sample \"" + name + "\" (mirror-sphere, water-glass or specular-pair)",

@@ -55,7 +55,9 @@ const char* const kWarpUsage =
     "exists is refused unless --overwrite; OUT is never IN, the camera or the depth file.\n"
     "--stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr (the render alone, without\n"
     "file I/O). --json prints one JSON object on stdout instead of the \"wrote\" line:\n"
-    "{output, width, height, description}, with --stats also render_ms and mpix_per_s.\n"
+    "{output, width, height, description}, with --stats also render_ms and mpix_per_s, with\n"
+    "--depth also depth {file, width, height, min, max, holes}, with --second second {file,\n"
+    "width, height}.\n"
     "Every camera kind renders: a piecewise camera (artcam fit --piecewise) by its seamless\n"
     "mesh warp, layered and attributed cameras by the attributed renderer.\n"
     "Cameras that change colour or depth, layered cameras (chromatic aberration) and depth of\n"
@@ -166,6 +168,15 @@ int warpCommand(const std::vector<std::string>& argv) {
       if (!rendered.warning.empty()) j["warning"] = rendered.warning;
       if (!rendered.left_out.empty()) j["dropped_channels"] = rendered.left_out;
       if (!rendered.extra_names.empty()) j["extra_channels"] = rendered.extra_names;
+      for (const RequestInput& in : request.inputs) {
+        nlohmann::json& o = j[in.role];
+        o = {{"file", in.path}, {"width", in.width}, {"height", in.height}};
+        if (in.depth) {
+          o["min"] = in.depth->min;
+          o["max"] = in.depth->max;
+          o["holes"] = in.depth->holes;
+        }
+      }
       if (request.stats) {
         j["render_ms"] = rendered.render_ms;
         j["mpix_per_s"] = mpix_per_s;
@@ -174,9 +185,12 @@ int warpCommand(const std::vector<std::string>& argv) {
     } else if (request.stats) {
       std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms, mpix_per_s);
     }
-    if (!args.has("--json"))
+    if (!args.has("--json")) {
+      for (const RequestInput& in : request.inputs)
+        std::fprintf(report, "%s\n", in.describe().c_str());
       std::fprintf(report, "wrote %s (%dx%d, %s)\n", output_name.c_str(), rendered.width,
                    rendered.height, rendered.description.c_str());
+    }
   } catch (const CommandError& e) {
     if (!interruptRequested()) throw CommandError(streams.named(e.what()));
   }

@@ -106,21 +106,16 @@ WarpRequest parseWarpRequest(const Args& args) {
     warp.width = size.width;
     warp.height = size.height;
   }
-  if (args.has("--threads")) {
-    try {
-      warp.threads = std::stoi(*args.value("--threads"));
-    } catch (const std::exception&) {
-      throw UsageError("--threads expects a whole number");
-    }
-    if (warp.threads < 0) throw UsageError("--threads expects a whole number ≥ 0");
-  }
+  warp.threads = intOption(args, "--threads", warp.threads, 0, kMaxThreads);
+  // The depth reader's own ranges (depth_file.h): a scale above 0, a disparity factor ≥ 0 (0:
+  // the file holds depth).
   DepthFileOptions depth;
-  try {
-    depth.scale = std::stod(args.valueOr("--depth-scale", "1"));
-    depth.baseline_focal = std::stod(args.valueOr("--disparity", "0"));
-  } catch (const std::exception&) {
-    throw UsageError("--depth-scale and --disparity expect numbers");
-  }
+  depth.scale = numberOption(args, "--depth-scale", depth.scale, 0, kUnbounded, Ends::OpenMin);
+  depth.baseline_focal = numberOption(args, "--disparity", depth.baseline_focal, 0, kUnbounded);
+  parseWriteOptions(args, request.write);  // every usage error before a file is read
+  request.stats = args.has("--stats");
+  // Nothing is printed here: the files read are reported with the result (WarpRequest::inputs),
+  // so standard output carries only the image or the one JSON object.
   if (const auto path = args.value("--depth")) {
     DepthFileSummary summary;
     auto read = readDepthFile(*path, depth, &summary);
@@ -131,19 +126,28 @@ WarpRequest parseWarpRequest(const Args& args) {
     if (summary.channels > 1)
       std::fprintf(stderr, "warning: %s: %d channels; depth is read from the first channel only\n",
                    path->c_str(), summary.channels);
-    std::printf("depth %s: %dx%d, %g..%g, %lld holes\n", path->c_str(), request.depth->width,
-                request.depth->height, summary.min_depth, summary.max_depth, summary.holes);
+    request.inputs.push_back(
+        {"depth", *path, request.depth->width, request.depth->height,
+         RequestInput::DepthRange{summary.min_depth, summary.max_depth, summary.holes}});
   }
   if (const auto path = args.value("--second")) {
     auto second = readImage(*path);
     if (!second) throw CommandError(second.status.message);
     request.second = std::move(second->image);
-    std::printf("second image %s: %dx%d\n", path->c_str(), request.second->width,
-                request.second->height);
+    request.inputs.push_back(
+        {"second", *path, request.second->width, request.second->height, std::nullopt});
   }
-  parseWriteOptions(args, request.write);
-  request.stats = args.has("--stats");
   return request;
+}
+
+std::string RequestInput::describe() const {
+  char line[160];
+  if (depth)
+    std::snprintf(line, sizeof line, ": %dx%d, %g..%g, %lld holes", width, height, depth->min,
+                  depth->max, depth->holes);
+  else
+    std::snprintf(line, sizeof line, ": %dx%d", width, height);
+  return (role == "second" ? "second image " : role + " ") + path + line;
 }
 
 WarpCameraFile loadWarpCamera(const std::string& path) {

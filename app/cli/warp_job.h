@@ -38,17 +38,34 @@ struct WarpCameraFile {
 };
 WarpCameraFile loadWarpCamera(const std::string& path);
 
+// A file read with the request (--depth, --second), for the command's report. Parsing prints
+// nothing: the command says these with its result, on the stream its report goes to (stderr
+// for -o -) or in its JSON object, so standard output carries only the image or that object.
+struct RequestInput {
+  struct DepthRange {
+    double min = 0.0, max = 0.0;  // over the pixels with depth
+    long long holes = 0;
+  };
+  std::string role;  // "depth" or "second" (the JSON key)
+  std::string path;
+  int width = 0;
+  int height = 0;
+  std::optional<DepthRange> depth;  // the depth map's
+  std::string describe() const;     // "depth D.exr: 96x64, 1..9.5, 0 holes"
+};
+
 struct WarpRequest {
   RenderOptions options;  // filter, threads; width × height 0: the output-frame rule per input
   std::optional<ImageF> depth;  // --depth FILE, read once for every input
   std::optional<ImageF> second;  // --second FILE, linear premultiplied, for compositing cameras
   WriteImageOptions write;      // --quality, --bit-depth (write_args.h); progress unset
   bool stats = false;
+  std::vector<RequestInput> inputs;  // the depth map and second image read, in that order
 };
 
 // --size WxH, --filter, --threads, --quality, --bit-depth (and the attributed renderer's
 // --depth, --depth-scale, --disparity and --second when `args` has them): the options warp and
-// batch share.
+// batch share. Writes nothing to stdout.
 WarpRequest parseWarpRequest(const Args& args);
 
 using Progress = std::function<bool(double)>;

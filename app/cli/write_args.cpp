@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "app/cli/write_args.h"
 
-#include <exception>
-#include <stdexcept>
-
 namespace artcam::cli {
 
 std::string pixelTypeForBitDepth(const std::string& bit_depth) {
@@ -14,19 +11,7 @@ std::string pixelTypeForBitDepth(const std::string& bit_depth) {
 }
 
 void parseWriteOptions(const Args& args, WriteImageOptions& options) {
-  if (const auto quality = args.value("--quality")) {
-    int value = 0;
-    try {
-      size_t used = 0;
-      value = std::stoi(*quality, &used);
-      if (used != quality->size()) throw std::invalid_argument(*quality);
-    } catch (const std::exception&) {
-      throw UsageError("--quality expects a whole number from 1 to 100, not \"" + *quality + "\"");
-    }
-    if (value < 1 || value > 100)
-      throw UsageError("--quality expects a whole number from 1 to 100, not \"" + *quality + "\"");
-    options.jpeg_quality = value;
-  }
+  if (args.has("--quality")) options.jpeg_quality = intOption(args, "--quality", 0, 1, 100);
   if (const auto bits = args.value("--bit-depth")) options.pixel_type = pixelTypeForBitDepth(*bits);
   if (const auto space = args.value("--colourspace")) {
     if (*space == "input")

@@ -9,8 +9,6 @@
 #include "core/effects/multi_perspective.h"
 
 #include <array>
-#include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 namespace artcam {
@@ -85,26 +83,22 @@ Artcam photoGlc(const EffectValues& v, FrameSize frame) {
       photoParallaxCamera({xy(v, "shift"), xy(v, "shift-per-u"), xy(v, "shift-per-v")}, frame));
 }
 
-std::string numberText(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 }  // namespace
 
 const std::vector<EffectSpec>& effectSpecs() {
   // "norm": normalised frame units, 1 = half the larger image side (frames.h).
   static const std::vector<EffectSpec> specs = {
-      {"barrel", "radial lens u' = u/(1 - k r^2), k < 0 barrel",
+      {"barrel", "Barrel", "radial lens u' = u/(1 - k r^2), k < 0 barrel",
        {{"k", "radial coefficient", {-0.15}, -1.0, 0.0, ""}}, false, radialLens},
-      {"pincushion", "radial lens u' = u/(1 - k r^2), k > 0 pincushion",
+      {"pincushion", "Pincushion", "radial lens u' = u/(1 - k r^2), k > 0 pincushion",
        {{"k", "radial coefficient", {0.15}, 0.0, 0.45, ""}}, false, radialLens},
-      {"twist", "each row turns by atan(rate·v): v' = v + rate·u·v",
+      {"twist", "Twist", "each row turns by atan(rate·v): v' = v + rate·u·v",
        {{"rate", "turn per row", {0.3}, -1.0, 1.0, ""}}, false, twist},
-      {"inverse-perspective", "far (upper) rows magnify: p' = p/(1 + gain·v)",
+      {"inverse-perspective", "Inverse perspective",
+       "far (upper) rows magnify: p' = p/(1 + gain·v)",
        {{"gain", "magnification per row", {0.35}, -0.85, 0.85, ""}}, false, inversePerspective},
-      {"chromatic-aberration", "three RTcams scale and shift R, G, B (Fig 4 middle)",
+      {"chromatic-aberration", "Chromatic aberration",
+       "three RTcams scale and shift R, G, B (Fig 4 middle)",
        {{"red", "red scale - 1", {0.006}, -0.1, 0.1, ""},
         {"green", "green scale - 1", {0.0}, -0.1, 0.1, ""},
         {"blue", "blue scale - 1", {-0.006}, -0.1, 0.1, ""},
@@ -115,18 +109,20 @@ const std::vector<EffectSpec>& effectSpecs() {
         {"green-dy", "green shift down", {0.0}, -0.1, 0.1, "norm"},
         {"blue-dy", "blue shift down", {0.0}, -0.1, 0.1, "norm"}},
        false, chromaticAberration},
-      {"colour-shift", "each layer moves by its colour, p(1 + s_k c_k) (Fig 4 right, eq 8/9)",
+      {"colour-shift", "Colour shift",
+       "each layer moves by its colour, p(1 + s_k c_k) (Fig 4 right, eq 8/9)",
        {{"s-red", "red layer's s", {0.05}, -0.5, 0.5, ""},
         {"s-green", "green layer's s", {0.0}, -0.5, 0.5, ""},
         {"s-blue", "blue layer's s", {-0.03}, -0.5, 0.5, ""}},
        false, colourShift},
-      {"aerial-perspective", "contrast falls with log depth towards haze (§3)",
+      {"aerial-perspective", "Aerial perspective",
+       "contrast falls with log depth towards haze (§3)",
        {{"haze", "linear RGB of the far haze", {0.62, 0.72, 0.86}, 0.0, 1.0, ""},
         {"strength", "haze fraction at far", {0.7}, 0.0, 1.0, ""},
         {"near", "depth where haze starts", {1.0}, 0.01, 1e4, "depth units"},
         {"far", "depth of full strength", {100.0}, 0.02, 1e5, "depth units"}},
        true, aerialPerspective},
-      {"depth-of-field",
+      {"depth-of-field", "Depth of field",
        "Gaussian blur, sigma = blur·|d - focus|/(focus + thin-lens·(d - focus)); focus 0 with "
        "thin-lens 0: sigma = blur·d, proportional to depth (§3)",
        {{"focus", "depth in focus (0: blur proportional to depth, with thin-lens 0)", {2.0}, 0.0,
@@ -134,7 +130,7 @@ const std::vector<EffectSpec>& effectSpecs() {
         {"blur", "sigma at infinite depth", {0.01}, 0.0, 0.1, "norm"},
         {"thin-lens", "1 thin lens (/d), 0 linear (/focus)", {1.0}, 0.0, 1.0, ""}},
        true, depthOfField},
-      {"composite",
+      {"composite", "Composite",
        "blends a second image (artcam warp --second) with the photo by a Porter-Duff operator in "
        "premultiplied (projective) alpha, one quadratic form per colour element (eq 6/7)",
        {{"op", "the photo OP the second image (under: the second over the photo; mix with amount "
@@ -144,14 +140,14 @@ const std::vector<EffectSpec>& effectSpecs() {
        false, composite, true},
       // Multi-perspective pictures of the photo and its depth (multi_perspective.h); every
       // parameter is a depth or an image shift, so none needs the photo's focal.
-      {"photo-pushbroom",
+      {"photo-pushbroom", "Push-broom view",
        "push-broom view of the photo and its depth: along the sweep a, a·p' = "
        "(a·p)·d/reference-depth",
        {{"reference-depth", "depth that keeps its size", {3.0}, 0.01, 1e4, "depth units"},
         {"angle", "sweep direction in degrees: 0 along rows, 90 along columns", {0.0}, -90.0,
          90.0, ""}},
        true, photoPushbroom},
-      {"photo-xslit",
+      {"photo-xslit", "Crossed-slits view",
        "crossed-slits view of the photo and its depth: u' = u·d·(r + s_u)/(r·(d + s_u)), "
        "r = reference-depth, v' likewise",
        {{"slit-u-behind", "distance of the slit that sets u behind the photo's centre", {0.0}, 0.0,
@@ -160,7 +156,7 @@ const std::vector<EffectSpec>& effectSpecs() {
          100.0, "depth units"},
         {"reference-depth", "depth that keeps its size", {3.0}, 0.01, 1e4, "depth units"}},
        true, photoXSlit},
-      {"photo-glc",
+      {"photo-glc", "General linear view",
        "GLC view of the photo and its depth, its centre sliding with the image point: "
        "p' = p + e(p')/d",
        {{"shift", "image shift of a point at depth 1, at the centre (x,y)", {0.0, 0.0}, -2.0, 2.0,
@@ -185,57 +181,10 @@ const EffectParam* findParam(const EffectSpec& effect, const std::string& name) 
   return nullptr;
 }
 
-std::string rangeText(const EffectParam& param) {
-  if (param.isChoice()) {
-    std::string names;
-    for (const std::string& n : param.choices) names += (names.empty() ? "" : "|") + n;
-    return names;
-  }
-  std::string text = numberText(param.min) + " … " + numberText(param.max);
-  return param.unit.empty() ? text : text + " " + param.unit;
-}
-
-std::string defaultText(const EffectParam& param) {
-  if (param.isChoice()) return param.choices.at(static_cast<size_t>(param.value.at(0)));
-  std::string text;
-  for (const double v : param.value) text += (text.empty() ? "" : ",") + numberText(v);
-  return text;
-}
-
-std::string checkEffectValue(const EffectParam& param, const std::vector<double>& value) {
-  if (value.size() != param.value.size())
-    return param.size() == 1 ? param.name + " expects one number"
-                             : param.name + " expects " + std::to_string(param.size()) +
-                                   " comma-separated numbers";
-  for (const double v : value)
-    if (!(v >= param.min && v <= param.max))  // NaN fails too
-      return param.name + " = " + numberText(v) + " is outside its range " + rangeText(param);
-  if (param.isChoice() && value.front() != std::floor(value.front()))
-    return param.name + " = " + numberText(value.front()) + " is not one of " + rangeText(param);
-  return {};
-}
-
-std::optional<double> choiceValue(const EffectParam& param, const std::string& text) {
-  for (size_t i = 0; i < param.choices.size(); ++i)
-    if (param.choices[i] == text) return static_cast<double>(i);
-  for (size_t i = 0; i < param.choices.size(); ++i)
-    if (std::to_string(i) == text) return static_cast<double>(i);
-  return std::nullopt;
-}
-
 Artcam buildEffect(const std::string& name, const EffectValues& values, FrameSize frame) {
   const EffectSpec* spec = findEffect(name);
   if (!spec) throw std::invalid_argument("unknown effect \"" + name + "\"");
-  EffectValues complete;
-  for (const EffectParam& p : spec->params) complete[p.name] = p.value;
-  for (const auto& [key, value] : values) {
-    const EffectParam* param = findParam(*spec, key);
-    if (!param) throw std::invalid_argument("effect " + name + " has no parameter \"" + key + "\"");
-    if (const std::string problem = checkEffectValue(*param, value); !problem.empty())
-      throw std::invalid_argument(name + ": " + problem);
-    complete[key] = value;
-  }
-  return spec->build(complete, frame);
+  return spec->build(completeEffectValues(name, spec->params, values), frame);
 }
 
 }  // namespace artcam

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // The image effects, one table: what `artcam preset NAME`, `artcam preset list`, `artcam preset
 // --help`, the manual page and the studio's effects panel offer, and the builder that makes each
-// effect's camera. A row holds the effect's name, a one-line summary, its parameters (name,
-// number or vector of N numbers, range, default, unit), whether it reads depth, and its builder.
+// effect's camera. A row holds the effect's name, its human name, a one-line summary, its
+// parameters (effect_param.h: name, number or vector of N numbers, range, default, unit),
+// whether it reads depth, and its builder. The tensor panel's presets are rows of it too.
 //
 // Adding an effect: its camera function (e.g. image_warps.h), one row in effect_table.cpp that
 // calls it, and its test. The CLI options (--NAME VALUE, vectors comma-separated), the panel's
@@ -23,35 +24,18 @@
 //   layers, depth of field a depth output that is the blur variance.
 #pragma once
 
+#include "core/effects/effect_param.h"
 #include "core/model/artcam.h"
 #include "core/model/camera.h"
 
-#include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
 namespace artcam {
 
-// A parameter's values: one number, or a vector of N (the default's size is the type).
-using EffectValues = std::map<std::string, std::vector<double>>;
-
-struct EffectParam {
-  std::string name;           // the CLI option without "--", the panel's label: "k", "haze"
-  std::string meaning;        // a few words for --help, the manual page and the panel's tooltip
-  std::vector<double> value;  // the default; 1 number, or N for a vector parameter
-  double min = 0, max = 0;    // inclusive, for every component
-  std::string unit;           // "" (a plain factor), "norm" (normalised frame units), "depth units"
-  // A named choice (composite's operator): the value is the index of a name, min 0 and max the
-  // last index; the CLI takes and writes the name, the panel a whole number.
-  std::vector<std::string> choices = {};
-
-  int size() const { return static_cast<int>(value.size()); }
-  bool isChoice() const { return !choices.empty(); }
-};
-
 struct EffectSpec {
-  std::string name;
+  std::string name;     // the CLI's preset name and the project file's: "barrel"
+  std::string label;    // the studio's human name: "Barrel", "Depth of field"
   std::string summary;
   std::vector<EffectParam> params;
   bool needs_depth = false;
@@ -65,16 +49,6 @@ struct EffectSpec {
 const std::vector<EffectSpec>& effectSpecs();
 const EffectSpec* findEffect(const std::string& name);
 const EffectParam* findParam(const EffectSpec& effect, const std::string& name);
-
-// "-1 … 0"; with a unit "0.01 … 10000 depth units"; a choice's names "over|under|…".
-std::string rangeText(const EffectParam& param);
-// "-0.15", "0.62,0.72,0.86": the default as the CLI writes it; a choice's name, "over".
-std::string defaultText(const EffectParam& param);
-// Empty when `value` suits the parameter, else one line naming it: "k = 0.9 is outside its
-// range -1 … 0", "haze expects 3 comma-separated numbers", "op = 2.5 is not one of over|…".
-std::string checkEffectValue(const EffectParam& param, const std::vector<double>& value);
-// A choice parameter's value from its name or its index ("over", "0"); empty if neither.
-std::optional<double> choiceValue(const EffectParam& param, const std::string& text);
 
 // The row's builder with the defaults filled in for missing parameters. Throws
 // std::invalid_argument for an unknown effect or parameter, a value checkEffectValue refuses,

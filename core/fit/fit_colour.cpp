@@ -2,10 +2,12 @@
 #include "core/fit/fit_colour.h"
 
 #include "core/colour/colour_difference.h"
+#include "core/fit/cross_validation.h"
 #include "core/fit/dlt.h"
 #include "core/fit/fit_image.h"
+#include "core/fit/msac.h"
 #include "core/fit/normalize.h"
-#include "core/fit/robust.h"
+#include "core/fit/report_format.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
@@ -13,11 +15,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <random>
 #include <sstream>
 
 namespace artcam {
@@ -47,12 +47,6 @@ struct Fitted {
   Status status;
   ColourMap map;
 };
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 std::string name(ColourModel model) { return std::string(colourModelName(model)); }
 
@@ -215,7 +209,8 @@ Fitted fitQuadratic(const Samples& s, bool check_pole = true) {
   colourBox(s, lo, hi);
   out.status = Status::failure(
       "the quadratic colour map fitted to these samples has a pole: its denominator changes "
-      "sign inside the colour box [" + fmt(lo.minCoeff()) + ", " + fmt(hi.maxCoeff()) +
+      "sign inside the colour box [" +
+      threeFigures(lo.minCoeff()) + ", " + threeFigures(hi.maxCoeff()) +
       "]; a simpler model, or more samples spread over the gamut, avoids it");
   return out;
 }
@@ -239,21 +234,19 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
 
-// K-fold held-out mean ΔE00; NaN when a fold leaves too few samples or a fold's fit fails.
+// K-fold held-out mean ΔE00 (cross_validation.h; leave-one-out up to 10 samples); NaN when a
+// fold leaves too few samples or a fold's fit fails.
 double heldOut(ColourModel model, const Samples& s) {
   const int m = s.size();
-  const int folds = std::min(m, 10);
-  if (folds < 2 || m - (m + folds - 1) / folds < minimumColourSamples(model))
-    return std::numeric_limits<double>::quiet_NaN();
-  double sum = 0.0;
-  for (int f = 0; f < folds; ++f) {
-    std::vector<int> train, held;
-    for (int k = 0; k < m; ++k) (k % folds == f ? held : train).push_back(k);
-    const Fitted fit = fitModel(model, s.subset(train));
-    if (!fit.status) return std::numeric_limits<double>::quiet_NaN();
-    for (double e : deltaEs(fit.map, s.subset(held))) sum += e;
-  }
-  return sum / m;
+  const auto sum =
+      crossValidatedSum(m, std::min(m, 10), minimumColourSamples(model),
+                        [&](const std::vector<int>& train,
+                            const std::vector<int>& held) -> std::optional<std::vector<double>> {
+                          const Fitted fit = fitModel(model, s.subset(train));
+                          if (!fit.status) return std::nullopt;
+                          return deltaEs(fit.map, s.subset(held));
+                        });
+  return sum ? *sum / m : std::numeric_limits<double>::quiet_NaN();
 }
 
 // The simplest candidate whose held-out error a richer one does not beat by `improvement`,
@@ -328,8 +321,9 @@ ColourFitSummary fitOrSelect(const Samples& s, const ColourFitOptions& options) 
   why << "auto chose " << colourModelName(stored->model) << "; held-out mean dE00:";
   for (const ColourCandidate& c : summary.candidates)
     why << " " << colourModelName(c.model) << " "
-        << (!c.fitted ? std::string("refused")
-                      : c.held_out_de < 0 ? std::string("n/a") : fmt(c.held_out_de));
+        << (!c.fitted           ? std::string("refused")
+            : c.held_out_de < 0 ? std::string("n/a")
+                                : threeFigures(c.held_out_de));
   if (winner && winner->model != stored->model)
     why << "; root-polynomial did best but is not a quadratic form (its sqrt(rg) terms), so the "
            "camera holds the best representable model, "
@@ -338,7 +332,7 @@ ColourFitSummary fitOrSelect(const Samples& s, const ColourFitOptions& options) 
   return summary;
 }
 
-// MSAC with local optimisation over minimal sets (robust.h's scheme), scored by ΔE00. A named
+// MSAC with local optimisation over minimal sets (msac.h, as robust.h), scored by ΔE00. A named
 // model samples its own minimal sets. Auto samples the affine model (4 samples: a 13-sample
 // quadratic minimal set is rarely outlier-free and fits noise wildly) and lets the local
 // optimisation re-fit both the affine and, given twice its minimum of inliers, the quadratic
@@ -355,67 +349,67 @@ Status findColourInliers(const Samples& s, const ColourFitOptions& options, std:
     return Status::failure("robust fitting of the " + name(sampled) + " colour model needs at least " +
                            std::to_string(k) + " samples, have " + std::to_string(m));
   const double t2 = options.robust_threshold_de * options.robust_threshold_de;
-  struct Scored {
-    double cost = std::numeric_limits<double>::infinity();
-    std::vector<int> inliers;
-  };
   const auto score = [&](const ColourMap& map) {
-    Scored sc;
-    sc.cost = 0.0;
+    MsacScore sc;
     const std::vector<double> e = deltaEs(map, s);
-    for (int j = 0; j < m; ++j) {
-      const double e2 = std::isfinite(e[j]) ? e[j] * e[j] : t2;
-      sc.cost += std::min(e2, t2);
-      if (e2 < t2) sc.inliers.push_back(j);
-    }
+    for (int j = 0; j < m; ++j) sc.add(j, e[j] * e[j], t2);
     return sc;
   };
-  std::mt19937_64 rng(options.robust_seed);
-  std::vector<int> all(m);
-  std::iota(all.begin(), all.end(), 0);
-  Scored best;
-  double needed = options.robust_max_iterations;
-  int it = 0;
-  for (; it < options.robust_max_iterations && it < needed; ++it) {
-    for (int j = 0; j < k; ++j)
-      std::swap(all[j], all[j + std::uniform_int_distribution<int>(0, m - 1 - j)(rng)]);
-    const Fitted fit =
-        fitModel(sampled, s.subset(std::vector<int>(all.begin(), all.begin() + k)), false);
-    if (!fit.status) continue;
-    Scored sc = score(fit.map);
-    if (sc.cost >= best.cost) continue;
-    for (int lo = 0; lo < 4 && static_cast<int>(sc.inliers.size()) > k; ++lo) {
-      Scored next;
-      for (ColourModel model : {sampled, ColourModel::Quadratic}) {
-        if (model == ColourModel::Quadratic &&
-            (!auto_model || static_cast<int>(sc.inliers.size()) < quadratic_from))
-          continue;
-        const Fitted refit = fitModel(model, s.subset(sc.inliers));
-        if (!refit.status) continue;
-        Scored t = score(refit.map);
-        if (t.cost < next.cost) next = std::move(t);
-      }
-      if (next.cost >= sc.cost) break;
-      sc = std::move(next);
+  const auto fit_sample = [&](const std::vector<int>& sample) -> std::optional<MsacScore> {
+    const Fitted fit = fitModel(sampled, s.subset(sample), false);
+    if (!fit.status) return std::nullopt;
+    return score(fit.map);
+  };
+  // The better scoring of the sampled model and, for auto with enough inliers, the quadratic.
+  const auto refit = [&](const std::vector<int>& in) -> std::optional<MsacScore> {
+    std::optional<MsacScore> next;
+    for (ColourModel model : {sampled, ColourModel::Quadratic}) {
+      if (model == ColourModel::Quadratic &&
+          (!auto_model || static_cast<int>(in.size()) < quadratic_from))
+        continue;
+      const Fitted fit = fitModel(model, s.subset(in));
+      if (!fit.status) continue;
+      MsacScore t = score(fit.map);
+      if (!next || t.cost < next->cost) next = std::move(t);
     }
-    best = std::move(sc);
-    needed = ransacIterations(options.robust_confidence, static_cast<double>(best.inliers.size()) / m,
-                              k, options.robust_max_iterations);
-  }
-  iterations = it;
+    return next;
+  };
+  MsacOptions search;
+  search.confidence = options.robust_confidence;
+  search.max_iterations = options.robust_max_iterations;
+  search.seed = options.robust_seed;
+  MsacResult best = runMsac({m, k, fit_sample, refit}, search);
+  iterations = best.iterations;
   if (static_cast<int>(best.inliers.size()) < k)
     return Status::failure("no " + name(sampled) + " colour map explains more than " +
                            std::to_string(best.inliers.size()) + " of the " + std::to_string(m) +
-                           " samples within dE00 " + fmt(options.robust_threshold_de));
+                           " samples within dE00 " + threeFigures(options.robust_threshold_de));
   inliers = std::move(best.inliers);
   return Status::success();
 }
 
 }  // namespace
 
+Status ColourFitOptions::check(const FieldNames& names) const {
+  using Ends = OptionsCheck::Ends;
+  return OptionsCheck(names)
+      .oneOf("model", colourModelName(model) != "unknown",
+             "auto, linear, affine, root-polynomial or quadratic", static_cast<int>(model))
+      .number("auto_improvement", auto_improvement, 0.0, 1.0, Ends::AboveMin)
+      .number("robust_threshold_de", robust_threshold_de, 0.0, OptionsCheck::kNoBound,
+              Ends::AboveMin)
+      .number("robust_confidence", robust_confidence, 0.0, 1.0, Ends::AboveMin)
+      .whole("robust_max_iterations", robust_max_iterations, 1, 10000000)
+      .status();
+}
+
 ColourFitSummary fitColourSamples(const std::vector<PointMatch>& samples,
                                   const ColourFitOptions& options) {
   ColourFitSummary summary;
+  if (const Status s = options.check(); !s) {
+    summary.status = s;
+    return summary;
+  }
   Samples s;
   for (size_t k = 0; k < samples.size(); ++k) {
     const PointMatch& p = samples[k];
@@ -448,7 +442,7 @@ ColourFitSummary fitColourSamples(const std::vector<PointMatch>& samples,
     summary = fitOrSelect(s.subset(inliers), plain);
     summary.inliers = inliers;
     robust_note = "robust: " + std::to_string(inliers.size()) + " of " + std::to_string(s.size()) +
-                  " samples within dE00 " + fmt(options.robust_threshold_de) + " after " +
+                  " samples within dE00 " + threeFigures(options.robust_threshold_de) + " after " +
                   std::to_string(iterations) + " iterations";
   } else {
     summary = fitOrSelect(s, options);
@@ -476,7 +470,8 @@ std::string ColourFitSummary::report() const {
   if (!status) return "colour fit failed: " + status.message;
   std::ostringstream out;
   out << colourModelName(map.model) << " colour map, " << delta_e.size() << " samples, dE00 mean "
-      << fmt(mean_de) << ", median " << fmt(median_de) << ", max " << fmt(max_de);
+      << threeFigures(mean_de) << ", median " << threeFigures(median_de) << ", max "
+      << threeFigures(max_de);
   return out.str();
 }
 
@@ -489,9 +484,11 @@ FitRecord ColourFitSummary::record() const {
   for (double e : delta_e) sq += e * e;
   r.rms_px = delta_e.empty() ? 0.0 : std::sqrt(sq / static_cast<double>(delta_e.size()));
   r.max_px = max_de;
-  r.reason = "colour block fitted to colour samples; residuals are CIEDE2000 dE00, not pixels "
-             "(mean " + fmt(mean_de) + ", median " + fmt(median_de) + ")";
-  if (held_out_de >= 0) r.reason += "; held-out mean dE00 " + fmt(held_out_de);
+  r.reason =
+      "colour block fitted to colour samples; residuals are CIEDE2000 dE00, not pixels "
+      "(mean " +
+      threeFigures(mean_de) + ", median " + threeFigures(median_de) + ")";
+  if (held_out_de >= 0) r.reason += "; held-out mean dE00 " + threeFigures(held_out_de);
   if (!reason.empty()) r.reason += "; " + reason;
   r.inliers = inliers;
   return r;

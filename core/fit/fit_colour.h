@@ -30,6 +30,7 @@
 #pragma once
 
 #include "core/colour/colour_map.h"
+#include "core/fit/options_check.h"
 #include "core/model/fit_record.h"
 #include "core/model/status.h"
 
@@ -48,6 +49,12 @@ struct ColourFitOptions {
   double robust_confidence = 0.999;
   int robust_max_iterations = 10000;
   std::uint64_t robust_seed = 20261122;
+
+  // The ranges (options_check.h): model one of the colour models, auto_improvement and
+  // robust_confidence in (0, 1], robust_threshold_de finite and above 0, robust_max_iterations
+  // 1..10000000. ok, or a failure naming the first field outside its range; fitColourSamples
+  // returns that failure without fitting.
+  Status check(const FieldNames& names = {}) const;
 };
 
 struct ColourCandidate {

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/fit/fit_image.h"
 
+#include "core/fit/cross_validation.h"
 #include "core/fit/dlt.h"
 #include "core/fit/normalize.h"
 #include "core/fit/poles.h"
 #include "core/fit/refine.h"
+#include "core/fit/report_format.h"
 #include "core/fit/robust.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
@@ -13,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -62,12 +63,6 @@ struct ModelFit {
   double algebraic_rms = -1.0;  // stored units, before refinement
   PoleCheck poles;
 };
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 std::string moreMatches(int have, int need) {
   const int more = need - have;
@@ -368,23 +363,27 @@ double rmsStored(const Camera& camera, const Problem& pb) {
   return rms(residuals(camera, pb)) / pb.target_units_per_stored_unit;
 }
 
-// K-fold held-out RMS error in target units; NaN when the folds leave too few matches.
+// Folds of the held-out error: leave-one-out up to 10 matches, 10 folds up to 5000, then 3
+// (each fold's fit then still sees two thirds of a large set, at a third of the cost).
+int foldCount(int matches) { return matches > 5000 ? 3 : std::min(matches, 10); }
+
+// K-fold held-out RMS error in target units (cross_validation.h); NaN when the folds leave too
+// few matches or a fold's fit fails.
 double heldOutError(ModelClass model, const Problem& pb, const FitOptions& options) {
   const int m = pb.size();
-  const int folds = m > 5000 ? 3 : std::min(m, 10);
-  if (folds < 2 || m - (m + folds - 1) / folds < minimumMatches(model, pb.dimension))
-    return std::numeric_limits<double>::quiet_NaN();
   FitOptions fold_options = options;
   fold_options.restarts = 0;
-  double sum = 0.0;
-  for (int f = 0; f < folds; ++f) {
-    std::vector<int> train, held;
-    for (int k = 0; k < m; ++k) (k % folds == f ? held : train).push_back(k);
-    const ModelFit fit = fitModel(model, pb.subset(train), fold_options);
-    if (!fit.status) return std::numeric_limits<double>::quiet_NaN();
-    for (double e : residuals(fit.camera, pb.subset(held))) sum += e * e;
-  }
-  return std::sqrt(sum / m);
+  const auto sum =
+      crossValidatedSum(m, foldCount(m), minimumMatches(model, pb.dimension),
+                        [&](const std::vector<int>& train,
+                            const std::vector<int>& held) -> std::optional<std::vector<double>> {
+                          const ModelFit fit = fitModel(model, pb.subset(train), fold_options);
+                          if (!fit.status) return std::nullopt;
+                          std::vector<double> e = residuals(fit.camera, pb.subset(held));
+                          for (double& v : e) v *= v;
+                          return e;
+                        });
+  return sum ? std::sqrt(*sum / m) : std::numeric_limits<double>::quiet_NaN();
 }
 
 // Free parameters of a model class (the tensors up to scale): 2D translation 2, similarity 4,
@@ -478,8 +477,7 @@ std::pair<double, double> divergence(const Camera& rich, const Camera& simple, c
 std::vector<Candidate> scoreLadder(const Problem& pb, const FitOptions& options) {
   std::vector<Candidate> out;
   const int m = pb.size();
-  const int folds = m > 5000 ? 3 : std::min(m, 10);
-  const int train_size = m - (m + folds - 1) / folds;
+  const int train_size = smallestTrainingSet(m, foldCount(m));
   for (ModelClass model : pb.ladder) {
     Candidate c;
     c.model = model;
@@ -561,16 +559,16 @@ Choice chooseModel(std::vector<Candidate>& candidates, const Problem& pb,
       }
     if (!choice.pick) return choice;
     why << modelClassName(choice.pick->model) << " by held-out error (" << pb.size()
-        << " matches): " << fmt(choice.pick->held_out);
+        << " matches): " << threeFigures(choice.pick->held_out);
     if (best_c != choice.pick)
-      why << " is within " << fmt(100.0 * (1.0 / options.auto_improvement - 1.0)) << " % of "
-          << modelClassName(best_c->model) << " " << fmt(best_c->held_out);
+      why << " is within " << threeFigures(100.0 * (1.0 / options.auto_improvement - 1.0))
+          << " % of " << modelClassName(best_c->model) << " " << threeFigures(best_c->held_out);
     else
       why << " is the lowest";
     if (choice.pick != &candidates.back())
       for (const Candidate& c : candidates)
         if (c.fit.status && c.model > choice.pick->model) {
-          why << "; " << modelClassName(c.model) << " " << fmt(c.held_out);
+          why << "; " << modelClassName(c.model) << " " << threeFigures(c.held_out);
           break;
         }
   } else {
@@ -582,9 +580,9 @@ Choice chooseModel(std::vector<Candidate>& candidates, const Problem& pb,
       if (simpler && pb.dimension == 2) {
         const auto [between, at_pairs] = divergence(c.fit.camera, simpler->fit.camera, pb);
         if (!(between <= 3.0 * at_pairs + 3.0 * sigma))
-          c.note = "bends between the pairs: " + fmt(between) + " px from the " +
+          c.note = "bends between the pairs: " + threeFigures(between) + " px from the " +
                    std::string(modelClassName(simpler->model)) + " map inside the pairs vs " +
-                   fmt(at_pairs) + " px at them";
+                   threeFigures(at_pairs) + " px at them";
       }
       if (c.eligible()) {
         simpler = &c;
@@ -597,18 +595,18 @@ Choice chooseModel(std::vector<Candidate>& candidates, const Problem& pb,
     for (const Candidate& c : candidates)
       if (c.eligible() && &c != choice.pick && (!rival || c.aic < rival->aic)) rival = &c;
     why << modelClassName(choice.pick->model) << " by information criterion (AIC, clicks σ "
-        << fmt(sigma) << (pb.dimension == 2 ? " px" : " units") << ", " << pb.size()
-        << " matches, too few to validate every model held-out): " << fmt(choice.pick->aic)
-        << " (RMS " << fmt(choice.pick->train_rms) << ")";
+        << threeFigures(sigma) << (pb.dimension == 2 ? " px" : " units") << ", " << pb.size()
+        << " matches, too few to validate every model held-out): " << threeFigures(choice.pick->aic)
+        << " (RMS " << threeFigures(choice.pick->train_rms) << ")";
     if (rival)
-      why << " vs " << modelClassName(rival->model) << " " << fmt(rival->aic) << " (RMS "
-          << fmt(rival->train_rms) << ")";
+      why << " vs " << modelClassName(rival->model) << " " << threeFigures(rival->aic) << " (RMS "
+          << threeFigures(rival->train_rms) << ")";
   }
   why << "; held-out RMS:";
   for (const Candidate& c : candidates)
     if (c.fit.status)
       why << " " << modelClassName(c.model) << " "
-          << (std::isnan(c.held_out) ? std::string("n/a") : fmt(c.held_out));
+          << (std::isnan(c.held_out) ? std::string("n/a") : threeFigures(c.held_out));
   for (const Candidate& c : candidates)
     if (c.fit.status && !c.note.empty()) why << "; " << modelClassName(c.model) << " " << c.note;
   choice.reason = why.str();
@@ -786,13 +784,32 @@ std::string FitSummary::report() const {
   const int p = camera.layout().find(BlockKind::Position);
   const char* units = p >= 0 && camera.blocks()[p].size == 4 ? " units" : " px";
   std::ostringstream s;
-  s << record.model << ", " << record.matches << " matches, RMS " << fmt(record.rms_px) << units
-    << ", max " << fmt(record.max_px) << units;
+  s << record.model << ", " << record.matches << " matches, RMS " << threeFigures(record.rms_px)
+    << units << ", max " << threeFigures(record.max_px) << units;
   return s.str();
+}
+
+Status FitOptions::check(const FieldNames& names) const {
+  using Ends = OptionsCheck::Ends;
+  constexpr double kNoBound = OptionsCheck::kNoBound;
+  return OptionsCheck(names)
+      .oneOf("model", modelClassName(model) != "unknown",
+             "auto, translation, similarity, affine, homography or quadratic",
+             static_cast<int>(model))
+      .number("auto_improvement", auto_improvement, 0.0, 1.0, Ends::AboveMin)
+      .number("click_sigma_px", click_sigma_px, 0.0, kNoBound, Ends::AboveMin)
+      .whole("restarts", restarts, 0, 1000)
+      .number("robust_threshold_px", robust_threshold_px, 0.0, kNoBound, Ends::AboveMin)
+      .status();
 }
 
 FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize source_size,
                           FrameSize target_size, const FitOptions& options) {
+  if (const Status s = options.check(); !s) {
+    FitSummary summary;
+    summary.status = s;
+    return summary;
+  }
   if (!source_size.isImage() || !target_size.isImage()) {
     FitSummary summary;
     summary.status = Status::failure("the source and target frame sizes must be positive");
@@ -824,10 +841,10 @@ FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize sour
     if (!summary.status) return summary;
     summary.record.inliers = inl.inliers;
     summary.record.residuals_px = reprojectionResiduals(summary.camera, enabled);
-    summary.record.reason += std::string(summary.record.reason.empty() ? "" : "; ") + "robust: " +
-                             std::to_string(inl.inliers.size()) + " of " +
+    summary.record.reason += std::string(summary.record.reason.empty() ? "" : "; ") +
+                             "robust: " + std::to_string(inl.inliers.size()) + " of " +
                              std::to_string(enabled.size()) + " matches within " +
-                             fmt(options.robust_threshold_px) + " px after " +
+                             threeFigures(options.robust_threshold_px) + " px after " +
                              std::to_string(inl.iterations) + " iterations";
     return summary;
   }
@@ -862,6 +879,11 @@ FitSummary fitImageCamera(const std::vector<PointMatch>& matches, FrameSize sour
 }
 
 FitSummary fitObjectCamera(const std::vector<PointMatch>& matches, const FitOptions& options) {
+  if (const Status s = options.check(); !s) {
+    FitSummary summary;
+    summary.status = s;
+    return summary;
+  }
   std::vector<const PointMatch*> used;
   if (const std::string error = collect(matches, 3, used); !error.empty()) {
     FitSummary summary;

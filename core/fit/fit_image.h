@@ -8,6 +8,7 @@
 // cameras are stored.
 #pragma once
 
+#include "core/fit/options_check.h"
 #include "core/model/camera.h"
 #include "core/model/fit_record.h"
 #include "core/model/status.h"
@@ -52,6 +53,12 @@ struct FitOptions {
   // MSAC/LO-RANSAC over minimal sets first, then the fit on the inliers (robust.h).
   bool robust = false;
   double robust_threshold_px = 3.0;
+
+  // The ranges (options_check.h): model one of the classes, auto_improvement in (0, 1],
+  // click_sigma_px and robust_threshold_px finite and above 0, restarts 0..1000. ok, or a
+  // failure naming the first field outside its range; fitImageCamera and fitObjectCamera return
+  // that failure without fitting.
+  Status check(const FieldNames& names = {}) const;
 };
 
 struct FitSummary {

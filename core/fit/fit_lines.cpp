@@ -7,6 +7,7 @@
 #include "core/fit/fit_lines.h"
 
 #include "core/fit/poles.h"
+#include "core/fit/report_format.h"
 #include "core/model/frames.h"
 
 #include <Eigen/QR>
@@ -14,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -45,12 +45,6 @@ Eigen::Matrix3d tensorOf(const Vec18& q, int i) {
   Eigen::Matrix3d m;
   m << e[0], e[1], e[2], e[1], e[3], e[4], e[2], e[4], e[5];
   return m;
-}
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
 }
 
 // Perpendicular distances of points (2 × n, pixels) from their total-least-squares line; the
@@ -345,10 +339,27 @@ std::vector<LineBow> lineBows(const Camera& camera, const std::vector<LineTrace>
   return bows;
 }
 
+Status LinesFitOptions::check(const FieldNames& names) const {
+  using Ends = OptionsCheck::Ends;
+  const bool known =
+      model == LineModel::Auto || model == LineModel::Radial || model == LineModel::Quadratic;
+  return OptionsCheck(names)
+      .oneOf("model", known, "auto, radial or quadratic", static_cast<int>(model))
+      .whole("max_iterations", max_iterations, 1, 100000)
+      .number("auto_improvement", auto_improvement, 0.0, 1.0, Ends::AboveMin)
+      .number("auto_min_gain_px", auto_min_gain_px, 0.0, OptionsCheck::kNoBound)
+      .number("min_pole_margin", min_pole_margin, 0.0, 1.0)
+      .status();
+}
+
 LinesFitSummary fitLinesCamera(const std::vector<LineTrace>& lines,
                                const std::vector<PointMatch>& pairs, FrameSize source_size,
                                FrameSize target_size, const LinesFitOptions& options) {
   LinesFitSummary out;
+  if (const Status s = options.check(); !s) {
+    out.status = s;
+    return out;
+  }
   if (!source_size.isImage() || !target_size.isImage()) {
     out.status = Status::failure("a line fit needs the source and target image sizes");
     return out;
@@ -377,7 +388,7 @@ LinesFitSummary fitLinesCamera(const std::vector<LineTrace>& lines,
     const double spread = tlsLine(px).spread;
     if (spread < 1.0) {
       out.status = Status::failure("line \"" + line.label + "\": its " + std::to_string(n) +
-                                   " points lie within " + fmt(2 * spread) +
+                                   " points lie within " + threeFigures(2 * spread) +
                                    " px of each other; trace it along the edge");
       return out;
     }
@@ -484,21 +495,23 @@ LinesFitSummary fitLinesCamera(const std::vector<LineTrace>& lines,
       out.reason = "quadratic: pairs were given and a radial lens has no freedom to meet them";
     } else if (better && quadratic.undetermined == 0) {
       out.model = LineModel::Quadratic;
-      out.reason = "auto chose quadratic: RMS bow " + fmt(quadratic_rms) + " px against the radial lens's " +
-                   fmt(radial_rms) + " px";
+      out.reason = "auto chose quadratic: RMS bow " + threeFigures(quadratic_rms) +
+                   " px against the radial lens's " + threeFigures(radial_rms) + " px";
     } else {
       out = radial_out;
-      out.reason = "auto chose radial (k " + fmt(out.radial_k) + "): the quadratic's RMS bow " +
-                   fmt(quadratic_rms) + " px is not clearly below its " + fmt(radial_rms) + " px" +
-                   (quadratic.undetermined ? " and the lines leave " +
-                                                 std::to_string(quadratic.undetermined) +
-                                                 " of its directions free"
-                                           : "");
+      out.reason = "auto chose radial (k " + threeFigures(out.radial_k) +
+                   "): the quadratic's RMS bow " + threeFigures(quadratic_rms) +
+                   " px is not clearly below its " + threeFigures(radial_rms) + " px" +
+                   (quadratic.undetermined
+                        ? " and the lines leave " + std::to_string(quadratic.undetermined) +
+                              " of its directions free"
+                        : "");
     }
   } else if (options.model == LineModel::Radial) {
-    out.reason = "radial as asked (k " + fmt(out.radial_k) + ")";
+    out.reason = "radial as asked (k " + threeFigures(out.radial_k) + ")";
   } else {
-    out.reason = "auto chose radial (k " + fmt(out.radial_k) + "): " + std::to_string(information) +
+    out.reason = "auto chose radial (k " + threeFigures(out.radial_k) +
+                 "): " + std::to_string(information) +
                  " equations beyond the lines' positions, the quadratic needs " +
                  std::to_string(quadratic_needs);
   }
@@ -529,7 +542,7 @@ FitRecord LinesFitSummary::record() const {
   }
   r.rms_px = pair_residuals_px.empty() ? 0.0 : std::sqrt(sum / pair_residuals_px.size());
   r.reason = "from " + std::to_string(bows.size()) + " straight lines (RMS bow " +
-             fmt(rms_bow_px) + " px, max " + fmt(max_bow_px) + " px); " + reason;
+             threeFigures(rms_bow_px) + " px, max " + threeFigures(max_bow_px) + " px); " + reason;
   const PoleCheck poles = checkPoles(camera);
   r.pole_checked = poles.checked;
   r.pole_free = poles.pole_free;
@@ -545,12 +558,12 @@ std::string LinesFitSummary::report() const {
   for (const LineBow& b : bows_before) before = std::max(before, b.max_px);
   std::ostringstream s;
   s << lineModelName(model) << " from " << bows.size() << " line" << (bows.size() == 1 ? "" : "s")
-    << " (" << points << " points): bow RMS " << fmt(rms_bow_px) << " px, max " << fmt(max_bow_px)
-    << " px (before: max " << fmt(before) << " px)";
+    << " (" << points << " points): bow RMS " << threeFigures(rms_bow_px) << " px, max "
+    << threeFigures(max_bow_px) << " px (before: max " << threeFigures(before) << " px)";
   if (!pair_residuals_px.empty()) {
     const FitRecord r = record();
-    s << "; " << pair_residuals_px.size() << " pairs RMS " << fmt(r.rms_px) << " px, max "
-      << fmt(r.max_px) << " px";
+    s << "; " << pair_residuals_px.size() << " pairs RMS " << threeFigures(r.rms_px) << " px, max "
+      << threeFigures(r.max_px) << " px";
   }
   return s.str();
 }

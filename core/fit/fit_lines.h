@@ -27,6 +27,7 @@
 // within about 2 px (tests/core/fit/test_fit_lines.cpp): it needs oblique edges or pairs.
 #pragma once
 
+#include "core/fit/options_check.h"
 #include "core/model/camera.h"
 #include "core/model/fit_record.h"
 #include "core/model/line_trace.h"
@@ -54,6 +55,12 @@ struct LinesFitOptions {
   // Refuse a camera whose denominator comes closer to zero over the source frame than this
   // fraction of its largest value (the margin of poles.h), as the matches fit does.
   double min_pole_margin = 1e-3;
+
+  // The ranges (options_check.h): model one of the line models, max_iterations 1..100000,
+  // auto_improvement in (0, 1], auto_min_gain_px finite and at least 0, min_pole_margin from
+  // 0 to 1. ok, or a failure naming the first field outside its range; fitLinesCamera returns
+  // that failure without fitting.
+  Status check(const FieldNames& names = {}) const;
 };
 
 // How straight one traced line comes out: its mapped points' perpendicular distances from their

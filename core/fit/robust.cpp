@@ -4,18 +4,12 @@
 #include "core/model/frames.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
-#include <numeric>
-#include <random>
+#include <optional>
+#include <string>
+#include <utility>
 
 namespace artcam {
 namespace {
-
-struct Scored {
-  double cost = std::numeric_limits<double>::infinity();
-  std::vector<int> inliers;
-};
 
 // The matches in the normalised frames, once: scoring runs over every match for every sample,
 // and the generic per-point camera evaluation (dynamic vectors) dominated the search.
@@ -37,9 +31,8 @@ NormalisedMatches normalise(const std::vector<PointMatch>& matches, FrameSize so
   return n;
 }
 
-Scored score(const Camera& camera, const NormalisedMatches& matches, double threshold) {
-  Scored s;
-  s.cost = 0.0;
+MsacScore score(const Camera& camera, const NormalisedMatches& matches, double threshold) {
+  MsacScore s;
   const double t2 = threshold * threshold;
   const Eigen::Matrix3d q0 = camera.stages()[0].q[0], q1 = camera.stages()[0].q[1],
                         q2 = camera.stages()[0].q[2];
@@ -48,10 +41,7 @@ Scored score(const Camera& camera, const NormalisedMatches& matches, double thre
     const Eigen::Vector3d& x = matches.src[k];
     const double w = x.dot(q2 * x);
     const Eigen::Vector2d y(x.dot(q0 * x) / w, x.dot(q1 * x) / w);
-    const double e2 = (y - matches.dst[k]).squaredNorm() * scale2;  // target pixels²
-    const double capped = std::isfinite(e2) ? std::min(e2, t2) : t2;
-    s.cost += capped;  // MSAC: inliers by their error, outliers by a constant
-    if (std::isfinite(e2) && e2 < t2) s.inliers.push_back(static_cast<int>(k));
+    s.add(static_cast<int>(k), (y - matches.dst[k]).squaredNorm() * scale2, t2);  // target px²
   }
   return s;
 }
@@ -64,14 +54,6 @@ std::vector<PointMatch> pick(const std::vector<PointMatch>& matches, const std::
 }
 
 }  // namespace
-
-double ransacIterations(double confidence, double inlier_share, int sample_size, int max_iterations) {
-  const double p_good = std::pow(inlier_share, sample_size);
-  if (p_good >= 1.0) return 0.0;
-  const double log_miss = std::log1p(-p_good);  // < 0 unless p_good underflows to 0
-  if (!(log_miss < 0.0)) return max_iterations;
-  return std::min<double>(max_iterations, std::log(1.0 - confidence) / log_miss);
-}
 
 RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize source_size,
                          FrameSize target_size, ModelClass model, const RobustOptions& options) {
@@ -92,36 +74,14 @@ RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize sourc
   exact.diagnostics = false;
 
   const NormalisedMatches normalised = normalise(matches, source_size, target_size);
-  std::mt19937_64 rng(options.seed);
-  std::vector<int> all(m);
-  std::iota(all.begin(), all.end(), 0);
-  Scored best;
-  double needed = options.max_iterations;
-  int it = 0;
-  for (; it < options.max_iterations && it < needed; ++it) {
-    // A random minimal set (partial Fisher–Yates).
-    for (int k = 0; k < sample_size; ++k)
-      std::swap(all[k], all[k + std::uniform_int_distribution<int>(0, m - 1 - k)(rng)]);
-    const FitSummary fit = fitImageCamera(
-        pick(matches, std::vector<int>(all.begin(), all.begin() + sample_size)), source_size,
-        target_size, exact);
-    if (!fit.status) continue;
-    Scored s = score(fit.camera, normalised, options.threshold_px);
-    if (s.cost >= best.cost) continue;
-    // Local optimisation: re-fit on the inliers while that keeps lowering the cost.
-    for (int lo = 0; lo < 4 && static_cast<int>(s.inliers.size()) > sample_size; ++lo) {
-      const FitSummary refit =
-          fitImageCamera(pick(matches, s.inliers), source_size, target_size, exact);
-      if (!refit.status) break;
-      Scored t = score(refit.camera, normalised, options.threshold_px);
-      if (t.cost >= s.cost) break;
-      s = std::move(t);
-    }
-    best = std::move(s);
-    needed = ransacIterations(options.confidence, static_cast<double>(best.inliers.size()) / m,
-                              sample_size, options.max_iterations);
-  }
-  result.iterations = it;
+  // The minimal sets and the local optimisation's re-fits are the same exact fit.
+  const auto fit = [&](const std::vector<int>& set) -> std::optional<MsacScore> {
+    const FitSummary f = fitImageCamera(pick(matches, set), source_size, target_size, exact);
+    if (!f.status) return std::nullopt;
+    return score(f.camera, normalised, options.threshold_px);
+  };
+  MsacResult best = runMsac({m, sample_size, fit, fit}, options.search);
+  result.iterations = best.iterations;
   if (static_cast<int>(best.inliers.size()) < sample_size) {
     result.status = Status::failure("no " + std::string(modelClassName(sampled)) +
                                     " explains more than " + std::to_string(best.inliers.size()) +

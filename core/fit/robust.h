@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Robust fitting: MSAC over minimal sets with local optimisation (LO-RANSAC). Hand-
+// Robust fitting: MSAC over minimal sets with local optimisation (LO-RANSAC, msac.h). Hand-
 // clicked pairs include a wrong click now and then; detector matches include many. Each
 // iteration fits the model exactly to a random minimal set (9 pairs for the quadratic), scores
 // every match by min(e², t²) (MSAC), and when a better model appears re-fits it on its inliers
@@ -8,17 +8,15 @@
 #pragma once
 
 #include "core/fit/fit_image.h"
+#include "core/fit/msac.h"
 
-#include <cstdint>
 #include <vector>
 
 namespace artcam {
 
 struct RobustOptions {
-  double threshold_px = 3.0;   // inlier if the reprojection error is below this
-  double confidence = 0.999;   // that at least one all-inlier minimal set was drawn
-  int max_iterations = 10000;
-  std::uint64_t seed = 20261122;  // fixed: the same input gives the same inliers
+  double threshold_px = 3.0;  // inlier if the reprojection error is below this
+  MsacOptions search;         // confidence, iterations, the fixed seed (same input, same inliers)
 };
 
 struct RobustResult {
@@ -26,12 +24,6 @@ struct RobustResult {
   std::vector<int> inliers;  // indices into the matches given
   int iterations = 0;
 };
-
-// Iterations that draw at least one all-inlier minimal set with probability `confidence`:
-// log(1 - confidence) / log(1 - w^k). Computed with log1p: for a small inlier share w^k falls
-// below 1e-16, 1 - w^k rounds to 1 and the plain formula gives -inf, which once stopped the
-// search after a single draw. Capped at max_iterations.
-double ransacIterations(double confidence, double inlier_share, int sample_size, int max_iterations);
 
 // `model` is the class sampled (Auto samples the quadratic). Matches must all be enabled.
 RobustResult findInliers(const std::vector<PointMatch>& matches, FrameSize source_size,

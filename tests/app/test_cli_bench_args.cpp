@@ -18,13 +18,14 @@ class TestCliBenchArgs : public QObject {
   void refusedNamingTheOption() {
     const std::pair<QStringList, QString> cases[] = {
         {{"bench", "render", "--reps", "0"}, "--reps expects a whole number"},
-        {{"bench", "render", "--threads", "0,1"}, "--threads expects whole numbers"},
+        {{"bench", "render", "--threads", "0,1"},
+         "--threads expects comma-separated whole numbers"},
         {{"bench", "render", "--type", "uint32"}, "--type expects uint8, uint16 or float"},
         {{"bench", "effects", "--reps", "0"}, "--reps expects a whole number"},
         {{"bench", "effects", "--crop", "x"}, "--crop expects a whole number"},
         {{"bench", "effects", "--threads", "-1"}, "--threads expects a whole number"},
-        {{"bench", "effects", "--ratio", "1"}, "--ratio expects a number > 1"},
-        {{"bench", "effects", "--shrink-from", "abc"}, "--shrink-from expects a number > 0"},
+        {{"bench", "effects", "--ratio", "1"}, "--ratio expects a number above 1"},
+        {{"bench", "effects", "--shrink-from", "abc"}, "--shrink-from expects a number above 0"},
     };
     for (const auto& [args, says] : cases) {
       const Run r = artcamCli(args);

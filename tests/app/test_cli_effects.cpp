@@ -204,6 +204,39 @@ class TestCliEffects : public QObject {
     }
   }
 
+  // The 3D effects' parameters are in the object frame (effects_3d_table.h): by default the
+  // origin and radius 1, so the numbers are object units; --object-centre C --object-radius R
+  // move the same effect to c + R · E((P − c)/R). Out-of-range values and radii are refused.
+  void threeDPresetsInTheObjectFrame() {
+    QTemporaryDir dir;
+    const auto moved = [&](const QStringList& options, const Eigen::Vector3d& p) -> Eigen::Vector3d {
+      const QString out = dir.filePath("swell.artcam");
+      const Run r = artcamCli(QStringList{"preset", "pincushion-3d"} + options +
+                              QStringList{"-o", out, "--overwrite"});
+      if (r.exit_code != 0) return Eigen::Vector3d::Constant(std::nan(""));
+      const auto doc = artcam::readArtcam(out.toStdString());
+      if (!doc.ok()) return Eigen::Vector3d::Constant(std::nan(""));
+      return doc.value->main().evaluate(Eigen::Vector4d(p.x(), p.y(), p.z(), 1)).head<3>();
+    };
+    const Eigen::Vector3d local(0.5, -0.2, 0.1);
+    const Eigen::Vector3d swollen = local / (1.0 - 0.12 * local.squaredNorm());  // k = 0.12
+    QVERIFY((moved({}, local) - swollen).norm() < 1e-12);
+    const Eigen::Vector3d c(1, 2, 3);
+    const Eigen::Vector3d world =
+        moved({"--object-centre", "1,2,3", "--object-radius", "2"}, c + 2 * local);
+    QVERIFY2((world - (c + 2 * swollen)).norm() < 1e-12, "the frame's rule");
+    const Run zero =
+        artcamCli({"preset", "twist-3d", "--object-radius", "0", "-o", dir.filePath("z.artcam")});
+    QCOMPARE(zero.exit_code, 2);
+    QVERIFY2(zero.err.contains("--object-radius"), qPrintable(zero.err));
+    const Run wide =
+        artcamCli({"preset", "pincushion-3d", "--k", "5", "-o", dir.filePath("w.artcam")});
+    QCOMPARE(wide.exit_code, 2);
+    QVERIFY2(wide.err.contains("k = 5 is outside its range"), qPrintable(wide.err));
+    const Run list = artcamCli({"preset", "list"});
+    QVERIFY2(list.out.contains("object-radius=1"), qPrintable(list.out));
+  }
+
   void chromaticAberrationWritesThreeLayers() {
     QTemporaryDir dir;
     const QString photo = QString::fromStdString(artcam::test::resourcePath("coffee.png"));

@@ -135,7 +135,7 @@ class TestCliPhotoMetadata : public QObject {
       const char* option;
       const char* value;
       const char* message;
-    } cases[] = {{"--quality", "0", "--quality expects a whole number from 1 to 100, not \"0\""},
+    } cases[] = {{"--quality", "0", "--quality expects a whole number from 1 to 100, got \"0\""},
                  {"--quality", "101", "--quality expects a whole number from 1 to 100"},
                  {"--quality", "9x", "--quality expects a whole number from 1 to 100"},
                  {"--bit-depth", "12", "--bit-depth expects 8, 16, half or float, not \"12\""}};

@@ -14,7 +14,11 @@
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QTemporaryDir>
+
+#include <algorithm>
 
 using namespace artcam;
 using artcam::test::artcamCli;
@@ -99,6 +103,18 @@ class TestCliStdio : public QObject {
                            "stages": [{"tensors": [[[0, 0, 0.5], [0, 0, 0], [0.5, 0, 0]],
                                                    [[0, 0, 0], [0, 0, 0.5], [0, 0.5, 0]],
                                                    [[0, 0, 0], [0, 0, 0], [0, 0, 1]]]}]})"));
+    // Inputs read while the request is parsed: a depth map (2 units everywhere) for a camera
+    // that reads depth, and a second image for a compositing camera, both of the photo's size.
+    ImageF depth(96, 64, 1);
+    std::fill(depth.data.begin(), depth.data.end(), 2.0f);
+    QVERIFY(writeImage(path("depth.exr").toStdString(), depth).ok);
+    QVERIFY(artcam::test::writeNoisePhoto(path("second.png"), 96, 64));
+    QCOMPARE(artcamCli({"preset", "aerial-perspective", "--size", "96x64", "-o", path("ap.artcam")})
+                 .exit_code,
+             0);
+    QCOMPARE(
+        artcamCli({"preset", "composite", "--size", "96x64", "-o", path("over.artcam")}).exit_code,
+        0);
   }
 
   void pngThroughThePipeEqualsTheFileRoute() {
@@ -115,6 +131,64 @@ class TestCliStdio : public QObject {
     QVERIFY2(run.exit_code == 0, qPrintable(run.err));
     QVERIFY(run.out.startsWith(QByteArray("\x89PNG\r\n\x1a\n", 8)));
     QVERIFY(run.out.endsWith(QByteArray("IEND\xae\x42\x60\x82", 8)));
+  }
+
+  // --depth and --second are read before the render: what the command says about them goes to
+  // stderr with -o -, so standard output is still one PNG and nothing else.
+  void depthAndSecondKeepStdoutTheImage() {
+    const QStringList runs[] = {
+        {"warp", path("in.png"), path("ap.artcam"), "--depth", path("depth.exr")},
+        {"warp", "-", path("ap.artcam"), "--depth", path("depth.exr")},
+        {"warp", path("in.png"), path("over.artcam"), "--second", path("second.png")},
+        {"warp", "-", path("over.artcam"), "--second", path("second.png")},
+    };
+    for (const QStringList& args : runs) {
+      const Piped run =
+          piped(args + QStringList{"-o", "-", "--format", "png"}, fileBytes(path("in.png")));
+      const QString call = args.join(' ') + ": " + run.err;
+      QVERIFY2(run.exit_code == 0, qPrintable(call));
+      QVERIFY2(run.out.startsWith(QByteArray("\x89PNG\r\n\x1a\n", 8)),
+               qPrintable(call + "\nstdout starts: " + QString::fromLatin1(run.out.left(40))));
+      QVERIFY2(run.out.endsWith(QByteArray("IEND\xae\x42\x60\x82", 8)), qPrintable(call));
+      QVERIFY(writeBytes(path("depth-second.png"), run.out));
+      QCOMPARE(readBack(path("depth-second.png")).width, 96);
+      // Said, on stderr: the input read and its size.
+      const QString input = args.contains("--depth") ? path("depth.exr") : path("second.png");
+      QVERIFY2(run.err.contains(input + ": 96x64"), qPrintable(call));
+    }
+  }
+
+  // With --json, standard output is one JSON object, and the inputs read are in it: the depth
+  // map's size and range (2 everywhere, no holes) and the second image's size.
+  void depthAndSecondKeepJsonTheOnlyStdout() {
+    const struct {
+      QStringList args;
+      const char* key;
+    } runs[] = {
+        {{"warp", path("in.png"), path("ap.artcam"), "--depth", path("depth.exr")}, "depth"},
+        {{"warp", path("in.png"), path("over.artcam"), "--second", path("second.png")}, "second"},
+    };
+    for (const auto& [args, key] : runs) {
+      const QString out = path(QStringLiteral("json-%1.png").arg(key));
+      const auto run = artcamCli(args + QStringList{"-o", out, "--json", "--quiet"});
+      const QString call = args.join(' ') + ": " + run.err;
+      QVERIFY2(run.exit_code == 0, qPrintable(call));
+      QJsonParseError error;
+      const QJsonDocument doc = QJsonDocument::fromJson(run.out.toUtf8(), &error);
+      QVERIFY2(error.error == QJsonParseError::NoError && doc.isObject(),
+               qPrintable(call + "\nstdout: " + run.out));
+      const QJsonObject o = doc.object();
+      QCOMPARE(o["output"].toString(), out);
+      const QJsonObject input = o[key].toObject();
+      QCOMPARE(input["file"].toString(), args.last());
+      QCOMPARE(input["width"].toInt(), 96);
+      QCOMPARE(input["height"].toInt(), 64);
+      if (QString(key) == "depth") {
+        QCOMPARE(input["min"].toDouble(), 2.0);
+        QCOMPARE(input["max"].toDouble(), 2.0);
+        QCOMPARE(input["holes"].toInt(), 0);
+      }
+    }
   }
 
   void jpegFromStdin() { expectSameAsFiles(path("in.jpg"), path("id.artcam"), "png"); }

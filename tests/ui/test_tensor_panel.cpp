@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
-// The tensor panel: typed entries become symmetric edits as undo commands; presets.
+// The tensor panel: typed entries become symmetric edits as undo commands; presets, which are
+// the effects table's builders (the CLI's cameras: tests/ui/test_effects_table.cpp) with their
+// refusals shown and no undo step pushed.
+#include "core/effects/effect_table.h"
 #include "core/model/structure.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/document.h"
 #include "ui/panels/tensor_panel.h"
 #include "ui/preview_controller.h"
 
+#include <QLabel>
 #include <QTableWidget>
 #include <QtTest/QtTest>
 
@@ -77,6 +81,40 @@ class TestTensorPanel : public QObject {
     panel.applyPreset("identity");
     QCOMPARE(analyseStructure(doc.camera()).geometry, GeometryClass::Identity);
     QCOMPARE(doc.undoStack()->count(), 3);
+  }
+
+  void presetsAreTheTablesBuilders() {
+    Document doc;
+    TensorPanel panel(&doc);
+    QVERIFY(!panel.applyPreset("barrel").isEmpty());  // no photo, no frame: refused, said why
+    QCOMPARE(doc.undoStack()->count(), 0);
+    doc.reset(test::syntheticPhoto());
+    QCOMPARE(panel.presets().front().first, QString("identity"));
+    int steps = 0;
+    for (const auto& [name, label] : panel.presets()) {
+      if (name == "identity") continue;
+      const EffectSpec* spec = findEffect(name.toStdString());
+      QVERIFY2(spec && !spec->needs_depth && !spec->needs_second, qPrintable(name));
+      QCOMPARE(label, QString::fromStdString(spec->label));
+      QCOMPARE(panel.applyPreset(name), QString());
+      QCOMPARE(doc.undoStack()->count(), ++steps);
+      QCOMPARE(doc.undoStack()->text(steps - 1), QString("Preset: %1").arg(label));
+      const Artcam want = buildEffect(spec->name, {}, doc.frame());
+      QCOMPARE(doc.manualCamera()->layers.size(), want.layers.size());
+      for (size_t l = 0; l < want.layers.size(); ++l)
+        QVERIFY2(doc.manualCamera()->layers[l].stages()[0].q == want.layers[l].stages()[0].q,
+                 qPrintable(name));
+    }
+    QVERIFY(steps >= 4);
+    // The table's refusal: nothing pushed, the reason shown beneath the presets.
+    const QString refused = panel.applyPreset("pincushion", {{"k", {0.6}}});
+    QVERIFY2(refused.contains("k = 0.6 is outside its range 0 … 0.45"), qPrintable(refused));
+    QCOMPARE(doc.undoStack()->count(), steps);
+    bool shown = false;
+    for (const QLabel* l : panel.findChildren<QLabel*>()) shown = shown || l->text() == refused;
+    QVERIFY(shown);
+    QVERIFY(!panel.applyPreset("depth-of-field").isEmpty());  // not offered: needs depth
+    QCOMPARE(doc.undoStack()->count(), steps);
   }
 };
 

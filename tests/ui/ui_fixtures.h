@@ -2,6 +2,7 @@
 // Fixtures for the UI tests, made in code: a synthetic photo, pair sets, event helpers.
 #pragma once
 
+#include "core/render/preview.h"
 #include "core/render/warp.h"
 #include "ui/canvas.h"
 #include "ui/document.h"

@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 
 namespace artcam::ui {
 
@@ -55,15 +54,12 @@ void describeTable(const InsertionRequest& job, InsertionFit& fit) {
 
 }  // namespace
 
-InsertionWorker::InsertionWorker(QObject* parent) : QThread(parent) {
+InsertionWorker::InsertionWorker(QObject* parent)
+    : NewestRequestWorker(QStringLiteral("the insertion worker"), parent) {
   qRegisterMetaType<artcam::ui::InsertionFit>();
 }
 
 InsertionWorker::~InsertionWorker() { shutdown(); }
-
-void InsertionWorker::request(InsertionRequest request) { slot_.put(std::move(request), *this); }
-
-void InsertionWorker::shutdown() { slot_.shutdown(*this); }
 
 InsertionFit InsertionWorker::describe(const PiecewiseSummary& summary) {
   InsertionFit fit;
@@ -125,46 +121,36 @@ ImageF InsertionWorker::composite(const ImageF& photo, const ImageF& graphic,
   return insertGraphic(photo, placeGraphic(graphic, camera.source_size, placement), cameras);
 }
 
-void InsertionWorker::run() {
-  for (;;) {
-    std::optional<InsertionRequest> next = slot_.take();
-    if (!next) return;
-    InsertionRequest job = std::move(*next);
-    try {
-      if (!last_fit_inputs_ || !sameFitInputs(*last_fit_inputs_, job)) {
-        const auto start = std::chrono::steady_clock::now();
-        const PiecewiseSummary summary =
-            fitPiecewise(job.matches, job.board_size, job.photo_size, job.options);
-        last_fit_ = describe(summary);
-        if (last_fit_.ok) describeTable(job, last_fit_);
-        last_fit_.fit_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
-        InsertionRequest inputs;
-        inputs.matches = job.matches;
-        inputs.table_matches = job.table_matches;
-        inputs.board_size = job.board_size;
-        inputs.photo_size = job.photo_size;
-        inputs.options = job.options;
-        last_fit_inputs_ = std::move(inputs);
-      }
-      if (!keepGoing()) continue;  // a newer request: it may reuse this fit
-      emit fitted(last_fit_, job.generation);
-      if (!last_fit_.ok || !job.photo || !job.graphic || job.photo->empty() || job.graphic->empty())
-        continue;
-      const ImageF out =
-          composite(*job.photo, *job.graphic, *last_fit_.camera, job.region, job.placement,
-                    last_fit_.table.get());
-      if (!keepGoing()) continue;
-      const QImage image = qimageFromLinear(out);
-      if (!keepGoing()) continue;
-      emit rendered(image, job.generation);
-    } catch (const std::exception& e) {
-      emit failed(QString::fromUtf8(e.what()), job.generation);
-    } catch (...) {
-      emit failed(QStringLiteral("unknown error in the insertion worker"), job.generation);
-    }
+void InsertionWorker::serve(InsertionRequest& job) {
+  if (!last_fit_inputs_ || !sameFitInputs(*last_fit_inputs_, job)) {
+    // Forget the last fit first: should this one throw, the next request must fit afresh.
+    last_fit_inputs_.reset();
+    const auto start = std::chrono::steady_clock::now();
+    const PiecewiseSummary summary =
+        fitPiecewise(job.matches, job.board_size, job.photo_size, job.options);
+    last_fit_ = describe(summary);
+    if (last_fit_.ok) describeTable(job, last_fit_);
+    last_fit_.fit_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count();
+    InsertionRequest inputs;
+    inputs.matches = job.matches;
+    inputs.table_matches = job.table_matches;
+    inputs.board_size = job.board_size;
+    inputs.photo_size = job.photo_size;
+    inputs.options = job.options;
+    last_fit_inputs_ = std::move(inputs);
   }
+  if (!keepGoing()) return;  // a newer request: it may reuse this fit
+  emit fitted(last_fit_, job.generation);
+  if (!last_fit_.ok || !job.photo || !job.graphic || job.photo->empty() || job.graphic->empty())
+    return;
+  const ImageF out = composite(*job.photo, *job.graphic, *last_fit_.camera, job.region,
+                               job.placement, last_fit_.table.get());
+  if (!keepGoing()) return;
+  const QImage image = qimageFromLinear(out);
+  if (!keepGoing()) return;
+  emit rendered(image, job.generation);
 }
 
 }  // namespace artcam::ui

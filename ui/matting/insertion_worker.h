@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// The Insertion worker (the RenderWorker pattern: one thread, one pending request slot where
-// the newest request wins, std::atomic restart/abort flags, results by queued signals stamped
-// with the request's generation). A request carries the grid matches, the graphic, the photo
-// and the region; the worker fits the piecewise camera (core/piecewise/piecewise_fit.h) and,
-// from four or more table clicks, the board's homography (Fig 7b), emits the fit, then puts the
-// graphic on the table and in the object through core's insertGraphic (the same call as
-// `artcam insert`; core/pipeline/insert_graphic.h), and emits the preview.
+// The Insertion worker (a newest-request worker, newest_request_worker.h: one thread, one
+// pending request slot where the newest request wins, std::atomic restart/abort flags, results
+// by queued signals stamped with the request's generation). A request carries the grid
+// matches, the graphic, the photo and the region; the worker fits the piecewise camera
+// (core/piecewise/piecewise_fit.h) and, from four or more table clicks, the board's homography
+// (Fig 7b), emits the fit, then puts the graphic on the table and in the object through core's
+// insertGraphic (the same call as `artcam insert`; core/pipeline/insert_graphic.h), and emits
+// the preview.
 //
 // The fit and the render have no cancel hook: a newer request makes the worker drop the
 // current one between the fit and the render, and the last fit is reused when only the
-// graphic, the photo or the region changed. Every exception stops at run() (a `failed` signal).
+// graphic, the photo or the region changed. A request whose fit or render throws is a `failed`
+// signal, and the next request is served.
 #pragma once
 
 #include "core/model/fit_record.h"
@@ -17,13 +19,12 @@
 #include "core/model/piecewise_camera.h"
 #include "core/piecewise/piecewise_fit.h"
 #include "ui/matting/graphic_placement.h"
-#include "ui/newest_request_slot.h"
+#include "ui/newest_request_worker.h"
 
 #include <QImage>
 #include <QMetaType>
 #include <QPolygonF>
 #include <QString>
-#include <QThread>
 #include <QVector>
 
 #include <memory>
@@ -66,17 +67,14 @@ struct InsertionFit {
   QVector<double> patch_max_px;
 };
 
-class InsertionWorker : public QThread {
+class InsertionWorker : public NewestRequestWorker<InsertionRequest> {
   Q_OBJECT
 
  public:
+  // request() (GUI thread) replaces the pending request; shutdown() stops the thread
+  // (idempotent; the destructor calls it).
   explicit InsertionWorker(QObject* parent = nullptr);
   ~InsertionWorker() override;  // aborts and joins (waits for a fit in flight)
-
-  // GUI thread. Replaces the pending request.
-  void request(InsertionRequest request);
-  // Stops the thread (idempotent); called by the destructor.
-  void shutdown();
 
   // The same camera onto a target frame of another size (the preview copy of the photo):
   // cameras live in normalised frames, so only the recorded sizes change.
@@ -92,15 +90,11 @@ class InsertionWorker : public QThread {
  signals:
   void fitted(const artcam::ui::InsertionFit& fit, quint64 generation);
   void rendered(const QImage& composite, quint64 generation);
-  void failed(const QString& message, quint64 generation);
 
  protected:
-  void run() override;
+  void serve(InsertionRequest& job) override;
 
  private:
-  bool keepGoing() const { return slot_.keepGoing(); }
-
-  NewestRequestSlot<InsertionRequest> slot_;
   // Worker thread only: the inputs of the last fit and its result.
   std::optional<InsertionRequest> last_fit_inputs_;
   InsertionFit last_fit_;

@@ -15,6 +15,8 @@
 #include <QVBoxLayout>
 
 #include <cmath>
+#include <exception>
+#include <optional>
 
 namespace artcam::ui {
 namespace {
@@ -59,16 +61,6 @@ constexpr int kTensorEditMergeBase = 0;  // typed edits are separate undo steps:
 
 }  // namespace
 
-Camera radialCamera(double k, FrameSize frame) {
-  Eigen::Matrix3d q1 = Eigen::Matrix3d::Zero(), q2 = Eigen::Matrix3d::Zero(),
-                  q3 = Eigen::Matrix3d::Zero();
-  q1(0, 2) = q1(2, 0) = 0.5;  // u·w
-  q2(1, 2) = q2(2, 1) = 0.5;  // v·w
-  q3(0, 0) = q3(1, 1) = -k;   // w² - k (u² + v²)
-  q3(2, 2) = 1.0;
-  return Camera::rtcam({q1, q2, q3}, frame, frame);
-}
-
 TensorPanel::TensorPanel(Document* document, QWidget* parent)
     : QWidget(parent),
       document_(document),
@@ -77,9 +69,16 @@ TensorPanel::TensorPanel(Document* document, QWidget* parent)
       tables_layout_(new QVBoxLayout),
       summary_label_(new QLabel(this)) {
   summary_label_->setWordWrap(true);
+  preset_message_ = new QLabel(this);
+  preset_message_->setWordWrap(true);
+  preset_message_->hide();
   preset_box_->addItem(tr("Identity"), "identity");
-  preset_box_->addItem(tr("Barrel"), "barrel");
-  preset_box_->addItem(tr("Pincushion"), "pincushion");
+  for (const EffectSpec& spec : effectSpecs()) {
+    if (spec.needs_depth || spec.needs_second) continue;  // the photo alone cannot show them
+    preset_box_->addItem(QString::fromStdString(spec.label), QString::fromStdString(spec.name));
+    preset_box_->setItemData(preset_box_->count() - 1, QString::fromStdString(spec.summary),
+                             Qt::ToolTipRole);
+  }
   auto* apply = new QPushButton(tr("Apply preset"), this);
   auto* fitted = new QPushButton(tr("Use fitted"), this);
   fitted->setToolTip(tr("Go back to the camera fitted from the pairs"));
@@ -98,6 +97,7 @@ TensorPanel::TensorPanel(Document* document, QWidget* parent)
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 2, 2, 2);
   layout->addLayout(top);
+  layout->addWidget(preset_message_);
   layout->addWidget(summary_label_);
   layout->addWidget(scroll, 1);
 
@@ -229,19 +229,38 @@ void TensorPanel::setEntry(int stage, int element, int row, int col, double valu
       kTensorEditMergeBase));
 }
 
-void TensorPanel::applyPreset(const QString& name) {
-  FrameSize f = document_->frame();
-  if (!f.isImage()) return;
-  std::optional<Camera> cam;
-  if (name == "identity")
-    cam = Camera::identity({Block{BlockKind::Position, 3}}, f, f);
-  else if (name == "barrel")
-    cam = radialCamera(-kPresetStrength, f);
-  else if (name == "pincushion")
-    cam = radialCamera(kPresetStrength, f);
-  if (!cam) return;
-  document_->undoStack()->push(
-      new SetCameraCommand(document_, Artcam(std::move(*cam)), tr("Preset: %1").arg(name)));
+std::vector<std::pair<QString, QString>> TensorPanel::presets() const {
+  std::vector<std::pair<QString, QString>> out;
+  for (int i = 0; i < preset_box_->count(); ++i)
+    out.emplace_back(preset_box_->itemData(i).toString(), preset_box_->itemText(i));
+  return out;
+}
+
+QString TensorPanel::applyPreset(const QString& name, const EffectValues& values) {
+  const FrameSize f = document_->frame();
+  QString problem;
+  std::optional<Artcam> camera;
+  const int index = preset_box_->findData(name);
+  if (!f.isImage()) {
+    problem = tr("Open a photo first: a preset is made in its frame");
+  } else if (index < 0) {
+    problem = tr("No preset \"%1\"").arg(name);
+  } else if (name == "identity") {
+    camera = Artcam(Camera::identity({Block{BlockKind::Position, 3}}, f, f));
+  } else {
+    try {
+      camera = buildEffect(name.toStdString(), values, f);  // what `artcam preset NAME` writes
+    } catch (const std::exception& e) {
+      problem = tr("%1 not applied: %2")
+                    .arg(preset_box_->itemText(index), QString::fromUtf8(e.what()));
+    }
+  }
+  preset_message_->setText(problem);
+  preset_message_->setVisible(!problem.isEmpty());
+  if (!camera) return problem;
+  document_->undoStack()->push(new SetCameraCommand(
+      document_, std::move(*camera), tr("Preset: %1").arg(preset_box_->itemText(index))));
+  return {};
 }
 
 }  // namespace artcam::ui

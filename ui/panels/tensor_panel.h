@@ -3,13 +3,20 @@
 // rows and columns labelled by block element (Q_i is symmetric N×N over the
 // blocks of x). Typing an entry sets Q_i(r, c) and Q_i(c, r) — storage is symmetric — and
 // pushes one SetCameraCommand, which makes the camera "set by hand" until the user goes back
-// to the fitted one. Presets: identity, barrel, pincushion.
+// to the fitted one. Presets: the identity, and every image effect of core's effects table
+// (core/effects/effect_table.h) that needs neither depth nor a second image, under its human
+// name: applied, a preset is the table's builder at its defaults in the photo's frame, the
+// camera `artcam preset NAME --size W×H` writes (its pole check and refusals included), set by
+// hand as the whole camera in one SetCameraCommand.
 #pragma once
 
+#include "core/effects/effect_table.h"
 #include "core/model/camera.h"
 
+#include <QString>
 #include <QWidget>
 
+#include <utility>
 #include <vector>
 
 class QComboBox;
@@ -21,24 +28,22 @@ namespace artcam::ui {
 
 class Document;
 
-// Radial distortion as an RTcam in the normalised frame: u' = u / (1 - k r²) (likewise v), so
-// k > 0 pushes the corners out (pincushion) and k < 0 pulls them in (barrel). The denominator
-// stays positive over the frame for |k| < 0.5 since r² ≤ 2 there.
-Camera radialCamera(double k, FrameSize frame);
-
 class TensorPanel : public QWidget {
   Q_OBJECT
 
  public:
-  static constexpr double kPresetStrength = 0.15;
-
   explicit TensorPanel(Document* document, QWidget* parent = nullptr);
 
   // Tables in output-element order (stage 0); exposed for tests.
   const std::vector<QTableWidget*>& tables() const { return tables_; }
   // Sets entry (row, col) of Q_element in `stage` through an undo command.
   void setEntry(int stage, int element, int row, int col, double value);
-  void applyPreset(const QString& name);  // "identity", "barrel", "pincushion"
+  // "identity" or an effect's name ("barrel"), at the table's defaults overridden by `values`.
+  // Returns "" when applied, else why nothing was (no photo, unknown name, the table's or the
+  // camera's refusal), which the panel also shows beneath its presets.
+  QString applyPreset(const QString& name, const EffectValues& values = {});
+  // The presets offered, in order: (name, human name).
+  std::vector<std::pair<QString, QString>> presets() const;
   // One line on the whole camera: its kind, layers, blocks, depth output and effects; the
   // tables below edit the geometry (the first layer), every other part is kept as it is.
   QString summary() const;
@@ -50,6 +55,7 @@ class TensorPanel : public QWidget {
   Document* document_;
   QComboBox* stage_box_;
   QComboBox* preset_box_;
+  QLabel* preset_message_;
   QVBoxLayout* tables_layout_;
   QLabel* summary_label_;
   std::vector<QTableWidget*> tables_;

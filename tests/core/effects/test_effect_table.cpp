@@ -52,9 +52,10 @@ class TestEffectTable : public QObject {
  private slots:
   void rowsAreConsistent() {
     QVERIFY(effectSpecs().size() >= 8);
-    std::set<std::string> names;
+    std::set<std::string> names, labels;
     for (const EffectSpec& e : effectSpecs()) {
       QVERIFY2(names.insert(e.name).second, e.name.c_str());
+      QVERIFY2(!e.label.empty() && labels.insert(e.label).second, e.name.c_str());  // the studio's
       QVERIFY2(e.build, e.name.c_str());
       QVERIFY2(!e.summary.empty(), e.name.c_str());
       std::set<std::string> params;
