@@ -324,10 +324,18 @@ void ColourDock::keyPressEvent(QKeyEvent* event) {
 
 void ColourDock::fit() {
   if (!document_->photo()) return;
+  // The check fitColourSamples makes, before the job starts: the options the CLI refuses are
+  // refused here with the same reason.
+  const ColourFitOptions options = fitOptions();
+  if (const Status s = options.check(); !s) {
+    message_ = QString::fromStdString(s.message);
+    refreshReport();
+    return;
+  }
   message_ = tr("Fitting…");
   refreshReport();
   const FrameSize f = document_->frame();
-  job_->start(model_->colourPairs(), fitOptions(),
+  job_->start(model_->colourPairs(), options,
               (static_cast<quint64>(f.width) << 32) | static_cast<quint64>(f.height));
 }
 
