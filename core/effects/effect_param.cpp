@@ -1,21 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/effects/effect_param.h"
 
+#include "core/util/number_text.h"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 namespace artcam {
-
-namespace {
-
-std::string numberText(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
-}  // namespace
 
 std::string rangeText(const EffectParam& param) {
   if (param.isChoice()) {

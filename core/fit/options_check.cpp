@@ -1,19 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/fit/options_check.h"
 
+#include "core/util/number_text.h"
+
 #include <cmath>
 #include <cstdio>
 
 namespace artcam {
-namespace {
-
-std::string numberText(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-}  // namespace
 
 std::string OptionsCheck::name(std::string_view field) const {
   std::string given = names_ ? names_(field) : std::string();

@@ -3,6 +3,7 @@
 // layers; the splat path is splat.cpp.
 #include "core/render/attributed.h"
 
+#include "core/model/analysed_cameras.h"
 #include "core/model/frames.h"
 #include "core/mapping/coordinates.h"
 #include "core/util/parallel.h"
@@ -443,14 +444,8 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
 
 AttributedImage renderLayers(const AttributedSources& sources, const std::vector<Camera>& layers,
                              const AttributedOptions& options, AttributedSummary* summary) {
-  std::vector<CameraStructure> structures;
-  for (const Camera& layer : layers) {
-    layer.validate();
-    structures.push_back(analyseStructure(layer));
-  }
-  std::vector<AnalysedCamera> analysed;
-  for (size_t l = 0; l < layers.size(); ++l) analysed.push_back({layers[l], structures[l]});
-  return renderLayers(sources, analysed, options, summary);
+  const AnalysedCameras analysed(layers);
+  return renderLayers(sources, analysed.cameras(), options, summary);
 }
 
 AttributedImage renderLayers(const AttributedSources& sources, const std::vector<AnalysedCamera>& layers,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/render/preview.h"
 
+#include "core/model/analysed_cameras.h"
 #include "core/mapping/coordinates.h"
 #include "core/mapping/inverse.h"
 #include "core/mapping/rational_map.h"
@@ -72,14 +73,8 @@ void warpPreview(const StoredMipPyramid& pyramid, const AnalysedCamera& camera, 
 
 void warpPreview(const StoredMipPyramid& pyramid, const std::vector<Camera>& channel_cameras,
                  const ImageView& out, const WarpOptions& options, WarpSummary* summary) {
-  std::vector<CameraStructure> structures;
-  for (const Camera& camera : channel_cameras) {
-    camera.validate();
-    structures.push_back(analyseStructure(camera));
-  }
-  std::vector<AnalysedCamera> analysed;
-  for (size_t k = 0; k < channel_cameras.size(); ++k) analysed.push_back({channel_cameras[k], structures[k]});
-  warpPreview(pyramid, analysed, out, options, summary);
+  const AnalysedCameras analysed(channel_cameras);
+  warpPreview(pyramid, analysed.cameras(), out, options, summary);
 }
 
 void warpPreview(const StoredMipPyramid& pyramid, const std::vector<AnalysedCamera>& channel_cameras,

@@ -5,6 +5,7 @@
 // (span_sampler.h), so no per-pixel map ever reaches memory.
 #include "core/render/warp.h"
 
+#include "core/model/analysed_cameras.h"
 #include "core/model/frames.h"
 #include "core/model/structure.h"
 #include "core/mapping/coordinates.h"
@@ -187,15 +188,8 @@ long long mergeChannels(const unsigned char* const* spans, int count, int channe
 
 void warpChannels(const ConstImageView& source, const std::vector<Camera>& channel_cameras,
                   const ImageView& out, const WarpOptions& options, WarpSummary* summary) {
-  std::vector<CameraStructure> structures;
-  structures.reserve(channel_cameras.size());
-  for (const Camera& camera : channel_cameras) {
-    camera.validate();
-    structures.push_back(analyseStructure(camera));
-  }
-  std::vector<AnalysedCamera> analysed;
-  for (size_t k = 0; k < channel_cameras.size(); ++k) analysed.push_back({channel_cameras[k], structures[k]});
-  warpChannels(source, analysed, out, options, summary);
+  const AnalysedCameras analysed(channel_cameras);
+  warpChannels(source, analysed.cameras(), out, options, summary);
 }
 
 void warpChannels(const ConstImageView& source, const std::vector<AnalysedCamera>& channel_cameras,
