@@ -33,7 +33,8 @@ endif()
 # Source-level options also come last on the command line, after the hardening's
 # -D_FORTIFY_SOURCE=2, so -U_FORTIFY_SOURCE undoes it where ASan looks (fortified __memcpy_chk
 # and friends are not all intercepted, and would hide the overflows ASan is there to see).
-# Sources Qt generates at build time (moc) are not instrumented: they are glue, not logic.
+# Sources Qt generates at build time (moc) are not instrumented (they are glue, not logic), except
+# in a target whose every source is, which carries the flags itself (below).
 function(_artcam_instrument_sources)
   separate_arguments(_extra UNIX_COMMAND "${ARTCAM_SANITIZE_FLAGS}")
   set(_flags -fsanitize=${ARTCAM_SANITIZE} -fno-omit-frame-pointer -U_FORTIFY_SOURCE -Wno-error
@@ -68,6 +69,8 @@ function(_artcam_instrument_sources)
       endif()
       get_target_property(_sources ${_target} SOURCES)
       get_target_property(_target_dir ${_target} SOURCE_DIR)
+      set(_hits "")
+      set(_all TRUE)
       foreach(_src IN LISTS _sources)
         if(NOT _src MATCHES "\\.cpp$" OR _src MATCHES "^\\$<")
           continue()
@@ -80,15 +83,31 @@ function(_artcam_instrument_sources)
             set(_hit TRUE)
           endif()
         endforeach()
-        if(NOT _hit)
-          continue()
+        if(_hit)
+          list(APPEND _hits ${_abs})
+        else()
+          set(_all FALSE)
         endif()
+      endforeach()
+      if(NOT _hits)
+        continue()
+      endif()
+      list(LENGTH _hits _n)
+      math(EXPR _count "${_count} + ${_n}")
+      get_target_property(_pch ${_target} PRECOMPILE_HEADERS)
+      if(_all AND _pch)
+        # Every source of a target with its own precompiled header (the studio's library under
+        # TSan): the flags go on the target, so its precompiled header is built with them too
+        # and each source keeps it.
+        set_property(TARGET ${_target} APPEND PROPERTY COMPILE_OPTIONS ${_flags})
+        continue()
+      endif()
+      foreach(_abs IN LISTS _hits)
         set_property(SOURCE ${_abs} TARGET_DIRECTORY ${_target} APPEND PROPERTY COMPILE_OPTIONS
                      ${_flags})
-        # The target's precompiled header is built without the sanitizer: GCC would refuse it
-        # here (-Winvalid-pch) and parse the headers anyway.
+        # The target's precompiled header (or the one it reuses) is built without the sanitizer:
+        # GCC would refuse it here (-Winvalid-pch) and parse the headers anyway.
         set_property(SOURCE ${_abs} TARGET_DIRECTORY ${_target} PROPERTY SKIP_PRECOMPILE_HEADERS ON)
-        math(EXPR _count "${_count} + 1")
       endforeach()
     endforeach()
   endwhile()
