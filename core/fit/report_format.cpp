@@ -1,14 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/fit/report_format.h"
 
-#include <cstdio>
+#include "core/util/number_text.h"
 
 namespace artcam {
 
-std::string threeFigures(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+std::string threeFigures(double v) { return numberText(v, 3); }
 
 }  // namespace artcam

@@ -10,6 +10,10 @@
 
 namespace artcam {
 
+// The camera's structure, after Camera::validate (which throws std::invalid_argument): the
+// analysis reads the tensors by the block layout, so it must not see an invalid camera.
+CameraStructure validatedStructure(const Camera& camera);
+
 class AnalysedCameras {
  public:
   // Throws std::invalid_argument as Camera::validate does.

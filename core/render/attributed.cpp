@@ -294,18 +294,19 @@ bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
             const Camera& camera, const CameraStructure& camera_structure, const AttributeEvaluator& eval,
             const AttributedOptions& options, AttributedImage& out, AttributedSummary& report) {
   const Camera geometry = positionPart(camera);
-  CameraStructure structure = camera_structure;
+  const CameraStructure& structure = camera_structure;
   // The position part's own denominator (analyseStructure's rule, on the part alone): zero in
   // every entry of some stage is a camera that maps nothing.
+  bool degenerate = structure.degenerate;
   const int p = geometry.layout().find(BlockKind::Position);
   if (p >= 0) {
     const size_t den = static_cast<size_t>(geometry.layout().offsets[p] + geometry.blocks()[p].size - 1);
     for (const Stage& stage : geometry.stages())
-      if (stage.q[den].cwiseAbs().maxCoeff() == 0.0) structure.degenerate = true;
+      degenerate = degenerate || stage.q[den].cwiseAbs().maxCoeff() == 0.0;
   }
   const FrameSize source_px{rgba.width, rgba.height};
   const FrameSize out_px{out.colour.width, out.colour.height};
-  if (structure.degenerate) {
+  if (degenerate) {
     report.kernel = "degenerate";
     report.note = "the camera's position denominator is zero everywhere";
     return true;  // the output is already transparent
@@ -352,8 +353,7 @@ bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
 
 AttributedImage renderAttributed(const AttributedSources& sources, const Camera& camera,
                                  const AttributedOptions& options, AttributedSummary* summary) {
-  camera.validate();
-  const CameraStructure structure = analyseStructure(camera);
+  const CameraStructure structure = validatedStructure(camera);
   return renderAttributed(sources, AnalysedCamera{camera, structure}, options, summary);
 }
 

@@ -57,8 +57,7 @@ void previewThrough(const StoredMipPyramid& pyramid, const Camera& scale_camera,
 
 void warpPreview(const StoredMipPyramid& pyramid, const Camera& camera, const ImageView& out,
                  const WarpOptions& options, WarpSummary* summary) {
-  camera.validate();
-  const CameraStructure structure = analyseStructure(camera);
+  const CameraStructure structure = validatedStructure(camera);
   warpPreview(pyramid, AnalysedCamera{camera, structure}, out, options, summary);
 }
 

@@ -349,8 +349,7 @@ void warpChannels(const ConstImageView& source, const std::vector<AnalysedCamera
 
 void warpImage(const ConstImageView& source, const Camera& camera, const ImageView& out,
                const WarpOptions& options, WarpSummary* summary) {
-  camera.validate();
-  const CameraStructure structure = analyseStructure(camera);
+  const CameraStructure structure = validatedStructure(camera);
   warpImage(source, AnalysedCamera{camera, structure}, out, options, summary);
 }
 
@@ -599,8 +598,7 @@ long long BandWarp::render(const ConstImageView& window, int window_first, int y
 
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options,
                  WarpSummary* summary) {
-  camera.validate();
-  const CameraStructure structure = analyseStructure(camera);
+  const CameraStructure structure = validatedStructure(camera);
   return warpImage(source, AnalysedCamera{camera, structure}, options, summary);
 }
 

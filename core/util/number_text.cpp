@@ -5,9 +5,9 @@
 
 namespace artcam {
 
-std::string numberText(double v) {
+std::string numberText(double v, int significant) {
   char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
+  std::snprintf(text, sizeof text, "%.*g", significant, v);
   return text;
 }
 
