@@ -30,7 +30,7 @@ void ExportJob::cancel() {
   if (job_) job_->cancel();
 }
 
-ImageF ExportJob::render(const ImageF& photo, const ImageF* depth, const Artcam& camera,
+ImageF ExportJob::render(const LoadedImage& photo, const ImageF* depth, const Artcam& camera,
                          const ExportOptions& options, const std::function<bool(double)>& progress,
                          RenderSummary* summary) {
   return renderExport(photo, depth, camera, options, progress, summary);
@@ -54,7 +54,7 @@ void ExportJob::start() {
        options = options_](JobContext& job) {
         RenderSummary summary;
         const ImageF out = render(
-            photo->full.image, depth.get(), camera, options,
+            photo->full, depth.get(), camera, options,
             [&job](double f) { return job.progress(f * 0.95); },  // the rest is writing
             &summary);
         if (summary.cancelled || job.cancelled())

@@ -38,7 +38,7 @@ class ExportJob : public QObject {
 
   // The render of an export: core's renderExport (core/project/project_render.h), the function
   // `artcam export` calls too. `progress` is polled between tiles (false cancels).
-  static ImageF render(const ImageF& photo, const ImageF* depth, const Artcam& camera,
+  static ImageF render(const LoadedImage& photo, const ImageF* depth, const Artcam& camera,
                        const ExportOptions& options, const std::function<bool(double)>& progress,
                        RenderSummary* summary);
 

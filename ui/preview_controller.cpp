@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/preview_controller.h"
 
+#include "core/io/image_io.h"
 #include "core/pipeline/render.h"
 #include "ui/depth_model.h"
 #include "ui/document.h"
@@ -37,6 +38,7 @@ void PreviewController::schedule() {
   ++generation_;
   if (!photo) {
     source_.reset();
+    encoding_.reset();
     source_photo_ = nullptr;
     image_ = QImage();
     image_generation_ = generation_;
@@ -46,10 +48,12 @@ void PreviewController::schedule() {
   if (source_photo_ != photo.get()) {
     // Alias the photo's preview copy: no pixel copy, and it lives as long as the worker needs.
     source_ = std::shared_ptr<const ImageF>(photo, &photo->preview);
+    encoding_ = std::make_shared<const StoredEncoding>(storedEncodingOf(photo->full.info));
     source_photo_ = photo.get();
   }
   RenderRequest request;
   request.source = source_;
+  request.encoding = encoding_;
   request.camera = document_->artcam();
   // A camera that reads depth waits for the depth raster while the document has depth: the
   // raster comes through the overlay's throttled update a moment after the camera (opening a

@@ -45,6 +45,7 @@ class PreviewController : public QObject {
   Document* document_;
   RenderWorker worker_;
   std::shared_ptr<const ImageF> source_;  // shared with the worker; rebuilt per photo
+  std::shared_ptr<const StoredEncoding> encoding_;  // how the photo's values were decoded
   std::shared_ptr<const ImageF> depth_;
   const void* source_photo_ = nullptr;
   quint64 generation_ = 0;

@@ -13,6 +13,7 @@
 // the 8-bit pyramid path, which is what makes a drag's preview fast.
 #pragma once
 
+#include "core/colour/stored_encoding.h"
 #include "core/model/artcam.h"
 #include "core/model/image.h"
 #include "core/sampling/mip_pyramid.h"
@@ -32,6 +33,9 @@ struct RenderRequest {
   // QImage (the preview path); else the float path from `source`.
   std::shared_ptr<const StoredMipPyramid> pyramid;
   std::shared_ptr<const ImageF> source;  // the downscaled preview source
+  // How `source` was decoded from the photo's stored values: the float path resamples in that
+  // domain, as the export and `artcam warp` do (core/colour/stored_encoding.h). Null: linear.
+  std::shared_ptr<const StoredEncoding> encoding;
   // Depth block input for cameras that read depth (core/depth/depth_raster.h form, any size).
   std::shared_ptr<const ImageF> depth;
   Artcam camera;  // the document's whole camera

@@ -24,7 +24,7 @@ namespace artcam::cli {
 
 const char* const kExportUsage =
     "usage: artcam export PROJECT.artcamproj -o OUT [--camera-out CAM.artcam]\n"
-    "                     [--depth-out DEPTH.exr] [--size WxH] [--quality N]\n"
+    "                     [--depth-out DEPTH.exr] [--size WxH] [--filter NAME] [--quality N]\n"
     "                     [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                     [--crop-valid | --fill R,G,B[,A]]\n"
     "                     [--json] [--quiet] [--overwrite]\n\n"
@@ -44,6 +44,8 @@ const char* const kExportUsage =
     "                         there is none (what artcam warp --depth reads)\n"
     "  --size WxH             output size in pixels (default: the photo's size; one side 0: by\n"
     "                         aspect)\n"
+    "  --filter NAME          nearest, bilinear or bicubic (default bilinear, as artcam warp and\n"
+    "                         the studio's canvas: the same camera gives the same pixels)\n"
     "  --quality N            JPEG quality 1-100 (default: the photo's when it is a JPEG,\n"
     "                         else 95)\n"
     "  --bit-depth B          8, 16, half or float (default: the photo's)\n"
@@ -85,6 +87,7 @@ int exportCommand(const std::vector<std::string>& argv) {
                          {"--camera-out", "", true},
                          {"--depth-out", "", true},
                          {"--size", "", true},
+                         {"--filter", "", true},
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
@@ -103,6 +106,11 @@ int exportCommand(const std::vector<std::string>& argv) {
     checkImageMemory(s, "--size");
     options.width = s.width;
     options.height = s.height;
+  }
+  if (const auto filter_name = args.value("--filter")) {
+    const auto filter = filterFromName(*filter_name);
+    if (!filter) throw UsageError("unknown --filter \"" + *filter_name + "\"");
+    options.filter = *filter;
   }
   parseWriteOptions(args, options.write);
   options.crop_to_valid = args.has("--crop-valid");
@@ -140,7 +148,7 @@ int exportCommand(const std::vector<std::string>& argv) {
   RenderSummary summary;
   ImageF out;
   try {
-    out = renderExport(scene->photo.image, reads_depth ? &scene->depth : nullptr,
+    out = renderExport(scene->photo, reads_depth ? &scene->depth : nullptr,
                        scene->camera.camera, options,
                        cancelOnInterrupt([&bar](double done) { bar.stage("rendering", done); }),
                        &summary);

@@ -266,7 +266,8 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
       out.warning = frame.warning;
     } else {
       const LoadedImage& in = *source.loaded;
-      RenderInputs inputs = RenderInputs::of(in.image, depth);
+      const StoredEncoding encoding = storedEncodingOf(in.info);
+      RenderInputs inputs = RenderInputs::of(in.image, depth, &encoding);
       if (request.second) inputs.second = &*request.second;
       ImageF image = render(inputs, camera.camera, options, &summary);
       if (!summary.cancelled) {

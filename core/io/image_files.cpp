@@ -22,6 +22,13 @@
 
 namespace artcam {
 
+StoredEncoding storedEncodingOf(const ImageInfo& info) {
+  if (info.icc) return StoredEncoding::ofProfile(info.icc);
+  if (info.srgb) return StoredEncoding::ofTransfer(Transfer::srgb());
+  const std::optional<Transfer> transfer = Transfer::fromColourSpace(info.colour_space);
+  return StoredEncoding::ofTransfer(transfer ? *transfer : Transfer::linear());
+}
+
 std::vector<std::string> ExtraChannels::names() const {
   std::vector<std::string> all;
   for (const ChannelGroup& g : groups) all.insert(all.end(), g.names.begin(), g.names.end());

@@ -64,6 +64,7 @@
 //   are JPEG (a photo keeps its compression), else 95.
 #pragma once
 
+#include "core/colour/stored_encoding.h"
 #include "core/model/image.h"
 #include "core/model/status.h"
 
@@ -147,6 +148,11 @@ struct LoadedImage {
 };
 
 Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options = {});
+
+// How readImage decoded the file's stored values into linear light (its ICC profile, else its
+// transfer): what a render of the linear copy needs to resample as the stored photo would be
+// (core/pipeline/render.h, RenderInputs::encoding).
+StoredEncoding storedEncodingOf(const ImageInfo& info);
 
 struct WriteImageOptions {
   // Empty: the input's pixel type if `like` is given, else the format's natural one

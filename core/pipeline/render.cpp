@@ -15,11 +15,13 @@
 
 namespace artcam {
 
-RenderInputs RenderInputs::of(const ImageF& linear_photo, const ImageF* depth) {
+RenderInputs RenderInputs::of(const ImageF& linear_photo, const ImageF* depth,
+                              const StoredEncoding* encoding) {
   RenderInputs inputs;
   inputs.photo = viewOf(linear_photo);
   inputs.linear = &linear_photo;
   inputs.depth = depth;
+  inputs.encoding = encoding;
   return inputs;
 }
 
@@ -193,7 +195,7 @@ ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera, 
   a.splat_supersample = options.splat_supersample;
   a.force_path = options.force_path;
   AttributedSummary as;
-  const AttributedSources sources{*inputs.linear, inputs.depth, inputs.second};
+  const AttributedSources sources{*inputs.linear, inputs.depth, inputs.second, inputs.encoding};
   AttributedImage out = camera.layers.size() > 1
                             ? renderLayers(sources, analysis.analysedLayers(camera), a, &as)
                             : renderAttributed(sources, AnalysedCamera{camera.main(), analysis.layers[0]}, a, &as);
@@ -339,8 +341,23 @@ ImageF renderFloat(const RenderInputs& inputs, const Artcam& camera, const Analy
           "render: a float output needs the photo as float (RenderInputs::linear)");
     const int channels = photo.alpha_channel >= 0 ? photo.channels : photo.channels + 1;
     out = ImageF(frame.size.width, frame.size.height, channels, channels - 1);
-    renderGeometry(photo, nullptr, camera, analysis, options, viewOf(out), report);
+    // The one resampling rule: the linear copy is interpolated in the stored domain, as the
+    // stored photo's warp would interpolate it.
+    const StoredEncoding* encoding =
+        inputs.linear && inputs.encoding && !inputs.encoding->isLinear() ? inputs.encoding : nullptr;
+    ImageF stored;
+    if (encoding) {
+      stored = *inputs.linear;
+      encoding->encode(stored.data.data(), stored.data.size() / static_cast<size_t>(stored.channels),
+                       stored.channels, stored.alpha_channel);
+    }
+    const ImageF& stored_photo = stored;
+    renderGeometry(encoding ? viewOf(stored_photo) : photo, nullptr, camera, analysis, options,
+                   viewOf(out), report);
     if (report.cancelled) out = {};
+    else if (encoding)
+      encoding->decode(out.data.data(), out.data.size() / static_cast<size_t>(out.channels),
+                       out.channels, out.alpha_channel);
   }
   if (!frame.warning.empty()) report.note = frame.warning + (report.note.empty() ? "" : "; " + report.note);
   report.transparent_pixels = countTransparent(out);

@@ -16,6 +16,10 @@
 //                          identity … homography exactly, rational by certified Newton), or the
 //                          mip level that matches the output scale when a pyramid is given
 //
+// Resampling (one rule, docs/architecture.md): the photo is interpolated as stored. The stored
+// photo's paths do so directly; the paths that read the linear copy encode it back
+// (RenderInputs::encoding), interpolate, and decode each sample before any colour arithmetic.
+//
 // The output frame (one rule for every caller): the photo scaled by target frame / source frame,
 // per axis and rounded, so a camera of the photo's own size and aspect keeps the photo's exact
 // size; a photo whose aspect differs from the camera's source frame by more than a rounding
@@ -26,6 +30,7 @@
 // that alpha again where the photo had none and every output pixel has a preimage.
 #pragma once
 
+#include "core/colour/stored_encoding.h"
 #include "core/model/artcam.h"
 #include "core/model/image.h"
 #include "core/model/image_view.h"
@@ -43,6 +48,11 @@ struct RenderInputs {
   // The photo as linear float (premultiplied): what the attributed and piecewise paths read.
   // Required for cameras where needsLinearPhoto() is true; may be a smaller copy (a preview).
   const ImageF* linear = nullptr;
+  // How `linear` was decoded from the photo's stored values (core/colour/stored_encoding.h):
+  // the paths that render from `linear` resample in that domain, as the stored photo's gather
+  // warp does, so one camera gives the same pixels on every path. Null: `linear` is what is
+  // stored (a float file, an image made in code).
+  const StoredEncoding* encoding = nullptr;
   // Previews: geometry cameras sample the pyramid level that matches the output scale.
   const StoredMipPyramid* pyramid = nullptr;
   // The depth block's input: 1 channel (d) or 2 (coverage·d, coverage), any size.
@@ -53,7 +63,8 @@ struct RenderInputs {
   // and one of another size is stretched per axis to the photo's frame.
   const ImageF* second = nullptr;
 
-  static RenderInputs of(const ImageF& linear_photo, const ImageF* depth = nullptr);
+  static RenderInputs of(const ImageF& linear_photo, const ImageF* depth = nullptr,
+                         const StoredEncoding* encoding = nullptr);
 };
 
 struct RenderOptions {

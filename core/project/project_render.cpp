@@ -70,17 +70,19 @@ void fillUnder(ImageF& image, const std::array<float, 4>& fill) {
 
 }  // namespace
 
-ImageF renderExport(const ImageF& photo, const ImageF* depth, const Artcam& camera,
+ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam& camera,
                     const ExportOptions& options, const std::function<bool(double)>& progress,
                     RenderSummary* summary) {
+  const ImageF& photo = loaded.image;
+  const StoredEncoding encoding = storedEncodingOf(loaded.info);
   RenderOptions render_options;
-  render_options.warp.filter = Filter::Bicubic;
+  render_options.warp.filter = options.filter;
   render_options.warp.width = options.width;
   render_options.warp.height = options.height;
   render_options.warp.progress = progress;
   RenderSummary local;
   RenderSummary* s = summary ? summary : &local;
-  ImageF out = render(RenderInputs::of(photo, depth), camera, render_options, s);
+  ImageF out = render(RenderInputs::of(photo, depth, &encoding), camera, render_options, s);
   if (s->cancelled || out.empty()) return out;
   if (options.crop_to_valid) {
     const ValidRect r = largestValidRect(out);

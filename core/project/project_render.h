@@ -23,6 +23,8 @@ namespace artcam {
 struct ExportOptions {
   int width = 0;   // 0×0: the output-frame rule (render.h); one side 0: the other by aspect
   int height = 0;
+  // The resampling filter: warp's default, which the studio's canvas also shows.
+  Filter filter = Filter::Bilinear;
   bool crop_to_valid = false;
   // Linear RGB(A) colour under pixels without a preimage; none: they stay transparent.
   std::optional<std::array<float, 4>> fill;
@@ -39,9 +41,10 @@ struct ValidRect {
 // empty (0×0) when there is none.
 ValidRect largestValidRect(const ImageF& image);
 
-// The export render: full resolution from the linear photo, bicubic, then fill or crop.
-// `progress` (may be empty) is polled between tiles; false cancels (summary->cancelled).
-ImageF renderExport(const ImageF& photo, const ImageF* depth, const Artcam& camera,
+// The export render: full resolution from the linear photo, resampled as `artcam warp` does (in
+// the photo's stored domain, core/pipeline/render.h, with ExportOptions::filter), then fill or
+// crop. `progress` (may be empty) is polled between tiles; false cancels (summary->cancelled).
+ImageF renderExport(const LoadedImage& photo, const ImageF* depth, const Artcam& camera,
                     const ExportOptions& options, const std::function<bool(double)>& progress,
                     RenderSummary* summary);
 

@@ -290,8 +290,10 @@ bool colourOnly(const ImageF& rgba, const ImageF* depth, const SecondReader& sec
 // maps [source point | sampled colour | sampled depth].
 // `camera_structure` is the whole camera's: its geometry (class, homography) is the position
 // part's, since the position forms read position alone on this path.
-bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
-            const Camera& camera, const CameraStructure& camera_structure, const AttributeEvaluator& eval,
+// `rgba` is in the stored domain of `encoding` (null: linear), each sample decoded before use.
+bool gather(const ImageF& rgba, const StoredEncoding* encoding, const ImageF* depth,
+            const SecondReader& second, const Camera& camera,
+            const CameraStructure& camera_structure, const AttributeEvaluator& eval,
             const AttributedOptions& options, AttributedImage& out, AttributedSummary& report) {
   const Camera geometry = positionPart(camera);
   const CameraStructure& structure = camera_structure;
@@ -321,6 +323,7 @@ bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
   return parallelForRows(out_px.height, po, [&](int y0, int y1) {
     float sx[kSpanPixels], sy[kSpanPixels];
     unsigned char valid[kSpanPixels];
+    float samples[kSpanPixels][4];
     AttributeEvaluator::Output o;
     float b[4];
     for (int y = y0; y < y1; ++y) {
@@ -328,12 +331,17 @@ bool gather(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
       for (int x0 = 0; x0 < out_px.width; x0 += kSpanPixels) {
         const int n = std::min(kSpanPixels, out_px.width - x0);
         choice.kernel->span(y, x0, n, sx, sy, valid, state);
+        // The span's samples, read in the stored domain and decoded together (the one
+        // resampling rule, core/colour/stored_encoding.h).
+        for (int i = 0; i < n; ++i)
+          if (valid[i]) sampler.sample(sx[i], sy[i], samples[i]);
+          else std::fill(samples[i], samples[i] + 4, 0.0f);
+        if (encoding) encoding->decode(samples[0], static_cast<size_t>(n), 4, 3);
         for (int i = 0; i < n; ++i) {
           float* colour = out.colour.pixel(x0 + i, y);
           float* d_out = out.depth.empty() ? nullptr : out.depth.pixel(x0 + i, y);
           if (!valid[i]) continue;  // stays transparent
-          float sample[4];
-          sampler.sample(sx[i], sy[i], sample);
+          const float* sample = samples[i];
           // A transparent photo pixel has nothing to change, unless a second image is
           // composited with it (B over nothing is B).
           if (!(sample[3] > 0.0f) && !eval.readsSecond()) continue;
@@ -398,7 +406,17 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
     second_rgba = rgbaFromImage(*sources.second);
   }
   const SecondReader second(second_rgba.empty() ? nullptr : &second_rgba, source_px);
-  const ImageF rgba = rgbaFromImage(source);
+  ImageF rgba = rgbaFromImage(source);
+  // The paths that resample the photo read it in its stored domain (the one resampling rule);
+  // the colour-only path keeps every pixel in place and the splat reads pixels at their centres,
+  // so both read the linear values directly.
+  const StoredEncoding* encoding =
+      sources.encoding && !sources.encoding->isLinear() &&
+              (path == AttributedPath::Geometry || path == AttributedPath::Gather)
+          ? sources.encoding
+          : nullptr;
+  if (encoding)
+    encoding->encode(rgba.data.data(), rgba.data.size() / 4, 4, 3);
 
   AttributedImage out;
   bool finished = true;
@@ -408,6 +426,8 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
     wo.height = out_px.height;
     WarpSummary ws;
     out.colour = warpImage(rgba, analysed, wo, &ws);
+    if (encoding && !ws.cancelled)
+      encoding->decode(out.colour.data.data(), out.colour.data.size() / 4, 4, 3);
     report.kernel = ws.kernel;
     report.note = ws.note;
     finished = !ws.cancelled;
@@ -429,7 +449,7 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
       report.kernel = "colour-only";
       finished = colourOnly(rgba, depth, second, eval, options, out);
     } else {
-      finished = gather(rgba, depth, second, camera, structure, eval, options, out, report);
+      finished = gather(rgba, encoding, depth, second, camera, structure, eval, options, out, report);
     }
   }
   report.render_ms =

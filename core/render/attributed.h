@@ -33,6 +33,7 @@
 // sheets, so "over" would be wrong.
 #pragma once
 
+#include "core/colour/stored_encoding.h"
 #include "core/model/compiled_camera.h"
 #include "core/model/camera.h"
 #include "core/model/image.h"
@@ -82,10 +83,14 @@ struct AttributedImage {
 // alpha_channel 1 as core/depth/depth_raster.h makes) and the second image (any channels as the
 // source, linear premultiplied). Both may have any size: they are read at the source point
 // scaled to their size.
+// `encoding`: how `colour` was decoded from the photo's stored values; the paths that resample
+// the photo (gather, geometry) interpolate in that domain and decode each sample before the
+// camera reads it (core/colour/stored_encoding.h). Null: `colour` is what is stored.
 struct AttributedSources {
   const ImageF& colour;
   const ImageF* depth = nullptr;
   const ImageF* second = nullptr;
+  const StoredEncoding* encoding = nullptr;
 };
 
 // Which path renders `camera` from a source of `source_px` to an output of `out_px`.

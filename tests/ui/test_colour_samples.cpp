@@ -326,9 +326,9 @@ class TestColourSamples : public QObject {
 
   void previewOfAWarpWithAColourBlock() {
     // Geometry and colour at once: the preview must be the geometry-only warp of the preview
-    // copy with M applied per pixel (a linear map commutes with the interpolation of
-    // premultiplied colour), which core's plain warpImage gives independently of the
-    // attributed renderer.
+    // copy, interpolated in the photo's stored domain (the one resampling rule,
+    // core/colour/stored_encoding.h) and decoded, with M applied per pixel — which core's plain
+    // warpImage and the encoding give independently of the attributed renderer.
     Document doc;
     PreviewController preview(&doc);
     doc.reset(test::syntheticPhoto(), test::ninePairs());
@@ -341,7 +341,14 @@ class TestColourSamples : public QObject {
     WarpOptions options;
     options.width = got.width();
     options.height = got.height();
-    const ImageF warped = warpImage(doc.photo()->preview, geometry, options);
+    const StoredEncoding encoding = storedEncodingOf(doc.photo()->full.info);
+    QVERIFY(!encoding.isLinear());
+    ImageF stored = doc.photo()->preview;
+    encoding.encode(stored.data.data(), stored.data.size() / static_cast<size_t>(stored.channels),
+                    stored.channels, stored.alpha_channel);
+    ImageF warped = warpImage(stored, geometry, options);
+    encoding.decode(warped.data.data(), warped.data.size() / static_cast<size_t>(warped.channels),
+                    warped.channels, warped.alpha_channel);
     int worst = 0, compared = 0;
     for (int y = 3; y < got.height(); y += 17)
       for (int x = 3; x < got.width(); x += 13) {

@@ -97,8 +97,10 @@ class TestDocumentCamera : public QObject {
 
   void exportFillsAndCrops() {
     // A 40×30 grey photo shrunk to half about the centre: the border has no preimage.
-    ImageF photo(40, 30, 3);
-    for (float& v : photo.data) v = 0.25f;
+    LoadedImage photo;
+    photo.image = ImageF(40, 30, 3);
+    photo.info.srgb = false;  // linear values, as made here
+    for (float& v : photo.image.data) v = 0.25f;
     Camera half = identityImageCamera({40, 30});
     half.stages()[0].q[2](2, 2) = 2.0;  // w' = 2w: every point halves
     ExportOptions fill;
