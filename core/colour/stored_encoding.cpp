@@ -13,6 +13,7 @@ namespace artcam {
 // The curves on [0, 1] sampled at 16384 steps and read linearly in between: sRGB's encode has
 // its largest curvature just above its linear toe, where the chord's error is about 1e-6 — a
 // three-thousandth of an 8-bit step — against a pow per channel per pixel otherwise. Values
+// below 1/64 (where a pure power curve's slope is unbounded: gamma 2.2 has no linear toe) and
 // outside [0, 1] (float photos, overshooting filters) take the exact formula.
 struct StoredEncoding::Tables {
   static constexpr int kSteps = 16384;
@@ -52,6 +53,8 @@ std::string StoredEncoding::describe() const {
 }
 
 namespace {
+
+constexpr float kTabledFrom = 1.0f / 64.0f;
 
 // Divides the colour channels by alpha (premultiplied → straight), or multiplies them back.
 void scaleColour(float* data, size_t pixels, int channels, int alpha, bool divide) {
@@ -102,7 +105,7 @@ void StoredEncoding::encode(float* data, size_t pixels, int channels, int alpha_
       for (int c = 0; c < channels; ++c) {
         if (c == alpha_channel) continue;
         const float v = px[c];
-        px[c] = v >= 0.0f && v <= 1.0f ? Tables::read(tables_->encode, v)
+        px[c] = v >= kTabledFrom && v <= 1.0f ? Tables::read(tables_->encode, v)
                                        : static_cast<float>(transfer_.encode(v));
       }
     }
@@ -121,7 +124,7 @@ void StoredEncoding::decode(float* data, size_t pixels, int channels, int alpha_
       for (int c = 0; c < channels; ++c) {
         if (c == alpha_channel) continue;
         const float v = px[c];
-        px[c] = v >= 0.0f && v <= 1.0f ? Tables::read(tables_->decode, v)
+        px[c] = v >= kTabledFrom && v <= 1.0f ? Tables::read(tables_->decode, v)
                                        : static_cast<float>(transfer_.decode(v));
       }
     }
