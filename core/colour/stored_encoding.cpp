@@ -2,7 +2,9 @@
 #include "core/colour/stored_encoding.h"
 
 #include "core/colour/icc_profile.h"
+#include "core/util/parallel.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -94,8 +96,7 @@ void throughProfile(const IccProfile& icc, bool to_working, float* data, size_t 
 
 }  // namespace
 
-void StoredEncoding::encode(float* data, size_t pixels, int channels, int alpha_channel) const {
-  if (isLinear()) return;
+void StoredEncoding::encodeRange(float* data, size_t pixels, int channels, int alpha_channel) const {
   scaleColour(data, pixels, channels, alpha_channel, true);
   if (icc_) {
     throughProfile(*icc_, false, data, pixels, channels, alpha_channel);
@@ -113,8 +114,7 @@ void StoredEncoding::encode(float* data, size_t pixels, int channels, int alpha_
   scaleColour(data, pixels, channels, alpha_channel, false);
 }
 
-void StoredEncoding::decode(float* data, size_t pixels, int channels, int alpha_channel) const {
-  if (isLinear()) return;
+void StoredEncoding::decodeRange(float* data, size_t pixels, int channels, int alpha_channel) const {
   scaleColour(data, pixels, channels, alpha_channel, true);
   if (icc_) {
     throughProfile(*icc_, true, data, pixels, channels, alpha_channel);
@@ -130,6 +130,39 @@ void StoredEncoding::decode(float* data, size_t pixels, int channels, int alpha_
     }
   }
   scaleColour(data, pixels, channels, alpha_channel, false);
+}
+
+// A photo's worth of pixels on every core, in runs of kRun pixels (the curves and lcms2's
+// uncached transforms are pure functions, safe to run side by side).
+void StoredEncoding::inParallel(float* data, size_t pixels, int channels, int alpha_channel,
+                                bool encoding) const {
+  constexpr size_t kRun = 16384;
+  const auto run = [&](size_t first, size_t count) {
+    float* at = data + first * static_cast<size_t>(channels);
+    if (encoding) encodeRange(at, count, channels, alpha_channel);
+    else decodeRange(at, count, channels, alpha_channel);
+  };
+  if (pixels <= 4 * kRun) {
+    run(0, pixels);
+    return;
+  }
+  const int runs = static_cast<int>((pixels + kRun - 1) / kRun);
+  ParallelOptions options;
+  options.band_rows = 1;
+  parallelForRows(runs, options, [&](int r0, int r1) {
+    for (int r = r0; r < r1; ++r) {
+      const size_t first = static_cast<size_t>(r) * kRun;
+      run(first, std::min(kRun, pixels - first));
+    }
+  });
+}
+
+void StoredEncoding::encode(float* data, size_t pixels, int channels, int alpha_channel) const {
+  if (!isLinear()) inParallel(data, pixels, channels, alpha_channel, true);
+}
+
+void StoredEncoding::decode(float* data, size_t pixels, int channels, int alpha_channel) const {
+  if (!isLinear()) inParallel(data, pixels, channels, alpha_channel, false);
 }
 
 }  // namespace artcam

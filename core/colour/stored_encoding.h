@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 
 namespace artcam {
 
@@ -35,11 +36,15 @@ class StoredEncoding {
   bool isLinear() const { return !icc_ && transfer_.kind == Transfer::Kind::Linear; }
   std::string describe() const;
 
-  // In place, `pixels` interleaved pixels of `channels` floats.
+  // In place, `pixels` interleaved pixels of `channels` floats; large images on every core.
   void encode(float* data, size_t pixels, int channels, int alpha_channel) const;
   void decode(float* data, size_t pixels, int channels, int alpha_channel) const;
 
  private:
+  void encodeRange(float* data, size_t pixels, int channels, int alpha_channel) const;
+  void decodeRange(float* data, size_t pixels, int channels, int alpha_channel) const;
+  void inParallel(float* data, size_t pixels, int channels, int alpha_channel, bool encoding) const;
+
   struct Tables;
   Transfer transfer_ = Transfer::linear();
   std::shared_ptr<const IccProfile> icc_;

@@ -265,24 +265,33 @@ class SecondReader {
 };
 
 // Geometry identity, same size: each pixel's own colour and depth through the camera.
-bool colourOnly(const ImageF& rgba, const ImageF* depth, const SecondReader& second,
-                const AttributeEvaluator& eval, const AttributedOptions& options,
-                AttributedImage& out) {
+// `encoding` (may be null): `rgba` is in its stored domain, each row decoded as it is read.
+bool colourOnly(const ImageF& rgba, const StoredEncoding* encoding, const ImageF* depth,
+                const SecondReader& second, const AttributeEvaluator& eval,
+                const AttributedOptions& options, AttributedImage& out) {
   const FrameSize px{rgba.width, rgba.height};
   return parallelForRows(rgba.height, parallelOptions(options), [&](int y0, int y1) {
     AttributeEvaluator::Output o;
     float b[4];
-    for (int y = y0; y < y1; ++y)
+    std::vector<float> decoded;
+    for (int y = y0; y < y1; ++y) {
+      const float* row = rgba.pixel(0, y);
+      if (encoding) {
+        decoded.assign(row, row + 4 * static_cast<size_t>(rgba.width));
+        encoding->decode(decoded.data(), static_cast<size_t>(rgba.width), 4, 3);
+        row = decoded.data();
+      }
       for (int x = 0; x < rgba.width; ++x) {
+        const float* in = row + 4 * static_cast<size_t>(x);
         const Eigen::Vector2d n = normalizedFromPixel(px, {x + 0.5, y + 0.5});
         const DepthSample d =
             depth ? sampleDepthCoverage(*depth, px, x + 0.5, y + 0.5) : DepthSample{};
-        eval.evaluate(n.x(), n.y(), rgba.pixel(x, y), d.depth, o,
-                      second.read(x + 0.5, y + 0.5, b));
+        eval.evaluate(n.x(), n.y(), in, d.depth, o, second.read(x + 0.5, y + 0.5, b));
         float* d_out = out.depth.empty() ? nullptr : out.depth.pixel(x, y);
         writeOutput(o, out.colour.pixel(x, y), d_out);
-        keepWithoutDepth(eval, d.coverage, rgba.pixel(x, y), out.colour.pixel(x, y), d_out);
+        keepWithoutDepth(eval, d.coverage, in, out.colour.pixel(x, y), d_out);
       }
+    }
   });
 }
 
@@ -365,8 +374,31 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Camera&
   return renderAttributed(sources, AnalysedCamera{camera, structure}, options, summary);
 }
 
+namespace {
+
+// The source as the paths read it, made once for all the layers of a layered render: RGBA, in
+// the stored domain when the sources carry an encoding (the one resampling rule), which the
+// colour-only path then decodes pixel by pixel; so one copy serves every layer.
+struct PreparedColour {
+  ImageF rgba;
+};
+
+AttributedImage renderPrepared(const AttributedSources& sources, const AnalysedCamera& analysed,
+                               const AttributedOptions& options, AttributedSummary* summary,
+                               PreparedColour* prepared);
+
+}  // namespace
+
 AttributedImage renderAttributed(const AttributedSources& sources, const AnalysedCamera& analysed,
                                  const AttributedOptions& options, AttributedSummary* summary) {
+  return renderPrepared(sources, analysed, options, summary, nullptr);
+}
+
+namespace {
+
+AttributedImage renderPrepared(const AttributedSources& sources, const AnalysedCamera& analysed,
+                               const AttributedOptions& options, AttributedSummary* summary,
+                               PreparedColour* prepared) {
   const Camera& camera = analysed.camera;
   const CameraStructure& structure = analysed.structure;
   const ImageF& source = sources.colour;
@@ -406,7 +438,6 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
     second_rgba = rgbaFromImage(*sources.second);
   }
   const SecondReader second(second_rgba.empty() ? nullptr : &second_rgba, source_px);
-  ImageF rgba = rgbaFromImage(source);
   // The paths that resample the photo read it in its stored domain (the one resampling rule);
   // the colour-only path keeps every pixel in place and the splat reads pixels at their centres,
   // so both read the linear values directly.
@@ -415,8 +446,33 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
               (path == AttributedPath::Geometry || path == AttributedPath::Gather)
           ? sources.encoding
           : nullptr;
-  if (encoding)
-    encoding->encode(rgba.data.data(), rgba.data.size() / 4, 4, 3);
+  const auto encode = [encoding](ImageF& image) {
+    encoding->encode(image.data.data(), image.data.size() / 4, 4, 3);
+  };
+  // With a layered render's prepared copy (stored domain where there is an encoding), the
+  // colour-only path decodes it as it reads (`stored_colour_only`), the splat gets a decoded copy.
+  ImageF owned;
+  const ImageF* source_rgba = &owned;
+  const StoredEncoding* stored_colour_only = nullptr;
+  if (!prepared) {
+    owned = rgbaFromImage(source);
+    if (encoding) encode(owned);
+  } else {
+    const StoredEncoding* any =
+        sources.encoding && !sources.encoding->isLinear() ? sources.encoding : nullptr;
+    if (prepared->rgba.empty()) {
+      prepared->rgba = rgbaFromImage(source);
+      if (any) any->encode(prepared->rgba.data.data(), prepared->rgba.data.size() / 4, 4, 3);
+    }
+    source_rgba = &prepared->rgba;
+    if (any && path == AttributedPath::ColourOnly) stored_colour_only = any;
+    if (any && path == AttributedPath::Splat) {
+      owned = prepared->rgba;
+      any->decode(owned.data.data(), owned.data.size() / 4, 4, 3);
+      source_rgba = &owned;
+    }
+  }
+  const ImageF& rgba = *source_rgba;
 
   AttributedImage out;
   bool finished = true;
@@ -447,7 +503,7 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
     if (eval.readsDepth()) out.depth = ImageF(out_px.width, out_px.height, 1);
     if (path == AttributedPath::ColourOnly) {
       report.kernel = "colour-only";
-      finished = colourOnly(rgba, depth, second, eval, options, out);
+      finished = colourOnly(rgba, stored_colour_only, depth, second, eval, options, out);
     } else {
       finished = gather(rgba, encoding, depth, second, camera, structure, eval, options, out, report);
     }
@@ -461,6 +517,8 @@ AttributedImage renderAttributed(const AttributedSources& sources, const Analyse
   report.transparent_pixels = countTransparent(out.colour);
   return out;
 }
+
+}  // namespace
 
 AttributedImage renderLayers(const AttributedSources& sources, const std::vector<Camera>& layers,
                              const AttributedOptions& options, AttributedSummary* summary) {
@@ -481,6 +539,7 @@ AttributedImage renderLayers(const AttributedSources& sources, const std::vector
   // the depth. A layer's premultiplied colour s with coverage a adds s/a (nothing where a = 0,
   // which makes the smallest coverage 0 anyway).
   std::vector<float> best_alpha;
+  PreparedColour prepared;  // the source converted once for every layer
   auto add = [](float* t, const float* s, bool first) {
     const float a = s[3];
     for (int k = 0; k < 3; ++k) {
@@ -497,7 +556,7 @@ AttributedImage renderLayers(const AttributedSources& sources, const std::vector
         return options.warp.progress((static_cast<double>(l) + f) / n);
       };
     }
-    AttributedImage layer = renderAttributed(sources, layers[l], lo, &report);
+    AttributedImage layer = renderPrepared(sources, layers[l], lo, &report, &prepared);
     if (report.cancelled) return {};
     ms += report.render_ms;
     kernels += (l ? "+" : "") + report.kernel;
