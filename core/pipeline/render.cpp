@@ -221,7 +221,8 @@ ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera, 
     // The depth-coverage rule, as the haze follows it (depth_coverage.h): a soft painted edge
     // fades the blur in, c·blurred + (1 − c)·sharp, instead of cutting it at the last pixel the
     // mask touches. The splat path hands back no coverage: its blur is not faded.
-    if (!out.depth_coverage.empty()) fadeByDepthCoverage(out.depth_coverage, out.colour, blurred);
+    if (!out.depth_coverage.empty())
+      fadeByDepthCoverage(out.depth_coverage, out.colour, blurred, blur.threads);
     out.colour = std::move(blurred);
     report.blurred = true;
   }

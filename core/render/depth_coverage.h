@@ -36,7 +36,9 @@ inline void fadeByDepthCoverage(float coverage, const float* untouched, float* e
 }
 
 // Images: `effect` and `untouched` RGBA (4 channels) of one size, `coverage` 1 channel of that
-// size. Throws std::invalid_argument when the sizes disagree.
-void fadeByDepthCoverage(const ImageF& coverage, const ImageF& untouched, ImageF& effect);
+// size; bands of rows on `threads` (0: every core). Throws std::invalid_argument when the sizes
+// disagree.
+void fadeByDepthCoverage(const ImageF& coverage, const ImageF& untouched, ImageF& effect,
+                         int threads = 0);
 
 }  // namespace artcam
