@@ -16,8 +16,12 @@
 // depth_file.h's 1-channel z with 0 = none, or this 2-channel form; any size: sampled nearest)
 // lies under every layer.
 //
-// Inverse depths below 1/max_depth (a plane seen towards its horizon, or beyond it) are clamped
-// to it and counted: depth stays finite and positive.
+// A plane from points stays within its points' depth span (inverse_depth_plane.h), so a soft
+// fringe beyond them takes the span's end, never an extrapolated spike; a soft edge then blends
+// that depth with what lies under it, and the coverage carries the rest (an effect fades with
+// it: core/render/depth_coverage.h). Inverse depths below 1/max_depth (a plane written
+// unbounded, seen towards its horizon or beyond it, or points beyond max_depth) are clamped to
+// it and counted: depth stays finite and positive.
 #pragma once
 
 #include "core/depth/inverse_depth_plane.h"

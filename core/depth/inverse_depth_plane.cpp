@@ -38,6 +38,11 @@ Result<InverseDepthPlane> planeFromAnchors(const std::array<DepthAnchor, 3>& anc
   plane.a = s(0);
   plane.b = s(1);
   plane.c = s(2) - s(0) * centroid.x() - s(1) * centroid.y();
+  // The span of the points' own depths (inverse_depth_plane.h): no extrapolation past them.
+  const auto [nearest, farthest] = std::minmax(
+      {anchors[0].depth, anchors[1].depth, anchors[2].depth});
+  plane.min_inverse = 1.0 / farthest;
+  plane.max_inverse = 1.0 / nearest;
   return Result<InverseDepthPlane>::success(plane);
 }
 

@@ -5,6 +5,7 @@
 #include "core/model/structure.h"
 #include "core/piecewise/piecewise_render.h"
 #include "core/render/attributed.h"
+#include "core/render/depth_coverage.h"
 #include "core/render/preview.h"
 
 #include <algorithm>
@@ -194,6 +195,8 @@ ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera, 
   a.warp.height = size.height;
   a.splat_supersample = options.splat_supersample;
   a.force_path = options.force_path;
+  // The blur fades with the depth's coverage after the stack (depth_coverage.h).
+  a.depth_coverage = camera.depth_output == DepthOutput::BlurVariance;
   AttributedSummary as;
   const AttributedSources sources{*inputs.linear, inputs.depth, inputs.second, inputs.encoding};
   AttributedImage out = camera.layers.size() > 1
@@ -212,11 +215,17 @@ ImageF renderAttributedCamera(const RenderInputs& inputs, const Artcam& camera, 
     BlurOptions blur;
     blur.threads = options.warp.threads;
     blur.progress = options.warp.progress;
-    out.colour = stackBlur(out.colour, sigmaPixelsFromVariance(out.depth), blur);
-    if (out.colour.empty()) {
+    ImageF blurred = stackBlur(out.colour, sigmaPixelsFromVariance(out.depth), blur);
+    if (blurred.empty()) {
       report.cancelled = true;
       return {};
     }
+    // The depth-coverage rule, as the haze follows it (depth_coverage.h): a soft painted edge
+    // fades the blur in, c·blurred + (1 − c)·sharp, instead of cutting it at the last pixel the
+    // mask touches. The splat path hands back no coverage: its blur is not faded.
+    if (!out.depth_coverage.empty())
+      fadeByDepthCoverage(out.depth_coverage, out.colour, blurred, blur.threads);
+    out.colour = std::move(blurred);
     report.blurred = true;
   }
   if (depth_out) *depth_out = std::move(out.depth);

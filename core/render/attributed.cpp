@@ -8,6 +8,7 @@
 #include "core/mapping/coordinates.h"
 #include "core/util/parallel.h"
 #include "core/sampling/sampling.h"
+#include "core/render/depth_coverage.h"
 #include "core/render/splat.h"
 #include "core/render/warp.h"
 
@@ -200,19 +201,17 @@ AttributedPath chooseAttributedPath(const Camera& camera, const CameraStructure&
 
 namespace {
 
-// sampleDepthCoverage's rule for pixels without depth (attributed.h): `untouched` is the
-// sampled colour the camera was given.
+// The depth-coverage rule (depth_coverage.h) where the camera is evaluated: `untouched` is the
+// sampled colour the camera was given. A colour that reads depth fades with the coverage here;
+// the coverage itself goes to `coverage_out` (when asked) for the effects applied after the
+// render (the depth-of-field blur), and a pixel without depth has depth output 0, "none".
 void keepWithoutDepth(const AttributeEvaluator& eval, double coverage, const float* untouched,
-                      float* colour, float* depth) {
-  if (!eval.readsDepth() || coverage >= 1.0) return;
-  if (coverage <= 0.0) {
-    if (depth) *depth = 0.0f;
-    if (eval.colourReadsDepth()) std::copy(untouched, untouched + 4, colour);
-    return;
-  }
-  if (!eval.colourReadsDepth()) return;
-  const auto c = static_cast<float>(coverage);
-  for (int k = 0; k < 4; ++k) colour[k] = c * colour[k] + (1.0f - c) * untouched[k];
+                      float* colour, float* depth, float* coverage_out) {
+  if (!eval.readsDepth()) return;
+  const auto c = static_cast<float>(std::clamp(coverage, 0.0, 1.0));
+  if (coverage_out) *coverage_out = c;
+  if (depth && !(c > 0.0f)) *depth = 0.0f;
+  if (eval.colourReadsDepth()) fadeByDepthCoverage(c, untouched, colour);
 }
 
 void writeOutput(const AttributeEvaluator::Output& o, float* colour, float* depth) {
@@ -289,7 +288,8 @@ bool colourOnly(const ImageF& rgba, const StoredEncoding* encoding, const ImageF
         eval.evaluate(n.x(), n.y(), in, d.depth, o, second.read(x + 0.5, y + 0.5, b));
         float* d_out = out.depth.empty() ? nullptr : out.depth.pixel(x, y);
         writeOutput(o, out.colour.pixel(x, y), d_out);
-        keepWithoutDepth(eval, d.coverage, in, out.colour.pixel(x, y), d_out);
+        keepWithoutDepth(eval, d.coverage, in, out.colour.pixel(x, y), d_out,
+                         out.depth_coverage.empty() ? nullptr : out.depth_coverage.pixel(x, y));
       }
     }
   });
@@ -359,7 +359,9 @@ bool gather(const ImageF& rgba, const StoredEncoding* encoding, const ImageF* de
               depth ? sampleDepthCoverage(*depth, source_px, sx[i], sy[i]) : DepthSample{};
           eval.evaluate(s.x(), s.y(), sample, d.depth, o, second.read(sx[i], sy[i], b));
           writeOutput(o, colour, d_out);
-          keepWithoutDepth(eval, d.coverage, sample, colour, d_out);
+          keepWithoutDepth(eval, d.coverage, sample, colour, d_out,
+                           out.depth_coverage.empty() ? nullptr
+                                                      : out.depth_coverage.pixel(x0 + i, y));
         }
       }
     }
@@ -501,6 +503,8 @@ AttributedImage renderPrepared(const AttributedSources& sources, const AnalysedC
   } else {
     out.colour = ImageF(out_px.width, out_px.height, 4, 3);
     if (eval.readsDepth()) out.depth = ImageF(out_px.width, out_px.height, 1);
+    if (eval.readsDepth() && options.depth_coverage)
+      out.depth_coverage = ImageF(out_px.width, out_px.height, 1);
     if (path == AttributedPath::ColourOnly) {
       report.kernel = "colour-only";
       finished = colourOnly(rgba, stored_colour_only, depth, second, eval, options, out);
@@ -581,6 +585,9 @@ AttributedImage renderLayers(const AttributedSources& sources, const std::vector
       if (s[3] > best_alpha[i]) {
         best_alpha[i] = s[3];
         if (!total.depth.empty() && !layer.depth.empty()) total.depth.data[i] = layer.depth.data[i];
+        // The coverage the depth was read with goes with it (the blur fades by it).
+        if (!total.depth_coverage.empty() && !layer.depth_coverage.empty())
+          total.depth_coverage.data[i] = layer.depth_coverage.data[i];
       }
     }
   }

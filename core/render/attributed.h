@@ -61,6 +61,9 @@ struct AttributedOptions {
   int splat_supersample = 3;
   // Force a path (tests and the benchmark compare splat and gather); empty: from the structure.
   std::string force_path;
+  // Also hand back the depth input's coverage per output pixel (AttributedImage::depth_coverage)
+  // for an effect applied after the render: the depth-of-field blur (depth_coverage.h).
+  bool depth_coverage = false;
 };
 
 struct AttributedSummary {
@@ -76,6 +79,11 @@ struct AttributedImage {
   ImageF colour;  // RGBA premultiplied, alpha channel 3
   ImageF depth;   // 1 channel, the camera's depth output (0 where transparent); empty if the
                   // camera has no depth block
+  // 1 channel, the coverage c of the depth input where each output pixel's depth was read (0
+  // where nothing was), for the effects faded after the render (depth_coverage.h); only with
+  // AttributedOptions::depth_coverage, on the colour-only and gather paths (and layered
+  // renders of them): empty otherwise, which the blur takes as "no fade".
+  ImageF depth_coverage;
 };
 
 // The images the camera's blocks read: the colour source, and where the camera has those
@@ -187,9 +195,10 @@ double sampleDepth(const ImageF& depth, FrameSize source_px, double sx, double s
 // its sampled colour (and depth output 0, "none"), as a camera that reads depth has nothing to
 // act on there — aerial perspective must not haze the sky nobody gave a depth; where
 // 0 < c < 1 the colour is c·(camera's colour) + (1 − c)·(sampled colour), so a soft mask edge
-// fades the effect in without a seam. Applied on the colour-only and gather paths, to cameras
-// whose colour reads depth (colourReadsDepth); the depth output's c = 0 rule to every camera
-// that reads depth (a blur variance of 0 leaves the pixel sharp).
+// fades the effect in without a seam: the depth-coverage rule of depth_coverage.h. Applied on
+// the colour-only and gather paths, to cameras whose colour reads depth (colourReadsDepth); the
+// depth output's c = 0 rule to every camera that reads depth (a blur variance of 0 leaves the
+// pixel sharp); the blur after the render fades by the same rule from depth_coverage.
 
 // The source as 4-channel premultiplied RGBA float (alpha channel 3).
 ImageF rgbaFromImage(const ImageF& source);

@@ -25,6 +25,7 @@
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
 
+#include <algorithm>
 #include <memory>
 
 using namespace artcam;
@@ -160,9 +161,9 @@ class TestDepthPlanes : public QObject {
         const double inverse = interpolatedInverseDepth(anchors, {x + 0.5, y + 0.5});
         const auto z = depthAt(depth, x, y);
         QVERIFY(z);
-        // Beyond the plane's horizon (1/z ≤ 0) depth is clamped to max_depth, never NaN.
-        const double max_depth = DepthRasterOptions{}.max_depth;
-        const double truth = inverse > 1.0 / max_depth ? 1.0 / inverse : max_depth;
+        // Beyond its points' depths (4 … 25) the plane keeps the nearer end of that span
+        // (core/depth/inverse_depth_plane.h): never an extrapolation, a horizon or NaN.
+        const double truth = inverse > 1.0 / 25.0 ? std::max(4.0, 1.0 / inverse) : 25.0;
         QVERIFY2(std::abs(*z - truth) < 1e-5 * truth, qPrintable(QString("%1 vs %2").arg(*z).arg(truth)));
       }
 
