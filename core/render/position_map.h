@@ -7,10 +7,10 @@
 // resolution of its frames may be asked for. "No preimage" is the coordinate kernels' own
 // (inverse.h: beyond a pole curve, folded, Newton failing).
 //
-// What a pixel reads (the one rule `warp`, `export-map` and `fit --stmap` share,
-// docs/architecture.md "Pixels without a preimage"): a pixel is transparent in the warp exactly
-// when it has no preimage or its preimage lies so far outside the photo that the warp's
-// (default, bilinear) filter has no tap inside: x − ½ ∉ (−1, W) or y − ½ ∉ (−1, H), the span
+// What a pixel reads (the one rule `warp`, `export-map` and `fit --stmap` share; docs/
+// architecture.md, "Pixels without a preimage, and ST maps"): a pixel is transparent in the
+// warp exactly when it has no preimage or its preimage lies so far outside the photo that the
+// warp's (default, bilinear) filter has no tap inside: x − ½ ∉ (−1, W) or y − ½ ∉ (−1, H), the span
 // sampler's own test in its own float arithmetic. Such a pixel is Preimage::OutsidePhoto: its
 // position is kept (it is still the camera's geometry, which fit --stmap fits), but a map says
 // it reads nothing (alpha 0), so a compositor that clamps at the border cannot smear the edge
