@@ -88,15 +88,15 @@ Camera cameraFromPixelHomography(const Eigen::Matrix3d& h_px, FrameSize size) {
 }
 
 // Smooth ramps plus noise, linear float: every pixel differs, so a half-pixel slip shows.
-bool writePhoto(const QString& path) {
-  OIIO::ImageSpec spec(kW, kH, 3, OIIO::TypeDesc::FLOAT);
-  std::vector<float> pixels(static_cast<size_t>(kW) * kH * 3);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
+bool writePhoto(const QString& path, int w = kW, int h = kH) {
+  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+  std::vector<float> pixels(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c)
-        pixels[(static_cast<size_t>(y) * kW + static_cast<size_t>(x)) * 3 +
+        pixels[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3 +
                static_cast<size_t>(c)] =
-            static_cast<float>(0.6 * (x + c * y) / (kW + kH) + test::uniform(0.0, 0.4));
+            static_cast<float>(0.6 * (x + c * y) / (w + h) + test::uniform(0.0, 0.4));
   auto out = OIIO::ImageOutput::create(path.toStdString());
   return out && out->open(path.toStdString(), spec) &&
          out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close();
@@ -250,24 +250,33 @@ class TestCliExportMap : public QObject {
   void alphaIsZeroExactlyWhereTheWarpIsTransparent_data() {
     QTest::addColumn<QString>("camera");
     QTest::addColumn<QString>("size");
-    QTest::newRow("barrel -0.2, 1200x800") << "barrel-02" << "1200x800";
-    QTest::newRow("perspective with a horizon") << "persp" << "600x400";
+    QTest::addColumn<QString>("photo_size");  // empty: the camera's source frame, 600x400
+    QTest::newRow("barrel -0.2, 1200x800") << "barrel-02" << "1200x800" << "";
+    // The measurement: a 1200x800 photo through the 600x400 preset (278 852
+    // transparent); the map is told the photo's size, since half a pixel is the photo's.
+    QTest::newRow("barrel -0.2, 1200x800 photo") << "barrel-02" << "1200x800" << "1200x800";
+    QTest::newRow("perspective with a horizon") << "persp" << "600x400" << "";
   }
   void alphaIsZeroExactlyWhereTheWarpIsTransparent() {
     QFETCH(QString, camera);
     QFETCH(QString, size);
+    QFETCH(QString, photo_size);
     if (!QFile::exists(path("barrel-02.artcam"))) {
       const Run r =
           artcamCli({"preset", "barrel", "--k", "-0.2", "-o", path("barrel-02.artcam")});
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+      QVERIFY(writePhoto(path("photo-1200.exr"), 1200, 800));
     }
     const QString map_path = path(camera + "-alpha.exr"), warped = path(camera + "-warped.exr");
-    Run r = artcamCli({"export-map", path(camera + ".artcam"), "--size", size, "-o", map_path,
-                       "--json"});
+    QStringList map_args = {"export-map", path(camera + ".artcam"), "--size", size, "-o",
+                            map_path, "--json", "--overwrite"};
+    if (!photo_size.isEmpty()) map_args << "--source-size" << photo_size;
+    Run r = artcamCli(map_args);
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     const QJsonObject j = QJsonDocument::fromJson(r.out.toUtf8()).object();
-    r = artcamCli({"warp", path("photo.exr"), path(camera + ".artcam"), "--size", size, "-o",
-                   warped, "-q"});
+    const QString photo = photo_size.isEmpty() ? path("photo.exr") : path("photo-1200.exr");
+    r = artcamCli({"warp", photo, path(camera + ".artcam"), "--size", size, "-o", warped, "-q",
+                   "--overwrite"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     const MapFile map = readMap(map_path);
     const MapFile warp = readMap(warped);
