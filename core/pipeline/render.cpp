@@ -70,6 +70,29 @@ OutputFrame outputFrameFor(const Artcam& camera, FrameSize photo, int width, int
 
 namespace {
 
+// What a render needs to know of its camera, found once per render (docs/architecture.md).
+struct Analysis {
+  bool linear = false;       // renders from the linear float photo
+  bool attributes = false;   // some layer changes or reads colour/depth
+  // Each layer's structure (analyseStructure), in layer order: validateArtcam's.
+  std::vector<CameraStructure> layers;
+  // Layers that each pass one colour channel through a position camera (chromatic
+  // aberration, Fig 4): those cameras in channel order, rendered by warpChannels, and theirs.
+  std::vector<Camera> channels;
+  std::vector<CameraStructure> channel_structures;
+
+  std::vector<AnalysedCamera> analysedLayers(const Artcam& camera) const {
+    std::vector<AnalysedCamera> out;
+    for (size_t l = 0; l < camera.layers.size(); ++l) out.push_back({camera.layers[l], layers[l]});
+    return out;
+  }
+  std::vector<AnalysedCamera> analysedChannels() const {
+    std::vector<AnalysedCamera> out;
+    for (size_t k = 0; k < channels.size(); ++k) out.push_back({channels[k], channel_structures[k]});
+    return out;
+  }
+};
+
 // A layer [position 3 | colour 4] whose position forms read position alone and whose colour
 // outputs pass channel k and alpha unchanged (z_k = c_k w, z_A = c_A w, the rest 0): channel
 // k, else −1. Exact comparisons: a camera edited into anything else takes the general path.
@@ -117,29 +140,6 @@ std::vector<Camera> channelCameras(const Artcam& camera) {
 }
 
 namespace {
-
-// What a render needs to know of its camera, found once per render (docs/architecture.md).
-struct Analysis {
-  bool linear = false;       // renders from the linear float photo
-  bool attributes = false;   // some layer changes or reads colour/depth
-  // Each layer's structure (analyseStructure), in layer order: validateArtcam's.
-  std::vector<CameraStructure> layers;
-  // Layers that each pass one colour channel through a position camera (chromatic
-  // aberration, Fig 4): those cameras in channel order, rendered by warpChannels, and theirs.
-  std::vector<Camera> channels;
-  std::vector<CameraStructure> channel_structures;
-
-  std::vector<AnalysedCamera> analysedLayers(const Artcam& camera) const {
-    std::vector<AnalysedCamera> out;
-    for (size_t l = 0; l < camera.layers.size(); ++l) out.push_back({camera.layers[l], layers[l]});
-    return out;
-  }
-  std::vector<AnalysedCamera> analysedChannels() const {
-    std::vector<AnalysedCamera> out;
-    for (size_t k = 0; k < channels.size(); ++k) out.push_back({channels[k], channel_structures[k]});
-    return out;
-  }
-};
 
 // `layers`: each layer's structure when the caller has it (validateArtcam's), else found here.
 Analysis analyse(const Artcam& camera, std::vector<CameraStructure> layers = {}) {
