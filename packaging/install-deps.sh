@@ -8,8 +8,9 @@ packages=(build-essential cmake ninja-build ccache pkg-config
   qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
   libexiv2-dev libjpeg62-turbo-dev liblcms2-dev liblensfun-dev liblensfun-data-v1
   # The hostile corpus (CTest hostile/corpus) is driven by python3; oiiotool makes its images.
-  # The README's Python example (CTest docs/code_blocks) reads arrays with numpy and OpenImageIO.
-  python3 python3-numpy python3-openimageio
+  # The README's Python example (CTest docs/code_blocks) reads arrays with numpy and OpenImageIO;
+  # the user guide's ST-map recipe warps with OpenCV's remap.
+  python3 python3-numpy python3-openimageio python3-opencv
   # CI's fuzzing job (packaging/ci-sanitizers.sh): libFuzzer comes with clang's runtime.
   clang-14 libclang-rt-14-dev
   # Validators of the desktop files and manual pages (CTest packaging/*); file is for cpack's DEB.

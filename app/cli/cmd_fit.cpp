@@ -24,7 +24,8 @@ const char* const kFitUsage =
     "                  [--no-refine] [--robust [--threshold PX]] [--allow-poles]\n"
     "       artcam fit --piecewise MATCHES.csv -o CAM.artcam --size WxH [--target-size WxH]\n"
     "                  [--max-error PX] [--model quadratic|homography|affine] [--json]\n"
-    "       artcam fit --stmap MAP.exr -o CAM.artcam [--size WxH] [--piecewise] [--model …]\n"
+    "       artcam fit --stmap MAP.exr -o CAM.artcam [--size WxH] [--layer NAME] [--piecewise]\n"
+    "                  [--model …]\n"
     "       artcam fit --lines LINES.csv [MATCHES.csv] -o CAM.artcam --size WxH\n"
     "                  [--target-size WxH] [--model auto|radial|quadratic] [--json]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
@@ -54,8 +55,10 @@ const char* const kFitUsage =
     "the single camera at its top level and the patches beside it (artcam insert reads them).\n"
     "--stmap MAP.exr fits the camera to an ST map made elsewhere (a Nuke lens-distortion STMap,\n"
     "or artcam export-map's): the map is sampled on a grid (every Nth pixel, at most 4000\n"
-    "samples) where alpha > 0, each sample a match from its source position to its pixel\n"
-    "centre, and fitted as MATCHES.csv would be (also with --piecewise). The map is the target\n"
+    "samples) where alpha > 0 (or alpha 0 with a position beyond the photo's edge: export-map's\n"
+    "pixels that read nothing but still have a preimage), each sample a match from its source\n"
+    "position to its pixel centre, and fitted as MATCHES.csv would be (also with --piecewise).\n"
+    "A layered map (export-map of a per-channel camera) needs --layer R, G or B. The map is the target\n"
     "frame; the source size is --size, else the map's artcam:source_width/height, else the\n"
     "map's own size. R = x / W, G = 1 - y / H; a map with artcam:convention opencv holds\n"
     "cv::remap pixels (-1: none). Maps without R and G channels are refused.\n"
@@ -205,8 +208,11 @@ int fitCommand(const std::vector<std::string>& argv) {
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--stmap", "", true},
+                         {"--layer", "", true},
                          {"--lines", "", true},
                          {"--quiet", "-q", false}});
+  if (args.has("--layer") && !args.has("--stmap"))
+    throw UsageError("--layer names a layer of a layered --stmap map");
   if (const auto lines = args.value("--lines")) return fitLinesCommand(args, *lines);
   const auto stmap = args.value("--stmap");
   if (stmap) return fitStmapCommand(args, *stmap);
@@ -345,6 +351,7 @@ int fitStmapCommand(const Args& args, const std::string& map_path) {
   StmapSampleOptions options;
   if (const auto size_text = args.value("--size"))
     options.source_px = parseSize(*size_text, "--size");
+  options.layer = args.valueOr("--layer", "");
   const auto samples = readStmapSamples(map_path, options);
   if (!samples) throw CommandError(samples.status.message);
   if (!args.has("--json"))

@@ -161,10 +161,11 @@ bool imageExtensionWritable(const std::string& extension) {
   return t && t->image_extension_writable(extension);
 }
 
-Status writeStmap(const std::string& path, const PositionMap& map, StmapConvention convention) {
+Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers,
+                  StmapConvention convention) {
   Status failed;
   const auto* t = tableOr(failed, path, "write");
-  return t ? t->write_stmap(path, map, convention) : std::move(failed);
+  return t ? t->write_stmap(path, layers, convention) : std::move(failed);
 }
 
 Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSampleOptions& options) {

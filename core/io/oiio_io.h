@@ -42,12 +42,13 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
                              const StoredBandSource& band_rows);
 
 bool imageExtensionWritable(const std::string& extension);
-Status writeStmap(const std::string& path, const PositionMap& map, StmapConvention convention);
+Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers,
+                  StmapConvention convention);
 Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSampleOptions& options);
 Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& options,
                              DepthFileSummary* summary);
 
-constexpr int kTableVersion = 1;
+constexpr int kTableVersion = 2;
 
 struct Table {
   int version = kTableVersion;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace artcam {
 
@@ -18,6 +19,7 @@ namespace {
 constexpr const char* kConventionAttribute = "artcam:convention";
 constexpr const char* kSourceWidthAttribute = "artcam:source_width";
 constexpr const char* kSourceHeightAttribute = "artcam:source_height";
+constexpr const char* kLayersAttribute = "artcam:layers";
 
 int channelNamed(const OIIO::ImageSpec& spec, const std::string& name) {
   for (int c = 0; c < spec.nchannels; ++c)
@@ -29,20 +31,38 @@ int channelNamed(const OIIO::ImageSpec& spec, const std::string& name) {
 
 namespace oiio_io {
 
-Status writeStmap(const std::string& path, const PositionMap& map, StmapConvention convention) {
-  const int width = map.target_px.width, height = map.target_px.height;
+Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers,
+                  StmapConvention convention) {
+  if (layers.empty() || !layers[0].map)
+    throw std::invalid_argument("writeStmap: no map to write");
+  const PositionMap& first = *layers[0].map;
+  const int width = first.target_px.width, height = first.target_px.height;
+  for (const StmapLayer& layer : layers)
+    if (!layer.map || layer.map->target_px != first.target_px ||
+        layer.map->source_px != first.source_px || (layers.size() > 1 && layer.name.empty()))
+      throw std::invalid_argument("writeStmap: layers of different frames, or an unnamed layer");
   const bool st = convention == StmapConvention::StMap;
-  const int channels = st ? 4 : 2;
+  const int per_layer = st ? 4 : 2;
+  const int channels = per_layer * static_cast<int>(layers.size());
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
   // 32-bit float, never half: half keeps 11 bits, a third of a pixel at 2000 px.
-  spec.channelnames =
-      st ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"R", "G"};
-  spec.alpha_channel = st ? 3 : -1;
+  spec.channelnames.clear();
+  std::string layer_names;
+  for (const StmapLayer& layer : layers) {
+    const std::string prefix = layer.name.empty() ? "" : layer.name + ".";
+    for (const char* c : {"R", "G", "B", "A"}) {
+      if (!st && (c[0] == 'B' || c[0] == 'A')) continue;
+      spec.channelnames.push_back(prefix + c);
+    }
+    layer_names += (layer_names.empty() ? "" : ",") + layer.name;
+  }
+  spec.alpha_channel = st && layers.size() == 1 ? 3 : -1;
   spec.attribute("compression", "zip");
   spec.attribute(kConventionAttribute, std::string(stmapConventionName(convention)));
-  spec.attribute(kSourceWidthAttribute, map.source_px.width);
-  spec.attribute(kSourceHeightAttribute, map.source_px.height);
-  const double w = map.source_px.width, h = map.source_px.height;
+  spec.attribute(kSourceWidthAttribute, first.source_px.width);
+  spec.attribute(kSourceHeightAttribute, first.source_px.height);
+  if (layers.size() > 1) spec.attribute(kLayersAttribute, layer_names);
+  const double w = first.source_px.width, h = first.source_px.height;
   // Rows are converted and written in bands, so the file costs no second copy of the map.
   constexpr int kBand = 64;
   std::vector<float> band(static_cast<size_t>(width) * kBand * static_cast<size_t>(channels));
@@ -50,21 +70,30 @@ Status writeStmap(const std::string& path, const PositionMap& map, StmapConventi
     std::fill(band.begin(), band.end(), 0.0f);
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < width; ++x) {
-        const size_t k = map.index(x, y);
         float* p = &band[(static_cast<size_t>(y - y0) * static_cast<size_t>(width) +
                           static_cast<size_t>(x)) *
                          static_cast<size_t>(channels)];
-        const double sx = map.x_px[k], sy = map.y_px[k];
-        if (st) {
-          // Zeros where there is no preimage: alpha 0 says so, and R = G = 0 keeps it finite.
-          if (map.valid[k]) {
-            p[0] = static_cast<float>(sx / w);
-            p[1] = static_cast<float>(1.0 - sy / h);
-            p[3] = 1.0f;
+        for (const StmapLayer& layer : layers) {
+          const PositionMap& map = *layer.map;
+          const size_t k = map.index(x, y);
+          const Preimage pre = map.preimage[k];
+          const double sx = map.x_px[k], sy = map.y_px[k];
+          if (st) {
+            // A = 1 only where the warp reads the photo (position_map.h). A preimage outside
+            // the photo keeps its position (the camera's geometry, which fit --stmap fits); no
+            // preimage is R = G = 0, finite.
+            if (pre != Preimage::None) {
+              p[0] = static_cast<float>(sx / w);
+              p[1] = static_cast<float>(1.0 - sy / h);
+              p[3] = pre == Preimage::InPhoto ? 1.0f : 0.0f;
+            }
+          } else {
+            // A position outside the photo reads nothing under remap's constant border, as the
+            // warp's transparent pixel; −1 marks no preimage (it too reads nothing there).
+            p[0] = pre != Preimage::None ? static_cast<float>(sx - 0.5) : -1.0f;
+            p[1] = pre != Preimage::None ? static_cast<float>(sy - 0.5) : -1.0f;
           }
-        } else {
-          p[0] = map.valid[k] ? static_cast<float>(sx - 0.5) : -1.0f;
-          p[1] = map.valid[k] ? static_cast<float>(sy - 0.5) : -1.0f;
+          p += per_layer;
         }
       }
   };
@@ -110,7 +139,20 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
     return R::failure(path + ": unknown " + kConventionAttribute + " \"" + convention_name +
                       "\" (stmap or opencv)");
   samples.convention = *convention;
-  const int r = channelNamed(spec, "r"), g = channelNamed(spec, "g");
+  // A layered map (one per colour channel): the layer asked for, by name.
+  const std::string layers = spec.get_string_attribute(kLayersAttribute, "");
+  std::string prefix;
+  if (!options.layer.empty()) {
+    prefix = io_text::lower(options.layer) + ".";
+    if (channelNamed(spec, prefix + "r") < 0)
+      return R::failure(path + ": no layer \"" + options.layer + "\" in the map" +
+                        (layers.empty() ? " (it has one map, not layers)"
+                                        : " (its layers: " + layers + ")"));
+  } else if (!layers.empty() && channelNamed(spec, "r") < 0) {
+    return R::failure(path + ": a layered map (layers " + layers +
+                      ": one per colour channel); name the one to fit (--layer NAME)");
+  }
+  const int r = channelNamed(spec, prefix + "r"), g = channelNamed(spec, prefix + "g");
   if (r < 0 || g < 0) {
     std::string names;
     for (int c = 0; c < spec.nchannels; ++c)
@@ -119,7 +161,7 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
                       names);
   }
   // Only the StMap convention marks missing pixels with alpha; an OpenCv map uses −1.
-  const int a = samples.convention == StmapConvention::StMap ? channelNamed(spec, "a") : -1;
+  const int a = samples.convention == StmapConvention::StMap ? channelNamed(spec, prefix + "a") : -1;
   samples.has_alpha = a >= 0;
   if (options.source_px) {
     samples.source_px = *options.source_px;
@@ -159,10 +201,16 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
       const float* p = &row[static_cast<size_t>(i) * channels];
       const double s = p[r], t = p[g];
       if (!std::isfinite(s) || !std::isfinite(t)) continue;
-      if (a >= 0 && !(p[a] > 0.0f)) continue;
       Eigen::Vector2d source;
       if (samples.convention == StmapConvention::StMap) {
         source = {s * w, (1.0 - t) * h};
+        // Alpha 0: the warp reads nothing there (position_map.h). A position beyond the photo
+        // is still the camera's geometry and is kept; one inside it (R = G = 0, or a foreign
+        // map's masked pixel) is no preimage.
+        if (a >= 0 && !(p[a] > 0.0f) &&
+            preimageAt(static_cast<float>(source.x()), static_cast<float>(source.y()),
+                       samples.source_px) != Preimage::OutsidePhoto)
+          continue;
       } else {
         if (s == -1.0 && t == -1.0) continue;
         source = {s + 0.5, t + 0.5};

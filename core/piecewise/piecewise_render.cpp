@@ -787,6 +787,21 @@ long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, 
   return covered;
 }
 
+// The mesh a render of `camera` from a `source_image` photo into `size` output pixels draws:
+// its step chosen (or given) as renderPiecewise documents. renderPiecewise and
+// piecewisePositionMap both take it from here, so a map and a render can never draw different
+// meshes.
+Mesh meshFor(const PiecewiseCamera& camera, FrameSize source_image, FrameSize size,
+             const PiecewiseRenderOptions& options, PiecewiseRenderStats& stats) {
+  std::optional<Mesh> probe;
+  const MeshChoice choice = chooseStep(camera, source_image, size, options, &probe);
+  Mesh mesh = probe ? std::move(*probe) : buildMesh(camera, source_image, size, choice.step_px, options.threads);
+  stats.mesh_step_px = choice.step_px;
+  stats.error_px = choice.error_px;
+  stats.triangles = static_cast<int>(std::min<long long>(mesh.triangles, std::numeric_limits<int>::max()));
+  return mesh;
+}
+
 }  // namespace
 
 MeshChoice chooseMeshStep(const PiecewiseCamera& camera, FrameSize source_image, FrameSize output,
@@ -811,12 +826,7 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
     if (stats_out) *stats_out = stats;
     return;
   }
-  std::optional<Mesh> probe;
-  const MeshChoice choice = chooseStep(camera, {source.width, source.height}, size, options, &probe);
-  const Mesh mesh = probe ? std::move(*probe) : buildMesh(camera, {source.width, source.height}, size, choice.step_px, options.threads);
-  stats.mesh_step_px = choice.step_px;
-  stats.error_px = choice.error_px;
-  stats.triangles = static_cast<int>(std::min<long long>(mesh.triangles, std::numeric_limits<int>::max()));
+  const Mesh mesh = meshFor(camera, {source.width, source.height}, size, options, stats);
   std::atomic<long long> covered{0};
   ParallelOptions po;
   po.threads = options.threads;
@@ -848,6 +858,45 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
   });
   stats.covered_pixels = covered.load();
   if (stats_out) *stats_out = stats;
+}
+
+PositionMap piecewisePositionMap(const PiecewiseCamera& camera, FrameSize source_image, FrameSize output,
+                                 const PiecewiseRenderOptions& options, PiecewiseRenderStats* stats_out) {
+  if (!camera.target_size.isImage() || !camera.source_size.isImage())
+    throw std::invalid_argument("piecewisePositionMap: the camera has no image frames");
+  PositionMap map = emptyPositionMap(source_image, output);  // checks the sizes
+  map.kernel = "piecewise mesh";
+  PiecewiseRenderStats stats;
+  if (camera.patches.empty()) {
+    if (stats_out) *stats_out = stats;
+    return map;
+  }
+  const bool avx512 = options.allow_avx512 && cpuHasAvx512bwvl();
+  const Mesh mesh = meshFor(camera, source_image, output, options, stats);
+  std::atomic<long long> covered{0};
+  ParallelOptions po;
+  po.threads = options.threads;
+  po.band_rows = kBandRows;
+  // The render's bands and rasteriser (renderPiecewise), the positions stored instead of sampled.
+  parallelForRows(output.height, po, [&](int y0, int y1) {
+    const size_t cells = static_cast<size_t>(kBandRows) * static_cast<size_t>(output.width);
+    const ScratchBlock buffers = takeScratch(cells * (2 * sizeof(float) + 1));
+    float* const sx = static_cast<float*>(buffers.data());
+    float* const sy = sx + cells;
+    unsigned char* const valid = reinterpret_cast<unsigned char*>(sy + cells);
+    std::memset(valid, 0, cells);
+    covered += rasteriseBand(mesh, y0, y1, output.width, sx, sy, valid, avx512);
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(output.width);
+      for (int x = 0; x < output.width; ++x)
+        if (valid[row + static_cast<size_t>(x)])
+          storePreimage(map, map.index(x, y), sx[row + static_cast<size_t>(x)], sy[row + static_cast<size_t>(x)]);
+    }
+  });
+  countPreimages(map);
+  stats.covered_pixels = covered.load();
+  if (stats_out) *stats_out = stats;
+  return map;
 }
 
 ImageF renderPiecewise(const ImageF& source, const PiecewiseCamera& camera,

@@ -18,6 +18,7 @@
 #include "core/model/image.h"
 #include "core/model/image_view.h"
 #include "core/model/piecewise_camera.h"
+#include "core/render/position_map.h"
 #include "core/render/warp.h"
 
 namespace artcam {
@@ -78,6 +79,15 @@ ImageF renderPiecewise(const ImageF& source, const PiecewiseCamera& camera,
 // decides where, the sampler how, so the filters are the warp's.
 void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera, const ImageView& out,
                      const PiecewiseRenderOptions& options = {}, PiecewiseRenderStats* stats = nullptr);
+
+// The source position renderPiecewise samples for every output pixel of an `output` render
+// from a `source_image` photo (positions in its pixels): the same mesh, step and rasteriser, so
+// a map of it reproduces the render exactly. Pixels no triangle covers have no preimage; the
+// rest are classified by position_map.h's rule (Preimage::InPhoto or OutsidePhoto). What
+// `artcam export-map` writes for a piecewise camera; kernel "piecewise mesh".
+PositionMap piecewisePositionMap(const PiecewiseCamera& camera, FrameSize source_image, FrameSize output,
+                                 const PiecewiseRenderOptions& options = {},
+                                 PiecewiseRenderStats* stats = nullptr);
 
 // Premultiplied "over": top (with alpha) over bottom, in place on bottom. Sizes must agree;
 // bottom's channels other than alpha take top's colour channels in order.

@@ -124,6 +124,8 @@ int passedChannel(const Camera& layer) {
   return channel;
 }
 
+}  // namespace
+
 std::vector<Camera> channelCameras(const Artcam& camera) {
   if (camera.layers.size() != 3 || camera.pieces || camera.depth_output != DepthOutput::Depth) return {};
   std::vector<Camera> cameras(3);
@@ -139,6 +141,8 @@ std::vector<Camera> channelCameras(const Artcam& camera) {
   }
   return cameras;
 }
+
+namespace {
 
 // `layers`: each layer's structure when the caller has it (validateArtcam's), else found here.
 Analysis analyse(const Artcam& camera, std::vector<CameraStructure> layers = {}) {

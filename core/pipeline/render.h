@@ -39,6 +39,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace artcam {
 
@@ -122,6 +123,12 @@ void render(const RenderInputs& inputs, const Artcam& camera, const RenderOption
 // receives the camera's depth output where it has one.
 ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOptions& options = {},
               RenderSummary* summary = nullptr, ImageF* depth_out = nullptr);
+
+// The per-channel position cameras of a chromatic-aberration camera (the paper's Fig 4): three
+// layers that each pass one colour channel (R, G, B) through a position camera and nothing
+// else, in channel order; empty for any other camera. Those render by warpChannels on the photo
+// as stored, and export-map writes one map per channel for them (source_maps.h).
+std::vector<Camera> channelCameras(const Artcam& camera);
 
 // Channels beyond the photo's (an EXR's depth, normals, AOVs) render through the same entry
 // point, a group of 1..4 at a time as a photo of its own (RenderInputs::photo, no alpha) into

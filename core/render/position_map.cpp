@@ -6,17 +6,37 @@
 #include "core/util/parallel.h"
 
 #include <algorithm>
-#include <atomic>
 #include <stdexcept>
 
 namespace artcam {
 
-PositionMap sourcePositionMap(const Camera& input, FrameSize source_px, FrameSize target_px,
-                              const PositionMapOptions& options) {
-  input.validate();
+PositionMap emptyPositionMap(FrameSize source_px, FrameSize target_px) {
   if (source_px.width <= 0 || source_px.height <= 0 || target_px.width <= 0 ||
       target_px.height <= 0)
     throw std::invalid_argument("a position map needs positive source and target sizes");
+  PositionMap map;
+  map.source_px = source_px;
+  map.target_px = target_px;
+  const size_t n = static_cast<size_t>(target_px.width) * static_cast<size_t>(target_px.height);
+  map.x_px.assign(n, 0.0f);
+  map.y_px.assign(n, 0.0f);
+  map.preimage.assign(n, Preimage::None);
+  map.invalid_pixels = static_cast<long long>(n);
+  return map;
+}
+
+void countPreimages(PositionMap& map) {
+  map.invalid_pixels = 0;
+  map.outside_pixels = 0;
+  for (const Preimage p : map.preimage) {
+    map.invalid_pixels += p == Preimage::None;
+    map.outside_pixels += p == Preimage::OutsidePhoto;
+  }
+}
+
+PositionMap sourcePositionMap(const Camera& input, FrameSize source_px, FrameSize target_px,
+                              const PositionMapOptions& options) {
+  input.validate();
   const BlockLayout& layout = input.layout();
   const int p = layout.find(BlockKind::Position);
   if (p < 0 || layout.blocks[static_cast<size_t>(p)].size != 3)
@@ -29,28 +49,18 @@ PositionMap sourcePositionMap(const Camera& input, FrameSize source_px, FrameSiz
   // Only positions are asked: a colour or depth part does not move pixels.
   const Camera camera = layout.blocks.size() == 1 ? input : positionPart(input);
   const CameraStructure structure = analyseStructure(camera);
-
-  PositionMap map;
-  map.source_px = source_px;
-  map.target_px = target_px;
-  const size_t n = static_cast<size_t>(target_px.width) * static_cast<size_t>(target_px.height);
-  map.x_px.assign(n, 0.0f);
-  map.y_px.assign(n, 0.0f);
-  map.valid.assign(n, 0);
+  PositionMap map = emptyPositionMap(source_px, target_px);  // checks the sizes
   if (structure.degenerate) {
     map.kernel = "degenerate";
-    map.invalid_pixels = static_cast<long long>(n);
     return map;
   }
   const KernelChoice choice = makeCoordinateKernel(camera, structure, source_px, target_px,
                                                    options.coordinates, options.threads);
   map.kernel = choice.name;
   const CoordinateKernel& kernel = *choice.kernel;
-  std::atomic<long long> invalid{0};
   ParallelOptions po;
   po.threads = options.threads;
   parallelForRows(target_px.height, po, [&](int y0, int y1) {
-    long long band_invalid = 0;
     alignas(32) float sx[kSpanPixels], sy[kSpanPixels];
     unsigned char valid[kSpanPixels];
     for (int y = y0; y < y1; ++y) {
@@ -59,20 +69,12 @@ PositionMap sourcePositionMap(const Camera& input, FrameSize source_px, FrameSiz
         const int count = std::min(kSpanPixels, target_px.width - x0);
         kernel.span(y, x0, count, sx, sy, valid, state);
         for (int i = 0; i < count; ++i) {
-          const size_t k = map.index(x0 + i, y);
-          if (!valid[i]) {
-            ++band_invalid;
-            continue;
-          }
-          map.x_px[k] = sx[i];
-          map.y_px[k] = sy[i];
-          map.valid[k] = 1;
+          if (valid[i]) storePreimage(map, map.index(x0 + i, y), sx[i], sy[i]);
         }
       }
     }
-    invalid += band_invalid;
   });
-  map.invalid_pixels = invalid.load();
+  countPreimages(map);
   return map;
 }
 

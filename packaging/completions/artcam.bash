@@ -15,7 +15,7 @@ _artcam_options() {
   case "$1" in
     fit) echo "--output -o --size --target-size --model --dim --no-refine --robust --threshold
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
-               --quiet -q --stmap --lines" ;;
+               --quiet -q --stmap --layer --lines" ;;
     map) echo "--json" ;;
     warp) echo "--output -o --format --size --filter --threads --quality --bit-depth --colourspace
                 --stats --json --overwrite --force --quiet -q --depth --depth-scale --disparity
@@ -34,7 +34,7 @@ _artcam_options() {
     compose) echo "--output -o --force --overwrite --json" ;;
     export) echo "--output -o --camera-out --depth-out --size --filter --quality --bit-depth --colourspace
                   --crop-valid --fill --json --overwrite --force --quiet -q" ;;
-    export-map) echo "--output -o --size --convention --json --overwrite --force" ;;
+    export-map) echo "--output -o --size --convention --source-size --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --focal --crop --size --output -o --distort --no-tca
                 --max-error --overwrite --force" ;;
     insert) echo "--output -o --matches --camera --canonical --table --grid-on-table --region

@@ -58,7 +58,7 @@ CHECK_LANGS = {"install", "studio", "long"}
 PROSE_LANGS = {"console", "text"}
 BLOCK_TIMEOUT_S = 120
 # Debian packages of the modules a python block may import, for the skip message.
-PY_PACKAGES = {"numpy": "python3-numpy", "OpenImageIO": "python3-openimageio"}
+PY_PACKAGES = {"numpy": "python3-numpy", "OpenImageIO": "python3-openimageio", "cv2": "python3-opencv"}
 
 FENCE_OPEN = re.compile(r"^( {0,3}|\s*)(`{3,}|~{3,})\s*([^\s`]*)\s*$")
 LIST_ITEM = re.compile(r"^\s*([-*+]|\d+[.)])\s")

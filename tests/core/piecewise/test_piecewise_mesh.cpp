@@ -156,6 +156,48 @@ class TestPiecewiseMesh : public QObject {
              qPrintable(QString("measured %1, estimated %2").arg(m.worst_px).arg(choice.error_px)));
   }
 
+  // The map export-map writes for a piecewise camera is the render's own inverse: the coordinate
+  // ramp rendered through the mesh shows, at every pixel whose bilinear taps stay inside the
+  // ramp, the position piecewisePositionMap stores for it; and the pixels it says read nothing
+  // are exactly the render's transparent ones. Also at another output size and photo size.
+  void thePositionMapIsTheRendersInverse_data() {
+    QTest::addColumn<int>("out_width");
+    QTest::newRow("same size") << kSize.width;
+    QTest::newRow("twice the size") << 2 * kSize.width;
+  }
+  void thePositionMapIsTheRendersInverse() {
+    QFETCH(int, out_width);
+    const Camera lens = buildEffect("barrel", {{"k", {-0.3}}}, kSize).main();
+    PiecewiseCamera camera = fourPatchesOf(lens);
+    camera.patches.pop_back();  // a hole: pixels no patch reaches
+    PiecewiseRenderOptions options;
+    options.output = {out_width, out_width * kSize.height / kSize.width};
+    PiecewiseRenderStats render_stats, map_stats;
+    const ImageF out = renderPiecewise(coordinateRamp(), camera, options, &render_stats);
+    const PositionMap map = piecewisePositionMap(camera, kSize, options.output, options, &map_stats);
+    QCOMPARE(map.target_px.width, out.width);
+    QCOMPARE(map_stats.mesh_step_px, render_stats.mesh_step_px);
+    double worst = 0.0;
+    long long compared = 0, disagree = 0, transparent = 0;
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) {
+        const float* p = out.pixel(x, y);
+        const size_t k = map.index(x, y);
+        transparent += !(p[2] > 0.0f);
+        disagree += (p[2] > 0.0f) != (map.preimage[k] == Preimage::InPhoto);
+        if (!(p[2] >= 1.0f)) continue;
+        worst = std::max(worst, std::hypot(double(p[0]) - map.x_px[k], double(p[1]) - map.y_px[k]));
+        ++compared;
+      }
+    qInfo("%lld pixels compared, worst %.3g px; %lld transparent (map: %lld none, %lld outside)",
+          compared, worst, transparent, map.invalid_pixels, map.outside_pixels);
+    QVERIFY(compared > out.width * out.height / 3);
+    QVERIFY2(worst < 1e-4, qPrintable(QString::number(worst)));
+    QCOMPARE(disagree, 0LL);
+    QCOMPARE(map.transparentPixels(), transparent);
+    QVERIFY(map.invalid_pixels > 1000);  // the hole
+  }
+
   void edgesThroughPixelCentresLeaveNoCrack() {
     // The identity on a 4-px lattice: every cell's diagonal runs through pixel centres, which
     // lie on the edge the cell's two triangles share (weight 0 in both). Each must still be

@@ -6,12 +6,15 @@
 #include "core/colour/colour_map.h"
 #include "core/colour/colour_stage.h"
 #include "core/effects/chromatic.h"
+#include "core/effects/effect_table.h"
 #include "core/model/structure.h"
 #include "core/render/position_map.h"
+#include "core/render/warp.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>
 
+#include <algorithm>
 #include <stdexcept>
 
 using namespace artcam;
@@ -46,7 +49,7 @@ class TestPositionMap : public QObject {
       reference->row(y, target.width, row.data(), valid.data());
       for (int x = 0; x < target.width; ++x) {
         const size_t k = map.index(x, y);
-        QCOMPARE(int(map.valid[k]), int(valid[static_cast<size_t>(x)]));
+        QCOMPARE(map.preimage[k] != Preimage::None, valid[static_cast<size_t>(x)] != 0);
         if (!valid[static_cast<size_t>(x)]) {
           ++counted_invalid;
           continue;
@@ -73,9 +76,42 @@ class TestPositionMap : public QObject {
     QVERIFY(graded.blocks().size() == 2);
     const PositionMap a = sourcePositionMap(geometry, size, size);
     const PositionMap b = sourcePositionMap(graded, size, size);
-    QVERIFY(a.valid == b.valid);
+    QVERIFY(a.preimage == b.preimage);
     QVERIFY(a.x_px == b.x_px);
     QVERIFY(a.y_px == b.y_px);
+  }
+
+  // The map's rule for pixels that read nothing is the warp's own: a constant photo warped
+  // through a strong barrel (its corners read beyond the photo, and past the pole curve there
+  // is no preimage) has alpha 0 exactly where the map says None or OutsidePhoto. The truth is
+  // the warp's output alpha, the span sampler's coverage, not the map's code.
+  void readsThePhotoExactlyWhereTheWarpHasAlpha() {
+    const FrameSize source{160, 120}, target{240, 180};
+    const Camera camera = buildEffect("barrel", {{"k", {-0.3}}}, source).main();
+    const PositionMap map = sourcePositionMap(camera, source, target);
+    ImageF photo(source.width, source.height, 3);
+    std::fill(photo.data.begin(), photo.data.end(), 0.5f);
+    WarpOptions options;
+    options.width = target.width;
+    options.height = target.height;
+    options.coordinates.certify_tolerance_px = 0.0;  // the map's positions, bit for bit
+    WarpSummary summary;
+    const ImageF out = warpImage(photo, camera, options, &summary);
+    QCOMPARE(out.alpha_channel, 3);
+    long long disagree = 0;
+    for (int y = 0; y < target.height; ++y)
+      for (int x = 0; x < target.width; ++x)
+        disagree += (out.pixel(x, y)[3] > 0.0f) != (map.preimage[map.index(x, y)] == Preimage::InPhoto);
+    qInfo("no preimage %lld, outside the photo %lld, warp transparent %lld", map.invalid_pixels,
+          map.outside_pixels, summary.transparent_pixels);
+    QCOMPARE(disagree, 0LL);
+    QCOMPARE(map.transparentPixels(), summary.transparent_pixels);
+    QVERIFY(map.outside_pixels > 1000);
+    // Outside-photo pixels keep their position: more than half a pixel off the frame.
+    for (size_t k = 0; k < map.preimage.size(); ++k)
+      if (map.preimage[k] == Preimage::OutsidePhoto)
+        QVERIFY(map.x_px[k] <= -0.5f || map.y_px[k] <= -0.5f || map.x_px[k] >= source.width + 0.5f ||
+                map.y_px[k] >= source.height + 0.5f);
   }
 
   void positionsThatReadColourAreRefused() {
