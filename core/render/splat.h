@@ -8,15 +8,15 @@
 // neighbouring centres), rasterised with their vertices' output attributes interpolated
 // linearly (barycentric). docs/architecture.md, "The forward splat", states the rules below.
 //
-// Sampling, one rule per output pixel. Vertices are snapped to a fixed-point lattice of 1/(2S)
-// px and every inside test is exact integer arithmetic with a top-left fill rule, so triangles
-// that share an edge share every sample of it. A triangle of at least ¼ px² is read at pixel
-// centres (weight S²), a smaller one at the S×S sub-samples of each pixel (weight 1, a box
-// prefilter: no moiré where the map minifies). Coverage: a pixel whose centre any triangle
-// covers is covered fully; else it is covered by the fraction of its sub-samples minified
-// triangles cover. So an interior pixel is never partly transparent, whatever mix of triangle
-// sizes meets there; an identity map returns the source exactly; a smooth magnifying map leaves
-// no cracks (the mesh is the map's piecewise-linear interpolant).
+// Sampling, one rule per output pixel. Samples lie on a lattice of 1/(2S) px, vertices snap to
+// 1/256 of its step and every inside test is exact integer arithmetic with a top-left fill rule,
+// so triangles that share an edge share every sample of it. A triangle of at least ¼ px² is
+// read at pixel centres (weight S²), a smaller one at the S×S sub-samples of each pixel
+// (weight 1, a box prefilter: no moiré where the map minifies). Coverage: a pixel whose centre
+// any triangle covers is covered fully; else it is covered by the fraction of its sub-samples
+// minified triangles cover. So an interior pixel is never partly transparent, whatever mix of
+// triangle sizes meets there; an identity map returns the source exactly; a smooth magnifying
+// map leaves no cracks (the mesh is the map's piecewise-linear interpolant).
 // A ring of vertices one pixel outside the source carries transparent colour (placed by the
 // nearest source pixel's colour, so colour-driven positions stay defined), which gives the
 // same fading border as the gather's "outside is transparent" convention (sampling.h).
