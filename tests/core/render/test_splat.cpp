@@ -132,6 +132,32 @@ class TestSplat : public QObject {
     QCOMPARE(c.partly, 0LL);
   }
 
+  // s = 0 everywhere: the geometry still reads colour (the splat path), but every pixel centre
+  // lands on itself, so the picture is the source exactly, at an odd and an even S, every pixel
+  // (the border included) opaque.
+  void theNeutralShiftReturnsTheSourceExactly() {
+    const FrameSize size{53, 41};
+    ImageF src(size.width, size.height, 3);
+    for (float& v : src.data) v = static_cast<float>(test::uniform(0.0, 1.0));
+    Artcam cs;
+    cs.layers = colourShiftLayers({{0.0, 0.0, 0.0}}, size, size);
+    for (int s : {3, 4}) {
+      RenderOptions o;
+      o.splat_supersample = s;
+      RenderSummary summary;
+      const ImageF out = render(RenderInputs::of(src), cs, o, &summary);
+      QCOMPARE(summary.path, RenderPath::Layered);
+      double worst = 0.0;
+      for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+          for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, static_cast<double>(std::abs(out.pixel(x, y)[c] - src.pixel(x, y)[c])));
+          worst = std::max(worst, 1.0 - out.pixel(x, y)[3]);
+        }
+      QVERIFY2(worst < 1e-6, qPrintable(QString("S = %1: off by %2").arg(s).arg(worst)));
+    }
+  }
+
   // A hard-edged red square under colour-shift s_red = 0.12: the red layer moves each red pixel
   // to 1.12·p, black ones stay. Where t/1.12 lies in the square the output is red (the expanded
   // square covers the black it moves over: no darkened band where the mesh folds); where
@@ -182,9 +208,9 @@ class TestSplat : public QObject {
   }
 
   // Crossed slits over a painted depth step (a near box at depth 1 on a far wall at 3, with
-  // their own colours): the near box moves against the wall, neither smears into the other
-  // (no intermediate colour run longer than 1 px along any row) and the gap it uncovers shows
-  // the wall, every pixel covered.
+  // their own colours): the near box moves against the wall and lies in front of it where they
+  // overlap, neither smears into the other (no intermediate colour run longer than 1 px along any
+  // row), and the gap it uncovers shows the wall, every pixel covered.
   void aDepthStepDoesNotStreak() {
     const FrameSize size{160, 120};
     ImageF photo(size.width, size.height, 3);
@@ -205,16 +231,30 @@ class TestSplat : public QObject {
     RenderSummary summary;
     const ImageF out = render(RenderInputs::of(photo, &depth), xslit, {}, &summary);
     QCOMPARE(summary.path, RenderPath::Splat);
-    int worst_ramp = 0;
-    double worst_alpha = 0.0;
+    // The wall (d = 3 = d_r) stays; the box (d = 1) maps u' = k·u, k = d(d_r + s_u)/(d_r(d + s_u))
+    // = 5/9, so it narrows towards the centre: it covers the wall on its left, and on its right
+    // it uncovers wall the photo never saw, which must show the wall, not the box stretched.
+    const double k = 5.0 / 9.0;
+    int worst_ramp = 0, box = 0, wall = 0;
+    double worst_alpha = 0.0, worst_colour = 0.0;
     for (int y = 24; y < 96; ++y) {
       worst_ramp = std::max(worst_ramp, longestRamp(out, y, 0, 0.1f, 0.9f));
-      for (int x = 10; x < size.width - 10; ++x)
+      for (int x = 10; x < size.width - 10; ++x) {
         worst_alpha = std::max(worst_alpha, 1.0 - out.pixel(x, y)[3]);
+        const Eigen::Vector2d t = normalizedFromPixel(size, {x + 0.5, y + 0.5});
+        const double sx = pixelFromNormalized(size, {t.x() / k, t.y()}).x();  // a box point's source
+        const bool in_box = sx > 91 && sx < 129, off_box = sx < 89 || sx > 131;
+        if (in_box) ++box;
+        if (off_box) ++wall;
+        if (in_box || off_box)
+          worst_colour = std::max(worst_colour, std::abs(out.pixel(x, y)[0] - (in_box ? 0.9 : 0.1)));
+      }
     }
-    qInfo("crossed slits over a depth step: longest ramp %d px, alpha short by %.3g", worst_ramp,
-          worst_alpha);
+    qInfo("crossed slits over a depth step: longest ramp %d px, colour off by %.3f, alpha short by "
+          "%.3g", worst_ramp, worst_colour, worst_alpha);
+    QVERIFY(box > 1000 && wall > 5000);
     QVERIFY2(worst_ramp <= 1, qPrintable(QString("a %1 px ramp").arg(worst_ramp)));
+    QVERIFY2(worst_colour < 0.01, qPrintable(QString("colour off by %1").arg(worst_colour)));
     QVERIFY2(worst_alpha < 1e-5, qPrintable(QString("alpha short by %1").arg(worst_alpha)));
   }
 };
