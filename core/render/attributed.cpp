@@ -16,6 +16,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -32,6 +33,39 @@ std::string_view attributedPathName(AttributedPath path) {
   return "unknown";
 }
 
+namespace {
+
+// The output elements that depend on the input elements `seeds` through every stage: an output
+// is tainted when its Q_i couples a tainted element with anything, and eq 5 divides each block
+// by its own weight, so one tainted element taints its whole block at each re-homogenisation.
+std::vector<bool> taintedOutputs(const Camera& camera, std::initializer_list<int> seeds) {
+  const BlockLayout& layout = camera.layout();
+  const int n = layout.dimension;
+  std::vector<bool> tainted(static_cast<size_t>(n), false);
+  for (int s : seeds) tainted[static_cast<size_t>(s)] = true;
+  for (const Stage& stage : camera.stages()) {
+    std::vector<bool> next(static_cast<size_t>(n), false);
+    for (int i = 0; i < n; ++i)
+      for (int r = 0; r < n && !next[static_cast<size_t>(i)]; ++r)
+        for (int c = 0; c < n; ++c)
+          if ((tainted[static_cast<size_t>(r)] || tainted[static_cast<size_t>(c)]) &&
+              stage.q[static_cast<size_t>(i)](r, c) != 0.0) {
+            next[static_cast<size_t>(i)] = true;
+            break;
+          }
+    for (size_t b = 0; b < layout.blocks.size(); ++b) {
+      const int off = layout.offsets[b], size = layout.blocks[b].size;
+      bool any = false;
+      for (int k = off; k < off + size; ++k) any = any || next[static_cast<size_t>(k)];
+      for (int k = off; k < off + size; ++k) next[static_cast<size_t>(k)] = any;
+    }
+    tainted = std::move(next);
+  }
+  return tainted;
+}
+
+}  // namespace
+
 AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera) {
   const BlockLayout& layout = camera.layout();
   const int p = layout.find(BlockKind::Position);
@@ -41,31 +75,14 @@ AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera)
   if (const int c = layout.find(BlockKind::Colour); c >= 0) colour_ = layout.offsets[c];
   if (const int d = layout.find(BlockKind::Depth); d >= 0) depth_ = layout.offsets[d];
   if (const int b = layout.find(BlockKind::SecondColour); b >= 0) second_ = layout.offsets[b];
-  if (depth_ >= 0 && colour_ >= 0) {
-    const int n = layout.dimension;
-    std::vector<bool> tainted(static_cast<size_t>(n), false);
-    tainted[static_cast<size_t>(depth_)] = tainted[static_cast<size_t>(depth_ + 1)] = true;
-    for (const Stage& stage : camera.stages()) {
-      std::vector<bool> next(static_cast<size_t>(n), false);
-      for (int i = 0; i < n; ++i)
-        for (int r = 0; r < n && !next[static_cast<size_t>(i)]; ++r)
-          for (int c = 0; c < n; ++c)
-            if ((tainted[static_cast<size_t>(r)] || tainted[static_cast<size_t>(c)]) &&
-                stage.q[static_cast<size_t>(i)](r, c) != 0.0) {
-              next[static_cast<size_t>(i)] = true;
-              break;
-            }
-      // eq 5: each block is divided by its own weight (colour premultiplied again by alpha).
-      for (size_t b = 0; b < layout.blocks.size(); ++b) {
-        const int off = layout.offsets[b], size = layout.blocks[b].size;
-        bool any = false;
-        for (int k = off; k < off + size; ++k) any = any || next[static_cast<size_t>(k)];
-        for (int k = off; k < off + size; ++k) next[static_cast<size_t>(k)] = any;
-      }
-      tainted = std::move(next);
-    }
-    colour_reads_depth_ = tainted[static_cast<size_t>(colour_)];
+  if (depth_ >= 0) {
+    const std::vector<bool> from_depth = taintedOutputs(camera, {depth_, depth_ + 1});
+    if (colour_ >= 0) colour_reads_depth_ = from_depth[static_cast<size_t>(colour_)];
+    geometry_reads_depth_ = taintedOutputs(camera, {depth_})[static_cast<size_t>(position_)];
   }
+  if (colour_ >= 0)
+    for (int k = 0; k < 4; ++k)
+      geometry_reads_colour_[k] = taintedOutputs(camera, {colour_ + k})[static_cast<size_t>(position_)];
 }
 
 void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, double depth,

@@ -158,6 +158,10 @@ class AttributeEvaluator {
   bool hasColour() const { return colour_ >= 0; }
   // The camera has a second-colour block: a compositing camera (core/colour/composite.h).
   bool readsSecond() const { return second_ >= 0; }
+  // Which inputs the position outputs read, by the same taint rule: colour element k (0..3:
+  // premultiplied r, g, b and alpha) and depth. The splat tears its mesh only where these jump.
+  bool geometryReadsColour(int k) const { return geometry_reads_colour_[k]; }
+  bool geometryReadsDepth() const { return geometry_reads_depth_; }
 
   struct Output {
     double position[2] = {0, 0};  // target, normalised frame (eq 5)
@@ -177,6 +181,8 @@ class AttributeEvaluator {
   CompiledCamera compiled_;
   int position_ = -1, colour_ = -1, depth_ = -1, second_ = -1;  // element offsets, -1: none
   bool colour_reads_depth_ = false;
+  bool geometry_reads_colour_[4] = {false, false, false, false};
+  bool geometry_reads_depth_ = false;
 };
 
 // The depth image read at source pixel point (sx, sy) given in pixels of a source of size
