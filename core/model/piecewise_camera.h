@@ -69,7 +69,7 @@ struct PiecewiseCamera {
   std::vector<CameraPatch> patches;
   // Empty: the patch frame is the source frame (every fitted camera).
   std::optional<PatchFrame> patch_frame;
-  // How far beyond a patch's support hull it still answers (source pixels): about one and a
+  // How far beyond a patch's support hull it still answers (patch-frame pixels): about one and a
   // half match spacings, so the hulls of neighbouring patches meet.
   double support_margin_px = 0.0;
 
