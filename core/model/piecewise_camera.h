@@ -67,11 +67,11 @@ struct PiecewiseCamera {
   FrameSize source_size;
   FrameSize target_size;
   std::vector<CameraPatch> patches;
-  // Empty: the patch frame is the source frame (every fitted camera).
-  std::optional<PatchFrame> patch_frame;
   // How far beyond a patch's support hull it still answers (patch-frame pixels): about one and a
   // half match spacings, so the hulls of neighbouring patches meet.
   double support_margin_px = 0.0;
+  // Empty: the patch frame is the source frame (every fitted camera).
+  std::optional<PatchFrame> patch_frame = std::nullopt;
 
   // The frame the rectangles and hulls are in (the source frame without a patch frame).
   FrameSize patchFrameSize() const { return patch_frame ? patch_frame->size : source_size; }
