@@ -105,6 +105,8 @@ int infoCommand(const std::vector<std::string>& argv) {
                     {"worst_patch_rms_px", finiteOrNull(worst_rms)},
                     {"seam_gap_px", finiteOrNull(measureSeamGap(p))},
                     {"support_margin_px", p.support_margin_px}};
+    if (p.patch_frame)  // a homography composed before the patches (core/model/compose.h)
+      j["patches"]["patch_frame"] = {p.patch_frame->size.width, p.patch_frame->size.height};
   }
   if (artcam.fit) {
     const FitRecord& f = *artcam.fit;
@@ -145,6 +147,10 @@ int infoCommand(const std::vector<std::string>& argv) {
                 artcam.pieces->patches.size(), p["matches"].get<int>(),
                 num(p["max_fit_error_px"]).c_str(), num(p["worst_patch_rms_px"]).c_str(),
                 num(p["seam_gap_px"]).c_str());
+    if (artcam.pieces->patch_frame)
+      std::printf("           rectangles in a %dx%d patch frame, reached through the homography "
+                  "composed before them\n",
+                  artcam.pieces->patch_frame->size.width, artcam.pieces->patch_frame->size.height);
   }
   if (structure.geometry != GeometryClass::Rational && structure.homography.size() > 0) {
     std::printf("homography (target_from_source, normalised, column form):\n");

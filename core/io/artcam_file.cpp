@@ -303,6 +303,18 @@ PiecewiseCamera piecesAt(const Json& root, const Camera& main) {
     pieces.support_margin_px = numberAt(root["support_margin_px"], "/support_margin_px");
     if (pieces.support_margin_px < 0.0) refuse("/support_margin_px", "expected a number ≥ 0");
   }
+  if (root.contains("patch_frame")) {
+    // A homography composed before the patches (piecewise_camera.h, PatchFrame).
+    const Json& frame = objectAt(root["patch_frame"], "/patch_frame");
+    PatchFrame pf;
+    pf.size = frameAt(field(frame, "/patch_frame", "size"), "/patch_frame/size");
+    if (!pf.size.isImage()) refuse("/patch_frame/size", "expected an image frame");
+    const std::vector<double> h =
+        numbersAt(field(frame, "/patch_frame", "patch_from_source_px"), "/patch_frame/patch_from_source_px", 9);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) pf.patch_from_source(r, c) = h[static_cast<size_t>(3 * r + c)];
+    pieces.patch_frame = pf;
+  }
   for (size_t i = 0; i < patches.size(); ++i) {
     const std::string where = "/patches/" + std::to_string(i);
     const Json& p = objectAt(patches[i], where);
@@ -502,6 +514,13 @@ struct Builder {
     if (d.pieces) {
       root["support_margin_px"] = number(d.pieces->support_margin_px, "/support_margin_px");
       root["patches"] = patchesJson(*d.pieces);
+      if (d.pieces->patch_frame) {
+        const PatchFrame& pf = *d.pieces->patch_frame;
+        Json h = Json::array();
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) h.push_back(number(pf.patch_from_source(r, c), "/patch_frame/patch_from_source_px"));
+        root["patch_frame"] = {{"size", {pf.size.width, pf.size.height}}, {"patch_from_source_px", std::move(h)}};
+      }
     }
     return root;
   }

@@ -4,6 +4,8 @@
 #include "core/model/coverage.h"
 #include "core/model/structure.h"
 
+#include <Eigen/LU>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -49,8 +51,13 @@ std::vector<std::string> cameraWarnings(const Artcam& camera) {
   if (camera.pieces)
     for (size_t i = 0; i < camera.pieces->patches.size(); ++i) {
       const CameraPatch& p = camera.pieces->patches[i];
+      const PatchRect box = camera.pieces->sourceBox(static_cast<int>(i));
+      if (!(box.x1 > box.x0 && box.y1 > box.y0)) {
+        warnings.push_back("patch " + std::to_string(i) + ": no source pixel reaches it");
+        continue;
+      }
       const std::string warning =
-          measureCoverage(p.camera, {p.rect.x0, p.rect.y0}, {p.rect.x1, p.rect.y1}).warning();
+          measureCoverage(p.camera, {box.x0, box.y0}, {box.x1, box.y1}).warning();
       if (!warning.empty()) warnings.push_back("patch " + std::to_string(i) + ": " + warning);
     }
   return warnings;
@@ -124,9 +131,18 @@ Status checkPieces(const Artcam& camera) {
                            " patches, more than the " + std::to_string(kMaxPatches) + " allowed");
   if (!std::isfinite(pieces.support_margin_px) || pieces.support_margin_px < 0.0)
     return Status::failure("/support_margin_px: expected a number ≥ 0");
-  const FrameSize src = main.sourceSize();
-  if (pieces.source_size != src || pieces.target_size != main.targetSize())
+  if (pieces.source_size != main.sourceSize() || pieces.target_size != main.targetSize())
     return Status::failure("/patches: frames differ from the camera's");
+  if (pieces.patch_frame) {
+    const Eigen::Matrix3d& h = pieces.patch_frame->patch_from_source;
+    if (!pieces.patch_frame->size.isImage())
+      return Status::failure("/patch_frame/size: expected an image frame");
+    if (!h.allFinite() || !(std::abs(h.determinant()) > 0.0) || !std::isfinite(h.determinant()))
+      return Status::failure("/patch_frame/patch_from_source_px: not a finite invertible homography");
+  }
+  // Rectangles and hulls are in the patch frame (the source frame unless a homography was
+  // composed before the patches).
+  const FrameSize src = pieces.patchFrameSize();
   // A rectangle may reach a pixel beyond the frame (quadtree cells are rounded outwards).
   constexpr double kSlack = 1.0;
   for (size_t i = 0; i < pieces.patches.size(); ++i) {
@@ -140,10 +156,21 @@ Status checkPieces(const Artcam& camera) {
       return Status::failure(where + "/rect: outside the " + sizeText(src) + " source frame");
     for (const Eigen::Vector2d& v : p.support)
       if (!v.allFinite()) return Status::failure(where + "/support: not finite");
-    if (p.camera.blocks() != main.blocks() || p.camera.sourceSize() != src ||
+    if (p.camera.blocks() != main.blocks() || p.camera.sourceSize() != main.sourceSize() ||
         p.camera.targetSize() != main.targetSize())
       return Status::failure(where + "/camera: blocks and frames must match the top-level camera's");
-    if (Status s = checkCamera(p.camera, where + "/camera: ", &p.rect); !s) return s;
+    // Coverage over the source pixels the patch answers for; a patch no source pixel reaches
+    // (possible only behind a patch frame) is harmless, and cameraWarnings says so.
+    const PatchRect box = pieces.sourceBox(static_cast<int>(i));
+    if (!(box.x1 > box.x0 && box.y1 > box.y0)) {
+      try {
+        p.camera.validate();
+      } catch (const std::invalid_argument& e) {
+        return Status::failure(where + "/camera: " + e.what());
+      }
+      continue;
+    }
+    if (Status s = checkCamera(p.camera, where + "/camera: ", &box); !s) return s;
   }
   // Patches tile the source: neighbours share edges, interiors never overlap.
   for (size_t i = 0; i < pieces.patches.size(); ++i)

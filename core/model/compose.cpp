@@ -32,14 +32,65 @@ std::optional<Eigen::MatrixXd> homographyOf(const Camera& camera) {
   return s.homography;
 }
 
-// Column-form map from first's target normalised frame to second's source normalised frame
-// through pixels; the identity for equal sizes and for object space.
-Eigen::MatrixXd frameBridge(const Camera& first, const Camera& second) {
+std::string sizeText(FrameSize s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+
+// Pixels of `from` scaled per axis onto pixels of `to`, column form: what a renderer does to a
+// camera applied to a photo of another size (core/pipeline/render.h, outputFrameFor).
+Eigen::Matrix3d pixelScale(FrameSize from, FrameSize to) {
+  Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+  m(0, 0) = static_cast<double>(to.width) / from.width;
+  m(1, 1) = static_cast<double>(to.height) / from.height;
+  return m;
+}
+
+// Whether two image frames have one shape: the height one would have at the other's width is
+// within a rounding pixel (outputFrameFor's test for a photo of another aspect).
+bool sameShape(FrameSize a, FrameSize b) {
+  return std::abs(a.height - static_cast<double>(b.height) * a.width / b.width) <= 1.0;
+}
+
+// How first's target frame meets second's source frame (docs/architecture.md, "Composition").
+// Equal frames meet as they are. Frames of one shape and another size meet as `warp` would
+// apply second to first's output: second's frames scaled by first.target / second.source per
+// axis, which is exact (an affine change of the position block on either side), and reported.
+// Frames of different shapes are refused: meeting them would stretch the picture per axis or
+// crop it, and the composed camera would hide that.
+struct FrameMeeting {
+  Status status = Status::success();
+  Eigen::MatrixXd bridge;            // first's target normalised frame → second's source one
+  FrameSize target;                  // the composed camera's target frame
+  Eigen::Matrix3d target_change = Eigen::Matrix3d::Identity();  // second's target normalised → target's
+  std::string note;                  // non-empty when rescaled
+};
+
+FrameMeeting meetFrames(const Camera& first, const Camera& second) {
+  FrameMeeting m;
   const int k = first.blocks()[static_cast<size_t>(first.layout().find(BlockKind::Position))].size;
-  if (k != 3 || first.targetSize() == second.sourceSize() || !first.targetSize().isImage())
-    return Eigen::MatrixXd::Identity(k, k);
-  return normalizedFromPixelMatrix(second.sourceSize()) *
-         pixelFromNormalizedMatrix(first.targetSize());
+  m.bridge = Eigen::MatrixXd::Identity(k, k);
+  m.target = second.targetSize();
+  const FrameSize a = first.targetSize(), b = second.sourceSize();
+  if (k != 3 || a == b || !a.isImage()) return m;
+  if (!sameShape(a, b)) {
+    m.status = Status::failure(
+        "the first camera's target frame is " + sizeText(a) + " but the second camera was made for " +
+        sizeText(b) + " (another shape): composed, the picture would be stretched or cropped; make "
+        "the second camera at " + sizeText(a) + " (e.g. `artcam preset … --size " + sizeText(a) +
+        "`) or fit it on the first camera's output");
+    return m;
+  }
+  m.bridge = normalizedFromPixelMatrix(b) * pixelScale(a, b) * pixelFromNormalizedMatrix(a);
+  const FrameSize t = second.targetSize();
+  if (t.isImage()) {
+    m.target = {std::max(1, static_cast<int>(std::lround(t.width * static_cast<double>(a.width) / b.width))),
+                std::max(1, static_cast<int>(std::lround(t.height * static_cast<double>(a.height) / b.height)))};
+    m.target_change = normalizedFromPixelMatrix(m.target) * pixelScale(t, m.target) * pixelFromNormalizedMatrix(t);
+  }
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.4g", static_cast<double>(a.width) / b.width);
+  m.note = "; the second camera, made for " + sizeText(b) + ", is applied at the first's " + sizeText(a) +
+           " target frame (scaled x" + scale + ", as warp applies a camera to a photo of another size)" +
+           (t.isImage() ? ": target frame " + sizeText(m.target) : std::string());
+  return m;
 }
 
 // Position-only tensors are defined up to one common scale; keep entries near 1 so chained
@@ -73,7 +124,9 @@ Result<Camera> composeCameras(const Camera& first, const Camera& second,
         std::to_string(second.sourceSize().height) +
         ") are not both images or both object space");
 
-  const Eigen::MatrixXd bridge = frameBridge(first, second);
+  const FrameMeeting meeting = meetFrames(first, second);
+  if (!meeting.status) return Result<Camera>::failure(meeting.status.message);
+  const Eigen::MatrixXd& bridge = meeting.bridge;
   CompositionSummary local;
   Camera out;
 
@@ -101,7 +154,9 @@ Result<Camera> composeCameras(const Camera& first, const Camera& second,
     local.description = "general cameras: a chain of " + std::to_string(out.stages().size()) +
                         " stages (first's, then second's)";
   }
-  out.setFrames(first.sourceSize(), second.targetSize());
+  if (!meeting.target_change.isIdentity(0.0)) changeOutputFrame(out, position, meeting.target_change);
+  out.setFrames(first.sourceSize(), meeting.target);
+  local.description += meeting.note;
   rescalePositionOnly(out);
   out.validate();
   local.stages = static_cast<int>(out.stages().size());
@@ -389,6 +444,53 @@ Result<Camera> composeThroughBridge(const Camera& a, const Camera& b, const Dept
 // over the first camera's depth range: σ then stays within ½ % of its exact value.
 constexpr double kRefitTolerance = 1e-2;
 
+// The pieces of h, then `pieces` (the paper's §5: canonical view → table → reflection with a
+// refracting or reflecting piecewise camera). Each patch camera takes h by the input-side rule
+// (composeCameras: Q_i ← Hᵀ Q_i H, exact, one stage); the rectangles and support hulls stay in
+// the frame they were fitted in, which the patch frame's homography (source pixels → that
+// frame) reaches: a rectangle's preimage is a quadrilateral, kept exactly this way rather than
+// approximated by a rectangle (piecewise_camera.h, PatchFrame). Patches no source pixel reaches
+// are left out; none left is refused.
+Result<PiecewiseCamera> piecesAfterHomography(const Camera& h, const PiecewiseCamera& pieces, FrameSize target) {
+  using R = Result<PiecewiseCamera>;
+  PiecewiseCamera out = pieces;
+  out.patches.clear();
+  // Source pixels → the homography's target pixels → the piecewise camera's source pixels (the
+  // per-axis scale meetFrames applies when the frames have one shape) → its patch frame.
+  const auto hn = homographyOf(h);
+  if (!hn) return R::failure("the first camera is not a homography");
+  const Eigen::Matrix3d h_px = pixelFromNormalizedMatrix(h.targetSize()) * Eigen::Matrix3d(*hn) *
+                               normalizedFromPixelMatrix(h.sourceSize());
+  const Eigen::Matrix3d before = pieces.patch_frame ? pieces.patch_frame->patch_from_source
+                                                    : Eigen::Matrix3d::Identity();
+  PatchFrame frame;
+  frame.size = pieces.patchFrameSize();
+  frame.patch_from_source = before * pixelScale(h.targetSize(), pieces.source_size) * h_px;
+  // The source frame's side of the pole line has positive weight (PatchFrame); then entries
+  // near 1.
+  const Eigen::Vector3d centre(h.sourceSize().width / 2.0, h.sourceSize().height / 2.0, 1.0);
+  const double w = (frame.patch_from_source * centre).z();
+  if (!(std::abs(w) > 0.0) || !std::isfinite(w))
+    return R::failure("the homography maps the centre of its source onto its pole line");
+  frame.patch_from_source /= w;
+  out.patch_frame = frame;
+  out.source_size = h.sourceSize();
+  out.target_size = target;
+  for (size_t i = 0; i < pieces.patches.size(); ++i) {
+    auto c = composeCameras(h, pieces.patches[i].camera);
+    if (!c) return R::failure("patch " + std::to_string(i) + ": " + c.status.message);
+    CameraPatch patch = pieces.patches[i];
+    patch.camera = std::move(*c);
+    out.patches.push_back(std::move(patch));
+    const PatchRect box = out.sourceBox(static_cast<int>(out.patches.size() - 1));
+    if (!(box.x1 > box.x0 && box.y1 > box.y0)) out.patches.pop_back();
+  }
+  if (out.patches.empty())
+    return R::failure("no pixel of the homography's " + sizeText(h.sourceSize()) +
+                      " source reaches the piecewise camera's patches");
+  return R::success(std::move(out));
+}
+
 bool positionOnlyImage(const Artcam& c) {
   return c.layers.size() == 1 && !c.pieces && c.blocks().size() == 1 &&
          c.blocks()[0].kind == BlockKind::Position && c.blocks()[0].size == 3 &&
@@ -399,11 +501,18 @@ bool positionOnlyImage(const Artcam& c) {
 
 Result<Artcam> composeArtcams(const Artcam& first, const Artcam& second, std::string* description) {
   using R = Result<Artcam>;
-  if (second.pieces)
-    return R::failure("a piecewise camera can only come first (its patches are rectangles of its "
-                      "own source, which the first camera would bend)");
+  if (first.pieces && second.pieces)
+    return R::failure("two piecewise cameras do not compose into one: the second's patches are "
+                      "rectangles of its source, which the first's patches would cut and bend");
+  if (second.pieces && !(positionOnlyImage(first) && first.main().stages().size() == 1 &&
+                         homographyOf(first.main())))
+    return R::failure("only a homography can come before a piecewise camera: its patches are "
+                      "rectangles of its source, which a homography maps onto quadrilaterals "
+                      "(kept exactly) and any other camera would bend into curves");
   if (first.pieces && !positionOnlyImage(second))
-    return R::failure("a piecewise camera composes only with a single position-only image camera");
+    return R::failure("a piecewise camera is followed only by a single-layer position-only image "
+                      "camera (its patches are position-only; colour, depth and layers after "
+                      "patches are not supported)");
   if (first.depth_output == DepthOutput::BlurVariance)
     return R::failure("the first camera's depth output is a blur variance (depth of field), not a "
                       "depth: depth of field must come last");
@@ -460,6 +569,16 @@ Result<Artcam> composeArtcams(const Artcam& first, const Artcam& second, std::st
     pieces.target_size = out.targetSize();
     out.pieces = std::move(pieces);
     text += "; " + std::to_string(out.pieces->patches.size()) + " patches composed";
+  }
+  if (second.pieces) {
+    auto pieces = piecesAfterHomography(first.main(), *second.pieces, out.targetSize());
+    if (!pieces) return R::failure(pieces.status.message);
+    const size_t dropped = second.pieces->patches.size() - pieces->patches.size();
+    text += "; the homography folded into each of " + std::to_string(pieces->patches.size()) +
+            " patches, their rectangles kept in the piecewise camera's source frame (patch frame)";
+    if (dropped > 0)
+      text += "; " + std::to_string(dropped) + " patches no source pixel reaches left out";
+    out.pieces = std::move(*pieces);
   }
   if (n > 1) text += " (" + std::to_string(n) + " layers, layer by layer)";
   if (description) *description = text;

@@ -2,9 +2,11 @@
 // Composition of cameras into one (the paper's §5: a canonical view → table
 // homography → reflection becomes one camera).
 //
-// compose(first, second) is the camera x ↦ second(first(x)). Pixels are the common currency
-// between the two: first's target pixel is second's source pixel, so when the frame sizes
-// differ the change between the two normalised frames (a scale and shift) is folded in.
+// compose(first, second) is the camera x ↦ second(first(x)). first's target frame is second's
+// source frame (docs/architecture.md, "Composition"): equal frames meet as they are; frames of
+// one shape and another size meet as `warp` would apply second to first's output (second's
+// frames scaled per axis, exact, and said in the summary's description); frames of different
+// shapes are refused, since the composition would stretch or crop the picture unseen.
 //
 // What comes out, cheapest first:
 // - second is a homography A (position only, one stage): A mixes first's last-stage outputs,
@@ -58,8 +60,14 @@ namespace artcam {
 //   must come last (its output is a blur variance, not a depth). The result's depth output
 //   means what second's does.
 // - Patches: a piecewise first composes each patch (and its single-camera fit) with a
-//   single-layer position-only second; a piecewise second is refused (its patches are
-//   rectangles of its own source, which first's map would bend).
+//   single-layer position-only second (a homography folds in, anything else chains: exact).
+//   A piecewise second takes a single-stage homography first (the paper's §5 canonical view →
+//   table → reflection): H folds into each patch camera exactly (Q_i ← Hᵀ Q_i H) and the
+//   rectangles stay where they were fitted, reached through the patch frame's homography
+//   (piecewise_camera.h), so the patches' regions are H⁻¹ of rectangles exactly; patches no
+//   source pixel reaches are left out. Any other camera before patches would bend their
+//   regions into curves and is refused, as are two piecewise cameras and colour, depth or
+//   layers after patches (the patches are position-only).
 // Matches and fit records are dropped: the result was not fitted to anything.
 Result<Artcam> composeArtcams(const Artcam& first, const Artcam& second,
                               std::string* description = nullptr);

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/model/piecewise_camera.h"
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace artcam {
 namespace {
@@ -54,16 +58,63 @@ bool PiecewiseCamera::supports(int patch, const Eigen::Vector2d& p) const {
   return false;
 }
 
+std::optional<Eigen::Vector2d> PiecewiseCamera::patchPixelFromSourcePixel(const Eigen::Vector2d& source_px) const {
+  if (!patch_frame) return source_px;
+  const Eigen::Vector3d y = patch_frame->patch_from_source * source_px.homogeneous();
+  if (!(y.z() > 0.0)) return std::nullopt;
+  const Eigen::Vector2d p = y.hnormalized();
+  if (!p.allFinite()) return std::nullopt;
+  return p;
+}
+
+std::optional<Eigen::Vector2d> PiecewiseCamera::sourcePixelFromPatchPixel(const Eigen::Vector2d& patch_px) const {
+  if (!patch_frame) return patch_px;
+  // x = H⁻¹ (p, 1) has H x = (p, 1), of weight 1: the source point x / x_w is on the source's
+  // side of the pole line (its image has a positive weight) exactly when x_w > 0.
+  const Eigen::Matrix3d& h = patch_frame->patch_from_source;
+  const double det = h.determinant();
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return std::nullopt;
+  const Eigen::Vector3d x = h.inverse() * patch_px.homogeneous();
+  if (!(x.z() > 0.0)) return std::nullopt;
+  const Eigen::Vector2d s = x.hnormalized();
+  if (!s.allFinite()) return std::nullopt;
+  return s;
+}
+
+PatchRect PiecewiseCamera::sourceBox(int patch) const {
+  const PatchRect& r = patches[static_cast<size_t>(patch)].rect;
+  if (!patch_frame) return r;
+  const PatchRect whole{0.0, 0.0, static_cast<double>(source_size.width), static_cast<double>(source_size.height)};
+  PatchRect box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(r.x0, r.y0), Eigen::Vector2d(r.x1, r.y0),
+                                        Eigen::Vector2d(r.x0, r.y1), Eigen::Vector2d(r.x1, r.y1)}) {
+    const auto s = sourcePixelFromPatchPixel(corner);
+    if (!s) return whole;  // the rectangle reaches the pole line: its preimage is unbounded
+    box.x0 = std::min(box.x0, s->x()), box.y0 = std::min(box.y0, s->y());
+    box.x1 = std::max(box.x1, s->x()), box.y1 = std::max(box.y1, s->y());
+  }
+  // A homography maps a convex region not crossing its pole line onto a convex region, so the
+  // corners' box holds the whole preimage.
+  box.x0 = std::max(box.x0, whole.x0), box.y0 = std::max(box.y0, whole.y0);
+  box.x1 = std::min(box.x1, whole.x1), box.y1 = std::min(box.y1, whole.y1);
+  return box;
+}
+
 int PiecewiseCamera::patchAt(const Eigen::Vector2d& source_px) const {
+  const auto p = patchPixelFromSourcePixel(source_px);
+  if (!p) return -1;
   for (size_t i = 0; i < patches.size(); ++i)
-    if (patches[i].rect.contains(source_px)) return static_cast<int>(i);
+    if (patches[i].rect.contains(*p)) return static_cast<int>(i);
   return -1;
 }
 
 std::optional<Eigen::Vector2d> PiecewiseCamera::targetPixelFromSourcePixel(
     const Eigen::Vector2d& source_px) const {
+  const auto p = patchPixelFromSourcePixel(source_px);
+  if (!p) return std::nullopt;
   for (size_t i = 0; i < patches.size(); ++i)
-    if (patches[i].rect.contains(source_px) && supports(static_cast<int>(i), source_px))
+    if (patches[i].rect.contains(*p) && supports(static_cast<int>(i), *p))
       return artcam::targetPixelFromSourcePixel(patches[i].camera, source_px);
   return std::nullopt;
 }

@@ -183,8 +183,11 @@ double measureSeamGap(const PiecewiseCamera& camera, int samples_per_edge) {
         const Eigen::Vector2d q = from + (to - from) * (k / double(samples_per_edge - 1));
         if (!camera.supports(static_cast<int>(a), q) || !camera.supports(static_cast<int>(b), q))
           continue;
-        const auto ya = targetPixelFromSourcePixel(p[a].camera, q);
-        const auto yb = targetPixelFromSourcePixel(p[b].camera, q);
+        // Edges are in the patch frame, the cameras read source pixels (piecewise_camera.h).
+        const auto source = camera.sourcePixelFromPatchPixel(q);
+        if (!source) continue;
+        const auto ya = targetPixelFromSourcePixel(p[a].camera, *source);
+        const auto yb = targetPixelFromSourcePixel(p[b].camera, *source);
         if (ya && yb) worst = std::max(worst, (*ya - *yb).norm());
       }
     }

@@ -10,6 +10,7 @@
 #include "core/util/parallel.h"
 #include "core/util/scratch.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #if defined(__SSE2__)
@@ -89,10 +90,27 @@ struct Mesh {
   std::vector<Box> row_boxes;
   long long triangles = 0;
 
+  // Without a patch frame (piecewise_camera.h) the lattice is in source pixels; with one it is
+  // in the patch frame, where the rectangles are, and each vertex's source position is its
+  // preimage under the homography composed before: the mesh is then the piecewise camera's
+  // own, with the sources moved, so the composition renders as the two in turn without the
+  // second resampling.
+  bool has_patch_frame = false;
+  Eigen::Matrix3d source_from_patch = Eigen::Matrix3d::Identity();
+
   size_t at(int i, int j) const { return static_cast<size_t>(j) * static_cast<size_t>(nx) + static_cast<size_t>(i); }
-  Eigen::Vector2d sourceAt(int i, int j) const {
+  // Vertex (i, j) in the patch frame.
+  Eigen::Vector2d latticeAt(int i, int j) const {
     return {std::min(all.x1, all.x0 + i * step), std::min(all.y1, all.y0 + j * step)};
   }
+  // Its source position (camera source pixels); not finite beyond the pole line.
+  Eigen::Vector2d sourceOf(const Eigen::Vector2d& lattice) const {
+    if (!has_patch_frame) return lattice;
+    const Eigen::Vector3d x = source_from_patch * lattice.homogeneous();
+    if (!(x.z() > 0.0)) return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    return x.hnormalized();
+  }
+  Eigen::Vector2d sourceAt(int i, int j) const { return sourceOf(latticeAt(i, j)); }
 };
 
 // The mesh's arrays for `vertices` vertices and `cells` cells, in one scratch block: targets
@@ -132,10 +150,13 @@ bool averagedMap(const PiecewiseCamera& camera, const std::vector<RationalMap>& 
                  double tolerance, Eigen::Vector2d& target, Eigen::Matrix2d& jacobian) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   int count = 0;
+  const std::optional<Eigen::Vector2d> in_patch_frame = camera.patchPixelFromSourcePixel(s);
+  if (!in_patch_frame) return false;
+  const Eigen::Vector2d& p = *in_patch_frame;
   for (size_t k = 0; k < camera.patches.size(); ++k) {
     Eigen::Vector2d t;
     Eigen::Matrix2d j;
-    if (camera.patches[k].rect.contains(s, tolerance) && camera.supports(static_cast<int>(k), s) &&
+    if (camera.patches[k].rect.contains(p, tolerance) && camera.supports(static_cast<int>(k), p) &&
         maps[k].evaluate(s, t, count == 0 ? &j : nullptr)) {
       if (count == 0) jacobian = j;
       sum += t;
@@ -184,6 +205,10 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
                        static_cast<double>(source_image.height) / camera.source_size.height};
   const Eigen::Vector2d out_scale = mesh.out_scale = {static_cast<double>(size.width) / camera.target_size.width,
                                                       static_cast<double>(size.height) / camera.target_size.height};
+  if (camera.patch_frame) {
+    mesh.has_patch_frame = true;
+    mesh.source_from_patch = camera.patch_frame->patch_from_source.inverse();
+  }
   const size_t vertices = static_cast<size_t>(nx) * static_cast<size_t>(ny);
   allocateArrays(mesh, vertices, static_cast<size_t>(std::max(0, nx - 1)) * static_cast<size_t>(std::max(0, ny - 1)));
   const double tolerance = 1e-9 * std::max(all.width(), all.height());
@@ -201,7 +226,7 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
     for (int j = j0; j < j1; ++j) {
       std::fill(sum.begin(), sum.end(), Eigen::Vector2d::Zero());
       std::fill(count.begin(), count.end(), 0);
-      const double y = mesh.sourceAt(0, j).y();
+      const double y = mesh.latticeAt(0, j).y();
       const double centre_y = std::min(all.y1, all.y0 + (j + 0.5) * step);
       // Only the patches whose rectangle holds the row, over the columns it spans: the same
       // tests as one pass over every patch per vertex, at a fraction of the cost.
@@ -211,9 +236,11 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
         int first = 0, last = -1;
         latticeRange(all.x0, step, all.x1, nx, r.x0 - tolerance, r.x1 + tolerance, first, last);
         for (int i = first; i <= last; ++i) {
-          const Eigen::Vector2d v = mesh.sourceAt(i, j);
+          const Eigen::Vector2d v = mesh.latticeAt(i, j);
           Eigen::Vector2d t;
-          if (r.contains(v, tolerance) && camera.supports(static_cast<int>(k), v) && maps[k].evaluate(v, t, nullptr)) {
+          if (!r.contains(v, tolerance) || !camera.supports(static_cast<int>(k), v)) continue;
+          const Eigen::Vector2d source = mesh.sourceOf(v);
+          if (source.allFinite() && maps[k].evaluate(source, t, nullptr)) {
             sum[static_cast<size_t>(i)] += t;
             ++count[static_cast<size_t>(i)];
             last_patch[static_cast<size_t>(i)] = static_cast<int>(k);

@@ -57,6 +57,58 @@ class TestCliCompose : public QObject {
     }
   }
 
+  void composesAHomographyBeforeAPiecewiseCamera() {
+    // The paper's §5 direction through files: a fitted piecewise lens after a homography. The
+    // written camera keeps its patches (with the patch frame) and maps as the two files do.
+    QTemporaryDir dir;
+    QFile csv(dir.filePath("lens.csv"));
+    QVERIFY(csv.open(QIODevice::WriteOnly));
+    csv.write("src_x,src_y,dst_x,dst_y\n");
+    for (int j = 0; j <= 20; ++j)
+      for (int i = 0; i <= 30; ++i) {
+        const Eigen::Vector2d s(600.0 * i / 30, 400.0 * j / 20), d = (s - Eigen::Vector2d(300, 200)) / 300;
+        const double r2 = d.squaredNorm();
+        const Eigen::Vector2d t = Eigen::Vector2d(300, 200) + 300 * d * (1 - 0.12 * r2 + 0.06 * r2 * r2);
+        csv.write(QString("%1,%2,%3,%4\n").arg(s.x()).arg(s.y()).arg(t.x(), 0, 'g', 17).arg(t.y(), 0, 'g', 17).toUtf8());
+      }
+    csv.close();
+    Run r = artcamCli({"fit", "--piecewise", dir.filePath("lens.csv"), "--size", "600x400", "--max-error", "0.1",
+                       "-o", dir.filePath("p.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    test::rng().seed(3);
+    const Camera h = test::randomHomographyCamera({450, 300}, {600, 400});
+    writeCamera(dir.filePath("h.artcam"), h);
+    r = artcamCli({"compose", dir.filePath("h.artcam"), dir.filePath("p.artcam"), "-o", dir.filePath("hp.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("patches") && r.out.contains("piecewise camera"), qPrintable(r.out));
+    const auto p = readArtcam(dir.filePath("p.artcam").toStdString());
+    const auto hp = readArtcam(dir.filePath("hp.artcam").toStdString());
+    QVERIFY(p.ok() && hp.ok() && p->pieces && hp->pieces && hp->pieces->patch_frame);
+    int mapped = 0;
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::Vector2d x(test::uniform(5, 445), test::uniform(5, 295));
+      const auto mid = targetPixelFromSourcePixel(h, x);
+      const auto expected = mid ? p->pieces->targetPixelFromSourcePixel(*mid) : std::nullopt;
+      const auto got = hp->pieces->targetPixelFromSourcePixel(x);
+      QCOMPARE(got.has_value(), expected.has_value());
+      if (!got) continue;
+      ++mapped;
+      QVERIFY2((*got - *expected).norm() < 1e-6, qPrintable(QString::number((*got - *expected).norm())));
+    }
+    QVERIFY(mapped > 20);
+  }
+
+  void refusesFramesOfAnotherShape() {
+    // A camera made for 4:3 after one whose target is 3:2: refused, both frames named, nothing written.
+    QTemporaryDir dir;
+    writeCamera(dir.filePath("a.artcam"), test::randomHomographyCamera({600, 400}, {600, 400}));
+    writeCamera(dir.filePath("b.artcam"), test::randomRationalCamera({640, 480}, {640, 480}));
+    const Run r = artcamCli({"compose", dir.filePath("a.artcam"), dir.filePath("b.artcam"), "-o", dir.filePath("c.artcam")});
+    QCOMPARE(r.exit_code, 1);
+    QVERIFY2(r.err.contains("600x400") && r.err.contains("640x480") && r.err.contains("another shape"), qPrintable(r.err));
+    QVERIFY(!QFile::exists(dir.filePath("c.artcam")));
+  }
+
   void refusesToOverwriteAnInputAndNamesBadFiles() {
     QTemporaryDir dir;
     writeCamera(dir.filePath("a.artcam"), test::randomRationalCamera({64, 64}, {64, 64}));

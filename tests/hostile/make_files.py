@@ -187,6 +187,11 @@ def denominator(q):
 
 
 put_json("identity.artcam", camera())
+# A shift by 1.2 normalised units (60 % of the width): alone it covers 40 % of the frame, twice
+# nothing (the composition that lands nowhere).
+put_json("shift.artcam", camera([[[0, 0, 0.5], [0, 0, 0], [0.5, 0, 1.2]],
+                                 [[0, 0, 0], [0, 0, 0.5], [0, 0.5, 0]],
+                                 [[0, 0, 0], [0, 0, 0], [0, 0, 1]]]))
 shutil.copy(os.path.join(resources, "sample.artcam"), os.path.join(out, "sample.artcam"))
 put_json("zero.artcam", camera([[[0] * 3] * 3] * 3))
 put_json("zero-denominator.artcam", camera(denominator([[0] * 3] * 3)))
