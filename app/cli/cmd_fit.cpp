@@ -273,6 +273,10 @@ int fitPositionCommand(const Args& args, const std::string& output, FrameSize so
     doc.fit = fit.record;
     if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
+    // Valid but surprising (nothing inside the target frame, a pole across part of it): written,
+    // and said (coverage.h).
+    for (const std::string& warning : cameraWarnings(doc))
+      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", output.c_str(), warning.c_str());
 
     if (args.has("--json")) {
       nlohmann::json j = {{"model", fit.record.model},

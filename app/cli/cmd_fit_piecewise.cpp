@@ -52,6 +52,9 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
     job.stage("writing");
     if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
+    // A patch that maps wholly outside the target frame is valid (coverage.h): written, and said.
+    for (const std::string& warning : cameraWarnings(doc))
+      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", output.c_str(), warning.c_str());
     if (args.has("--json")) {
       nlohmann::json patches = nlohmann::json::array();
       for (const CameraPatch& p : fit.camera.patches)
