@@ -485,27 +485,27 @@ class TestCliCameraKinds : public QObject {
   // samples stop up to 8 px short of the frame's edges), and warp counts what is transparent.
   void stmapPiecewiseHasNoRingAtTheFrame() {
     QCOMPARE(artcamCli({"preset", "barrel", "--k", "-0.15", "--size", "600,400", "-o",
-                        path("barrel.artcam")})
+                        path("ring-barrel.artcam")})
                  .exit_code,
              0);
-    const auto map = artcamCli({"export-map", path("barrel.artcam"), "--size", "600x400", "-o",
-                                path("barrel.exr")});
+    const auto map = artcamCli({"export-map", path("ring-barrel.artcam"), "--size", "600x400", "-o",
+                                path("ring-barrel.exr")});
     QVERIFY2(map.exit_code == 0, qPrintable(map.err));
-    const auto fit = artcamCli({"fit", "--stmap", path("barrel.exr"), "--piecewise", "-o",
-                                path("barrel-pw.artcam"), "-q"});
+    const auto fit = artcamCli({"fit", "--stmap", path("ring-barrel.exr"), "--piecewise", "-o",
+                                path("ring-barrel-pw.artcam"), "-q"});
     QVERIFY2(fit.exit_code == 0, qPrintable(fit.err));
     ImageF grey(kW, kH, 3);
     std::fill(grey.data.begin(), grey.data.end(), 0.5f);
     QVERIFY(writeImage(path("grey-ring.exr").toStdString(), grey).ok);
     QString fitted_report;
-    for (const char* cam : {"barrel", "barrel-pw"}) {
+    for (const char* cam : {"ring-barrel", "ring-barrel-pw"}) {
       const auto warp = artcamCli({"warp", path("grey-ring.exr"), path(QString(cam) + ".artcam"),
                                    "-o", path(QString(cam) + "-ring.exr"), "-q"});
       QVERIFY2(warp.exit_code == 0, qPrintable(warp.err));
       fitted_report = warp.out;
     }
-    const auto direct = readImage(path("barrel-ring.exr").toStdString());
-    const auto fitted = readImage(path("barrel-pw-ring.exr").toStdString());
+    const auto direct = readImage(path("ring-barrel-ring.exr").toStdString());
+    const auto fitted = readImage(path("ring-barrel-pw-ring.exr").toStdString());
     QVERIFY(direct.ok() && fitted.ok());
     int lost = 0, covered = 0;
     for (int y = 0; y < kH; ++y)
