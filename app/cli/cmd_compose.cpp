@@ -64,10 +64,14 @@ int composeCommand(const std::vector<std::string>& argv) {
     if (!json) std::printf("%s: %s\n", inputs[i].c_str(), description.c_str());
   }
   // Two usable cameras can compose into one that renders nothing (the second's pole across the
-  // first's image): refused like such a file would be on read.
+  // first's image): refused like such a file would be on read. One that only misses the target
+  // frame is valid, and warned about below.
   if (const Status s = validateArtcam(composed); !s)
     throw CommandError(*output + ": the composed camera is not usable: " + s.message);
   if (const Status s = writeArtcam(*output, composed); !s) throw CommandError(s.message);
+  // One whose picture misses the target frame is valid (coverage.h): written, and said.
+  for (const std::string& warning : cameraWarnings(composed))
+    std::fprintf(stderr, "artcam compose: warning: %s: %s\n", output->c_str(), warning.c_str());
   const std::string summary = analyseStructure(composed.main()).summary;
   if (json)
     std::printf("%s\n", nlohmann::json{{"output", *output},

@@ -47,11 +47,14 @@ const char* const kFitUsage =
     "matches within --threshold px (default 3); the inlier indices are printed and stored.\n"
     "--piecewise splits the region the matches cover into patches (a quadtree) and fits one\n"
     "camera per patch (default quadratic) until every patch's max residual is under --max-error\n"
-    "(default 0.5 px); neighbours share the matches near their edges so they agree at the\n"
-    "seams. Prints per-patch errors, the seam gap and the single-camera floor; --json prints\n"
-    "{piecewise: true, patches, matches, rms_px, max_px, seam_gap_px, converged, max_error_px,\n"
-    "single_rms_px, single_max_px, patch_list: [{rect: [x0, y0, x1, y1], model, matches,\n"
-    "rms_px, max_px, within_tolerance}], output}. The file holds\n"
+    "(default 0.5 px), at its matches and held out (each fifth of a patch's matches predicted\n"
+    "by the patch fitted without them: the error between matches); neighbours share the\n"
+    "matches near their edges so they agree at the seams. Matches outside --size are refused;\n"
+    "the outer patches reach the frame's edges. Prints per-patch errors, the seam gap and the\n"
+    "single-camera floor; --json prints {piecewise: true, patches, matches, rms_px, max_px,\n"
+    "held_out_max_px, seam_gap_px, converged, max_error_px, single_rms_px, single_max_px,\n"
+    "patch_list: [{rect: [x0, y0, x1, y1], model, matches, rms_px, max_px, held_out_max_px,\n"
+    "within_tolerance}], output}. The file holds\n"
     "the single camera at its top level and the patches beside it (artcam insert reads them).\n"
     "--stmap MAP.exr fits the camera to an ST map made elsewhere (a Nuke lens-distortion STMap,\n"
     "or artcam export-map's): the map is sampled on a grid (every Nth pixel, at most 4000\n"
@@ -279,6 +282,10 @@ int fitPositionCommand(const Args& args, const std::string& output, FrameSize so
     doc.fit = fit.record;
     if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
+    // Valid but surprising (nothing inside the target frame, a pole across part of it): written,
+    // and said (coverage.h).
+    for (const std::string& warning : cameraWarnings(doc))
+      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", output.c_str(), warning.c_str());
 
     if (args.has("--json")) {
       nlohmann::json j = {{"model", fit.record.model},

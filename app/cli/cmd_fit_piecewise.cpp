@@ -11,7 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace artcam::cli {
 
@@ -52,6 +54,9 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
     job.stage("writing");
     if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
     job.finish();
+    // A patch that maps wholly outside the target frame is valid (coverage.h): written, and said.
+    for (const std::string& warning : cameraWarnings(doc))
+      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", output.c_str(), warning.c_str());
     if (args.has("--json")) {
       nlohmann::json patches = nlohmann::json::array();
       for (const CameraPatch& p : fit.camera.patches)
@@ -60,12 +65,15 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
                            {"matches", p.matches},
                            {"rms_px", p.rms_px},
                            {"max_px", p.max_px},
+                           // -1: no fold could be fitted (JSON has no infinity)
+                           {"held_out_max_px", std::isfinite(p.held_out_max_px) ? p.held_out_max_px : -1.0},
                            {"within_tolerance", p.within_tolerance}});
       nlohmann::json j = {{"piecewise", true},
                           {"patches", fit.camera.patches.size()},
                           {"matches", fit.matches},
                           {"rms_px", fit.rms_px},
                           {"max_px", fit.max_px},
+                          {"held_out_max_px", fit.held_out_max_px},
                           {"seam_gap_px", fit.seam_gap_px},
                           {"converged", fit.converged},
                           {"max_error_px", options.max_error_px},
@@ -80,10 +88,15 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
     std::printf("%s\n", fit.report().c_str());
     for (size_t i = 0; i < fit.camera.patches.size(); ++i) {
       const CameraPatch& p = fit.camera.patches[i];
+      char held[48];
+      if (p.held_out_max_px < 0) std::snprintf(held, sizeof held, "not measured");
+      else if (!std::isfinite(p.held_out_max_px)) std::snprintf(held, sizeof held, "unmeasurable");
+      else std::snprintf(held, sizeof held, "%.3g px", p.held_out_max_px);
       std::printf(
-          "  patch %zu [%.1f, %.1f]-[%.1f, %.1f] %s: %d matches, RMS %.3g px, max %.3g px%s\n", i,
-          p.rect.x0, p.rect.y0, p.rect.x1, p.rect.y1, p.model.c_str(), p.matches, p.rms_px,
-          p.max_px, p.within_tolerance ? "" : " (above the threshold)");
+          "  patch %zu [%.1f, %.1f]-[%.1f, %.1f] %s: %d matches, RMS %.3g px, max %.3g px, "
+          "held-out max %s%s\n",
+          i, p.rect.x0, p.rect.y0, p.rect.x1, p.rect.y1, p.model.c_str(), p.matches, p.rms_px,
+          p.max_px, held, p.within_tolerance ? "" : " (above the threshold)");
     }
     return 0;
   });

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -24,8 +25,10 @@ const char* const kMapUsage =
     "  a camera with colour or depth blocks maps through its position part, when its\n"
     "    positions depend on position alone (otherwise map refuses: where a point goes\n"
     "    depends on its colour or depth).\n"
-    "A point on the camera's pole curve (where it maps to infinity) or outside every patch is\n"
-    "an error naming its row; nothing is printed then.\n\n"
+    "Every row is answered. A point with no image (on the camera's pole curve, where it maps\n"
+    "to infinity, or outside every patch of a piecewise camera, where warp renders nothing) is\n"
+    "printed with its X,Y fields empty (x,y,, ; null in --json), and a warning on stderr counts\n"
+    "such rows and names the first.\n\n"
     "options:\n"
     "  --json    print {\"layers\": L, \"points\": [{\"source\": [x, y], \"target\": [[X, Y], …]}, …]}\n\n"
     "Example:\n"
@@ -59,6 +62,7 @@ int mapCommand(const std::vector<std::string>& argv) {
   nlohmann::json rows = nlohmann::json::array();
   std::string out;
   char line[64];
+  std::vector<size_t> unmapped;  // rows (from 1) with no image in some layer
   for (size_t k = 0; k < points->size(); ++k) {
     const Eigen::Vector2d& p = (*points)[k];
     std::snprintf(line, sizeof line, "%.17g,%.17g", p.x(), p.y());
@@ -67,16 +71,31 @@ int mapCommand(const std::vector<std::string>& argv) {
     for (const Camera& g : geometry) {
       const auto y = camera->pieces ? camera->pieces->targetPixelFromSourcePixel(p)
                                     : targetPixelFromSourcePixel(g, p);
-      if (!y)
-        throw CommandError(args.positional()[1] + ": point " + std::to_string(k + 1) +
-                           (camera->pieces ? " lies outside every patch of " + path
-                                           : " lies on the camera's pole curve and has no image"));
+      if (!y) {  // a per-point flag, never a made-up number: empty fields, null in JSON
+        if (unmapped.empty() || unmapped.back() != k + 1) unmapped.push_back(k + 1);
+        text += ",,";
+        targets.push_back(nullptr);
+        continue;
+      }
       std::snprintf(line, sizeof line, ",%.17g,%.17g", y->x(), y->y());
       text += line;
       targets.push_back({y->x(), y->y()});
     }
     out += text + "\n";
     rows.push_back({{"source", {p.x(), p.y()}}, {"target", std::move(targets)}});
+  }
+  if (!unmapped.empty()) {
+    std::string rows_text;
+    for (size_t i = 0; i < std::min<size_t>(unmapped.size(), 5); ++i)
+      rows_text += (i ? ", " : "") + std::to_string(unmapped[i]);
+    if (unmapped.size() > 5) rows_text += ", …";
+    std::fprintf(stderr,
+                 "artcam map: warning: %s: %zu of %zu points have no image (%s), their X,Y left "
+                 "empty: row%s %s\n",
+                 args.positional()[1].c_str(), unmapped.size(), points->size(),
+                 camera->pieces ? "outside every patch, or on a patch's pole curve"
+                                : "on the camera's pole curve",
+                 unmapped.size() > 1 ? "s" : "", rows_text.c_str());
   }
   if (json) {
     const nlohmann::json doc = {{"camera", path}, {"layers", geometry.size()}, {"points", rows}};

@@ -337,6 +337,8 @@ PiecewiseCamera piecesAt(const Json& root, const Camera& main) {
     // -1 marks an error that could not be measured (written so by the fitter).
     if (p.contains("rms_px")) patch.rms_px = numberAt(p["rms_px"], where + "/rms_px");
     if (p.contains("max_px")) patch.max_px = numberAt(p["max_px"], where + "/max_px");
+    if (p.contains("held_out_max_px"))
+      patch.held_out_max_px = numberAt(p["held_out_max_px"], where + "/held_out_max_px");
     pieces.patches.push_back(std::move(patch));
   }
   return pieces;
@@ -444,6 +446,8 @@ struct Builder {
       j["matches"] = p.matches;
       j["rms_px"] = std::isfinite(p.rms_px) ? p.rms_px : -1.0;
       j["max_px"] = std::isfinite(p.max_px) ? p.max_px : -1.0;
+      if (p.held_out_max_px >= 0)  // infinite (no fold could be fitted) is written as -1
+        j["held_out_max_px"] = std::isfinite(p.held_out_max_px) ? p.held_out_max_px : -1.0;
       Json hull = Json::array();
       for (const Eigen::Vector2d& v : p.support)
         hull.push_back({number(v.x(), where + "/support"), number(v.y(), where + "/support")});

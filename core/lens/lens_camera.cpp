@@ -297,27 +297,13 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   const std::vector<PointMatch> inside = matchesOf(dense, green, step, size);
   PiecewiseOptions piecewise_options;
   piecewise_options.max_error_px = options.max_error_px;
+  // The fit snaps the tiling's outer edges within a step onto the frame's and clips it there
+  // (piecewise_fit.h), the one rule of every fitting path.
+  piecewise_options.outside_frame_px = step;
+  piecewise_options.snap_to_frame_px = step;
   PiecewiseSummary pieces = fitPiecewise(inside, size, size, piecewise_options);
   if (!pieces.status)
     return failure(s, entry->model + ": no piecewise camera: " + pieces.status.message);
-  PatchRect hull = pieces.camera.patches.front().rect;
-  for (const CameraPatch& p : pieces.camera.patches) {
-    hull.x0 = std::min(hull.x0, p.rect.x0), hull.y0 = std::min(hull.y0, p.rect.y0);
-    hull.x1 = std::max(hull.x1, p.rect.x1), hull.y1 = std::max(hull.y1, p.rect.y1);
-  }
-  const auto snap = [step](double& edge, double outer, double frame_edge) {
-    if (edge == outer && std::abs(edge - frame_edge) <= step) edge = frame_edge;
-  };
-  std::vector<CameraPatch> kept;
-  for (CameraPatch& p : pieces.camera.patches) {
-    snap(p.rect.x0, hull.x0, 0.0), snap(p.rect.y0, hull.y0, 0.0);
-    snap(p.rect.x1, hull.x1, size.width), snap(p.rect.y1, hull.y1, size.height);
-    p.rect.x0 = std::max(p.rect.x0, 0.0), p.rect.y0 = std::max(p.rect.y0, 0.0);
-    p.rect.x1 = std::min(p.rect.x1, double(size.width));
-    p.rect.y1 = std::min(p.rect.y1, double(size.height));
-    if (p.rect.x1 > p.rect.x0 && p.rect.y1 > p.rect.y0) kept.push_back(std::move(p));
-  }
-  pieces.camera.patches = std::move(kept);
   // The fit's margin, 1.5 median spacings, suits clicked matches spread evenly; lensfun's grid
   // is even in the target, so where the map magnifies (a fisheye's centre) its source samples
   // are further apart than that. Every point of the map is known, so the patches are trusted

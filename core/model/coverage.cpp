@@ -150,22 +150,27 @@ Coverage measureCoverage(const Camera& camera, const CameraStructure& structure,
   return c;
 }
 
+bool Coverage::missesTarget() const {
+  return checked && covering == 0 && flat + non_finite + across_pole < cells;
+}
+
 Status Coverage::status() const {
-  if (!checked || covering > 0) return Status::success();
+  if (!checked || covering > 0 || missesTarget()) return Status::success();
   std::string cause;
   if (across_pole > 0 && flat + non_finite + across_pole == cells)
     cause = "its pole crosses the whole source frame and no part of it maps onto an area";
   else if (non_finite == cells)
     cause = "no point of the source frame maps to a finite position (its denominator is zero "
             "or its numbers overflow)";
-  else if (flat + non_finite + across_pole == cells)
-    cause = "it maps the whole source frame onto a line or a point";
   else
-    cause = "no part of the source frame lands inside the target frame";
+    cause = "it maps the whole source frame onto a line or a point";
   return Status::failure("the camera renders nothing: " + cause);
 }
 
 std::string Coverage::warning() const {
+  if (missesTarget())
+    return "the camera renders nothing inside the target frame: everything it maps lands outside "
+           "it, so its pictures in these frames are fully transparent";
   if (!checked || covering == 0 || across_pole == 0) return {};
   char text[200];
   std::snprintf(text, sizeof text,

@@ -8,7 +8,12 @@
 // than the frame (a patch) on a lattice as dense, at least 5×5. A lattice cell "covers" when its four
 // mapped corners are finite, span an area (not a line or a point: the shoelace area exceeds
 // 1e-12 of the target frame's), and one of them lands inside the target frame. A camera with
-// no covering cell renders nothing: refused. A sign change of the position block's homogeneous
+// no covering cell renders nothing. That is refused only when nothing maps onto an area at all
+// (its pole across the whole rectangle, no finite position, everything onto a line or a point):
+// such a camera is broken everywhere. One that maps onto an area, all of it outside the target
+// frame, is a valid camera whose pictures in these frames are empty (a patch of a fisheye's
+// correction that maps beyond the frame, exact matches far from a frame the CLI can give): a
+// warning, never a refusal (issue 44). A sign change of the position block's homogeneous
 // weight between lattice points is a pole inside the rectangle (exact pole checks are the
 // fit's, core/fit/poles.h; this one only has to see a pole that takes a visible share).
 //
@@ -35,10 +40,13 @@ struct Coverage {
   int across_pole = 0;    // cells whose corners' weights differ in sign
   Eigen::Vector2d pole_pixel = Eigen::Vector2d::Zero();  // a source pixel next to the pole
 
-  // Failure when nothing covers, naming the cause: the pole across the whole rectangle, no
-  // finite position, everything onto a line or a point, or everything outside the target.
+  // Failure when nothing maps onto an area, naming the cause: the pole across the whole
+  // rectangle, no finite position, everything onto a line or a point.
   Status status() const;
-  // Non-empty when part of the rectangle is lost to a pole: where, and what share.
+  // Valid, but every cell that maps onto an area lands outside the target frame.
+  bool missesTarget() const;
+  // Non-empty when the camera renders nothing inside the target frame (missesTarget), or when
+  // part of the rectangle is lost to a pole: where, and what share.
   std::string warning() const;
 };
 

@@ -46,7 +46,10 @@ struct CameraPatch {
   int matches = 0;         // matches inside the rectangle (its own, not the shared margin)
   double rms_px = 0.0;     // residuals of those matches, target pixels
   double max_px = 0.0;
-  bool within_tolerance = true;  // max_px ≤ the fit's threshold
+  // The largest held-out residual of those matches (core/piecewise/piecewise_fit.h): what the
+  // patch promises between them; negative: not measured.
+  double held_out_max_px = -1.0;
+  bool within_tolerance = true;  // max_px and held_out_max_px ≤ the fit's threshold
 };
 
 // Where the patches' rectangles and support hulls live when a homography H was composed before

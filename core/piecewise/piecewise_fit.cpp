@@ -92,6 +92,54 @@ double residual(const Camera& camera, const PointMatch& m) {
   return y ? (*y - m.target.head<2>()).norm() : std::numeric_limits<double>::infinity();
 }
 
+// The held-out error of a cell (piecewise_fit.h): its own matches dealt into kFolds folds in
+// order (a grid's rows then leave every fifth point out, spread over the cell), each predicted
+// by the patch fitted on the shared matches without that fold. Infinite when a fold leaves too
+// few matches for any pole-free fit: the patch cannot show what it does between its matches.
+constexpr int kFolds = 5;
+double heldOutMax(const std::vector<PointMatch>& matches, const std::vector<int>& own,
+                  const std::vector<int>& shared, const PatchRect& rect, FrameSize source,
+                  FrameSize target, const PiecewiseOptions& o) {
+  double worst = 0.0;
+  for (int fold = 0; fold < kFolds; ++fold) {
+    std::vector<int> left_out;
+    for (size_t k = static_cast<size_t>(fold); k < own.size(); k += kFolds) left_out.push_back(own[k]);
+    if (left_out.empty()) continue;
+    std::vector<PointMatch> train;
+    for (int i : shared)
+      if (!std::binary_search(left_out.begin(), left_out.end(), i))
+        train.push_back(matches[static_cast<size_t>(i)]);
+    const auto fit = fitPatch(train, rect, source, target, o);
+    if (!fit) return std::numeric_limits<double>::infinity();
+    for (int i : left_out) worst = std::max(worst, residual(fit->camera, matches[static_cast<size_t>(i)]));
+  }
+  return worst;
+}
+
+// The tiling's outer edges within `reach` of the frame's edges onto them, every rectangle
+// clipped to the frame (piecewise_fit.h); patches clipped to nothing are dropped.
+void snapToFrame(PiecewiseCamera& camera, double reach) {
+  if (camera.patches.empty()) return;
+  PatchRect hull = camera.patches.front().rect;
+  for (const CameraPatch& p : camera.patches) {
+    hull.x0 = std::min(hull.x0, p.rect.x0), hull.y0 = std::min(hull.y0, p.rect.y0);
+    hull.x1 = std::max(hull.x1, p.rect.x1), hull.y1 = std::max(hull.y1, p.rect.y1);
+  }
+  const double w = camera.source_size.width, h = camera.source_size.height;
+  const auto snap = [reach](double& edge, double outer, double frame_edge) {
+    if (edge == outer && std::abs(edge - frame_edge) <= reach) edge = frame_edge;
+  };
+  std::vector<CameraPatch> kept;
+  for (CameraPatch& p : camera.patches) {
+    snap(p.rect.x0, hull.x0, 0.0), snap(p.rect.y0, hull.y0, 0.0);
+    snap(p.rect.x1, hull.x1, w), snap(p.rect.y1, hull.y1, h);
+    p.rect.x0 = std::max(p.rect.x0, 0.0), p.rect.y0 = std::max(p.rect.y0, 0.0);
+    p.rect.x1 = std::min(p.rect.x1, w), p.rect.y1 = std::min(p.rect.y1, h);
+    if (p.rect.x1 > p.rect.x0 && p.rect.y1 > p.rect.y0) kept.push_back(std::move(p));
+  }
+  camera.patches = std::move(kept);
+}
+
 // Four quadrants, or two halves across the longer side when quadrants would starve.
 std::vector<PatchRect> splits(const PatchRect& r, bool quadrants) {
   const Eigen::Vector2d c = r.centre();
@@ -142,14 +190,102 @@ std::optional<std::vector<PatchRect>> feasibleSplit(const std::vector<PointMatch
   return std::nullopt;
 }
 
+struct Quadtree {
+  const std::vector<PointMatch>& matches;
+  FrameSize source, target;
+  const PiecewiseOptions& options;
+};
+
+// A cell's patches; `worst` is the largest error of any of them, at or between its matches.
+struct CellFit {
+  Status status = Status::success();
+  std::vector<CameraPatch> patches;
+  double worst = 0.0;
+};
+
+// One cell of the quadtree: its patch when that meets the threshold at and between its
+// matches, else its children's patches. A split forced by the error AT the matches is kept, as
+// before; one asked for only by the held-out error is kept when the children are better between
+// their matches than the cell was, since children fitted on fewer matches can bend more, not
+// less (a sparse grid), and then the cell stays one patch, reported above the threshold.
+CellFit fitCell(const Quadtree& q, const Cell& cell) {
+  CellFit out;
+  const std::vector<PointMatch>& matches = q.matches;
+  const PiecewiseOptions& options = q.options;
+  // Matches on an edge belong to both sides (the split point is computed, so allow round-off).
+  const double edge_tolerance = 1e-9 * std::max(cell.rect.width(), cell.rect.height());
+  const std::vector<int> own = matchesIn(matches, cell.rect, edge_tolerance);
+  if (own.empty()) return out;  // no data: nothing to answer for here
+  const std::vector<int> shared_ids = sharedMatchesOf(matches, cell.rect, options);
+  const std::vector<PointMatch> shared = subset(matches, shared_ids);
+  const auto fit = fitPatch(shared, cell.rect, q.source, q.target, options);
+
+  double worst = std::numeric_limits<double>::infinity(), sum2 = 0.0;
+  double held_out = std::numeric_limits<double>::infinity();
+  if (fit) {
+    worst = 0.0;
+    for (int i : own) {
+      const double r = residual(fit->camera, matches[static_cast<size_t>(i)]);
+      worst = std::max(worst, r);
+      sum2 += r * r;
+    }
+    // Only a patch good at its matches is worth the five extra fits.
+    if (worst <= options.max_error_px)
+      held_out = heldOutMax(matches, own, shared_ids, cell.rect, q.source, q.target, options);
+  }
+  const bool at_matches = fit && worst <= options.max_error_px;
+  const bool good = at_matches && held_out <= options.max_error_px;
+  const double error = std::max(worst, held_out);
+  if (!good && cell.depth < options.max_depth) {
+    if (const auto kids = feasibleSplit(matches, cell.rect, options)) {
+      CellFit split;
+      for (const PatchRect& k : *kids) {
+        CellFit child = fitCell(q, {k, cell.depth + 1});
+        if (!child.status) {
+          split.status = child.status;
+          break;
+        }
+        split.worst = std::max(split.worst, child.worst);
+        for (CameraPatch& p : child.patches) split.patches.push_back(std::move(p));
+      }
+      if (!fit || (!at_matches && split.status) || (split.status && split.worst < error))
+        return split;
+    }
+  }
+  if (!fit) {
+    out.status = Status::failure(
+        "no pole-free camera fits the patch [" + std::to_string(cell.rect.x0) + ", " +
+        std::to_string(cell.rect.y0) + "]–[" + std::to_string(cell.rect.x1) + ", " +
+        std::to_string(cell.rect.y1) + "] and it cannot be split further (" +
+        std::to_string(shared.size()) + " matches); add matches there");
+    return out;
+  }
+  CameraPatch patch;
+  patch.rect = cell.rect;
+  patch.camera = fit->camera;
+  patch.model = fit->model;
+  patch.matches = static_cast<int>(own.size());
+  patch.max_px = worst;
+  patch.held_out_max_px = held_out;
+  patch.rms_px = std::sqrt(sum2 / static_cast<double>(own.size()));
+  patch.within_tolerance = good;
+  std::vector<Eigen::Vector2d> own_points;
+  for (int i : own) own_points.push_back(matches[static_cast<size_t>(i)].source.head<2>());
+  patch.support = convexHull(std::move(own_points));
+  out.worst = error;
+  out.patches.push_back(std::move(patch));
+  return out;
+}
+
 }  // namespace
 
 std::string PiecewiseSummary::report() const {
   char line[400];
   std::snprintf(line, sizeof line,
-                "piecewise: %zu patches, %d matches, RMS %.4g px, max %.4g px, seam gap %.3g px%s\n"
+                "piecewise: %zu patches, %d matches, RMS %.4g px, max %.4g px, held-out max %.4g px, "
+                "seam gap %.3g px%s\n"
                 "single camera on the same matches: %s",
-                camera.patches.size(), matches, rms_px, max_px, seam_gap_px,
+                camera.patches.size(), matches, rms_px, max_px, held_out_max_px, seam_gap_px,
                 converged ? "" : " (some patches could not reach the threshold)",
                 single_rms_px < 0 ? "no fit"
                                   : (std::to_string(single_rms_px) + " px RMS, " +
@@ -206,6 +342,17 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
       return out.status = Status::failure("piecewise fitting needs 2D image matches"), out;
     if (!m.source.allFinite() || !m.target.allFinite())
       return out.status = Status::failure("a match has a non-finite coordinate"), out;
+    const double slack = options.outside_frame_px;
+    if (m.source[0] < -slack || m.source[1] < -slack || m.source[0] > source_size.width + slack ||
+        m.source[1] > source_size.height + slack) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "match %zu: its source (%.6g, %.6g) lies outside the %dx%d source frame; "
+                    "patches tile the source frame (give a size that holds every match)",
+                    static_cast<size_t>(&m - all_matches.data()) + 1, m.source[0], m.source[1],
+                    source_size.width, source_size.height);
+      return out.status = Status::failure(text), out;
+    }
     matches.push_back(m);
   }
   out.matches = static_cast<int>(matches.size());
@@ -239,54 +386,17 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
 
   // 1.5 spacings: a grid cell's diagonal (√2) plus room for a corner the user did not click.
   out.camera.support_margin_px = 1.5 * matchSpacing(matches);
-  std::vector<Cell> todo{{root, 0}};
-  while (!todo.empty()) {
-    const Cell cell = todo.back();
-    todo.pop_back();
-    // Matches on an edge belong to both sides (the split point is computed, so allow round-off).
-    const double edge_tolerance = 1e-9 * std::max(cell.rect.width(), cell.rect.height());
-    const std::vector<int> own = matchesIn(matches, cell.rect, edge_tolerance);
-    if (own.empty()) continue;  // no data: nothing to answer for here
-    const std::vector<PointMatch> shared = subset(matches, sharedMatchesOf(matches, cell.rect, options));
-    const auto fit = fitPatch(shared, cell.rect, source_size, target_size, options);
-
-    double worst = std::numeric_limits<double>::infinity(), sum2 = 0.0;
-    if (fit) {
-      worst = 0.0;
-      for (int i : own) {
-        const double r = residual(fit->camera, matches[static_cast<size_t>(i)]);
-        worst = std::max(worst, r);
-        sum2 += r * r;
-      }
-    }
-    const bool good = fit && worst <= options.max_error_px;
-    if (!good && cell.depth < options.max_depth) {
-      if (const auto kids = feasibleSplit(matches, cell.rect, options)) {
-        for (const PatchRect& k : *kids) todo.push_back({k, cell.depth + 1});
-        continue;
-      }
-    }
-    if (!fit)
-      return out.status = Status::failure(
-                 "no pole-free camera fits the patch [" + std::to_string(cell.rect.x0) + ", " +
-                 std::to_string(cell.rect.y0) + "]–[" + std::to_string(cell.rect.x1) + ", " +
-                 std::to_string(cell.rect.y1) + "] and it cannot be split further (" +
-                 std::to_string(shared.size()) + " matches); add matches there"),
-             out;
-    CameraPatch patch;
-    patch.rect = cell.rect;
-    patch.camera = fit->camera;
-    patch.model = fit->model;
-    patch.matches = static_cast<int>(own.size());
-    patch.max_px = worst;
-    patch.rms_px = std::sqrt(sum2 / static_cast<double>(own.size()));
-    patch.within_tolerance = good;
-    std::vector<Eigen::Vector2d> own_points;
-    for (int i : own) own_points.push_back(matches[static_cast<size_t>(i)].source.head<2>());
-    patch.support = convexHull(std::move(own_points));
-    out.converged = out.converged && good;
-    out.camera.patches.push_back(std::move(patch));
+  const Quadtree tree{matches, source_size, target_size, options};
+  CellFit all = fitCell(tree, {root, 0});
+  if (!all.status) return out.status = all.status, out;
+  out.camera.patches = std::move(all.patches);
+  for (const CameraPatch& p : out.camera.patches) {
+    out.converged = out.converged && p.within_tolerance;
+    out.held_out_max_px = std::max(
+        out.held_out_max_px, std::isfinite(p.held_out_max_px) && p.held_out_max_px >= 0 ? p.held_out_max_px : p.max_px);
   }
+  snapToFrame(out.camera, options.snap_to_frame_px >= 0 ? options.snap_to_frame_px
+                                                         : out.camera.support_margin_px);
 
   double sum2 = 0.0;
   for (const PointMatch& m : matches) {

@@ -297,7 +297,11 @@ void renderGeometry(const ConstImageView& photo, const StoredMipPyramid* pyramid
     // A preview reads the pyramid level of about the output's scale.
     const ConstImageView& from = pyramid ? pyramid->level(pyramid->levelFor(static_cast<double>(pyramid->level(0).width) / out.width)) : photo;
     if (from.empty()) throw std::invalid_argument("render: no photo given");
-    renderPiecewise(from, *camera.pieces, out, p);
+    PiecewiseRenderStats stats;
+    renderPiecewise(from, *camera.pieces, out, p, &stats);
+    // The pixels no triangle of the mesh covers (each pixel is rasterised once): what the other
+    // paths count as transparent, so a ring the patches leave is reported, not "0".
+    report.transparent_pixels = static_cast<long long>(out.width) * out.height - stats.covered_pixels;
     report.cancelled = options.warp.progress && !options.warp.progress(1.0);
     return;
   }

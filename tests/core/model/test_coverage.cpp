@@ -3,6 +3,7 @@
 // target frame, against hand-computed lattices: the 48 × 48 cells of a 64 × 64 frame are 4/3 px
 // wide, so a pole line at pixel column 25.6 runs through cell column 19 (25.33…26.67 px).
 #include "core/model/coverage.h"
+#include "core/model/artcam.h"
 #include "tests/support/test_support.h"
 
 #include <QtTest/QtTest>
@@ -33,13 +34,20 @@ class TestCoverage : public QObject {
     QVERIFY(c.warning().empty());
   }
 
-  void aShiftOffTheFrameRendersNothing() {
+  // A valid camera whose picture misses the target frame: a warning, not a refusal (issue 44).
+  void aShiftOffTheFrameRendersNothingAndIsWarnedAbout() {
     Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
     h(0, 2) = 6.0;  // three frame widths to the right (the normalised frame is 2 wide)
-    const Coverage c = measureCoverage(fromHomography(h));
+    const Camera camera = fromHomography(h);
+    const Coverage c = measureCoverage(camera);
     QCOMPARE(c.covering, 0);
-    QVERIFY(!c.status().ok);
-    QVERIFY(c.status().message.find("lands inside the target") != std::string::npos);
+    QVERIFY(c.missesTarget());
+    QVERIFY2(c.status().ok, c.status().message.c_str());
+    QVERIFY2(c.warning().find("renders nothing inside the target frame") != std::string::npos,
+             c.warning().c_str());
+    const Artcam doc(camera);
+    QVERIFY(validateArtcam(doc).ok);
+    QCOMPARE(cameraWarnings(doc).size(), size_t{1});
   }
 
   void aStrongZoomStillCovers() {
