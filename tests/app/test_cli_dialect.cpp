@@ -336,7 +336,8 @@ class TestCliDialect : public QObject {
     QVERIFY2(t.exit_code == 0, qPrintable(t.err));
     const QRegularExpressionMatch m =
         QRegularExpression("piecewise: (\\d+) patches, (\\d+) matches, RMS ([0-9.e+-]+) px, "
-                           "max ([0-9.e+-]+) px, seam gap ([0-9.e+-]+) px")
+                           "max ([0-9.e+-]+) px, held-out max [0-9.e+-]+ px, "
+                           "seam gap ([0-9.e+-]+) px")
             .match(t.out);
     QVERIFY2(m.hasMatch(), qPrintable(t.out));
     QCOMPARE(m.captured(1).toInt(), o["patches"].toInt());
