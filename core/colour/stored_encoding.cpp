@@ -96,36 +96,20 @@ void throughProfile(const IccProfile& icc, bool to_working, float* data, size_t 
 
 }  // namespace
 
-void StoredEncoding::encodeRange(float* data, size_t pixels, int channels, int alpha_channel) const {
+void StoredEncoding::convertRange(float* data, size_t pixels, int channels, int alpha_channel,
+                                  bool encoding) const {
   scaleColour(data, pixels, channels, alpha_channel, true);
   if (icc_) {
-    throughProfile(*icc_, false, data, pixels, channels, alpha_channel);
+    throughProfile(*icc_, !encoding, data, pixels, channels, alpha_channel);
   } else {
+    const auto& table = encoding ? tables_->encode : tables_->decode;
     for (size_t p = 0; p < pixels; ++p) {
       float* px = data + p * static_cast<size_t>(channels);
       for (int c = 0; c < channels; ++c) {
         if (c == alpha_channel) continue;
         const float v = px[c];
-        px[c] = v >= kTabledFrom && v <= 1.0f ? Tables::read(tables_->encode, v)
-                                       : static_cast<float>(transfer_.encode(v));
-      }
-    }
-  }
-  scaleColour(data, pixels, channels, alpha_channel, false);
-}
-
-void StoredEncoding::decodeRange(float* data, size_t pixels, int channels, int alpha_channel) const {
-  scaleColour(data, pixels, channels, alpha_channel, true);
-  if (icc_) {
-    throughProfile(*icc_, true, data, pixels, channels, alpha_channel);
-  } else {
-    for (size_t p = 0; p < pixels; ++p) {
-      float* px = data + p * static_cast<size_t>(channels);
-      for (int c = 0; c < channels; ++c) {
-        if (c == alpha_channel) continue;
-        const float v = px[c];
-        px[c] = v >= kTabledFrom && v <= 1.0f ? Tables::read(tables_->decode, v)
-                                       : static_cast<float>(transfer_.decode(v));
+        if (v >= kTabledFrom && v <= 1.0f) px[c] = Tables::read(table, v);
+        else px[c] = static_cast<float>(encoding ? transfer_.encode(v) : transfer_.decode(v));
       }
     }
   }
@@ -139,8 +123,7 @@ void StoredEncoding::inParallel(float* data, size_t pixels, int channels, int al
   constexpr size_t kRun = 16384;
   const auto run = [&](size_t first, size_t count) {
     float* at = data + first * static_cast<size_t>(channels);
-    if (encoding) encodeRange(at, count, channels, alpha_channel);
-    else decodeRange(at, count, channels, alpha_channel);
+    convertRange(at, count, channels, alpha_channel, encoding);
   };
   if (pixels <= 4 * kRun) {
     run(0, pixels);

@@ -41,8 +41,7 @@ class StoredEncoding {
   void decode(float* data, size_t pixels, int channels, int alpha_channel) const;
 
  private:
-  void encodeRange(float* data, size_t pixels, int channels, int alpha_channel) const;
-  void decodeRange(float* data, size_t pixels, int channels, int alpha_channel) const;
+  void convertRange(float* data, size_t pixels, int channels, int alpha_channel, bool encoding) const;
   void inParallel(float* data, size_t pixels, int channels, int alpha_channel, bool encoding) const;
 
   struct Tables;

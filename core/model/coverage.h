@@ -13,7 +13,7 @@
 // such a camera is broken everywhere. One that maps onto an area, all of it outside the target
 // frame, is a valid camera whose pictures in these frames are empty (a patch of a fisheye's
 // correction that maps beyond the frame, exact matches far from a frame the CLI can give): a
-// warning, never a refusal (issue 44). A sign change of the position block's homogeneous
+// warning, never a refusal (docs/architecture.md). A sign change of the position block's homogeneous
 // weight between lattice points is a pole inside the rectangle (exact pole checks are the
 // fit's, core/fit/poles.h; this one only has to see a pole that takes a visible share).
 //

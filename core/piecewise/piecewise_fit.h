@@ -9,7 +9,7 @@
 // Poles matter only inside a patch, so each patch's denominator is checked over its own
 // rectangle (exactly, poles.h) rather than over the whole frame.
 //
-// Between the matches (issue 44). A patch that meets the threshold at its matches can still
+// Between the matches (docs/architecture.md). A patch that meets the threshold at its matches can still
 // bend between them (a quadratic has 17 degrees of freedom; a patch of a dozen matches nearly
 // interpolates them). So a patch is accepted only when its HELD-OUT error meets the threshold
 // too: its own matches are dealt into five folds, each predicted by the patch fitted without

@@ -829,6 +829,33 @@ Mesh meshFor(const PiecewiseCamera& camera, FrameSize source_image, FrameSize si
   return mesh;
 }
 
+
+// The mesh rasterised in bands of kBandRows rows on the render's threads: each band's source
+// positions and coverage in a scratch block (scratch.h), the same blocks band after band and
+// render after render, not reallocated and page-faulted afresh by the threads parallelForRows
+// starts; then `use(y0, y1, sx, sy, valid)` reads them. Returns the pixels the mesh covers. The
+// render samples them, the position map stores them: one rasterisation for both.
+template <class Use>
+long long forEachRasterisedBand(const Mesh& mesh, FrameSize output, int threads, bool avx512,
+                                const Use& use) {
+  std::atomic<long long> covered{0};
+  ParallelOptions po;
+  po.threads = threads;
+  po.band_rows = kBandRows;
+  parallelForRows(output.height, po, [&](int y0, int y1) {
+    const size_t cells = static_cast<size_t>(kBandRows) * static_cast<size_t>(output.width);
+    const ScratchBlock buffers = takeScratch(cells * (2 * sizeof(float) + 1));
+    float* const sx = static_cast<float*>(buffers.data());
+    float* const sy = sx + cells;
+    unsigned char* const valid = reinterpret_cast<unsigned char*>(sy + cells);
+    std::memset(valid, 0, cells);
+    const long long band_covered = rasteriseBand(mesh, y0, y1, output.width, sx, sy, valid, avx512);
+    use(y0, y1, sx, sy, valid);
+    covered += band_covered;
+  });
+  return covered.load();
+}
+
 }  // namespace
 
 MeshChoice chooseMeshStep(const PiecewiseCamera& camera, FrameSize source_image, FrameSize output,
@@ -854,36 +881,22 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
     return;
   }
   const Mesh mesh = meshFor(camera, {source.width, source.height}, size, options, stats);
-  std::atomic<long long> covered{0};
-  ParallelOptions po;
-  po.threads = options.threads;
-  po.band_rows = kBandRows;
   // Every output pixel is written by the sampler (no position: transparent), so the output
   // needs no clearing first.
-  parallelForRows(out.height, po, [&](int y0, int y1) {
-    const size_t cells = static_cast<size_t>(kBandRows) * static_cast<size_t>(out.width);
-    // The band's positions and coverage in a scratch block (scratch.h), the same blocks band
-    // after band and render after render, not reallocated and page-faulted afresh by the
-    // threads parallelForRows starts.
-    const ScratchBlock buffers = takeScratch(cells * (2 * sizeof(float) + 1));
-    float* const sx = static_cast<float*>(buffers.data());
-    float* const sy = sx + cells;
-    unsigned char* const valid = reinterpret_cast<unsigned char*>(sy + cells);
-    std::memset(valid, 0, cells);
-    const long long band_covered = rasteriseBand(mesh, y0, y1, out.width, sx, sy, valid, avx512);
-    // Span-major as the warp's tiles (warp.cpp): one span column down the band's rows, then
-    // the next, so the source region a tile reads stays in cache; a whole 6000-pixel row
-    // sweeps every source line its curve crosses.
-    for (int x0 = 0; x0 < out.width; x0 += kSpanPixels) {  // the warp's spans (coordinates.h)
-      const int n = std::min(kSpanPixels, out.width - x0);
-      for (int y = y0; y < y1; ++y) {
-        const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(out.width);
-        sampler.run(y, x0, n, sx + row + x0, sy + row + x0, valid + row + x0);
-      }
-    }
-    covered += band_covered;
-  });
-  stats.covered_pixels = covered.load();
+  stats.covered_pixels = forEachRasterisedBand(
+      mesh, size, options.threads, avx512,
+      [&](int y0, int y1, const float* sx, const float* sy, const unsigned char* valid) {
+        // Span-major as the warp's tiles (warp.cpp): one span column down the band's rows, then
+        // the next, so the source region a tile reads stays in cache; a whole 6000-pixel row
+        // sweeps every source line its curve crosses.
+        for (int x0 = 0; x0 < out.width; x0 += kSpanPixels) {  // the warp's spans (coordinates.h)
+          const int n = std::min(kSpanPixels, out.width - x0);
+          for (int y = y0; y < y1; ++y) {
+            const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(out.width);
+            sampler.run(y, x0, n, sx + row + x0, sy + row + x0, valid + row + x0);
+          }
+        }
+      });
   if (stats_out) *stats_out = stats;
 }
 
@@ -900,28 +913,19 @@ PositionMap piecewisePositionMap(const PiecewiseCamera& camera, FrameSize source
   }
   const bool avx512 = options.allow_avx512 && cpuHasAvx512bwvl();
   const Mesh mesh = meshFor(camera, source_image, output, options, stats);
-  std::atomic<long long> covered{0};
-  ParallelOptions po;
-  po.threads = options.threads;
-  po.band_rows = kBandRows;
   // The render's bands and rasteriser (renderPiecewise), the positions stored instead of sampled.
-  parallelForRows(output.height, po, [&](int y0, int y1) {
-    const size_t cells = static_cast<size_t>(kBandRows) * static_cast<size_t>(output.width);
-    const ScratchBlock buffers = takeScratch(cells * (2 * sizeof(float) + 1));
-    float* const sx = static_cast<float*>(buffers.data());
-    float* const sy = sx + cells;
-    unsigned char* const valid = reinterpret_cast<unsigned char*>(sy + cells);
-    std::memset(valid, 0, cells);
-    covered += rasteriseBand(mesh, y0, y1, output.width, sx, sy, valid, avx512);
-    for (int y = y0; y < y1; ++y) {
-      const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(output.width);
-      for (int x = 0; x < output.width; ++x)
-        if (valid[row + static_cast<size_t>(x)])
-          storePreimage(map, map.index(x, y), sx[row + static_cast<size_t>(x)], sy[row + static_cast<size_t>(x)]);
-    }
-  });
+  stats.covered_pixels = forEachRasterisedBand(
+      mesh, output, options.threads, avx512,
+      [&](int y0, int y1, const float* sx, const float* sy, const unsigned char* valid) {
+        for (int y = y0; y < y1; ++y) {
+          const size_t row = static_cast<size_t>(y - y0) * static_cast<size_t>(output.width);
+          for (int x = 0; x < output.width; ++x)
+            if (valid[row + static_cast<size_t>(x)])
+              storePreimage(map, map.index(x, y), sx[row + static_cast<size_t>(x)],
+                            sy[row + static_cast<size_t>(x)]);
+        }
+      });
   countPreimages(map);
-  stats.covered_pixels = covered.load();
   if (stats_out) *stats_out = stats;
   return map;
 }
