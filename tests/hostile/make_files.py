@@ -7,6 +7,9 @@ it was built: valid images come from oiiotool (OpenImageIO's own tool, an indepe
 hostile ones are valid files cut, patched or padded byte by byte. Files stay small (the biggest
 is a 64 KiB padded header): a claim of size, not the bytes, is what makes them hostile.
 
+Files for one area's cases (cases-<area>.tsv) are made by files_<area>.py beside this script,
+run last with this script's names (put, get, oiio, camera, project, ...) in scope.
+
 usage: make_files.py OUT_DIR RESOURCES_DIR ARTCAM
 """
 import json
@@ -389,3 +392,10 @@ for name, args in [("twist-3d.artcam", ["twist-3d"]),
                    ("pinhole.artcam", ["pinhole"])]:
     subprocess.run([artcam, "preset", *args, "-o", os.path.join(out, name)], check=True,
                    stdout=subprocess.DEVNULL)
+
+# --- each area's own files ------------------------------------------------------------------------
+_here = os.path.dirname(os.path.abspath(__file__))
+for _name in sorted(os.listdir(_here)):
+    if _name.startswith("files_") and _name.endswith(".py"):
+        with open(os.path.join(_here, _name)) as _f:
+            exec(compile(_f.read(), _name, "exec"))

@@ -14,7 +14,7 @@ and must:
   - leave every input byte for byte as it was, nothing new among the inputs, and no atomic
     save temporary anywhere.
 
-cases.tsv: one case per line, tab-separated: id, class, expect (ok | exit status), checks
+cases.tsv and cases-<area>.tsv: one case per line, tab-separated: id, class, expect (ok | exit status), checks
 (';'-separated; for a refusal, fragments stderr must hold; for ok: exists:P, image:P:WxHxC,
 opaque:P, stdout:TEXT, stderr:TEXT, lines:P:N), command (artcam's arguments, shell-quoted).
 Placeholders: {F} the generated inputs (make_files.py), {O} the case's output folder, {R} the
@@ -220,21 +220,25 @@ def run_case(case_id, expect, checks, command):
                       "peak_mib": peak_mib, "seconds": seconds}
 
 
+# cases.tsv, then every cases-<area>.tsv beside it (one file per area keeps additions apart).
 cases = []
-with open(os.path.join(here, "cases.tsv")) as f:
-    for number, line in enumerate(f, 1):
-        line = line.rstrip("\n")
-        if not line.strip() or line.startswith("#"):
-            continue
-        fields = line.split("\t")
-        if len(fields) != 5:
-            sys.exit("cases.tsv:%d: %d fields, expected 5 (id, class, expect, checks, command)"
-                     % (number, len(fields)))
-        cases.append(fields)
+case_files = ["cases.tsv"] + sorted(n for n in os.listdir(here)
+                                    if n.startswith("cases-") and n.endswith(".tsv"))
+for case_file in case_files:
+    with open(os.path.join(here, case_file)) as f:
+        for number, line in enumerate(f, 1):
+            line = line.rstrip("\n")
+            if not line.strip() or line.startswith("#"):
+                continue
+            fields = line.split("\t")
+            if len(fields) != 5:
+                sys.exit("%s:%d: %d fields, expected 5 (id, class, expect, checks, command)"
+                         % (case_file, number, len(fields)))
+            cases.append(fields)
 ids = collections.Counter(c[0] for c in cases)
 duplicates = [i for i, n in ids.items() if n > 1]
 if duplicates:
-    sys.exit("cases.tsv: duplicate ids %s" % ", ".join(duplicates))
+    sys.exit("%s: duplicate ids %s" % (", ".join(case_files), ", ".join(duplicates)))
 
 os.makedirs(outs)
 failed = []
