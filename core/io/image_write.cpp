@@ -2,6 +2,7 @@
 // writeImage (declared in image_io.h): ImageF (linear, premultiplied) -> any OIIO format,
 // atomically. The decisions are listed in image_io.h.
 #include "core/io/atomic_file.h"
+#include "core/io/checked_output.h"
 #include "core/io/extra_channels.h"
 #include "core/io/image_io.h"
 #include "core/io/image_input.h"
@@ -270,7 +271,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + replaceAll(oneLine(message), temp, path));
     };
-    if (!out->open(temp, spec)) return failure(out->geterror());
+    io_checked::CheckedWrite checked(std::move(out));
+    if (!checked.open(temp, spec)) return failure(checked.cause());
     constexpr int kBand = 64;
     std::vector<float> encoded;
     std::vector<float> with_channels;
@@ -278,14 +280,12 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     std::vector<std::uint16_t> words;
     bool ok = true;
     for (int y0 = 0; ok && y0 < image.height; y0 += kBand) {
-      if (options.progress && !options.progress(static_cast<double>(y0) / image.height)) {
-        out->close();
+      if (options.progress && !options.progress(static_cast<double>(y0) / image.height))
         return failure("cancelled");
-      }
       const int y1 = std::min(image.height, y0 + kBand);
       if (to_byte) {
         byteRows(y0, y1, bytes);
-        ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, bytes.data());
+        ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, bytes.data());
         continue;
       }
       encodeRows(y0, y1, encoded);
@@ -303,14 +303,9 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
         data = words.data();
       }
       // Scanline numbers are the data window's (its origin, keepDisplayWindow, may not be 0).
-      ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, data);
+      ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, data);
     }
-    if (!ok) {
-      const std::string message = out->geterror();
-      out->close();
-      return failure(message);
-    }
-    if (!out->close()) return failure(out->geterror());
+    if (!ok || !checked.close()) return failure(checked.cause());
     if (like && like->metadata) {
       return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, same_encoding},
                                 path);

@@ -57,11 +57,15 @@ struct JumpErrors {
   jpeg_error_mgr manager;  // first: libjpeg hands back a pointer to it
   std::jmp_buf jump;
   char fatal[JMSG_LENGTH_MAX] = {};
+  int write_errno = 0;  // a failed fwrite's errno: libjpeg's own text ("out of disk space?") guesses
   jpeg_error_mgr* install() {
     jpeg_std_error(&manager);
     manager.error_exit = [](j_common_ptr common) {
       JumpErrors* e = reinterpret_cast<JumpErrors*>(common->err);
+      const int err = errno;  // the stdio destination's fwrite or fflush, before anything else
+      if (common->err->msg_code == JERR_FILE_WRITE && err != 0) e->write_errno = err;
       (*common->err->format_message)(common, e->fatal);
+      if (e->write_errno != 0) std::snprintf(e->fatal, sizeof e->fatal, "%s", std::strerror(err));
       std::longjmp(e->jump, 1);
     };
     manager.emit_message = [](j_common_ptr, int) {};

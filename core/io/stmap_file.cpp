@@ -3,6 +3,7 @@
 #include "core/io/oiio_io.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/checked_output.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
 
@@ -107,17 +108,15 @@ Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers
     // Float maps with named channels and header attributes: OpenEXR is what every tool reads.
     if (out->format_name() != std::string("openexr"))
       return Status::failure(path + ": an ST map is written as OpenEXR (name it .exr)");
-    if (!out->open(temp, spec)) return failure(out->geterror());
+    io_checked::CheckedWrite checked(std::move(out));
+    if (!checked.open(temp, spec)) return failure(checked.cause());
     for (int y0 = 0; y0 < height; y0 += kBand) {
       const int y1 = std::min(height, y0 + kBand);
       fillBand(y0, y1);
-      if (!out->write_scanlines(y0, y1, 0, OIIO::TypeDesc::FLOAT, band.data())) {
-        const std::string message = out->geterror();
-        out->close();
-        return failure(message);
-      }
+      if (!checked.output().write_scanlines(y0, y1, 0, OIIO::TypeDesc::FLOAT, band.data()))
+        return failure(checked.cause());
     }
-    if (!out->close()) return failure(out->geterror());
+    if (!checked.close()) return failure(checked.cause());
     return Status::success();
   });
 }

@@ -9,6 +9,7 @@
 #include "core/io/extra_channels.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
+#include "core/io/checked_output.h"
 #include "core/io/jpeg_decode.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
@@ -453,7 +454,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + io_text::replaceAll(oneLine(message), temp, path));
     };
-    if (!out->open(temp, spec)) return failure(out->geterror());
+    io_checked::CheckedWrite checked(std::move(out));
+    if (!checked.open(temp, spec)) return failure(checked.cause());
     bool ok = true;
     CancelHook context{options.progress};  // cancel between bands
     const OIIO::ProgressCallback callback = context.callback();
@@ -473,13 +475,10 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
         break;
       const int y1 = std::min(image.height, y0 + kBand);
       ConstImageView rows;
-      if (const Status produced = band_rows(y0, y1, rows); !produced) {
-        out->close();
-        return produced;
-      }
+      if (const Status produced = band_rows(y0, y1, rows); !produced) return produced;
       // Scanline numbers are the data window's (its origin, keepDisplayWindow, may not be 0).
       if (direct) {
-        ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), rows.data,
+        ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), rows.data,
                                   OIIO::AutoStride, rows.row_bytes);
         continue;
       }
@@ -508,18 +507,10 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
                                  image.width, y0, y1, *options.extra_channels, with_channels);
         data = with_channels.data();
       }
-      ok = out->write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), data);
+      ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), data);
     }
-    if (context.cancelled) {
-      out->close();
-      return failure("cancelled");
-    }
-    if (!ok) {
-      const std::string message = out->geterror();
-      out->close();
-      return failure(message);
-    }
-    if (!out->close()) return failure(out->geterror());
+    if (context.cancelled) return failure("cancelled");
+    if (!ok || !checked.close()) return failure(checked.cause());
     // The transfer is the input's (see above), so the colour-space tags still hold.
     if (like && like->metadata)
       return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, true}, path);
