@@ -57,7 +57,11 @@
 //   dimensions, compression settings unless the format is the same, and the ICC profile and
 //   Exif:ColorSpace unless the encoding is the same (the output's own profile replaces it).
 //   Then exiv2 writes `like`'s EXIF, IPTC and XMP packet as read into the temporary, before the
-//   rename (photo_metadata.h).
+//   rename (photo_metadata.h). What the output format cannot hold (a block over a JPEG
+//   segment's 64 KiB) and an XMP packet that does not parse are left out with one warning
+//   line per save (WriteImageOptions::warning), never a failure: the photo is written.
+// - Write errors (a full disk, a file-size limit, a failed close or fsync) fail the save before
+//   the rename, naming the file and errno's text (checked_output.h, atomic_file.h).
 // - Orientation: readImage honours the file's EXIF orientation and hands over the upright
 //   photo (orientation.h); what is written is upright and says Orientation 1.
 // - JPEG quality: WriteImageOptions::jpeg_quality, else `like`'s estimated quality when both
@@ -68,6 +72,7 @@
 #include "core/model/image.h"
 #include "core/model/status.h"
 
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -172,7 +177,23 @@ struct WriteImageOptions {
   // was half): each group of the image's size. Only OpenEXR outputs take them; another format
   // refuses the write. Null or empty: none.
   const ExtraChannels* extra_channels = nullptr;
+  // Where a save's one warning line goes (metadata left out), whole, without a prefix.
+  // Empty: standard error, as "warning: LINE".
+  std::function<void(const std::string&)> warning = {};
 };
+
+// "<path>: metadata left out: A; B" to options.warning (or standard error) when `left_out`
+// holds anything: the one warning line of a save.
+inline void warnMetadataLeftOut(const WriteImageOptions& options, const std::string& path,
+                                const std::vector<std::string>& left_out) {
+  if (left_out.empty()) return;
+  std::string line = path + ": metadata left out: ";
+  for (size_t k = 0; k < left_out.size(); ++k) line += (k ? "; " : "") + left_out[k];
+  if (options.warning)
+    options.warning(line);
+  else
+    std::fprintf(stderr, "warning: %s\n", line.c_str());
+}
 
 // The JPEG quality a write uses: options.jpeg_quality clamped to 1..100, else `like`'s estimate
 // when `like` is a JPEG, else 95.

@@ -8,6 +8,7 @@
 #include "core/io/image_input.h"
 #include "core/io/oiio_io.h"
 #include "core/io/io_text.h"
+#include "core/io/jpeg_segments.h"
 #include "core/io/photo_metadata.h"
 #include "core/colour/icc_profile.h"
 #include "core/colour/quantise8.h"
@@ -209,10 +210,12 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   else
     spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
+  std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
   if (format == "jpeg") {
     const int quality = jpegQualityFor(options, like);
     spec.attribute("CompressionQuality", quality);
     spec.attribute("Compression", "jpeg:" + std::to_string(quality));
+    left_out = io_jpeg::fitJpegSegments(spec);
   }
 
   // Encoded values in the written channel order, a band of rows at a time: no whole-image
@@ -266,7 +269,7 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
                                    : pixel_type == "uint16" ? OIIO::TypeDesc::UINT16
                                                             : OIIO::TypeDesc::FLOAT;
 
-  return writeAtomically(path, [&](const std::string& temp) {
+  const Status written = writeAtomically(path, [&](const std::string& temp) {
     // OIIO names the file it was given; the user knows only the target.
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + replaceAll(oneLine(message), temp, path));
@@ -308,10 +311,12 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     if (!ok || !checked.close()) return failure(checked.cause());
     if (like && like->metadata) {
       return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, same_encoding},
-                                path);
+                                path, &left_out);
     }
     return Status::success();
   });
+  if (written) warnMetadataLeftOut(options, path, left_out);
+  return written;
 }
 
 bool imageExtensionWritable(const std::string& extension) {

@@ -323,7 +323,8 @@ std::optional<Status> writeBands(const std::string& path, const ConstImageView& 
 
   const HeaderMarkers markers = markersOf(like);
   const int quality = jpegQualityFor(options, like);
-  return writeAtomically(path, [&](const std::string& temp) {
+  std::vector<std::string> left_out;  // metadata a JPEG cannot hold (one warning)
+  const Status written = writeAtomically(path, [&](const std::string& temp) {
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + io_text::replaceAll(io_text::oneLine(message), temp, path));
     };
@@ -362,9 +363,12 @@ std::optional<Status> writeBands(const std::string& path, const ConstImageView& 
     c.file = nullptr;
     if (!closed) return failure(std::string("cannot finish the file: ") + std::strerror(errno));
     if (like && like->metadata)
-      return writePhotoMetadata(temp, *like->metadata, {shape.width, shape.height, true}, path);
+      return writePhotoMetadata(temp, *like->metadata, {shape.width, shape.height, true}, path,
+                                &left_out);
     return Status::success();
   });
+  if (written) warnMetadataLeftOut(options, path, left_out);
+  return written;
 }
 
 }  // namespace artcam::jpeg_file

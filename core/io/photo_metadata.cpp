@@ -206,31 +206,74 @@ PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
 }
 
 Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,
-                          const MetadataUpdate& update, const std::string& shown_path) {
+                          const MetadataUpdate& update, const std::string& shown_path,
+                          std::vector<std::string>* left_out) {
   const auto lock = exiv2Lock();
-  try {
-    const int type = Exiv2::ImageFactory::getType(file);
-    if (type == Exiv2::ImageType::none) return Status::success();
-    auto image = Exiv2::ImageFactory::open(file);
-    if (!image.get()) return Status::success();
-    image->readMetadata();  // the written file's own: ICC profile, a TIFF's raster tags
-    if (Exiv2::ImageFactory::checkMode(type, Exiv2::mdExif) & Exiv2::amWrite)
-      image->setExifData(updatedExif(metadata, update, image->exifData()));
-    if (Exiv2::ImageFactory::checkMode(type, Exiv2::mdIptc) & Exiv2::amWrite)
-      image->setIptcData(metadata.iptc);
-    if (Exiv2::ImageFactory::checkMode(type, Exiv2::mdXmp) & Exiv2::amWrite &&
-        !metadata.xmp_packet.empty()) {
-      bool changed = false;
-      const std::string packet = updatedXmpPacket(metadata.xmp_packet, update, changed);
-      image->setXmpPacket(packet);
-      image->writeXmpFromPacket(true);  // as read, not re-serialised from XmpData
+  auto leaveOut = [&](const std::string& what) {
+    if (left_out) left_out->push_back(what);
+  };
+  bool with_exif = true, with_iptc = true;
+  bool with_xmp = !metadata.xmp_packet.empty();
+  const std::string xmp_bytes = std::to_string(metadata.xmp_packet.size()) + " bytes";
+  // exiv2 parses a packet it is given (setXmpPacket): one its XMP toolkit cannot parse (broken
+  // XML, an entity bomb the parser stops) would fail the save, so it is left out.
+  if (with_xmp) {
+    Exiv2::XmpData parsed;
+    bool parses = false;
+    try {
+      parses = Exiv2::XmpParser::decode(parsed, metadata.xmp_packet) == 0;
+    } catch (const std::exception&) {
     }
-    image->writeMetadata();
-    return Status::success();
-  } catch (const std::exception& e) {
-    return Status::failure(shown_path + ": cannot write the metadata: " +
-                           io_text::replaceAll(io_text::oneLine(e.what()), file, shown_path));
+    if (!parses) {
+      with_xmp = false;
+      leaveOut("the XMP packet (" + xmp_bytes + ", it does not parse)");
+    }
   }
+  // A block larger than the format holds (a JPEG segment, 64 KiB: a long edit history in the
+  // XMP, a big maker note) is left out and the save tried again without it: exiv2 refuses it
+  // before it touches the file. Three blocks, so at most three retries.
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    try {
+      const int type = Exiv2::ImageFactory::getType(file);
+      if (type == Exiv2::ImageType::none) return Status::success();
+      auto image = Exiv2::ImageFactory::open(file);
+      if (!image.get()) return Status::success();
+      image->readMetadata();  // the written file's own: ICC profile, a TIFF's raster tags
+      if (with_exif && Exiv2::ImageFactory::checkMode(type, Exiv2::mdExif) & Exiv2::amWrite)
+        image->setExifData(updatedExif(metadata, update, image->exifData()));
+      if (with_iptc && Exiv2::ImageFactory::checkMode(type, Exiv2::mdIptc) & Exiv2::amWrite)
+        image->setIptcData(metadata.iptc);
+      if (with_xmp && Exiv2::ImageFactory::checkMode(type, Exiv2::mdXmp) & Exiv2::amWrite) {
+        bool changed = false;
+        const std::string packet = updatedXmpPacket(metadata.xmp_packet, update, changed);
+        image->setXmpPacket(packet);
+        image->writeXmpFromPacket(true);  // as read, not re-serialised from XmpData
+      }
+      image->writeMetadata();
+      return Status::success();
+    } catch (const Exiv2::AnyError& e) {
+      const std::string what = e.what();
+      const bool too_large = e.code() == Exiv2::kerTooLargeJpegSegment;
+      const std::string segment = " is larger than a JPEG segment holds (64 KiB)";
+      if (too_large && with_xmp && what.find("XMP") != std::string::npos) {
+        with_xmp = false;
+        leaveOut("the XMP packet (" + xmp_bytes + ")" + segment);
+      } else if (too_large && with_exif && what.find("Exif") != std::string::npos) {
+        with_exif = false;
+        leaveOut("the EXIF block" + segment);
+      } else if (too_large && with_iptc && what.find("IPTC") != std::string::npos) {
+        with_iptc = false;
+        leaveOut("the IPTC block" + segment);
+      } else {
+        return Status::failure(shown_path + ": cannot write the metadata: " +
+                               io_text::replaceAll(io_text::oneLine(what), file, shown_path));
+      }
+    } catch (const std::exception& e) {
+      return Status::failure(shown_path + ": cannot write the metadata: " +
+                             io_text::replaceAll(io_text::oneLine(e.what()), file, shown_path));
+    }
+  }
+  return Status::failure(shown_path + ": cannot write the metadata");
 }
 
 }  // namespace artcam

@@ -15,7 +15,9 @@
 //   file's own. The XMP packet is copied byte for byte unless it holds one of those fields.
 // - Formats exiv2 cannot write (OpenEXR, HDR, BMP…) keep what OpenImageIO carried.
 // - A source whose metadata exiv2 cannot read is written without it (as before); a failure to
-//   write metadata into a format exiv2 supports fails the save (no file is left).
+//   write metadata into a format exiv2 supports fails the save (no file is left), but for a
+//   block the format cannot hold or an XMP packet that does not parse: those are left out with
+//   one warning, and the photo is still written.
 // - exiv2 0.27's XMP toolkit is not thread-safe: every exiv2 call here holds one mutex (batch
 //   reads and writes on two threads).
 #pragma once
@@ -24,6 +26,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace artcam {
 
@@ -55,8 +58,11 @@ struct MetadataUpdate {
 
 // Writes `metadata` into the finished image file `file` (an atomic save's temporary); errors
 // name `shown_path`, the file the user asked for. Success without writing when exiv2 cannot
-// write `file`'s format.
+// write `file`'s format. A block the format cannot hold (over a JPEG segment's 64 KiB) or an
+// XMP packet that does not parse is left out, not a failure: each is described in `left_out`
+// (for the one warning line the writer gives, image_io.h), and the rest is written.
 Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,
-                          const MetadataUpdate& update, const std::string& shown_path);
+                          const MetadataUpdate& update, const std::string& shown_path,
+                          std::vector<std::string>* left_out = nullptr);
 
 }  // namespace artcam

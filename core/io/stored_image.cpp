@@ -11,6 +11,7 @@
 #include "core/io/io_text.h"
 #include "core/io/checked_output.h"
 #include "core/io/jpeg_decode.h"
+#include "core/io/jpeg_segments.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
 #include "core/colour/transfer.h"
@@ -441,16 +442,18 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
       like ? like->colour_space : image.type == PixelType::Float ? "Linear" : "sRGB";
   spec.attribute("oiio:ColorSpace", colour_space);
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
+  std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
   if (format == "jpeg") {
     const int quality = jpegQualityFor(options, like);
     spec.attribute("CompressionQuality", quality);
     spec.attribute("Compression", "jpeg:" + std::to_string(quality));
+    left_out = io_jpeg::fitJpegSegments(spec);
   }
 
   // Straight through when the layout is already the file's; else bands of rows converted.
   const bool direct = channels == image.channels && (alpha < 0 || associated) && !with_extra;
   const int sample = pixelTypeSize(image.type);
-  return writeAtomically(path, [&](const std::string& temp) {
+  const Status written = writeAtomically(path, [&](const std::string& temp) {
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + io_text::replaceAll(oneLine(message), temp, path));
     };
@@ -513,9 +516,12 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
     if (!ok || !checked.close()) return failure(checked.cause());
     // The transfer is the input's (see above), so the colour-space tags still hold.
     if (like && like->metadata)
-      return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, true}, path);
+      return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, true}, path,
+                                &left_out);
     return Status::success();
   });
+  if (written) warnMetadataLeftOut(options, path, left_out);
+  return written;
 }
 
 }  // namespace oiio_io
