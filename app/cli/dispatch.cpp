@@ -3,6 +3,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
 #include "app/cli/memory.h"
+#include "core/io/standard_streams.h"
 
 #include <cstdio>
 #include <exception>
@@ -62,9 +63,7 @@ void printUsageError(const std::string& who, const std::string& message, const s
   std::fprintf(stderr, "see '%s --help'\n", help_call.c_str());
 }
 
-}  // namespace
-
-int run(int argc, char** argv) {
+int runCommand(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
     printUsageError("artcam", "missing the command (usage: artcam <command> [options])", "",
@@ -119,6 +118,21 @@ int run(int argc, char** argv) {
   printUsageError("artcam", "unknown command \"" + args[0] + "\"", didYouMean(args[0], names),
                   "artcam");
   return 2;
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  guardStandardDescriptors();
+  const int status = runCommand(argc, argv);
+  // What was printed on standard output must have arrived: else the command failed.
+  if (const Status out = finishStandardOutput(); !out) {
+    const bool named = argc > 1 && argv[1][0] != '-';
+    const std::string who = named ? std::string("artcam ") + argv[1] : std::string("artcam");
+    std::fprintf(stderr, "%s: %s\n", who.c_str(), out.message.c_str());
+    return status == 0 ? 1 : status;
+  }
+  return status;
 }
 
 }  // namespace artcam::cli

@@ -34,6 +34,9 @@ StdioPaths::StdioPaths(const Args& args, const std::string& input, const std::st
 }
 
 void StdioPaths::open() {
+  // Refused before standard input is read: nothing could be sent.
+  if (isStreamPath(output_path_) && standardOutputWasClosed())
+    throw CommandError(kStdoutName + ": cannot write: standard output is closed");
   // Standard input first: a Ctrl-C while it is read leaves no spool folder behind.
   if (isStreamPath(input_path_)) {
     auto spool = StdinSpool::read();

@@ -50,7 +50,41 @@ int anonymousFile() {
   return fd;
 }
 
+bool g_stdout_closed_at_start = false;
+
 }  // namespace
+
+void guardStandardDescriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    // The lowest free descriptor is `fd` itself (those below it are open by now).
+    const int opened = ::open("/dev/null", (fd == 0 ? O_WRONLY : O_RDONLY));
+    if (opened >= 0 && opened != fd) {
+      ::dup2(opened, fd);
+      ::close(opened);
+    }
+    if (fd == STDOUT_FILENO) g_stdout_closed_at_start = true;
+  }
+}
+
+bool standardOutputWasClosed() { return g_stdout_closed_at_start; }
+
+Status finishStandardOutput() {
+  const std::string fail = kStdoutName + ": cannot write: ";
+  // stdio keeps what it could not write and tries again here, so the flush names the cause.
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0;
+  const int flush_errno = errno;
+  if (flushed && !std::ferror(stdout)) {
+    errno = 0;
+    if (std::fclose(stdout) != 0 && errno != EBADF)
+      return Status::failure(fail + std::strerror(errno));
+    return Status::success();
+  }
+  if (g_stdout_closed_at_start) return Status::failure(fail + "standard output is closed");
+  return Status::failure(fail + (flush_errno != 0 ? std::strerror(flush_errno)
+                                                  : "an earlier write to it failed"));
+}
 
 StdinSpool::StdinSpool(int fd, std::size_t bytes)
     : fd_(fd), bytes_(bytes), path_("/proc/self/fd/" + std::to_string(fd)) {}

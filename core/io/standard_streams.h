@@ -17,6 +17,8 @@
 //   to standard output in one go. A failed or cancelled encode puts nothing on standard output.
 //   Every format OpenImageIO writes to a file can therefore stream; none is refused for it.
 // - Messages name the streams "<stdin>" and "<stdout>", never the spool paths.
+// - Text a command prints on standard output (reports, --json, map's rows) is checked when the
+//   command ends (finishStandardOutput): a lost write makes the command fail, never exit 0.
 // Linux only (/proc/self/fd), as the project is.
 #pragma once
 
@@ -74,6 +76,18 @@ class StdoutSpool {
   std::string folder_;
   std::string path_;
 };
+
+// The standard descriptors 0, 1 and 2 that are closed when the program starts are taken by
+// /dev/null, opened the wrong way round (write-only for 0, read-only for 1 and 2), so reading a
+// closed input or writing a closed output still fails (EBADF) as it would have, while no file
+// the program opens later becomes one of them (the stdin spool would have become standard
+// output, and `-o -` written the image into it). Call first thing in main.
+void guardStandardDescriptors();
+// Whether standard output was closed when guardStandardDescriptors ran: `-o -` is refused.
+bool standardOutputWasClosed();
+// Flushes and closes standard output at the end of a command: fails, naming <stdout> and
+// errno's text, when anything written to it was lost (a full disk, /dev/full, a closed stdout).
+Status finishStandardOutput();
 
 // Whether OpenImageIO writes a file with this extension (no dot, any case): what `--format`
 // accepts.
