@@ -67,10 +67,10 @@ int specularPairSample(const Args& args, const std::string& dir) {
   const std::string silver = (base / "silver.png").string();
   const std::string green = (base / "green.png").string();
   const std::string csv = (base / "specular-samples.csv").string();
-  checkOutputs(args, {silver, green, csv}, {});
-  std::error_code ec;
+  std::error_code ec;  // the folder first: checkOutputs checks every output's folder
   std::filesystem::create_directories(dir, ec);
   if (ec) throw CommandError(dir + ": cannot create the directory: " + ec.message());
+  checkOutputs(args, {silver, green, csv}, {});
   return runJobStages("sample", args.has("--quiet"), [&](JobStages& job) {
     job.stage("rendering");
     const SpecularPair pair = makeSpecularPair(size.width);
@@ -120,10 +120,10 @@ int sampleCommand(const std::vector<std::string>& argv) {
   const std::string region_csv = (base / (name + "-region.csv")).string();
   std::vector<std::string> outputs = {photo, csv, emblem};
   if (sphere) outputs.insert(outputs.end(), {table_csv, region_csv});
-  checkOutputs(args, outputs, {});
-  std::error_code ec;
+  std::error_code ec;  // the folder first: checkOutputs checks every output's folder
   std::filesystem::create_directories(*dir, ec);
   if (ec) throw CommandError(*dir + ": cannot create the directory: " + ec.message());
+  checkOutputs(args, outputs, {});
 
   return runJobStages("sample", args.has("--quiet"), [&](JobStages& job) {
     // The scene makers have no progress hook: Ctrl-C while ray tracing exits at once (nothing

@@ -2,6 +2,7 @@
 #include "app/cli/outputs.h"
 
 #include "app/cli/commands.h"
+#include "core/io/atomic_file.h"
 
 #include <filesystem>
 #include <system_error>
@@ -31,6 +32,17 @@ void checkOutputs(const std::vector<std::string>& outputs, const std::vector<std
     if (!overwrite && fs::symlink_status(out, ec).type() != fs::file_type::not_found && !ec)
       throw CommandError(out + " exists; pass --overwrite to replace it");
   }
+  // Every output's folder before any work: no output is written and then another refused.
+  for (const std::string& out : outputs) {
+    const fs::path folder = fs::path(out).parent_path();
+    std::error_code ec;
+    if (!folder.empty() && !fs::is_directory(folder, ec))
+      throw CommandError(out + ": cannot write: the folder " + folder.string() +
+                         (fs::exists(folder, ec) ? " is not a folder" : " does not exist"));
+  }
+  // The name was free just now; another run may take it before the save commits.
+  if (!overwrite)
+    for (const std::string& out : outputs) commitWithoutReplacing(out);
 }
 
 void checkOutputs(const Args& args, const std::vector<std::string>& outputs,

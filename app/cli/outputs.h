@@ -4,6 +4,10 @@
 //     by identity, std::filesystem::equivalent: symlinks, hard links and ./.. spellings
 //     included, not a string compare), so no run can destroy the data it reads;
 //   - an output that exists already is refused unless --overwrite (alias --force) is given.
+//   - every output's folder exists, checked before any work, so no output is written before
+//     another is refused;
+//   - without --overwrite the saves commit without replacing (atomic_file.h,
+//     commitWithoutReplacing): of two runs racing for one name, one writes it, the other fails.
 // Files are then written atomically (core/io/atomic_file.h), so a refused or failed run leaves
 // every existing file as it was.
 #pragma once

@@ -5,6 +5,7 @@
 #include "core/io/atomic_file.h"
 
 #include <fcntl.h>
+#include <stdio.h>  // renameat2
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -14,6 +15,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <regex>
 
 namespace artcam {
@@ -94,7 +97,39 @@ long pidOfTemporary(const std::string& middle) {
   }
 }
 
+// The targets commitWithoutReplacing marked, as absolute normal paths.
+std::mutex g_no_replace_mutex;
+std::set<std::string> g_no_replace;
+
+std::string markKey(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  return (ec ? std::filesystem::path(path) : absolute).lexically_normal().string();
+}
+
+// Takes (and clears) the mark of `path`.
+bool takeNoReplaceMark(const std::string& path) {
+  const std::lock_guard<std::mutex> lock(g_no_replace_mutex);
+  return g_no_replace.erase(markKey(path)) > 0;
+}
+
+// Moves `temp` to `path` only if no file has that name: renameat2's RENAME_NOREPLACE, else
+// (a file system without it) a hard link then unlinking the temporary. 0 or an errno (EEXIST:
+// the name was taken meanwhile).
+int commitNoReplace(const std::string& temp, const std::string& path) {
+  if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, path.c_str(), RENAME_NOREPLACE) == 0) return 0;
+  if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP) return errno;
+  if (::link(temp.c_str(), path.c_str()) != 0) return errno;
+  ::unlink(temp.c_str());
+  return 0;
+}
+
 }  // namespace
+
+void commitWithoutReplacing(const std::string& path) {
+  const std::lock_guard<std::mutex> lock(g_no_replace_mutex);
+  g_no_replace.insert(markKey(path));
+}
 
 void removeLiveTemporaries() noexcept {
   for (LiveSlot& slot : g_live) {
@@ -176,10 +211,15 @@ Status writeAtomically(const std::string& path,
   struct stat old_stat {};
   if (::stat(path.c_str(), &old_stat) == 0) ::chmod(temp.c_str(), old_stat.st_mode & 07777);
 
-  if (::rename(temp.c_str(), path.c_str()) != 0) {
-    err = errno;
+  const bool no_replace = takeNoReplaceMark(path);
+  err = no_replace ? commitNoReplace(temp, path) : ::rename(temp.c_str(), path.c_str()) == 0 ? 0 : errno;
+  if (err != 0) {
     discard();
-    return Status::failure(path + ": cannot write: " + errnoText(err));
+    if (no_replace) commitWithoutReplacing(path);  // still not ours to replace
+    return Status::failure(path + (err == EEXIST && no_replace
+                                       ? " appeared while it was being written (another program "
+                                         "wrote it); pass --overwrite to replace it"
+                                       : ": cannot write: " + errnoText(err)));
   }
   unregisterLive(slot);
   // Make the rename itself durable; failing here leaves a complete file, so it is not an error.

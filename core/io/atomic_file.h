@@ -24,6 +24,13 @@ Status writeAtomically(const std::string& path,
                        const std::function<Status(const std::string& temp_path)>& write);
 Status writeTextAtomically(const std::string& path, const std::string& text);
 
+// Marks `path` as one this process must not replace (the command line without --overwrite,
+// app/cli/outputs.h): its save then commits with renameat2(RENAME_NOREPLACE), or link(2) where
+// the file system lacks it, both of which fail when the name exists, instead of rename(2),
+// which replaces. Of two runs that both found the name free, exactly one writes it; the other
+// fails naming the file and leaves the winner's file as it is. A successful save clears the mark.
+void commitWithoutReplacing(const std::string& path);
+
 // Unlinks every temporary a save in this process is writing right now. Async-signal-safe
 // (only atomics and unlink(2)): meant for a SIGINT/SIGTERM handler that then calls _exit.
 void removeLiveTemporaries() noexcept;
