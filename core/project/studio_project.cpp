@@ -140,7 +140,9 @@ void checkMaskMemory(const Json& layers) {
   if (bytes > memoryBudgetBytes())
     refuse("/depth/layers",
            budgetRefusal(pixels, static_cast<double>(largest),
-                         "the photo they were painted on (float, with its depth)", bytes));
+                         std::string("the photo ") + (pixels.size() == 1 ? "it was" : "they were") +
+                             " painted on (float, with its depth)",
+                         bytes));
 }
 
 std::string pathForFile(const std::string& path, const std::string& project_path) {
