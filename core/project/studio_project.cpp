@@ -132,7 +132,8 @@ void checkMaskMemory(const Json& layers) {
         !size[1].is_number_unsigned())
       continue;
     const std::uint64_t w = size[0].get<std::uint64_t>(), h = size[1].get<std::uint64_t>();
-    if (w > (1u << 30) || h > (1u << 30)) continue;
+    // Beyond one mask's limit: depthLayerAt's refusal names that layer's size.
+    if (w > (1u << 30) || h > (1u << 30) || w * h > kMaxMaskPixels) continue;
     pixels.push_back(w * h);
     largest = std::max(largest, w * h);
   }
