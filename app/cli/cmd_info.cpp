@@ -6,6 +6,7 @@
 #include "app/cli/commands.h"
 #include "core/fit/poles.h"
 #include "core/io/artcam_file.h"
+#include "core/io/image_checks.h"
 #include "core/model/structure.h"
 #include "core/piecewise/piecewise_fit.h"
 
@@ -35,6 +36,8 @@ namespace {
 
 // A few bytes are enough to tell the user what they gave us instead of a camera.
 std::string lookalike(const std::string& path) {
+  // Only a regular file is opened: a named pipe would block the open (readArtcam refused it).
+  if (!image_checks::regularFile(path)) return "";
   std::ifstream in(path, std::ios::binary);
   char head[16] = {};
   in.read(head, sizeof head);

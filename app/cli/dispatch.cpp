@@ -4,6 +4,7 @@
 #include "app/cli/interrupt.h"
 #include "app/cli/memory.h"
 #include "core/io/standard_streams.h"
+#include "core/util/memory_budget.h"
 
 #include <cstdio>
 #include <exception>
@@ -92,6 +93,11 @@ int runCommand(int argc, char** argv) {
       }
     // Ctrl-C/kill never leave a partial file (interrupt.h).
     installInterruptHandlers();
+    // A budget the user meant to set but mistyped would silently be half the machine's memory.
+    if (const std::string problem = memoryBudgetProblem(); !problem.empty()) {
+      std::fprintf(stderr, "artcam %s: %s\n", c.name, problem.c_str());
+      return 2;
+    }
     try {
       return c.run(rest);
     } catch (const UsageError& e) {

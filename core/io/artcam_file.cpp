@@ -7,6 +7,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/io_text.h"
+#include "core/io/text_input.h"
 
 #include <nlohmann/json.hpp>
 
@@ -619,12 +620,9 @@ Result<Artcam> parseArtcam(std::string_view text, const std::string& name) {
 }
 
 Result<Artcam> readArtcam(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Result<Artcam>::failure(path + ": cannot read: no such file or not readable");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return Result<Artcam>::failure(path + ": cannot read: I/O error");
-  return parseArtcam(text.str(), path);
+  Result<std::string> text = readTextInput(path);
+  if (!text) return Result<Artcam>::failure(text.status.message);
+  return parseArtcam(*text.value, textInputName(path));
 }
 
 std::string toArtcamJson(const Artcam& camera) {

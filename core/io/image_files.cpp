@@ -11,14 +11,18 @@
 #include "core/util/memory_budget.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <sys/stat.h>
 
 namespace artcam {
 
@@ -88,11 +92,22 @@ StoredImage makeStoredImage(int width, int height, int channels, int alpha_chann
 
 namespace image_checks {
 
+std::string notRegularFile(unsigned int st_mode) {
+  if (S_ISFIFO(st_mode)) return "not a file (a named pipe, which is read only through \"-\")";
+  if (S_ISCHR(st_mode) || S_ISBLK(st_mode)) return "not a file (a device)";
+  if (S_ISDIR(st_mode)) return "not a file (a folder)";
+  if (S_ISSOCK(st_mode)) return "not a file (a socket)";
+  return "not a file";
+}
+
 Status regularFile(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_regular_file(path, error)) return Status::success();
-  return Status::failure(path + ": cannot read: " +
-                         (std::filesystem::exists(path, error) ? "not a file" : "no such file"));
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    return Status::failure(path + ": cannot read: " +
+                           (errno == ENOENT || errno == ENOTDIR ? std::string("no such file")
+                                                                : std::string(std::strerror(errno))));
+  if (S_ISREG(st.st_mode)) return Status::success();
+  return Status::failure(path + ": cannot read: " + notRegularFile(st.st_mode));
 }
 
 Status claimedSize(const std::string& path, int width, int height, int channels,
@@ -119,20 +134,10 @@ Status claimedSize(const std::string& path, int width, int height, int channels,
   const double float_bytes = static_cast<double>(width) * static_cast<double>(height) *
                              std::max(4.0, static_cast<double>(channels)) * 4.0;
   const double budget = memoryBudgetBytes();
-  if (whole && float_bytes > budget) {
-    const auto gib = [](double b) {
-      char text[32];
-      if (b < 1024.0 * 1024.0 * 1024.0)
-        std::snprintf(text, sizeof text, "%.1f MiB", b / (1024.0 * 1024.0));
-      else
-        std::snprintf(text, sizeof text, "%.1f GiB", b / (1024.0 * 1024.0 * 1024.0));
-      return std::string(text);
-    };
+  if (whole && float_bytes > budget)
     return Status::failure(path + ": cannot read: " + std::to_string(width) + "x" +
-                           std::to_string(height) + " pixels need " + gib(float_bytes) +
-                           " as float, more than the memory budget of " + gib(budget) +
-                           " (half this machine's memory; ARTCAM_MAX_MEMORY_MB sets it)");
-  }
+                           std::to_string(height) + " pixels need " + describeBytes(float_bytes) +
+                           " as float, more than " + describeMemoryBudget());
   return Status::success();
 }
 

@@ -12,9 +12,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <cerrno>
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <string_view>
 #include <system_error>
 #include <utility>
 
@@ -24,6 +27,87 @@ namespace artcam::io_input {
 
 double memoryBudgetBytes() { return artcam::memoryBudgetBytes(); }
 
+namespace {
+
+// The format (OpenImageIO's name) whose signature `head`, a file's first bytes, starts with;
+// "" for none. Every format this build reads that has a signature is here.
+std::string formatFromSignature(std::string_view head) {
+  const auto starts = [&](std::string_view magic, size_t at = 0) {
+    return head.size() >= at + magic.size() && head.substr(at, magic.size()) == magic;
+  };
+  using namespace std::string_view_literals;
+  if (starts("\x89PNG\r\n\x1a\n"sv)) return "png";
+  if (starts("\xff\xd8\xff"sv)) return "jpeg";
+  if (starts("II*\0"sv) || starts("MM\0*"sv) || starts("II+\0"sv) || starts("MM\0+"sv))
+    return "tiff";
+  if (starts("\x76\x2f\x31\x01"sv)) return "openexr";
+  if (starts("GIF87a"sv) || starts("GIF89a"sv)) return "gif";
+  if (starts("BM"sv)) return "bmp";
+  if (starts("\0\0\1\0"sv)) return "ico";
+  if (starts("#?"sv)) return "hdr";  // #?RADIANCE, #?RGBE
+  if (head.size() >= 2 && head[0] == 'P' &&
+      ((head[1] >= '1' && head[1] <= '7') || head[1] == 'F' || head[1] == 'f'))
+    return "pnm";
+  if (starts("SDPX"sv) || starts("XPDS"sv)) return "dpx";
+  if (starts("\x80\x2a\x5f\xd7"sv) || starts("\xd7\x5f\x2a\x80"sv)) return "cineon";
+  if (starts("8BPS"sv)) return "psd";
+  if (starts("RIFF"sv) && starts("WEBP"sv, 8)) return "webp";
+  if (starts("ftyp"sv, 4)) return "heif";
+  if (starts("\0\0\0\x0cjP  "sv) || starts("\xff\x4f\xff\x51"sv)) return "jpeg2000";
+  if (starts("DDS "sv)) return "dds";
+  if (starts("SIMPLE  ="sv)) return "fits";
+  if (starts("\x01\xda"sv)) return "sgi";
+  if (starts("\x53\x80\xf6\x34"sv)) return "softimage";
+  if (starts("FOR4"sv) || starts("FORM"sv)) return "iff";
+  if (starts("DICM"sv, 128)) return "dicom";
+  if (starts("\xab\x67\x08\x2f"sv) || starts("\x2f\x08\x67\xab"sv)) return "zfile";
+  return "";
+}
+
+// Formats whose files the table above cannot tell (Targa and RLA have no signature; camera
+// raw files and videos have many): read when the extension names them, by that reader alone.
+bool readByExtension(const std::string& format) {
+  return format == "targa" || format == "rla" || format == "raw" || format == "ffmpeg";
+}
+
+// The reader for `path`, chosen before OpenImageIO opens anything: the extension's format when
+// the file's first bytes are that format's signature (or it has none to tell), else the
+// signature's format, else none. OpenImageIO alone would try every reader it has on a file
+// its extension's reader refuses, and some crawl through all of it (100 MB of zeros named
+// .png took 9 s in the DICOM reader); a file that is no format's is refused at once.
+Result<OIIO::ImageInput::unique_ptr> createReader(const std::string& path) {
+  using R = Result<OIIO::ImageInput::unique_ptr>;
+  std::string head(512, '\0');
+  if (std::FILE* file = std::fopen(path.c_str(), "rb")) {
+    head.resize(std::fread(head.data(), 1, head.size(), file));
+    std::fclose(file);
+  } else {
+    return R::failure(path + ": cannot read: " + std::strerror(errno));
+  }
+  if (head.empty()) return R::failure(path + ": cannot read: the file is empty");
+  const std::string signature = formatFromSignature(head);
+  std::string by_extension;
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension.size() > 1) {
+    if (auto probe = OIIO::ImageInput::create(extension.substr(1)))
+      by_extension = probe->format_name();
+    else
+      OIIO::geterror();  // no reader for that extension: clear the thread's message
+  }
+  const std::string format =
+      !by_extension.empty() && (by_extension == signature || readByExtension(by_extension))
+          ? by_extension
+          : signature;
+  if (format.empty())
+    return R::failure(path + ": cannot read: not an image this build reads (its first bytes " +
+                      "are no image format's signature)");
+  auto in = OIIO::ImageInput::create(format);
+  if (!in) return R::failure(path + ": cannot read: " + io_text::oneLine(OIIO::geterror()));
+  return R::success(std::move(in));
+}
+
+}  // namespace
+
 Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path, bool whole) {
   using R = Result<OIIO::ImageInput::unique_ptr>;
   if (const Status file = image_checks::regularFile(path); !file) return R::failure(file.message);
@@ -31,7 +115,15 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path, boo
   config.attribute("oiio:UnassociatedAlpha", 1);
   OIIO::ImageInput::unique_ptr in;
   try {
-    in = OIIO::ImageInput::open(path, &config);
+    auto created = createReader(path);
+    if (!created) return R::failure(created.status.message);
+    in = std::move(*created.value);
+    OIIO::ImageSpec opened;
+    if (!in->open(path, opened, config)) {
+      std::string cause = in->geterror();
+      return R::failure(path + ": cannot read: " +
+                        io_text::oneLine(cause.empty() ? OIIO::geterror() : cause));
+    }
   } catch (const std::exception& e) {
     // OIIO 2.4's GIF reader throws std::length_error on a 34-byte file that starts "GIF89a"
     // (tests/core/io/test_hostile_images.cpp); a decoder's exception is a refusal like any other.

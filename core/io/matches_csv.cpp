@@ -5,6 +5,7 @@
 #include "core/io/matches_csv.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/text_input.h"
 #include "core/colour/transfer.h"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
+#include <unordered_map>
 
 namespace artcam {
 
@@ -80,15 +82,6 @@ bool isNumber(std::string_view field) {
 
 std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
-std::optional<std::string> readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return std::nullopt;
-  return text.str();
-}
-
 // Parses one number per name from the leading fields; the message names the column.
 std::optional<std::string> parseNumbers(const std::vector<std::string_view>& fields,
                                         const std::vector<std::string>& names, double* out) {
@@ -149,7 +142,7 @@ Result<std::vector<PointMatch>> parsePairsCsv(std::string_view text, const std::
 
   std::vector<PointMatch> matches;
   for (size_t l = 1; l < lines.size(); ++l) {
-    const std::string where = path + ":" + std::to_string(lines[l].number) + ": ";
+    const std::string where = textInputName(path) + ":" + std::to_string(lines[l].number) + ": ";
     const std::vector<std::string_view> fields = splitFields(lines[l].text);
     const size_t expected = numbers + (has_enabled ? 1 : 0);
     if (fields.size() != expected)
@@ -194,20 +187,16 @@ Result<std::vector<PointMatch>> parseMatchesCsv(std::string_view text, const std
 }
 
 Result<std::vector<PointMatch>> readMatchesCsv(const std::string& path, int dimension) {
-  const std::optional<std::string> text = readText(path);
-  if (!text)
-    return Result<std::vector<PointMatch>>::failure(path +
-                                                    ": cannot read: no such file or not readable");
-  return parseMatchesCsv(*text, path, dimension);
+  const Result<std::string> text = readTextInput(path);
+  if (!text) return Result<std::vector<PointMatch>>::failure(text.status.message);
+  return parseMatchesCsv(*text, textInputName(path), dimension);
 }
 
 Result<std::vector<PointMatch>> readColourSamplesCsv(const std::string& path,
                                                      ColourEncoding encoding) {
-  const std::optional<std::string> text = readText(path);
-  if (!text)
-    return Result<std::vector<PointMatch>>::failure(path +
-                                                    ": cannot read: no such file or not readable");
-  return parseColourSamplesCsv(*text, path, encoding);
+  const Result<std::string> text = readTextInput(path);
+  if (!text) return Result<std::vector<PointMatch>>::failure(text.status.message);
+  return parseColourSamplesCsv(*text, textInputName(path), encoding);
 }
 
 Result<std::vector<PointMatch>> parseColourSamplesCsv(std::string_view text,
@@ -238,13 +227,13 @@ Result<std::vector<PointMatch>> parseColourSamplesCsv(std::string_view text,
 
 Result<std::vector<Eigen::Vector2d>> readPointsCsv(const std::string& path) {
   using R = Result<std::vector<Eigen::Vector2d>>;
-  const std::optional<std::string> text = readText(path);
-  if (!text) return R::failure(path + ": cannot read: no such file or not readable");
+  const Result<std::string> text = readTextInput(path);
+  if (!text) return R::failure(text.status.message);
   const std::vector<std::string> names{"x", "y"};
   std::vector<Eigen::Vector2d> points;
   const std::vector<Line> lines = contentLines(*text);
   for (size_t l = 0; l < lines.size(); ++l) {
-    const std::string where = path + ":" + std::to_string(lines[l].number) + ": ";
+    const std::string where = textInputName(path) + ":" + std::to_string(lines[l].number) + ": ";
     const std::vector<std::string_view> fields = splitFields(lines[l].text);
     if (fields.size() != 2)
       return R::failure(where + "expected 2 numbers, found " + std::to_string(fields.size()));
@@ -340,6 +329,9 @@ Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::s
     return R::failure(name + ":" + std::to_string(lines.front().number) +
                       ": expected the header line,x,y, found " + quoted(lines.front().text));
   std::vector<LineTrace> out;
+  // Each label's place in `out`: one hash look-up per row keeps the parse linear in the rows
+  // (a search of `out` per row made 200 000 one-point lines a quadratic half minute).
+  std::unordered_map<std::string, size_t> index_of_label;
   for (size_t l = 1; l < lines.size(); ++l) {
     const std::string where = name + ":" + std::to_string(lines[l].number) + ": ";
     const std::vector<std::string_view> fields = splitFields(lines[l].text);
@@ -355,25 +347,18 @@ Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::s
         return R::failure(where + "column " + std::to_string(k + 2) + " (" + column + ")" +
                           error->substr(error->find(')') + 1));
     }
-    const std::string label(fields[0]);
-    auto it = std::find_if(out.begin(), out.end(),
-                           [&](const LineTrace& t) { return t.label == label; });
-    if (it == out.end()) {
-      out.push_back(LineTrace{label, {}, true});
-      it = out.end() - 1;
-    }
-    it->points.emplace_back(xy[0], xy[1]);
+    const auto [at, added] = index_of_label.try_emplace(std::string(fields[0]), out.size());
+    if (added) out.push_back(LineTrace{at->first, {}, true});
+    out[at->second].points.emplace_back(xy[0], xy[1]);
   }
   if (out.empty()) return R::failure(name + ": no rows after the header line,x,y");
   return R::success(std::move(out));
 }
 
 Result<std::vector<LineTrace>> readLinesCsv(const std::string& path) {
-  const std::optional<std::string> text = readText(path);
-  if (!text)
-    return Result<std::vector<LineTrace>>::failure(path +
-                                                   ": cannot read: no such file or not readable");
-  return parseLinesCsv(*text, path);
+  const Result<std::string> text = readTextInput(path);
+  if (!text) return Result<std::vector<LineTrace>>::failure(text.status.message);
+  return parseLinesCsv(*text, textInputName(path));
 }
 
 }  // namespace artcam

@@ -5,6 +5,8 @@
 #include "core/io/ply.h"
 
 #include "core/colour/transfer.h"
+#include "core/io/text_input.h"
+#include "core/util/memory_budget.h"
 
 #include <algorithm>
 #include <array>
@@ -449,13 +451,14 @@ Result<PointCloud> parsePly(std::string_view bytes, const std::string& name) {
 }
 
 Result<PointCloud> readPly(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    return Result<PointCloud>::failure(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) return Result<PointCloud>::failure(path + ": read error");
-  return parsePly(buffer.str(), path);
+  // A binary cloud of tens of millions of points is a large but honest file: its cap is the
+  // memory budget's quarter (the points it decodes to take about as much again), not the
+  // text inputs' 64 MiB.
+  TextInputOptions options;
+  options.max_bytes = static_cast<std::size_t>(memoryBudgetBytes() / 4.0);
+  Result<std::string> bytes = readTextInput(path, options);
+  if (!bytes) return Result<PointCloud>::failure(bytes.status.message);
+  return parsePly(*bytes.value, textInputName(path));
 }
 
 }  // namespace artcam

@@ -2,6 +2,7 @@
 #include "core/project/project_render.h"
 
 #include "core/depth/depth_raster.h"
+#include "core/io/stored_image.h"
 
 #include <algorithm>
 #include <array>
@@ -137,6 +138,15 @@ ImageF depthMapImage(const ImageF& raster) {
 Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where) {
   using R = Result<ProjectScene>;
   ProjectScene scene;
+  // The whole document against the budget from the photo's header, before it is decoded.
+  {
+    Result<StoredShape> shape = readStoredShape(project.photo_path);
+    if (!shape) return R::failure(where + ": photo: " + shape.status.message);
+    if (const Status fits = checkProjectMemory(project, {shape->width, shape->height},
+                                               shape->channels, where);
+        !fits)
+      return R::failure(fits.message);
+  }
   Result<LoadedImage> photo = readImage(project.photo_path);
   if (!photo) return R::failure(where + ": photo: " + photo.status.message);
   scene.photo = std::move(*photo.value);

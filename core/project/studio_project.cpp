@@ -4,10 +4,13 @@
 #include "core/io/artcam_file.h"
 #include "core/io/atomic_file.h"
 #include "core/io/io_text.h"
+#include "core/io/text_input.h"
 #include "core/util/base64.h"
+#include "core/util/memory_budget.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -88,6 +91,59 @@ std::optional<std::uint64_t> pixelsCoveredByRuns(const std::vector<uint8_t>& run
     covered += run;  // at most 2^42 per run: no overflow for any file that fits in memory
   }
   return covered;
+}
+
+// What a document of these masks (pixels each) and a photo of `photo_pixels` pixels of
+// `channels` channels holds at its peak: the masks, one more for the mask being decoded
+// (decodeMaskRuns builds it beside the result) and the photo with its depth raster (the float
+// copy as image_checks::claimedSize counts it: at least the 4 channels of a render).
+double documentBytes(const std::vector<std::uint64_t>& mask_pixels, double photo_pixels,
+                     int channels) {
+  double masks = 0.0, largest = 0.0;
+  for (const std::uint64_t n : mask_pixels) {
+    masks += static_cast<double>(n);
+    largest = std::max(largest, static_cast<double>(n));
+  }
+  const double photo_bytes_per_pixel =
+      kProjectPhotoBytesPerPixel - 16.0 + 4.0 * std::max(4, channels);
+  return masks + largest + photo_pixels * photo_bytes_per_pixel;
+}
+
+std::string budgetRefusal(const std::vector<std::uint64_t>& mask_pixels, double photo_pixels,
+                          const std::string& photo_what, double bytes) {
+  double masks = 0.0;
+  for (const std::uint64_t n : mask_pixels) masks += static_cast<double>(n);
+  std::string text = std::to_string(mask_pixels.size()) + " depth mask" +
+                     (mask_pixels.size() == 1 ? "" : "s") + " (" + describeBytes(masks) + ")";
+  if (photo_pixels > 0.0) text += " and " + photo_what;
+  return text + " need " + describeBytes(bytes) + ", more than " + describeMemoryBudget();
+}
+
+// The masks' sizes as the JSON states them, against the budget before any is decoded: the
+// photo they were painted on is their size, so the largest stands for it until its header is
+// read (checkProjectMemory). Malformed sizes are left to depthLayerAt's refusal.
+void checkMaskMemory(const Json& layers) {
+  std::vector<std::uint64_t> pixels;
+  std::uint64_t largest = 0;
+  for (const Json& o : layers) {
+    if (!o.is_object() || !o.contains("size")) continue;
+    const Json& size = o["size"];
+    if (!size.is_array() || size.size() != 2 || !size[0].is_number_unsigned() ||
+        !size[1].is_number_unsigned())
+      continue;
+    const std::uint64_t w = size[0].get<std::uint64_t>(), h = size[1].get<std::uint64_t>();
+    // Beyond one mask's limit: depthLayerAt's refusal names that layer's size.
+    if (w > (1u << 30) || h > (1u << 30) || w * h > kMaxMaskPixels) continue;
+    pixels.push_back(w * h);
+    largest = std::max(largest, w * h);
+  }
+  const double bytes = documentBytes(pixels, static_cast<double>(largest), 4);
+  if (bytes > memoryBudgetBytes())
+    refuse("/depth/layers",
+           budgetRefusal(pixels, static_cast<double>(largest),
+                         std::string("the photo ") + (pixels.size() == 1 ? "it was" : "they were") +
+                             " painted on (float, with its depth)",
+                         bytes));
 }
 
 std::string pathForFile(const std::string& path, const std::string& project_path) {
@@ -242,6 +298,9 @@ StudioProject projectAt(const Json& root, const std::string& file,
   if (root.contains("camera")) p.manual_camera = cameraAt(root["camera"], file, "/camera");
   if (root.contains("effects")) {
     const Json& effects = arrayAt(root["effects"], "/effects");
+    if (effects.size() > kMaxProjectEffects)
+      refuse("/effects", std::to_string(effects.size()) + " effects, more than the " +
+                             std::to_string(kMaxProjectEffects) + " a stack may hold");
     for (size_t i = 0; i < effects.size(); ++i)
       p.effects.push_back(effectStepAt(effects[i], "/effects/" + std::to_string(i)));
   }
@@ -251,6 +310,7 @@ StudioProject projectAt(const Json& root, const std::string& file,
     const Json& depth = objectAt(root["depth"], "/depth");
     if (depth.contains("layers")) {
       const Json& layers = arrayAt(depth["layers"], "/depth/layers");
+      checkMaskMemory(layers);
       for (size_t i = 0; i < layers.size(); ++i)
         p.depth_layers.push_back(depthLayerAt(layers[i], "/depth/layers/" + std::to_string(i)));
     }
@@ -278,6 +338,24 @@ StudioProject projectAt(const Json& root, const std::string& file,
 Json pointJson(const Eigen::VectorXd& p) { return Json::array({p.x(), p.y()}); }
 
 }  // namespace
+
+Status checkProjectMemory(const StudioProject& project, FrameSize photo, int photo_channels,
+                          const std::string& where) {
+  std::vector<std::uint64_t> pixels;
+  for (const ProjectDepthLayer& l : project.depth_layers)
+    pixels.push_back(static_cast<std::uint64_t>(l.mask.width()) *
+                     static_cast<std::uint64_t>(l.mask.height()));
+  const double photo_pixels = static_cast<double>(std::max(0, photo.width)) *
+                              static_cast<double>(std::max(0, photo.height));
+  const double bytes = documentBytes(pixels, photo_pixels, photo_channels);
+  if (bytes <= memoryBudgetBytes()) return Status::success();
+  return Status::failure(where + ": photo: " +
+                         budgetRefusal(pixels, photo_pixels,
+                                       "the " + std::to_string(photo.width) + "x" +
+                                           std::to_string(photo.height) +
+                                           " photo (float, with its depth)",
+                                       bytes));
+}
 
 Result<std::optional<Camera>> projectColourBlock(const StudioProject& project,
                                                  const std::string& where) {
@@ -327,13 +405,9 @@ Result<StudioProject> parseStudioProject(std::string_view text, const std::strin
 }
 
 Result<StudioProject> readStudioProject(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    return Result<StudioProject>::failure(path + ": cannot read: no such file or not readable");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return Result<StudioProject>::failure(path + ": cannot read: I/O error");
-  return parseStudioProject(text.str(), path);
+  Result<std::string> text = readTextInput(path);
+  if (!text) return Result<StudioProject>::failure(text.status.message);
+  return parseStudioProject(*text.value, path);
 }
 
 std::string studioProjectToJson(const StudioProject& project, const std::string& project_path) {

@@ -32,6 +32,12 @@
 // - Every refusal is one line naming the file and the JSON path ("p.artcamproj: /pairs/3/source:
 //   expected [x, y]"). Sizes that would allocate are checked before allocating (a depth mask's
 //   size against its run bytes).
+// - One memory budget for the whole document (core/util/memory_budget.h), checked from the
+//   sizes the JSON states before any mask is decoded: every mask (a byte per pixel), the one
+//   being decoded (a byte per pixel more) and the photo the masks were painted on (they are
+//   the photo's size), as float RGBA with its depth raster (kProjectPhotoBytesPerPixel). A
+//   few bytes of JSON cannot ask for gigabytes; the refusal names /depth/layers and the budget.
+//   checkProjectMemory adds the photo's real size from its header before it is decoded.
 #pragma once
 
 #include "core/depth/inverse_depth_plane.h"
@@ -51,6 +57,9 @@ namespace artcam {
 
 inline constexpr int kProjectFormatVersion = 4;  // the newest this code reads and writes
 inline constexpr int kMaxDepthAnchors = 3;        // a plane in inverse depth needs three
+// An effect stack longer than this is refused: each effect composes with the camera so far,
+// so a stack's work grows faster than its length, and no picture needs hundreds of effects.
+inline constexpr size_t kMaxProjectEffects = 256;
 inline constexpr char kProjectExtension[] = "artcamproj";
 
 struct ProjectDepthLayer {
@@ -85,6 +94,18 @@ struct StudioProject {
   std::string view_json;   // the "view" object as JSON text; empty: none
   std::string parts_json;  // the "parts" object as JSON text; empty: none
 };
+
+// Bytes per photo pixel a document holds beside its masks: the float RGBA photo (16) and the
+// depth raster the planes make at its size (coverage·z and coverage, 8).
+inline constexpr double kProjectPhotoBytesPerPixel = 24.0;
+
+// The memory budget for the whole document `project` with a photo of `photo` pixels of
+// `photo_channels` channels (its header's; 0×0: not known yet, the masks' size stands for it):
+// fails "WHERE: /depth/layers: …" or "WHERE: photo: …", naming the budget, when masks, photo
+// and depth raster together would not fit it. Masks are counted as parseStudioProject holds
+// them; the photo is not decoded yet.
+Status checkProjectMemory(const StudioProject& project, FrameSize photo, int photo_channels,
+                          const std::string& where);
 
 // The colour block the project's colour part holds (parts/colour/colour_block), if any.
 // `where` names the file in messages.

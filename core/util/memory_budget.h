@@ -10,9 +10,19 @@
 
 namespace artcam {
 
-// ARTCAM_MAX_MEMORY_MB when set (> 0), else half of the machine's physical memory (4 GiB when
+// ARTCAM_MAX_MEMORY_MB (MiB) when set to a number > 0, else half of the machine's physical memory (4 GiB when
 // the system does not say).
 double memoryBudgetBytes();
+
+// "the memory budget of 11.6 GiB (half this machine's memory; ARTCAM_MAX_MEMORY_MB sets it)",
+// or "… of 50.0 MiB (ARTCAM_MAX_MEMORY_MB)" when the variable set it: what a refusal names.
+std::string describeMemoryBudget();
+
+// "" when ARTCAM_MAX_MEMORY_MB is unset or a number of MiB > 0; else one line naming the
+// variable and its value: "ARTCAM_MAX_MEMORY_MB=abc: expected a number of MiB greater than 0
+// (unset it for half this machine's memory)". The budget ignores such a value; programs report
+// it once at start (the CLI refuses to run, the studio warns).
+std::string memoryBudgetProblem();
 
 // "12.3 MiB" below a GiB, else "1.5 GiB".
 std::string describeBytes(double bytes);

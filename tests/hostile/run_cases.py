@@ -78,6 +78,9 @@ def snapshot(root):
             if os.path.islink(path):
                 state[path] = "link:" + os.readlink(path)
                 continue
+            if not os.path.isfile(path):  # a named pipe: opening it would wait for a writer
+                state[path] = "special"
+                continue
             with open(path, "rb") as f:
                 state[path] = hashlib.sha256(f.read()).hexdigest()
     return state

@@ -70,6 +70,12 @@ bool EffectsPanel::addEffect(const QString& name) {
   EffectStep step{spec->name, {}};
   for (const EffectParam& p : spec->params) step.values[p.name] = p.value;
   std::vector<EffectStep> effects = document_->effects();
+  // A project holds at most kMaxProjectEffects (studio_project.h): a longer stack would be
+  // saved into a file no reader opens.
+  if (effects.size() >= kMaxProjectEffects) {
+    status_label_->setText(tr("The stack holds at most %1 effects").arg(kMaxProjectEffects));
+    return false;
+  }
   effects.push_back(std::move(step));
   const int index = static_cast<int>(effects.size()) - 1;
   document_->undoStack()->push(
