@@ -89,7 +89,7 @@ std::string leftOutWarning(const RenderedOutput& output, const std::string& inpu
   std::string names;
   for (const std::string& c : output.left_out) names += (names.empty() ? "" : ", ") + c;
   if (names.empty()) return "";
-  return input_name + ": channels beyond the first four (" + names +
+  return input_name + ": channels beyond colour and alpha (" + names +
          ") are not warped and are left out of " + output_name + ": " + output.left_out_reason;
 }
 
@@ -203,10 +203,10 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
         auto reader = StoredImageReader::open(input);
         if (!reader) throw CommandError(reader.status.message);
         decoded.streamed = std::move(*reader.value);
-        // Bands carry the first four channels only: the rest are named, never dropped silently.
+        // Bands carry colour and alpha only: the rest are named, never dropped silently.
         decoded.left_out = decoded.streamed->info().dropped_channels;
         decoded.left_out_reason = "the photo is warped in bands (too big for the memory budget "
-                                  "whole), which carries the first four channels only";
+                                  "whole), which carries colour and alpha only";
         return decoded;
       }
       auto stored = readStoredImage(input, read);

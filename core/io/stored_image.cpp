@@ -416,9 +416,9 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
       if (keepAttribute(p.name().string(), like->format_name == format)) spec.extra_attribs.push_back(p);
   }
-  // `like`'s names for the channels the image kept of it (the first four at most).
-  const bool like_names = like_spec && std::min(like_spec->nchannels, 4) == channels &&
-                          like_spec->alpha_channel == alpha &&
+  // `like`'s names for the channels the image kept of it (its colour and alpha).
+  const bool like_names = like_spec && io_input::keptChannels(*like_spec) == channels &&
+                          io_input::keptAlpha(*like_spec) == alpha &&
                           static_cast<int>(like_spec->channelnames.size()) >= channels;
   if (like_names) {
     spec.channelnames.assign(like_spec->channelnames.begin(),
