@@ -93,6 +93,13 @@ std::string leftOutWarning(const RenderedOutput& output, const std::string& inpu
          ") are not warped and are left out of " + output_name + ": " + output.left_out_reason;
 }
 
+std::string droppedProfileWarning(const RenderedOutput& output, const std::string& input_name,
+                                  const std::string& output_name) {
+  if (output.like.profile_dropped.empty()) return "";
+  return input_name + ": " + output.like.profile_dropped + ": not applied, and " + output_name +
+         " carries no profile";
+}
+
 WarpRequest parseWarpRequest(const Args& args) {
   WarpRequest request;
   WarpOptions& warp = request.options.warp;

@@ -121,5 +121,9 @@ void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progre
 // not warped and are left out of OUT: REASON"), or "" when none were.
 std::string leftOutWarning(const RenderedOutput& output, const std::string& input_name,
                            const std::string& output_name);
+// The one-line warning for an embedded profile dropped on read (ImageInfo::profile_dropped:
+// "IN: REASON: not applied, and OUT carries no profile"), or "" when none was.
+std::string droppedProfileWarning(const RenderedOutput& output, const std::string& input_name,
+                                  const std::string& output_name);
 
 }  // namespace artcam::cli

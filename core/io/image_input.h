@@ -14,6 +14,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace artcam::io_input {
 
@@ -70,6 +71,15 @@ inline int keptAlpha(const OIIO::ImageSpec& spec) {
 inline int keptChannels(const OIIO::ImageSpec& spec) {
   const int alpha = keptAlpha(spec);
   return alpha >= 0 ? alpha + 1 : spec.nchannels >= 3 ? 3 : 1;
+}
+
+// The bytes of `spec`'s embedded ICC profile ("ICCProfile"), for checkEmbeddedProfile; empty
+// when it has none.
+inline std::vector<unsigned char> embeddedProfileBytes(const OIIO::ImageSpec& spec) {
+  const OIIO::ParamValue* attribute = spec.find_attribute("ICCProfile");
+  if (!attribute) return {};
+  const auto* first = static_cast<const unsigned char*>(attribute->data());
+  return std::vector<unsigned char>(first, first + attribute->type().size());
 }
 
 // An OpenEXR file whose data window is not its display window is refused (image_io.h, "Data

@@ -170,6 +170,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
       if (keepAttribute(p.name().string(), same_format, same_encoding))
         spec.extra_attribs.push_back(p);
+    // A profile that does not describe the values (embedded_profile.h) labels no output.
+    if (!like->profile_dropped.empty()) spec.erase_attribute("ICCProfile");
   }
   if (!integer) {
     // Float files hold the working space; OpenEXR names its primaries and white, others are
