@@ -183,16 +183,17 @@ class TestStoredFidelity : public QObject {
     QVERIFY(write8(file, {"R", "G", "B"}, -1, cmykHeaderProfile()));
     auto stored = readStoredImage(file);
     QVERIFY2(stored.ok(), stored.status.message.c_str());
-    QVERIFY(!stored->info.profile_dropped.empty());
     QVERIFY(!stored->info.icc);
+    auto loaded = readImage(file);
+    QVERIFY2(loaded.ok(), loaded.status.message.c_str());
+    // Both readers say the profile was not applied (ImageInfo::profile_dropped says why).
+    QCOMPARE(stored->info.colour_space, loaded->info.colour_space);
+    QVERIFY(stored->info.colour_space.find("not applied") != std::string::npos);
     for (const char* name : {"cmyk-out.png", "cmyk-out.jpg", "cmyk-out.tif"}) {
       const Status s = writeStoredImage(path(name), std::as_const(*stored).view(), &stored->info);
       QVERIFY2(s.ok, s.message.c_str());
       QVERIFY2(profileOf(specOf(path(name))).empty(), name);
     }
-    auto loaded = readImage(file);
-    QVERIFY2(loaded.ok(), loaded.status.message.c_str());
-    QCOMPARE(loaded->info.profile_dropped, stored->info.profile_dropped);
     WriteImageOptions sixteen;
     sixteen.pixel_type = "uint16";
     const Status f = writeImage(path("cmyk-float.png"), loaded->image, &loaded->info, sixteen);
