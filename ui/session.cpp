@@ -227,12 +227,12 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
                          .arg(QFileInfo(photo->path).fileName())
                          .arg(photo->size().width)
                          .arg(photo->size().height);
-    // The studio shows and exports the first four channels (image_io.h): the rest are named,
+    // The studio shows and exports colour and alpha (image_io.h, "Channels"): the rest are named,
     // never dropped silently. `artcam warp` carries them into an EXR.
     QStringList dropped;
     for (const std::string& c : photo->full.info.dropped_channels) dropped << QString::fromStdString(c);
     if (!dropped.isEmpty())
-      loaded += tr("; channels beyond the first four (%1) are not shown or exported here "
+      loaded += tr("; channels beyond colour and alpha (%1) are not shown or exported here "
                    "(artcam warp carries them into an EXR)")
                     .arg(dropped.join(", "));
     emit statusMessage(loaded);

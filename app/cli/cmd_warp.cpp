@@ -160,6 +160,9 @@ int warpCommand(const std::vector<std::string>& argv) {
     // Channels past RGBA that are not warped are said, never dropped silently.
     if (const std::string left_out = leftOutWarning(rendered, input, output_name); !left_out.empty())
       std::fprintf(stderr, "artcam warp: warning: %s\n", left_out.c_str());
+    if (const std::string profile = droppedProfileWarning(rendered, input, output_name);
+        !profile.empty())
+      std::fprintf(stderr, "artcam warp: warning: %s\n", profile.c_str());
     if (args.has("--json")) {
       nlohmann::json j = {{"output", *output},
                           {"width", rendered.width},

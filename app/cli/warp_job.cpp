@@ -89,8 +89,15 @@ std::string leftOutWarning(const RenderedOutput& output, const std::string& inpu
   std::string names;
   for (const std::string& c : output.left_out) names += (names.empty() ? "" : ", ") + c;
   if (names.empty()) return "";
-  return input_name + ": channels beyond the first four (" + names +
+  return input_name + ": channels beyond colour and alpha (" + names +
          ") are not warped and are left out of " + output_name + ": " + output.left_out_reason;
+}
+
+std::string droppedProfileWarning(const RenderedOutput& output, const std::string& input_name,
+                                  const std::string& output_name) {
+  if (output.like.profile_dropped.empty()) return "";
+  return input_name + ": " + output.like.profile_dropped + ": not applied, and " + output_name +
+         " carries no profile";
 }
 
 WarpRequest parseWarpRequest(const Args& args) {
@@ -203,10 +210,10 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
         auto reader = StoredImageReader::open(input);
         if (!reader) throw CommandError(reader.status.message);
         decoded.streamed = std::move(*reader.value);
-        // Bands carry the first four channels only: the rest are named, never dropped silently.
+        // Bands carry colour and alpha only: the rest are named, never dropped silently.
         decoded.left_out = decoded.streamed->info().dropped_channels;
         decoded.left_out_reason = "the photo is warped in bands (too big for the memory budget "
-                                  "whole), which carries the first four channels only";
+                                  "whole), which carries colour and alpha only";
         return decoded;
       }
       auto stored = readStoredImage(input, read);

@@ -78,7 +78,7 @@ struct DecodedInput {
   // Too big for the stored path's memory budget: opened, not decoded; encodeWarp streams it
   // (core/pipeline/streamed_warp.h).
   std::shared_ptr<StoredImageReader> streamed;
-  // Channels beyond the first four (image_io.h): read when the output's format holds them and
+  // Channels beyond colour and alpha (image_io.h, "Channels"): read when the output's format holds them and
   // the camera renders them (extraChannelsUnsupported), else named in left_out with the reason.
   ExtraChannels extra;
   std::vector<std::string> left_out;
@@ -117,9 +117,13 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
 void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progress& progress,
                 const WarpCameraFile& camera);
 
-// The one-line warning for extra channels left out ("IN: channels beyond the first four (Z) are
+// The one-line warning for extra channels left out ("IN: channels beyond colour and alpha (Z) are
 // not warped and are left out of OUT: REASON"), or "" when none were.
 std::string leftOutWarning(const RenderedOutput& output, const std::string& input_name,
                            const std::string& output_name);
+// The one-line warning for an embedded profile dropped on read (ImageInfo::profile_dropped:
+// "IN: REASON: not applied, and OUT carries no profile"), or "" when none was.
+std::string droppedProfileWarning(const RenderedOutput& output, const std::string& input_name,
+                                  const std::string& output_name);
 
 }  // namespace artcam::cli

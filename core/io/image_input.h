@@ -14,6 +14,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace artcam::io_input {
 
@@ -56,11 +57,29 @@ Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
                                                    const OIIO::ImageSpec& spec,
                                                    const std::string& path);
 
-// Channels a reader keeps (beyond the fourth — EXR depth, masks — readExtraChannels reads them
-// on request) and the alpha channel among them, or -1.
-inline int keptChannels(const OIIO::ImageSpec& spec) { return spec.nchannels < 4 ? spec.nchannels : 4; }
+// Channels a reader keeps as the image (image_io.h, "Channels") and the alpha channel among
+// them, or -1: colour and alpha only. With alpha among the first four, the image ends at it
+// (Y A, R G B A); without, it is the colour channels, R G B (or Y when there are fewer than
+// three). The rest (an EXR's Z, N.x, AOVs; a TIFF's extra samples) are extra channels,
+// readExtraChannels reads them on request. One rule with and without alpha: a renderer's
+// R G B Z is R G B and a Z, never a four-colour image whose Z a writer would take for alpha.
 inline int keptAlpha(const OIIO::ImageSpec& spec) {
-  return spec.alpha_channel >= 0 && spec.alpha_channel < keptChannels(spec) ? spec.alpha_channel : -1;
+  return spec.alpha_channel >= 0 && spec.alpha_channel < 4 && spec.alpha_channel < spec.nchannels
+             ? spec.alpha_channel
+             : -1;
+}
+inline int keptChannels(const OIIO::ImageSpec& spec) {
+  const int alpha = keptAlpha(spec);
+  return alpha >= 0 ? alpha + 1 : spec.nchannels >= 3 ? 3 : 1;
+}
+
+// The bytes of `spec`'s embedded ICC profile ("ICCProfile"), for checkEmbeddedProfile; empty
+// when it has none.
+inline std::vector<unsigned char> embeddedProfileBytes(const OIIO::ImageSpec& spec) {
+  const OIIO::ParamValue* attribute = spec.find_attribute("ICCProfile");
+  if (!attribute) return {};
+  const auto* first = static_cast<const unsigned char*>(attribute->data());
+  return std::vector<unsigned char>(first, first + attribute->type().size());
 }
 
 // An OpenEXR file whose data window is not its display window is refused (image_io.h, "Data

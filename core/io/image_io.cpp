@@ -14,6 +14,7 @@
 #include "core/io/oiio_io.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/embedded_profile.h"
 #include "core/io/image_input.h"
 #include "core/io/integer_decode.h"
 #include "core/io/io_text.h"
@@ -86,33 +87,6 @@ void decodeFloats(const Transfer& transfer, bool associated_encoded, ImageF& ima
   }
 }
 
-// The file's embedded ICC profile when it is one to convert through (not sRGB-equivalent), or
-// null; fails when the profile is damaged or does not describe the pixels (icc_profile.h).
-Result<std::shared_ptr<const IccProfile>> conversionProfile(const OIIO::ImageSpec& spec,
-                                                            int colour_channels, bool jpeg,
-                                                            const std::string& path,
-                                                            bool& cmyk_not_applied) {
-  using R = Result<std::shared_ptr<const IccProfile>>;
-  const OIIO::ParamValue* attribute = spec.find_attribute("ICCProfile");
-  if (!attribute) return R::success(nullptr);
-  const auto* first = static_cast<const unsigned char*>(attribute->data());
-  const std::vector<unsigned char> bytes(first, first + attribute->type().size());
-  // A CMYK JPEG: the reader has already turned its ink values into RGB (without the profile),
-  // so the profile no longer describes the pixels; they are read as sRGB, as before profiles
-  // were honoured, and colour_space says so.
-  if (jpeg && colour_channels == 3 && IccProfile::describesCmyk(bytes)) {
-    cmyk_not_applied = true;
-    return R::success(nullptr);
-  }
-  if (colour_channels != 1 && colour_channels != 3)
-    return R::failure(path + ": cannot read: an ICC profile cannot describe its " +
-                      std::to_string(colour_channels) + " colour channels");
-  auto profile = IccProfile::fromBytes(bytes, colour_channels, path);
-  if (!profile) return R::failure(profile.status.message);
-  if (profile->equivalentToSrgb()) return R::success(nullptr);
-  return R::success(std::make_shared<const IccProfile>(std::move(*profile.value)));
-}
-
 // Associated alpha over encoded values: straight colour before a profile converts it.
 void unpremultiply(ImageF& image) {
   const size_t channels = static_cast<size_t>(image.channels);
@@ -159,9 +133,10 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   const bool linear = transfer.kind == Transfer::Kind::Linear;
 
   const bool jpeg = std::string(in->format_name()) == "jpeg";
-  bool cmyk_not_applied = false;
-  auto icc = conversionProfile(spec, channels - (alpha >= 0 ? 1 : 0), jpeg, path, cmyk_not_applied);
-  if (!icc) return R::failure(icc.status.message);
+  auto profile = checkEmbeddedProfile(io_input::embeddedProfileBytes(spec),
+                                      channels - (alpha >= 0 ? 1 : 0), jpeg, path);
+  if (!profile) return R::failure(profile.status.message);
+  const std::shared_ptr<const IccProfile>& icc = profile->converting;
 
   LoadedImage loaded;
   loaded.image = ImageF(spec.width, spec.height, channels, alpha);
@@ -178,18 +153,18 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
       (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
       (!associated || linear);
   std::unique_ptr<JpegDecoder> codec;
-  if (!*icc) {
+  if (!icc) {
     auto found = io_input::jpegCodecPath(*in, spec, path);
     if (!found) return R::failure(found.status.message);
     codec = std::move(*found.value);
   }
   try {
-    if (*icc) {
+    if (icc) {
       // The profile converts encoded values (OIIO scales integers to 0..1) to the working space.
       ok = read(OIIO::TypeDesc::FLOAT, image.data.data());
       if (ok && !context.cancelled) {
         if (associated) unpremultiply(image);
-        (*icc)->toWorking(image.data.data(),
+        icc->toWorking(image.data.data(),
                           static_cast<size_t>(image.width) * static_cast<size_t>(image.height),
                           image.channels, image.alpha_channel);
       }
@@ -221,7 +196,7 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));
   if (const Status damage = io_input::decodeProblems(*in, path); !damage)
     return R::failure(damage.message);
-  if (!associated || *icc) premultiply(image);
+  if (!associated || icc) premultiply(image);
   in->close();
 
   // Upright, as the photo is shown (orientation.h): a second buffer for a moment, once per read.
@@ -238,13 +213,7 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   }
   loaded.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
                                        std::move(metadata));
-  if (*icc) {
-    loaded.info.icc = *icc;
-    loaded.info.srgb = false;
-    loaded.info.colour_space = "ICC: " + (*icc)->description();
-  } else if (cmyk_not_applied) {
-    loaded.info.colour_space = "sRGB (CMYK turned into RGB by the reader; its profile not applied)";
-  }
+  recordEmbeddedProfile(*profile, loaded.info);
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));
 }

@@ -20,6 +20,10 @@
 //   working space (icc_profile.h), for every pixel type, so colours outside sRGB come out with
 //   negative components rather than relabelled. A damaged profile, or one that does not
 //   describe the pixels (CMYK on RGB), refuses the read in one line: guessing would mislabel.
+//   A CMYK JPEG's profile, once the reader has made RGB of its inks, is dropped instead
+//   (ImageInfo::profile_dropped): not applied, not carried into any output. Every reader, the
+//   stored-value ones too, takes this one decision (embedded_profile.h), so a profile an
+//   output carries always describes the values written.
 // - Output colour (WriteImageOptions::colour_space): float/half files hold the working space as
 //   it is, and EXR says so with the "chromaticities" attribute (Rec.709 primaries, D65; an EXR
 //   input's own chromaticities are carried instead, its values having been read unconverted);
@@ -28,8 +32,10 @@
 //   Adobe RGB; values round-trip to the quantisation step, or to ~1e-6 in linear light where a
 //   pure power curve's slope at 0 magnifies float rounding); Srgb encodes sRGB and embeds an
 //   sRGB profile. Otherwise (Input, `like` had no converting profile) see "Write" below.
-// - Channels: 1 to 4 (Y, YA, RGB, RGBA) make the image; further channels of a file (an EXR's
-//   Z, N.x, diffuse.R, …) are not part of it. readExtraChannels reads them on request, as the
+// - Channels: colour and alpha (Y, YA, RGB, RGBA) make the image: the channels up to alpha
+//   when the file has one among its first four, else its first three (one when it has fewer).
+//   Every other channel of a file (an EXR's Z, N.x, diffuse.R, …; with or without alpha) is
+//   not part of it. readExtraChannels reads them on request, as the
 //   stored float values (no transfer, no premultiplication: an EXR's channels are stored
 //   premultiplied already, and data channels carry no colour), in groups of at most four so
 //   each group renders like a photo of its own; WriteImageOptions::extra_channels writes them
@@ -108,6 +114,10 @@ struct ImageInfo {
   // The ICC profile readImage converted the colour from (colour_space is then "ICC: " and its
   // description, srgb false); null when the file had none or one equivalent to sRGB.
   std::shared_ptr<const IccProfile> icc;
+  // Why the file's embedded profile was neither applied nor is carried into outputs: it does
+  // not describe the pixels as read (embedded_profile.h); empty when none was dropped. Commands
+  // say it in one warning line.
+  std::string profile_dropped;
 };
 
 struct ReadImageOptions {

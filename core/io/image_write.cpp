@@ -172,6 +172,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
       if (keepAttribute(p.name().string(), same_format, same_encoding))
         spec.extra_attribs.push_back(p);
+    // A profile that does not describe the values (embedded_profile.h) labels no output.
+    if (!like->profile_dropped.empty()) spec.erase_attribute("ICCProfile");
   }
   if (!integer) {
     // Float files hold the working space; OpenEXR names its primaries and white, others are
@@ -190,10 +192,10 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
                    OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(profile.size())),
                    profile.data());
   }
-  // `like`'s names for the channels the image kept of it (the first four at most).
+  // `like`'s names for the channels the image kept of it (its colour and alpha).
   spec.channelnames =
-      like_spec && std::min(like_spec->nchannels, 4) == channels &&
-              like_spec->alpha_channel == alpha &&
+      like_spec && io_input::keptChannels(*like_spec) == channels &&
+              io_input::keptAlpha(*like_spec) == alpha &&
               static_cast<int>(like_spec->channelnames.size()) >= channels
           ? std::vector<std::string>(like_spec->channelnames.begin(),
                                      like_spec->channelnames.begin() + channels)

@@ -4,8 +4,8 @@
 // does the same); the compressor and the file are released by the owning struct's destructor.
 #include "core/io/jpeg_file.h"
 
-#include "core/colour/icc_profile.h"
 #include "core/io/atomic_file.h"
+#include "core/io/embedded_profile.h"
 #include "core/io/image_checks.h"
 #include "core/io/integer_decode.h"
 #include "core/io/io_text.h"
@@ -274,7 +274,12 @@ std::optional<Result<StoredImage>> readStored(const std::string& path, const Rea
   auto opened = openWhole(path);
   if (!opened) return std::nullopt;
   if (!*opened) return R::failure(opened->status.message);
+  // The float path's decision on the embedded profile, before any pixel is decoded.
+  auto profile = checkEmbeddedProfile((*opened->value)->iccProfile(), (*opened->value)->channels(),
+                                      true, path);
+  if (!profile) return R::failure(profile.status.message);
   Result<StoredImage> image = decodeUpright(path, std::move(*opened->value), options);
+  if (image) recordEmbeddedProfile(*profile, image->info);
   if (image && options.progress) options.progress(1.0);
   return image;
 }
@@ -285,9 +290,9 @@ std::optional<Result<LoadedImage>> readFloat(const std::string& path, const Read
   if (!opened) return std::nullopt;
   if (!*opened) return R::failure(opened->status.message);
   const JpegDecoder& header = ***opened;
-  if (!header.iccProfile().empty()) {
-    auto profile = IccProfile::fromBytes(header.iccProfile(), header.channels(), path);
-    if (!profile || !profile->equivalentToSrgb()) return std::nullopt;  // the module's to convert or refuse
+  {  // a profile to convert through, drop or refuse is the module's (the same decision)
+    auto profile = checkEmbeddedProfile(header.iccProfile(), header.channels(), true, path);
+    if (!profile || profile->converting || !profile->dropped.empty()) return std::nullopt;
   }
   Result<StoredImage> stored = decodeUpright(path, std::move(*opened->value), options);
   if (!stored) return R::failure(stored.status.message);
@@ -321,7 +326,9 @@ std::optional<Status> writeBands(const std::string& path, const ConstImageView& 
   if (shape.width > kJpegMaxSide || shape.height > kJpegMaxSide)
     return Status::failure(fail + "JPEG stores at most 65500 pixels per side");
 
-  const HeaderMarkers markers = markersOf(like);
+  HeaderMarkers markers = markersOf(like);
+  // A profile that does not describe the values (embedded_profile.h) labels no output.
+  if (like && !like->profile_dropped.empty()) markers.icc.clear();
   const int quality = jpegQualityFor(options, like);
   std::vector<std::string> left_out;  // metadata a JPEG cannot hold (one warning)
   const Status written = writeAtomically(path, [&](const std::string& temp) {

@@ -6,6 +6,7 @@
 #include "core/io/oiio_io.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/embedded_profile.h"
 #include "core/io/extra_channels.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
@@ -23,6 +24,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <set>
 
 namespace artcam {
@@ -155,6 +157,11 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
           .value_or(type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
   const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
+  // The float path's decision on the embedded profile, before any pixel is decoded.
+  auto profile = checkEmbeddedProfile(io_input::embeddedProfileBytes(spec),
+                                      channels - (alpha >= 0 ? 1 : 0),
+                                      std::string(in->format_name()) == "jpeg", path);
+  if (!profile) return R::failure(profile.status.message);
 
   // The codec path for JPEG (jpeg_decode.h): libjpeg-turbo straight into the rows, every byte
   // written, so the raster is not zeroed first. OpenImageIO decodes what that path does not take.
@@ -237,6 +244,7 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   }
   image.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
                                        std::move(metadata));
+  recordEmbeddedProfile(*profile, image.info);
   if (options.progress) options.progress(1.0);
   return R::success(std::move(image));
 }
@@ -287,8 +295,13 @@ Result<std::unique_ptr<StoredImageReader>> openStoredImageReader(const std::stri
   if (orientation != 1)
     return R::failure(path + ": cannot read in bands: the photo is stored turned (EXIF Orientation " +
                       std::to_string(orientation) + ") and turning it upright needs every row at once");
+  auto profile = checkEmbeddedProfile(io_input::embeddedProfileBytes(spec),
+                                      state->channels_ - (state->alpha >= 0 ? 1 : 0),
+                                      std::string(state->in->format_name()) == "jpeg", path);
+  if (!profile) return R::failure(profile.status.message);
   state->info_ = io_input::describeImage(*state->in, spec, path, pixel_type, transfer, orientation,
                                          std::move(metadata));
+  recordEmbeddedProfile(*profile, state->info_);
   return R::success(std::move(state));
 }
 
@@ -417,10 +430,12 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   if (like_spec) {
     for (const OIIO::ParamValue& p : like_spec->extra_attribs)
       if (keepAttribute(p.name().string(), like->format_name == format)) spec.extra_attribs.push_back(p);
+    // A profile that does not describe the values (embedded_profile.h) labels no output.
+    if (!like->profile_dropped.empty()) spec.erase_attribute("ICCProfile");
   }
-  // `like`'s names for the channels the image kept of it (the first four at most).
-  const bool like_names = like_spec && std::min(like_spec->nchannels, 4) == channels &&
-                          like_spec->alpha_channel == alpha &&
+  // `like`'s names for the channels the image kept of it (its colour and alpha).
+  const bool like_names = like_spec && io_input::keptChannels(*like_spec) == channels &&
+                          io_input::keptAlpha(*like_spec) == alpha &&
                           static_cast<int>(like_spec->channelnames.size()) >= channels;
   if (like_names) {
     spec.channelnames.assign(like_spec->channelnames.begin(),
@@ -438,9 +453,17 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
       !extra)
     return extra;
   const bool with_extra = options.extra_channels && !options.extra_channels->empty();
-  const std::string colour_space =
-      like ? like->colour_space : image.type == PixelType::Float ? "Linear" : "sRGB";
-  spec.attribute("oiio:ColorSpace", colour_space);
+  // The values keep `like`'s encoding: its profile, when it had one, is the whole label (no PNG
+  // sRGB or gAMA chunk beside it), else its transfer's name.
+  const std::optional<Transfer> like_transfer =
+      like ? Transfer::fromColourSpace(like->colour_space) : std::nullopt;
+  if (like && like->icc)
+    spec.erase_attribute("oiio:ColorSpace");
+  else
+    spec.attribute("oiio:ColorSpace", like_transfer ? like_transfer->colourSpaceName()
+                                      : like && like->srgb ? std::string("sRGB")
+                                      : like ? like->colour_space
+                                      : image.type == PixelType::Float ? "Linear" : "sRGB");
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
   if (format == "jpeg") {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Channels beyond the first four (an EXR's Z, a fifth TIFF channel) that an output format cannot
+// Channels beyond colour and alpha (an EXR's Z, a fifth TIFF channel) that an output format cannot
 // hold (PNG) are not warped: artcam warp says so, naming the file and the channels, and lists
 // them in --json; files of four channels or fewer give no such warning. (Into OpenEXR they are
 // warped: tests/app/test_cli_exr_channels.cpp.)
@@ -43,7 +43,7 @@ class TestCliChannels : public QObject {
     QVERIFY(writeChannels(five, {"R", "G", "B", "A", "Z"}));
     const Run r = artcamCli({"warp", five, cam, "-o", dir.filePath("out.png"), "--json", "-q"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-    QVERIFY2(r.err.contains("five.exr: channels beyond the first four (Z) are not warped"),
+    QVERIFY2(r.err.contains("five.exr: channels beyond colour and alpha (Z) are not warped"),
              qPrintable(r.err));
     const QJsonObject j = QJsonDocument::fromJson(r.out.toUtf8()).object();
     QCOMPARE(j["dropped_channels"].toArray(), QJsonArray({"Z"}));

@@ -199,7 +199,7 @@ class TestCliExrChannels : public QObject {
     const Run r = artcamCli({"warp", path("aov.exr"), path("h.artcam"), "-o", path("out.tif"),
                              "--json", "-q"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-    QVERIFY2(r.err.contains("aov.exr: channels beyond the first four (Z, N.x, N.y, N.z, "
+    QVERIFY2(r.err.contains("aov.exr: channels beyond colour and alpha (Z, N.x, N.y, N.z, "
                             "diffuse.R, diffuse.G) are not warped and are left out of") &&
                  r.err.contains("out.tif: its format holds no channels beyond RGBA"),
              qPrintable(r.err));

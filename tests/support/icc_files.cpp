@@ -41,6 +41,26 @@ std::vector<unsigned char> greyGammaProfile(double gamma) {
   return saveProfile(profile, "Grey gamma 2.2");
 }
 
+std::vector<unsigned char> labProfile() {
+  return saveProfile(cmsCreateLab4Profile(nullptr), "Lab identity");
+}
+
+std::vector<unsigned char> cmykHeaderProfile() {
+  std::vector<unsigned char> bytes(132, 0);
+  const auto put = [&bytes](size_t at, const char* text) {
+    for (size_t k = 0; text[k]; ++k) bytes[at + k] = static_cast<unsigned char>(text[k]);
+  };
+  bytes[3] = 132;  // size, big-endian
+  put(4, "lcms");
+  bytes[8] = 2;  // version 2.1
+  bytes[9] = 0x10;
+  put(12, "prtr");
+  put(16, "CMYK");
+  put(20, "Lab ");
+  put(36, "acsp");
+  return bytes;  // the tag count (bytes 128..131) stays 0
+}
+
 void setProfile(OIIO::ImageSpec& spec, const std::vector<unsigned char>& bytes) {
   spec.attribute("ICCProfile",
                  OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(bytes.size())),

@@ -21,6 +21,10 @@ inline constexpr double kSrgbPrimaries[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.1
 std::vector<unsigned char> adobeRgbProfile();
 // A grey profile with a pure power curve, described as "Grey gamma 2.2".
 std::vector<unsigned char> greyGammaProfile(double gamma);
+// lcms2's Lab (D50) identity profile: a valid profile of a colour space no RGB file is in.
+std::vector<unsigned char> labProfile();
+// A 132-byte CMYK output-class header with no tags: what lcms2 opens as a CMYK profile.
+std::vector<unsigned char> cmykHeaderProfile();
 
 void setProfile(OIIO::ImageSpec& spec, const std::vector<unsigned char>& bytes);
 // The bytes of the "ICCProfile" attribute; empty when there is none.
