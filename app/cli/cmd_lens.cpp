@@ -124,7 +124,9 @@ int cameraCommand(const std::vector<std::string>& argv) {
 
   const auto db = loadDatabase();
   const LensCameraSummary s = lensCamera(*db, options);
-  if (!s.status) throw CommandError(s.status.message);
+  if (!s.status)
+    throw CommandError(s.status.message +
+                       (s.patch_limit_exceeded ? "; allow a larger --max-error" : ""));
   if (const Status w = writeArtcam(*output, s.camera); !w) throw CommandError(w.message);
   if (args.has("--json")) {
     nlohmann::json j = {{"lens", lensJson(s.lens)},

@@ -302,8 +302,10 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   piecewise_options.outside_frame_px = step;
   piecewise_options.snap_to_frame_px = step;
   PiecewiseSummary pieces = fitPiecewise(inside, size, size, piecewise_options);
-  if (!pieces.status)
+  if (!pieces.status) {
+    s.patch_limit_exceeded = pieces.patch_limit_exceeded;
     return failure(s, entry->model + ": no piecewise camera: " + pieces.status.message);
+  }
   // The fit's margin, 1.5 median spacings, suits clicked matches spread evenly; lensfun's grid
   // is even in the target, so where the map magnifies (a fisheye's centre) its source samples
   // are further apart than that. Every point of the map is known, so the patches are trusted

@@ -52,6 +52,8 @@ struct LensCameraOptions {
 
 struct LensCameraSummary {
   Status status;  // not ok: no camera (unknown lens, focal out of range, no calibration …)
+  // Not ok because max_error_px asks for more patches than a camera holds (PiecewiseSummary's).
+  bool patch_limit_exceeded = false;
   Artcam camera;
   LensEntry lens;
   double crop = 0.0;

@@ -3,6 +3,7 @@
 #include "core/piecewise/piecewise_fit.h"
 
 #include "core/fit/poles.h"
+#include "core/model/artcam.h"
 #include "core/model/frames.h"
 
 #include <algorithm>
@@ -389,6 +390,17 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
   const Quadtree tree{matches, source_size, target_size, options};
   CellFit all = fitCell(tree, {root, 0});
   if (!all.status) return out.status = all.status, out;
+  // A camera holds at most kMaxPatches (validateArtcam): refused here, where the threshold that
+  // asked for them is known, rather than by the writer of a camera the caller cannot save.
+  if (all.patches.size() > static_cast<size_t>(kMaxPatches)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "%zu patches would be needed to keep every patch within %g px, more than the "
+                  "%d a camera may hold",
+                  all.patches.size(), options.max_error_px, kMaxPatches);
+    out.patch_limit_exceeded = true;
+    return out.status = Status::failure(text), out;
+  }
   out.camera.patches = std::move(all.patches);
   for (const CameraPatch& p : out.camera.patches) {
     out.converged = out.converged && p.within_tolerance;

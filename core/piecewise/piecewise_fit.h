@@ -54,6 +54,8 @@ struct PiecewiseOptions {
 
 struct PiecewiseSummary {
   Status status;  // not ok: no camera (too few matches overall, non-finite input …)
+  // The threshold asks for more than kMaxPatches (artcam.h): a larger max_error_px would do.
+  bool patch_limit_exceeded = false;
   PiecewiseCamera camera;
   int matches = 0;
   double rms_px = 0.0;  // over all enabled matches, each through its own patch
