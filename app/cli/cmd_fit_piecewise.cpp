@@ -39,9 +39,7 @@ int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize s
     const std::vector<PointMatch> matches = input.read();
     job.stage("fitting patches");
     const PiecewiseSummary fit = fitPiecewise(matches, source, target, options);
-    if (!fit.status)
-      throw CommandError(csv + ": " + fit.status.message +
-                         (fit.patch_limit_exceeded ? "; allow a larger --max-error" : ""));
+    if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
 
     // The file's top level is the best single camera, so plain readers still get one; when no
     // pole-free single camera exists, the largest patch's camera stands in.

@@ -151,9 +151,7 @@ int insertCommand(const std::vector<std::string>& argv) {
       }
       job.stage("fitting");
       const PiecewiseSummary fit = fitPiecewise(*matches, canonical, photo_size, fit_options);
-      if (!fit.status)
-        throw CommandError(csv + ": " + fit.status.message +
-                           (fit.patch_limit_exceeded ? "; allow a larger --max-error" : ""));
+      if (!fit.status) throw CommandError(csv + ": " + fit.status.message);
       fit_report = fit.report();
       camera = fit.camera;
       if (const auto save = args.value("--save-camera")) {
