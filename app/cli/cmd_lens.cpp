@@ -38,9 +38,9 @@ const char* const kLensUsage =
     "(--no-tca: geometry only; a piecewise camera cannot be layered, so it leaves TCA out and\n"
     "says so). Vignetting is reported, not applied: a radial gain is beyond a quadratic\n"
     "stage's colour block. Prints the lens, the error against lensfun (max and RMS over the\n"
-    "checked points) and notes; --json prints {lens, crop, focal_mm, piecewise, patches,\n"
-    "single_max_px, single_rms_px, max_px, rms_px, checked, within_tolerance, tca,\n"
-    "tca_max_px, notes, output}.\n\n"
+    "checked points the camera maps; those it gives no image are counted apart) and notes;\n"
+    "--json prints {lens, crop, focal_mm, piecewise, patches, single_max_px, single_rms_px,\n"
+    "max_px, rms_px, checked, unmapped, within_tolerance, tca, tca_max_px, notes, output}.\n\n"
     "-o/--output names the camera file (required; written atomically). An existing one is\n"
     "refused unless --overwrite (--force is the same).\n\n"
     "Examples:\n"
@@ -138,6 +138,7 @@ int cameraCommand(const std::vector<std::string>& argv) {
                         {"max_px", s.max_px},
                         {"rms_px", s.rms_px},
                         {"checked", s.checked},
+                        {"unmapped", s.unmapped},
                         {"max_error_px", options.max_error_px},
                         {"within_tolerance", s.within_tolerance},
                         {"tca", s.tca},

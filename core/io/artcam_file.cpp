@@ -107,10 +107,7 @@ std::string stringAt(const Json& j, const std::string& path) {
   return j.get<std::string>();
 }
 
-// A frame is the size of the image a renderer allocates; a side beyond 2^20 pixels (a million)
-// is no photo but a corrupt or hostile file, refused here before anything renders it.
-constexpr long long kMaxFrameSide = 1LL << 20;
-
+// kMaxFrameSide (artcam.h) is checked here, by path, before anything renders the camera.
 FrameSize frameAt(const Json& j, const std::string& path) {
   if (!j.is_array() || j.size() != 2) refuse(path, "expected [w, h], found " + describe(j));
   return {static_cast<int>(wholeNumberAt(j[0], path + "/0", 0, kMaxFrameSide)),

@@ -95,8 +95,7 @@ std::optional<std::string> parseNumbers(const std::vector<std::string_view>& fie
     if (!std::isfinite(out[k])) return where + ": not a finite number: " + quoted(fields[k]);
     // A value no photo, frame or colour can have: refused here, where the row can be named,
     // rather than later as an overflowing residual or a fit record that cannot be written.
-    constexpr double kAbsurd = 1e9;
-    if (std::abs(out[k]) > kAbsurd)
+    if (std::abs(out[k]) > kMaxMatchValue)
       return where + ": " + quoted(fields[k]) + " is beyond any coordinate or colour (|value| > 1e9)";
   }
   return std::nullopt;

@@ -6,6 +6,8 @@
 #include "core/io/checked_output.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
+#include "core/fit/normalize.h"
+#include "core/model/artcam.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -168,6 +170,14 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
     const int sw = spec.get_int_attribute(kSourceWidthAttribute, 0);
     const int sh = spec.get_int_attribute(kSourceHeightAttribute, 0);
     samples.source_px = sw > 0 && sh > 0 ? FrameSize{sw, sh} : samples.map_px;
+    // The header's claim becomes the camera's source frame: refused here, where the option
+    // that replaces it can be named, rather than by the camera file the fit would write.
+    if (samples.source_px.width > kMaxFrameSide || samples.source_px.height > kMaxFrameSide)
+      return R::failure(path + ": " + kSourceWidthAttribute + "/" + kSourceHeightAttribute + " " +
+                        std::to_string(samples.source_px.width) + "x" +
+                        std::to_string(samples.source_px.height) + " has a side beyond the " +
+                        std::to_string(kMaxFrameSide) +
+                        " pixels a camera's frame may have; give the photo's size (--size WxH)");
   }
   // Rows are read one at a time, only those on the grid: a map's memory never grows with its
   // height, and a hostile header cannot ask for gigabytes.
@@ -224,6 +234,17 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
   if (samples.matches.empty())
     return R::failure(path + ": no pixel of the map has a source position (alpha is 0 " +
                       "everywhere on the sampling grid)");
+  // A camera's inverse map reads a different source place for each pixel, spread over the
+  // plane. Samples at one point (a constant map) or on one line hold no camera: a fit would
+  // only average them (a translation off by the map's own size) and call that a camera.
+  Points sources(2, static_cast<Eigen::Index>(samples.matches.size()));
+  for (size_t k = 0; k < samples.matches.size(); ++k)
+    sources.col(static_cast<Eigen::Index>(k)) = samples.matches[k].source.head<2>();
+  if (spreadRatio(sources) < 1e-7)
+    return R::failure(path + ": every sample of the map reads " +
+                      (countDistinct(sources, 2) < 2 ? "the same source point (a constant map)"
+                                                     : "source points on one line") +
+                      ": an ST map of a camera reads a different place for each pixel");
   return R::success(std::move(samples));
 }
 

@@ -120,17 +120,24 @@ std::vector<PointMatch> matchesOf(const MapSamples& s, int channel, double margi
   return out;
 }
 
+// Over the check points the camera maps; those it does not (a pole, outside every patch) are
+// counted apart, so no figure is infinite and none hides them.
 struct ErrorFigures {
   double rms = 0.0, max = 0.0;
   int count = 0;
+  int unmapped = 0;
 };
 
 ErrorFigures figures(const std::vector<double>& residuals) {
   ErrorFigures f;
   double sum = 0.0;
   for (double r : residuals) {
+    if (!std::isfinite(r)) {
+      ++f.unmapped;
+      continue;
+    }
     sum += r * r;
-    f.max = std::max(f.max, r);  // infinity (unmapped) stays the max
+    f.max = std::max(f.max, r);
     ++f.count;
   }
   f.rms = f.count ? std::sqrt(sum / f.count) : 0.0;
@@ -187,6 +194,7 @@ std::string LensCameraSummary::report() const {
   else
     out += "single camera: max " + px(max_px) + ", RMS " + px(rms_px) + " against lensfun over " +
            std::to_string(checked) + " points";
+  if (unmapped > 0) out += "; " + std::to_string(unmapped) + " more have no image";
   out += within_tolerance ? "" : " (ABOVE the threshold)";
   if (tca) out += "\nTCA: three colour layers, worst channel max " + px(tca_max_px);
   for (const std::string& n : notes) out += "\nnote: " + n;
@@ -249,8 +257,9 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
     s.rms_px = f.rms;
     s.max_px = f.max;
     s.checked = f.count;
+    s.unmapped = f.unmapped;
   }
-  s.within_tolerance = single.status && s.single_max_px <= options.max_error_px;
+  s.within_tolerance = single.status && s.unmapped == 0 && s.single_max_px <= options.max_error_px;
 
   if (s.within_tolerance) {
     s.camera = Artcam(single.camera);
@@ -304,6 +313,9 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   PiecewiseSummary pieces = fitPiecewise(inside, size, size, piecewise_options);
   if (!pieces.status)
     return failure(s, entry->model + ": no piecewise camera: " + pieces.status.message);
+  if (pieces.patch_limited_depth >= 0)
+    s.notes.push_back("the threshold cannot be met everywhere" +
+                      patchLimitNote(pieces.patch_limited_depth));
   // The fit's margin, 1.5 median spacings, suits clicked matches spread evenly; lensfun's grid
   // is even in the target, so where the map magnifies (a fisheye's centre) its source samples
   // are further apart than that. Every point of the map is known, so the patches are trusted
@@ -317,7 +329,8 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   s.rms_px = f.rms;
   s.max_px = f.max;
   s.checked = f.count;
-  s.within_tolerance = f.max <= options.max_error_px;
+  s.unmapped = f.unmapped;
+  s.within_tolerance = f.unmapped == 0 && f.max <= options.max_error_px;
   s.camera = Artcam(single.status ? single.camera : pieces.camera.patches.front().camera);
   if (single.status) s.camera.fit = single.record;
   s.camera.matches = inside;

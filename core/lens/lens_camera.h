@@ -63,6 +63,7 @@ struct LensCameraSummary {
   double rms_px = 0.0;
   double max_px = 0.0;
   int checked = 0;              // check points compared
+  int unmapped = 0;             // check points the camera gives no image (not in the figures)
   bool within_tolerance = false;  // max_px ≤ max_error_px
   bool piecewise = false;
   int patches = 0;

@@ -191,6 +191,13 @@ Status checkPieces(const Artcam& camera) {
 Status validateArtcam(const Artcam& camera, std::vector<CameraStructure>* layer_structures) {
   if (camera.layers.empty()) return Status::failure("/stages: the camera has no layers");
   const Camera& main = camera.main();
+  // Every layer and patch shares these frames (checked below), so the main camera's say it.
+  for (const auto& [frame, name] : {std::pair{main.sourceSize(), "source"},
+                                    std::pair{main.targetSize(), "target"}})
+    if (frame.width > kMaxFrameSide || frame.height > kMaxFrameSide)
+      return Status::failure(std::string("/frames/") + name + ": " + sizeText(frame) +
+                             " has a side beyond the " + std::to_string(kMaxFrameSide) +
+                             " pixels a camera's frame may have");
   if (layer_structures) layer_structures->assign(camera.layers.size(), CameraStructure{});
   for (size_t i = 0; i < camera.layers.size(); ++i) {
     const std::string where = i == 0 ? std::string("/stages: ") : "/layers/" + std::to_string(i - 1) + ": ";

@@ -16,7 +16,7 @@
 // Invariants (validateArtcam): at least one layer; every layer valid with the blocks and frames
 // of layers[0]; patches only on a single-layer position-only image camera, each patch camera
 // valid, finite and with the same frames, rectangles finite, non-empty and inside the source
-// frame, at most kMaxPatches of them.
+// frame, at most kMaxPatches of them; every frame side at most kMaxFrameSide pixels.
 #pragma once
 
 #include "core/model/camera.h"
@@ -48,6 +48,10 @@ enum class ArtcamKind {
 std::string_view artcamKindName(ArtcamKind kind);
 
 inline constexpr int kMaxPatches = 1024;
+// A frame is the size of the image a renderer allocates; a side beyond 2^20 pixels (a million)
+// is no photo but a corrupt or hostile header. The reader refuses it, so validateArtcam does
+// too: a camera that is written can always be read back.
+inline constexpr int kMaxFrameSide = 1 << 20;
 
 struct Artcam {
   std::vector<Camera> layers;

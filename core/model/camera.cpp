@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -185,8 +186,18 @@ std::optional<Eigen::Vector2d> targetFromSourceNormalized(const Camera& camera,
   const int p = layout.find(BlockKind::Position);
   if (p < 0 || layout.blocks[p].size != 3 || layout.blocks.size() != 1)
     throw std::invalid_argument("2D point mapping needs a position-only image camera");
-  const Eigen::VectorXd z = camera.evaluateHomogeneous(Eigen::Vector3d(source.x(), source.y(), 1.0));
-  if (z[2] == 0.0) return std::nullopt;
+  Eigen::VectorXd x = Eigen::Vector3d(source.x(), source.y(), 1.0);
+  const int last = static_cast<int>(camera.stages().size()) - 1;
+  for (int s = 0; s < last; ++s) x = camera.rehomogenise(camera.evaluateStage(s, x));
+  const Eigen::VectorXd z = camera.evaluateStage(last, x);
+  // On the pole curve the denominator is zero only in exact arithmetic: computed, it is
+  // rounding noise (1e-18 on a pole circle), and z/w a point 1e17 px away. A denominator within
+  // the rounding bound of the last stage's quadratic form (eq 3: |xᵀQx| error ≤ n·ε·|x|ᵀ|Q||x|)
+  // is taken as the pole: no image.
+  const Eigen::VectorXd ax = x.cwiseAbs();
+  const double w_bound =
+      8.0 * std::numeric_limits<double>::epsilon() * ax.dot(camera.stages()[last].q[2].cwiseAbs() * ax);
+  if (!(std::abs(z[2]) > w_bound)) return std::nullopt;
   const Eigen::Vector2d y(z[0] / z[2], z[1] / z[2]);
   if (!y.allFinite()) return std::nullopt;
   return y;

@@ -11,6 +11,12 @@
 
 namespace artcam {
 
+// The largest magnitude a match coordinate (or colour) may have: no photo, frame or colour
+// comes near 1e9, and beyond it the fit's residuals and records overflow or lose every digit
+// that matters. Every reader of matches (CSV, project, lines) refuses a larger value where it
+// can name the row or the JSON path.
+inline constexpr double kMaxMatchValue = 1e9;
+
 struct PointMatch {
   Eigen::VectorXd source;  // 2 (image), 3 (object or colour) coordinates, not homogeneous
   Eigen::VectorXd target;

@@ -3,6 +3,7 @@
 #include "core/piecewise/piecewise_fit.h"
 
 #include "core/fit/poles.h"
+#include "core/model/artcam.h"
 #include "core/model/frames.h"
 
 #include <algorithm>
@@ -279,14 +280,21 @@ CellFit fitCell(const Quadtree& q, const Cell& cell) {
 
 }  // namespace
 
+std::string patchLimitNote(int depth) {
+  return "; the tree stops at depth " + std::to_string(depth) +
+         ": splitting further would need more than the " + std::to_string(kMaxPatches) +
+         " patches a camera holds";
+}
+
 std::string PiecewiseSummary::report() const {
-  char line[400];
+  char line[600];
   std::snprintf(line, sizeof line,
                 "piecewise: %zu patches, %d matches, RMS %.4g px, max %.4g px, held-out max %.4g px, "
-                "seam gap %.3g px%s\n"
+                "seam gap %.3g px%s%s\n"
                 "single camera on the same matches: %s",
                 camera.patches.size(), matches, rms_px, max_px, held_out_max_px, seam_gap_px,
                 converged ? "" : " (some patches could not reach the threshold)",
+                patch_limited_depth < 0 ? "" : patchLimitNote(patch_limited_depth).c_str(),
                 single_rms_px < 0 ? "no fit"
                                   : (std::to_string(single_rms_px) + " px RMS, " +
                                      std::to_string(single_max_px) + " px max").c_str());
@@ -386,9 +394,24 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
 
   // 1.5 spacings: a grid cell's diagonal (√2) plus room for a corner the user did not click.
   out.camera.support_margin_px = 1.5 * matchSpacing(matches);
-  const Quadtree tree{matches, source_size, target_size, options};
-  CellFit all = fitCell(tree, {root, 0});
-  if (!all.status) return out.status = all.status, out;
+  // A camera holds at most kMaxPatches (validateArtcam). Where the threshold cannot be met (a
+  // circular fisheye's rim) cells split to the deepest level and a full tree has 4^depth
+  // leaves: the tree is then grown again one level shallower, until it fits (4^5 = 1024 always
+  // does), so the fit returns a camera the writer takes, with the patches that miss the
+  // threshold reported, instead of one no file can hold.
+  PiecewiseOptions tree_options = options;
+  CellFit all;
+  for (;;) {
+    const Quadtree tree{matches, source_size, target_size, tree_options};
+    all = fitCell(tree, {root, 0});
+    if (!all.status) return out.status = all.status, out;
+    if (all.patches.size() <= static_cast<size_t>(kMaxPatches) || tree_options.max_depth == 0) break;
+    out.patch_limited_depth = --tree_options.max_depth;
+  }
+  if (all.patches.size() > static_cast<size_t>(kMaxPatches))
+    return out.status = Status::failure("more patches than the " + std::to_string(kMaxPatches) +
+                                        " a camera may hold"),
+           out;
   out.camera.patches = std::move(all.patches);
   for (const CameraPatch& p : out.camera.patches) {
     out.converged = out.converged && p.within_tolerance;

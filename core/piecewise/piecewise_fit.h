@@ -54,6 +54,9 @@ struct PiecewiseOptions {
 
 struct PiecewiseSummary {
   Status status;  // not ok: no camera (too few matches overall, non-finite input …)
+  // ≥ 0: the threshold asked for more than kMaxPatches (artcam.h), so the quadtree was grown
+  // only to this depth (below options.max_depth); some patches then miss the threshold.
+  int patch_limited_depth = -1;
   PiecewiseCamera camera;
   int matches = 0;
   double rms_px = 0.0;  // over all enabled matches, each through its own patch
@@ -69,6 +72,9 @@ struct PiecewiseSummary {
   double single_max_px = -1.0;
   std::string report() const;  // a few lines for the CLI
 };
+
+// The report's words for patch_limited_depth ("; the tree stops at depth 5: …").
+std::string patchLimitNote(int depth);
 
 PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& matches, FrameSize source_size,
                               FrameSize target_size, const PiecewiseOptions& options = {});

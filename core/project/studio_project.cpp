@@ -49,10 +49,16 @@ double finiteNumber(const Json& j, const std::string& path, const char* what = "
   return v;
 }
 
+// Pairs, line points and depth anchors: pixels, held to the bound every match reader keeps.
 Eigen::Vector2d pointAt(const Json& j, const std::string& path) {
   if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number())
     refuse(path, "expected [x, y]");
-  return {finiteNumber(j[0], path), finiteNumber(j[1], path)};
+  const Eigen::Vector2d p{finiteNumber(j[0], path), finiteNumber(j[1], path)};
+  for (int k = 0; k < 2; ++k)
+    if (std::abs(p[k]) > kMaxMatchValue)
+      refuse(path + "/" + std::to_string(k),
+             describe(j[k]) + " is beyond any pixel coordinate (|value| > 1e9)");
+  return p;
 }
 
 std::string stringAt(const Json& j, const std::string& path) {

@@ -7,6 +7,7 @@
 // own by a closed form: a centred radial lens keeps the frame centre fixed.
 // Real database lenses: a ptlens compact zoom (piecewise), a ptlens zoom with strong TCA
 // (single camera, three layers), a ptlens prime calibrated on three crops, a stereographic fisheye converted to rectilinear, and --distort.
+#include "core/io/artcam_file.h"
 #include "core/lens/lens_camera.h"
 #include "core/lens/lens_database.h"
 #include "core/effects/chromatic.h"
@@ -210,6 +211,34 @@ class TestLensCamera : public QObject {
     // The two directions differ by pixels at the corner, so the check tells them apart.
     Truth forward(lens(kCompact), static_cast<float>(s.crop), size, 6.1f, false, false);
     QVERIFY((forward.source({0.5, 0.5}, 1) - truth.source({0.5, 0.5}, 1)).norm() > 2.0);
+  }
+
+  // A circular fisheye simulated at 600×400 cannot meet 0.5 px near its rim, where cells
+  // split to the deepest level: over 1024 patches, more than a camera holds, used to reach the
+  // writer and fail there. The tree stops a level higher instead: a camera that writes and
+  // reads back, its error reported above the threshold, and a note that says why.
+  void patchLimitStopsTheTreeNotTheWrite() {
+    LensCameraOptions o = optionsFor("Sigma 8mm f/3.5 EX DG Circular", 8, {600, 400});
+    o.crop = 1.0;
+    o.distort = true;
+    const LensCameraSummary s = lensCamera(*db_, o);
+    QVERIFY2(s.status.ok, s.status.message.c_str());
+    QVERIFY(s.piecewise);
+    QVERIFY2(s.patches <= kMaxPatches && s.patches > 256, qPrintable(QString::number(s.patches)));
+    QVERIFY(!s.within_tolerance);
+    QVERIFY2(validateArtcam(s.camera).ok, validateArtcam(s.camera).message.c_str());
+    const std::string notes = [&] {
+      std::string all;
+      for (const std::string& n : s.notes) all += n + "\n";
+      return all;
+    }();
+    QVERIFY2(notes.find("the tree stops at depth 5") != std::string::npos, notes.c_str());
+    QTemporaryDir dir;
+    const std::string file = dir.filePath("fisheye.artcam").toStdString();
+    QVERIFY(writeArtcam(file, s.camera).ok);
+    const Result<Artcam> back = readArtcam(file);
+    QVERIFY2(back.ok(), back.status.message.c_str());
+    QCOMPARE(static_cast<int>(back->pieces->patches.size()), s.patches);
   }
 
   void refusals() {

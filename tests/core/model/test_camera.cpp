@@ -169,6 +169,28 @@ class TestCamera : public QObject {
     QVERIFY((chain.evaluate(x) - b.evaluate(ya)).norm() < 1e-13);
   }
 
+  // On the pole circle u² + v² = 0.04 the computed denominator is rounding noise, not 0: the
+  // point has no image (it used to map 1e17 px away); a point just off the circle still maps.
+  void pointsOnThePoleCurveHaveNoImage() {
+    Stage stage;
+    stage.q.assign(3, Eigen::MatrixXd::Zero(3, 3));
+    stage.q[0](0, 2) = stage.q[0](2, 0) = 0.5;
+    stage.q[1](1, 2) = stage.q[1](2, 1) = 0.5;
+    stage.q[2] = Eigen::Vector3d(1.0, 1.0, -0.04).asDiagonal();
+    const FrameSize frame{64, 48};
+    const Camera pole({kPos}, {stage}, frame, frame);
+    for (const Eigen::Vector2d& n : {Eigen::Vector2d(0.2, 0.0), Eigen::Vector2d(-0.2, 0.0),
+                                     Eigen::Vector2d(0.12, 0.16), Eigen::Vector2d(0.0, 0.2)}) {
+      const auto y = targetPixelFromSourcePixel(pole, pixelFromNormalized(frame, n));
+      QVERIFY2(!y, qPrintable(QString("(%1, %2) -> (%3, %4)").arg(n.x()).arg(n.y())
+                                  .arg(y ? y->x() : 0).arg(y ? y->y() : 0)));
+    }
+    const auto off = targetPixelFromSourcePixel(pole, pixelFromNormalized(frame, {0.2 + 1e-6, 0.0}));
+    QVERIFY(off && off->allFinite());
+    const auto centre = targetPixelFromSourcePixel(pole, pixelFromNormalized(frame, {0.0, 0.0}));
+    QVERIFY(centre && (*centre - Eigen::Vector2d(32, 24)).norm() < 1e-9);
+  }
+
   void invalidCamerasAreRefused() {
     Stage bad;
     bad.q.assign(3, Eigen::MatrixXd::Identity(2, 2));

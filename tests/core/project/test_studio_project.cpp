@@ -120,6 +120,13 @@ class TestStudioProject : public QObject {
         {R"("camera":{"format":"artcam"}})", "x.artcamproj: /camera"},
         {R"("view":[1]})", "x.artcamproj: /view: expected an object"},
         {R"("lines":[{"points":[[1,2],[3]]}]})", "x.artcamproj: /lines/0/points/1: expected [x, y]"},
+        // The match readers' bound (fit_record.h), as the CSV reader keeps it.
+        {R"("pairs":[{"source":[1e300,2],"target":[0,0]}]})",
+         "x.artcamproj: /pairs/0/source/0: 1e+300 is beyond any pixel coordinate (|value| > 1e9)"},
+        {R"("pairs":[{"source":[1,2],"target":[0,-2e9]}]})",
+         "x.artcamproj: /pairs/0/target/1: -2000000000.0 is beyond any pixel coordinate"},
+        {R"("lines":[{"points":[[1,2],[3,4e12]]}]})",
+         "x.artcamproj: /lines/0/points/1/1: 4000000000000.0 is beyond any pixel coordinate"},
         {R"("lines":[{"label":"a","points":[[1,2]],"enabled":1}]})",
          "x.artcamproj: /lines/0/enabled: expected true or false"},
     };
