@@ -206,7 +206,8 @@ int batchCommand(const std::vector<std::string>& argv) {
         if (const std::string left_out = leftOutWarning(item->image, names.input, names.output);
             !left_out.empty())
           std::fprintf(stderr, "artcam batch: warning: %s\n", left_out.c_str());
-        if (const std::string profile = droppedProfileWarning(item->image, names.input, names.output);
+        if (const std::string profile =
+                droppedProfileWarning(item->image, names.input, names.output);
             !profile.empty())
           std::fprintf(stderr, "artcam batch: warning: %s\n", profile.c_str());
         results[item->index] = {"written", "", item->image.width, item->image.height,

@@ -212,8 +212,9 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
         decoded.streamed = std::move(*reader.value);
         // Bands carry colour and alpha only: the rest are named, never dropped silently.
         decoded.left_out = decoded.streamed->info().dropped_channels;
-        decoded.left_out_reason = "the photo is warped in bands (too big for the memory budget "
-                                  "whole), which carries colour and alpha only";
+        decoded.left_out_reason =
+            "the photo is warped in bands (too big for the memory budget "
+            "whole), which carries colour and alpha only";
         return decoded;
       }
       auto stored = readStoredImage(input, read);

@@ -78,8 +78,9 @@ struct DecodedInput {
   // Too big for the stored path's memory budget: opened, not decoded; encodeWarp streams it
   // (core/pipeline/streamed_warp.h).
   std::shared_ptr<StoredImageReader> streamed;
-  // Channels beyond colour and alpha (image_io.h, "Channels"): read when the output's format holds them and
-  // the camera renders them (extraChannelsUnsupported), else named in left_out with the reason.
+  // Channels beyond colour and alpha (image_io.h, "Channels"): read when the output's format holds
+  // them and the camera renders them (extraChannelsUnsupported), else named in left_out with the
+  // reason.
   ExtraChannels extra;
   std::vector<std::string> left_out;
   std::string left_out_reason;  // "out.png's format holds at most four channels"

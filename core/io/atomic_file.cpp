@@ -5,8 +5,8 @@
 #include "core/io/atomic_file.h"
 
 #include <fcntl.h>
-#include <stdio.h>  // renameat2
 #include <signal.h>
+#include <stdio.h>  // renameat2
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -16,8 +16,8 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <set>
 #include <regex>
+#include <set>
 
 namespace artcam {
 
@@ -212,7 +212,9 @@ Status writeAtomically(const std::string& path,
   if (::stat(path.c_str(), &old_stat) == 0) ::chmod(temp.c_str(), old_stat.st_mode & 07777);
 
   const bool no_replace = takeNoReplaceMark(path);
-  err = no_replace ? commitNoReplace(temp, path) : ::rename(temp.c_str(), path.c_str()) == 0 ? 0 : errno;
+  err = no_replace                                  ? commitNoReplace(temp, path)
+        : ::rename(temp.c_str(), path.c_str()) == 0 ? 0
+                                                    : errno;
   if (err != 0) {
     discard();
     if (no_replace) commitWithoutReplacing(path);  // still not ours to replace

@@ -102,8 +102,8 @@ namespace {
 // whose first directory cannot be read back when there is an Exif directory beside it (libtiff
 // checks its own writes, so TIFF is reported without the proxy).
 bool takesCheckedOutput(const OIIO::ImageOutput& out) {
-  static const std::set<std::string> kVerified{"png", "jpeg", "openexr", "hdr", "bmp", "targa",
-                                               "pnm", "webp", "gif", "dpx", "jpeg2000"};
+  static const std::set<std::string> kVerified{"png", "jpeg", "openexr", "hdr", "bmp",     "targa",
+                                               "pnm", "webp", "gif",     "dpx", "jpeg2000"};
   return out.supports("ioproxy") && kVerified.count(out.format_name()) > 0;
 }
 

@@ -4,16 +4,16 @@
 //
 // OpenImageIO 2.4's PNG writer does not check what fwrite returns (a full disk gave a PNG cut
 // mid-IDAT and "wrote", exit 0); its JPEG writer leaves libjpeg's error_exit at the default,
-// which calls exit() on a write error. So the formats that take an IOProxy (supports("ioproxy"):
-// PNG, JPEG, TIFF, OpenEXR, HDR, BMP, Targa, PNM, WebP, GIF, DPX, JPEG 2000 in 2.4) are given
-// CheckedOutput, a proxy over a descriptor that:
+// which calls exit() on a write error. So the formats that take an IOProxy and were seen to write
+// through one the same bytes (takesCheckedOutput: PNG, JPEG, OpenEXR, HDR, BMP, Targa, PNM,
+// WebP, GIF, DPX, JPEG 2000 in 2.4) are given CheckedOutput, a proxy over a descriptor that:
 // - records the first failed write's errno and from then on writes nothing, yet reports every
 //   write as done, so no codec reaches a fatal path of its own (the pixels are lost anyway);
 // - is closed and checked after ImageOutput::close(): a recorded error or a failed close(2)
 //   fails the save before atomic_file.h renames the temporary, naming errno's text.
-// Formats without proxy support (SGI, ICO, FITS, RLA, HEIF, TIFF: see takesCheckedOutput) open
-// the file themselves; besides their own errors and the fsync writeAtomically does before the
-// rename, the file is read back whole once written (CheckedWrite::close).
+// The others open the file themselves: TIFF (libtiff checks its own writes) is trusted to
+// report them; the rest (SGI, ICO, FITS, RLA, HEIF) are read back whole once written
+// (CheckedWrite::close), besides their own errors and the fsync before the rename.
 #pragma once
 
 #include <OpenImageIO/filesystem.h>

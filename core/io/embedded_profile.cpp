@@ -16,8 +16,9 @@ Result<EmbeddedProfile> checkEmbeddedProfile(const std::vector<unsigned char>& b
   // no output is labelled with the CMYK profile (libpng refuses it; a JPEG viewer would apply
   // it to RGB values).
   if (jpeg && colour_channels == 3 && IccProfile::describesCmyk(bytes)) {
-    decision.dropped = "its embedded CMYK ICC profile does not describe the RGB the reader made "
-                       "of its inks";
+    decision.dropped =
+        "its embedded CMYK ICC profile does not describe the RGB the reader made "
+        "of its inks";
     return R::success(std::move(decision));
   }
   if (colour_channels != 1 && colour_channels != 3)

@@ -16,10 +16,10 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <system_error>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 #include <sys/stat.h>
@@ -104,8 +104,9 @@ Status regularFile(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
     return Status::failure(path + ": cannot read: " +
-                           (errno == ENOENT || errno == ENOTDIR ? std::string("no such file")
-                                                                : std::string(std::strerror(errno))));
+                           (errno == ENOENT || errno == ENOTDIR
+                                ? std::string("no such file")
+                                : std::string(std::strerror(errno))));
   if (S_ISREG(st.st_mode)) return Status::success();
   return Status::failure(path + ": cannot read: " + notRegularFile(st.st_mode));
 }

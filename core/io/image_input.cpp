@@ -9,11 +9,11 @@
 #include "core/util/memory_budget.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <cerrno>
 #include <exception>
 #include <filesystem>
 #include <memory>
@@ -121,8 +121,8 @@ Result<OIIO::ImageInput::unique_ptr> openImageInput(const std::string& path, boo
     OIIO::ImageSpec opened;
     if (!in->open(path, opened, config)) {
       std::string cause = in->geterror();
-      return R::failure(path + ": cannot read: " +
-                        io_text::oneLine(cause.empty() ? OIIO::geterror() : cause));
+      return R::failure(
+          path + ": cannot read: " + io_text::oneLine(cause.empty() ? OIIO::geterror() : cause));
     }
   } catch (const std::exception& e) {
     // OIIO 2.4's GIF reader throws std::length_error on a 34-byte file that starts "GIF89a"

@@ -13,6 +13,8 @@
 #include "core/io/image_io.h"
 #include "core/io/oiio_io.h"
 
+#include "core/colour/icc_profile.h"
+#include "core/colour/transfer.h"
 #include "core/io/atomic_file.h"
 #include "core/io/embedded_profile.h"
 #include "core/io/image_input.h"
@@ -20,8 +22,6 @@
 #include "core/io/io_text.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
-#include "core/colour/icc_profile.h"
-#include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -165,8 +165,8 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
       if (ok && !context.cancelled) {
         if (associated) unpremultiply(image);
         icc->toWorking(image.data.data(),
-                          static_cast<size_t>(image.width) * static_cast<size_t>(image.height),
-                          image.channels, image.alpha_channel);
+                       static_cast<size_t>(image.width) * static_cast<size_t>(image.height),
+                       image.channels, image.alpha_channel);
       }
     } else if (codec && tables) {
       // The codec path (jpeg_decode.h), then the same tables as below.

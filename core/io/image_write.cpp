@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
 // writeImage (declared in image_io.h): ImageF (linear, premultiplied) -> any OIIO format,
 // atomically. The decisions are listed in image_io.h.
-#include "core/io/atomic_file.h"
-#include "core/io/checked_output.h"
-#include "core/io/extra_channels.h"
-#include "core/io/image_io.h"
-#include "core/io/image_input.h"
-#include "core/io/oiio_io.h"
-#include "core/io/io_text.h"
-#include "core/io/jpeg_segments.h"
-#include "core/io/photo_metadata.h"
 #include "core/colour/icc_profile.h"
 #include "core/colour/quantise8.h"
 #include "core/colour/transfer.h"
+#include "core/io/atomic_file.h"
+#include "core/io/checked_output.h"
+#include "core/io/extra_channels.h"
+#include "core/io/image_input.h"
+#include "core/io/image_io.h"
+#include "core/io/io_text.h"
+#include "core/io/jpeg_segments.h"
+#include "core/io/oiio_io.h"
+#include "core/io/photo_metadata.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -193,13 +193,12 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
                    profile.data());
   }
   // `like`'s names for the channels the image kept of it (its colour and alpha).
-  spec.channelnames =
-      like_spec && io_input::keptChannels(*like_spec) == channels &&
-              io_input::keptAlpha(*like_spec) == alpha &&
-              static_cast<int>(like_spec->channelnames.size()) >= channels
-          ? std::vector<std::string>(like_spec->channelnames.begin(),
-                                     like_spec->channelnames.begin() + channels)
-          : defaultChannelNames(channels, alpha);
+  spec.channelnames = like_spec && io_input::keptChannels(*like_spec) == channels &&
+                              io_input::keptAlpha(*like_spec) == alpha &&
+                              static_cast<int>(like_spec->channelnames.size()) >= channels
+                          ? std::vector<std::string>(like_spec->channelnames.begin(),
+                                                     like_spec->channelnames.begin() + channels)
+                          : defaultChannelNames(channels, alpha);
   spec.alpha_channel = alpha;
   io_extra::keepDisplayWindow(spec, format, like_spec);
   if (const Status extra = io_extra::addExtraChannels(spec, format, options.extra_channels, path);

@@ -57,7 +57,8 @@ struct JumpErrors {
   jpeg_error_mgr manager;  // first: libjpeg hands back a pointer to it
   std::jmp_buf jump;
   char fatal[JMSG_LENGTH_MAX] = {};
-  int write_errno = 0;  // a failed fwrite's errno: libjpeg's own text ("out of disk space?") guesses
+  int write_errno =
+      0;  // a failed fwrite's errno: libjpeg's own text ("out of disk space?") guesses
   jpeg_error_mgr* install() {
     jpeg_std_error(&manager);
     manager.error_exit = [](j_common_ptr common) {
@@ -339,7 +340,8 @@ std::optional<Status> writeBands(const std::string& path, const ConstImageView& 
     c.file = std::fopen(temp.c_str(), "wb");
     if (!c.file) return failure("cannot create the file");
     c.info.err = c.errors.install();
-    if (!startCompress(c, shape.width, shape.height, colours, quality, markers)) return failure(c.errors.fatal);
+    if (!startCompress(c, shape.width, shape.height, colours, quality, markers))
+      return failure(c.errors.fatal);
     // Bands of rows, each handed to libjpeg as it is (alpha dropped first where there is one).
     constexpr int kBand = 64;
     const size_t packed = static_cast<size_t>(shape.width) * static_cast<size_t>(colours);

@@ -46,8 +46,8 @@ bool fits(const OIIO::ImageSpec& spec) {
   std::vector<char> exif;
   OIIO::encode_exif(spec, exif);
   if (!exif.empty() && exif.size() + kExifHead > kMaxSegment) return false;
-  const std::size_t xmp = std::max(OIIO::encode_xmp(spec, true).size(),
-                                   OIIO::encode_xmp(spec, false).size());
+  const std::size_t xmp =
+      std::max(OIIO::encode_xmp(spec, true).size(), OIIO::encode_xmp(spec, false).size());
   if (xmp > 0 && xmp + kXmpHead > kMaxSegment) return false;
   std::vector<char> iptc;
   OIIO::encode_iptc_iim(spec, iptc);

@@ -4,9 +4,9 @@
 // lines and lines starting with '#' are skipped; CRLF and a UTF-8 BOM are tolerated.
 #include "core/io/matches_csv.h"
 
+#include "core/colour/transfer.h"
 #include "core/io/atomic_file.h"
 #include "core/io/text_input.h"
-#include "core/colour/transfer.h"
 
 #include <algorithm>
 #include <charconv>

@@ -82,8 +82,8 @@ Status finishStandardOutput() {
     return Status::success();
   }
   if (g_stdout_closed_at_start) return Status::failure(fail + "standard output is closed");
-  return Status::failure(fail + (flush_errno != 0 ? std::strerror(flush_errno)
-                                                  : "an earlier write to it failed"));
+  return Status::failure(
+      fail + (flush_errno != 0 ? std::strerror(flush_errno) : "an earlier write to it failed"));
 }
 
 StdinSpool::StdinSpool(int fd, std::size_t bytes)

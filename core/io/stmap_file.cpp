@@ -2,11 +2,11 @@
 #include "core/io/stmap_file.h"
 #include "core/io/oiio_io.h"
 
+#include "core/fit/normalize.h"
 #include "core/io/atomic_file.h"
 #include "core/io/checked_output.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
-#include "core/fit/normalize.h"
 #include "core/model/artcam.h"
 
 #include <OpenImageIO/imageio.h>

@@ -5,17 +5,17 @@
 #include "core/io/stored_image.h"
 #include "core/io/oiio_io.h"
 
+#include "core/colour/transfer.h"
 #include "core/io/atomic_file.h"
+#include "core/io/checked_output.h"
 #include "core/io/embedded_profile.h"
 #include "core/io/extra_channels.h"
 #include "core/io/image_input.h"
 #include "core/io/io_text.h"
-#include "core/io/checked_output.h"
 #include "core/io/jpeg_decode.h"
 #include "core/io/jpeg_segments.h"
 #include "core/io/orientation.h"
 #include "core/io/photo_metadata.h"
-#include "core/colour/transfer.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -158,9 +158,9 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
           .value_or(type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
   const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
   // The float path's decision on the embedded profile, before any pixel is decoded.
-  auto profile = checkEmbeddedProfile(io_input::embeddedProfileBytes(spec),
-                                      channels - (alpha >= 0 ? 1 : 0),
-                                      std::string(in->format_name()) == "jpeg", path);
+  auto profile =
+      checkEmbeddedProfile(io_input::embeddedProfileBytes(spec), channels - (alpha >= 0 ? 1 : 0),
+                           std::string(in->format_name()) == "jpeg", path);
   if (!profile) return R::failure(profile.status.message);
 
   // The codec path for JPEG (jpeg_decode.h): libjpeg-turbo straight into the rows, every byte
@@ -460,10 +460,11 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   if (like && like->icc)
     spec.erase_attribute("oiio:ColorSpace");
   else
-    spec.attribute("oiio:ColorSpace", like_transfer ? like_transfer->colourSpaceName()
+    spec.attribute("oiio:ColorSpace", like_transfer        ? like_transfer->colourSpaceName()
                                       : like && like->srgb ? std::string("sRGB")
-                                      : like ? like->colour_space
-                                      : image.type == PixelType::Float ? "Linear" : "sRGB");
+                                      : like               ? like->colour_space
+                                      : image.type == PixelType::Float ? "Linear"
+                                                                       : "sRGB");
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
   if (format == "jpeg") {
@@ -504,8 +505,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
       if (const Status produced = band_rows(y0, y1, rows); !produced) return produced;
       // Scanline numbers are the data window's (its origin, keepDisplayWindow, may not be 0).
       if (direct) {
-        ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), rows.data,
-                                  OIIO::AutoStride, rows.row_bytes);
+        ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type),
+                                              rows.data, OIIO::AutoStride, rows.row_bytes);
         continue;
       }
       for (int y = y0; y < y1; ++y) {
@@ -533,7 +534,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
                                  image.width, y0, y1, *options.extra_channels, with_channels);
         data = with_channels.data();
       }
-      ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), data);
+      ok =
+          checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), data);
     }
     if (context.cancelled) return failure("cancelled");
     if (!ok || !checked.close()) return failure(checked.cause());

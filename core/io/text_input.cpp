@@ -50,8 +50,8 @@ Result<std::string> readTextInput(const std::string& path, const TextInputOption
   // instead of waiting for one.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0)
-    return R::failure(fail + (errno == ENOENT ? std::string("no such file")
-                                              : std::string(std::strerror(errno))));
+    return R::failure(
+        fail + (errno == ENOENT ? std::string("no such file") : std::string(std::strerror(errno))));
   struct stat st {};
   Status status = Status::success();
   if (::fstat(fd, &st) != 0) {
@@ -59,10 +59,9 @@ Result<std::string> readTextInput(const std::string& path, const TextInputOption
   } else if (!S_ISREG(st.st_mode)) {
     status = Status::failure(fail + image_checks::notRegularFile(st.st_mode));
   } else if (static_cast<unsigned long long>(st.st_size) > options.max_bytes) {
-    status = Status::failure(fail + describeBytes(static_cast<double>(st.st_size)) +
-                             ", more than the " +
-                             describeBytes(static_cast<double>(options.max_bytes)) +
-                             " a text input may hold");
+    status = Status::failure(
+        fail + describeBytes(static_cast<double>(st.st_size)) + ", more than the " +
+        describeBytes(static_cast<double>(options.max_bytes)) + " a text input may hold");
   } else {
     // A regular file reads whole; O_NONBLOCK means nothing for it.
     text.reserve(static_cast<std::size_t>(st.st_size));

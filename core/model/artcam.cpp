@@ -192,8 +192,8 @@ Status validateArtcam(const Artcam& camera, std::vector<CameraStructure>* layer_
   if (camera.layers.empty()) return Status::failure("/stages: the camera has no layers");
   const Camera& main = camera.main();
   // Every layer and patch shares these frames (checked below), so the main camera's say it.
-  for (const auto& [frame, name] : {std::pair{main.sourceSize(), "source"},
-                                    std::pair{main.targetSize(), "target"}})
+  for (const auto& [frame, name] :
+       {std::pair{main.sourceSize(), "source"}, std::pair{main.targetSize(), "target"}})
     if (frame.width > kMaxFrameSide || frame.height > kMaxFrameSide)
       return Status::failure(std::string("/frames/") + name + ": " + sizeText(frame) +
                              " has a side beyond the " + std::to_string(kMaxFrameSide) +

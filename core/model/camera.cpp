@@ -195,8 +195,8 @@ std::optional<Eigen::Vector2d> targetFromSourceNormalized(const Camera& camera,
   // the rounding bound of the last stage's quadratic form (eq 3: |xᵀQx| error ≤ n·ε·|x|ᵀ|Q||x|)
   // is taken as the pole: no image.
   const Eigen::VectorXd ax = x.cwiseAbs();
-  const double w_bound =
-      8.0 * std::numeric_limits<double>::epsilon() * ax.dot(camera.stages()[last].q[2].cwiseAbs() * ax);
+  const double w_bound = 8.0 * std::numeric_limits<double>::epsilon() *
+                         ax.dot(camera.stages()[last].q[2].cwiseAbs() * ax);
   if (!(std::abs(z[2]) > w_bound)) return std::nullopt;
   const Eigen::Vector2d y(z[0] / z[2], z[1] / z[2]);
   if (!y.allFinite()) return std::nullopt;

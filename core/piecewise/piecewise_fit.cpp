@@ -288,16 +288,18 @@ std::string patchLimitNote(int depth) {
 
 std::string PiecewiseSummary::report() const {
   char line[600];
-  std::snprintf(line, sizeof line,
-                "piecewise: %zu patches, %d matches, RMS %.4g px, max %.4g px, held-out max %.4g px, "
-                "seam gap %.3g px%s%s\n"
-                "single camera on the same matches: %s",
-                camera.patches.size(), matches, rms_px, max_px, held_out_max_px, seam_gap_px,
-                converged ? "" : " (some patches could not reach the threshold)",
-                patch_limited_depth < 0 ? "" : patchLimitNote(patch_limited_depth).c_str(),
-                single_rms_px < 0 ? "no fit"
-                                  : (std::to_string(single_rms_px) + " px RMS, " +
-                                     std::to_string(single_max_px) + " px max").c_str());
+  std::snprintf(
+      line, sizeof line,
+      "piecewise: %zu patches, %d matches, RMS %.4g px, max %.4g px, held-out max %.4g px, "
+      "seam gap %.3g px%s%s\n"
+      "single camera on the same matches: %s",
+      camera.patches.size(), matches, rms_px, max_px, held_out_max_px, seam_gap_px,
+      converged ? "" : " (some patches could not reach the threshold)",
+      patch_limited_depth < 0 ? "" : patchLimitNote(patch_limited_depth).c_str(),
+      single_rms_px < 0 ? "no fit"
+                        : (std::to_string(single_rms_px) + " px RMS, " +
+                           std::to_string(single_max_px) + " px max")
+                              .c_str());
   return line;
 }
 
@@ -405,7 +407,8 @@ PiecewiseSummary fitPiecewise(const std::vector<PointMatch>& all_matches, FrameS
     const Quadtree tree{matches, source_size, target_size, tree_options};
     all = fitCell(tree, {root, 0});
     if (!all.status) return out.status = all.status, out;
-    if (all.patches.size() <= static_cast<size_t>(kMaxPatches) || tree_options.max_depth == 0) break;
+    if (all.patches.size() <= static_cast<size_t>(kMaxPatches) || tree_options.max_depth == 0)
+      break;
     out.patch_limited_depth = --tree_options.max_depth;
   }
   if (all.patches.size() > static_cast<size_t>(kMaxPatches))

@@ -142,8 +142,8 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
   {
     Result<StoredShape> shape = readStoredShape(project.photo_path);
     if (!shape) return R::failure(where + ": photo: " + shape.status.message);
-    if (const Status fits = checkProjectMemory(project, {shape->width, shape->height},
-                                               shape->channels, where);
+    if (const Status fits =
+            checkProjectMemory(project, {shape->width, shape->height}, shape->channels, where);
         !fits)
       return R::failure(fits.message);
   }

@@ -10,8 +10,8 @@
 
 namespace artcam {
 
-// ARTCAM_MAX_MEMORY_MB (MiB) when set to a number > 0, else half of the machine's physical memory (4 GiB when
-// the system does not say).
+// ARTCAM_MAX_MEMORY_MB (MiB) when set to a number > 0, else half of the machine's physical memory
+// (4 GiB when the system does not say).
 double memoryBudgetBytes();
 
 // "the memory budget of 11.6 GiB (half this machine's memory; ARTCAM_MAX_MEMORY_MB sets it)",

@@ -58,11 +58,14 @@ class TestCliFidelity : public QObject {
 
  private slots:
   void initTestCase() {
-    QCOMPARE(artcamCli({"preset", "barrel", "--size", "64x48", "-o", path("barrel.artcam")}).exit_code, 0);
+    QCOMPARE(
+        artcamCli({"preset", "barrel", "--size", "64x48", "-o", path("barrel.artcam")}).exit_code,
+        0);
     // The identity camera of the frame: every pixel has a preimage, so no alpha is added.
     QFile identity(path("identity.artcam"));
     QVERIFY(identity.open(QIODevice::WriteOnly));
-    identity.write(R"({"format": "artcam", "version": 1, "blocks": [{"kind": "position", "size": 3}],
+    identity.write(
+        R"({"format": "artcam", "version": 1, "blocks": [{"kind": "position", "size": 3}],
       "frames": {"source": [64, 48], "target": [64, 48]},
       "stages": [{"tensors": [[[0, 0, 0.5], [0, 0, 0], [0.5, 0, 0]],
                               [[0, 0, 0], [0, 0, 0.5], [0, 0.5, 0]],
@@ -71,7 +74,8 @@ class TestCliFidelity : public QObject {
 
   void rgbzThroughACameraWithHolesKeepsItsZ() {
     QVERIFY(writeRgbz(path("rgbz.exr").toStdString(), 5.0f));
-    const Run r = artcamCli({"warp", path("rgbz.exr"), path("barrel.artcam"), "-o", path("out.exr")});
+    const Run r =
+        artcamCli({"warp", path("rgbz.exr"), path("barrel.artcam"), "-o", path("out.exr")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     const OIIO::ImageSpec spec = specOf(path("out.exr"));
     QCOMPARE(spec.channelnames, std::vector<std::string>({"R", "G", "B", "A", "Z"}));
@@ -87,16 +91,16 @@ class TestCliFidelity : public QObject {
 
   void rgbzIntoAPngLeavesZOutAndNeverMakesItAlpha() {
     QVERIFY(writeRgbz(path("rgbz-low.exr").toStdString(), 0.25f));
-    const Run r = artcamCli({"warp", path("rgbz-low.exr"), path("identity.artcam"), "-o",
-                             path("out.png")});
+    const Run r =
+        artcamCli({"warp", path("rgbz-low.exr"), path("identity.artcam"), "-o", path("out.png")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     QVERIFY2(r.err.contains("rgbz-low.exr: channels beyond colour and alpha (Z) are not warped"),
              qPrintable(r.err));
     QCOMPARE(lines(r.err), 1);
     QCOMPARE(specOf(path("out.png")).nchannels, 3);  // opaque RGB: a Z of 0.25 is no alpha
 
-    const Run holes = artcamCli({"warp", path("rgbz-low.exr"), path("barrel.artcam"), "-o",
-                                 path("holes.png")});
+    const Run holes =
+        artcamCli({"warp", path("rgbz-low.exr"), path("barrel.artcam"), "-o", path("holes.png")});
     QVERIFY2(holes.exit_code == 0, qPrintable(holes.err));
     QCOMPARE(specOf(path("holes.png")).nchannels, 4);
   }
@@ -104,7 +108,8 @@ class TestCliFidelity : public QObject {
   void aJpegsCmykProfileLabelsNoOutput() {
     QVERIFY(writeJpeg(path("cmyk.jpg").toStdString(), artcam::test::cmykHeaderProfile()));
     for (const char* name : {"cmyk-out.png", "cmyk-out.jpg"}) {
-      const Run r = artcamCli({"warp", path("cmyk.jpg"), path("identity.artcam"), "-o", path(name)});
+      const Run r =
+          artcamCli({"warp", path("cmyk.jpg"), path("identity.artcam"), "-o", path(name)});
       QVERIFY2(r.exit_code == 0, qPrintable(r.err));
       QVERIFY2(r.err.contains("cmyk.jpg: its embedded CMYK ICC profile does not describe") &&
                    r.err.contains("carries no profile"),
@@ -122,8 +127,8 @@ class TestCliFidelity : public QObject {
   void aForeignProfileIsRefusedOnTheStoredPathToo() {
     QVERIFY(writeJpeg(path("grey-profile.jpg").toStdString(), artcam::test::greyGammaProfile(2.2)));
     for (const char* name : {"grey-out.jpg", "grey-out.png", "grey-out.exr"}) {
-      const Run r = artcamCli({"warp", path("grey-profile.jpg"), path("identity.artcam"), "-o",
-                               path(name)});
+      const Run r =
+          artcamCli({"warp", path("grey-profile.jpg"), path("identity.artcam"), "-o", path(name)});
       QCOMPARE(r.exit_code, 1);
       QVERIFY2(r.err.contains("grey-profile.jpg: cannot read: its embedded ICC profile describes "
                               "grey colour, the pixels are RGB"),

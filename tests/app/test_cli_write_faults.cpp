@@ -35,7 +35,8 @@ CliRun artcamInShell(const QString& prelude, const QStringList& args, const QStr
                          args);
   p.waitForFinished(300000);
   return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-          QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
+          QString::fromUtf8(p.readAllStandardOutput()),
+          QString::fromUtf8(p.readAllStandardError())};
 }
 
 // The prelude of a run whose files may grow to `kib` KiB: SIGXFSZ ignored (an ignored signal
@@ -60,14 +61,15 @@ QByteArray bigEndian32(std::uint32_t v) {
 // `png` with one more chunk right after IHDR (where every reader sees it, before the pixels).
 QByteArray withChunk(const QByteArray& png, const QByteArray& type, const QByteArray& data) {
   const QByteArray body = type + data;
-  const QByteArray chunk = bigEndian32(static_cast<std::uint32_t>(data.size())) + body +
-                           bigEndian32(crc32(body));
+  const QByteArray chunk =
+      bigEndian32(static_cast<std::uint32_t>(data.size())) + body + bigEndian32(crc32(body));
   constexpr int kAfterIhdr = 8 + 25;  // signature, then IHDR's length, type, 13 bytes and CRC
   return png.left(kAfterIhdr) + chunk + png.mid(kAfterIhdr);
 }
 
 QByteArray xmpPacket(const QByteArray& body) {
-  return "<?xpacket begin=\"\" id=\"W5M0MpCehiHzreSzNTczkc9d\"?><x:xmpmeta xmlns:x=\"adobe:ns:meta/\">"
+  return "<?xpacket begin=\"\" id=\"W5M0MpCehiHzreSzNTczkc9d\"?><x:xmpmeta "
+         "xmlns:x=\"adobe:ns:meta/\">"
          "<rdf:RDF xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\"><rdf:Description "
          "rdf:about=\"\" xmlns:dc=\"http://purl.org/dc/elements/1.1/\">" +
          body + "</rdf:Description></rdf:RDF></x:xmpmeta><?xpacket end=\"w\"?>";
@@ -105,12 +107,14 @@ class TestCliWriteFaults : public QObject {
     QVERIFY(dir_.isValid());
     QVERIFY(writeNoisePhoto(path("photo.png"), 400, 300));
     QVERIFY(writeNoisePhoto(path("big.png"), 1500, 1000));
-    for (const auto& [name, size] : {std::pair{"lens.artcam", "400x300"}, {"big.artcam", "1500x1000"}}) {
+    for (const auto& [name, size] :
+         {std::pair{"lens.artcam", "400x300"}, {"big.artcam", "1500x1000"}}) {
       const CliRun preset = artcamCli({"preset", "barrel", "--size", size, "-o", path(name)});
       QVERIFY2(preset.exit_code == 0, qPrintable(preset.err));
     }
     // A JPEG input takes the libjpeg path (jpeg_file.h), a PNG input to JPEG OpenImageIO's.
-    const CliRun jpeg = artcamCli({"warp", path("big.png"), path("big.artcam"), "-o", path("big.jpg")});
+    const CliRun jpeg =
+        artcamCli({"warp", path("big.png"), path("big.artcam"), "-o", path("big.jpg")});
     QVERIFY2(jpeg.exit_code == 0, qPrintable(jpeg.err));
     // The limit is set in the shell; where lowering it is refused, nothing here can measure.
     const CliRun probe = artcamInShell(fileSizeLimit(64), {"--version"});
@@ -122,13 +126,20 @@ class TestCliWriteFaults : public QObject {
   void fullDiskKeepsThePreviousFile_data() {
     QTest::addColumn<QString>("input");
     QTest::addColumn<QString>("extension");
-    QTest::newRow("png") << "big.png" << "png";
-    QTest::newRow("jpeg from jpeg (libjpeg path)") << "big.jpg" << "jpg";
-    QTest::newRow("jpeg from png (image library)") << "big.png" << "jpg";
-    QTest::newRow("openexr") << "big.png" << "exr";
-    QTest::newRow("tiff") << "big.png" << "tif";
-    QTest::newRow("gif") << "big.png" << "gif";
-    QTest::newRow("sgi (no proxy: read back)") << "big.png" << "sgi";
+    QTest::newRow("png") << "big.png"
+                         << "png";
+    QTest::newRow("jpeg from jpeg (libjpeg path)") << "big.jpg"
+                                                   << "jpg";
+    QTest::newRow("jpeg from png (image library)") << "big.png"
+                                                   << "jpg";
+    QTest::newRow("openexr") << "big.png"
+                             << "exr";
+    QTest::newRow("tiff") << "big.png"
+                          << "tif";
+    QTest::newRow("gif") << "big.png"
+                         << "gif";
+    QTest::newRow("sgi (no proxy: read back)") << "big.png"
+                                               << "sgi";
   }
   void fullDiskKeepsThePreviousFile() {
     QFETCH(QString, input);
@@ -141,8 +152,8 @@ class TestCliWriteFaults : public QObject {
     const QByteArray previous = fileBytes(out);
     QVERIFY(previous.size() > 16 * 1024);
 
-    const CliRun full = artcamInShell(fileSizeLimit(8), {"warp", path(input), path("big.artcam"),
-                                                         "-o", out, "--overwrite"});
+    const CliRun full = artcamInShell(
+        fileSizeLimit(8), {"warp", path(input), path("big.artcam"), "-o", out, "--overwrite"});
     QCOMPARE(full.exit_code, 1);
     const QStringList lines = ourLines(full.err);
     QVERIFY2(lines.size() == 1, qPrintable(full.err));
@@ -159,8 +170,9 @@ class TestCliWriteFaults : public QObject {
   // batch on a full disk: every file failed, none counted as written, none left cut.
   void fullDiskBatchWritesNothingCut() {
     const QString folder = path("batch-full");
-    const CliRun run = artcamInShell(fileSizeLimit(8), {"batch", path("big.artcam"), path("big.png"),
-                                                        path("big.jpg"), "-o", folder, "--quiet"});
+    const CliRun run = artcamInShell(
+        fileSizeLimit(8),
+        {"batch", path("big.artcam"), path("big.png"), path("big.jpg"), "-o", folder, "--quiet"});
     QCOMPARE(run.exit_code, 1);
     QVERIFY2(run.err.contains("File too large"), qPrintable(run.err));
     QVERIFY2(artcam::test::visibleFiles(folder).isEmpty(),
@@ -180,7 +192,8 @@ class TestCliWriteFaults : public QObject {
   void fullStandardOutputFails() {
     QFETCH(QStringList, args);
     QVERIFY(writeBytes(path("points.csv"), "x,y\n10,10\n200,150\n"));
-    args.replaceInStrings("LENS", path("lens.artcam")).replaceInStrings("POINTS", path("points.csv"));
+    args.replaceInStrings("LENS", path("lens.artcam"))
+        .replaceInStrings("POINTS", path("points.csv"));
     QProcess p;
     p.setStandardOutputFile("/dev/full");
     p.start(QStringLiteral(ARTCAM_CLI_PATH), args);
@@ -198,10 +211,12 @@ class TestCliWriteFaults : public QObject {
   // `-o -` with standard output closed: refused before standard input is read, so the stdin
   // spool (which would have become descriptor 1) never receives the image.
   void closedStandardOutputRefusesImageStream() {
-    const CliRun run = artcamInShell(":", {"warp", "-", path("lens.artcam"), "-o", "-", "--format", "png"},
-                                     ">&- <" + path("photo.png"));
+    const CliRun run =
+        artcamInShell(":", {"warp", "-", path("lens.artcam"), "-o", "-", "--format", "png"},
+                      ">&- <" + path("photo.png"));
     QCOMPARE(run.exit_code, 1);
-    QVERIFY2(run.err.contains("<stdout>: cannot write: standard output is closed"), qPrintable(run.err));
+    QVERIFY2(run.err.contains("<stdout>: cannot write: standard output is closed"),
+             qPrintable(run.err));
     QVERIFY(!run.err.contains("wrote"));
   }
 
@@ -245,10 +260,11 @@ class TestCliWriteFaults : public QObject {
         "photo": "photo.png", "model": "auto", "pairs": [], "camera": )") +
                                     fileBytes(path("lens.artcam")) + "}"));
     const QString out = path("exported.png");
-    const CliRun run = artcamCli({"export", project, "-o", out, "--camera-out",
-                                  path("missing/x.artcam")});
+    const CliRun run =
+        artcamCli({"export", project, "-o", out, "--camera-out", path("missing/x.artcam")});
     QCOMPARE(run.exit_code, 1);
-    QVERIFY2(run.err.contains("missing") && run.err.contains("does not exist"), qPrintable(run.err));
+    QVERIFY2(run.err.contains("missing") && run.err.contains("does not exist"),
+             qPrintable(run.err));
     QVERIFY(!QFile::exists(out));
   }
 
@@ -259,8 +275,8 @@ class TestCliWriteFaults : public QObject {
     QTest::addColumn<QByteArray>("data");
     QTest::addColumn<QString>("extension");
     QTest::addColumn<QString>("named");
-    const QByteArray history = xmpPacket("<dc:description>" + QByteArray(100000, 'h') +
-                                         "</dc:description>");
+    const QByteArray history =
+        xmpPacket("<dc:description>" + QByteArray(100000, 'h') + "</dc:description>");
     const QByteArray broken = xmpPacket("<dc:title>never closed</rdf:Description>");
     // Ten entities, each ten of the one before: 10^10 bytes once expanded.
     QByteArray bomb = "<?xml version=\"1.0\"?><!DOCTYPE b [<!ENTITY a0 \"aaaaaaaaaa\">";
@@ -270,8 +286,8 @@ class TestCliWriteFaults : public QObject {
     bomb += "]>" + xmpPacket("<dc:title>&a9;</dc:title>");
     const QByteArray xmp_key = QByteArray("XML:com.adobe.xmp") + QByteArray(5, '\0');
     QTest::newRow("comment over 64 KiB to jpeg")
-        << QByteArray("tEXt") << QByteArray("Description") + '\0' + QByteArray(70000, 'd')
-        << "jpg" << "ImageDescription";
+        << QByteArray("tEXt") << QByteArray("Description") + '\0' + QByteArray(70000, 'd') << "jpg"
+        << "ImageDescription";
     QTest::newRow("xmp over 64 KiB to jpeg") << QByteArray("iTXt") << xmp_key + history << "jpg"
                                              << "XMP packet";
     QTest::newRow("malformed xmp to png") << QByteArray("iTXt") << xmp_key + broken << "png"

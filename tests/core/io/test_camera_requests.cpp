@@ -75,14 +75,14 @@ class TestCameraRequests : public QObject {
 
   void anStmapHeaderClaimingAGiantSourceIsRefusedNamingSize() {
     const FrameSize giant{2147483647, 48};
-    const PositionMap map = mapOf(64, 48, giant, [](int i, int j) {
-      return Eigen::Vector2d(1000.0 * i + 0.5, j + 0.5);
-    });
+    const PositionMap map = mapOf(
+        64, 48, giant, [](int i, int j) { return Eigen::Vector2d(1000.0 * i + 0.5, j + 0.5); });
     QVERIFY(writeStmap(path("giant.exr"), {{"", &map}}, StmapConvention::StMap).ok);
     const auto refused = readStmapSamples(path("giant.exr"));
     QVERIFY(!refused.ok());
-    QVERIFY(contains(refused.status.message, "giant.exr: artcam:source_width/artcam:source_height "
-                                             "2147483647x48 has a side beyond the 1048576"));
+    QVERIFY(contains(refused.status.message,
+                     "giant.exr: artcam:source_width/artcam:source_height "
+                     "2147483647x48 has a side beyond the 1048576"));
     QVERIFY(contains(refused.status.message, "--size WxH"));
     StmapSampleOptions sized;  // the photo's size given: the header's claim is not used
     sized.source_px = FrameSize{64000, 48};
@@ -91,26 +91,24 @@ class TestCameraRequests : public QObject {
 
   void aMapThatReadsOnePointOrOneLineIsNoCamera() {
     const FrameSize frame{64, 48};
-    const PositionMap constant = mapOf(64, 48, frame, [](int, int) {
-      return Eigen::Vector2d(32.0, 24.0);
-    });
+    const PositionMap constant =
+        mapOf(64, 48, frame, [](int, int) { return Eigen::Vector2d(32.0, 24.0); });
     QVERIFY(writeStmap(path("constant.exr"), {{"", &constant}}, StmapConvention::StMap).ok);
     const auto one = readStmapSamples(path("constant.exr"));
     QVERIFY(!one.ok());
-    QVERIFY(contains(one.status.message, "constant.exr: every sample of the map reads the same "
-                                         "source point (a constant map)"));
+    QVERIFY(contains(one.status.message,
+                     "constant.exr: every sample of the map reads the same "
+                     "source point (a constant map)"));
 
-    const PositionMap line = mapOf(64, 48, frame, [](int i, int) {
-      return Eigen::Vector2d(i + 0.5, 24.0);
-    });
+    const PositionMap line =
+        mapOf(64, 48, frame, [](int i, int) { return Eigen::Vector2d(i + 0.5, 24.0); });
     QVERIFY(writeStmap(path("line.exr"), {{"", &line}}, StmapConvention::StMap).ok);
     const auto on_line = readStmapSamples(path("line.exr"));
     QVERIFY(!on_line.ok());
     QVERIFY(contains(on_line.status.message, "source points on one line"));
 
-    const PositionMap shift = mapOf(64, 48, frame, [](int i, int j) {
-      return Eigen::Vector2d(i + 3.5, j + 0.5);
-    });
+    const PositionMap shift =
+        mapOf(64, 48, frame, [](int i, int j) { return Eigen::Vector2d(i + 3.5, j + 0.5); });
     QVERIFY(writeStmap(path("shift.exr"), {{"", &shift}}, StmapConvention::StMap).ok);
     QVERIFY(readStmapSamples(path("shift.exr")).ok());
   }

@@ -262,7 +262,8 @@ class TestPly : public QObject {
   void unreadableAndUnwritablePathsAreReported() {
     const auto r = readPly(path("missing.ply"));
     QVERIFY(!r.ok());
-    QVERIFY(QString::fromStdString(r.status.message).contains("missing.ply: cannot read: no such file"));
+    QVERIFY(QString::fromStdString(r.status.message)
+                .contains("missing.ply: cannot read: no such file"));
     const std::string bad = path("no-such-folder/out.ply");
     const Status s = writePly(bad, randomCloud(3, false));
     QVERIFY(!s.ok);

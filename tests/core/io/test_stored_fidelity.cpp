@@ -123,7 +123,8 @@ class TestStoredFidelity : public QObject {
     WriteImageOptions options;
     options.extra_channels = &*extra;
     const std::string stored_out = path("stored-out.exr");
-    const Status s = writeStoredImage(stored_out, std::as_const(rgba).view(), &stored->info, options);
+    const Status s =
+        writeStoredImage(stored_out, std::as_const(rgba).view(), &stored->info, options);
     QVERIFY2(s.ok, s.message.c_str());
     const OIIO::ImageSpec written = specOf(stored_out);
     QCOMPARE(written.nchannels, 5);
@@ -211,7 +212,8 @@ class TestStoredFidelity : public QObject {
     QVERIFY2(stored.ok(), stored.status.message.c_str());
     QVERIFY(stored->info.icc);
     QCOMPARE(stored->info.colour_space, readImage(file)->info.colour_space);
-    const Status s = writeStoredImage(path("adobe-out.png"), std::as_const(*stored).view(), &stored->info);
+    const Status s =
+        writeStoredImage(path("adobe-out.png"), std::as_const(*stored).view(), &stored->info);
     QVERIFY2(s.ok, s.message.c_str());
     QCOMPARE(profileOf(specOf(path("adobe-out.png"))), adobe);
   }

@@ -47,10 +47,12 @@ void expectRefusedAtOnce(const std::string& path, const std::string& cause) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ::alarm(0);
-    const QString what = QString("%1 reader on %2: \"%3\"").arg(name, path.c_str(), message.c_str());
+    const QString what =
+        QString("%1 reader on %2: \"%3\"").arg(name, path.c_str(), message.c_str());
     QVERIFY2(!message.empty(), qPrintable(what + ": read"));
     QVERIFY2(message.rfind(path + ": cannot read: ", 0) == 0, qPrintable(what));
-    QVERIFY2(message.find(cause) != std::string::npos, qPrintable(what + " lacks " + cause.c_str()));
+    QVERIFY2(message.find(cause) != std::string::npos,
+             qPrintable(what + " lacks " + cause.c_str()));
     QVERIFY2(message.find('\n') == std::string::npos, qPrintable(what));
     QVERIFY2(seconds < 1.0, qPrintable(what + QString(": took %1 s").arg(seconds)));
   }
@@ -91,7 +93,8 @@ class TestTextInput : public QObject {
     const auto start = std::chrono::steady_clock::now();
     const Result<std::string> text = readTextInput(path);
     QVERIFY(!text);
-    QVERIFY2(text.status.message.find("64.0 MiB") != std::string::npos, text.status.message.c_str());
+    QVERIFY2(text.status.message.find("64.0 MiB") != std::string::npos,
+             text.status.message.c_str());
     QVERIFY(std::chrono::steady_clock::now() - start < std::chrono::milliseconds(200));
     const Result<std::vector<PointMatch>> matches = readMatchesCsv(path);
     QVERIFY(!matches);
@@ -136,7 +139,8 @@ class TestTextInput : public QObject {
   void aMissingFileSaysSo() {
     const Result<std::string> text = readTextInput("/nonexistent/cam.artcam");
     QVERIFY(!text);
-    QCOMPARE(text.status.message, std::string("/nonexistent/cam.artcam: cannot read: no such file"));
+    QCOMPARE(text.status.message,
+             std::string("/nonexistent/cam.artcam: cannot read: no such file"));
   }
 };
 

@@ -7,10 +7,10 @@
 // own by a closed form: a centred radial lens keeps the frame centre fixed.
 // Real database lenses: a ptlens compact zoom (piecewise), a ptlens zoom with strong TCA
 // (single camera, three layers), a ptlens prime calibrated on three crops, a stereographic fisheye converted to rectilinear, and --distort.
+#include "core/effects/chromatic.h"
 #include "core/io/artcam_file.h"
 #include "core/lens/lens_camera.h"
 #include "core/lens/lens_database.h"
-#include "core/effects/chromatic.h"
 #include "core/model/frames.h"
 #include "tests/support/test_support.h"
 

@@ -182,10 +182,14 @@ class TestCamera : public QObject {
     for (const Eigen::Vector2d& n : {Eigen::Vector2d(0.2, 0.0), Eigen::Vector2d(-0.2, 0.0),
                                      Eigen::Vector2d(0.12, 0.16), Eigen::Vector2d(0.0, 0.2)}) {
       const auto y = targetPixelFromSourcePixel(pole, pixelFromNormalized(frame, n));
-      QVERIFY2(!y, qPrintable(QString("(%1, %2) -> (%3, %4)").arg(n.x()).arg(n.y())
-                                  .arg(y ? y->x() : 0).arg(y ? y->y() : 0)));
+      QVERIFY2(!y, qPrintable(QString("(%1, %2) -> (%3, %4)")
+                                  .arg(n.x())
+                                  .arg(n.y())
+                                  .arg(y ? y->x() : 0)
+                                  .arg(y ? y->y() : 0)));
     }
-    const auto off = targetPixelFromSourcePixel(pole, pixelFromNormalized(frame, {0.2 + 1e-6, 0.0}));
+    const auto off =
+        targetPixelFromSourcePixel(pole, pixelFromNormalized(frame, {0.2 + 1e-6, 0.0}));
     QVERIFY(off && off->allFinite());
     const auto centre = targetPixelFromSourcePixel(pole, pixelFromNormalized(frame, {0.0, 0.0}));
     QVERIFY(centre && (*centre - Eigen::Vector2d(32, 24)).norm() < 1e-9);

@@ -50,7 +50,8 @@ std::string projectWithLayers(int count, int side) {
     layers += std::string(i ? "," : "") + "{\"name\": \"p\", \"size\": [" + std::to_string(side) +
               ", " + std::to_string(side) + "], \"mask\": \"" + mask + "\", \"anchors\": []}";
   return "{\"format\": \"artcam-studio-project\", \"version\": 2, \"photo\": \"p.png\", "
-         "\"pairs\": [], \"depth\": {\"layers\": [" + layers + "]}}";
+         "\"pairs\": [], \"depth\": {\"layers\": [" +
+         layers + "]}}";
 }
 
 class Budget {
@@ -94,9 +95,9 @@ class TestProjectBudget : public QObject {
       Budget budget("256");
       const Result<StudioProject> read = parseStudioProject(text, "/work/one.artcamproj");
       QVERIFY(!read);
-      QVERIFY2(read.status.message.find("/depth/layers: 1 depth mask (16.0 MiB)") !=
-                   std::string::npos,
-               read.status.message.c_str());
+      QVERIFY2(
+          read.status.message.find("/depth/layers: 1 depth mask (16.0 MiB)") != std::string::npos,
+          read.status.message.c_str());
       QVERIFY2(read.status.message.find("(ARTCAM_MAX_MEMORY_MB)") != std::string::npos,
                read.status.message.c_str());
     }
@@ -123,9 +124,9 @@ class TestProjectBudget : public QObject {
     const Result<ProjectScene> scene = loadProjectScene(project, "doc.artcamproj");
     QVERIFY(!scene);
     const std::string& m = scene.status.message;
-    QVERIFY2(m.rfind("doc.artcamproj: photo: 4 depth masks (3.8 MiB) and the 1000x1000 photo", 0) ==
-                 0,
-             m.c_str());
+    QVERIFY2(
+        m.rfind("doc.artcamproj: photo: 4 depth masks (3.8 MiB) and the 1000x1000 photo", 0) == 0,
+        m.c_str());
     QVERIFY2(m.find("more than the memory budget of 20.0 MiB (ARTCAM_MAX_MEMORY_MB)") !=
                  std::string::npos,
              m.c_str());
@@ -139,18 +140,22 @@ class TestProjectBudget : public QObject {
     const auto withEffects = [](size_t n) {
       std::string effects;
       for (size_t i = 0; i < n; ++i)
-        effects += std::string(i ? "," : "") + "{\"effect\": \"twist\", \"params\": {\"rate\": 0.01}}";
+        effects +=
+            std::string(i ? "," : "") + "{\"effect\": \"twist\", \"params\": {\"rate\": 0.01}}";
       return "{\"format\": \"artcam-studio-project\", \"version\": 3, \"photo\": \"p.png\", "
-             "\"effects\": [" + effects + "]}";
+             "\"effects\": [" +
+             effects + "]}";
     };
-    const Result<StudioProject> most = parseStudioProject(withEffects(kMaxProjectEffects), "/w/s.artcamproj");
+    const Result<StudioProject> most =
+        parseStudioProject(withEffects(kMaxProjectEffects), "/w/s.artcamproj");
     QVERIFY2(most, most.status.message.c_str());
     QCOMPARE(most->effects.size(), kMaxProjectEffects);
     const Result<StudioProject> over =
         parseStudioProject(withEffects(kMaxProjectEffects + 1), "/w/s.artcamproj");
     QVERIFY(!over);
-    QCOMPARE(over.status.message,
-             std::string("s.artcamproj: /effects: 257 effects, more than the 256 a stack may hold"));
+    QCOMPARE(
+        over.status.message,
+        std::string("s.artcamproj: /effects: 257 effects, more than the 256 a stack may hold"));
   }
 };
 

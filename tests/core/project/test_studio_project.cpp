@@ -106,20 +106,23 @@ class TestStudioProject : public QObject {
 
   void damagedFilesNameThePlace() {
     const std::pair<std::string, std::string> cases[] = {
-        {R"("effects":[{"effect":"blurr"}]})", "x.artcamproj: /effects/0/effect: unknown effect \"blurr\""},
+        {R"("effects":[{"effect":"blurr"}]})",
+         "x.artcamproj: /effects/0/effect: unknown effect \"blurr\""},
         {R"("effects":[{"effect":"barrel","params":{"k":[0.9]}}]})",
          "x.artcamproj: /effects/0/params/k: k = 0.9 is outside its range"},
         {R"("effects":[{"effect":"barrel","params":{"rate":[0.1]}}]})",
          "x.artcamproj: /effects/0/params/rate: not a parameter of barrel"},
         {R"("effects":{}})", "x.artcamproj: /effects: expected an array"},
-        {R"("pairs":[{"source":[1,"a"],"target":[0,0]}]})", "x.artcamproj: /pairs/0/source: expected [x, y]"},
+        {R"("pairs":[{"source":[1,"a"],"target":[0,0]}]})",
+         "x.artcamproj: /pairs/0/source: expected [x, y]"},
         {R"("depth":{"layers":[{"size":[2,2],"mask":"%%%%"}]}})",
          "x.artcamproj: /depth/layers/0/mask: not base64"},
         {R"("depth":{"layers":[{"size":[2,2],"mask":"AAQ=","anchors":[{"pixel":[0,0],"depth":-1}]}]}})",
          "x.artcamproj: /depth/layers/0/anchors/0/depth: expected a number greater than 0"},
         {R"("camera":{"format":"artcam"}})", "x.artcamproj: /camera"},
         {R"("view":[1]})", "x.artcamproj: /view: expected an object"},
-        {R"("lines":[{"points":[[1,2],[3]]}]})", "x.artcamproj: /lines/0/points/1: expected [x, y]"},
+        {R"("lines":[{"points":[[1,2],[3]]}]})",
+         "x.artcamproj: /lines/0/points/1: expected [x, y]"},
         // The match readers' bound (fit_record.h), as the CSV reader keeps it.
         {R"("pairs":[{"source":[1e300,2],"target":[0,0]}]})",
          "x.artcamproj: /pairs/0/source/0: 1e+300 is beyond any pixel coordinate (|value| > 1e9)"},

@@ -18,7 +18,8 @@ class TestMemoryBudget : public QObject {
     qputenv("ARTCAM_MAX_MEMORY_MB", "50");
     QCOMPARE(memoryBudgetBytes(), 50.0 * 1024 * 1024);
     QCOMPARE(memoryBudgetProblem(), std::string());
-    QCOMPARE(describeMemoryBudget(), std::string("the memory budget of 50.0 MiB (ARTCAM_MAX_MEMORY_MB)"));
+    QCOMPARE(describeMemoryBudget(),
+             std::string("the memory budget of 50.0 MiB (ARTCAM_MAX_MEMORY_MB)"));
     qputenv("ARTCAM_MAX_MEMORY_MB", "1.5e3");
     QCOMPARE(memoryBudgetBytes(), 1500.0 * 1024 * 1024);
   }
