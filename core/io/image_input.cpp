@@ -9,6 +9,7 @@
 #include "core/util/memory_budget.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -16,10 +17,13 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -70,6 +74,18 @@ bool readByExtension(const std::string& format) {
   return format == "targa" || format == "rla" || format == "raw" || format == "ffmpeg";
 }
 
+// The format whose reader OpenImageIO registers for `extension` (no dot, any case), or "". Looked
+// up in OpenImageIO's extension list rather than by ImageInput::create(extension), which, for an
+// extension no reader claims, instantiates every reader it has (LibRaw's among them) to ask it.
+std::string formatForExtension(std::string extension) {
+  static const std::map<std::string, std::vector<std::string>> formats = OIIO::get_extension_map();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const auto& [format, extensions] : formats)
+    if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end())
+      return format;
+  return {};
+}
+
 // The reader for `path`, chosen before OpenImageIO opens anything: the extension's format when
 // the file's first bytes are that format's signature (or it has none to tell), else the
 // signature's format, else none. OpenImageIO alone would try every reader it has on a file
@@ -88,12 +104,7 @@ Result<OIIO::ImageInput::unique_ptr> createReader(const std::string& path) {
   const std::string signature = formatFromSignature(head);
   std::string by_extension;
   const std::string extension = std::filesystem::path(path).extension().string();
-  if (extension.size() > 1) {
-    if (auto probe = OIIO::ImageInput::create(extension.substr(1)))
-      by_extension = probe->format_name();
-    else
-      OIIO::geterror();  // no reader for that extension: clear the thread's message
-  }
+  if (extension.size() > 1) by_extension = formatForExtension(extension.substr(1));
   const std::string format =
       !by_extension.empty() && (by_extension == signature || readByExtension(by_extension))
           ? by_extension
