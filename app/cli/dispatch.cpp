@@ -3,6 +3,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
 #include "app/cli/memory.h"
+#include "app/cli/terminal_text.h"
 #include "core/io/standard_streams.h"
 #include "core/util/memory_budget.h"
 
@@ -130,6 +131,7 @@ int runCommand(int argc, char** argv) {
 
 int run(int argc, char** argv) {
   guardStandardDescriptors();
+  guardTerminalStreams();
   const int status = runCommand(argc, argv);
   // What was printed on standard output must have arrived: else the command failed.
   if (const Status out = finishStandardOutput(); !out) {

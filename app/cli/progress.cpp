@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "app/cli/progress.h"
+#include "app/cli/terminal_text.h"
 
 #include <unistd.h>
 
@@ -70,8 +71,7 @@ void ProgressBar::finish() {
 
 void ProgressBar::clearLocked() {
   if (!drawn_) return;
-  std::fprintf(stderr, "\r\033[K");
-  std::fflush(stderr);
+  std::fputs("\r\033[K", terminalControlStream());
   drawn_ = false;
 }
 
@@ -97,7 +97,9 @@ void ProgressBar::redrawLocked(bool force) {
   } else {
     std::snprintf(text, sizeof text, "%s %s", bar.c_str(), stage_.c_str());
   }
-  std::fprintf(stderr, "\r\033[K%s", text);
+  // The line's own control sequence raw; its text (a stage, names) as any other.
+  std::fputs("\r\033[K", terminalControlStream());
+  std::fputs(text, stderr);
   std::fflush(stderr);
   drawn_ = true;
 }
