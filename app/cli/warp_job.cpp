@@ -3,6 +3,7 @@
 
 #include "app/cli/commands.h"
 #include "app/cli/memory.h"
+#include "core/depth/depth_raster.h"
 #include "core/io/depth_file.h"
 #include "core/util/memory_budget.h"
 
@@ -295,6 +296,11 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
                        sizeText(request.second->width, request.second->height) +
                        ", not the photo's " + sizeText(in.image.width, in.image.height) +
                        ": it is stretched to the photo's frame";
+      if (depth)
+        if (const std::string stretched = depthMapAspectNote({depth->width, depth->height},
+                                                             {in.image.width, in.image.height});
+            !stretched.empty())
+          out.warning += (out.warning.empty() ? "" : "; ") + stretched;
     }
     if (!summary.cancelled && !source.extra.empty()) {
       out.extra = renderExtra(camera, std::move(source.extra), out.width, out.height, options,

@@ -114,4 +114,14 @@ std::optional<double> depthAt(const ImageF& depth, int x, int y) {
   return static_cast<double>(p[0]) / p[1];
 }
 
+std::string depthMapAspectNote(FrameSize map, FrameSize photo) {
+  if (!map.isImage() || !photo.isImage()) return {};
+  // The map's height at the photo's aspect, in the map's pixels.
+  const double expected_height = static_cast<double>(photo.height) * map.width / photo.width;
+  if (std::abs(map.height - expected_height) <= 1.0) return {};
+  return "the depth map is " + std::to_string(map.width) + "x" + std::to_string(map.height) +
+         " but the photo is " + std::to_string(photo.width) + "x" + std::to_string(photo.height) +
+         " (another aspect): depth is stretched per axis";
+}
+
 }  // namespace artcam

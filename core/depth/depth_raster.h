@@ -26,10 +26,12 @@
 
 #include "core/depth/inverse_depth_plane.h"
 #include "core/depth/region_mask.h"
+#include "core/model/camera.h"
 #include "core/model/image.h"
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace artcam {
@@ -66,5 +68,10 @@ ImageF rasteriseDepth(const std::vector<DepthLayer>& layers, int photo_width, in
 // Depth at a pixel of a raster (2 channels) or a depth file's image (1 channel), or nothing
 // where it has no depth.
 std::optional<double> depthAt(const ImageF& depth, int x, int y);
+
+// "" when a depth map of `map`'s size covers a photo of `photo`'s without stretching (the same
+// aspect, to a rounding pixel: a map at a lower resolution is sampled as it is, as a sensor's
+// depth often is); else the warning every path prints, naming both sizes.
+std::string depthMapAspectNote(FrameSize map, FrameSize photo);
 
 }  // namespace artcam

@@ -180,6 +180,11 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
   scene.camera = assembleDocumentArtcam(base, project.effects, frame, has_depth);
   if (!base_note.empty())
     scene.camera.note = base_note + (scene.camera.note.empty() ? "" : "; " + scene.camera.note);
+  // As the render front door says of `warp --depth`: a map of another aspect is stretched.
+  if (const std::string stretched = depthMapAspectNote({map.width, map.height}, frame);
+      !map.empty() && !stretched.empty())
+    scene.camera.note = (scene.camera.note.empty() ? "" : scene.camera.note + "; ") +
+                        project.depth_map->path + ": " + stretched;
   return R::success(std::move(scene));
 }
 

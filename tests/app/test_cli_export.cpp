@@ -12,6 +12,7 @@
 
 #include <QCryptographicHash>
 #include <QFile>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QTemporaryDir>
@@ -73,6 +74,38 @@ class TestCliExport : public QObject {
     const float* far_out = image->image.pixel(560, 20);
     const float* far_in = photo->image.pixel(560, 20);
     QVERIFY2(far_out[2] > far_in[2] + 0.05f, qPrintable(QString("%1 vs %2").arg(far_out[2]).arg(far_in[2])));
+  }
+
+  void aDepthMapOfAnotherAspectIsSaid() {
+    // The project's depth map drives depth of field: one of another shape than the photo is
+    // stretched, and said to be, as `warp --depth` says it; one of the photo's aspect is not.
+    QFile in(project_);
+    QVERIFY(in.open(QIODevice::ReadOnly));
+    QJsonObject doc = QJsonDocument::fromJson(in.readAll()).object();
+    const auto exportWithMap = [&](int width, int height) {
+      ImageF depth(width, height, 1);
+      std::fill(depth.data.begin(), depth.data.end(), 1.5f);
+      const QString map = dir_.filePath(QString("map-%1x%2.exr").arg(width).arg(height));
+      if (!writeImage(map.toStdString(), depth).ok) return Run{};
+      QJsonObject depth_part;
+      depth_part["layers"] = QJsonArray();
+      depth_part["map"] = QJsonObject{{"path", map}};
+      doc["depth"] = depth_part;
+      const QString project = dir_.filePath("map.artcamproj");
+      QFile f(project);
+      if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) return Run{};
+      f.write(QJsonDocument(doc).toJson());
+      f.close();
+      return artcamCli({"export", project, "-o", dir_.filePath("map.png"), "--overwrite"});
+    };
+    const Run same = exportWithMap(60, 40);
+    QVERIFY2(same.exit_code == 0, qPrintable(same.err));
+    QVERIFY2(!same.err.contains("aspect"), qPrintable(same.err));
+    const Run wide = exportWithMap(80, 20);
+    QVERIFY2(wide.exit_code == 0, qPrintable(wide.err));
+    QVERIFY2(wide.err.contains("map-80x20.exr: the depth map is 80x20 but the photo is 600x400 "
+                               "(another aspect): depth is stretched per axis"),
+             qPrintable(wide.err));
   }
 
   void refusesBadInputWithoutWriting() {

@@ -52,6 +52,19 @@ class TestDepth : public QObject {
   Q_OBJECT
 
  private slots:
+  void aMapOfAnotherAspectIsSaidToStretch() {
+    // A map at the photo's aspect, at any resolution, is sampled as it is (a sensor's depth is
+    // often a quarter of the photo's side); another shape is stretched, and the note names both.
+    QCOMPARE(depthMapAspectNote({600, 400}, {600, 400}), std::string());
+    QCOMPARE(depthMapAspectNote({150, 100}, {600, 400}), std::string());
+    QCOMPARE(depthMapAspectNote({767, 511}, {6000, 4000}), std::string());  // rounded
+    QCOMPARE(depthMapAspectNote({80, 20}, {600, 400}),
+             std::string("the depth map is 80x20 but the photo is 600x400 (another aspect): "
+                         "depth is stretched per axis"));
+    QVERIFY(!depthMapAspectNote({400, 600}, {600, 400}).empty());     // turned
+    QCOMPARE(depthMapAspectNote({0, 0}, {600, 400}), std::string());  // no map
+  }
+
   void planeFromThreePointsMatchesAPinholePlane() {
     const PlaneScene scene;
     std::array<DepthAnchor, 3> anchors;
