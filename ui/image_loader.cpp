@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/image_loader.h"
 
+#include "core/io/stored_image.h"
+#include "core/util/memory_budget.h"
+
 #include <QTimer>
+
+#include <algorithm>
+#include <string>
 
 namespace artcam::ui {
 
@@ -12,8 +18,33 @@ struct LoadOutcome {
   QString message;
 };
 
+// What the studio holds per photo pixel beside the photo as float (4 bytes a channel, at least
+// the 4 of a render): the depth raster the planes make at its size (8) and the full-size float
+// RGBA render an export makes (16). The reduced copies are bounded (photo.h) and left out.
+constexpr double kStudioBytesPerPixelBesideThePhoto = 8.0 + 16.0;
+
+// "" when a photo of this header fits the memory budget as the studio holds it, else why not.
+// Checked from the header before any pixel is decoded: the readers' own check counts the
+// float photo alone, which is what the command line holds.
+QString studioMemoryProblem(const QString& path) {
+  const Result<StoredShape> shape = readStoredShape(path.toStdString());
+  if (!shape) return {};  // the read that follows names what is wrong with the file
+  const double pixels = static_cast<double>(shape->width) * static_cast<double>(shape->height);
+  const double bytes =
+      pixels * (4.0 * std::max(4, shape->channels) + kStudioBytesPerPixelBesideThePhoto);
+  if (bytes <= memoryBudgetBytes()) return {};
+  return QString::fromStdString(
+      path.toStdString() + ": cannot open: " + std::to_string(shape->width) + "x" +
+      std::to_string(shape->height) + " pixels need " + describeBytes(bytes) +
+      " in the studio (the photo, its depth and its full-size render), "
+      "more than " +
+      describeMemoryBudget());
+}
+
 // readImage and the reduced copies, progress 0…1 over both.
 LoadOutcome readPhoto(const QString& path, JobContext& job) {
+  if (const QString problem = studioMemoryProblem(path); !problem.isEmpty())
+    return LoadOutcome{nullptr, problem};
   ReadImageOptions options;
   // The last 10 % are the reduced copies.
   options.progress = [&job](double f) { return job.progress(f * 0.9); };
@@ -28,6 +59,8 @@ LoadOutcome readPhoto(const QString& path, JobContext& job) {
 
 // The first look (core/io/first_look.h) when the file has one, else the whole read.
 LoadOutcome readFirstLookOrPhoto(const QString& path, JobContext& job) {
+  if (const QString problem = studioMemoryProblem(path); !problem.isEmpty())
+    return LoadOutcome{nullptr, problem};
   Result<std::optional<FirstLook>> look =
       readFirstLook(path.toStdString(), kLivePreviewMaxWidth, kLivePreviewMaxHeight,
                     [&job](double f) { return job.progress(f * 0.9); });
