@@ -73,6 +73,8 @@ put("artcam", "nasty-nan.artcam", json.dumps(camera([("position", 3)])).replace(
 put("artcam", "nasty-giant-frame.artcam",
     json.dumps(camera([("position", 3)], w=2147483648, h=2147483647)))
 put("artcam", "nasty-frame-negative.artcam", json.dumps(camera([("position", 3)], w=-1)))
+# One pixel past kMaxFrameSide (core/model/artcam.h): a camera no command can write or render.
+put("artcam", "nasty-frame-over-limit.artcam", json.dumps(camera([("position", 3)], w=(1 << 20) + 1)))
 big = camera([("position", 3)])
 big["blocks"] = big["blocks"] * 3000
 big["stages"] = [{"tensors": [[[]] * 9000] + [0] * 8999}]
@@ -101,6 +103,11 @@ put("matches_csv", "seed-enabled.csv",
 put("matches_csv", "nasty-out-of-range.csv", "src_x,src_y,dst_x,dst_y\n1e999,2,3,4\n")
 put("matches_csv", "nasty-inf.csv", "src_x,src_y,dst_x,dst_y\ninf,2,3,nan\n")
 put("matches_csv", "nasty-commas.csv", "src_x,src_y,dst_x,dst_y\n" + "," * 5000 + "\n")
+# Traced lines (line,x,y: parseLinesCsv when the header starts "line"): a seed, and 5 000
+# lines of one point each, whose label search once grew with the square of the rows.
+put("matches_csv", "seed-lines.csv", "line,x,y\ntop,10,20\ntop,300,25\ntop,590,20\nleft,10,20\nleft,14,200\n")
+put("matches_csv", "nasty-lines-many.csv",
+    "line,x,y\n" + "".join("L%d,%d.5,1.5\n" % (k, k % 64) for k in range(5000)))
 
 # ---- colour-sample CSV (sRGB-encoded when the input's size is odd) ----
 put("colour_csv", "seed-linear.csv",
@@ -168,6 +175,27 @@ put("project", "nasty-lying-mask.artcamproj", json.dumps(lying))
 bad_view = json.loads(json.dumps(project))
 bad_view["view"]["preview_mode"] = 1000000
 put("project", "nasty-preview-mode.artcamproj", json.dumps(bad_view))
+# A bomb: 12 layers of 32768^2 masks, each one run-length run (8 characters), 12 GiB asked of
+# 2 KB; refused by the whole-document budget before any mask is decoded.
+_side = 32768
+_run = bytearray([0])
+_n = _side * _side
+while True:
+    _run.append((_n & 0x7F) | (0x80 if _n >= 0x80 else 0))
+    _n >>= 7
+    if _n == 0:
+        break
+bomb = json.loads(json.dumps(project))
+bomb["depth"]["layers"] = [{"name": "p", "size": [_side, _side],
+                            "mask": base64.b64encode(bytes(_run)).decode(), "anchors": []}] * 12
+put("project", "nasty-mask-bomb.artcamproj", json.dumps(bomb))
+# More effects than a stack may hold (kMaxProjectEffects): refused, not worked through.
+many_effects = dict(project, version=3, effects=[{"effect": "twist", "params": {"rate": [0.001]}}] * 300)
+put("project", "nasty-effects-over-limit.artcamproj", json.dumps(many_effects))
+# A match far beyond any pixel (kMaxMatchValue): once fitted to the identity without a word.
+huge_match = json.loads(json.dumps(project))
+huge_match["pairs"] = [{"source": [1e300, 2], "target": [3, 4]}]
+put("project", "nasty-huge-match.artcamproj", json.dumps(huge_match))
 put("project", "nasty-deep-nesting.artcamproj", '{"a":' * 5000 + "1" + "}" * 5000)
 put("project", "nasty-deep-camera.artcamproj",
     json.dumps(dict(project, camera={})).replace('"camera": {}', '"camera": ' + '{"a":' * 1000 + "1" + "}" * 1000))

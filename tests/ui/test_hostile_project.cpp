@@ -53,6 +53,15 @@ class TestHostileProject : public QObject {
     // The whole-document budget refuses this before its mask is decoded.
     QTest::newRow("lying mask") << "nasty-lying-mask.artcamproj"
                                 << "/depth/layers: 1 depth mask";
+    // Twelve 32768^2 masks in 2 KB of JSON: the document budget, before any is decoded.
+    QTest::newRow("mask bomb") << "nasty-mask-bomb.artcamproj"
+                               << "/depth/layers: 12 depth masks";
+    QTest::newRow("effects over the limit")
+        << "nasty-effects-over-limit.artcamproj"
+        << "/effects: 300 effects, more than the 256 a stack may hold";
+    QTest::newRow("match beyond any pixel")
+        << "nasty-huge-match.artcamproj"
+        << "/pairs/0/source/0: 1e+300 is beyond any pixel coordinate";
     QTest::newRow("preview mode") << "nasty-preview-mode.artcamproj"
                                   << "/view/preview_mode: expected 0 to 3";
     // Found by fuzz_project: a raw newline inside the model name split the message in two.

@@ -54,7 +54,8 @@ std::string slurp(const fs::path& path) {
   return text.str();
 }
 
-// The fuzz targets pick the variant the same way (fuzz/fuzz_matches_csv.cpp, fuzz_colour_csv.cpp).
+// The fuzz targets pick the variant the same way (a text starting "line" is a traced-lines CSV)
+// (fuzz/fuzz_matches_csv.cpp, fuzz_colour_csv.cpp).
 int matchDimension(const std::string& text) {
   return text.find("src_z") != std::string::npos ? 3 : 2;
 }
@@ -77,7 +78,12 @@ std::map<std::string, Reader> readers() {
        }},
       {"matches_csv",
        [](const std::string& p) {
-         const auto r = readMatchesCsv(p, matchDimension(slurp(p)));
+         const std::string text = slurp(p);
+         if (text.rfind("line", 0) == 0) {
+           const auto r = readLinesCsv(p);
+           return outcomeOf(r, r.ok() ? r->size() : 0);
+         }
+         const auto r = readMatchesCsv(p, matchDimension(text));
          return outcomeOf(r, r.ok() ? r->size() : 0);
        }},
       {"colour_csv",
