@@ -6,6 +6,7 @@
 //   { "format": "artcam-studio-project", "version": 4,
 //     "photo": "relative/or/absolute/path.png",
 //     "model": "auto",
+//     "line_model": "radial",                    // optional, v4: the lines' model; absent: auto
 //     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],   // photo pixels
 //     "camera": { ….artcam document… },          // optional: camera set by hand (any kind)
 //     "effects": [ {"effect": "aerial-perspective", "params": {"near": [1], …}}, … ],  // v3
@@ -44,6 +45,7 @@
 #include "core/depth/region_mask.h"
 #include "core/effects/effect_table.h"
 #include "core/fit/fit_image.h"
+#include "core/fit/fit_lines.h"
 #include "core/io/depth_file.h"
 #include "core/model/artcam.h"
 #include "core/model/line_trace.h"
@@ -87,6 +89,7 @@ struct StudioProject {
   std::vector<PointMatch> pairs;  // photo pixels, 2D
   std::vector<LineTrace> lines;   // straight edges traced in the photo (photo pixels)
   ModelClass model = ModelClass::Auto;
+  LineModel line_model = LineModel::Auto;  // the model chosen for the lines ("line_model")
   std::optional<Artcam> manual_camera;
   std::vector<EffectStep> effects;  // applied in order after the geometry and colour
   std::vector<ProjectDepthLayer> depth_layers;
