@@ -57,7 +57,7 @@ bool LineSet::operator==(const LineSet& o) const {
   if (open != o.open || lines.size() != o.lines.size()) return false;
   for (size_t i = 0; i < lines.size(); ++i)
     if (lines[i].label != o.lines[i].label || lines[i].points != o.lines[i].points ||
-        lines[i].enabled != o.lines[i].enabled)
+        lines[i].enabled != o.lines[i].enabled || lines[i].role != o.lines[i].role)
       return false;
   return true;
 }

@@ -113,6 +113,20 @@ void pushSetLineEnabled(Document* document, int index, bool enabled) {
       document, std::move(next), enabled ? tr("Enable line") : tr("Disable line")));
 }
 
+bool pushSetLineRoles(Document* document, const std::vector<int>& indices, LineRole role) {
+  LineSet next = document->lineSet();
+  bool changed = false;
+  for (int i : indices) {
+    if (i < 0 || i >= static_cast<int>(next.lines.size())) continue;
+    LineTrace& line = next.lines[static_cast<size_t>(i)];
+    changed = changed || line.role != role;
+    line.role = role;
+  }
+  if (!changed) return false;
+  document->undoStack()->push(new SetLinesCommand(document, std::move(next), tr("Line role")));
+  return true;
+}
+
 bool pushClearLines(Document* document) {
   if (document->lines().empty() && document->openLine().empty()) return false;
   document->undoStack()->push(new SetLinesCommand(document, LineSet{}, tr("Clear lines")));

@@ -49,6 +49,10 @@ bool pushDeleteLines(Document* document, std::vector<int> indices);
 // Enables or disables finished line `index` (the Lines panel's check box): a disabled line
 // stays drawn but is not fitted.
 void pushSetLineEnabled(Document* document, int index, bool enabled);
+// Gives the finished lines `indices` a role (horizontal, vertical or none), one undo step; a
+// role does not change the fit, it is what the Lines panel measures each line's tilt against.
+// False when nothing changes.
+bool pushSetLineRoles(Document* document, const std::vector<int>& indices, LineRole role);
 // Moves point `point` of finished line `line`; a drag passes one gesture id for all its moves.
 void pushMoveLinePoint(Document* document, int line, int point, const Eigen::Vector2d& to_px,
                        int gesture);

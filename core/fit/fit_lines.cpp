@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 namespace artcam {
@@ -399,11 +400,21 @@ std::vector<LineBow> lineBows(const Camera& camera, const std::vector<LineTrace>
       const TlsLine tls = tlsLine(y);
       const Eigen::VectorXd d = tls.normal.transpose() * (y.colwise() - tls.centroid);
       bow.max_px = d.cwiseAbs().maxCoeff();
+      double angle = std::atan2(tls.tangent.y(), tls.tangent.x()) * 180.0 / std::numbers::pi;
+      if (angle > 90.0) angle -= 180.0;
+      if (angle <= -90.0) angle += 180.0;
+      bow.angle_deg = angle;
       bow.rms_px = std::sqrt(d.squaredNorm() / static_cast<double>(d.size()));
     }
     bows.push_back(bow);
   }
   return bows;
+}
+
+double tiltFromRoleDeg(const LineBow& bow, LineRole role) {
+  if (role == LineRole::Horizontal) return bow.angle_deg;
+  if (role != LineRole::Vertical) return 0.0;
+  return bow.angle_deg > 0 ? bow.angle_deg - 90.0 : bow.angle_deg + 90.0;
 }
 
 Status LinesFitOptions::check(const FieldNames& names) const {

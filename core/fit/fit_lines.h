@@ -82,7 +82,14 @@ struct LineBow {
   double max_px = 0.0;  // the remaining bow
   double rms_px = 0.0;
   bool mapped = true;   // false: a point fell on the camera's pole
+  // The mapped line's direction (its total-least-squares line), degrees from the target's x
+  // axis towards +y, in (-90, 90]: 0 level, 90 plumb.
+  double angle_deg = 0.0;
 };
+
+// How far a line is tilted from its role's direction, degrees (signed, in (-90, 90]); 0 for a
+// line without a role.
+double tiltFromRoleDeg(const LineBow& bow, LineRole role);
 
 struct LinesFitSummary {
   Status status;      // not ok: no camera; the message names the cause

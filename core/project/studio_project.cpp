@@ -305,6 +305,16 @@ StudioProject projectAt(const Json& root, const std::string& file,
         if (!o["enabled"].is_boolean()) refuse(where + "/enabled", "expected true or false");
         line.enabled = o["enabled"].get<bool>();
       }
+      if (o.contains("role")) {
+        const std::string role = stringAt(o["role"], where + "/role");
+        if (role == "horizontal")
+          line.role = LineRole::Horizontal;
+        else if (role == "vertical")
+          line.role = LineRole::Vertical;
+        else if (role != "none")
+          refuse(where + "/role",
+                 "unknown role " + describe(o["role"]) + " (horizontal, vertical or none)");
+      }
       p.lines.push_back(std::move(line));
     }
   }
@@ -448,7 +458,10 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
     for (const LineTrace& line : project.lines) {
       Json points = Json::array();
       for (const Eigen::Vector2d& q : line.points) points.push_back(pointJson(q));
-      lines.push_back({{"label", line.label}, {"points", points}, {"enabled", line.enabled}});
+      Json entry = {{"label", line.label}, {"points", points}, {"enabled", line.enabled}};
+      if (line.role != LineRole::None)
+        entry["role"] = line.role == LineRole::Horizontal ? "horizontal" : "vertical";
+      lines.push_back(std::move(entry));
     }
     root["lines"] = lines;
   }

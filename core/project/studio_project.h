@@ -10,7 +10,8 @@
 //     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],   // photo pixels
 //     "camera": { ….artcam document… },          // optional: camera set by hand (any kind)
 //     "effects": [ {"effect": "aerial-perspective", "params": {"near": [1], …}}, … ],  // v3
-//     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true}, … ],   // v4, photo px
+//     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true,
+//                 "role": "horizontal"}, … ],   // v4, photo px; role optional (or "vertical")
 //     "view": { … },                                // the studio's view state (opaque here)
 //     "depth": {                                    // optional: depth planes and map (v2)
 //       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",

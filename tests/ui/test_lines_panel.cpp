@@ -3,9 +3,10 @@
 // horizontal and two vertical grid lines of tests/support/barrel_grid.h, a 90 px grid through a
 // barrel lens) is traced point by point through the line commands, as the Line tool does: the
 // document's camera must keep the grid's spacing within 3 % of its 90 px truth; the panel lists
-// the lines with their remaining bow, deletes a selected line in ONE undo step and toggles one
-// off; the model row offers Radial and disables the pairs-only models; the Pairs panel says the
-// lines drive the fit instead of reporting an empty pairs fit.
+// the lines with their remaining bow, deletes a selected line in ONE undo step, toggles one off
+// and gives lines a horizontal or vertical role (showing the tilt against it); the model row
+// offers Radial and disables the pairs-only models; the Pairs panel says the lines drive the
+// fit instead of reporting an empty pairs fit.
 #include "tests/support/barrel_grid.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/document.h"
@@ -98,6 +99,33 @@ class TestLinesPanel : public QObject {
     QCOMPARE(m->index(0, LinesTableModel::Bow).data().toString(), QString("off"));
     doc_->undoStack()->undo();
     QVERIFY(doc_->lineSet() == before);
+
+    // Roles: the grid's rows are level and its columns plumb in the scene, and the radial lens
+    // turns nothing, so the corrected lines' tilt from their roles is near 0; a role does not
+    // change the camera.
+    const Eigen::Vector2d probe(900, 700);
+    const Eigen::Vector2d was = *targetPixelFromSourcePixel(doc_->camera(), probe);
+    panel.table()->clearSelection();
+    panel.selectLine(0);
+    panel.table()->selectionModel()->select(
+        m->index(1, 0), QItemSelectionModel::Select | QItemSelectionModel::Rows);
+    QVERIFY(panel.setSelectedRole(LineRole::Horizontal));
+    panel.selectLine(2);
+    panel.table()->selectionModel()->select(
+        m->index(3, 0), QItemSelectionModel::Select | QItemSelectionModel::Rows);
+    QVERIFY(panel.setSelectedRole(LineRole::Vertical));
+    QCOMPARE(m->index(0, LinesTableModel::Role).data().toString(), QString("H"));
+    QCOMPARE(m->index(3, LinesTableModel::Role).data().toString(), QString("V"));
+    for (int row = 0; row < 4; ++row) {
+      bool ok = false;
+      const double tilt = m->index(row, LinesTableModel::Tilt).data().toDouble(&ok);
+      QVERIFY(ok);
+      QVERIFY2(std::abs(tilt) < 0.2, qPrintable(QString::number(tilt)));
+    }
+    QCOMPARE(*targetPixelFromSourcePixel(doc_->camera(), probe), was);
+    doc_->undoStack()->undo();
+    QCOMPARE(m->index(3, LinesTableModel::Role).data().toString(), QString());
+    QCOMPARE(m->index(0, LinesTableModel::Role).data().toString(), QString("H"));
   }
 
   void modelRowForLines() {

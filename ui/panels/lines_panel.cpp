@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/panels/lines_panel.h"
 
+#include "core/fit/fit_lines.h"
 #include "ui/document.h"
 #include "ui/line_commands.h"
 
@@ -52,6 +53,10 @@ QVariant LinesTableModel::data(const QModelIndex& index, int role) const {
   if (c == Enabled && role == Qt::CheckStateRole) return line.enabled ? Qt::Checked : Qt::Unchecked;
   if (role == Qt::TextAlignmentRole && (c == Points || c == Bow))
     return QVariant::fromValue(Qt::AlignRight | Qt::AlignVCenter);
+  if (role == Qt::ToolTipRole && c == Tilt)
+    return tr(
+        "How far the corrected line is tilted from its role's direction (degrees); the "
+        "fit does not level lines, it only straightens them");
   if (role == Qt::ToolTipRole && c == Bow)
     return tr(
         "The largest distance of the line's points, corrected, from their own straight "
@@ -66,6 +71,15 @@ QVariant LinesTableModel::data(const QModelIndex& index, int role) const {
       const auto bow = document_->lineBow(index.row());
       if (!bow) return line.enabled ? QString() : tr("off");
       return bow->mapped ? QString::number(bow->max_px, 'f', 2) : tr("unmapped");
+    }
+    case Role:
+      return line.role == LineRole::Horizontal ? tr("H")
+             : line.role == LineRole::Vertical ? tr("V")
+                                               : QString();
+    case Tilt: {
+      const auto bow = document_->lineBow(index.row());
+      if (line.role == LineRole::None || !bow || !bow->mapped) return QString();
+      return QString::number(tiltFromRoleDeg(*bow, line.role), 'f', 2);
     }
     default:
       return {};
@@ -84,6 +98,10 @@ QVariant LinesTableModel::headerData(int section, Qt::Orientation orientation, i
       return tr("Points");
     case Bow:
       return tr("Bow px");
+    case Role:
+      return tr("Role");
+    case Tilt:
+      return tr("Tilt °");
     default:
       return {};
   }
@@ -123,6 +141,18 @@ LinesPanel::LinesPanel(Document* document, QWidget* parent)
   remove_->setEnabled(false);
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(remove_);
+  const std::pair<LineRole, QString> roles[] = {
+      {LineRole::Horizontal, tr("H")}, {LineRole::Vertical, tr("V")}, {LineRole::None, tr("–")}};
+  for (const auto& [r, label] : roles) {
+    auto* b = new QPushButton(label, this);
+    b->setToolTip(r == LineRole::Horizontal ? tr("The selected lines are level in the scene")
+                  : r == LineRole::Vertical ? tr("The selected lines are plumb in the scene")
+                                            : tr("No role for the selected lines"));
+    b->setEnabled(false);
+    connect(b, &QPushButton::clicked, this, [this, role = r] { setSelectedRole(role); });
+    role_buttons_.push_back(b);
+    buttons->addWidget(b);
+  }
   buttons->addStretch(1);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 2, 2, 2);
@@ -131,10 +161,13 @@ LinesPanel::LinesPanel(Document* document, QWidget* parent)
   layout->addLayout(buttons);
 
   connect(remove_, &QPushButton::clicked, this, &LinesPanel::deleteSelected);
-  connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this,
-          [this] { remove_->setEnabled(!selectedLines().empty()); });
-  connect(model_, &QAbstractItemModel::modelReset, this,
-          [this] { remove_->setEnabled(!selectedLines().empty()); });
+  const auto enableButtons = [this] {
+    const bool any = !selectedLines().empty();
+    remove_->setEnabled(any);
+    for (QPushButton* b : role_buttons_) b->setEnabled(any);
+  };
+  connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this, enableButtons);
+  connect(model_, &QAbstractItemModel::modelReset, this, enableButtons);
   connect(document_, &Document::cameraChanged, this, &LinesPanel::updateSummary);
   connect(document_, &Document::linesChanged, this, &LinesPanel::updateSummary);
   updateSummary();
@@ -158,6 +191,10 @@ void LinesPanel::selectLine(int index) {
 }
 
 bool LinesPanel::deleteSelected() { return pushDeleteLines(document_, selectedLines()); }
+
+bool LinesPanel::setSelectedRole(LineRole role) {
+  return pushSetLineRoles(document_, selectedLines(), role);
+}
 
 void LinesPanel::updateSummary() {
   QString text;

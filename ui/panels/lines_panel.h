@@ -2,9 +2,13 @@
 // The lines table: one row per finished straight line (enabled, label, points, remaining bow
 // after the fit in target px), like the pairs table. Toggling the check box and Delete push
 // undo commands (line_commands.h), so one bad line is one Delete and one Ctrl+Z away, not a
-// Ctrl+Z per clicked point. Above the table, what drives the fit: the line model and its
-// reason, or why the lines are not fitted (a camera set by hand, a refused fit).
+// Ctrl+Z per clicked point. A line may be given a role, horizontal or vertical: the fit ignores
+// it, and the table shows how far the corrected line is tilted from that direction. Above the
+// table, what drives the fit: the line model and its reason, or why the lines are not fitted (a
+// camera set by hand, a refused fit).
 #pragma once
+
+#include "core/model/line_trace.h"
 
 #include <QAbstractTableModel>
 #include <QWidget>
@@ -23,7 +27,7 @@ class LinesTableModel : public QAbstractTableModel {
   Q_OBJECT
 
  public:
-  enum Column { Enabled, Label, Points, Bow, ColumnCount };
+  enum Column { Enabled, Label, Points, Bow, Role, Tilt, ColumnCount };
 
   explicit LinesTableModel(Document* document, QObject* parent = nullptr);
 
@@ -53,6 +57,8 @@ class LinesPanel : public QWidget {
   void selectLine(int index);
   // Deletes the selected lines (one undo step); false when none is selected.
   bool deleteSelected();
+  // Gives the selected lines a role (one undo step); false when nothing changed.
+  bool setSelectedRole(LineRole role);
 
  private:
   void updateSummary();
@@ -62,6 +68,7 @@ class LinesPanel : public QWidget {
   QTableView* table_;
   QLabel* summary_;
   QPushButton* remove_;
+  std::vector<QPushButton*> role_buttons_;
 };
 
 }  // namespace artcam::ui
