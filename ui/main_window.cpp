@@ -15,6 +15,7 @@
 #include "ui/matting/insertion_studio.h"
 #include "ui/panels/depth_panel.h"
 #include "ui/panels/effects_panel.h"
+#include "ui/panels/lines_panel.h"
 #include "ui/panels/pairs_panel.h"
 #include "ui/panels/tensor_panel.h"
 #include "ui/preview_controller.h"
@@ -100,6 +101,10 @@ MainWindow::MainWindow(QWidget* parent)
   pairs_dock->setObjectName("pairsDock");
   pairs_dock->setWidget(pairs_panel_);
   addDockWidget(Qt::RightDockWidgetArea, pairs_dock);
+  auto* lines_dock = new QDockWidget(tr("Lines"), this);  // beside the pairs: both feed the fit
+  lines_dock->setObjectName("linesDock");
+  lines_dock->setWidget(new LinesPanel(document_, this));
+  tabifyDockWidget(pairs_dock, lines_dock);
   auto* tensor_dock = new QDockWidget(tr("Tensors"), this);
   tensor_dock->setObjectName("tensorDock");
   tensor_dock->setWidget(new TensorPanel(document_, this));

@@ -22,6 +22,7 @@ StudioProject toCore(const Project& p) {
   for (const Pair& pair : p.pairs) c.pairs.push_back({pair.source, pair.target, pair.enabled});
   c.lines = p.lines;
   c.model = p.model;
+  c.line_model = p.line_model;
   c.manual_camera = p.manual_camera;
   c.effects = p.effects;
   for (const DepthPlaneLayer& l : p.depth_layers) c.depth_layers.push_back({str(l.name), l.mask, l.anchors});
@@ -94,6 +95,7 @@ Result<Project> fromCore(StudioProject c, const std::string& name) {
                        Eigen::Vector2d(m.target.x(), m.target.y()), m.enabled});
   p.lines = std::move(c.lines);
   p.model = c.model;
+  p.line_model = c.line_model;
   p.manual_camera = std::move(c.manual_camera);
   p.effects = std::move(c.effects);
   for (ProjectDepthLayer& l : c.depth_layers)

@@ -46,6 +46,7 @@ struct Project {
   std::vector<Pair> pairs;
   std::vector<LineTrace> lines;  // finished lines only: the open one is not saved
   ModelClass model = ModelClass::Auto;
+  LineModel line_model = LineModel::Auto;
   std::optional<Artcam> manual_camera;
   std::vector<EffectStep> effects;
   ViewState view;

@@ -151,6 +151,7 @@ std::optional<Project> Session::currentProject() const {
   p.pairs = document_->pairs();
   p.lines = document_->lines();
   p.model = document_->model();
+  p.line_model = document_->lineModel();
   p.manual_camera = document_->manualCamera();
   p.effects = document_->effects();
   if (view_state_) p.view = view_state_();
@@ -185,8 +186,8 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
       pending_project_.reset();
       std::optional<Artcam> manual = p.manual_camera;
       if (manual) manual->setFrames(photo->size(), photo->size());
-      document_->reset(photo, std::move(p.pairs), p.model, std::move(manual),
-                       std::move(p.effects), std::move(p.lines));
+      document_->reset(photo, std::move(p.pairs), p.model, std::move(manual), std::move(p.effects),
+                       std::move(p.lines), p.line_model);
       // Masks are the photo's size; a photo that changed size since the save cannot take them.
       QStringList dropped;
       for (size_t i = 0; i < p.depth_layers.size(); ++i) {

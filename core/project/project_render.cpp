@@ -167,6 +167,7 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
   in.matches = project.pairs;
   in.lines = project.lines;
   in.model = project.model;
+  in.line_model = project.line_model;
   if (project.manual_camera) in.manual_camera = project.manual_camera->main();
   in.colour_block = *colour.value;
   scene.fit = fitDocumentGeometry(in);

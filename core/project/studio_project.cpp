@@ -268,6 +268,13 @@ StudioProject projectAt(const Json& root, const std::string& file,
     if (!model) refuse("/model", "unknown model " + describe(root["model"]));
     p.model = *model;
   }
+  if (root.contains("line_model")) {
+    const auto line_model = lineModelFromName(stringAt(root["line_model"], "/line_model"));
+    if (!line_model)
+      refuse("/line_model",
+             "unknown line model " + describe(root["line_model"]) + " (auto, radial or quadratic)");
+    p.line_model = *line_model;
+  }
   if (root.contains("pairs")) {
     const Json& pairs = arrayAt(root["pairs"], "/pairs");
     for (size_t i = 0; i < pairs.size(); ++i) {
@@ -297,6 +304,16 @@ StudioProject projectAt(const Json& root, const std::string& file,
       if (o.contains("enabled")) {
         if (!o["enabled"].is_boolean()) refuse(where + "/enabled", "expected true or false");
         line.enabled = o["enabled"].get<bool>();
+      }
+      if (o.contains("role")) {
+        const std::string role = stringAt(o["role"], where + "/role");
+        if (role == "horizontal")
+          line.role = LineRole::Horizontal;
+        else if (role == "vertical")
+          line.role = LineRole::Vertical;
+        else if (role != "none")
+          refuse(where + "/role",
+                 "unknown role " + describe(o["role"]) + " (horizontal, vertical or none)");
       }
       p.lines.push_back(std::move(line));
     }
@@ -420,14 +437,16 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
   Json root;
   root["format"] = "artcam-studio-project";
   const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
-  const int version = !project.lines.empty()                           ? 4
-                      : !project.effects.empty()                       ? 3
-                      : has_depth || !project.parts_json.empty()       ? 2
-                                                                       : 1;
+  const int version = !project.lines.empty() || project.line_model != LineModel::Auto ? 4
+                      : !project.effects.empty()                                      ? 3
+                      : has_depth || !project.parts_json.empty()                      ? 2
+                                                                                      : 1;
   root["version"] = version;
   if (!project.parts_json.empty()) root["parts"] = Json::parse(project.parts_json);
   root["photo"] = pathForFile(project.photo_path, project_path);
   root["model"] = std::string(modelClassName(project.model));
+  if (project.line_model != LineModel::Auto)
+    root["line_model"] = std::string(lineModelName(project.line_model));
   Json pairs = Json::array();
   for (const PointMatch& m : project.pairs)
     pairs.push_back({{"source", pointJson(m.source)},
@@ -439,7 +458,10 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
     for (const LineTrace& line : project.lines) {
       Json points = Json::array();
       for (const Eigen::Vector2d& q : line.points) points.push_back(pointJson(q));
-      lines.push_back({{"label", line.label}, {"points", points}, {"enabled", line.enabled}});
+      Json entry = {{"label", line.label}, {"points", points}, {"enabled", line.enabled}};
+      if (line.role != LineRole::None)
+        entry["role"] = line.role == LineRole::Horizontal ? "horizontal" : "vertical";
+      lines.push_back(std::move(entry));
     }
     root["lines"] = lines;
   }

@@ -6,10 +6,12 @@
 //   { "format": "artcam-studio-project", "version": 4,
 //     "photo": "relative/or/absolute/path.png",
 //     "model": "auto",
+//     "line_model": "radial",                    // optional, v4: the lines' model; absent: auto
 //     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],   // photo pixels
 //     "camera": { ….artcam document… },          // optional: camera set by hand (any kind)
 //     "effects": [ {"effect": "aerial-perspective", "params": {"near": [1], …}}, … ],  // v3
-//     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true}, … ],   // v4, photo px
+//     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true,
+//                 "role": "horizontal"}, … ],   // v4, photo px; role optional (or "vertical")
 //     "view": { … },                                // the studio's view state (opaque here)
 //     "depth": {                                    // optional: depth planes and map (v2)
 //       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
@@ -44,6 +46,7 @@
 #include "core/depth/region_mask.h"
 #include "core/effects/effect_table.h"
 #include "core/fit/fit_image.h"
+#include "core/fit/fit_lines.h"
 #include "core/io/depth_file.h"
 #include "core/model/artcam.h"
 #include "core/model/line_trace.h"
@@ -87,6 +90,7 @@ struct StudioProject {
   std::vector<PointMatch> pairs;  // photo pixels, 2D
   std::vector<LineTrace> lines;   // straight edges traced in the photo (photo pixels)
   ModelClass model = ModelClass::Auto;
+  LineModel line_model = LineModel::Auto;  // the model chosen for the lines ("line_model")
   std::optional<Artcam> manual_camera;
   std::vector<EffectStep> effects;  // applied in order after the geometry and colour
   std::vector<ProjectDepthLayer> depth_layers;
