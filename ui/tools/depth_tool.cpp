@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace artcam::ui {
 namespace {
@@ -62,9 +63,13 @@ void DepthTool::mousePress(QMouseEvent* event) {
   // the depth the effects read, never where pixels go, but a refit could).
   if (mode_ == DepthToolMode::Brush || mode_ == DepthToolMode::Eraser)
     stroke_inverse_ = canvas_->resultInverse();
-  const bool on_anchor = mode_ == DepthToolMode::Points && hitAnchor(event->position());
-  const std::optional<Eigen::Vector2d> at = photoPoint(event->position(), !on_anchor);
-  if (!at && !on_anchor) {
+  // A press on a drawn handle (a depth point, the polygon's first vertex) needs no photo pixel.
+  const bool closes =
+      mode_ == DepthToolMode::Polygon && polygon_.size() >= 3 &&
+      QLineF(widgetPoint(polygon_.front()), event->position()).length() <= kHitRadius;
+  const bool on_handle = closes || (mode_ == DepthToolMode::Points && hitAnchor(event->position()));
+  const std::optional<Eigen::Vector2d> at = photoPoint(event->position(), !on_handle);
+  if (!at && !on_handle) {
     stroke_inverse_.reset();
     canvas_->update();
     return;
@@ -95,8 +100,7 @@ void DepthTool::mousePress(QMouseEvent* event) {
       break;
     }
     case DepthToolMode::Polygon:
-      if (polygon_.size() >= 3 &&
-          QLineF(widgetPoint(polygon_.front()), event->position()).length() <= kHitRadius) {
+      if (closes) {
         closePolygon(event->modifiers().testFlag(Qt::AltModifier));
       } else {
         polygon_.push_back(p);
@@ -341,18 +345,52 @@ void DepthTool::paint(QPainter& painter) {
     painter.drawEllipse(poly.front(), kHitRadius * 0.6, kHitRadius * 0.6);
   }
   if ((mode_ == DepthToolMode::Brush || mode_ == DepthToolMode::Eraser) && cursor_inside_) {
-    // The brush outline at its true size, and its hard core.
+    // The brush outline at its true size, and its hard core: a circle of photo pixels, so over
+    // the result its image through the camera (what a dab there paints).
+    const QPen outer =
+        QPen(mode_ == DepthToolMode::Eraser ? QColor(255, 120, 120) : Qt::white, 1.0);
+    const double hardness = settings_->hardness();
+    if (const std::optional<QPolygonF> ring = resultRing(settings_->radius())) {
+      painter.setPen(QPen(Qt::black, 2.0));
+      painter.drawPolygon(*ring);
+      painter.setPen(outer);
+      painter.drawPolygon(*ring);
+      if (settings_->radius() * hardness * view.scale() > 2.0)
+        if (const auto core = resultRing(settings_->radius() * hardness)) {
+          painter.setPen(QPen(Qt::white, 1.0, Qt::DotLine));
+          painter.drawPolygon(*core);
+        }
+      return;
+    }
     const double r = settings_->radius() * view.scale();
     painter.setPen(QPen(Qt::black, 2.0));
     painter.drawEllipse(cursor_widget_, r, r);
-    painter.setPen(QPen(mode_ == DepthToolMode::Eraser ? QColor(255, 120, 120) : Qt::white, 1.0));
+    painter.setPen(outer);
     painter.drawEllipse(cursor_widget_, r, r);
-    const double core = r * settings_->hardness();
+    const double core = r * hardness;
     if (core > 2.0) {
       painter.setPen(QPen(Qt::white, 1.0, Qt::DotLine));
       painter.drawEllipse(cursor_widget_, core, core);
     }
   }
+}
+
+std::optional<QPolygonF> DepthTool::resultRing(double radius_px) const {
+  if (canvas_->photoVisibleAt(cursor_widget_)) return std::nullopt;
+  const auto inverse = canvas_->resultInverse();
+  const std::optional<Eigen::Vector2d> centre =
+      canvas_->photoPixelAt(cursor_widget_, inverse.get()).pixel;
+  if (!centre) return std::nullopt;
+  constexpr int kSides = 48;
+  QPolygonF ring;
+  for (int k = 0; k < kSides; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / kSides;
+    const auto r =
+        inverse->resultPixelOf(*centre + radius_px * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    if (!r) return std::nullopt;  // across a pole: the plain circle says enough
+    ring << canvas_->view().widgetFromImage(QPointF(r->x(), r->y()));
+  }
+  return ring;
 }
 
 void DepthTool::cancel() {

@@ -27,6 +27,7 @@
 #include "ui/tools/tool.h"
 
 #include <QPointF>
+#include <QPolygonF>
 
 #include <Eigen/Core>
 
@@ -77,6 +78,9 @@ class DepthTool : public Tool {
                       bool first);
   void paintActiveMask(QPainter& painter) const;
   void paintMaskOnResult(QPainter& painter, const RegionMask& mask) const;
+  // A circle of `radius_px` photo pixels about the photo pixel under the cursor, as the result
+  // shows it (widget points); none where the photo shows, or nothing maps.
+  std::optional<QPolygonF> resultRing(double radius_px) const;
   void closePolygon(bool erase);
   void pressPoints(const QPointF& widget);
   std::optional<int> hitAnchor(const QPointF& widget) const;
