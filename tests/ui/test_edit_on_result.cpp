@@ -7,6 +7,7 @@
 // A click whose preimage is off the photo adds nothing and says why.
 #include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
+#include "ui/depth_commands.h"
 #include "ui/document.h"
 #include "ui/preview_controller.h"
 #include "ui/tools/depth_tool.h"
@@ -17,6 +18,8 @@
 
 #include <QSignalSpy>
 #include <QtTest/QtTest>
+
+#include "core/model/artcam.h"
 
 #include <cmath>
 
@@ -61,6 +64,15 @@ std::vector<Pair> homographyPairs() {
 Eigen::Vector2d imageAt(const Canvas& canvas, const QPoint& widget) {
   const QPointF p = canvas.view().imageFromWidget(QPointF(widget));
   return {p.x(), p.y()};
+}
+
+// A plane over the whole photo, near at the bottom and far at the top.
+DepthPlaneLayer wholePhotoPlane(const DepthModel& depth) {
+  DepthPlaneLayer layer = depth.makeLayer();
+  const double w = depth.frame().width, h = depth.frame().height;
+  layer.mask.fillPolygon({{0, 0}, {w, 0}, {w, h}, {0, h}});
+  layer.anchors = {{{0.5, h - 0.5}, 1.5}, {{w - 0.5, h - 0.5}, 1.5}, {{w / 2, 0.5}, 40.0}};
+  return layer;
 }
 
 QString text(const Eigen::Vector2d& p) { return QString("(%1, %2)").arg(p.x()).arg(p.y()); }
@@ -152,11 +164,19 @@ class TestEditOnResult : public QObject {
     const Eigen::Vector2d t = imageAt(rig.canvas, at);
     const Eigen::Vector2d s = truthPreimage(t);
     QVERIFY((s - t).norm() > 20.0);  // far enough apart for the test to tell them apart
+    QVERIFY(test::waitForNewestPreview(rig.preview));
+    const QImage before = rig.canvas.grab().toImage();
     test::click(&rig.canvas, at);
     QCOMPARE(rig.doc.depth()->layerCount(), 1);
     const RegionMask& mask = rig.doc.depth()->layer(0).mask;
     QCOMPARE(mask.at(static_cast<int>(s.x()), static_cast<int>(s.y())), uint8_t{255});
     QCOMPARE(mask.at(static_cast<int>(t.x()), static_cast<int>(t.y())), uint8_t{0});
+    // The mask's tint lies where the result shows the painted pixels (under the cursor), not
+    // where they are in the photo.
+    const QImage after = rig.canvas.grab().toImage();
+    const QPoint on_photo = test::widgetPoint(rig.canvas, s);
+    QVERIFY(after.pixel(at) != before.pixel(at));
+    QCOMPARE(after.pixel(on_photo), before.pixel(on_photo));
     // A stroke: every dab lands on the preimage of the cursor's result point.
     const QPoint end = at + QPoint(0, 60);
     test::drag(&rig.canvas, at, end);
@@ -164,6 +184,33 @@ class TestEditOnResult : public QObject {
       const Eigen::Vector2d p = truthPreimage(imageAt(rig.canvas, at + (end - at) * k / 6));
       QCOMPARE(mask.at(static_cast<int>(p.x()), static_cast<int>(p.y())), uint8_t{255});
     }
+  }
+
+  // Depth of field reads the depth, and stays on screen while another plane is painted on the
+  // result through the same inverse (its blur moves no pixel).
+  void aPlaneIsPaintedOnTheResultWhileDepthOfFieldShows() {
+    Rig rig;
+    QVERIFY(QTest::qWaitForWindowExposed(&rig.canvas));
+    rig.doc.undoStack()->push(
+        new AddDepthLayerCommand(rig.doc.depth(), wholePhotoPlane(*rig.doc.depth())));
+    rig.doc.setEffects({EffectStep{"depth-of-field", {}}});
+    QVERIFY2(readsDepth(rig.doc.artcam()), rig.doc.artcamNote().c_str());
+    rig.doc.undoStack()->push(
+        new AddDepthLayerCommand(rig.doc.depth(), rig.doc.depth()->makeLayer()));
+    const int painted = rig.doc.depth()->activeLayer();
+    QVERIFY(painted >= 0 && rig.doc.depth()->layerCount() == 2);
+    rig.settings.setRadius(3.0);
+    rig.settings.setHardness(1.0);
+    rig.canvas.setTool(
+        std::make_unique<DepthTool>(&rig.canvas, &rig.doc, &rig.settings, DepthToolMode::Brush));
+    QCOMPARE(rig.canvas.shownMode(), CanvasViewMode::Result);
+    const QPoint at = test::widgetPoint(rig.canvas, {214.0, 164.0});
+    const Eigen::Vector2d s = truthPreimage(imageAt(rig.canvas, at));
+    test::click(&rig.canvas, at);
+    const RegionMask& mask = rig.doc.depth()->layer(painted).mask;
+    QCOMPARE(mask.at(static_cast<int>(s.x()), static_cast<int>(s.y())), uint8_t{255});
+    QVERIFY(readsDepth(rig.doc.artcam()));
+    QCOMPARE(rig.canvas.shownMode(), CanvasViewMode::Result);
   }
 
   void aClickWithNoPreimageIsRefusedWithAMessage() {
