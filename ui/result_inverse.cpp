@@ -8,8 +8,8 @@
 #include <QCoreApplication>
 
 #include <cmath>
+#include <exception>
 #include <limits>
-#include <stdexcept>
 
 namespace artcam::ui {
 namespace {
@@ -35,16 +35,19 @@ ResultInverse::ResultInverse(const Artcam& camera, FrameSize photo_px) : photo_p
     return;
   }
   const Camera& main = camera.main();
-  if (analyseStructure(main).geometry_depends_on_attributes) {
-    refusal_ =
-        tr("Where this camera moves a pixel depends on its colour or depth, so the result "
-           "is not mapped back: press \\ to work on the photo");
-    return;
-  }
   try {
+    if (analyseStructure(main).geometry_depends_on_attributes) {
+      refusal_ =
+          tr("Where this camera moves a pixel depends on its colour or depth, so the "
+             "result is not mapped back: press \\ to work on the photo");
+      return;
+    }
     inverse_.emplace(main, photo_px, photo_px);
     camera_ = main;
-  } catch (const std::invalid_argument&) {
+  } catch (const std::exception&) {
+    // No 2D position block, or a map undefined all around the photo's centre: nothing of the
+    // photo reaches the result to map back to (a click says so; never a crash).
+    inverse_.reset();
     refusal_ =
         tr("This camera maps nothing of the photo to the result: press \\ to work on the "
            "photo");

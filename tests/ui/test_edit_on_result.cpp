@@ -213,6 +213,27 @@ class TestEditOnResult : public QObject {
     QCOMPARE(rig.canvas.shownMode(), CanvasViewMode::Result);
   }
 
+  // A camera whose positions read depth (a pushbroom of the depth planes, eq 8/9) has no point
+  // inverse: a source click on its result is refused and says to work on the photo.
+  void aCameraWhosePositionsReadDepthRefusesWithAMessage() {
+    Rig rig;
+    QVERIFY(QTest::qWaitForWindowExposed(&rig.canvas));
+    rig.doc.undoStack()->push(
+        new AddDepthLayerCommand(rig.doc.depth(), wholePhotoPlane(*rig.doc.depth())));
+    rig.doc.setEffects({EffectStep{"photo-pushbroom", {}}});
+    QVERIFY2(readsDepth(rig.doc.artcam()), rig.doc.artcamNote().c_str());
+    QSignalSpy messages(&rig.canvas, &Canvas::toolMessage);
+    test::click(&rig.canvas, test::widgetPoint(rig.canvas, {160.0, 120.0}));
+    QVERIFY(!dynamic_cast<PairTool*>(rig.canvas.tool())->hasPendingSource());
+    QVERIFY(messages.count() >= 1);
+    const QString said = messages.last().at(0).toString();
+    QVERIFY2(said.contains("\\") && said.contains("photo"), qPrintable(said));
+    // On the photo the same click places the source.
+    rig.canvas.setViewMode(CanvasViewMode::Photo);
+    test::click(&rig.canvas, test::widgetPoint(rig.canvas, {160.0, 120.0}));
+    QVERIFY(dynamic_cast<PairTool*>(rig.canvas.tool())->hasPendingSource());
+  }
+
   void aClickWithNoPreimageIsRefusedWithAMessage() {
     Rig rig;
     QVERIFY(QTest::qWaitForWindowExposed(&rig.canvas));
