@@ -5,6 +5,7 @@
 // and a new photo never shows the old one's result nor itself in its place; over the result the
 // pair tool moves targets, never sources; the mode survives a project round trip.
 #include "tests/ui/ui_fixtures.h"
+#include "tests/ui/session_wait.h"
 #include "ui/canvas.h"
 #include "ui/commands.h"
 #include "ui/document.h"
@@ -400,7 +401,7 @@ class TestCanvasResult : public QObject {
       window.canvas()->setSplit(0.625);
       window.canvas()->toggleBeforeAfter();  // Photo, with Split to come back to
       state = window.canvas()->viewState();
-      QVERIFY(window.session()->saveProjectTo(project));
+      QVERIFY(ui::test::saveAndWait(*window.session(), project));
     }
     QCOMPARE(state.mode, CanvasViewMode::Photo);
     QCOMPARE(state.compare_mode, CanvasViewMode::Split);

@@ -9,6 +9,7 @@
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "tests/ui/ui_fixtures.h"
+#include "tests/ui/session_wait.h"
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_dock.h"
 #include "ui/colour/colour_project.h"
@@ -393,7 +394,7 @@ class TestColourSamples : public QObject {
     doc.undoStack()->push(new SetColourBlockCommand(
         &doc, colourCamera(linearMap(transformM()), doc.frame()), "colour"));
     const QString project = dir_.filePath("colour.artcamproj");
-    QVERIFY(session.saveProjectTo(project));
+    QVERIFY(ui::test::saveAndWait(session, project));
 
     Document doc2;
     Session session2(&doc2, nullptr);

@@ -2,6 +2,7 @@
 // The Insertion mode's state survives a project save and reopen (grid matches, region, board,
 // squares, max error, graphic and its placement), reopening adds no undo step, and a broken
 // "insertion" part is named by its JSON path.
+#include "tests/ui/session_wait.h"
 #include "tests/support/test_support.h"
 #include "ui/document.h"
 #include "ui/main_window.h"
@@ -59,7 +60,7 @@ class TestInsertionProject : public QObject {
       studio->model()->edit(edit, QStringLiteral("test edits"));
       saved = studio->model()->state();
       QVERIFY(saved.matches.size() > 100);
-      QVERIFY(window.session()->saveProjectTo(project));
+      QVERIFY(ui::test::saveAndWait(*window.session(), project));
     }
     MainWindow window;
     window.session()->setInteractive(false);
