@@ -24,7 +24,7 @@ using namespace artcam::ui;
 
 namespace {
 
-QString resource(const char* name) { return QString::fromStdString(test::resourcePath(name)); }
+QString resource(const char* name) { return QString::fromStdString(artcam::test::resourcePath(name)); }
 
 }  // namespace
 
