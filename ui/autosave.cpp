@@ -153,10 +153,10 @@ std::optional<RecoveryOffer> Autosave::findRecovery(const QString& project_path)
     }
     if (newest && newest->saved_at >= recovery.lastModified()) continue;
     if (ownedElsewhere(path)) continue;  // a studio still working on it
-    newest = RecoveryOffer{recovery.absoluteFilePath(),
-                           project_path.isEmpty() ? QString()
-                                                  : QFileInfo(project_path).absoluteFilePath(),
-                           recovery.lastModified()};
+    newest = RecoveryOffer{
+        recovery.absoluteFilePath(),
+        project_path.isEmpty() ? QString() : QFileInfo(project_path).absoluteFilePath(),
+        recovery.lastModified()};
   }
   return newest;
 }

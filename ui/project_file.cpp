@@ -135,7 +135,8 @@ Status checkPhotoSize(const Project& project, FrameSize photo, const QString& ph
                       const QString& project_path) {
   StudioProject sizes;  // only the size: the check reads nothing else
   sizes.photo_size = project.photo_size;
-  return checkProjectPhotoSize(sizes, photo, str(photo_path), str(QFileInfo(project_path).fileName()));
+  return checkProjectPhotoSize(sizes, photo, str(photo_path),
+                               str(QFileInfo(project_path).fileName()));
 }
 
 }  // namespace artcam::ui

@@ -41,8 +41,7 @@ QString projectFilter() {
 
 // The default locate prompt: says what is missing, then a file dialog in the project's folder.
 QString locateDialog(QWidget* parent, const QString& project, const QString& photo) {
-  QMessageBox box(QMessageBox::Warning,
-                  QCoreApplication::translate("Session", "Open project"),
+  QMessageBox box(QMessageBox::Warning, QCoreApplication::translate("Session", "Open project"),
                   QCoreApplication::translate("Session",
                                               "The photo of %1 is missing:\n%2\n\nLocate it to "
                                               "open the project with its pairs, depth and effects.")
@@ -207,7 +206,8 @@ void Session::locatePhoto(const QString& path, Project project, bool recovered) 
   auto held = std::make_shared<Project>(std::move(project));
   // The header only: a photo of another size is refused before anything is decoded.
   runInBackground(
-      this, [photo](JobContext&) { return readStoredShape(QFile::encodeName(photo).toStdString()); },
+      this,
+      [photo](JobContext&) { return readStoredShape(QFile::encodeName(photo).toStdString()); },
       [this, path, name, photo, held, recovered, serial](JobOutcome<Result<StoredShape>> outcome) {
         if (serial != open_serial_) return;
         if (!outcome.value || !*outcome.value)
@@ -346,7 +346,8 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
                   .arg(QFileInfo(photo->path).fileName())
                   .arg(photo->size().width)
                   .arg(photo->size().height);
-    if (was_located) loaded += tr("; its photo is now %1: save to keep the new place").arg(photo->path);
+    if (was_located)
+      loaded += tr("; its photo is now %1: save to keep the new place").arg(photo->path);
     // The studio shows and exports colour and alpha (image_io.h, "Channels"): the rest are named,
     // never dropped silently. `artcam warp` carries them into an EXR.
     QStringList dropped;
@@ -415,7 +416,7 @@ bool Session::saveProjectTo(const QString& path) {
           return;
         }
         const QString message = tr("Saved %1").arg(abs);
-        if (serial == photo_serial_) {  // still the document that was saved
+        if (serial == photo_serial_) {               // still the document that was saved
           autosave_->removeRecovery(project_path_);  // the old name's (or the untitled) recovery
           project_path_ = abs;
           autosave_->removeRecovery(project_path_);
@@ -467,19 +468,19 @@ void Session::importReadArtcam(const QString& path, Artcam read) {
   const Camera& cam = doc->main();
   if (cam.layout().find(BlockKind::Position) < 0 || cam.blocks()[0] != Block{BlockKind::Position, 3}) {
     refuse(tr("%1: this camera does not take image positions (its first block is not an "
-                 "image position (u, v, w)), so it cannot warp a photo; render it with artcam "
-                 "render instead.")
-                  .arg(path));
+              "image position (u, v, w)), so it cannot warp a photo; render it with artcam "
+              "render instead.")
+               .arg(path));
     return;
   }
   if (doc->isPiecewise() && (cam.sourceSize().width != photo->size().width ||
                              cam.sourceSize().height != photo->size().height)) {
     refuse(tr("%1: its patches were cut for a %2×%3 photo; this photo is %4×%5.")
-                  .arg(path)
-                  .arg(cam.sourceSize().width)
-                  .arg(cam.sourceSize().height)
-                  .arg(photo->size().width)
-                  .arg(photo->size().height));
+               .arg(path)
+               .arg(cam.sourceSize().width)
+               .arg(cam.sourceSize().height)
+               .arg(photo->size().width)
+               .arg(photo->size().height));
     return;
   }
   QUndoStack* stack = document_->undoStack();
@@ -511,7 +512,8 @@ void Session::importReadArtcam(const QString& path, Artcam read) {
   stack->endMacro();
   const QString message =
       tr("Imported %1 (%2 camera)")
-          .arg(path, QString::fromUtf8(std::string(artcamKindName(document_->artcam().kind())).c_str()));
+          .arg(path,
+               QString::fromUtf8(std::string(artcamKindName(document_->artcam().kind())).c_str()));
   emit statusMessage(message);
   emit importFinished(true, message);
 }

@@ -17,8 +17,8 @@
 
 #include <array>
 #include <chrono>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -133,8 +133,8 @@ int exportCommand(const std::vector<std::string>& argv) {
     // pairs and masks on the wrong pixels.
     Result<StoredShape> shape = readStoredShape(*photo);
     if (!shape) throw CommandError(project_path + ": --photo: " + shape.status.message);
-    if (const Status s = checkProjectPhotoSize(*project, {shape->width, shape->height}, *photo,
-                                               project_path);
+    if (const Status s =
+            checkProjectPhotoSize(*project, {shape->width, shape->height}, *photo, project_path);
         !s)
       throw CommandError(s.message);
     project->photo_path = std::filesystem::absolute(*photo).string();
@@ -151,7 +151,8 @@ int exportCommand(const std::vector<std::string>& argv) {
   std::vector<std::string> inputs = {project_path, project->photo_path};
   if (project->depth_map) inputs.push_back(project->depth_map->path);
   checkOutputs(args, outputs, inputs);
-  if (std::error_code ec; !args.value("--photo") && !std::filesystem::exists(project->photo_path, ec))
+  if (std::error_code ec;
+      !args.value("--photo") && !std::filesystem::exists(project->photo_path, ec))
     throw CommandError(project_path + ": its photo " + project->photo_path +
                        " is missing (moved?); give its new place with --photo FILE");
 

@@ -170,8 +170,8 @@ class TestCliExport : public QObject {
                  wrong.err.trimmed().count('\n') == 0,
              qPrintable(wrong.err));
     QVERIFY(!QFile::exists(never));
-    const Run absent = artcamCli({"export", project, "--photo", dir_.filePath("nowhere.png"),
-                                  "-o", never, "-q"});
+    const Run absent =
+        artcamCli({"export", project, "--photo", dir_.filePath("nowhere.png"), "-o", never, "-q"});
     QCOMPARE(absent.exit_code, 1);
     QVERIFY2(absent.err.contains("depth-effects.artcamproj: --photo") &&
                  absent.err.contains("nowhere.png"),

@@ -4,8 +4,8 @@
 // accepting restores the exact state, marked modified; declining or an older recovery keeps
 // the saved project; a clean save or close removes the recovery file.
 #include "core/io/image_io.h"
-#include "tests/ui/ui_fixtures.h"
 #include "tests/ui/session_wait.h"
+#include "tests/ui/ui_fixtures.h"
 #include "ui/autosave.h"
 #include "ui/commands.h"
 #include "ui/depth_commands.h"

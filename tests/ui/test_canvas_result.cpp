@@ -4,8 +4,8 @@
 // translation camera (an independent truth); while a render is in flight the last result stays,
 // and a new photo never shows the old one's result nor itself in its place; over the result the
 // pair tool moves targets, never sources; the mode survives a project round trip.
-#include "tests/ui/ui_fixtures.h"
 #include "tests/ui/session_wait.h"
+#include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
 #include "ui/commands.h"
 #include "ui/document.h"

@@ -6,8 +6,8 @@
 // depth map files loaded off the GUI thread as an undoable edit.
 #include "core/io/depth_file.h"
 #include "core/io/image_io.h"
-#include "tests/ui/ui_fixtures.h"
 #include "tests/ui/session_wait.h"
+#include "tests/ui/ui_fixtures.h"
 #include "ui/depth_commands.h"
 #include "ui/depth_overlay.h"
 #include "ui/document.h"

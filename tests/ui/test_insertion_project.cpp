@@ -2,8 +2,8 @@
 // The Insertion mode's state survives a project save and reopen (grid matches, region, board,
 // squares, max error, graphic and its placement), reopening adds no undo step, and a broken
 // "insertion" part is named by its JSON path.
-#include "tests/ui/session_wait.h"
 #include "tests/support/test_support.h"
+#include "tests/ui/session_wait.h"
 #include "ui/document.h"
 #include "ui/main_window.h"
 #include "ui/matting/insertion_model.h"
@@ -24,7 +24,9 @@ using namespace artcam::ui;
 
 namespace {
 
-QString resource(const char* name) { return QString::fromStdString(artcam::test::resourcePath(name)); }
+QString resource(const char* name) {
+  return QString::fromStdString(artcam::test::resourcePath(name));
+}
 
 }  // namespace
 

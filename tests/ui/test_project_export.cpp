@@ -5,8 +5,8 @@
 // it exports the same pixels; and `artcam export` on the saved file writes those pixels too.
 #include "core/io/image_io.h"
 #include "tests/app/cli_run.h"
-#include "tests/ui/ui_fixtures.h"
 #include "tests/ui/session_wait.h"
+#include "tests/ui/ui_fixtures.h"
 #include "ui/depth_model.h"
 #include "ui/document.h"
 #include "ui/export_job.h"

@@ -3,14 +3,14 @@
 
 #include "core/colour/colour_difference.h"
 #include "core/colour/colour_map.h"
-#include "core/io/matches_csv.h"
+#include "core/colour/colour_stage.h"
 #include "core/colour/transfer.h"
+#include "core/io/matches_csv.h"
+#include "ui/background_job.h"
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_fit_job.h"
 #include "ui/colour/colour_project.h"
-#include "core/colour/colour_stage.h"
 #include "ui/colour/patch_view.h"
-#include "ui/background_job.h"
 #include "ui/document.h"
 #include "ui/image_loader.h"
 #include "ui/session.h"
@@ -375,10 +375,11 @@ bool ColourDock::exportCsv(const QString& path) {
   // The pairs are taken here (the samples live on this thread), written on a job's.
   auto pairs = std::make_shared<const std::vector<PointMatch>>(model_->colourPairs());
   runInBackground(
-      this, [path, pairs](JobContext&) { return writeColourSamplesCsv(path.toStdString(), *pairs); },
+      this,
+      [path, pairs](JobContext&) { return writeColourSamplesCsv(path.toStdString(), *pairs); },
       [this, path, count = pairs->size()](JobOutcome<Status> outcome) {
         const bool ok = outcome.value && outcome.value->ok;
-        message_ = ok ? tr("Exported %1 colour samples to %2").arg(count).arg(path)
+        message_ = ok              ? tr("Exported %1 colour samples to %2").arg(count).arg(path)
                    : outcome.value ? QString::fromStdString(outcome.value->message)
                                    : tr("%1: %2").arg(path, outcome.error);
         refreshReport();
