@@ -406,10 +406,18 @@ void MainWindow::updateTitle() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  if (session_->maybeSave()) {
-    session_->closedCleanly();
-    event->accept();
+  // A save the close asks for runs off the GUI thread: the window closes once it succeeded.
+  if (!close_accepted_) {
+    auto inside = std::make_shared<bool>(true);
+    session_->maybeSaveThen([this, inside] {
+      session_->closedCleanly();
+      close_accepted_ = true;
+      if (!*inside) close();  // the save has finished: close again, accepted now
+    });
+    *inside = false;
   }
+  if (close_accepted_)
+    event->accept();
   else
     event->ignore();
 }

@@ -135,6 +135,15 @@ ImageF depthMapImage(const ImageF& raster) {
   return out;
 }
 
+Status writeDepthMapFile(const std::string& path, const ImageF& raster,
+                         const std::function<bool(double)>& progress) {
+  WriteImageOptions options;
+  options.pixel_type = "float";
+  options.channel_names = {"Z"};
+  options.progress = progress;
+  return writeImage(path, depthMapImage(raster), nullptr, options);
+}
+
 Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where) {
   using R = Result<ProjectScene>;
   ProjectScene scene;

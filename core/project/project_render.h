@@ -69,4 +69,10 @@ ImageF rasteriseProjectDepth(const std::vector<ProjectDepthLayer>& layers, Frame
 // 0 where there is none (core/io/depth_file.h reads it back). Write it as float EXR.
 ImageF depthMapImage(const ImageF& raster);
 
+// depthMapImage(raster) written as float OpenEXR with its one channel named Z, the name
+// compositors and `artcam warp --depth` users look for (readDepthFile reads the first channel
+// whatever its name). Atomic, as every image write; `progress` as WriteImageOptions::progress.
+Status writeDepthMapFile(const std::string& path, const ImageF& raster,
+                         const std::function<bool(double)>& progress = {});
+
 }  // namespace artcam

@@ -5,6 +5,7 @@
 // and a new photo never shows the old one's result nor itself in its place; over the result the
 // pair tool moves targets as they are and sources through the camera's inverse (a translation
 // here, so the truth is the click less the shift); the mode survives a project round trip.
+#include "tests/ui/session_wait.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
 #include "ui/commands.h"
@@ -411,7 +412,7 @@ class TestCanvasResult : public QObject {
       window.canvas()->setSplit(0.625);
       window.canvas()->toggleBeforeAfter();  // Photo, with Split to come back to
       state = window.canvas()->viewState();
-      QVERIFY(window.session()->saveProjectTo(project));
+      QVERIFY(ui::test::saveAndWait(*window.session(), project));
     }
     QCOMPARE(state.mode, CanvasViewMode::Photo);
     QCOMPARE(state.compare_mode, CanvasViewMode::Split);
