@@ -10,7 +10,10 @@
 #include "ui/document.h"
 #include "ui/export_job.h"
 #include "ui/export_options_dialog.h"
+#include "ui/export_settings.h"
 #include "ui/image_loader.h"
+#include "ui/save_names.h"
+#include "ui/studio_wording.h"
 
 #include <QCoreApplication>
 #include <QFileDialog>
@@ -48,6 +51,7 @@ Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
             return currentProject();
           },
           this)) {
+  export_options_ = loadExportOptions(QSettings());
   connect(document_->undoStack(), &QUndoStack::cleanChanged, this, &Session::titleChanged);
   connect(autosave_, &Autosave::saved, this, [this](bool ok, const QString& message) {
     if (!ok) emit statusMessage(tr("Autosave failed: %1").arg(message));
@@ -250,6 +254,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
   connect(loader, &ImageLoader::failed, this, [this, loader](const QString& message) {
     if (loader != loader_) return;
     pending_project_.reset();
+    emit loadProgress(-1);  // the load is over: no "Loading 0%" behind the error's dialog
     showError(tr("Open photo"), message);
   });
   connect(loader, &ImageLoader::finished, this, [this, loader] {
@@ -344,9 +349,21 @@ void Session::importArtcam(const QString& path) {
     stack->push(new SetCameraCommand(document_, std::move(c), tr("Set camera")));
   }
   stack->endMacro();
-  emit statusMessage(tr("Imported %1 (%2 camera)")
+  QString imported = tr("Imported %1 (%2 camera)")
                          .arg(path, QString::fromUtf8(std::string(artcamKindName(
-                                                          document_->artcam().kind())).c_str())));
+                                                          document_->artcam().kind())).c_str()));
+  // What `artcam` prints on reading such a camera: a pole in the frame leaves part of the
+  // picture empty, which the user should hear before looking for a bug in the photo.
+  QStringList warnings;
+  for (const std::string& w : cameraWarnings(document_->artcam()))
+    warnings << QString::fromStdString(w);
+  if (warnings.isEmpty()) {
+    emit statusMessage(imported);
+    return;
+  }
+  imported += tr(". Warning: %1").arg(warnings.join("; "));
+  emit statusMessage(imported);
+  if (interactive_) QMessageBox::warning(dialog_parent_, tr("Import camera"), imported);
 }
 
 bool Session::exportArtcam(const QString& path) {
@@ -393,7 +410,8 @@ void Session::exportImage(const QString& path) {
     });
     return;
   }
-  auto* job = new ExportJob(document_->photo(), document_->artcam(), path, export_options_, this);
+  auto* job = new ExportJob(document_->photo(), document_->artcam(), path,
+                            exportOptionsForFile(export_options_, path), this);
   // A camera with a depth block reads the painted depth (rasterised here: the depth model lives
   // on the GUI thread; only such cameras pay for it).
   if (readsDepth(document_->artcam()))
@@ -414,8 +432,8 @@ void Session::exportImage(const QString& path) {
     if (ok)
       emit statusMessage(message);
     else if (!message.isEmpty())
-      showError(tr("Export image"), message);
-    emit exportFinished(ok, message);
+      showError(tr("Export image"), studioWording(message));
+    emit exportFinished(ok, ok ? message : studioWording(message));
   });
   connect(job, &ExportJob::finished, job, &QObject::deleteLater);
   job->start();
@@ -447,6 +465,12 @@ void Session::exportDepthMapDialog() {
   const QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export depth map"),
                                                     suggestion, tr("OpenEXR (*.exr)"));
   if (!path.isEmpty()) exportDepthMap(path);
+}
+
+void Session::setExportOptions(const ExportOptions& options) {
+  export_options_ = options;
+  QSettings settings;
+  saveExportOptions(settings, options);
 }
 
 void Session::cancelExport() {
@@ -583,7 +607,9 @@ void Session::importArtcamDialog() {
 }
 
 void Session::exportArtcamDialog() {
-  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export camera"), QString(),
+  const QString photo = document_->photo() ? document_->photo()->path : QString();
+  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export camera"),
+                                              proposedSavePath(photo, "_camera.artcam"),
                                               tr("ARTcam cameras (*.artcam)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += ".artcam";
@@ -605,7 +631,7 @@ void Session::exportImageDialog() {
   const std::optional<ExportOptions> options =
       ExportOptionsDialog::ask(current, path, dialog_parent_);
   if (!options) return;
-  export_options_ = *options;
+  setExportOptions(*options);
   exportImage(path);
 }
 

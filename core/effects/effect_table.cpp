@@ -181,6 +181,11 @@ const EffectParam* findParam(const EffectSpec& effect, const std::string& name) 
   return nullptr;
 }
 
+std::string effectLabel(const std::string& name) {
+  const EffectSpec* spec = findEffect(name);
+  return spec && !spec->label.empty() ? spec->label : name;
+}
+
 Artcam buildEffect(const std::string& name, const EffectValues& values, FrameSize frame) {
   const EffectSpec* spec = findEffect(name);
   if (!spec) throw std::invalid_argument("unknown effect \"" + name + "\"");
