@@ -350,6 +350,17 @@ void MainWindow::createMenus() {
   QMenu* lens = menuBar()->addMenu(tr("&Lens"));
   lens->addAction(tr("From &Database…"), session_, &Session::lensFromDatabaseDialog)
       ->setToolTip(tr("The camera that corrects a lens of the lensfun database for this photo"));
+  lens->addAction(tr("&Distortion Sliders"), this, [this] {
+        // The table's lens-distortion row in the effect stack: its k1, k2, centre and scale are
+        // the Effects panel's sliders.
+        auto* panel = findChild<EffectsPanel*>();
+        if (!panel || !panel->addEffect(QStringLiteral("lens-distortion"))) return;
+        if (auto* dock = findChild<QDockWidget*>(QStringLiteral("effectsDock"))) {
+          dock->show();
+          dock->raise();
+        }
+      })
+      ->setToolTip(tr("Bend the picture by a lens's strengths (k1, k2, centre, scale) on sliders"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&Quick Start"), QKeySequence::HelpContents, this,

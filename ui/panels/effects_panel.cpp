@@ -11,7 +11,10 @@
 #include <QLabel>
 #include <QListWidget>
 #include <QPushButton>
+#include <QSlider>
 #include <QVBoxLayout>
+
+#include <cmath>
 
 namespace artcam::ui {
 namespace {
@@ -206,8 +209,29 @@ void EffectsPanel::rebuildParameters() {
       spin->setToolTip(tip);
       const std::string name = p.name;
       connect(spin, &QDoubleSpinBox::valueChanged, this, [this, name] { onSpinChanged(name); });
-      row->addWidget(spin);
       spins_[p.name].push_back(spin);
+      if (!p.isChoice()) {
+        // A slider beside the box for a strength to be felt rather than typed (a lens's k1):
+        // it types into the spin box, so its drag is the box's one merged undo step.
+        auto* slider = new QSlider(Qt::Horizontal, this);
+        slider->setObjectName(spin->objectName() + "/slider");
+        slider->setRange(0, kSliderSteps);
+        slider->setToolTip(tip);
+        const auto at = [spin] {
+          return static_cast<int>(std::lround((spin->value() - spin->minimum()) /
+                                              (spin->maximum() - spin->minimum()) * kSliderSteps));
+        };
+        slider->setValue(at());
+        connect(slider, &QSlider::valueChanged, spin, [spin](int v) {
+          spin->setValue(spin->minimum() + (spin->maximum() - spin->minimum()) * v / kSliderSteps);
+        });
+        connect(spin, &QDoubleSpinBox::valueChanged, slider, [slider, at] {
+          const QSignalBlocker block(slider);
+          slider->setValue(at());
+        });
+        row->addWidget(slider, 1);
+      }
+      row->addWidget(spin);
     }
     form_->addRow(QString::fromStdString(p.name), row);
   }
