@@ -25,10 +25,11 @@ QString ExportJob::writtenText(const QString& path, const ImageF& out,
   if (summary.transparent_pixels > 0)
     text += tr(", %1 transparent pixels").arg(summary.transparent_pixels);
   if (!summary.note.empty()) text += "; " + QString::fromStdString(summary.note);
-  return text + tr(" (%1, %2 ms)")
-                    .arg(QString::fromUtf8(renderPathName(summary.path).data(),
-                                           static_cast<qsizetype>(renderPathName(summary.path).size())))
-                    .arg(summary.render_ms, 0, 'f', 0);
+  return text +
+         tr(" (%1, %2 ms)")
+             .arg(QString::fromUtf8(renderPathName(summary.path).data(),
+                                    static_cast<qsizetype>(renderPathName(summary.path).size())))
+             .arg(summary.render_ms, 0, 'f', 0);
 }
 
 ExportJob::ExportJob(PhotoPtr photo, Artcam camera, QString path, ExportOptions options,

@@ -36,8 +36,8 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileInfo>
-#include <QLabel>
 #include <QKeySequence>
+#include <QLabel>
 #include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -274,8 +274,8 @@ void MainWindow::createMenus() {
     return own;
   };
   QAction* zoom_in = view->addAction(tr("Zoom &In"), canvas_, &Canvas::zoomIn);
-  zoom_in->setShortcuts(keys({QKeySequence(tr("Ctrl+=")), QKeySequence(tr("Ctrl++"))},
-                             QKeySequence::ZoomIn));
+  zoom_in->setShortcuts(
+      keys({QKeySequence(tr("Ctrl+=")), QKeySequence(tr("Ctrl++"))}, QKeySequence::ZoomIn));
   QAction* zoom_out = view->addAction(tr("Zoom &Out"), canvas_, &Canvas::zoomOut);
   zoom_out->setShortcuts(keys({QKeySequence(tr("Ctrl+-"))}, QKeySequence::ZoomOut));
   view->addSeparator();
@@ -350,16 +350,17 @@ void MainWindow::createMenus() {
   QMenu* lens = menuBar()->addMenu(tr("&Lens"));
   lens->addAction(tr("From &Database…"), session_, &Session::lensFromDatabaseDialog)
       ->setToolTip(tr("The camera that corrects a lens of the lensfun database for this photo"));
-  lens->addAction(tr("&Distortion Sliders"), this, [this] {
-        // The table's lens-distortion row in the effect stack: its k1, k2, centre and scale are
-        // the Effects panel's sliders.
-        auto* panel = findChild<EffectsPanel*>();
-        if (!panel || !panel->addEffect(QStringLiteral("lens-distortion"))) return;
-        if (auto* dock = findChild<QDockWidget*>(QStringLiteral("effectsDock"))) {
-          dock->show();
-          dock->raise();
-        }
-      })
+  // The table's lens-distortion row in the effect stack: its k1, k2, centre and scale are the
+  // Effects panel's sliders.
+  auto distortion_sliders = [this] {
+    auto* panel = findChild<EffectsPanel*>();
+    if (!panel || !panel->addEffect(QStringLiteral("lens-distortion"))) return;
+    if (auto* dock = findChild<QDockWidget*>(QStringLiteral("effectsDock"))) {
+      dock->show();
+      dock->raise();
+    }
+  };
+  lens->addAction(tr("&Distortion Sliders"), this, distortion_sliders)
       ->setToolTip(tr("Bend the picture by a lens's strengths (k1, k2, centre, scale) on sliders"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
@@ -404,10 +405,10 @@ void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
        tr("Click points along a straight edge, Enter ends the line: the camera straightens the "
           "lines (S)"),
        [this] { return std::make_unique<LineTool>(canvas_, document_); }},
-      {tr("Depth &Brush"), tr("Brush"), "B", tr("Paint the selected depth plane's region (B; [ ] size)"),
-       depth(DepthToolMode::Brush)},
-      {tr("Depth &Eraser"), tr("Eraser"), "E", tr("Erase from the selected depth plane's region (E)"),
-       depth(DepthToolMode::Eraser)},
+      {tr("Depth &Brush"), tr("Brush"), "B",
+       tr("Paint the selected depth plane's region (B; [ ] size)"), depth(DepthToolMode::Brush)},
+      {tr("Depth &Eraser"), tr("Eraser"), "E",
+       tr("Erase from the selected depth plane's region (E)"), depth(DepthToolMode::Eraser)},
       {tr("Depth Pol&ygon"), tr("Polygon"), "G",
        tr("Click corners; Enter or the first corner closes (Alt: erase) (G)"),
        depth(DepthToolMode::Polygon)},

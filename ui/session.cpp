@@ -349,9 +349,10 @@ void Session::importArtcam(const QString& path) {
     stack->push(new SetCameraCommand(document_, std::move(c), tr("Set camera")));
   }
   stack->endMacro();
-  QString imported = tr("Imported %1 (%2 camera)")
-                         .arg(path, QString::fromUtf8(std::string(artcamKindName(
-                                                          document_->artcam().kind())).c_str()));
+  QString imported =
+      tr("Imported %1 (%2 camera)")
+          .arg(path,
+               QString::fromUtf8(std::string(artcamKindName(document_->artcam().kind())).c_str()));
   // What `artcam` prints on reading such a camera: a pole in the frame leaves part of the
   // picture empty, which the user should hear before looking for a bug in the photo.
   QStringList warnings;

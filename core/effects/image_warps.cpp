@@ -44,7 +44,8 @@ Camera lensDistortionCamera(const LensDistortion& lens, FrameSize frame) {
   const Eigen::Vector2d h = halfExtent(frame);
   double r0 = 0.0;
   for (double sx : {-1.0, 1.0})
-    for (double sy : {-1.0, 1.0}) r0 = std::max(r0, (Eigen::Vector2d(sx * h.x(), sy * h.y()) - c).norm());
+    for (double sy : {-1.0, 1.0})
+      r0 = std::max(r0, (Eigen::Vector2d(sx * h.x(), sy * h.y()) - c).norm());
   if (lens.k1 * r0 * r0 >= 0.95)
     throw std::invalid_argument("lens distortion: k1 = " + std::to_string(lens.k1) +
                                 " puts the first pole circle inside the frame (need k1·r² < 0.95 "

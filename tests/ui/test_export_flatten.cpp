@@ -66,7 +66,8 @@ class TestExportFlatten : public QObject {
       const auto [jpeg, message] = exportTo("keep.jpg");
       QVERIFY2(jpeg.ok(), jpeg.status.message.c_str());
       const float* corner = jpeg->image.pixel(0, 0);
-      for (int c = 0; c < 3; ++c) QVERIFY2(corner[c] > 0.9f, qPrintable(QString::number(corner[c])));
+      for (int c = 0; c < 3; ++c)
+        QVERIFY2(corner[c] > 0.9f, qPrintable(QString::number(corner[c])));
       QVERIFY2(message.contains("filled"), qPrintable(message));
       QVERIFY2(!message.contains("transparent pixels"), qPrintable(message));
     }

@@ -81,8 +81,8 @@ class TestPanelWording : public QObject {
     EffectsPanel panel(&doc);
     QVERIFY(panel.addEffect("lens-distortion"));
     const int steps_before = doc.undoStack()->count();
-    for (const char* name : {"k1/slider", "k2/slider", "centre[0]/slider", "centre[1]/slider",
-                             "scale/slider"})
+    for (const char* name :
+         {"k1/slider", "k2/slider", "centre[0]/slider", "centre[1]/slider", "scale/slider"})
       QVERIFY2(panel.findChild<QSlider*>(name), name);
     auto* k1 = panel.findChild<QSlider*>("k1/slider");
     for (int v : {500, 400, 300}) k1->setValue(v);  // one drag

@@ -58,7 +58,8 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
   layout->addLayout(form_);
   layout->addWidget(status_label_);
   layout->addStretch(1);
-  connect(add, &QPushButton::clicked, this, [this] { addEffect(add_box_->currentData().toString()); });
+  connect(add, &QPushButton::clicked, this,
+          [this] { addEffect(add_box_->currentData().toString()); });
   connect(remove, &QPushButton::clicked, this, &EffectsPanel::removeSelected);
   connect(up, &QPushButton::clicked, this, [this] { moveSelected(-1); });
   connect(down, &QPushButton::clicked, this, [this] { moveSelected(+1); });
@@ -87,9 +88,8 @@ bool EffectsPanel::addEffect(const QString& name) {
   }
   effects.push_back(std::move(step));
   const int index = static_cast<int>(effects.size()) - 1;
-  document_->undoStack()->push(
-      new SetEffectsCommand(document_, std::move(effects),
-                            tr("Add effect %1").arg(humanName(spec->name))));
+  document_->undoStack()->push(new SetEffectsCommand(
+      document_, std::move(effects), tr("Add effect %1").arg(humanName(spec->name))));
   setSelectedIndex(index);
   return true;
 }
@@ -257,8 +257,7 @@ void EffectsPanel::onSpinChanged(const std::string& name) {
   gesture_entry_ = index;
   stack->push(new SetEffectsCommand(
       document_, std::move(effects),
-      tr("Set %1 %2").arg(humanName(step.effect), QString::fromStdString(name)),
-      gesture_));
+      tr("Set %1 %2").arg(humanName(step.effect), QString::fromStdString(name)), gesture_));
   gesture_stack_index_ = stack->index();
 }
 

@@ -63,10 +63,10 @@ QString termTip(const Camera& camera, const QStringList& names, int element, int
                 double value) {
   const QString term = r == c ? names.value(r) + QStringLiteral("²")
                               : QString("2·%1·%2").arg(names.value(r), names.value(c));
-  const QString blocks = blockOf(camera, r) == blockOf(camera, c)
-                             ? TensorPanel::tr("%1 block").arg(blockOf(camera, r))
-                             : TensorPanel::tr("%1 × %2 blocks")
-                                   .arg(blockOf(camera, r), blockOf(camera, c));
+  const QString blocks =
+      blockOf(camera, r) == blockOf(camera, c)
+          ? TensorPanel::tr("%1 block").arg(blockOf(camera, r))
+          : TensorPanel::tr("%1 × %2 blocks").arg(blockOf(camera, r), blockOf(camera, c));
   return TensorPanel::tr("Q%1[%2, %3]: the weight of %4 (%5) in output %6 (%7 block)\n= %8")
       .arg(element + 1)
       .arg(names.value(r), names.value(c), term, blocks, names.value(element),
@@ -148,7 +148,8 @@ QString TensorPanel::summary() const {
     text += tr(", %1 patches").arg(whole.pieces->patches.size());
   if (whole.depth_output == DepthOutput::BlurVariance) text += tr(", depth output: blur variance");
   QStringList effects;
-  for (const EffectStep& e : document_->effects()) effects << QString::fromStdString(effectLabel(e.effect));
+  for (const EffectStep& e : document_->effects())
+    effects << QString::fromStdString(effectLabel(e.effect));
   if (!effects.isEmpty()) text += tr("; effects: %1").arg(effects.join(" → "));
   text += tr(". The tables edit the geometry (layer 1)");
   if (document_->manualCamera()) text += tr(", set by hand");

@@ -32,22 +32,21 @@ class TestLensDistortion : public QObject {
     const FrameSize frame{600, 400};
     const Eigen::Vector2d c(0.1, -0.05);
     const Artcam cam = buildEffect(
-        "lens-distortion", {{"k1", {-0.2}}, {"k2", {0.1}}, {"centre", {0.1, -0.05}}, {"scale", {1.1}}},
-        frame);
+        "lens-distortion",
+        {{"k1", {-0.2}}, {"k2", {0.1}}, {"centre", {0.1, -0.05}}, {"scale", {1.1}}}, frame);
     QCOMPARE(cam.main().stages().size(), size_t{2});
     for (double x : {-1.0, -0.4, 0.0, 0.3, 1.0})
       for (double y : {-0.66, -0.2, 0.0, 0.5, 0.66}) {
         const auto got = targetFromSourceNormalized(cam.main(), {x, y});
         QVERIFY(got.has_value());
         const Eigen::Vector2d want = closedForm({x, y}, -0.2, 0.1, c, 1.1);
-        QVERIFY2((*got - want).norm() < 1e-12,
-                 qPrintable(QString("(%1, %2): %3 %4 against %5 %6")
-                                .arg(x)
-                                .arg(y)
-                                .arg(got->x())
-                                .arg(got->y())
-                                .arg(want.x())
-                                .arg(want.y())));
+        QVERIFY2((*got - want).norm() < 1e-12, qPrintable(QString("(%1, %2): %3 %4 against %5 %6")
+                                                              .arg(x)
+                                                              .arg(y)
+                                                              .arg(got->x())
+                                                              .arg(got->y())
+                                                              .arg(want.x())
+                                                              .arg(want.y())));
       }
   }
 
