@@ -8,6 +8,7 @@
 #include "core/effects/effect_table.h"
 #include "core/io/artcam_file.h"
 #include "tests/ui/ui_fixtures.h"
+#include "ui/colour/colour_dock.h"
 #include "ui/commands.h"
 #include "ui/document.h"
 #include "ui/fit_status.h"
@@ -286,24 +287,26 @@ class TestCalmWindow : public QObject {
     QVERIFY2(said.join('\n').contains("pole"), qPrintable(said.join('\n')));
   }
 
-  // File ▸ Export Camera proposes a name beside the photo, as the other saves do.
-  void cameraExportProposesAName() {
+  // Every save dialog proposes a name beside the photo: its base name and what is saved.
+  void saveDialogsProposeAName() {
     MainWindow window;
     window.session()->setInteractive(false);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     window.document()->reset(ui::test::syntheticPhoto(320, 240));
-    QStringList proposed;
-    bool looked = false;
-    whenModal<QFileDialog>([&](QFileDialog* dialog) {
-      looked = true;
-      proposed = dialog->selectedFiles();
-    });
-    window.session()->exportArtcamDialog();
-    QVERIFY(looked);
-    QVERIFY(!proposed.isEmpty());
-    const QString name = QFileInfo(proposed.front()).fileName();
-    QVERIFY2(name.startsWith("synthetic") && name.endsWith(".artcam"), qPrintable(name));
+    auto proposal = [&](const std::function<void()>& open) {
+      QStringList proposed;
+      whenModal<QFileDialog>([&](QFileDialog* dialog) { proposed = dialog->selectedFiles(); });
+      open();
+      return proposed.isEmpty() ? QString() : QFileInfo(proposed.front()).fileName();
+    };
+    const QString camera = proposal([&] { window.session()->exportArtcamDialog(); });
+    QVERIFY2(camera.startsWith("synthetic") && camera.endsWith(".artcam"), qPrintable(camera));
+    const QString csv = proposal([&] { window.colourDock()->exportCsvDialog(); });
+    QVERIFY2(csv.startsWith("synthetic") && csv.endsWith(".csv"), qPrintable(csv));
+    const QString project = proposal([&] { window.session()->saveAs(); });
+    QVERIFY2(project.startsWith("synthetic") && project.endsWith(".artcamproj"),
+             qPrintable(project));
   }
 
  private:
