@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/export_settings.h"
 
-#include <QFileInfo>
 #include <QSettings>
 #include <QVariantList>
 
@@ -59,15 +58,8 @@ void saveExportOptions(QSettings& settings, const ExportOptions& o) {
                                       : "input");
 }
 
-bool formatHoldsAlpha(const QString& path) {
-  const QString suffix = QFileInfo(path).suffix().toLower();
-  return suffix != "jpg" && suffix != "jpeg";
-}
-
 ExportOptions exportOptionsForFile(ExportOptions options, const QString& path) {
-  if (!formatHoldsAlpha(path) && !options.fill && !options.crop_to_valid)
-    options.fill = kFlattenFill;
-  return options;
+  return exportOptionsForOutput(std::move(options), path.toStdString());
 }
 
 }  // namespace artcam::ui

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <exception>
 #include <stdexcept>
 #include <vector>
@@ -74,6 +75,21 @@ long long fillUnder(ImageF& image, const std::array<float, 4>& fill) {
 }
 
 }  // namespace
+
+bool outputHoldsAlpha(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  const size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return true;
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext != "jpg" && ext != "jpeg";
+}
+
+ExportOptions exportOptionsForOutput(ExportOptions options, const std::string& path) {
+  if (!outputHoldsAlpha(path) && !options.fill && !options.crop_to_valid)
+    options.fill = kFlattenFill;
+  return options;
+}
 
 ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam& camera,
                     const ExportOptions& options, const std::function<bool(double)>& progress,

@@ -18,6 +18,7 @@
 
 #include <QComboBox>
 #include <QDir>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableView>
@@ -46,6 +47,9 @@ class TestSession : public QObject {
   void initTestCase() {
     QStandardPaths::setTestModeEnabled(true);
     QVERIFY(dir_.isValid());
+    // A Session starts from the export options the last one set (kept in QSettings); the
+    // exports below assume the defaults, whatever an earlier run of this program chose.
+    QSettings().remove("export");
   }
 
   void projectRoundTripIsExact() {

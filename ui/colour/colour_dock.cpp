@@ -3,12 +3,12 @@
 
 #include "core/colour/colour_difference.h"
 #include "core/colour/colour_map.h"
-#include "core/io/matches_csv.h"
+#include "core/colour/colour_stage.h"
 #include "core/colour/transfer.h"
+#include "core/io/matches_csv.h"
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_fit_job.h"
 #include "ui/colour/colour_project.h"
-#include "core/colour/colour_stage.h"
 #include "ui/colour/patch_view.h"
 #include "ui/document.h"
 #include "ui/image_loader.h"
@@ -381,12 +381,10 @@ bool ColourDock::exportCsv(const QString& path) {
 }
 
 void ColourDock::exportCsvDialog() {
-  const QString path =
-      QFileDialog::getSaveFileName(this, tr("Export Colour Samples"),
-                                   proposedSavePath(document_->photo() ? document_->photo()->path
-                                                                       : QString(),
-                                                    "_colour.csv"),
-                                   tr("CSV (*.csv)"));
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Export Colour Samples"),
+      proposedSavePath(document_->photo() ? document_->photo()->path : QString(), "_colour.csv"),
+      tr("CSV (*.csv)"));
   if (!path.isEmpty()) exportCsv(path);
 }
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/matting/insertion_panel.h"
 
+#include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
-#include "core/io/artcam_file.h"
 #include "ui/background_job.h"
 #include "ui/document.h"
 #include "ui/matting/board_view.h"
@@ -393,9 +393,9 @@ void InsertionPanel::exportCompositeDialog() {
 }
 
 void InsertionPanel::exportCameraDialog() {
-  QString path = QFileDialog::getSaveFileName(this, tr("Export Piecewise Camera"),
-                                              proposedSavePath(photoPathOf(model_), "_insertion.artcam"),
-                                              tr("ARTcam (*.artcam)"));
+  QString path = QFileDialog::getSaveFileName(
+      this, tr("Export Piecewise Camera"),
+      proposedSavePath(photoPathOf(model_), "_insertion.artcam"), tr("ARTcam (*.artcam)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".artcam");
   exportCamera(path);
@@ -454,9 +454,9 @@ void InsertionPanel::importGridCsvDialog() {
 }
 
 void InsertionPanel::exportGridCsvDialog() {
-  QString path =
-      QFileDialog::getSaveFileName(this, tr("Export Grid Matches"),
-                                   proposedSavePath(photoPathOf(model_), "_grid.csv"), tr("CSV (*.csv)"));
+  QString path = QFileDialog::getSaveFileName(this, tr("Export Grid Matches"),
+                                              proposedSavePath(photoPathOf(model_), "_grid.csv"),
+                                              tr("CSV (*.csv)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".csv");
   exportGridCsv(path);

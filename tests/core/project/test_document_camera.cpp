@@ -77,7 +77,8 @@ class TestDocumentCamera : public QObject {
     const DocumentArtcam refused = assembleDocumentArtcam(
         base, {{"depth-of-field", {}}, {"aerial-perspective", {}}}, kFrame, true);
     QCOMPARE(refused.applied, std::vector<int>{0});
-    QVERIFY2(refused.note.find("effect 2 (Aerial perspective) left out") == 0, refused.note.c_str());
+    QVERIFY2(refused.note.find("effect 2 (Aerial perspective) left out") == 0,
+             refused.note.c_str());
   }
 
   void largestValidRectIsTheBiggestOpaqueRectangle() {
