@@ -273,7 +273,7 @@ class TestCalmWindow : public QObject {
                           w = Eigen::Vector3d::Unit(2);
     Stage stage{{symmetricOuter(u, w), symmetricOuter(v, w), symmetricOuter(w + 2.5 * v, w)}};
     Artcam camera(Camera({Block{BlockKind::Position, 3}}, {stage}, frame, frame));
-    const QString path = dir_.filePath("pole.artcam");
+    const QString path = dir_.filePath("import-me.artcam");
     QVERIFY(writeArtcam(path.toStdString(), camera).ok);
 
     MainWindow window;
