@@ -12,7 +12,10 @@
 #include "ui/document.h"
 #include "ui/export_job.h"
 #include "ui/export_options_dialog.h"
+#include "ui/export_settings.h"
 #include "ui/image_loader.h"
+#include "ui/save_names.h"
+#include "ui/studio_wording.h"
 
 #include <QCoreApplication>
 #include <QFileDialog>
@@ -88,6 +91,7 @@ Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
             return currentProject();
           },
           this)) {
+  export_options_ = loadExportOptions(QSettings());
   connect(document_->undoStack(), &QUndoStack::cleanChanged, this, &Session::titleChanged);
   connect(autosave_, &Autosave::saved, this, [this](bool ok, const QString& message) {
     if (!ok) emit statusMessage(tr("Autosave failed: %1").arg(message));
@@ -372,6 +376,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
   });
   connect(loader, &ImageLoader::failed, this, [this, loader](const QString& message) {
     if (loader != loader_) return;
+    emit loadProgress(-1);  // the load is over: no "Loading 0%" behind the error's dialog
     if (pending_project_) {
       // Opening a project: the project is what failed to open, because of its photo.
       pending_project_.reset();
@@ -511,12 +516,20 @@ void Session::importReadArtcam(const QString& path, Artcam read) {
     stack->push(new SetCameraCommand(document_, std::move(c), tr("Set camera")));
   }
   stack->endMacro();
-  const QString message =
+  QString imported =
       tr("Imported %1 (%2 camera)")
           .arg(path,
                QString::fromUtf8(std::string(artcamKindName(document_->artcam().kind())).c_str()));
-  emit statusMessage(message);
-  emit importFinished(true, message);
+  // What `artcam` prints on reading such a camera: a pole in the frame leaves part of the
+  // picture empty, which the user should hear before looking for a bug in the photo.
+  QStringList warnings;
+  for (const std::string& w : cameraWarnings(document_->artcam()))
+    warnings << QString::fromStdString(w);
+  if (!warnings.isEmpty()) imported += tr(". Warning: %1").arg(warnings.join("; "));
+  emit statusMessage(imported);
+  if (!warnings.isEmpty() && interactive_)
+    QMessageBox::warning(dialog_parent_, tr("Import camera"), imported);
+  emit importFinished(true, imported);
 }
 
 bool Session::exportArtcam(const QString& path) {
@@ -570,7 +583,8 @@ void Session::exportImage(const QString& path) {
     });
     return;
   }
-  auto* job = new ExportJob(document_->photo(), document_->artcam(), path, export_options_, this);
+  auto* job = new ExportJob(document_->photo(), document_->artcam(), path,
+                            exportOptionsForFile(export_options_, path), this);
   // A camera with a depth block reads the painted depth (rasterised here: the depth model lives
   // on the GUI thread; only such cameras pay for it).
   if (readsDepth(document_->artcam()))
@@ -591,8 +605,8 @@ void Session::exportImage(const QString& path) {
     if (ok)
       emit statusMessage(message);
     else if (!message.isEmpty())
-      showError(tr("Export image"), message);
-    emit exportFinished(ok, message);
+      showError(tr("Export image"), studioWording(message));
+    emit exportFinished(ok, ok ? message : studioWording(message));
   });
   connect(job, &ExportJob::finished, job, &QObject::deleteLater);
   job->start();
@@ -634,6 +648,12 @@ void Session::exportDepthMapDialog() {
   const QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export depth map"),
                                                     suggestion, tr("OpenEXR (*.exr)"));
   if (!path.isEmpty()) exportDepthMap(path);
+}
+
+void Session::setExportOptions(const ExportOptions& options) {
+  export_options_ = options;
+  QSettings settings;
+  saveExportOptions(settings, options);
 }
 
 void Session::cancelExport() {
@@ -770,7 +790,9 @@ void Session::importArtcamDialog() {
 }
 
 void Session::exportArtcamDialog() {
-  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export camera"), QString(),
+  const QString photo = document_->photo() ? document_->photo()->path : QString();
+  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export camera"),
+                                              proposedSavePath(photo, "_camera.artcam"),
                                               tr("ARTcam cameras (*.artcam)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += ".artcam";
@@ -792,7 +814,7 @@ void Session::exportImageDialog() {
   const std::optional<ExportOptions> options =
       ExportOptionsDialog::ask(current, path, dialog_parent_);
   if (!options) return;
-  export_options_ = *options;
+  setExportOptions(*options);
   exportImage(path);
 }
 

@@ -105,7 +105,8 @@ class Session : public QObject {
   bool exportDepthMap(const QString& path);
   // Crop or fill, JPEG quality, bit depth and size of the next exports (the export dialog's).
   const ExportOptions& exportOptions() const { return export_options_; }
-  void setExportOptions(const ExportOptions& options) { export_options_ = options; }
+  // Remembered across sessions (QSettings, export_settings.h).
+  void setExportOptions(const ExportOptions& options);
   // Stops a running export at its next tile (the progress dialog's Cancel does the same).
   void cancelExport();
   // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.

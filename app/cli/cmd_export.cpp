@@ -58,7 +58,8 @@ const char* const kExportUsage =
     "                         with an sRGB profile). Float OUT is linear Rec.709/D65 either way\n"
     "  --crop-valid           crop to the largest rectangle whose every pixel has a preimage\n"
     "  --fill R,G,B[,A]       linear colour under pixels without a preimage (default: none,\n"
-    "                         they stay transparent)\n"
+    "                         they stay transparent; a JPEG, which has no alpha, is filled\n"
+    "                         with white)\n"
     "  --json                 the result as one JSON object on stdout\n"
     "  --overwrite            replace existing outputs (--force is the same)\n"
     "  -q, --quiet            no progress bar on stderr (shown only on a terminal)\n\n"
@@ -124,6 +125,7 @@ int exportCommand(const std::vector<std::string>& argv) {
     if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");
     options.fill = parseFill(*fill);
   }
+  options = exportOptionsForOutput(std::move(options), *output);  // a JPEG is filled white
 
   const std::string& project_path = args.positional()[0];
   Result<StudioProject> project = readStudioProject(project_path);

@@ -111,7 +111,8 @@ EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize
   EffectStack out;
   auto leaveOut = [&out](size_t i, const EffectStep& step, const std::string& why) {
     if (!out.note.empty()) out.note += "; ";
-    out.note += "effect " + std::to_string(i + 1) + " (" + step.effect + ") left out: " + why;
+    out.note +=
+        "effect " + std::to_string(i + 1) + " (" + effectLabel(step.effect) + ") left out: " + why;
   };
   for (size_t i = 0; i < effects.size(); ++i) {
     const EffectStep& step = effects[i];

@@ -31,6 +31,15 @@ struct ExportOptions {
   WriteImageOptions write;  // pixel type (bit depth), JPEG quality
 };
 
+// A format without alpha (JPEG, by the path's extension) cannot keep pixels transparent: with
+// neither a fill nor a crop, `options` gets kFlattenFill, white, as an image editor flattens a
+// layer with transparency onto its white background when saving it as JPEG (black corners,
+// written without a word, looked like a broken camera). Other paths: `options` unchanged. The
+// studio's export and `artcam export` both call it, so they write the same file.
+inline constexpr std::array<float, 4> kFlattenFill = {1.0f, 1.0f, 1.0f, 1.0f};
+bool outputHoldsAlpha(const std::string& path);
+ExportOptions exportOptionsForOutput(ExportOptions options, const std::string& path);
+
 // Pixel rectangle [x0, x1) × [y0, y1).
 struct ValidRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;

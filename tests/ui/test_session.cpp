@@ -19,6 +19,7 @@
 
 #include <QComboBox>
 #include <QDir>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableView>
@@ -47,6 +48,9 @@ class TestSession : public QObject {
   void initTestCase() {
     QStandardPaths::setTestModeEnabled(true);
     QVERIFY(dir_.isValid());
+    // A Session starts from the export options the last one set (kept in QSettings); the
+    // exports below assume the defaults, whatever an earlier run of this program chose.
+    QSettings().remove("export");
   }
 
   void projectRoundTripIsExact() {

@@ -13,6 +13,7 @@
 #include "ui/colour/patch_view.h"
 #include "ui/document.h"
 #include "ui/image_loader.h"
+#include "ui/save_names.h"
 #include "ui/session.h"
 
 #include <QCheckBox>
@@ -390,8 +391,10 @@ bool ColourDock::exportCsv(const QString& path) {
 }
 
 void ColourDock::exportCsvDialog() {
-  const QString path =
-      QFileDialog::getSaveFileName(this, tr("Export Colour Samples"), {}, tr("CSV (*.csv)"));
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Export Colour Samples"),
+      proposedSavePath(document_->photo() ? document_->photo()->path : QString(), "_colour.csv"),
+      tr("CSV (*.csv)"));
   if (!path.isEmpty()) exportCsv(path);
 }
 

@@ -12,6 +12,7 @@
 #include <QItemSelectionModel>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QTableView>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -203,8 +204,22 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
   layout->addWidget(table_, 1);
   layout->addLayout(buttons);
   layout->addLayout(selector);
-  layout->addWidget(scores_);
-  layout->addWidget(reason_);
+  // The explanation lives in a box of fixed height: its text changes length with every fit, and
+  // laid out directly it pushed the model buttons up and down a line whenever it rewrapped.
+  auto* explanation = new QWidget;
+  auto* explanation_layout = new QVBoxLayout(explanation);
+  explanation_layout->setContentsMargins(0, 0, 0, 0);
+  explanation_layout->addWidget(scores_);
+  explanation_layout->addWidget(reason_);
+  explanation_layout->addStretch(1);
+  auto* explanation_box = new QScrollArea(this);
+  explanation_box->setObjectName("fitExplanation");
+  explanation_box->setWidget(explanation);
+  explanation_box->setWidgetResizable(true);
+  explanation_box->setFrameShape(QFrame::NoFrame);
+  explanation_box->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  explanation_box->setFixedHeight(QFontMetrics(small).lineSpacing() * kExplanationLines);
+  layout->addWidget(explanation_box);
 
   connect(models_, &QButtonGroup::idClicked, this, &PairsPanel::chooseModel);
   connect(document_, &Document::modelChanged, this, &PairsPanel::updateExplanation);

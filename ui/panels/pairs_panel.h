@@ -66,6 +66,9 @@ class PairsPanel : public QWidget {
   // the dock, and during a drag a fit result arrives on every mouse move.
   void scheduleExplanation();
   static constexpr int kExplanationMs = 100;
+  // Lines of the explanation's fixed-height box: the score table of the six models and a
+  // two-line reason; more scrolls.
+  static constexpr int kExplanationLines = 10;
   void selectionFromDocument();
   void selectionToDocument();
 
