@@ -280,7 +280,10 @@ class TestCalmWindow : public QObject {
     window.session()->setInteractive(false);
     window.document()->reset(ui::test::syntheticPhoto(600, 400));
     QSignalSpy status(window.session(), &Session::statusMessage);
-    window.session()->importArtcam(path);
+    QSignalSpy finished(window.session(), &Session::importFinished);
+    window.session()->importArtcam(path);  // read off the GUI thread
+    QVERIFY(finished.wait(10000));
+    QVERIFY(finished.first().at(0).toBool());
     QVERIFY(window.document()->manualCamera().has_value());
     QStringList said;
     for (const QList<QVariant>& s : status) said << s.at(0).toString();
