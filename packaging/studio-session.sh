@@ -300,8 +300,8 @@ click_screen() {  # click_screen X Y: a left click at window pixel (X, Y) (docks
 # the shots show where the clicks landed and the project check at the end catches a miss. The
 # Depth panel's Next depth field (Alt+N) and the Effects panel's Add button (Alt+A) have
 # mnemonics, so the rows added to those panels over time move no click.
-depth_tab=(1064 863)
-effects_tab=(1128 863)
+depth_tab=(1120 863)
+effects_tab=(1184 863)
 effect_combo=(1112 86)
 
 set_next_depth() {  # the Depth panel's "Next depth" spin box: the depth of the next clicked point
@@ -319,26 +319,32 @@ use_photo() {  # use_photo FILE: the photo the canvas shows from now on (its siz
   read -r photo_w photo_h < <(identify -format '%w %h\n' "$1")
 }
 
-# result_of PAIRS X Y: where the result shows photo pixel (X, Y) while the document holds PAIRS
-# (one "sx sy tx ty" a line): the camera `artcam fit` makes of them (model auto, as the studio's
-# default), mapped by `artcam map`; the photo pixel itself while there are no pairs. The camera
-# is left in $home/fit.artcam.
+# camera_of PAIRS OUT.artcam: the camera the studio makes of PAIRS (one "sx sy tx ty" a line) on
+# the photo: a project of them, rendered by `artcam export --camera-out` (the project's fit is
+# the studio document's, core/project/document_camera.h).
+camera_of() {
+  printf '%s' "$1" >"$home/pairs-now.txt"
+  /usr/bin/python3 "$check" project "$files/coffee.png" "$home/pairs-now.txt" "$home/pairs-now.artcamproj"
+  "$artcam_bin" export "$home/pairs-now.artcamproj" -o "$home/pairs-now.png" --camera-out "$2" \
+    --quiet --overwrite >/dev/null 2>"$home/fit.err"
+}
+map_point() {  # map_point CAM X Y: "X' Y'", the camera's image of pixel (X, Y)
+  printf 'x,y\n%s,%s\n' "$2" "$3" >"$home/point.csv"
+  "$artcam_bin" map "$1" "$home/point.csv" | tail -n 1 | awk -F, '{ printf "%.2f %.2f\n", $3, $4 }'
+}
+# result_of PAIRS X Y: where the result shows photo pixel (X, Y) while the studio holds PAIRS;
+# the photo pixel itself while there are none.
 result_of() {
   if [[ -z "${1//[[:space:]]/}" ]]; then
     printf '%s %s\n' "$2" "$3"
     return
   fi
-  { echo "src_x,src_y,dst_x,dst_y"; awk 'NF == 4 { print $1 "," $2 "," $3 "," $4 }' <<<"$1"; } \
-    >"$home/fit.csv"
-  if ! "$artcam_bin" fit "$home/fit.csv" -o "$home/fit.artcam" --size "${photo_w}x${photo_h}" \
-    --quiet --overwrite >/dev/null 2>"$home/fit.err"; then
-    note "artcam fit of the pairs so far failed: $(head -n 1 "$home/fit.err")"
+  if ! camera_of "$1" "$home/fit.artcam"; then
+    note "the camera of the pairs so far could not be made: $(head -n 1 "$home/fit.err")"
     printf '%s %s\n' "$2" "$3"
     return
   fi
-  printf 'x,y\n%s,%s\n' "$2" "$3" >"$home/point.csv"
-  "$artcam_bin" map "$home/fit.artcam" "$home/point.csv" | tail -n 1 |
-    awk -F, '{ printf "%.2f %.2f\n", $3, $4 }'
+  map_point "$home/fit.artcam" "$2" "$3"
 }
 
 drag_photo() {  # drag_photo X0 Y0 X1 Y1: a left-button drag between two photo/result pixels
@@ -422,50 +428,74 @@ compare_pair() {  # compare_pair A B: logs the number of differing pixels; fails
 
 check="$root/packaging/studio_session_check.py"
 
+# snapshot_before N: the studio's pairs as its autosave holds them before pair N's clicks (the
+# autosave runs every ARTCAM_AUTOSAVE_INTERVAL_MS while the document is modified), so the check
+# can rebuild the very camera each source click was mapped back through.
+snapshot_before() {
+  local r="" i
+  if [[ "$1" -gt 1 ]]; then
+    for i in $(seq 1 40); do
+      r="$(recovery_files | head -n 1)"
+      if [[ -n "$r" ]] && /usr/bin/python3 -c 'import json, sys
+sys.exit(len(json.load(open(sys.argv[1])).get("pairs", [])) != int(sys.argv[2]))' "$r" "$(($1 - 1))" 2>/dev/null; then
+        cp "$r" "$home/snapshot-$1.artcamproj"
+        return 0
+      fi
+      sleep 0.2
+    done
+    note "no autosave with $(($1 - 1)) pairs before pair $1"
+  fi
+}
+
 # The saved pairs are what the clicks and drags on the result meant: each source the photo
-# point intended (the click mapped back through the studio's camera lands on it), pair 5's target
-# where it was dropped, pair 9's source the drop point mapped back through the camera the drag
-# began with. Tolerance: 1.5 px, a screen pixel's rounding and the fit's own sub-pixel spread.
+# point the click on the result showed (mapped back through the studio's camera), pair 5's
+# target where it was dropped, pair 9's source where the drag through the inverse put it: the
+# nine pairs of the bulge. Tolerance 1.5 px: a screen pixel's rounding (0.7 photo px) through
+# the camera, and earlier sources' rounding in the camera of the next click.
 check_pairs() {
-  local status=0
-  /usr/bin/python3 - "$project" "$placed" "$drag_camera" "$drop9" "$artcam_bin" \
-    >"$home/pairs.txt" 2>&1 <<'PY' || status=$?
-import json, subprocess, sys
-project, placed, camera, drop, artcam = sys.argv[1:6]
-pairs = json.load(open(project)).get("pairs", [])
-want = [[float(v) for v in line.split()] for line in placed.split("\n") if line.strip()]
+  local status=0 n rx ry x y X Y
+  /usr/bin/python3 - "$project" "$placed" >"$home/pairs.txt" 2>&1 <<'PY' || status=$?
+import json, sys
+pairs = json.load(open(sys.argv[1])).get("pairs", [])
+want = [[float(v) for v in line.split()] for line in sys.argv[2].split("\n") if line.strip()]
 if len(pairs) != len(want):
     print("%d pairs saved, %d placed" % (len(pairs), len(want)))
     sys.exit(1)
-worst, bad = 0.0, []
+worst, where = 0.0, ""
 for i, (p, w) in enumerate(zip(pairs, want)):
-    ends = [(p["target"], w[2:4], "target")]
-    if i != 8:  # pair 9's source was dragged: checked below
-        ends.append((p["source"], w[0:2], "source"))
-    for (x, y), (a, b), what in ends:
+    for (x, y), (a, b), what in ((p["source"], w[0:2], "source"), (p["target"], w[2:4], "target")):
         d = ((x - a) ** 2 + (y - b) ** 2) ** 0.5
-        worst = max(worst, d)
-        if d > 1.5:
-            bad.append("pair %d %s (%.2f, %.2f), meant (%.2f, %.2f)" % (i + 1, what, x, y, a, b))
-print("%d pairs saved: sources and targets, worst %.2f px from the point meant"
-      % (len(pairs), worst))
-src = pairs[8]["source"]
-with open(camera + ".point.csv", "w") as f:
-    f.write("x,y\n%r,%r\n" % tuple(src))
-out = subprocess.run([artcam, "map", camera, camera + ".point.csv"], capture_output=True,
-                     text=True).stdout.strip().split("\n")[-1].split(",")
-dx, dy = float(out[2]) - float(drop.split()[0]), float(out[3]) - float(drop.split()[1])
-d9 = (dx * dx + dy * dy) ** 0.5
-print("pair 9's dragged source (%.2f, %.2f) shows on the result %.2f px from the drop point"
-      % (src[0], src[1], d9))
-if d9 > 1.5:
-    bad.append("pair 9's dragged source")
-if bad:
-    print("not where the clicks meant: " + "; ".join(bad))
+        if d > worst:
+            worst, where = d, "pair %d's %s" % (i + 1, what)
+print("%d pairs saved; against the bulge's points the worst, %s, is %.2f px off" % (len(pairs), where, worst))
+t5 = pairs[4]["target"]
+d5 = ((t5[0] - want[4][2]) ** 2 + (t5[1] - want[4][3]) ** 2) ** 0.5
+print("pair 5's target after its drag on the result: (%.2f, %.2f), %.2f px from the drop point" % (t5[0], t5[1], d5))
+print("pair 9's source after its drag on the result: (%.2f, %.2f), the bulge's (%.2f, %.2f)" % (
+    pairs[8]["source"][0], pairs[8]["source"][1], want[8][0], want[8][1]))
+if d5 > 1.0:
     sys.exit(1)
 PY
   while IFS= read -r line; do log "  $line"; done <"$home/pairs.txt"
-  if [[ "$status" -ne 0 ]]; then fail "pairs on the result"; fi
+  if [[ "$status" -ne 0 ]]; then fail "pair 5's dragged target"; fi
+  # Each source click on the result, against the studio's own camera of the pairs before it:
+  # that camera maps the saved source back onto the clicked result pixel.
+  local worst=0
+  for n in 2 3 4 5 6 7 8 9; do
+    [[ -s "$home/snapshot-$n.artcamproj" ]] || continue
+    "$artcam_bin" export "$home/snapshot-$n.artcamproj" -o "$home/snap.png" \
+      --camera-out "$home/snap.artcam" --quiet --overwrite >/dev/null 2>&1 || continue
+    read -r rx ry < <(sed -n "${n}p" "$home/source-clicks.txt")
+    read -r x y < <(/usr/bin/python3 -c 'import json, sys
+p = json.load(open(sys.argv[1]))["pairs"][int(sys.argv[2]) - 1]["source"]; print(p[0], p[1])' \
+      "$home/snapshot-10.artcamproj" "$n")
+    read -r X Y < <(map_point "$home/snap.artcam" "$x" "$y")
+    worst="$(awk -v a="$X" -v b="$Y" -v c="$rx" -v d="$ry" -v w="$worst" 'BEGIN {
+      e = sqrt((a - c) ^ 2 + (b - d) ^ 2); printf "%.2f", e > w ? e : w }')"
+  done
+  log "  sources clicked on the result: the studio's camera of the pairs before each maps the" \
+    "recorded source to within $worst px of the click"
+  if ! awk -v w="$worst" 'BEGIN { exit !(w <= 1.0) }'; then fail "sources through the inverse"; fi
 }
 
 # The straightened grid against its truth, and the studio's camera against `artcam fit --lines`
@@ -528,7 +558,7 @@ check_lines() {
 check_project() {
   local status=0
   [[ -s "$project" ]] || { fail "project" "missing"; return; }
-  /usr/bin/python3 - "$project" >"$home/project.txt" <<'PY' || status=$?
+  /usr/bin/python3 - "$project" "$files" >"$home/project.txt" <<'PY' || status=$?
 import json, sys
 p = json.load(open(sys.argv[1]))
 pairs = p.get("pairs", [])
@@ -536,13 +566,15 @@ effects = [e["effect"] for e in p.get("effects", [])]
 layers = p.get("depth", {}).get("layers", [])
 print("project: %d pairs, model %s; effects %s; photo %s" % (len(pairs), p.get("model"), effects,
                                                             p.get("photo")))
+wrong = []
+if p.get("photo") not in ("moved/coffee.png", sys.argv[2] + "/moved/coffee.png"):
+    wrong.append("the photo is %s, not the located moved/coffee.png" % p.get("photo"))
 depths = []
 for layer in layers:
     anchors = layer.get("anchors", [])
     depths.append([a["depth"] for a in anchors])
     print("  depth plane %r: %s" % (layer.get("name"), ", ".join(
         "(%.1f, %.1f) depth %g" % (a["pixel"][0], a["pixel"][1], a["depth"]) for a in anchors)))
-wrong = []
 if len(pairs) != 9: wrong.append("%d pairs, not 9" % len(pairs))
 if effects != ["aerial-perspective", "depth-of-field"]: wrong.append("effects %s" % effects)
 if depths != [[1.5, 1.5, 40], [2, 2, 2]]: wrong.append("plane depths %s" % depths)
@@ -640,6 +672,8 @@ recovery_control() {
   kill -KILL "$studio_pid"
   wait "$studio_pid" 2>/dev/null || true
   studio_pid=""
+  sleep 1
+  xdotool getdisplaygeometry >/dev/null 2>&1 || log "  (the X server is gone after the kill)"
   "$studio_bin" >>"$outdir/files/studio-stderr.log" 2>&1 &
   studio_pid=$!
   if w="$(wait_window '^Recover work$' 10)"; then
@@ -707,39 +741,53 @@ pairs="$(awk -v w="$photo_w" -v h="$photo_h" 'BEGIN {
     u = (x - w / 2) / s; v = (y - h / 2) / s; f = 1 / (1 - k * (u * u + v * v))
     printf "%.2f %.2f %.2f %.2f\n", x, y, u * f * s + w / 2, v * f * s + h / 2
   }}')"
-placed=""  # the intended pairs so far, one "sx sy tx ty" a line
+placed=""  # the pairs as the studio should hold them now, one "sx sy tx ty" a line
+# Two pairs are placed wrong on purpose and put right by a drag on the result below, as a user
+# corrects a pair: pair 5's target 9 px left and 7 px up of the bulge's, pair 9's source 10 px
+# right and 8 px down of the photo point meant.
+miss5=(-9 -7) miss9=(10 8)
 n=0
 while read -r sx sy tx ty; do
   n=$((n + 1))
   calibrate quiet  # a fit's message may resize a dock, and the canvas refits the photo
+  if [[ "$n" -eq 5 ]]; then tx="$(calc "$tx + ${miss5[0]}")" ty="$(calc "$ty + ${miss5[1]}")"; fi
+  if [[ "$n" -eq 9 ]]; then sx="$(calc "$sx + ${miss9[0]}")" sy="$(calc "$sy + ${miss9[1]}")"; fi
   read -r rx ry < <(result_of "$placed" "$sx" "$sy")
+  snapshot_before "$n"
   click_photo "$rx" "$ry"
   click_photo "$tx" "$ty"
+  echo "$rx $ry" >>"$home/source-clicks.txt"
   log "  pair $n: source ($sx, $sy), clicked on the result at ($rx, $ry) -> target ($tx, $ty)"
   placed+="$sx $sy $tx $ty"$'\n'
 done <<<"$pairs"
-shot pairs-result "nine pairs placed on the result (Result view)"
+snapshot_before 10
+shot pairs-result "nine pairs placed on the result (Result view; pairs 5 and 9 misplaced)"
 
-# Drags on the result: pair 5's target moves by (+24, +14) result pixels, pair 9's source by
-# (-20, -16) result pixels from where the result shows it; the source's new photo point is the
-# drop point mapped back through the camera of the pairs as they were when the drag began.
-step "drag pair 5's target and pair 9's source on the Result view"
+# The drags. A target is a result pixel: pair 5's is grabbed where it shows and dropped on the
+# bulge's target. A source is drawn at its photo pixel in every view, and dragged over the result
+# it moves by the cursor's motion mapped back through the camera the drag began with (C0):
+# grabbed at p, dropped at C0(C0^-1(p) - miss), it must land on the photo point meant, p - miss.
+step "drag pair 5's target and pair 9's source on the Result view onto the bulge's points"
+want="$(awk -v m="${miss5[*]} ${miss9[*]}" 'BEGIN { split(m, d, " ") }
+  NR == 5 { $3 -= d[1]; $4 -= d[2] } NR == 9 { $1 -= d[3]; $2 -= d[4] }
+  NF == 4 { printf "%.2f %.2f %.2f %.2f\n", $1, $2, $3, $4 }' <<<"$placed")"$'\n'
 read -r sx sy tx ty < <(sed -n 5p <<<"$placed")
-drag_photo "$tx" "$ty" "$(calc "$tx + 24")" "$(calc "$ty + 14")"
-drag5="$(calc "$tx + 24") $(calc "$ty + 14")"
-placed="$(awk -v t="$drag5" 'NR == 5 { split(t, a, " "); $3 = a[1]; $4 = a[2] } { print }' <<<"$placed")"$'\n'
-log "  pair 5's target dragged from ($tx, $ty) to ($drag5)"
+read -r _ _ wx wy < <(sed -n 5p <<<"$want")
+calibrate quiet
+drag_photo "$tx" "$ty" "$wx" "$wy"
+log "  pair 5's target dragged on the result from ($tx, $ty) to ($wx, $wy)"
+placed="$(awk -v x="$wx" -v y="$wy" 'NR == 5 { $3 = x; $4 = y } NF == 4 { print }' <<<"$placed")"$'\n'
 read -r sx sy tx ty < <(sed -n 9p <<<"$placed")
-read -r rx ry < <(result_of "$placed" "$sx" "$sy")
-drag_photo "$rx" "$ry" "$(calc "$rx - 20")" "$(calc "$ry - 16")"
-drop9="$(calc "$rx - 20") $(calc "$ry - 16")"
-drag_camera="$home/drag9.artcam"
-cp "$home/fit.artcam" "$drag_camera" 2>/dev/null || true
-log "  pair 9's source dragged on the result from ($rx, $ry) to ($drop9)"
+camera_of "$placed" "$home/drag.artcam"
+read -r px py < <(/usr/bin/python3 "$check" inverse "$artcam_bin" "$home/drag.artcam" "$sx" "$sy")
+read -r dx dy < <(map_point "$home/drag.artcam" "$(calc "$px - ${miss9[0]}")" "$(calc "$py - ${miss9[1]}")")
+drag_photo "$sx" "$sy" "$dx" "$dy"
+log "  pair 9's source dragged on the result from ($sx, $sy) to ($dx, $dy)"
+placed="$want"
 key alt+1
 shot pairs-photo "the nine pairs as arrows on the photo (Photo view, Alt+1), after the drags"
 key alt+2
-shot pairs-dragged "the result after the drags (Result view)"
+shot pairs-dragged "the result after the drags: the bulge of nine exact pairs (Result view)"
 
 step "save the project (Ctrl+S: no project path yet, so Save As) to files/session.artcamproj"
 project="$files/session.artcamproj"
@@ -870,6 +918,8 @@ quit_studio
 # 6. The photo moves; the project reopens through Locate; the export is the same.
 step "move the photo (files/coffee.png -> files/moved/coffee.png) and reopen the project"
 mkdir -p "$files/moved"
+# The project as it was saved, photo and all, for `artcam export --photo` below.
+cp "$project" "$files/session-before-move.artcamproj"
 mv "$files/coffee.png" "$files/moved/coffee.png"
 start_studio "$project" nowait
 if w="$(wait_window '^Open project$' 15)"; then
@@ -890,17 +940,25 @@ calibrate
 shot reopened "the project reopened on the located photo: pairs, planes and effects back"
 step "export again (Ctrl+E) to files/export-2.png"
 export_image "$export2" || true
+step "save (Ctrl+S: the project now names the photo's new place) and quit"
+save_project "$project"
 quit_studio
 
 # 7. The comparisons. compare -metric AE prints how many pixels differ (exit status 1 when any).
 step "compare the exports with each other and with artcam export --photo"
 check_project
 cli_status=0
-"$artcam_bin" export "$project" --photo "$files/moved/coffee.png" -o "$files/cli.png" \
-  --camera-out "$files/cli.artcam" --quiet --overwrite >"$home/cli.txt" 2>&1 || cli_status=$?
-while IFS= read -r line; do log "  artcam export: $line"; done <"$home/cli.txt"
+"$artcam_bin" export "$files/session-before-move.artcamproj" --photo "$files/moved/coffee.png" \
+  -o "$files/cli-photo.png" --quiet --overwrite >"$home/cli.txt" 2>&1 || cli_status=$?
+while IFS= read -r line; do log "  artcam export --photo: $line"; done <"$home/cli.txt"
 if [[ "$cli_status" -ne 0 ]]; then fail "artcam export --photo" "exit status $cli_status"; fi
+cli_status=0
+"$artcam_bin" export "$project" -o "$files/cli.png" --camera-out "$files/cli.artcam" --quiet \
+  --overwrite >"$home/cli.txt" 2>&1 || cli_status=$?
+while IFS= read -r line; do log "  artcam export: $line"; done <"$home/cli.txt"
+if [[ "$cli_status" -ne 0 ]]; then fail "artcam export" "exit status $cli_status"; fi
 compare_pair "$export1" "$export2"
+compare_pair "$export1" "$files/cli-photo.png"
 compare_pair "$export1" "$files/cli.png"
 # The export must not be the photo itself (a session whose edits never arrived would still give
 # three identical exports).

@@ -13,6 +13,11 @@
                                       project's line model ("auto" when it records none)
   studio_session_check.py mapdiff A.csv B.csv   the largest distance between two `artcam map`
                                       outputs of the same points (x,y,X,Y rows)
+  studio_session_check.py project PHOTO PAIRS.txt OUT.artcamproj   a project of PHOTO with the
+                                      pairs "sx sy tx ty" a line (what `artcam export
+                                      --camera-out` turns into the studio's camera of them)
+  studio_session_check.py inverse ARTCAM CAM.artcam X Y   the photo pixel CAM maps to (X, Y), by
+                                      Newton's method on `artcam map` (forward only)
   studio_session_check.py anchors MAPPED.csv CLICKS.txt   depth points mapped to the result
                                       (`artcam map` rows) against the result pixels clicked
 
@@ -240,9 +245,49 @@ def anchors(mapped_path, clicks_path):
     return 0 if d.max() < 1.5 else 1
 
 
+def project(photo, pairs_path, out_path):
+    pairs = []
+    with open(pairs_path) as f:
+        for line in f:
+            v = [float(x) for x in line.split()]
+            if len(v) == 4:
+                pairs.append({"source": v[0:2], "target": v[2:4], "enabled": True})
+    with open(out_path, "w") as f:
+        json.dump({"format": "artcam-studio-project", "version": 1, "photo": photo,
+                   "model": "auto", "pairs": pairs}, f)
+    return 0
+
+
+def inverse(artcam, camera, x, y):
+    import os
+    import subprocess
+    import tempfile
+    target = np.array([float(x), float(y)])
+    p = target.copy()  # the start: the camera moves points by a few pixels
+    h = 0.5
+    fd, points = tempfile.mkstemp(suffix=".csv")
+    os.close(fd)
+    try:
+        for _ in range(20):
+            with open(points, "w") as f:
+                f.write("x,y\n%r,%r\n%r,%r\n%r,%r\n" % (p[0], p[1], p[0] + h, p[1], p[0], p[1] + h))
+            out = subprocess.run([artcam, "map", camera, points], capture_output=True, text=True,
+                                 check=True).stdout.strip().split("\n")
+            m = np.array([[float(v) for v in row.split(",")[2:4]] for row in out[-3:]])
+            jac = np.column_stack(((m[1] - m[0]) / h, (m[2] - m[0]) / h))
+            step = np.linalg.solve(jac, target - m[0])
+            p = p + step
+            if np.hypot(*step) < 1e-4:
+                break
+    finally:
+        os.remove(points)
+    print("%.3f %.3f" % (p[0], p[1]))
+    return 0
+
+
 def main(argv):
     commands = {"grid": grid, "spacing": spacing, "lines": lines, "mapdiff": mapdiff,
-                "anchors": anchors}
+                "project": project, "inverse": inverse, "anchors": anchors}
     if len(argv) < 2 or argv[1] not in commands:
         sys.stderr.write(__doc__)
         return 2
