@@ -491,7 +491,7 @@ p = json.load(open(sys.argv[1]))["pairs"][int(sys.argv[2]) - 1]["source"]; print
       "$home/snapshot-10.artcamproj" "$n")
     read -r X Y < <(map_point "$home/snap.artcam" "$x" "$y")
     worst="$(awk -v a="$X" -v b="$Y" -v c="$rx" -v d="$ry" -v w="$worst" 'BEGIN {
-      e = sqrt((a - c) ^ 2 + (b - d) ^ 2); printf "%.2f", e > w ? e : w }')"
+      e = sqrt((a - c) ^ 2 + (b - d) ^ 2); printf "%.2f", (e > w ? e : w) }')"
   done
   log "  sources clicked on the result: the studio's camera of the pairs before each maps the" \
     "recorded source to within $worst px of the click"
