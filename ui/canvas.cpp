@@ -60,6 +60,8 @@ Canvas::Canvas(Document* document, QWidget* parent) : QWidget(parent), document_
   connect(document_->depth(), &DepthModel::activeLayerChanged, this,
           qOverload<>(&QWidget::update));
   connect(document_, &Document::selectionChanged, this, qOverload<>(&QWidget::update));
+  // The result's inverse is of one camera; a gesture that needs the old one holds it.
+  connect(document_, &Document::cameraChanged, this, [this] { result_inverse_.reset(); });
 }
 
 Canvas::~Canvas() = default;
@@ -179,6 +181,7 @@ void Canvas::userMovedView() {
 
 void Canvas::onPhotoChanged() {
   if (tool_) tool_->cancel();
+  result_inverse_.reset();
   if (preview_ && document_->photo().get() != floor_photo_)
     photo_generation_floor_ = preview_->requestedGeneration();
   floor_photo_ = document_->photo().get();

@@ -19,24 +19,29 @@
 // - Result is the default: the warped photo is what is being made; `\` flips to the photo.
 // - Pairs are drawn the same in every mode: each arrow runs from where the feature is in the
 //   photo (source) to where it is asked to be in the result (target). Nothing jumps on `\`.
-// - Each endpoint is edited where its own picture is shown. Targets are result pixels: they
-//   can be placed, grabbed and dragged everywhere. Sources are photo pixels: they are grabbed,
-//   rubber-banded and placed only where the photo shows (Photo, Onion, left of the divider);
-//   over the result a source marker is a reference, since the feature is no longer there. So
-//   a new pair's source is clicked on the photo (`\` or Split), and its target may then be
-//   placed on the result (a pending source survives mode changes).
-// - Tools that edit the photo itself (depth painting, insertion's grid and region) do not work
-//   in the target frame (Tool::worksOnResult false): while one is active the canvas shows the
-//   photo whatever the mode; the mode returns with the pair tool.
+// - Edit where you look (as Puppet Warp and Liquify do). Targets are result pixels: they are
+//   placed, grabbed and dragged everywhere. Sources are photo pixels: where the photo shows
+//   (Photo, Onion, left of the divider) a click is the photo pixel under it; over the result it
+//   is the photo pixel the result shows there, the click mapped back through the inverse of the
+//   camera the result shows (result_inverse.h). A point of the result with no photo pixel under
+//   it (beyond a pole, outside the photo) is refused with a status message. So a whole pair is
+//   placed on the result, a source click then its target click.
+// - Depth tools paint the photo's masks through the same inverse: a stroke on the result lands
+//   on the photo pixels the result shows under it, and the result, with its effects (haze, depth
+//   of field), stays on screen while painting; the active mask's tint is drawn warped with it.
+//   Tools that still edit the photo in its own frame (lines, insertion's grid and region) report
+//   Tool::worksOnResult false: while one is active the canvas shows the photo whatever the mode;
+//   the mode returns with the next tool that works on the result.
 // - The result shown is always the newest the controller delivered for THIS photo, even while
 //   a newer render is in flight (a badge says "updating"); before the first one arrives the
 //   canvas shows a checkerboard and says so, never the photo in the result's place.
-// - Overlays of photo pixels (the depth overlay) are drawn only where the photo shows.
+// - The depth overlay (photo pixels, colour by depth) is drawn only where the photo shows.
 // - A canvas without a controller shows the photo only (tests of the tools, other uses).
 #pragma once
 
 #include "ui/canvas_view_mode.h"
 #include "ui/loupe.h"
+#include "ui/result_inverse.h"
 #include "ui/scaled_image_cache.h"
 #include "ui/view_transform.h"
 
@@ -44,6 +49,7 @@
 #include <QWidget>
 
 #include <memory>
+#include <optional>
 
 namespace artcam::ui {
 
@@ -83,11 +89,16 @@ class Canvas : public QWidget {
   // Whether the photo is visible at a widget point (Photo, Onion, left of the divider): where
   // sources may be edited.
   bool photoVisibleAt(const QPointF& widget) const;
-  // Whether sources may be placed and dragged at a widget point: where the photo shows, and
-  // anywhere while the result's geometry is the identity (no pairs fitted yet, only colour
-  // effects): its pixels are then the photo's, so a fresh photo takes its first clicks in
-  // Result mode too.
-  bool sourcesEditableAt(const QPointF& widget) const;
+  // The photo pixel under a widget point: the point itself where the photo shows; over the
+  // result, the photo pixel the result shows there, through `inverse` (null: resultInverse()),
+  // or none and a status line saying why and what to do.
+  PhotoPoint photoPixelAt(const QPointF& widget, const ResultInverse* inverse = nullptr) const;
+  // Where a photo pixel is drawn: at itself where the photo shows it, else where the result
+  // shows it (the camera's forward map); empty where the result does not show it.
+  std::optional<QPointF> widgetFromPhotoPixel(const Eigen::Vector2d& photo_px) const;
+  // The inverse of the camera the result shows now (result_inverse.h), made on first use after
+  // each camera or photo change; a gesture keeps the one it began with.
+  std::shared_ptr<const ResultInverse> resultInverse() const;
   // The newest result delivered for the current photo; null before the first one.
   const QImage* resultImage() const;
   // The divider's widget x in Split.
@@ -177,6 +188,7 @@ class Canvas : public QWidget {
   const void* floor_photo_ = nullptr;  // the photo the floor was taken for
   bool dragging_divider_ = false;
   QMetaObject::Connection camera_connection_;  // the "updating" badge's repaint
+  mutable std::shared_ptr<const ResultInverse> result_inverse_;  // reset on camera changes
   bool follow_fit_ = true;  // refit on resize until the user zooms or pans
   bool space_down_ = false;
   bool loupe_enabled_ = true;

@@ -10,6 +10,7 @@
 #include <QPixmap>
 
 #include <cmath>
+#include <memory>
 #include <utility>
 
 namespace artcam::ui {
@@ -70,27 +71,29 @@ bool Canvas::photoVisibleAt(const QPointF& widget) const {
   return true;
 }
 
-bool Canvas::sourcesEditableAt(const QPointF& widget) const {
-  if (photoVisibleAt(widget)) return true;
-  // The geometry is the identity when the first layer maps the frame's corners and centre to
-  // themselves (normalised frame, colour grey, depth 1: position outputs read no attribute then).
-  const Camera& c = document_->artcam().main();
-  const BlockLayout& l = c.layout();
-  if (document_->artcam().isPiecewise() || l.blocks.empty() || l.blocks[0].size != 3) return false;
-  for (const auto& [u, v] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}, {0.0, 0.0}}) {
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(c.dimension());
-    x[0] = u;
-    x[1] = v;
-    x[2] = 1.0;
-    for (size_t b = 1; b < l.blocks.size(); ++b) {
-      const int o = l.offsets[b];
-      if (l.blocks[b].kind == BlockKind::Colour) x.segment(o, 4) << 0.5, 0.5, 0.5, 1.0;
-      if (l.blocks[b].kind == BlockKind::Depth) x.segment(o, 2) << 1.0, 1.0;
-    }
-    const Eigen::VectorXd y = c.evaluate(x);
-    if (!(std::abs(y[0] - u) < 1e-9 && std::abs(y[1] - v) < 1e-9)) return false;
-  }
-  return true;
+std::shared_ptr<const ResultInverse> Canvas::resultInverse() const {
+  if (!result_inverse_)
+    result_inverse_ =
+        std::make_shared<const ResultInverse>(document_->artcam(), document_->frame());
+  return result_inverse_;
+}
+
+PhotoPoint Canvas::photoPixelAt(const QPointF& widget, const ResultInverse* inverse) const {
+  const QPointF p = view_.imageFromWidget(widget);
+  if (photoVisibleAt(widget)) return {Eigen::Vector2d(p.x(), p.y()), QString()};
+  // The result is drawn in the photo's frame, so its pixel under the cursor is p too.
+  if (inverse) return inverse->photoPixelOf({p.x(), p.y()});
+  return resultInverse()->photoPixelOf({p.x(), p.y()});
+}
+
+std::optional<QPointF> Canvas::widgetFromPhotoPixel(const Eigen::Vector2d& photo_px) const {
+  const QPointF direct = view_.widgetFromImage(QPointF(photo_px.x(), photo_px.y()));
+  const CanvasViewMode shown = shownMode();
+  if (shown == CanvasViewMode::Photo || shown == CanvasViewMode::Onion) return direct;
+  if (shown == CanvasViewMode::Split && direct.x() < dividerX()) return direct;
+  const std::optional<Eigen::Vector2d> r = resultInverse()->resultPixelOf(photo_px);
+  if (!r) return std::nullopt;
+  return view_.widgetFromImage(QPointF(r->x(), r->y()));
 }
 
 const QImage* Canvas::resultImage() const {

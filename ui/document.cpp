@@ -57,19 +57,20 @@ bool LineSet::operator==(const LineSet& o) const {
   if (open != o.open || lines.size() != o.lines.size()) return false;
   for (size_t i = 0; i < lines.size(); ++i)
     if (lines[i].label != o.lines[i].label || lines[i].points != o.lines[i].points ||
-        lines[i].enabled != o.lines[i].enabled)
+        lines[i].enabled != o.lines[i].enabled || lines[i].role != o.lines[i].role)
       return false;
   return true;
 }
 
 void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
                      std::optional<Artcam> manual_camera, std::vector<EffectStep> effects,
-                     std::vector<LineTrace> lines) {
+                     std::vector<LineTrace> lines, LineModel line_model) {
   undo_stack_.clear();
   photo_ = std::move(photo);
   pairs_ = std::move(pairs);
   lines_ = LineSet{std::move(lines), {}};
   model_ = model;
+  line_model_ = line_model;
   manual_camera_ = std::move(manual_camera);
   effects_ = std::move(effects);
   colour_block_.reset();
@@ -191,9 +192,12 @@ std::vector<PointMatch> Document::matches() const {
   return out;
 }
 
-void Document::setModel(ModelClass model) {
-  if (model == model_) return;
+void Document::setModel(ModelClass model) { setModels(model, line_model_); }
+
+void Document::setModels(ModelClass model, LineModel line_model) {
+  if (model == model_ && line_model == line_model_) return;
   model_ = model;
+  line_model_ = line_model;
   refit();
   emit modelChanged();
   emit pairsChanged();  // residuals changed
@@ -255,10 +259,15 @@ void Document::setSelection(std::vector<int> indices) {
   emit selectionChanged();
 }
 
+bool Document::linesDriveFit() const {
+  return !manual_camera_ && std::any_of(lines_.lines.begin(), lines_.lines.end(),
+                                        [](const LineTrace& l) { return l.enabled; });
+}
+
 FitInputs Document::fitInputs() const {
   std::optional<Camera> manual;
   if (manual_camera_) manual = manual_camera_->main();
-  return {frame(), matches(), lines_.lines, model_, manual, colour_block_};
+  return {frame(), matches(), lines_.lines, model_, manual, colour_block_, line_model_};
 }
 
 void Document::applyFit(FittedCamera fitted) {

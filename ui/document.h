@@ -71,7 +71,8 @@ class Document : public QObject {
   // marks clean.
   void reset(PhotoPtr photo, std::vector<Pair> pairs = {}, ModelClass model = ModelClass::Auto,
              std::optional<Artcam> manual_camera = std::nullopt,
-             std::vector<EffectStep> effects = {}, std::vector<LineTrace> lines = {});
+             std::vector<EffectStep> effects = {}, std::vector<LineTrace> lines = {},
+             LineModel line_model = LineModel::Auto);
   // The full photo of a quick first look (Photo::reduced_by, image_loader.h) replaces it: same
   // path and size(), so pairs, lines, effects, the camera, the selection and the undo stack stay
   // as they are (nothing refits). Emits photoRefined, not photoChanged. Ignored (false) when
@@ -123,6 +124,13 @@ class Document : public QObject {
   // --- model and camera ---
   ModelClass model() const { return model_; }
   void setModel(ModelClass model);
+  // The model chosen for the lines (auto, radial, quadratic); the line fit uses
+  // documentLineModel(model(), lineModel()) (core/project/document_camera.h).
+  LineModel lineModel() const { return line_model_; }
+  // Both at once, one refit (the model row's choice with lines: SetModelChoiceCommand).
+  void setModels(ModelClass model, LineModel line_model);
+  // True when an enabled finished line makes the geometry a line fit (no camera set by hand).
+  bool linesDriveFit() const;
   // A camera set by hand (tensor edits, .artcam import of any kind) replaces the fitted one
   // until cleared. Its first layer is the geometry camera() shows and the tensor panel edits;
   // its other layers, patches and depth output are kept (core/project/document_camera.h).
@@ -190,6 +198,7 @@ class Document : public QObject {
   std::vector<Pair> pairs_;
   LineSet lines_;
   ModelClass model_ = ModelClass::Auto;
+  LineModel line_model_ = LineModel::Auto;
   std::optional<Artcam> manual_camera_;
   std::optional<Camera> colour_block_;
   std::vector<EffectStep> effects_;

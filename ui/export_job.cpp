@@ -16,6 +16,22 @@ struct ExportOutcome {
 
 }  // namespace
 
+QString ExportJob::writtenText(const QString& path, const ImageF& out,
+                               const RenderSummary& summary) {
+  // What is in the file: its size, whether it kept an alpha channel, how many of its pixels are
+  // transparent (none after a fill or a crop), and what the export did to get there.
+  QString text = tr("Wrote %1: %2×%3").arg(path).arg(out.width).arg(out.height);
+  text += out.alpha_channel >= 0 ? tr(" with alpha") : tr(", opaque");
+  if (summary.transparent_pixels > 0)
+    text += tr(", %1 transparent pixels").arg(summary.transparent_pixels);
+  if (!summary.note.empty()) text += "; " + QString::fromStdString(summary.note);
+  return text +
+         tr(" (%1, %2 ms)")
+             .arg(QString::fromUtf8(renderPathName(summary.path).data(),
+                                    static_cast<qsizetype>(renderPathName(summary.path).size())))
+             .arg(summary.render_ms, 0, 'f', 0);
+}
+
 ExportJob::ExportJob(PhotoPtr photo, Artcam camera, QString path, ExportOptions options,
                      QObject* parent)
     : QObject(parent),
@@ -63,9 +79,7 @@ void ExportJob::start() {
             writeImage(path.toStdString(), out, &photo->full.info, options.write);
         if (!status) return ExportOutcome{false, QString::fromStdString(status.message)};
         job.setProgress(1.0);
-        return ExportOutcome{true, tr("Exported %1 (%2, %3 ms)")
-                                       .arg(path, QString::fromStdString(summary.describe()))
-                                       .arg(summary.render_ms, 0, 'f', 0)};
+        return ExportOutcome{true, writtenText(path, out, summary)};
       },
       [this](JobOutcome<ExportOutcome> outcome) {
         if (outcome.value)

@@ -34,7 +34,7 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
       fill_(new QRadioButton(tr("Fill with"), this)),
       crop_(new QRadioButton(tr("Crop to the valid area"), this)),
       fill_colour_(new QPushButton(this)),
-      colour_(Qt::black),
+      colour_(Qt::white),
       quality_(new QSpinBox(this)),
       bit_depth_(new QComboBox(this)),
       colour_space_(new QComboBox(this)) {
@@ -45,9 +45,13 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
   if (current.fill)
     colour_ = QColor::fromRgbF(srgbFromLinear((*current.fill)[0]), srgbFromLinear((*current.fill)[1]),
                                srgbFromLinear((*current.fill)[2]));
-  (current.crop_to_valid ? crop_ : current.fill ? fill_ : keep_)->setChecked(true);
+  // A JPEG has no alpha: keeping pixels transparent is not a choice there (export_settings.h),
+  // so the fill (white unless one was chosen) is offered in its place.
+  (current.crop_to_valid ? crop_ : current.fill || jpeg ? fill_ : keep_)->setChecked(true);
+  keep_->setEnabled(!jpeg);
   crop_->setToolTip(tr("The largest rectangle in which every pixel has a preimage in the photo"));
-  keep_->setToolTip(tr("Pixels without a preimage stay transparent (black in formats without alpha)"));
+  keep_->setToolTip(jpeg ? tr("JPEG has no transparency: fill or crop")
+                         : tr("Pixels without a preimage stay transparent"));
   connect(fill_colour_, &QPushButton::clicked, this, [this] {
     const QColor c = QColorDialog::getColor(colour_, this, tr("Fill colour"));
     if (!c.isValid()) return;

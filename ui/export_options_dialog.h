@@ -2,7 +2,9 @@
 // The export options image editors offer after the file name: what to do with pixels the camera
 // leaves without a preimage (keep them transparent, fill them with a colour, or crop to the
 // largest rectangle of valid pixels, as Hugin's "crop to valid area"), the JPEG quality, the
-// bit depth and the colour space (the photo's own ICC profile, or sRGB for the web). The choices persist for the session's next exports (Session::exportOptions).
+// bit depth and the colour space (the photo's own ICC profile, or sRGB for the web). The choices
+// persist for the next exports and sessions (Session::exportOptions, export_settings.h). A JPEG
+// cannot keep pixels transparent: "Keep transparent" is disabled and the fill is chosen.
 #pragma once
 
 #include "core/project/project_render.h"

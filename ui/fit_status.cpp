@@ -36,6 +36,8 @@ FitStatus::FitStatus(Document* document, PreviewController* preview, QWidget* pa
   layout->addWidget(residual_);
   layout->addWidget(render_);
   connect(document_, &Document::cameraChanged, this, &FitStatus::updateFit);
+  // A position in the old photo's pixels says nothing about the new one.
+  connect(document_, &Document::photoChanged, cursor_, &QLabel::clear);
   connect(preview_, &PreviewController::previewChanged, this, &FitStatus::updateRender);
   updateFit();
   updateRender();
@@ -44,6 +46,8 @@ FitStatus::FitStatus(Document* document, PreviewController* preview, QWidget* pa
 QString FitStatus::modelText() const { return model_->text(); }
 QString FitStatus::residualText() const { return residual_->text(); }
 QString FitStatus::renderText() const { return render_->text(); }
+QString FitStatus::cursorText() const { return cursor_->text(); }
+bool FitStatus::isLoadProgressShown() const { return !progress_->isHidden(); }
 
 void FitStatus::setLoadProgress(int percent) {
   progress_->setVisible(percent >= 0);

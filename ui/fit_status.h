@@ -23,6 +23,8 @@ class FitStatus : public QWidget {
   QString modelText() const;
   QString residualText() const;
   QString renderText() const;
+  QString cursorText() const;
+  bool isLoadProgressShown() const;  // the "Loading n%" bar
 
  public slots:
   void setLoadProgress(int percent);  // -1 hides the bar

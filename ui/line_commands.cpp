@@ -89,10 +89,61 @@ void pushMoveLinePoint(Document* document, int line, int point, const Eigen::Vec
       new SetLinesCommand(document, std::move(next), tr("Move line point"), gesture));
 }
 
+bool pushDeleteLines(Document* document, std::vector<int> indices) {
+  const int count = static_cast<int>(document->lines().size());
+  std::sort(indices.begin(), indices.end());
+  indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+  std::erase_if(indices, [count](int i) { return i < 0 || i >= count; });
+  if (indices.empty()) return false;
+  LineSet next = document->lineSet();
+  for (auto it = indices.rbegin(); it != indices.rend(); ++it)
+    next.lines.erase(next.lines.begin() + *it);
+  const QString text = indices.size() == 1 ? tr("Delete line") : tr("Delete lines");
+  document->undoStack()->push(new SetLinesCommand(document, std::move(next), text));
+  return true;
+}
+
+void pushSetLineEnabled(Document* document, int index, bool enabled) {
+  if (index < 0 || index >= static_cast<int>(document->lines().size())) return;
+  LineSet next = document->lineSet();
+  LineTrace& line = next.lines[static_cast<size_t>(index)];
+  if (line.enabled == enabled) return;
+  line.enabled = enabled;
+  document->undoStack()->push(new SetLinesCommand(
+      document, std::move(next), enabled ? tr("Enable line") : tr("Disable line")));
+}
+
+bool pushSetLineRoles(Document* document, const std::vector<int>& indices, LineRole role) {
+  LineSet next = document->lineSet();
+  bool changed = false;
+  for (int i : indices) {
+    if (i < 0 || i >= static_cast<int>(next.lines.size())) continue;
+    LineTrace& line = next.lines[static_cast<size_t>(i)];
+    changed = changed || line.role != role;
+    line.role = role;
+  }
+  if (!changed) return false;
+  document->undoStack()->push(new SetLinesCommand(document, std::move(next), tr("Line role")));
+  return true;
+}
+
 bool pushClearLines(Document* document) {
   if (document->lines().empty() && document->openLine().empty()) return false;
   document->undoStack()->push(new SetLinesCommand(document, LineSet{}, tr("Clear lines")));
   return true;
 }
+
+SetModelChoiceCommand::SetModelChoiceCommand(Document* document, ModelClass model,
+                                             LineModel line_model, const QString& text)
+    : document_(document),
+      model_before_(document->model()),
+      model_after_(model),
+      line_before_(document->lineModel()),
+      line_after_(line_model) {
+  setText(text);
+}
+
+void SetModelChoiceCommand::redo() { document_->setModels(model_after_, line_after_); }
+void SetModelChoiceCommand::undo() { document_->setModels(model_before_, line_before_); }
 
 }  // namespace artcam::ui

@@ -43,10 +43,35 @@ bool pushEndLine(Document* document);
 // Drops the open line (Esc). False when none is open.
 bool pushCancelLine(Document* document);
 void pushDeleteLine(Document* document, int index);
+// Deletes several finished lines in one undo step (the Lines panel's Delete). False when none of
+// the indices names a line.
+bool pushDeleteLines(Document* document, std::vector<int> indices);
+// Enables or disables finished line `index` (the Lines panel's check box): a disabled line
+// stays drawn but is not fitted.
+void pushSetLineEnabled(Document* document, int index, bool enabled);
+// Gives the finished lines `indices` a role (horizontal, vertical or none), one undo step; a
+// role does not change the fit, it is what the Lines panel measures each line's tilt against.
+// False when nothing changes.
+bool pushSetLineRoles(Document* document, const std::vector<int>& indices, LineRole role);
 // Moves point `point` of finished line `line`; a drag passes one gesture id for all its moves.
 void pushMoveLinePoint(Document* document, int line, int point, const Eigen::Vector2d& to_px,
                        int gesture);
 // Removes every line, the open one too. False when there are none.
 bool pushClearLines(Document* document);
+
+// The model row's choice while lines drive the fit: the pairs' model class and the lines'
+// model together (Document::setModels), one undo step.
+class SetModelChoiceCommand : public QUndoCommand {
+ public:
+  SetModelChoiceCommand(Document* document, ModelClass model, LineModel line_model,
+                        const QString& text);
+  void redo() override;
+  void undo() override;
+
+ private:
+  Document* document_;
+  ModelClass model_before_, model_after_;
+  LineModel line_before_, line_after_;
+};
 
 }  // namespace artcam::ui

@@ -15,12 +15,14 @@
 #include "ui/matting/insertion_studio.h"
 #include "ui/panels/depth_panel.h"
 #include "ui/panels/effects_panel.h"
+#include "ui/panels/lines_panel.h"
 #include "ui/panels/pairs_panel.h"
 #include "ui/panels/tensor_panel.h"
 #include "ui/preview_controller.h"
 #include "ui/preview_view.h"
 #include "ui/session.h"
 #include "ui/space_pan.h"
+#include "ui/studio_wording.h"
 #include "ui/tool_switcher.h"
 #include "ui/tools/depth_tool.h"
 #include "ui/tools/depth_tool_settings.h"
@@ -35,12 +37,13 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileInfo>
-#include <QLabel>
 #include <QKeySequence>
+#include <QLabel>
 #include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QSettings>
 #include <QStatusBar>
 #include <QToolBar>
 #include <QUrl>
@@ -50,6 +53,12 @@
 #include <optional>
 
 namespace artcam::ui {
+namespace {
+
+const char kGeometryKey[] = "window/geometry";
+const char kStateKey[] = "window/state";
+
+}  // namespace
 
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent),
@@ -100,6 +109,10 @@ MainWindow::MainWindow(QWidget* parent)
   pairs_dock->setObjectName("pairsDock");
   pairs_dock->setWidget(pairs_panel_);
   addDockWidget(Qt::RightDockWidgetArea, pairs_dock);
+  auto* lines_dock = new QDockWidget(tr("Lines"), this);  // beside the pairs: both feed the fit
+  lines_dock->setObjectName("linesDock");
+  lines_dock->setWidget(new LinesPanel(document_, this));
+  tabifyDockWidget(pairs_dock, lines_dock);
   auto* tensor_dock = new QDockWidget(tr("Tensors"), this);
   tensor_dock->setObjectName("tensorDock");
   tensor_dock->setWidget(new TensorPanel(document_, this));
@@ -139,7 +152,7 @@ MainWindow::MainWindow(QWidget* parent)
   connect(session_, &Session::titleChanged, this, &MainWindow::updateTitle);
   connect(session_, &Session::recentFilesChanged, this, &MainWindow::rebuildRecentMenu);
   connect(preview_, &PreviewController::renderFailed, this, [this](const QString& m) {
-    statusBar()->showMessage(tr("Preview failed: %1").arg(m), 8000);
+    statusBar()->showMessage(tr("Preview failed: %1").arg(studioWording(m)), 8000);
   });
   connect(document_->undoStack(), &QUndoStack::cleanChanged, this, &MainWindow::updateTitle);
   connect(document_, &Document::photoChanged, this, &MainWindow::updateTitle);
@@ -173,6 +186,10 @@ MainWindow::MainWindow(QWidget* parent)
   }
   updateTitle();
   resize(1400, 900);
+  // The last session's window: size, place, docks and toolbars (saved on a clean close).
+  const QSettings settings;
+  restoreGeometry(settings.value(kGeometryKey).toByteArray());
+  restoreState(settings.value(kStateKey).toByteArray());
 }
 
 MainWindow::~MainWindow() = default;
@@ -204,6 +221,13 @@ void MainWindow::createMenus() {
   })->setToolTip(tr("A float EXR/TIFF or 16-bit PNG depth map under the painted planes"));
   file->addSeparator();
   file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+  // The toolbar's labels are short (the menu's say more), so both toolbars fit 1400 px.
+  open->setIconText(tr("Open"));
+  save->setIconText(tr("Save"));
+  export_image->setIconText(tr("Export"));
+  open->setToolTip(tr("Open a photo or project (Ctrl+O)"));
+  save->setToolTip(tr("Save the project (Ctrl+S)"));
+  export_image->setToolTip(tr("Export the warped image (Ctrl+E)"));
   bar->addAction(open);
   bar->addAction(save);
   bar->addAction(export_image);
@@ -227,18 +251,38 @@ void MainWindow::createMenus() {
   });
   edit->addAction(tr("&Enable/Disable Selected Pairs"), this,
                   [this] { pushTogglePairsEnabled(document_, document_->selection()); });
-  bar->addAction(undo);
-  bar->addAction(redo);
+  // The toolbar's Undo and Redo keep one label: the stack's actions name the command ("Undo Set
+  // camera: Canon EF 24-70mm …"), and a label that changes width moves every button right of
+  // it. The command's name is in the tooltip; the shortcuts stay on the menu's actions.
+  for (QAction* stack_action : {undo, redo}) {
+    auto* a = new QAction(stack_action == undo ? tr("Undo") : tr("Redo"), bar);
+    a->setObjectName(stack_action == undo ? "toolbarUndo" : "toolbarRedo");
+    auto follow = [a, stack_action] {
+      a->setEnabled(stack_action->isEnabled());
+      a->setToolTip(stack_action->text().remove('&'));
+    };
+    follow();
+    connect(stack_action, &QAction::changed, a, follow);
+    connect(a, &QAction::triggered, stack_action, &QAction::trigger);
+    bar->addAction(a);
+  }
   bar->addSeparator();
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
   view->addAction(tr("Zoom to &Fit"), QKeySequence(tr("Ctrl+0")), canvas_, &Canvas::zoomToFit);
   view->addAction(tr("&Actual Pixels"), QKeySequence(tr("Ctrl+1")), canvas_, &Canvas::zoomActual);
+  // Each key once: the platform's ZoomIn/ZoomOut are Ctrl++ and Ctrl+- here, and a key listed
+  // twice is two shortcuts for one key, which Qt reports as ambiguous and never triggers.
+  auto keys = [](QList<QKeySequence> own, QKeySequence::StandardKey standard) {
+    for (const QKeySequence& k : QKeySequence::keyBindings(standard))
+      if (!own.contains(k)) own << k;
+    return own;
+  };
   QAction* zoom_in = view->addAction(tr("Zoom &In"), canvas_, &Canvas::zoomIn);
   zoom_in->setShortcuts(
-      {QKeySequence(tr("Ctrl+=")), QKeySequence(tr("Ctrl++")), QKeySequence::ZoomIn});
+      keys({QKeySequence(tr("Ctrl+=")), QKeySequence(tr("Ctrl++"))}, QKeySequence::ZoomIn));
   QAction* zoom_out = view->addAction(tr("Zoom &Out"), canvas_, &Canvas::zoomOut);
-  zoom_out->setShortcuts({QKeySequence(tr("Ctrl+-")), QKeySequence::ZoomOut});
+  zoom_out->setShortcuts(keys({QKeySequence(tr("Ctrl+-"))}, QKeySequence::ZoomOut));
   view->addSeparator();
   addCanvasViewActions(this, canvas_, view);
   view->addSeparator();
@@ -311,6 +355,18 @@ void MainWindow::createMenus() {
   QMenu* lens = menuBar()->addMenu(tr("&Lens"));
   lens->addAction(tr("From &Database…"), session_, &Session::lensFromDatabaseDialog)
       ->setToolTip(tr("The camera that corrects a lens of the lensfun database for this photo"));
+  // The table's lens-distortion row in the effect stack: its k1, k2, centre and scale are the
+  // Effects panel's sliders.
+  auto distortion_sliders = [this] {
+    auto* panel = findChild<EffectsPanel*>();
+    if (!panel || !panel->addEffect(QStringLiteral("lens-distortion"))) return;
+    if (auto* dock = findChild<QDockWidget*>(QStringLiteral("effectsDock"))) {
+      dock->show();
+      dock->raise();
+    }
+  };
+  lens->addAction(tr("&Distortion Sliders"), this, distortion_sliders)
+      ->setToolTip(tr("Bend the picture by a lens's strengths (k1, k2, centre, scale) on sliders"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&Quick Start"), QKeySequence::HelpContents, this,
@@ -337,6 +393,7 @@ void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
   statusBar()->insertPermanentWidget(0, tool_switcher_->label());
   struct Entry {
     QString label;
+    QString short_label;  // the toolbar's
     QString key;
     QString tip;
     std::function<std::unique_ptr<Tool>()> make;
@@ -347,26 +404,27 @@ void MainWindow::createToolActions(QMenu* menu, QToolBar* bar) {
     };
   };
   const Entry entries[] = {
-      {tr("&Pairs"), "P", tr("Click a source point, then its target (P)"),
+      {tr("&Pairs"), tr("Pairs"), "P", tr("Click a source point, then its target (P)"),
        [this] { return std::make_unique<PairTool>(canvas_, document_); }},
-      {tr("&Lines"), "S",
+      {tr("&Lines"), tr("Lines"), "S",
        tr("Click points along a straight edge, Enter ends the line: the camera straightens the "
           "lines (S)"),
        [this] { return std::make_unique<LineTool>(canvas_, document_); }},
-      {tr("Depth &Brush"), "B", tr("Paint the selected depth plane's region (B; [ ] size)"),
-       depth(DepthToolMode::Brush)},
-      {tr("Depth &Eraser"), "E", tr("Erase from the selected depth plane's region (E)"),
-       depth(DepthToolMode::Eraser)},
-      {tr("Depth Pol&ygon"), "G",
+      {tr("Depth &Brush"), tr("Brush"), "B",
+       tr("Paint the selected depth plane's region (B; [ ] size)"), depth(DepthToolMode::Brush)},
+      {tr("Depth &Eraser"), tr("Eraser"), "E",
+       tr("Erase from the selected depth plane's region (E)"), depth(DepthToolMode::Eraser)},
+      {tr("Depth Pol&ygon"), tr("Polygon"), "G",
        tr("Click corners; Enter or the first corner closes (Alt: erase) (G)"),
        depth(DepthToolMode::Polygon)},
-      {tr("Depth P&oints"), "D",
+      {tr("Depth P&oints"), tr("Points"), "D",
        tr("Click three points of the region and give each its depth (D)"),
        depth(DepthToolMode::Points)},
   };
   for (const Entry& e : entries) {
     QAction* a = menu->addAction(e.label);
     a->setCheckable(true);
+    a->setIconText(e.short_label);
     a->setShortcut(QKeySequence(e.key));
     a->setToolTip(e.tip);
     tool_switcher_->addAction(a, /*is_default=*/&e == &entries[0]);
@@ -401,10 +459,21 @@ void MainWindow::updateTitle() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  if (session_->maybeSave()) {
-    session_->closedCleanly();
-    event->accept();
+  // A save the close asks for runs off the GUI thread: the window closes once it succeeded.
+  if (!close_accepted_) {
+    auto inside = std::make_shared<bool>(true);
+    session_->maybeSaveThen([this, inside] {
+      session_->closedCleanly();
+      QSettings settings;
+      settings.setValue(kGeometryKey, saveGeometry());
+      settings.setValue(kStateKey, saveState());
+      close_accepted_ = true;
+      if (!*inside) close();  // the save has finished: close again, accepted now
+    });
+    *inside = false;
   }
+  if (close_accepted_)
+    event->accept();
   else
     event->ignore();
 }

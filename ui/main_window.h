@@ -74,6 +74,7 @@ class MainWindow : public QMainWindow {
   ColourDock* colour_dock_ = nullptr;
   QMenu* recent_menu_ = nullptr;
   ToolSwitcher* tool_switcher_ = nullptr;
+  bool close_accepted_ = false;  // the save prompt let the window close (closeEvent)
 };
 
 }  // namespace artcam::ui

@@ -19,9 +19,11 @@ QString qstr(const std::string& s) { return QString::fromStdString(s); }
 StudioProject toCore(const Project& p) {
   StudioProject c;
   c.photo_path = str(p.photo_path);
+  c.photo_size = p.photo_size;
   for (const Pair& pair : p.pairs) c.pairs.push_back({pair.source, pair.target, pair.enabled});
   c.lines = p.lines;
   c.model = p.model;
+  c.line_model = p.line_model;
   c.manual_camera = p.manual_camera;
   c.effects = p.effects;
   for (const DepthPlaneLayer& l : p.depth_layers) c.depth_layers.push_back({str(l.name), l.mask, l.anchors});
@@ -89,11 +91,13 @@ Status readView(const std::string& text, const std::string& name, ViewState& v) 
 Result<Project> fromCore(StudioProject c, const std::string& name) {
   Project p;
   p.photo_path = qstr(c.photo_path);
+  p.photo_size = projectPhotoSize(c);
   for (const PointMatch& m : c.pairs)
     p.pairs.push_back({Eigen::Vector2d(m.source.x(), m.source.y()),
                        Eigen::Vector2d(m.target.x(), m.target.y()), m.enabled});
   p.lines = std::move(c.lines);
   p.model = c.model;
+  p.line_model = c.line_model;
   p.manual_camera = std::move(c.manual_camera);
   p.effects = std::move(c.effects);
   for (ProjectDepthLayer& l : c.depth_layers)
@@ -127,6 +131,14 @@ Result<Project> readProject(const QString& path) {
 
 Status writeProject(const QString& path, const Project& project) {
   return writeStudioProject(str(path), toCore(project));
+}
+
+Status checkPhotoSize(const Project& project, FrameSize photo, const QString& photo_path,
+                      const QString& project_path) {
+  StudioProject sizes;  // only the size: the check reads nothing else
+  sizes.photo_size = project.photo_size;
+  return checkProjectPhotoSize(sizes, photo, str(photo_path),
+                               str(QFileInfo(project_path).fileName()));
 }
 
 }  // namespace artcam::ui

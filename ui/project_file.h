@@ -43,9 +43,13 @@ struct DepthMapRef {
 
 struct Project {
   QString photo_path;  // absolute once read
+  // The size the pairs, lines and masks were made on: written from the photo, read back as
+  // core's projectPhotoSize (recorded, else the masks' or the hand-set camera's); none: unknown.
+  std::optional<FrameSize> photo_size;
   std::vector<Pair> pairs;
   std::vector<LineTrace> lines;  // finished lines only: the open one is not saved
   ModelClass model = ModelClass::Auto;
+  LineModel line_model = LineModel::Auto;
   std::optional<Artcam> manual_camera;
   std::vector<EffectStep> effects;
   ViewState view;
@@ -61,5 +65,9 @@ QByteArray projectToJson(const Project& project, const QString& project_path);
 Result<Project> parseProject(const QByteArray& json, const QString& project_path);
 Result<Project> readProject(const QString& path);
 Status writeProject(const QString& path, const Project& project);
+// A photo of `photo` pixels at `photo_path` in place of the project's: a one-line refusal
+// naming the project (`project_path`), the photo and both sizes when project.photo_size differs.
+Status checkPhotoSize(const Project& project, FrameSize photo, const QString& photo_path,
+                      const QString& project_path);
 
 }  // namespace artcam::ui

@@ -3,6 +3,8 @@
 
 #include "core/io/artcam_file.h"
 #include "core/io/depth_file.h"
+#include "core/io/stored_image.h"
+#include "core/project/project_render.h"
 #include "ui/autosave.h"
 #include "ui/background_job.h"
 #include "ui/commands.h"
@@ -10,13 +12,17 @@
 #include "ui/document.h"
 #include "ui/export_job.h"
 #include "ui/export_options_dialog.h"
+#include "ui/export_settings.h"
 #include "ui/image_loader.h"
+#include "ui/save_names.h"
+#include "ui/studio_wording.h"
 
 #include <QCoreApplication>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMessageBox>
 #include <QProgressDialog>
+#include <QPushButton>
 #include <QSettings>
 
 #include <cmath>
@@ -36,6 +42,43 @@ QString projectFilter() {
       .arg(kProjectExtension);
 }
 
+// The default locate prompt: says what is missing, then a file dialog in the project's folder.
+QString locateDialog(QWidget* parent, const QString& project, const QString& photo) {
+  QMessageBox box(QMessageBox::Warning, QCoreApplication::translate("Session", "Open project"),
+                  QCoreApplication::translate("Session",
+                                              "The photo of %1 is missing:\n%2\n\nLocate it to "
+                                              "open the project with its pairs, depth and effects.")
+                      .arg(QFileInfo(project).fileName(), photo),
+                  QMessageBox::Cancel, parent);
+  QPushButton* locate =
+      box.addButton(QCoreApplication::translate("Session", "Locate…"), QMessageBox::AcceptRole);
+  box.setDefaultButton(locate);
+  box.exec();
+  if (box.clickedButton() != locate) return {};
+  return QFileDialog::getOpenFileName(
+      parent, QCoreApplication::translate("Session", "Locate %1").arg(QFileInfo(photo).fileName()),
+      QFileInfo(project).absolutePath(), photoFilter());
+}
+
+// A project read off the GUI thread, and whether its photo is where it says.
+struct ReadProject {
+  Result<Project> project;
+  bool photo_found = false;
+};
+
+ReadProject readProjectAndLook(const QString& path, bool recovery) {
+  ReadProject read;
+  read.project = recovery ? Autosave::readRecovery(path) : readProject(path);
+  if (read.project) read.photo_found = QFileInfo(read.project->photo_path).isFile();
+  return read;
+}
+
+// A job's Status (or what it threw) as one line; empty when it succeeded.
+QString errorOf(const JobOutcome<Status>& outcome) {
+  if (!outcome.value) return outcome.error;
+  return outcome.value->ok ? QString() : QString::fromStdString(outcome.value->message);
+}
+
 }  // namespace
 
 Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
@@ -48,6 +91,7 @@ Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
             return currentProject();
           },
           this)) {
+  export_options_ = loadExportOptions(QSettings());
   connect(document_->undoStack(), &QUndoStack::cleanChanged, this, &Session::titleChanged);
   connect(autosave_, &Autosave::saved, this, [this](bool ok, const QString& message) {
     if (!ok) emit statusMessage(tr("Autosave failed: %1").arg(message));
@@ -56,6 +100,9 @@ Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
     return interactive_ && Autosave::dialogPrompt(dialog_parent_)(offer);
   });
   autosave_->start();
+  locate_prompt_ = [this](const QString& project, const QString& photo) {
+    return interactive_ ? locateDialog(dialog_parent_, project, photo) : QString();
+  };
 }
 
 Session::~Session() {
@@ -101,27 +148,86 @@ void Session::openPath(const QString& path) {
 }
 
 void Session::openPhoto(const QString& path) {
-  if (!maybeSave()) return;
-  project_path_.clear();
-  autosave_->setProjectPath(QString());
-  startLoading(path, std::nullopt);
+  maybeSaveThen([this, path] {
+    ++open_serial_;  // a project read in flight is superseded
+    project_path_.clear();
+    autosave_->setProjectPath(QString());
+    startLoading(path, std::nullopt);
+  });
 }
 
 void Session::openProject(const QString& path) {
-  if (!maybeSave()) return;
-  if (const auto offer = autosave_->findRecovery(QFileInfo(path).absoluteFilePath());
-      offer && autosave_->ask(*offer)) {
+  maybeSaveThen([this, path] { openProjectNow(path); });
+}
+
+void Session::openProjectNow(const QString& path) {
+  const QString abs = QFileInfo(path).absoluteFilePath();
+  if (const auto offer = autosave_->findRecovery(abs); offer && autosave_->ask(*offer)) {
     recover(*offer);
     return;
   }
-  Result<Project> project = readProject(path);
-  if (!project) {
-    showError(tr("Open project"), QString::fromStdString(project.status.message));
+  const quint64 serial = ++open_serial_;
+  emit statusMessage(tr("Opening %1…").arg(QFileInfo(abs).fileName()));
+  runInBackground(
+      this, [abs](JobContext&) { return readProjectAndLook(abs, /*recovery=*/false); },
+      [this, abs, serial](JobOutcome<ReadProject> outcome) {
+        if (serial != open_serial_) return;  // another open came after this one
+        if (!outcome.value) return failOpen(tr("%1: %2").arg(abs, outcome.error));
+        ReadProject& read = *outcome.value;
+        if (!read.project) return failOpen(QString::fromStdString(read.project.status.message));
+        openReadProject(abs, std::move(*read.project.value), read.photo_found, false);
+      });
+}
+
+void Session::failOpen(const QString& message) {
+  showError(tr("Open project"), message);
+  emit projectOpened(false, message);
+}
+
+void Session::openReadProject(const QString& path, Project project, bool photo_found,
+                              bool recovered) {
+  if (!photo_found) {
+    locatePhoto(path, std::move(project), recovered);
     return;
   }
-  pending_project_path_ = QFileInfo(path).absoluteFilePath();
-  const QString photo_path = project->photo_path;  // copied: the project is moved below
-  startLoading(photo_path, std::move(*project.value));
+  pending_project_path_ = path;
+  const QString photo_path = project.photo_path;  // copied: the project is moved below
+  startLoading(photo_path, std::move(project), recovered);
+}
+
+void Session::locatePhoto(const QString& path, Project project, bool recovered) {
+  const QString name = path.isEmpty() ? tr("The recovered session") : QFileInfo(path).fileName();
+  const QString missing = project.photo_path;
+  const QString located = locate_prompt_ ? locate_prompt_(path, missing) : QString();
+  if (located.isEmpty()) {
+    failOpen(tr("%1: its photo %2 is missing (moved or renamed?); open the project again and "
+                "Locate it.")
+                 .arg(name, missing));
+    return;
+  }
+  const QString photo = QFileInfo(located).absoluteFilePath();
+  const quint64 serial = open_serial_;
+  auto held = std::make_shared<Project>(std::move(project));
+  // The header only: a photo of another size is refused before anything is decoded.
+  runInBackground(
+      this,
+      [photo](JobContext&) { return readStoredShape(QFile::encodeName(photo).toStdString()); },
+      [this, path, name, photo, held, recovered, serial](JobOutcome<Result<StoredShape>> outcome) {
+        if (serial != open_serial_) return;
+        if (!outcome.value || !*outcome.value)
+          return failOpen(tr("%1: %2").arg(
+              name, outcome.value ? QString::fromStdString(outcome.value->status.message)
+                                  : tr("%1: %2").arg(photo, outcome.error)));
+        const StoredShape& shape = **outcome.value;
+        if (const Status fits = checkPhotoSize(*held, {shape.width, shape.height}, photo,
+                                               path.isEmpty() ? name : path);
+            !fits)
+          return failOpen(QString::fromStdString(fits.message));
+        Project p = std::move(*held);
+        p.photo_path = photo;
+        pending_project_path_ = path;
+        startLoading(photo, std::move(p), recovered, /*located=*/true);
+      });
 }
 
 bool Session::offerRecovery() {
@@ -132,14 +238,18 @@ bool Session::offerRecovery() {
 }
 
 void Session::recover(const RecoveryOffer& offer) {
-  Result<Project> project = Autosave::readRecovery(offer.recovery_path);
-  if (!project) {
-    showError(tr("Recover work"), QString::fromStdString(project.status.message));
-    return;
-  }
-  pending_project_path_ = offer.project_path;
-  const QString photo_path = project->photo_path;
-  startLoading(photo_path, std::move(*project.value), /*recovered=*/true);
+  autosave_->adopt(offer.recovery_path);  // no other window offers it while this one has it
+  const quint64 serial = ++open_serial_;
+  const QString recovery = offer.recovery_path, project = offer.project_path;
+  runInBackground(
+      this, [recovery](JobContext&) { return readProjectAndLook(recovery, /*recovery=*/true); },
+      [this, project, serial](JobOutcome<ReadProject> outcome) {
+        if (serial != open_serial_) return;
+        if (!outcome.value) return failOpen(outcome.error);
+        ReadProject& read = *outcome.value;
+        if (!read.project) return failOpen(QString::fromStdString(read.project.status.message));
+        openReadProject(project, std::move(*read.project.value), read.photo_found, true);
+      });
 }
 
 void Session::closedCleanly() { autosave_->removeRecovery(project_path_); }
@@ -148,9 +258,11 @@ std::optional<Project> Session::currentProject() const {
   if (!document_->photo()) return std::nullopt;
   Project p;
   p.photo_path = QFileInfo(document_->photo()->path).absoluteFilePath();
+  p.photo_size = document_->photo()->size();
   p.pairs = document_->pairs();
   p.lines = document_->lines();
   p.model = document_->model();
+  p.line_model = document_->lineModel();
   p.manual_camera = document_->manualCamera();
   p.effects = document_->effects();
   if (view_state_) p.view = view_state_();
@@ -162,7 +274,7 @@ std::optional<Project> Session::currentProject() const {
 }
 
 void Session::startLoading(const QString& photo_path, std::optional<Project> project,
-                           bool recovered) {
+                           bool recovered, bool located) {
   if (loader_) {
     // A newer open replaces the one in flight; its result is never applied.
     disconnect(loader_, nullptr, this, nullptr);
@@ -171,6 +283,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
   }
   pending_project_ = std::move(project);
   pending_recovered_ = recovered;
+  pending_located_ = located;
   auto* loader = new ImageLoader(photo_path, this);
   // A JPEG shows its first look at once and its full photo a moment later (image_loader.h).
   loader->setFirstLook(true);
@@ -180,13 +293,14 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
   connect(loader, &ImageLoader::loaded, this, [this, loader](const PhotoPtr& photo) {
     if (loader != loader_) return;
     ++photo_serial_;
+    const bool opened_project = pending_project_.has_value();
     if (pending_project_) {
       Project p = std::move(*pending_project_);
       pending_project_.reset();
       std::optional<Artcam> manual = p.manual_camera;
       if (manual) manual->setFrames(photo->size(), photo->size());
-      document_->reset(photo, std::move(p.pairs), p.model, std::move(manual),
-                       std::move(p.effects), std::move(p.lines));
+      document_->reset(photo, std::move(p.pairs), p.model, std::move(manual), std::move(p.effects),
+                       std::move(p.lines), p.line_model);
       // Masks are the photo's size; a photo that changed size since the save cannot take them.
       QStringList dropped;
       for (size_t i = 0; i < p.depth_layers.size(); ++i) {
@@ -209,8 +323,9 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
         readDepthMapAsync(p.depth_map->path, p.depth_map->options, /*undoable=*/false);
       }
       project_path_ = pending_project_path_;
-      if (pending_recovered_) {
-        document_->undoStack()->resetClean();  // recovered work is not saved yet
+      if (pending_recovered_ || pending_located_) {
+        // Recovered work is not saved yet; a located photo's new place is not either.
+        document_->undoStack()->resetClean();
       } else {
         addRecent(project_path_);
       }
@@ -220,13 +335,24 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
       document_->reset(photo);
       addRecent(photo->path);
     }
+    const bool was_located = pending_located_;
     pending_recovered_ = false;
+    pending_located_ = false;
     autosave_->setProjectPath(project_path_);
     emit titleChanged();
-    QString loaded = tr("Loaded %1 (%2×%3)")
-                         .arg(QFileInfo(photo->path).fileName())
-                         .arg(photo->size().width)
-                         .arg(photo->size().height);
+    // A project is named by its own file, its photo after it.
+    QString loaded =
+        opened_project && !project_path_.isEmpty()
+            ? tr("Opened %1 (photo %2, %3×%4)")
+                  .arg(QFileInfo(project_path_).fileName(), QFileInfo(photo->path).fileName())
+                  .arg(photo->size().width)
+                  .arg(photo->size().height)
+            : tr("Loaded %1 (%2×%3)")
+                  .arg(QFileInfo(photo->path).fileName())
+                  .arg(photo->size().width)
+                  .arg(photo->size().height);
+    if (was_located)
+      loaded += tr("; its photo is now %1: save to keep the new place").arg(photo->path);
     // The studio shows and exports colour and alpha (image_io.h, "Channels"): the rest are named,
     // never dropped silently. `artcam warp` carries them into an EXR.
     QStringList dropped;
@@ -236,6 +362,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
                    "(artcam warp carries them into an EXR)")
                     .arg(dropped.join(", "));
     emit statusMessage(loaded);
+    if (opened_project) emit projectOpened(true, loaded);
   });
   connect(loader, &ImageLoader::refined, this, [this, loader](const PhotoPtr& photo) {
     if (loader != loader_) return;
@@ -249,7 +376,13 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
   });
   connect(loader, &ImageLoader::failed, this, [this, loader](const QString& message) {
     if (loader != loader_) return;
-    pending_project_.reset();
+    emit loadProgress(-1);  // the load is over: no "Loading 0%" behind the error's dialog
+    if (pending_project_) {
+      // Opening a project: the project is what failed to open, because of its photo.
+      pending_project_.reset();
+      failOpen(tr("%1: photo: %2").arg(QFileInfo(pending_project_path_).fileName(), message));
+      return;
+    }
     showError(tr("Open photo"), message);
   });
   connect(loader, &ImageLoader::finished, this, [this, loader] {
@@ -262,24 +395,45 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
 }
 
 bool Session::saveProjectTo(const QString& path) {
-  const std::optional<Project> p = currentProject();
+  std::optional<Project> p = currentProject();
   if (!p) {
     showError(tr("Save project"), tr("Nothing to save: open a photo first."));
     return false;
   }
-  const Status status = writeProject(path, *p);
-  if (!status) {
-    showError(tr("Save project"), QString::fromStdString(status.message));
+  if (saving_) {
+    showError(tr("Save project"), tr("A save is already running."));
     return false;
   }
-  autosave_->removeRecovery(project_path_);  // the old name's (or the untitled) recovery
-  project_path_ = QFileInfo(path).absoluteFilePath();
-  autosave_->removeRecovery(project_path_);
-  autosave_->setProjectPath(project_path_);
-  document_->undoStack()->setClean();
-  addRecent(project_path_);
-  emit titleChanged();
-  emit statusMessage(tr("Saved %1").arg(path));
+  const QString abs = QFileInfo(path).absoluteFilePath();
+  // The state is taken here (the document lives on this thread); serialised and written on the
+  // job's. Edits made meanwhile are not in the file, so they keep the document modified.
+  auto project = std::make_shared<const Project>(std::move(*p));
+  const int index = document_->undoStack()->index();
+  const quint64 serial = photo_serial_;
+  saving_ = true;
+  emit statusMessage(tr("Saving %1…").arg(QFileInfo(abs).fileName()));
+  runInBackground(
+      this, [abs, project](JobContext&) { return writeProject(abs, *project); },
+      [this, abs, index, serial](JobOutcome<Status> outcome) {
+        saving_ = false;
+        if (const QString error = errorOf(outcome); !error.isEmpty()) {
+          showError(tr("Save project"), error);
+          emit projectSaved(false, error);
+          return;
+        }
+        const QString message = tr("Saved %1").arg(abs);
+        if (serial == photo_serial_) {               // still the document that was saved
+          autosave_->removeRecovery(project_path_);  // the old name's (or the untitled) recovery
+          project_path_ = abs;
+          autosave_->removeRecovery(project_path_);
+          autosave_->setProjectPath(project_path_);
+          if (document_->undoStack()->index() == index) document_->undoStack()->setClean();
+          addRecent(project_path_);
+          emit titleChanged();
+        }
+        emit statusMessage(message);
+        emit projectSaved(true, message);
+      });
   return true;
 }
 
@@ -289,32 +443,50 @@ void Session::importArtcam(const QString& path) {
     showError(tr("Import camera"), tr("Open a photo before importing a camera onto it."));
     return;
   }
-  Result<Artcam> doc = readArtcam(path.toStdString());
-  if (!doc) {
-    showError(tr("Import camera"), QString::fromStdString(doc.status.message));
-    return;
-  }
+  const quint64 serial = photo_serial_;
+  runInBackground(
+      this, [path](JobContext&) { return readArtcam(path.toStdString()); },
+      [this, path, serial](JobOutcome<Result<Artcam>> outcome) {
+        if (serial != photo_serial_) return;  // another photo opened meanwhile
+        if (!outcome.value || !*outcome.value) {
+          const QString message = outcome.value
+                                      ? QString::fromStdString(outcome.value->status.message)
+                                      : tr("%1: %2").arg(path, outcome.error);
+          showError(tr("Import camera"), message);
+          emit importFinished(false, message);
+          return;
+        }
+        importReadArtcam(path, std::move(*outcome.value->value));
+      });
+}
+
+void Session::importReadArtcam(const QString& path, Artcam read) {
+  const PhotoPtr& photo = document_->photo();
+  if (!photo) return;
+  std::optional<Artcam> doc(std::move(read));
+  const auto refuse = [this](const QString& message) {
+    showError(tr("Import camera"), message);
+    emit importFinished(false, message);
+  };
   // Every kind is taken: the geometry (the first layer) becomes editable in the Tensors panel,
   // every other part (colour and depth blocks, layers, patches, depth output) is kept as it is.
   // What cannot warp a photo at all is refused with the reason.
   const Camera& cam = doc->main();
   if (cam.layout().find(BlockKind::Position) < 0 || cam.blocks()[0] != Block{BlockKind::Position, 3}) {
-    showError(tr("Import camera"),
-              tr("%1: this camera does not take image positions (its first block is not an "
-                 "image position (u, v, w)), so it cannot warp a photo; render it with artcam "
-                 "render instead.")
-                  .arg(path));
+    refuse(tr("%1: this camera does not take image positions (its first block is not an "
+              "image position (u, v, w)), so it cannot warp a photo; render it with artcam "
+              "render instead.")
+               .arg(path));
     return;
   }
   if (doc->isPiecewise() && (cam.sourceSize().width != photo->size().width ||
                              cam.sourceSize().height != photo->size().height)) {
-    showError(tr("Import camera"),
-              tr("%1: its patches were cut for a %2×%3 photo; this photo is %4×%5.")
-                  .arg(path)
-                  .arg(cam.sourceSize().width)
-                  .arg(cam.sourceSize().height)
-                  .arg(photo->size().width)
-                  .arg(photo->size().height));
+    refuse(tr("%1: its patches were cut for a %2×%3 photo; this photo is %4×%5.")
+               .arg(path)
+               .arg(cam.sourceSize().width)
+               .arg(cam.sourceSize().height)
+               .arg(photo->size().width)
+               .arg(photo->size().height));
     return;
   }
   QUndoStack* stack = document_->undoStack();
@@ -337,16 +509,27 @@ void Session::importArtcam(const QString& path) {
     }
     stack->push(new SetCameraCommand(document_, std::nullopt, tr("Use fitted camera")));
   } else {
-    Artcam c = std::move(*doc.value);
+    Artcam c = std::move(*doc);
     c.matches.clear();
     c.fit.reset();
     c.setFrames(photo->size(), photo->size());
     stack->push(new SetCameraCommand(document_, std::move(c), tr("Set camera")));
   }
   stack->endMacro();
-  emit statusMessage(tr("Imported %1 (%2 camera)")
-                         .arg(path, QString::fromUtf8(std::string(artcamKindName(
-                                                          document_->artcam().kind())).c_str())));
+  QString imported =
+      tr("Imported %1 (%2 camera)")
+          .arg(path,
+               QString::fromUtf8(std::string(artcamKindName(document_->artcam().kind())).c_str()));
+  // What `artcam` prints on reading such a camera: a pole in the frame leaves part of the
+  // picture empty, which the user should hear before looking for a bug in the photo.
+  QStringList warnings;
+  for (const std::string& w : cameraWarnings(document_->artcam()))
+    warnings << QString::fromStdString(w);
+  if (!warnings.isEmpty()) imported += tr(". Warning: %1").arg(warnings.join("; "));
+  emit statusMessage(imported);
+  if (!warnings.isEmpty() && interactive_)
+    QMessageBox::warning(dialog_parent_, tr("Import camera"), imported);
+  emit importFinished(true, imported);
 }
 
 bool Session::exportArtcam(const QString& path) {
@@ -356,12 +539,19 @@ bool Session::exportArtcam(const QString& path) {
   // The fit record describes the camera only when the camera is the fitted one.
   if (!document_->manualCamera() && document_->fit().status.ok && document_->effects().empty())
     doc.fit = document_->fit().record;
-  const Status status = writeArtcam(path.toStdString(), doc);
-  if (!status) {
-    showError(tr("Export camera"), QString::fromStdString(status.message));
-    return false;
-  }
-  emit statusMessage(tr("Exported camera to %1").arg(path));
+  auto held = std::make_shared<const Artcam>(std::move(doc));
+  runInBackground(
+      this, [path, held](JobContext&) { return writeArtcam(path.toStdString(), *held); },
+      [this, path](JobOutcome<Status> outcome) {
+        if (const QString error = errorOf(outcome); !error.isEmpty()) {
+          showError(tr("Export camera"), error);
+          emit fileWritten(false, error);
+          return;
+        }
+        const QString message = tr("Exported camera to %1").arg(path);
+        emit statusMessage(message);
+        emit fileWritten(true, message);
+      });
   return true;
 }
 
@@ -393,7 +583,8 @@ void Session::exportImage(const QString& path) {
     });
     return;
   }
-  auto* job = new ExportJob(document_->photo(), document_->artcam(), path, export_options_, this);
+  auto* job = new ExportJob(document_->photo(), document_->artcam(), path,
+                            exportOptionsForFile(export_options_, path), this);
   // A camera with a depth block reads the painted depth (rasterised here: the depth model lives
   // on the GUI thread; only such cameras pay for it).
   if (readsDepth(document_->artcam()))
@@ -414,8 +605,8 @@ void Session::exportImage(const QString& path) {
     if (ok)
       emit statusMessage(message);
     else if (!message.isEmpty())
-      showError(tr("Export image"), message);
-    emit exportFinished(ok, message);
+      showError(tr("Export image"), studioWording(message));
+    emit exportFinished(ok, ok ? message : studioWording(message));
   });
   connect(job, &ExportJob::finished, job, &QObject::deleteLater);
   job->start();
@@ -428,15 +619,25 @@ bool Session::exportDepthMap(const QString& path) {
                  "depth map."));
     return false;
   }
-  WriteImageOptions options;
-  options.pixel_type = "float";
-  const ImageF depth = depthMapImage(document_->depth()->rasterise());
-  const Status status = writeImage(path.toStdString(), depth, nullptr, options);
-  if (!status) {
-    showError(tr("Export depth map"), QString::fromStdString(status.message));
-    return false;
-  }
-  emit statusMessage(tr("Exported the depth map to %1").arg(path));
+  // Rasterised here (the depth model lives on this thread), written on the job's.
+  auto raster = std::make_shared<const ImageF>(document_->depth()->rasterise());
+  emit statusMessage(tr("Exporting the depth map to %1…").arg(path));
+  runInBackground(
+      this,
+      [path, raster](JobContext& job) {
+        return writeDepthMapFile(QFile::encodeName(path).toStdString(), *raster,
+                                 [&job](double f) { return job.progress(f); });
+      },
+      [this, path](JobOutcome<Status> outcome) {
+        if (const QString error = errorOf(outcome); !error.isEmpty()) {
+          showError(tr("Export depth map"), error);
+          emit fileWritten(false, error);
+          return;
+        }
+        const QString message = tr("Exported the depth map to %1").arg(path);
+        emit statusMessage(message);
+        emit fileWritten(true, message);
+      });
   return true;
 }
 
@@ -447,6 +648,12 @@ void Session::exportDepthMapDialog() {
   const QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export depth map"),
                                                     suggestion, tr("OpenEXR (*.exr)"));
   if (!path.isEmpty()) exportDepthMap(path);
+}
+
+void Session::setExportOptions(const ExportOptions& options) {
+  export_options_ = options;
+  QSettings settings;
+  saveExportOptions(settings, options);
 }
 
 void Session::cancelExport() {
@@ -583,7 +790,9 @@ void Session::importArtcamDialog() {
 }
 
 void Session::exportArtcamDialog() {
-  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export camera"), QString(),
+  const QString photo = document_->photo() ? document_->photo()->path : QString();
+  QString path = QFileDialog::getSaveFileName(dialog_parent_, tr("Export camera"),
+                                              proposedSavePath(photo, "_camera.artcam"),
                                               tr("ARTcam cameras (*.artcam)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += ".artcam";
@@ -605,18 +814,32 @@ void Session::exportImageDialog() {
   const std::optional<ExportOptions> options =
       ExportOptionsDialog::ask(current, path, dialog_parent_);
   if (!options) return;
-  export_options_ = *options;
+  setExportOptions(*options);
   exportImage(path);
 }
 
-bool Session::maybeSave() {
-  if (!document_->isModified() || !interactive_) return true;
+void Session::maybeSaveThen(std::function<void()> proceed) {
+  if (!document_->isModified() || !interactive_) {
+    proceed();
+    return;
+  }
   const auto answer = QMessageBox::warning(
       dialog_parent_, tr("Unsaved changes"),
       tr("%1 has unsaved changes. Save them?").arg(displayName()),
       QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
-  if (answer == QMessageBox::Save) return save();
-  return answer == QMessageBox::Discard;
+  if (answer == QMessageBox::Discard) {
+    proceed();
+    return;
+  }
+  if (answer != QMessageBox::Save) return;
+  // The save runs off the GUI thread: continue on its outcome, once.
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection = connect(this, &Session::projectSaved, this,
+                        [connection, proceed = std::move(proceed)](bool ok, const QString&) {
+                          QObject::disconnect(*connection);
+                          if (ok) proceed();
+                        });
+  if (!save()) QObject::disconnect(*connection);
 }
 
 }  // namespace artcam::ui

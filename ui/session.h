@@ -3,6 +3,17 @@
 // open/save project (atomic), import/export .artcam, export the warped image (worker with a
 // cancellable progress dialog), recent files, and the save prompt on close. Errors are shown
 // as dialogs naming the file and the cause. MainWindow only wires actions to these slots.
+//
+// Every read and write runs as a one-shot job (background_job.h): the GUI thread only
+// serialises the document before a write and applies what a read brought. So a save, an
+// .artcam import or export and a depth map export have finished only when their signal comes
+// (projectSaved, fileWritten, importFinished), not when the call returns.
+//
+// A project whose photo is missing (it moved) is not refused: the locate prompt names the
+// project and the photo and returns the photo's new place (a file dialog when interactive);
+// a photo of another size than the project's pixels were made on is refused naming both, and
+// the located one opens the project with everything in it, marked modified, so the next save
+// stores the new place.
 #pragma once
 
 #include "core/lens/lens_camera.h"
@@ -54,6 +65,12 @@ class Session : public QObject {
   void addProjectPart(ProjectPart part) { parts_.push_back(std::move(part)); }
   // When false, errors are only emitted (errorOccurred) rather than shown modally (tests).
   void setInteractive(bool interactive) { interactive_ = interactive; }
+  // Asked when an opened project's photo is missing: (project path, photo path) → the photo's
+  // new place, or empty to give up. Default: a Locate… dialog when interactive, else give up.
+  using LocatePrompt = std::function<QString(const QString&, const QString&)>;
+  void setLocatePrompt(LocatePrompt prompt) { locate_prompt_ = std::move(prompt); }
+  // A project save is being written (saveProjectTo until projectSaved).
+  bool isSaving() const { return saving_; }
 
   const QString& projectPath() const { return project_path_; }
   QString displayName() const;
@@ -74,16 +91,22 @@ class Session : public QObject {
   void openPath(const QString& path);
   void openPhoto(const QString& path);
   void openProject(const QString& path);
+  // Starts the save (false when there is nothing to save or a save is running); projectSaved
+  // says how it ended.
   bool saveProjectTo(const QString& path);
+  // Read off the GUI thread, applied as one undo step; importFinished says how it ended.
   void importArtcam(const QString& path);
+  // Starts the write (false when refused at once); fileWritten says how it ended.
   bool exportArtcam(const QString& path);
   void exportImage(const QString& path);
   // Writes the document's depth (painted planes over the map) at the photo's size as a float
-  // EXR of depth, 0 where there is none (what Load Depth Map and artcam --depth read back).
+  // EXR of depth in channel Z, 0 where there is none (what Load Depth Map and artcam --depth
+  // read back). Rasterised here, written off the GUI thread; fileWritten says how it ended.
   bool exportDepthMap(const QString& path);
   // Crop or fill, JPEG quality, bit depth and size of the next exports (the export dialog's).
   const ExportOptions& exportOptions() const { return export_options_; }
-  void setExportOptions(const ExportOptions& options) { export_options_ = options; }
+  // Remembered across sessions (QSettings, export_settings.h).
+  void setExportOptions(const ExportOptions& options);
   // Stops a running export at its next tile (the progress dialog's Cancel does the same).
   void cancelExport();
   // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.
@@ -115,8 +138,10 @@ class Session : public QObject {
   // the document's camera (undoable); lensCameraApplied reports the outcome either way.
   void applyLensCamera(const LensCameraOptions& options,
                        std::shared_ptr<const LensDatabase> database);
-  // Asks to save unsaved changes; false when the user cancelled.
-  bool maybeSave();
+  // Asks to save unsaved changes, then runs `proceed` (at once when nothing needs saving or
+  // the user discards, after a successful save when they save; never when they cancel or the
+  // save fails).
+  void maybeSaveThen(std::function<void()> proceed);
 
  signals:
   void loadProgress(int percent);  // -1: finished or failed
@@ -126,13 +151,24 @@ class Session : public QObject {
   void recentFilesChanged();
   void viewStateLoaded(const artcam::ui::ViewState& view);
   void exportFinished(bool ok, const QString& message);
+  void projectSaved(bool ok, const QString& message);
+  void fileWritten(bool ok, const QString& message);  // .artcam and depth map exports
+  void importFinished(bool ok, const QString& message);
+  // A project is in the document (ok), or could not be opened (the message says why).
+  void projectOpened(bool ok, const QString& message);
   void depthMapLoaded(bool ok, const QString& message);
   void cloudLoaded(const artcam::ui::LoadedCloud& cloud);
   void lensCameraApplied(bool ok, const QString& message);
 
  private:
   void startLoading(const QString& photo_path, std::optional<Project> project,
-                    bool recovered = false);
+                    bool recovered = false, bool located = false);
+  void openProjectNow(const QString& path);
+  // After the read: the photo is there, or it is asked for (locate_prompt_).
+  void openReadProject(const QString& path, Project project, bool photo_found, bool recovered);
+  void locatePhoto(const QString& path, Project project, bool recovered);
+  void importReadArtcam(const QString& path, Artcam doc);
+  void failOpen(const QString& message);
   void readDepthMapAsync(const QString& path, const DepthFileOptions& options, bool undoable);
   void applyDepthMap(const QString& path, const DepthFileOptions& options,
                      std::shared_ptr<const ImageF> map, bool undoable);
@@ -144,6 +180,9 @@ class Session : public QObject {
   std::function<ViewState()> view_state_;
   std::vector<ProjectPart> parts_;
   bool interactive_ = true;
+  LocatePrompt locate_prompt_;
+  bool saving_ = false;
+  quint64 open_serial_ = 0;  // bumps per open; a stale project read is dropped
   ExportOptions export_options_;
   QString project_path_;
   QPointer<ImageLoader> loader_;
@@ -154,6 +193,7 @@ class Session : public QObject {
   QPointer<ExportJob> export_job_;
   Autosave* autosave_;
   bool pending_recovered_ = false;
+  bool pending_located_ = false;
   quint64 photo_serial_ = 0;  // bumps per loaded photo; stale depth map loads are dropped
 };
 

@@ -10,6 +10,7 @@
 #include "app/cli/write_args.h"
 
 #include "core/io/artcam_file.h"
+#include "core/io/stored_image.h"
 #include "core/project/project_render.h"
 
 #include <nlohmann/json.hpp>
@@ -17,13 +18,14 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace artcam::cli {
 
 const char* const kExportUsage =
-    "usage: artcam export PROJECT.artcamproj -o OUT [--camera-out CAM.artcam]\n"
+    "usage: artcam export PROJECT.artcamproj -o OUT [--photo FILE] [--camera-out CAM.artcam]\n"
     "                     [--depth-out DEPTH.exr] [--size WxH] [--filter NAME] [--quality N]\n"
     "                     [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                     [--crop-valid | --fill R,G,B[,A]]\n"
@@ -39,9 +41,11 @@ const char* const kExportUsage =
     "the project, its photo or its depth map.\n\n"
     "options:\n"
     "  -o, --output OUT       the rendered image (required)\n"
+    "  --photo FILE           render FILE in place of the project's photo (the photo moved):\n"
+    "                         it must have the size the project's pairs and masks were made on\n"
     "  --camera-out CAM       also write the whole camera it rendered with (.artcam)\n"
-    "  --depth-out DEPTH      also write the depth it read: float EXR, depth per pixel, 0 where\n"
-    "                         there is none (what artcam warp --depth reads)\n"
+    "  --depth-out DEPTH      also write the depth it read: float EXR, one channel Z, depth per\n"
+    "                         pixel, 0 where there is none (what artcam warp --depth reads)\n"
     "  --size WxH             output size in pixels (default: the photo's size; one side 0: by\n"
     "                         aspect)\n"
     "  --filter NAME          nearest, bilinear or bicubic (default bilinear, as artcam warp and\n"
@@ -54,12 +58,14 @@ const char* const kExportUsage =
     "                         with an sRGB profile). Float OUT is linear Rec.709/D65 either way\n"
     "  --crop-valid           crop to the largest rectangle whose every pixel has a preimage\n"
     "  --fill R,G,B[,A]       linear colour under pixels without a preimage (default: none,\n"
-    "                         they stay transparent)\n"
+    "                         they stay transparent; a JPEG, which has no alpha, is filled\n"
+    "                         with white)\n"
     "  --json                 the result as one JSON object on stdout\n"
     "  --overwrite            replace existing outputs (--force is the same)\n"
     "  -q, --quiet            no progress bar on stderr (shown only on a terminal)\n\n"
     "Examples:\n"
     "  artcam export resources/depth-effects.artcamproj -o hazy.jpg --quality 92\n"
+    "  artcam export trip.artcamproj --photo new-place/photo.jpg -o out.jpg\n"
     "  artcam export trip.artcamproj -o out.tif --bit-depth 16 --crop-valid \\\n"
     "      --camera-out trip.artcam --depth-out trip-depth.exr\n";
 
@@ -84,6 +90,7 @@ std::array<float, 4> parseFill(const std::string& text) {
 
 int exportCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--output", "-o", true},
+                         {"--photo", "", true},
                          {"--camera-out", "", true},
                          {"--depth-out", "", true},
                          {"--size", "", true},
@@ -118,10 +125,22 @@ int exportCommand(const std::vector<std::string>& argv) {
     if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");
     options.fill = parseFill(*fill);
   }
+  options = exportOptionsForOutput(std::move(options), *output);  // a JPEG is filled white
 
   const std::string& project_path = args.positional()[0];
   Result<StudioProject> project = readStudioProject(project_path);
   if (!project) throw CommandError(project.status.message);
+  if (const auto photo = args.value("--photo")) {
+    // Checked from the header before anything is laid on it: another size would put the
+    // pairs and masks on the wrong pixels.
+    Result<StoredShape> shape = readStoredShape(*photo);
+    if (!shape) throw CommandError(project_path + ": --photo: " + shape.status.message);
+    if (const Status s =
+            checkProjectPhotoSize(*project, {shape->width, shape->height}, *photo, project_path);
+        !s)
+      throw CommandError(s.message);
+    project->photo_path = std::filesystem::absolute(*photo).string();
+  }
   std::vector<std::string> outputs = {*output};
   const auto camera_out = args.value("--camera-out");
   const auto depth_out = args.value("--depth-out");
@@ -134,6 +153,10 @@ int exportCommand(const std::vector<std::string>& argv) {
   std::vector<std::string> inputs = {project_path, project->photo_path};
   if (project->depth_map) inputs.push_back(project->depth_map->path);
   checkOutputs(args, outputs, inputs);
+  if (std::error_code ec;
+      !args.value("--photo") && !std::filesystem::exists(project->photo_path, ec))
+    throw CommandError(project_path + ": its photo " + project->photo_path +
+                       " is missing (moved?); give its new place with --photo FILE");
 
   const CooperativeInterrupt interrupt;
   ProgressBar bar(0, args.has("--quiet"));
@@ -167,13 +190,9 @@ int exportCommand(const std::vector<std::string>& argv) {
   if (camera_out)
     if (const Status s = writeArtcam(*camera_out, scene->camera.camera); !s)
       throw CommandError(s.message);
-  if (depth_out) {
-    WriteImageOptions depth_options;
-    depth_options.pixel_type = "float";
-    if (const Status s = writeImage(*depth_out, depthMapImage(scene->depth), nullptr, depth_options);
-        !s)
+  if (depth_out)
+    if (const Status s = writeDepthMapFile(*depth_out, scene->depth); !s)
       throw CommandError(s.message);
-  }
   const std::string description = summary.describe();
   if (args.has("--json")) {
     nlohmann::json j = {{"output", *output},

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // artcam fit --lines: lens calibration from straight lines (core/fit/fit_lines.h), with point
 // pairs when MATCHES.csv is given too. Parses, calls core, prints each line's remaining bow.
+// Without --target-size the fit is the studio document's (fitDocumentLines,
+// core/project/document_camera.h): the same lines give the studio's camera.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/fit_input.h"
@@ -9,6 +11,7 @@
 #include "core/fit/fit_lines.h"
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
+#include "core/project/document_camera.h"
 
 #include <nlohmann/json.hpp>
 
@@ -54,7 +57,10 @@ int fitLinesCommand(const Args& args, const std::string& lines_path) {
       pairs = std::move(*read);
     }
     job.stage("fitting");
-    const LinesFitSummary fit = fitLinesCamera(*lines, pairs, source, target, options);
+    // The studio's own line fit when the frames agree, so the two make the same camera.
+    const LinesFitSummary fit = target == source
+                                    ? fitDocumentLines(*lines, pairs, source, options.model)
+                                    : fitLinesCamera(*lines, pairs, source, target, options);
     if (!fit.status) throw CommandError(lines_path + ": " + fit.status.message);
 
     job.stage("writing");

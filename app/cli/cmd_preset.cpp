@@ -154,7 +154,8 @@ constexpr const char* kDefaultEffectSize = "600x400";
 FrameSize effectFrame(const std::string& text) { return parseSize(text, "--size", true); }
 
 std::string effectSummary(const EffectSpec& effect) {
-  return "2D: " + effect.summary + (effect.needs_depth ? " (needs --depth)" : "") +
+  return "2D, " + effect.label + ": " + effect.summary +
+         (effect.needs_depth ? " (needs --depth)" : "") +
          (effect.needs_second ? " (needs --second)" : "");
 }
 

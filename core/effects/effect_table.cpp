@@ -29,6 +29,15 @@ Artcam layered(std::vector<Camera> layers) {
 Artcam radialLens(const EffectValues& v, FrameSize frame) {
   return Artcam(radialLensCamera(number(v, "k"), frame));
 }
+Artcam lensDistortion(const EffectValues& v, FrameSize frame) {
+  LensDistortion lens;
+  lens.k1 = number(v, "k1");
+  lens.k2 = number(v, "k2");
+  const std::vector<double>& c = v.at("centre");
+  lens.centre = {c.at(0), c.at(1)};
+  lens.scale = number(v, "scale");
+  return Artcam(lensDistortionCamera(lens, frame));
+}
 Artcam twist(const EffectValues& v, FrameSize frame) {
   return Artcam(twistCamera(number(v, "rate"), frame));
 }
@@ -92,6 +101,14 @@ const std::vector<EffectSpec>& effectSpecs() {
        {{"k", "radial coefficient", {-0.15}, -1.0, 0.0, ""}}, false, radialLens},
       {"pincushion", "Pincushion", "radial lens u' = u/(1 - k r^2), k > 0 pincushion",
        {{"k", "radial coefficient", {0.15}, 0.0, 0.45, ""}}, false, radialLens},
+      {"lens-distortion", "Lens distortion",
+       "a lens's strengths: radial k1 then k2 about a centre, then a scale: "
+       "q1 = q/(1 - k1 |q|^2), q2 = q1/(1 - k2 |q1|^2), p' = c + scale·q2, q = p - c",
+       {{"k1", "radial strength (< 0 barrel, > 0 pincushion)", {-0.1}, -0.6, 0.45, ""},
+        {"k2", "second radial strength, shapes the rim (r^4)", {0.0}, -0.6, 0.45, ""},
+        {"centre", "distortion centre (x,y)", {0.0, 0.0}, -0.5, 0.5, "norm"},
+        {"scale", "zoom after the distortion", {1.0}, 0.5, 2.0, ""}},
+       false, lensDistortion},
       {"twist", "Twist", "each row turns by atan(rate·v): v' = v + rate·u·v",
        {{"rate", "turn per row", {0.3}, -1.0, 1.0, ""}}, false, twist},
       {"inverse-perspective", "Inverse perspective",
@@ -179,6 +196,11 @@ const EffectParam* findParam(const EffectSpec& effect, const std::string& name) 
   for (const EffectParam& p : effect.params)
     if (p.name == name) return &p;
   return nullptr;
+}
+
+std::string effectLabel(const std::string& name) {
+  const EffectSpec* spec = findEffect(name);
+  return spec && !spec->label.empty() ? spec->label : name;
 }
 
 Artcam buildEffect(const std::string& name, const EffectValues& values, FrameSize frame) {

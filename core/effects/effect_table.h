@@ -49,6 +49,9 @@ struct EffectSpec {
 const std::vector<EffectSpec>& effectSpecs();
 const EffectSpec* findEffect(const std::string& name);
 const EffectParam* findParam(const EffectSpec& effect, const std::string& name);
+// The human name users read ("General linear view" for photo-glc): the studio's lists and
+// messages and `artcam preset list`. The name itself for an effect the table does not have.
+std::string effectLabel(const std::string& name);
 
 // The row's builder with the defaults filled in for missing parameters. Throws
 // std::invalid_argument for an unknown effect or parameter, a value checkEffectValue refuses,

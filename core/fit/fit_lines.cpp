@@ -6,6 +6,7 @@
 // every entry but Q_3's ww, which fixes the scale).
 #include "core/fit/fit_lines.h"
 
+#include "core/fit/line_model_guard.h"
 #include "core/fit/poles.h"
 #include "core/fit/report_format.h"
 #include "core/model/frames.h"
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 namespace artcam {
@@ -295,6 +297,72 @@ void bowTotals(const std::vector<LineBow>& bows, const std::vector<LineTrace>& l
   rms = count ? std::sqrt(sum / count) : 0.0;
 }
 
+// The radial family: one unknown, k, entering Q_3's uu and vv as -k.
+void setRadial(Problem& pb) {
+  pb.q0 = identityEntries();
+  pb.basis = Eigen::MatrixXd::Zero(18, 1);
+  pb.basis(12 + kUU, 0) = -1.0;
+  pb.basis(12 + kVV, 0) = -1.0;
+  pb.gauge_weight = 1.0;
+  pb.tikhonov_weight = 0.0;
+}
+
+// The quadratic from the radial solution: away from the identity, where a common factor of the
+// numerators and the denominator (Q_i = sym(l e_iᵀ)) would leave the map unchanged along two
+// more directions. A hair of least change (1e-6) keeps those steps bounded.
+Problem quadraticFrom(const Problem& pb, const Vec18& radial, bool pairs) {
+  Problem quad = pb;
+  quad.q0 = radial;
+  quad.basis = Eigen::MatrixXd::Zero(18, 17);
+  for (int j = 0, col = 0; j < 18; ++j)
+    if (j != 12 + kWW) quad.basis(j, col++) = 1.0;
+  quad.gauge_weight = pairs ? 1e-5 : 1.0;
+  quad.tikhonov_weight = 1e-6;
+  return quad;
+}
+
+// Each line left out in turn, both models fitted to the others, the left-out line's bow through
+// each: how the models do on a line they were not fitted to. Lines only (no pairs).
+struct HeldOut {
+  bool possible = false;  // false: some fold leaves the quadratic fewer equations than it needs
+  double radial_rms_px = 0.0;
+  double quadratic_rms_px = 0.0;
+};
+
+HeldOut heldOutBows(const Problem& pb, const std::vector<const LineTrace*>& traces, int needs,
+                    FrameSize source, FrameSize target, const LinesFitOptions& options) {
+  HeldOut out;
+  double radial_sum = 0.0, quadratic_sum = 0.0;
+  int count = 0;
+  for (size_t left = 0; left < pb.lines.size(); ++left) {
+    Problem fold = pb;
+    fold.lines.erase(fold.lines.begin() + static_cast<std::ptrdiff_t>(left));
+    fold.points = 0;
+    int information = 0;
+    for (const Eigen::Matrix2Xd& l : fold.lines) {
+      fold.points += static_cast<int>(l.cols());
+      information += static_cast<int>(l.cols()) - 2;
+    }
+    if (information < needs) return out;
+    setRadial(fold);
+    const Solved radial = solve(fold, options);
+    const Solved quadratic = solve(quadraticFrom(fold, radial.q, false), options);
+    const std::vector<LineTrace> held = {*traces[left]};
+    const LineBow r = lineBows(cameraOf(radial.q, source, target), held)[0];
+    const LineBow q = lineBows(cameraOf(quadratic.q, source, target), held)[0];
+    const double inf = std::numeric_limits<double>::infinity();
+    radial_sum += (r.mapped ? r.rms_px * r.rms_px : inf) * r.points;
+    quadratic_sum += (q.mapped ? q.rms_px * q.rms_px : inf) * q.points;
+    count += r.points;
+  }
+  out.possible = count > 0;
+  out.radial_rms_px = std::sqrt(radial_sum / std::max(count, 1));
+  out.quadratic_rms_px = std::sqrt(quadratic_sum / std::max(count, 1));
+  return out;
+}
+
+std::string percent(double fraction) { return threeFigures(100.0 * fraction) + " %"; }
+
 }  // namespace
 
 std::string_view lineModelName(LineModel model) {
@@ -332,11 +400,21 @@ std::vector<LineBow> lineBows(const Camera& camera, const std::vector<LineTrace>
       const TlsLine tls = tlsLine(y);
       const Eigen::VectorXd d = tls.normal.transpose() * (y.colwise() - tls.centroid);
       bow.max_px = d.cwiseAbs().maxCoeff();
+      double angle = std::atan2(tls.tangent.y(), tls.tangent.x()) * 180.0 / std::numbers::pi;
+      if (angle > 90.0) angle -= 180.0;
+      if (angle <= -90.0) angle += 180.0;
+      bow.angle_deg = angle;
       bow.rms_px = std::sqrt(d.squaredNorm() / static_cast<double>(d.size()));
     }
     bows.push_back(bow);
   }
   return bows;
+}
+
+double tiltFromRoleDeg(const LineBow& bow, LineRole role) {
+  if (role == LineRole::Horizontal) return bow.angle_deg;
+  if (role != LineRole::Vertical) return 0.0;
+  return bow.angle_deg > 0 ? bow.angle_deg - 90.0 : bow.angle_deg + 90.0;
 }
 
 Status LinesFitOptions::check(const FieldNames& names) const {
@@ -348,6 +426,8 @@ Status LinesFitOptions::check(const FieldNames& names) const {
       .whole("max_iterations", max_iterations, 1, 100000)
       .number("auto_improvement", auto_improvement, 0.0, 1.0, Ends::AboveMin)
       .number("auto_min_gain_px", auto_min_gain_px, 0.0, OptionsCheck::kNoBound)
+      .number("auto_max_spacing_change", auto_max_spacing_change, 0.0, OptionsCheck::kNoBound)
+      .number("auto_max_empty_gain", auto_max_empty_gain, 0.0, 1.0)
       .number("min_pole_margin", min_pole_margin, 0.0, 1.0)
       .status();
 }
@@ -396,6 +476,9 @@ LinesFitSummary fitLinesCamera(const std::vector<LineTrace>& lines,
     pb.points += n;
     information += n - 2;
   }
+  std::vector<const LineTrace*> enabled_traces;
+  for (const LineTrace& line : lines)
+    if (line.enabled) enabled_traces.push_back(&line);
   std::vector<const PointMatch*> enabled_pairs;
   for (const PointMatch& m : pairs)
     if (m.enabled) {
@@ -424,13 +507,8 @@ LinesFitSummary fitLinesCamera(const std::vector<LineTrace>& lines,
   pb.frame_lo = normalizedFromPixel(source_size, {0.0, 0.0});
   pb.frame_hi = normalizedFromPixel(source_size, {static_cast<double>(source_size.width),
                                                   static_cast<double>(source_size.height)});
-  pb.q0 = identityEntries();
-
-  // The radial lens first: one unknown, k, entering Q_3's uu and vv as -k.
-  pb.basis = Eigen::MatrixXd::Zero(18, 1);
-  pb.basis(12 + kUU, 0) = -1.0;
-  pb.basis(12 + kVV, 0) = -1.0;
-  pb.gauge_weight = 1.0;
+  // The radial lens first.
+  setRadial(pb);
   {
     // Lines through the centre stay straight under every radial lens: when the bow's
     // derivative in k vanishes on every line, the lines say nothing about the distortion.
@@ -471,41 +549,59 @@ LinesFitSummary fitLinesCamera(const std::vector<LineTrace>& lines,
     return out;
   }
   if (options.model != LineModel::Radial && information >= quadratic_needs) {
-    // The quadratic from the radial solution: away from the identity, where a common factor of
-    // the numerators and the denominator (Q_i = sym(l e_iᵀ)) would leave the map unchanged
-    // along two more directions. A hair of least change (1e-6) keeps those steps bounded.
-    Problem quad = pb;
-    quad.q0 = radial.q;
-    quad.basis = Eigen::MatrixXd::Zero(18, 17);
-    for (int j = 0, col = 0; j < 18; ++j)
-      if (j != 12 + kWW) quad.basis(j, col++) = 1.0;
-    quad.gauge_weight = enabled_pairs.empty() ? 1.0 : 1e-5;
-    quad.tikhonov_weight = 1e-6;
-    const Solved quadratic = solve(quad, options);
+    const Solved quadratic = solve(quadraticFrom(pb, radial.q, !enabled_pairs.empty()), options);
     LinesFitSummary radial_out = out;
     summarise(quadratic);
     const double quadratic_rms = out.rms_bow_px;
-    const bool better = quadratic_rms < options.auto_improvement * radial_rms &&
-                        radial_rms - quadratic_rms >= options.auto_min_gain_px;
+    const auto clearlyBelow = [&](double candidate, double reference) {
+      return candidate < options.auto_improvement * reference &&
+             reference - candidate >= options.auto_min_gain_px;
+    };
+    const bool better = clearlyBelow(quadratic_rms, radial_rms);
+    // Why auto keeps the radial lens; empty while the quadratic passes every check, each check
+    // run only when the cheaper ones before it passed.
+    std::string refusal;
+    const bool auto_lines_only = options.model == LineModel::Auto && enabled_pairs.empty();
+    if (auto_lines_only && !(better && quadratic.undetermined == 0))
+      refusal = "the quadratic's RMS bow " + threeFigures(quadratic_rms) +
+                " px is not clearly below its " + threeFigures(radial_rms) + " px" +
+                (quadratic.undetermined
+                     ? " and the lines leave " + std::to_string(quadratic.undetermined) +
+                           " of its directions free"
+                     : "");
+    if (auto_lines_only && refusal.empty()) {
+      const HeldOut held =
+          heldOutBows(pb, enabled_traces, quadratic_needs, source_size, target_size, options);
+      if (!held.possible)
+        refusal = "with a line left out the quadratic is not determined, so no line can check it";
+      else if (!clearlyBelow(held.quadratic_rms_px, held.radial_rms_px))
+        refusal = "on held-out lines (each fitted from the others) the quadratic's RMS bow " +
+                  threeFigures(held.quadratic_rms_px) + " px is not clearly below its " +
+                  threeFigures(held.radial_rms_px) + " px";
+    }
+    if (auto_lines_only && refusal.empty()) {
+      const double spacing = spacingChange(out.camera, radial_out.camera);
+      const double empty_gain = frameCoverage(radial_out.camera) - frameCoverage(out.camera);
+      if (!(spacing <= options.auto_max_spacing_change))
+        refusal = "the quadratic would change the spacing along rows or columns by " +
+                  percent(spacing) + " against it (a keystone or stretch the lines cannot see)";
+      else if (!(empty_gain <= options.auto_max_empty_gain))
+        refusal = "the quadratic would leave " + percent(empty_gain) + " more of the frame empty";
+    }
     if (options.model == LineModel::Quadratic) {
       out.model = LineModel::Quadratic;
       out.reason = "quadratic as asked";
     } else if (!enabled_pairs.empty()) {
       out.model = LineModel::Quadratic;
       out.reason = "quadratic: pairs were given and a radial lens has no freedom to meet them";
-    } else if (better && quadratic.undetermined == 0) {
+    } else if (refusal.empty()) {
       out.model = LineModel::Quadratic;
       out.reason = "auto chose quadratic: RMS bow " + threeFigures(quadratic_rms) +
-                   " px against the radial lens's " + threeFigures(radial_rms) + " px";
+                   " px against the radial lens's " + threeFigures(radial_rms) +
+                   " px, on held-out lines too, with the radial lens's spacing";
     } else {
       out = radial_out;
-      out.reason = "auto chose radial (k " + threeFigures(out.radial_k) +
-                   "): the quadratic's RMS bow " + threeFigures(quadratic_rms) +
-                   " px is not clearly below its " + threeFigures(radial_rms) + " px" +
-                   (quadratic.undetermined
-                        ? " and the lines leave " + std::to_string(quadratic.undetermined) +
-                              " of its directions free"
-                        : "");
+      out.reason = "auto chose radial (k " + threeFigures(out.radial_k) + "): " + refusal;
     }
   } else if (options.model == LineModel::Radial) {
     out.reason = "radial as asked (k " + threeFigures(out.radial_k) + ")";

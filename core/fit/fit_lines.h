@@ -16,9 +16,14 @@
 //
 // Models: "radial" (one unknown, u' = u / (1 - k r²) in the normalised frame about the centre)
 // and "quadratic" (all 17 tensor entries but the scale, Q_3's last entry held at 1). Auto fits
-// the radial lens first, then the quadratic from it, and keeps the quadratic only when it
-// straightens the lines clearly better (LinesFitOptions::auto_*). Levenberg–Marquardt from the
-// identity never takes a step that puts a pole in the source frame (poles.h).
+// the radial lens first, then the quadratic from it, and keeps the quadratic only when all of
+// these hold (LinesFitOptions::auto_*): it straightens the traced lines clearly better; it
+// straightens HELD-OUT lines clearly better too (each line left out in turn, fitted from the
+// others: a quadratic that only bends itself around the traced points fails here); and it keeps
+// the picture the radial lens makes, without a keystone or stretch (spacing along the frame's
+// rows and columns within auto_max_spacing_change of the radial lens's) and without pulling the
+// photo off the frame (line_model_guard.h). Levenberg–Marquardt from the identity never takes a
+// step that puts a pole in the source frame (poles.h).
 //
 // Why auto leans to the radial lens: near a weak lens the quadratic is close to a homography,
 // and a few of its 17 directions (a shear u + a·uv keeps every horizontal and vertical edge
@@ -52,14 +57,20 @@ struct LinesFitOptions {
   // shave a little off any line set.
   double auto_improvement = 0.75;
   double auto_min_gain_px = 0.05;
+  // The guards of auto against a quadratic that keeps the traced lines straight but not the
+  // picture: the largest change of the spacing along rows and columns against the radial lens
+  // (a keystone of 30 % is 0.3), and the largest fraction of the frame it may leave empty
+  // beyond what the radial lens leaves.
+  double auto_max_spacing_change = 0.1;
+  double auto_max_empty_gain = 0.02;
   // Refuse a camera whose denominator comes closer to zero over the source frame than this
   // fraction of its largest value (the margin of poles.h), as the matches fit does.
   double min_pole_margin = 1e-3;
 
   // The ranges (options_check.h): model one of the line models, max_iterations 1..100000,
-  // auto_improvement in (0, 1], auto_min_gain_px finite and at least 0, min_pole_margin from
-  // 0 to 1. ok, or a failure naming the first field outside its range; fitLinesCamera returns
-  // that failure without fitting.
+  // auto_improvement in (0, 1], auto_min_gain_px finite and at least 0, auto_max_spacing_change
+  // finite and at least 0, auto_max_empty_gain and min_pole_margin from 0 to 1. ok, or a failure
+  // naming the first field outside its range; fitLinesCamera returns that failure without fitting.
   Status check(const FieldNames& names = {}) const;
 };
 
@@ -71,7 +82,14 @@ struct LineBow {
   double max_px = 0.0;  // the remaining bow
   double rms_px = 0.0;
   bool mapped = true;   // false: a point fell on the camera's pole
+  // The mapped line's direction (its total-least-squares line), degrees from the target's x
+  // axis towards +y, in (-90, 90]: 0 level, 90 plumb.
+  double angle_deg = 0.0;
 };
+
+// How far a line is tilted from its role's direction, degrees (signed, in (-90, 90]); 0 for a
+// line without a role.
+double tiltFromRoleDeg(const LineBow& bow, LineRole role);
 
 struct LinesFitSummary {
   Status status;      // not ok: no camera; the message names the cause

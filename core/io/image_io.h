@@ -187,6 +187,9 @@ struct WriteImageOptions {
   // was half): each group of the image's size. Only OpenEXR outputs take them; another format
   // refuses the write. Null or empty: none.
   const ExtraChannels* extra_channels = nullptr;
+  // Names of the image's own channels, one per channel (a depth map's "Z", as compositors
+  // name depth). Empty: `like`'s names, else R, G, B, A (Y for one colour channel).
+  std::vector<std::string> channel_names = {};
   // Where a save's one warning line goes (metadata left out), whole, without a prefix.
   // Empty: standard error, as "warning: LINE".
   std::function<void(const std::string&)> warning = {};

@@ -193,7 +193,13 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
                    profile.data());
   }
   // `like`'s names for the channels the image kept of it (its colour and alpha).
-  spec.channelnames = like_spec && io_input::keptChannels(*like_spec) == channels &&
+  if (!options.channel_names.empty() &&
+      options.channel_names.size() != static_cast<size_t>(channels))
+    return Status::failure(path +
+                           ": cannot write: " + std::to_string(options.channel_names.size()) +
+                           " channel names for " + std::to_string(channels) + " channels");
+  spec.channelnames = !options.channel_names.empty() ? options.channel_names
+                      : like_spec && io_input::keptChannels(*like_spec) == channels &&
                               io_input::keptAlpha(*like_spec) == alpha &&
                               static_cast<int>(like_spec->channelnames.size()) >= channels
                           ? std::vector<std::string>(like_spec->channelnames.begin(),

@@ -13,10 +13,17 @@
 
 namespace artcam {
 
+// What a line is in the scene, when the user says so: a level edge (a horizon, a cornice) or a
+// plumb one (a door frame). A role is a check, not a constraint: the fit straightens every line
+// alike (so a lines file without roles makes the same camera) and reports how far each line
+// with a role is tilted from its direction afterwards.
+enum class LineRole { None, Horizontal, Vertical };
+
 struct LineTrace {
   std::string label;                     // the CSV's `line` field; names the line in messages
   std::vector<Eigen::Vector2d> points;   // source pixels, in the order they were traced
   bool enabled = true;
+  LineRole role = LineRole::None;
 };
 
 }  // namespace artcam

@@ -19,6 +19,19 @@ int pairsNeededFor(ModelClass model, int enabled_pairs) {
   return std::max(0, minimumMatches(m) - enabled_pairs);
 }
 
+LineModel documentLineModel(ModelClass model, LineModel line_model) {
+  if (line_model != LineModel::Auto) return line_model;
+  return model == ModelClass::Quadratic ? LineModel::Quadratic : LineModel::Auto;
+}
+
+LinesFitSummary fitDocumentLines(const std::vector<LineTrace>& lines,
+                                 const std::vector<PointMatch>& pairs, FrameSize frame,
+                                 LineModel model) {
+  LinesFitOptions options;
+  options.model = model;
+  return fitLinesCamera(lines, pairs, frame, frame, options);
+}
+
 DocumentFit fitDocumentGeometry(const DocumentFitInputs& in) {
   const FrameSize f = in.frame;
   DocumentFit out;
@@ -33,9 +46,8 @@ DocumentFit fitDocumentGeometry(const DocumentFitInputs& in) {
     if (in.manual_camera) {
       out.camera = *in.manual_camera;
     } else if (has_lines) {
-      LinesFitOptions options;
-      options.model = in.model == ModelClass::Quadratic ? LineModel::Quadratic : LineModel::Auto;
-      const LinesFitSummary lines = fitLinesCamera(in.lines, in.matches, f, f, options);
+      const LinesFitSummary lines =
+          fitDocumentLines(in.lines, in.matches, f, documentLineModel(in.model, in.line_model));
       out.fit.status = lines.status;
       if (lines.status.ok) {
         out.fit.camera = lines.camera;
@@ -99,7 +111,8 @@ EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize
   EffectStack out;
   auto leaveOut = [&out](size_t i, const EffectStep& step, const std::string& why) {
     if (!out.note.empty()) out.note += "; ";
-    out.note += "effect " + std::to_string(i + 1) + " (" + step.effect + ") left out: " + why;
+    out.note +=
+        "effect " + std::to_string(i + 1) + " (" + effectLabel(step.effect) + ") left out: " + why;
   };
   for (size_t i = 0; i < effects.size(); ++i) {
     const EffectStep& step = effects[i];

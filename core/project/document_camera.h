@@ -36,14 +36,25 @@ namespace artcam {
 struct DocumentFitInputs {
   FrameSize frame;                  // the photo's pixels; not an image frame: no photo yet
   std::vector<PointMatch> matches;  // every pair, with its enabled flag
-  // Straight edges: with one enabled, the geometry is the line fit (with the pairs). The model
-  // class then only says whether the quadratic is forced (Quadratic) or chosen (anything else:
-  // the line fit's auto, since lines cannot determine the lower rungs' homography).
+  // Straight edges: with one enabled, the geometry is the line fit (with the pairs), with the
+  // line model documentLineModel gives.
   std::vector<LineTrace> lines;
   ModelClass model = ModelClass::Auto;
   std::optional<Camera> manual_camera;  // the geometry of a camera set by hand
   std::optional<Camera> colour_block;
+  LineModel line_model = LineModel::Auto;  // the model chosen for lines (the studio's model row)
 };
+
+// The line fit's model for a document: the one chosen for lines, or, left at auto, the pairs'
+// model class saying whether the quadratic is forced (Quadratic; what projects saved before the
+// line model existed meant) or chosen by the line fit's auto (any other class: lines cannot
+// determine the lower rungs' homography). `artcam fit --lines --model M` is this with M.
+LineModel documentLineModel(ModelClass model, LineModel line_model);
+// The line fit a document makes: fitLinesCamera with the photo's frame as source and target
+// and documentLineModel's model. `artcam fit --lines` on the same lines makes the same camera.
+LinesFitSummary fitDocumentLines(const std::vector<LineTrace>& lines,
+                                 const std::vector<PointMatch>& pairs, FrameSize frame,
+                                 LineModel model);
 
 struct DocumentFit {
   FitSummary fit;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <exception>
 #include <stdexcept>
 #include <vector>
@@ -57,19 +58,38 @@ ImageF crop(const ImageF& image, const ValidRect& r) {
   return out;
 }
 
-// Premultiplied "over": the picture over the fill colour.
-void fillUnder(ImageF& image, const std::array<float, 4>& fill) {
+// Premultiplied "over": the picture over the fill colour. Returns the pixels that were not
+// opaque (the fill shows through them).
+long long fillUnder(ImageF& image, const std::array<float, 4>& fill) {
   const int a = image.channels - 1;
+  long long filled = 0;
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       float* p = image.pixel(x, y);
       const float rest = 1.0f - p[a];
+      if (rest > 0.0f) ++filled;
       for (int c = 0; c < a; ++c) p[c] += rest * fill[static_cast<size_t>(std::min(c, 2))] * fill[3];
       p[a] += rest * fill[3];
     }
+  return filled;
 }
 
 }  // namespace
+
+bool outputHoldsAlpha(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  const size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return true;
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext != "jpg" && ext != "jpeg";
+}
+
+ExportOptions exportOptionsForOutput(ExportOptions options, const std::string& path) {
+  if (!outputHoldsAlpha(path) && !options.fill && !options.crop_to_valid)
+    options.fill = kFlattenFill;
+  return options;
+}
 
 ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam& camera,
                     const ExportOptions& options, const std::function<bool(double)>& progress,
@@ -96,8 +116,16 @@ ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam
                  std::to_string(r.x0) + ", " + std::to_string(r.y0) + ")";
       s->size = {r.width(), r.height()};
     }
+    s->transparent_pixels = 0;  // every pixel of the valid rectangle has a preimage
   }
-  if (options.fill) fillUnder(out, *options.fill);
+  if (options.fill) {
+    // The summary speaks of the file written: a filled pixel is no longer transparent.
+    const long long filled = fillUnder(out, *options.fill);
+    if (filled > 0)
+      s->note += std::string(s->note.empty() ? "" : "; ") + std::to_string(filled) +
+                 " pixels without a preimage filled";
+    if ((*options.fill)[3] >= 1.0f) s->transparent_pixels = 0;
+  }
   // As every render of a photo without alpha: the added alpha goes again when it is opaque.
   if (photo.alpha_channel < 0) dropOpaqueAlpha(out);
   return out;
@@ -135,6 +163,15 @@ ImageF depthMapImage(const ImageF& raster) {
   return out;
 }
 
+Status writeDepthMapFile(const std::string& path, const ImageF& raster,
+                         const std::function<bool(double)>& progress) {
+  WriteImageOptions options;
+  options.pixel_type = "float";
+  options.channel_names = {"Z"};
+  options.progress = progress;
+  return writeImage(path, depthMapImage(raster), nullptr, options);
+}
+
 Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where) {
   using R = Result<ProjectScene>;
   ProjectScene scene;
@@ -167,6 +204,7 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
   in.matches = project.pairs;
   in.lines = project.lines;
   in.model = project.model;
+  in.line_model = project.line_model;
   if (project.manual_camera) in.manual_camera = project.manual_camera->main();
   in.colour_block = *colour.value;
   scene.fit = fitDocumentGeometry(in);

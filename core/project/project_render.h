@@ -31,6 +31,15 @@ struct ExportOptions {
   WriteImageOptions write;  // pixel type (bit depth), JPEG quality
 };
 
+// A format without alpha (JPEG, by the path's extension) cannot keep pixels transparent: with
+// neither a fill nor a crop, `options` gets kFlattenFill, white, as an image editor flattens a
+// layer with transparency onto its white background when saving it as JPEG (black corners,
+// written without a word, looked like a broken camera). Other paths: `options` unchanged. The
+// studio's export and `artcam export` both call it, so they write the same file.
+inline constexpr std::array<float, 4> kFlattenFill = {1.0f, 1.0f, 1.0f, 1.0f};
+bool outputHoldsAlpha(const std::string& path);
+ExportOptions exportOptionsForOutput(ExportOptions options, const std::string& path);
+
 // Pixel rectangle [x0, x1) × [y0, y1).
 struct ValidRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -68,5 +77,11 @@ ImageF rasteriseProjectDepth(const std::vector<ProjectDepthLayer>& layers, Frame
 // A depth raster (coverage·z, coverage) as a depth map file holds it: 1 channel of depth z,
 // 0 where there is none (core/io/depth_file.h reads it back). Write it as float EXR.
 ImageF depthMapImage(const ImageF& raster);
+
+// depthMapImage(raster) written as float OpenEXR with its one channel named Z, the name
+// compositors and `artcam warp --depth` users look for (readDepthFile reads the first channel
+// whatever its name). Atomic, as every image write; `progress` as WriteImageOptions::progress.
+Status writeDepthMapFile(const std::string& path, const ImageF& raster,
+                         const std::function<bool(double)>& progress = {});
 
 }  // namespace artcam

@@ -262,11 +262,28 @@ StudioProject projectAt(const Json& root, const std::string& file,
   const std::string photo = root.contains("photo") ? stringAt(root["photo"], "/photo") : "";
   if (photo.empty()) refuse("/photo", "missing photo path");
   p.photo_path = pathFromFile(photo, project_path);
+  if (root.contains("photo_size")) {
+    const Json& size = root["photo_size"];
+    if (!size.is_array() || size.size() != 2 || !size[0].is_number_integer() ||
+        !size[1].is_number_integer() || size[0].get<long long>() < 1 ||
+        size[1].get<long long>() < 1 || size[0].get<long long>() > (1 << 30) ||
+        size[1].get<long long>() > (1 << 30))
+      refuse("/photo_size", "expected [width, height] of whole numbers ≥ 1");
+    p.photo_size = FrameSize{static_cast<int>(size[0].get<long long>()),
+                             static_cast<int>(size[1].get<long long>())};
+  }
   if (root.contains("model")) {
     const std::string name = stringAt(root["model"], "/model");
     const auto model = modelClassFromName(name);
     if (!model) refuse("/model", "unknown model " + describe(root["model"]));
     p.model = *model;
+  }
+  if (root.contains("line_model")) {
+    const auto line_model = lineModelFromName(stringAt(root["line_model"], "/line_model"));
+    if (!line_model)
+      refuse("/line_model",
+             "unknown line model " + describe(root["line_model"]) + " (auto, radial or quadratic)");
+    p.line_model = *line_model;
   }
   if (root.contains("pairs")) {
     const Json& pairs = arrayAt(root["pairs"], "/pairs");
@@ -297,6 +314,16 @@ StudioProject projectAt(const Json& root, const std::string& file,
       if (o.contains("enabled")) {
         if (!o["enabled"].is_boolean()) refuse(where + "/enabled", "expected true or false");
         line.enabled = o["enabled"].get<bool>();
+      }
+      if (o.contains("role")) {
+        const std::string role = stringAt(o["role"], where + "/role");
+        if (role == "horizontal")
+          line.role = LineRole::Horizontal;
+        else if (role == "vertical")
+          line.role = LineRole::Vertical;
+        else if (role != "none")
+          refuse(where + "/role",
+                 "unknown role " + describe(o["role"]) + " (horizontal, vertical or none)");
       }
       p.lines.push_back(std::move(line));
     }
@@ -363,6 +390,29 @@ Status checkProjectMemory(const StudioProject& project, FrameSize photo, int pho
                                        bytes));
 }
 
+std::optional<FrameSize> projectPhotoSize(const StudioProject& project) {
+  if (project.photo_size) return project.photo_size;
+  if (!project.depth_layers.empty())
+    return FrameSize{project.depth_layers.front().mask.width(),
+                     project.depth_layers.front().mask.height()};
+  if (project.manual_camera && project.manual_camera->main().sourceSize().isImage())
+    return project.manual_camera->main().sourceSize();
+  return std::nullopt;
+}
+
+Status checkProjectPhotoSize(const StudioProject& project, FrameSize photo,
+                             const std::string& photo_path, const std::string& where) {
+  const std::optional<FrameSize> made_on = projectPhotoSize(project);
+  if (!made_on || (made_on->width == photo.width && made_on->height == photo.height))
+    return Status::success();
+  const auto size = [](FrameSize f) {
+    return std::to_string(f.width) + "x" + std::to_string(f.height);
+  };
+  return Status::failure(where + ": " + photo_path + " is " + size(photo) +
+                         " but the project was made on a " + size(*made_on) +
+                         " photo (its pairs and masks are that photo's pixels)");
+}
+
 Result<std::optional<Camera>> projectColourBlock(const StudioProject& project,
                                                  const std::string& where) {
   using R = Result<std::optional<Camera>>;
@@ -420,14 +470,18 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
   Json root;
   root["format"] = "artcam-studio-project";
   const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
-  const int version = !project.lines.empty()                           ? 4
-                      : !project.effects.empty()                       ? 3
-                      : has_depth || !project.parts_json.empty()       ? 2
-                                                                       : 1;
+  const int version = !project.lines.empty() || project.line_model != LineModel::Auto ? 4
+                      : !project.effects.empty()                                      ? 3
+                      : has_depth || !project.parts_json.empty()                      ? 2
+                                                                                      : 1;
   root["version"] = version;
   if (!project.parts_json.empty()) root["parts"] = Json::parse(project.parts_json);
   root["photo"] = pathForFile(project.photo_path, project_path);
+  if (project.photo_size)
+    root["photo_size"] = Json::array({project.photo_size->width, project.photo_size->height});
   root["model"] = std::string(modelClassName(project.model));
+  if (project.line_model != LineModel::Auto)
+    root["line_model"] = std::string(lineModelName(project.line_model));
   Json pairs = Json::array();
   for (const PointMatch& m : project.pairs)
     pairs.push_back({{"source", pointJson(m.source)},
@@ -439,7 +493,10 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
     for (const LineTrace& line : project.lines) {
       Json points = Json::array();
       for (const Eigen::Vector2d& q : line.points) points.push_back(pointJson(q));
-      lines.push_back({{"label", line.label}, {"points", points}, {"enabled", line.enabled}});
+      Json entry = {{"label", line.label}, {"points", points}, {"enabled", line.enabled}};
+      if (line.role != LineRole::None)
+        entry["role"] = line.role == LineRole::Horizontal ? "horizontal" : "vertical";
+      lines.push_back(std::move(entry));
     }
     root["lines"] = lines;
   }

@@ -5,11 +5,14 @@
 //
 //   { "format": "artcam-studio-project", "version": 4,
 //     "photo": "relative/or/absolute/path.png",
+//     "photo_size": [w, h],                          // optional: the photo's size when saved
 //     "model": "auto",
+//     "line_model": "radial",                    // optional, v4: the lines' model; absent: auto
 //     "pairs": [ {"source": [x, y], "target": [x, y], "enabled": true}, … ],   // photo pixels
 //     "camera": { ….artcam document… },          // optional: camera set by hand (any kind)
 //     "effects": [ {"effect": "aerial-perspective", "params": {"near": [1], …}}, … ],  // v3
-//     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true}, … ],   // v4, photo px
+//     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true,
+//                 "role": "horizontal"}, … ],   // v4, photo px; role optional (or "vertical")
 //     "view": { … },                                // the studio's view state (opaque here)
 //     "depth": {                                    // optional: depth planes and map (v2)
 //       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
@@ -23,6 +26,10 @@
 // represent fully. This reader takes 1 to 4.
 //
 // Decisions:
+// - "photo_size" records the size the pairs, lines and masks were made on, so a photo located
+//   in another place (it moved) can be checked before anything is laid on it. Older readers
+//   ignore it, so it needs no new version; a project without it falls back on its masks' size
+//   and the hand-set camera's source frame (projectPhotoSize).
 // - The view state and the studio modes' parts are kept as JSON text: they belong to the
 //   studio (ui/project_file.h reads them), and a headless reader must carry them through
 //   unchanged. The one part core reads is the colour block (parts/colour/colour_block), because
@@ -44,6 +51,7 @@
 #include "core/depth/region_mask.h"
 #include "core/effects/effect_table.h"
 #include "core/fit/fit_image.h"
+#include "core/fit/fit_lines.h"
 #include "core/io/depth_file.h"
 #include "core/model/artcam.h"
 #include "core/model/line_trace.h"
@@ -84,9 +92,11 @@ struct EffectStep {
 
 struct StudioProject {
   std::string photo_path;  // absolute once read
+  std::optional<FrameSize> photo_size;  // the photo's size when saved; none: not recorded
   std::vector<PointMatch> pairs;  // photo pixels, 2D
   std::vector<LineTrace> lines;   // straight edges traced in the photo (photo pixels)
   ModelClass model = ModelClass::Auto;
+  LineModel line_model = LineModel::Auto;  // the model chosen for the lines ("line_model")
   std::optional<Artcam> manual_camera;
   std::vector<EffectStep> effects;  // applied in order after the geometry and colour
   std::vector<ProjectDepthLayer> depth_layers;
@@ -111,6 +121,15 @@ Status checkProjectMemory(const StudioProject& project, FrameSize photo, int pho
 // `where` names the file in messages.
 Result<std::optional<Camera>> projectColourBlock(const StudioProject& project,
                                                  const std::string& where);
+
+// The size of photo the project's pixels belong to: photo_size, else the first depth mask's
+// size, else the hand-set camera's source frame; none when the project records none of them.
+std::optional<FrameSize> projectPhotoSize(const StudioProject& project);
+
+// A photo of `photo` pixels in place of the project's: fails "WHERE: PHOTO is WxH but the
+// project was made on a WxH photo" when the project's size (projectPhotoSize) differs.
+Status checkProjectPhotoSize(const StudioProject& project, FrameSize photo,
+                             const std::string& photo_path, const std::string& where);
 
 // `project_path` places relative paths and names the file in messages.
 Result<StudioProject> parseStudioProject(std::string_view text, const std::string& project_path);

@@ -32,7 +32,7 @@ _artcam_options() {
                   --threads --stats --json --overwrite --force --quiet -q" ;;
     preset) echo "--output -o --overwrite --force --size" ;;
     compose) echo "--output -o --force --overwrite --json" ;;
-    export) echo "--output -o --camera-out --depth-out --size --filter --quality --bit-depth --colourspace
+    export) echo "--output -o --photo --camera-out --depth-out --size --filter --quality --bit-depth --colourspace
                   --crop-valid --fill --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --source-size --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --focal --crop --size --output -o --distort --no-tca

@@ -4,6 +4,7 @@
 // options are checked, and every refusal is one or two lines naming the file and the cause,
 // with no output left behind and no input touched.
 #include "core/io/artcam_file.h"
+#include "core/io/depth_file.h"
 #include "core/io/image_io.h"
 #include "tests/app/cli_run.h"
 #include "tests/support/test_support.h"
@@ -11,11 +12,14 @@
 #include <QtTest/QtTest>
 
 #include <QCryptographicHash>
+#include <QDir>
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QTemporaryDir>
+
+#include <OpenImageIO/imageio.h>
 
 using namespace artcam;
 using artcam::test::artcamCli;
@@ -64,6 +68,17 @@ class TestCliExport : public QObject {
     QVERIFY(std::abs(depth->image.pixel(20, 390)[0] - 0.6f) < 1e-4f);
     QVERIFY(std::abs(depth->image.pixel(300, 5)[0] - 2.5f) < 1e-3f);
     QVERIFY(std::abs(depth->image.pixel(290, 140)[0] - 0.8f) < 1e-5f);
+    // Its one channel is named Z, as compositors name depth, and warp --depth reads it.
+    {
+      auto in = OIIO::ImageInput::open(dir_.filePath("depth.exr").toStdString());
+      QVERIFY(in);
+      QCOMPARE(in->spec().nchannels, 1);
+      QCOMPARE(in->spec().channelnames.at(0), std::string("Z"));
+      in->close();
+      const auto as_depth = readDepthFile(dir_.filePath("depth.exr").toStdString());
+      QVERIFY2(as_depth.ok(), as_depth.status.message.c_str());
+      QVERIFY(std::abs(as_depth->pixel(290, 140)[0] - 0.8f) < 1e-5f);
+    }
     const auto image = readImage(out.toStdString());
     QVERIFY(image.ok());
     QCOMPARE(image->info.format_name, std::string("jpeg"));
@@ -138,7 +153,7 @@ class TestCliExport : public QObject {
         {{"export", project_, "-o", out, "--fill", "1,2"}, 2, "--fill expects 3 or 4"},
         {{"export", missing, "-o", out}, 1, "missing.artcamproj: cannot read"},
         {{"export", broken, "-o", out}, 1, "broken.artcamproj: /effects/0/params/focus: focus = -1 is outside its range"},
-        {{"export", no_photo, "-o", out}, 1, "nophoto.artcamproj: photo:"},
+        {{"export", no_photo, "-o", out}, 1, "nophoto.artcamproj: its photo"},
         {{"export", no_photo, "-o", out, "--depth-out", out}, 2, "two outputs name the same file"},
         {{"export", project_, "-o", dir_.filePath("coffee.png"), "--overwrite"}, 1, "refusing to overwrite the input"},
         {{"export", project_, "-o", project_, "--overwrite"}, 1, "refusing to overwrite the input"},
@@ -153,6 +168,47 @@ class TestCliExport : public QObject {
     }
     QCOMPARE(hashOf(project_), before);
     QVERIFY(!hashOf(dir_.filePath("coffee.png")).isEmpty());
+  }
+
+  // The photo moved: --photo FILE renders FILE in its place, the same pixels as before the
+  // move; a photo of another size than the project's masks is refused naming both sizes.
+  void photoOptionStandsInForAMovedPhoto() {
+    const QString before = dir_.filePath("before-move.png");
+    const Run first = artcamCli({"export", project_, "-o", before, "-q"});
+    QVERIFY2(first.exit_code == 0, qPrintable(first.err));
+    QVERIFY(QDir().mkpath(dir_.filePath("moved/elsewhere")));
+    const QString project = dir_.filePath("moved/depth-effects.artcamproj");
+    const QString photo = dir_.filePath("moved/elsewhere/coffee.png");
+    QVERIFY(QFile::copy(project_, project));
+    QVERIFY(QFile::copy(dir_.filePath("coffee.png"), photo));
+    const QString out = dir_.filePath("moved/after.png");
+    const Run lost = artcamCli({"export", project, "-o", out, "-q"});
+    QCOMPARE(lost.exit_code, 1);
+    QVERIFY2(lost.err.contains("depth-effects.artcamproj: its photo") &&
+                 lost.err.contains("--photo FILE") && lost.err.trimmed().count('\n') == 0,
+             qPrintable(lost.err));
+    const Run found = artcamCli({"export", project, "--photo", photo, "-o", out, "-q"});
+    QVERIFY2(found.exit_code == 0, qPrintable(found.err));
+    const auto a = readImage(before.toStdString()), b = readImage(out.toStdString());
+    QVERIFY(a.ok() && b.ok());
+    QVERIFY(a->image.data == b->image.data);
+    // Another size: the masks were painted on a 600x400 photo.
+    const QString small = dir_.filePath("moved/small.png");
+    QVERIFY(writeImage(small.toStdString(), ImageF(60, 40, 3, -1)).ok);
+    const QString never = dir_.filePath("moved/never.png");
+    const Run wrong = artcamCli({"export", project, "--photo", small, "-o", never, "-q"});
+    QCOMPARE(wrong.exit_code, 1);
+    QVERIFY2(wrong.err.contains("depth-effects.artcamproj") && wrong.err.contains("small.png") &&
+                 wrong.err.contains("60x40") && wrong.err.contains("600x400") &&
+                 wrong.err.trimmed().count('\n') == 0,
+             qPrintable(wrong.err));
+    QVERIFY(!QFile::exists(never));
+    const Run absent =
+        artcamCli({"export", project, "--photo", dir_.filePath("nowhere.png"), "-o", never, "-q"});
+    QCOMPARE(absent.exit_code, 1);
+    QVERIFY2(absent.err.contains("depth-effects.artcamproj: --photo") &&
+                 absent.err.contains("nowhere.png"),
+             qPrintable(absent.err));
   }
 
   void cropAndFillChangeTheOutput() {

@@ -4,6 +4,7 @@
 // accepting restores the exact state, marked modified; declining or an older recovery keeps
 // the saved project; a clean save or close removes the recovery file.
 #include "core/io/image_io.h"
+#include "tests/ui/session_wait.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/autosave.h"
 #include "ui/commands.h"
@@ -14,10 +15,14 @@
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QLockFile>
+#include <QProcess>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
+
+#include <memory>
 
 using namespace artcam;
 using namespace artcam::ui;
@@ -137,7 +142,7 @@ class TestAutosave : public QObject {
       QTRY_VERIFY_WITH_TIMEOUT(doc.photo() != nullptr, 20000);
       editSomething(doc, 0.0);
       QVERIFY(autosaveNow(session));  // an untitled recovery…
-      QVERIFY(session.saveProjectTo(project));
+      QVERIFY(ui::test::saveAndWait(session, project));
       // …removed by the clean save, as is the project's own.
       QVERIFY(session.autosave()->pendingRecoveries().empty());
       saved_state.emplace(doc);
@@ -180,7 +185,7 @@ class TestAutosave : public QObject {
       QVERIFY(doc.isModified());
       QCOMPARE(session.projectPath(), QFileInfo(project).absoluteFilePath());
       // Saving it makes the project current: no offer any more.
-      QVERIFY(session.save());
+      QVERIFY(ui::test::saveOwnAndWait(session));
       QVERIFY(!session.autosave()->findRecovery(project));
     }
     {
@@ -216,14 +221,99 @@ class TestAutosave : public QObject {
     QVERIFY(saved.wait(20000));
     session.autosave()->stop();
     QVERIFY(saved.front().at(0).toBool());
-    // Only the recovery file itself: no temporary left beside it.
-    const QStringList files = QDir(recovery_dir_).entryList(QDir::Files | QDir::Hidden);
-    QCOMPARE(files, QStringList{"untitled.artcamproj"});
-    const Result<Project> back =
-        Autosave::readRecovery(QDir(recovery_dir_).filePath("untitled.artcamproj"));
+    // Only the recovery file itself and its lock: no temporary left beside it.
+    const QString name = QFileInfo(session.autosave()->recoveryPathFor(QString())).fileName();
+    const QStringList files = QDir(recovery_dir_).entryList(QDir::Files | QDir::Hidden, QDir::Name);
+    QCOMPARE(files, (QStringList{name, name + ".lock"}));
+    const Result<Project> back = Autosave::readRecovery(QDir(recovery_dir_).filePath(name));
     QVERIFY2(back.ok(), back.status.message.c_str());
     QVERIFY(back->pairs == doc.pairs());
     QVERIFY(back->depth_layers == doc.depth()->layers());
+  }
+
+  // Two windows, both untitled: each writes its own recovery file, neither offers the other's
+  // live one, and a third start offers a file only once its owner is gone.
+  void instancesKeepTheirOwnRecoveries() {
+    auto doc_a = std::make_unique<Document>();
+    auto a = std::make_unique<Session>(doc_a.get(), nullptr);
+    configure(*a, nullptr, false);
+    a->openPhoto(photo_);
+    QTRY_VERIFY_WITH_TIMEOUT(doc_a->photo() != nullptr, 20000);
+    editSomething(*doc_a, 1.0);
+    QVERIFY(autosaveNow(*a));
+    Document doc_b;
+    Session b(&doc_b, nullptr);
+    std::vector<RecoveryOffer> offers_b;
+    configure(b, &offers_b, false);
+    QVERIFY(!b.offerRecovery());  // A is alive: its autosave is not B's to recover
+    QVERIFY(offers_b.empty());
+    b.openPhoto(photo_);
+    QTRY_VERIFY_WITH_TIMEOUT(doc_b.photo() != nullptr, 20000);
+    editSomething(doc_b, 2.0);
+    QVERIFY(autosaveNow(b));
+    const QString file_a = a->autosave()->recoveryPathFor(QString());
+    const QString file_b = b.autosave()->recoveryPathFor(QString());
+    QVERIFY(file_a != file_b);
+    QVERIFY(QFile::exists(file_a) && QFile::exists(file_b));
+    const Result<Project> read_a = Autosave::readRecovery(file_a);
+    QVERIFY(read_a.ok() && read_a->pairs == doc_a->pairs());  // not overwritten by B
+    QVERIFY(a->autosave()->pendingRecoveries().empty());
+    QVERIFY(b.autosave()->pendingRecoveries().empty());
+    // A "dies" (no clean close): its file is offered to a newcomer, B's live one is not.
+    const std::vector<Pair> pairs_a = doc_a->pairs();
+    a.reset();
+    doc_a.reset();
+    Document doc_c;
+    Session c(&doc_c, nullptr);
+    configure(c, nullptr, true);
+    const std::vector<RecoveryOffer> offers = c.autosave()->pendingRecoveries();
+    QCOMPARE(offers.size(), size_t{1});
+    QCOMPARE(offers.front().recovery_path, QFileInfo(file_a).absoluteFilePath());
+    QVERIFY(c.offerRecovery());
+    QTRY_VERIFY_WITH_TIMEOUT(doc_c.photo() != nullptr, 20000);
+    QVERIFY(doc_c.pairs() == pairs_a);
+    // Recovered by C, it is C's now: B is not offered it either.
+    QVERIFY(b.autosave()->pendingRecoveries().empty());
+  }
+
+  // A lock left by a process that is gone (a crash) does not hide its recovery file.
+  void deadOwnersRecoveryIsOffered() {
+    QString file;
+    {
+      Document doc;
+      Session session(&doc, nullptr);
+      configure(session, nullptr, false);
+      doc.reset(test::syntheticPhoto());
+      editSomething(doc, 3.0);
+      QVERIFY(autosaveNow(session));
+      file = session.autosave()->recoveryPathFor(QString());
+    }
+    // The lock as a crashed studio leaves it: QLockFile's own format, with a pid now unused.
+    QProcess gone;
+    gone.start("true", {});
+    QVERIFY(gone.waitForStarted());
+    const qint64 dead_pid = gone.processId();
+    QVERIFY(gone.waitForFinished());
+    QByteArray text;
+    {
+      QLockFile lock(file + ".lock");
+      QVERIFY(lock.tryLock(0));
+      QFile f(file + ".lock");
+      QVERIFY(f.open(QIODevice::ReadOnly));
+      text = f.readAll();
+    }
+    text = QByteArray::number(dead_pid) + text.mid(text.indexOf('\n'));
+    {
+      QFile f(file + ".lock");
+      QVERIFY(f.open(QIODevice::WriteOnly));
+      f.write(text);
+    }
+    Document doc;
+    Session session(&doc, nullptr);
+    configure(session, nullptr, false);
+    const std::vector<RecoveryOffer> offers = session.autosave()->pendingRecoveries();
+    QCOMPARE(offers.size(), size_t{1});
+    QCOMPARE(offers.front().recovery_path, QFileInfo(file).absoluteFilePath());
   }
 };
 

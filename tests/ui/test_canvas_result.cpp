@@ -3,7 +3,9 @@
 // Result mode the canvas's pixels are the controller's image and the photo shifted by a
 // translation camera (an independent truth); while a render is in flight the last result stays,
 // and a new photo never shows the old one's result nor itself in its place; over the result the
-// pair tool moves targets, never sources; the mode survives a project round trip.
+// pair tool moves targets as they are and sources through the camera's inverse (a translation
+// here, so the truth is the click less the shift); the mode survives a project round trip.
+#include "tests/ui/session_wait.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
 #include "ui/commands.h"
@@ -273,7 +275,7 @@ class TestCanvasResult : public QObject {
       QVERIFY(near(canvasPixel(shown, rig.canvas, p), qRgb(255, 255, 255)));
   }
 
-  void overTheResultThePairToolMovesTargetsNotSources() {
+  void overTheResultThePairToolEditsThroughTheInverse() {
     Rig rig;
     QVERIFY(QTest::qWaitForWindowExposed(&rig.canvas));
     // Sources and targets far apart, so a press picks one of them unambiguously.
@@ -297,14 +299,19 @@ class TestCanvasResult : public QObject {
     rig.doc.undoStack()->undo();
     QVERIFY(rig.doc.pairs()[1] == before);
 
-    // Pressing on a source over the result grabs nothing (it is a rubber band): no pair moves.
-    const std::vector<Pair> unchanged = rig.doc.pairs();
+    // A source dragged over the result moves by the cursor's motion mapped back through the
+    // camera: a translation by (30, 20), whose inverse moves points as the cursor moves.
     const QPoint s = test::widgetPoint(rig.canvas, before.source);
     test::drag(&rig.canvas, s, s + delta);
     QTRY_VERIFY(!rig.doc.fitPending());
-    QVERIFY(rig.doc.pairs() == unchanged);
+    QVERIFY(
+        (rig.doc.pairs()[1].source - before.source - Eigen::Vector2d(delta.x(), delta.y()) / scale)
+            .norm() < 1e-6);
+    QVERIFY(rig.doc.pairs()[1].target == before.target);
+    rig.doc.undoStack()->undo();
+    QVERIFY(rig.doc.pairs()[1] == before);
 
-    // The same drag where the photo shows moves the source (the control for the line above).
+    // The same drag where the photo shows moves the source by the drag in photo pixels.
     rig.canvas.setViewMode(CanvasViewMode::Photo);
     test::drag(&rig.canvas, s, s + delta);
     QTRY_VERIFY(!rig.doc.fitPending());
@@ -314,29 +321,34 @@ class TestCanvasResult : public QObject {
     QVERIFY(rig.doc.pairs()[1].target == before.target);
     rig.doc.undoStack()->undo();
 
-    // A new pair: over the result a click places no source; on the photo it does, and after `\`
-    // its target is placed on the result, in result pixels, as one undo step.
+    // A new pair placed wholly on the result: the source click is the photo pixel the result
+    // shows there (the click less the translation), the target click is in result pixels; one
+    // undo step. On the photo (`\`) the source click is the photo pixel itself.
     rig.canvas.setViewMode(CanvasViewMode::Result);
     auto* tool = dynamic_cast<PairTool*>(rig.canvas.tool());
     const QPoint empty = test::widgetPoint(rig.canvas, {160, 120});
+    const Eigen::Vector2d empty_px(rig.canvas.view().imageFromWidget(empty).x(),
+                                   rig.canvas.view().imageFromWidget(empty).y());
     test::click(&rig.canvas, empty);
-    QVERIFY(!tool->hasPendingSource());
+    QVERIFY(tool->hasPendingSource());
+    const QPoint target_at = test::widgetPoint(rig.canvas, {180, 100});
+    test::click(&rig.canvas, target_at);
+    QCOMPARE(rig.doc.pairs().size(), size_t{5});
+    Pair added = rig.doc.pairs().back();
+    QVERIFY((added.source - (empty_px - Eigen::Vector2d(30.0, 20.0))).norm() < 1e-6);
+    QVERIFY((added.target - Eigen::Vector2d(rig.canvas.view().imageFromWidget(target_at).x(),
+                                            rig.canvas.view().imageFromWidget(target_at).y()))
+                .norm() < 1e-9);
+    rig.doc.undoStack()->undo();
     QCOMPARE(rig.doc.pairs().size(), size_t{4});
     rig.canvas.toggleBeforeAfter();
     QCOMPARE(rig.canvas.shownMode(), CanvasViewMode::Photo);
     test::click(&rig.canvas, empty);
-    QVERIFY(tool->hasPendingSource());
     rig.canvas.toggleBeforeAfter();
-    const QPoint target_at = test::widgetPoint(rig.canvas, {180, 100});
     test::click(&rig.canvas, target_at);
     QCOMPARE(rig.doc.pairs().size(), size_t{5});
-    const Pair added = rig.doc.pairs().back();
-    QVERIFY((added.source - Eigen::Vector2d(rig.canvas.view().imageFromWidget(empty).x(),
-                                            rig.canvas.view().imageFromWidget(empty).y()))
-                .norm() < 1e-9);
-    QVERIFY((added.target - Eigen::Vector2d(rig.canvas.view().imageFromWidget(target_at).x(),
-                                            rig.canvas.view().imageFromWidget(target_at).y()))
-                .norm() < 1e-9);
+    added = rig.doc.pairs().back();
+    QVERIFY((added.source - empty_px).norm() < 1e-9);
     rig.doc.undoStack()->undo();
     QCOMPARE(rig.doc.pairs().size(), size_t{4});
   }
@@ -400,7 +412,7 @@ class TestCanvasResult : public QObject {
       window.canvas()->setSplit(0.625);
       window.canvas()->toggleBeforeAfter();  // Photo, with Split to come back to
       state = window.canvas()->viewState();
-      QVERIFY(window.session()->saveProjectTo(project));
+      QVERIFY(ui::test::saveAndWait(*window.session(), project));
     }
     QCOMPARE(state.mode, CanvasViewMode::Photo);
     QCOMPARE(state.compare_mode, CanvasViewMode::Split);

@@ -9,6 +9,8 @@
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "tests/ui/ui_fixtures.h"
+#include "tests/ui/session_wait.h"
+#include "ui/background_job.h"
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_dock.h"
 #include "ui/colour/colour_project.h"
@@ -393,7 +395,7 @@ class TestColourSamples : public QObject {
     doc.undoStack()->push(new SetColourBlockCommand(
         &doc, colourCamera(linearMap(transformM()), doc.frame()), "colour"));
     const QString project = dir_.filePath("colour.artcamproj");
-    QVERIFY(session.saveProjectTo(project));
+    QVERIFY(ui::test::saveAndWait(session, project));
 
     Document doc2;
     Session session2(&doc2, nullptr);
@@ -452,7 +454,13 @@ class TestColourSamples : public QObject {
     st.pick(2, 3);
     st.dock.table()->item(1, 0)->setCheckState(Qt::Unchecked);
     const QString path = dir_.filePath("samples.csv");
+    // Written by a one-shot job: a job runs when the call returns, the file is there at its end.
+    QTRY_COMPARE_WITH_TIMEOUT(BackgroundJob::runningCount(), 0, 20000);
+    QSignalSpy exported(&st.dock, &ColourDock::csvExported);
     QVERIFY(st.dock.exportCsv(path));
+    QVERIFY(BackgroundJob::runningCount() > 0);
+    QVERIFY(exported.wait(20000));
+    QVERIFY2(exported.front().at(0).toBool(), qPrintable(exported.front().at(1).toString()));
     const Result<std::vector<PointMatch>> read = readColourSamplesCsv(path.toStdString());
     QVERIFY2(read.ok(), read.status.message.c_str());
     QCOMPARE(read->size(), size_t{3});

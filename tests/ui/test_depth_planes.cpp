@@ -6,6 +6,7 @@
 // depth map files loaded off the GUI thread as an undoable edit.
 #include "core/io/depth_file.h"
 #include "core/io/image_io.h"
+#include "tests/ui/session_wait.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/depth_commands.h"
 #include "ui/depth_overlay.h"
@@ -350,7 +351,7 @@ class TestDepthPlanes : public QObject {
     session.loadDepthMap(exr, {});
     QTRY_COMPARE_WITH_TIMEOUT(loaded.size(), 1, 20000);
     const QString project = dir_.filePath("with-depth.artcamproj");
-    QVERIFY(session.saveProjectTo(project));
+    QVERIFY(ui::test::saveAndWait(session, project));
 
     Document doc2;
     Session session2(&doc2, nullptr);

@@ -3,6 +3,7 @@
 // squares, max error, graphic and its placement), reopening adds no undo step, and a broken
 // "insertion" part is named by its JSON path.
 #include "tests/support/test_support.h"
+#include "tests/ui/session_wait.h"
 #include "ui/document.h"
 #include "ui/main_window.h"
 #include "ui/matting/insertion_model.h"
@@ -23,7 +24,9 @@ using namespace artcam::ui;
 
 namespace {
 
-QString resource(const char* name) { return QString::fromStdString(test::resourcePath(name)); }
+QString resource(const char* name) {
+  return QString::fromStdString(artcam::test::resourcePath(name));
+}
 
 }  // namespace
 
@@ -59,7 +62,7 @@ class TestInsertionProject : public QObject {
       studio->model()->edit(edit, QStringLiteral("test edits"));
       saved = studio->model()->state();
       QVERIFY(saved.matches.size() > 100);
-      QVERIFY(window.session()->saveProjectTo(project));
+      QVERIFY(ui::test::saveAndWait(*window.session(), project));
     }
     MainWindow window;
     window.session()->setInteractive(false);

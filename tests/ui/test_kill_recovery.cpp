@@ -3,7 +3,8 @@
 // undoable edit imports a camera with 20 matches (hidden test hook in app/studio_main.cpp),
 // the autosave runs on a short interval (ARTCAM_AUTOSAVE_INTERVAL_MS), and the process is
 // SIGKILLed. The recovery file must be there, load as a project with the photo and the 20
-// pairs read independently from the .artcam file, and be offered at the next start.
+// pairs read independently from the .artcam file, not be offered to another studio while the
+// first one runs, and be offered at the next start once it is gone.
 #include "ui/autosave.h"
 #include "ui/project_file.h"
 
@@ -61,6 +62,13 @@ class TestKillRecovery : public QObject {
     QCOMPARE(studio.state(), QProcess::Running);
     const QString recovery = findRecovery();
     QVERIFY2(!recovery.isEmpty(), qPrintable(QString::fromUtf8(studio.readAllStandardError())));
+    {
+      // While that studio runs its recovery file is its own: another studio is not offered it.
+      ui::Autosave other([] { return std::optional<ui::Project>(); });
+      other.setRecoveryDir(QFileInfo(recovery).absolutePath());
+      QVERIFY(other.pendingRecoveries().empty());
+      QCOMPARE(studio.state(), QProcess::Running);
+    }
     studio.kill();  // SIGKILL mid-edit: no clean close, no save prompt
     QVERIFY(studio.waitForFinished(30000));
     QCOMPARE(studio.exitStatus(), QProcess::CrashExit);

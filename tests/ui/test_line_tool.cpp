@@ -12,12 +12,13 @@
 #include "core/model/frames.h"
 #include "core/project/studio_project.h"
 #include "core/render/attributed.h"
+#include "tests/ui/session_wait.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/canvas.h"
 #include "ui/document.h"
 #include "ui/line_commands.h"
-#include "ui/session.h"
 #include "ui/preview_controller.h"
+#include "ui/session.h"
 #include "ui/tools/line_tool.h"
 #include "ui/tools/pair_tool.h"
 
@@ -311,7 +312,7 @@ class TestLineTool : public QObject {
     QVERIFY(sameLines(doc.lines(), written.lines));
     QVERIFY2(doc.fit().status.ok, doc.fit().status.message.c_str());
     const QString second = dir_.filePath("second.artcamproj");
-    QVERIFY(session.saveProjectTo(second));
+    QVERIFY(ui::test::saveAndWait(session, second));
     const Result<StudioProject> back = readStudioProject(second.toStdString());
     QVERIFY2(back.ok(), back.status.message.c_str());
     QVERIFY(sameLines(back->lines, written.lines));
@@ -326,7 +327,7 @@ class TestLineTool : public QObject {
       test::click(&canvas, canvas.view().widgetFromImage(QPointF(p.x(), p.y())).toPoint());
     QTest::keyClick(&canvas, Qt::Key_Enter);
     QCOMPARE(doc.lines().size(), written.lines.size() + 1);
-    QVERIFY(session.saveProjectTo(second));
+    QVERIFY(ui::test::saveAndWait(session, second));
     Document doc2;
     Session session2(&doc2, nullptr);
     session2.setInteractive(false);

@@ -5,6 +5,7 @@
 // it exports the same pixels; and `artcam export` on the saved file writes those pixels too.
 #include "core/io/image_io.h"
 #include "tests/app/cli_run.h"
+#include "tests/ui/session_wait.h"
 #include "tests/ui/ui_fixtures.h"
 #include "ui/depth_model.h"
 #include "ui/document.h"
@@ -133,7 +134,7 @@ class TestProjectExport : public QObject {
       MainWindow window;
       QVERIFY(openAndSettle(window, dir_.filePath("depth-effects.artcamproj")));
       first = exportNow(*window.document());
-      QVERIFY(window.session()->saveProjectTo(saved));
+      QVERIFY(ui::test::saveAndWait(*window.session(), saved));
     }
     MainWindow again;
     QVERIFY(openAndSettle(again, saved));

@@ -9,6 +9,7 @@
 #include "ui/panels/tensor_panel.h"
 #include "tests/support/icc_files.h"
 #include "tests/ui/ui_fixtures.h"
+#include "tests/ui/session_wait.h"
 #include "ui/export_options_dialog.h"
 #include "ui/commands.h"
 #include "ui/document.h"
@@ -18,6 +19,7 @@
 
 #include <QComboBox>
 #include <QDir>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableView>
@@ -46,6 +48,9 @@ class TestSession : public QObject {
   void initTestCase() {
     QStandardPaths::setTestModeEnabled(true);
     QVERIFY(dir_.isValid());
+    // A Session starts from the export options the last one set (kept in QSettings); the
+    // exports below assume the defaults, whatever an earlier run of this program chose.
+    QSettings().remove("export");
   }
 
   void projectRoundTripIsExact() {
@@ -97,7 +102,7 @@ class TestSession : public QObject {
     for (const Pair& p : ui::test::ninePairs()) doc.undoStack()->push(new AddPairCommand(&doc, p));
     QVERIFY(doc.isModified());
     const QString project = dir_.filePath("session.artcamproj");
-    QVERIFY(session.saveProjectTo(project));
+    QVERIFY(ui::test::saveAndWait(session, project));
     QVERIFY(!doc.isModified());
     const std::vector<Pair> saved = doc.pairs();
 
@@ -158,13 +163,13 @@ class TestSession : public QObject {
     doc.reset(ui::test::syntheticPhoto(), ui::test::ninePairs(), ModelClass::Quadratic);
     QVERIFY(doc.fit().status.ok);
     const QString cam = dir_.filePath("cam.artcam");
-    QVERIFY(session.exportArtcam(cam));
+    QVERIFY(ui::test::writeAndWait(session, [&] { return session.exportArtcam(cam); }));
 
     Document doc2;
     Session session2(&doc2, nullptr);
     session2.setInteractive(false);
     doc2.reset(ui::test::syntheticPhoto());
-    session2.importArtcam(cam);
+    QVERIFY(ui::test::importAndWait(session2, cam));
     QCOMPARE(doc2.pairs().size(), size_t{9});
     doc2.undoStack()->push(new SetModelCommand(&doc2, ModelClass::Quadratic));
     QCOMPARE(doc2.camera().stages()[0].q, doc.camera().stages()[0].q);
@@ -251,7 +256,7 @@ class TestSession : public QObject {
     // frame size: it is scaled to the photo and every layer is kept.
     const QString ca = dir_.filePath("ca.artcam");
     QVERIFY(writeArtcam(ca.toStdString(), buildEffect("chromatic-aberration", {}, {600, 400})).ok);
-    session.importArtcam(ca);
+    QVERIFY(ui::test::importAndWait(session, ca));
     QVERIFY(doc.manualCamera());
     QCOMPARE(doc.artcam().kind(), ArtcamKind::Layered);
     QCOMPARE(doc.artcam().layers.size(), size_t{3});
@@ -273,7 +278,7 @@ class TestSession : public QObject {
     // An attributed camera (aerial perspective reads depth): its colour and depth blocks stay.
     const QString ap = dir_.filePath("ap.artcam");
     QVERIFY(writeArtcam(ap.toStdString(), buildEffect("aerial-perspective", {}, {320, 240})).ok);
-    session.importArtcam(ap);
+    QVERIFY(ui::test::importAndWait(session, ap));
     QCOMPARE(doc.artcam().kind(), ArtcamKind::Attributed);
     QVERIFY(readsDepth(doc.artcam()));
     QVERIFY2(tensors.summary().contains("depth"), qPrintable(tensors.summary()));
@@ -294,7 +299,7 @@ class TestSession : public QObject {
     layer.mask.fillPolygon({{0, 0}, {160, 0}, {160, 240}, {0, 240}});
     layer.anchors = {{{10.5, 10.5}, 3.0}, {{150.5, 10.5}, 3.0}, {{10.5, 230.5}, 3.0}};
     doc.undoStack()->push(new AddDepthLayerCommand(doc.depth(), layer));
-    QVERIFY(session.exportDepthMap(depth_path));
+    QVERIFY(ui::test::writeAndWait(session, [&] { return session.exportDepthMap(depth_path); }));
     const Result<LoadedImage> depth = readImage(depth_path.toStdString());
     QVERIFY2(depth.ok(), depth.status.message.c_str());
     QCOMPARE(depth->image.channels, 1);
@@ -306,7 +311,7 @@ class TestSession : public QObject {
     // smaller than the photo, and opaque (no alpha written).
     const QString lens = dir_.filePath("barrel.artcam");
     QVERIFY(writeArtcam(lens.toStdString(), buildEffect("barrel", {}, {320, 240})).ok);
-    session.importArtcam(lens);
+    QVERIFY(ui::test::importAndWait(session, lens));
     ExportOptions options;
     options.crop_to_valid = true;
     session.setExportOptions(options);

@@ -3,15 +3,17 @@
 
 #include "core/colour/colour_difference.h"
 #include "core/colour/colour_map.h"
-#include "core/io/matches_csv.h"
+#include "core/colour/colour_stage.h"
 #include "core/colour/transfer.h"
+#include "core/io/matches_csv.h"
+#include "ui/background_job.h"
 #include "ui/colour/colour_commands.h"
 #include "ui/colour/colour_fit_job.h"
 #include "ui/colour/colour_project.h"
-#include "core/colour/colour_stage.h"
 #include "ui/colour/patch_view.h"
 #include "ui/document.h"
 #include "ui/image_loader.h"
+#include "ui/save_names.h"
 #include "ui/session.h"
 
 #include <QCheckBox>
@@ -29,6 +31,7 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <memory>
 
 namespace artcam::ui {
 namespace {
@@ -370,18 +373,28 @@ void ColourDock::clearColourBlock() {
 }
 
 bool ColourDock::exportCsv(const QString& path) {
-  const Status status = writeColourSamplesCsv(path.toStdString(), model_->colourPairs());
-  message_ =
-      status ? tr("Exported %1 colour samples to %2").arg(model_->colourPairs().size()).arg(path)
-             : QString::fromStdString(status.message);
-  refreshReport();
-  emit statusMessage(message_);
-  return status.ok;
+  // The pairs are taken here (the samples live on this thread), written on a job's.
+  auto pairs = std::make_shared<const std::vector<PointMatch>>(model_->colourPairs());
+  runInBackground(
+      this,
+      [path, pairs](JobContext&) { return writeColourSamplesCsv(path.toStdString(), *pairs); },
+      [this, path, count = pairs->size()](JobOutcome<Status> outcome) {
+        const bool ok = outcome.value && outcome.value->ok;
+        message_ = ok              ? tr("Exported %1 colour samples to %2").arg(count).arg(path)
+                   : outcome.value ? QString::fromStdString(outcome.value->message)
+                                   : tr("%1: %2").arg(path, outcome.error);
+        refreshReport();
+        emit statusMessage(message_);
+        emit csvExported(ok, message_);
+      });
+  return true;
 }
 
 void ColourDock::exportCsvDialog() {
-  const QString path =
-      QFileDialog::getSaveFileName(this, tr("Export Colour Samples"), {}, tr("CSV (*.csv)"));
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Export Colour Samples"),
+      proposedSavePath(document_->photo() ? document_->photo()->path : QString(), "_colour.csv"),
+      tr("CSV (*.csv)"));
   if (!path.isEmpty()) exportCsv(path);
 }
 

@@ -63,6 +63,7 @@ class ColourDock : public QWidget {
   // Runs the fit on the enabled samples (off the GUI thread); fitFinished follows.
   void fit();
   void clearColourBlock();
+  // Written off the GUI thread; csvExported says how it ended (true: the write started).
   bool exportCsv(const QString& path);
   void exportCsvDialog();
   void deleteSelected();
@@ -72,6 +73,7 @@ class ColourDock : public QWidget {
   void fitFinished(bool ok);
   void referenceLoaded(bool ok, const QString& message);
   void statusMessage(const QString& message);
+  void csvExported(bool ok, const QString& message);
   // An opened project brought colour samples back (the window shows this dock).
   void samplesRestored();
 

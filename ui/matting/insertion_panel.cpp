@@ -1,15 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/matting/insertion_panel.h"
 
+#include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
-#include "core/io/artcam_file.h"
 #include "ui/background_job.h"
 #include "ui/document.h"
 #include "ui/matting/board_view.h"
 #include "ui/matting/insertion_model.h"
 #include "ui/matting/insertion_preview.h"
 #include "ui/matting/insertion_worker.h"
+#include "ui/save_names.h"
 
 #include <QCheckBox>
 #include <QDoubleSpinBox>
@@ -50,6 +51,12 @@ QPushButton* button(const QString& text, const QString& tip, QWidget* parent) {
   auto* b = new QPushButton(text, parent);
   b->setToolTip(tip);
   return b;
+}
+
+// The photo the insertion's files are named after (save_names.h); empty without one.
+QString photoPathOf(const InsertionModel* model) {
+  const PhotoPtr& photo = model->document()->photo();
+  return photo ? photo->path : QString();
 }
 
 }  // namespace
@@ -380,14 +387,15 @@ void InsertionPanel::exportCamera(const QString& path) {
 
 void InsertionPanel::exportCompositeDialog() {
   const QString path = QFileDialog::getSaveFileName(
-      this, tr("Export Inserted Image"), QString(),
+      this, tr("Export Inserted Image"), proposedSavePath(photoPathOf(model_), "_inserted.png"),
       tr("Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr);;All files (*)"));
   if (!path.isEmpty()) exportComposite(path);
 }
 
 void InsertionPanel::exportCameraDialog() {
-  QString path = QFileDialog::getSaveFileName(this, tr("Export Piecewise Camera"), QString(),
-                                              tr("ARTcam (*.artcam)"));
+  QString path = QFileDialog::getSaveFileName(
+      this, tr("Export Piecewise Camera"),
+      proposedSavePath(photoPathOf(model_), "_insertion.artcam"), tr("ARTcam (*.artcam)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".artcam");
   exportCamera(path);
@@ -446,8 +454,9 @@ void InsertionPanel::importGridCsvDialog() {
 }
 
 void InsertionPanel::exportGridCsvDialog() {
-  QString path =
-      QFileDialog::getSaveFileName(this, tr("Export Grid Matches"), QString(), tr("CSV (*.csv)"));
+  QString path = QFileDialog::getSaveFileName(this, tr("Export Grid Matches"),
+                                              proposedSavePath(photoPathOf(model_), "_grid.csv"),
+                                              tr("CSV (*.csv)"));
   if (path.isEmpty()) return;
   if (QFileInfo(path).suffix().isEmpty()) path += QStringLiteral(".csv");
   exportGridCsv(path);

@@ -47,6 +47,7 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
 
   grid_action_ = menu->addAction(tr("&Grid Tool"));
   grid_action_->setShortcut(QKeySequence(tr("C")));
+  grid_action_->setIconText(tr("Grid"));  // the toolbar's short label
   grid_action_->setToolTip(
       tr("Click grid corners in the photo, matched to the corner selected in "
          "the board view; snaps to the corner (Shift: no snap), Del removes (C)"));
@@ -58,6 +59,7 @@ InsertionStudio::InsertionStudio(QMainWindow* window, Canvas* canvas, Document* 
   });
   region_action_ = menu->addAction(tr("&Region Tool"));
   region_action_->setShortcut(QKeySequence(tr("R")));
+  region_action_->setIconText(tr("Region"));
   region_action_->setToolTip(
       tr("Click a polygon around the reflecting or refracting object; "
          "Enter closes it; the composite stays inside it (R)"));

@@ -11,9 +11,18 @@
 #include <QLabel>
 #include <QListWidget>
 #include <QPushButton>
+#include <QSlider>
 #include <QVBoxLayout>
 
+#include <cmath>
+
 namespace artcam::ui {
+namespace {
+
+// The table's human name ("General linear view" for photo-glc).
+QString humanName(const std::string& name) { return QString::fromStdString(effectLabel(name)); }
+
+}  // namespace
 
 EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
     : QWidget(parent),
@@ -23,7 +32,7 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
       form_(new QFormLayout),
       status_label_(new QLabel(this)) {
   for (const EffectSpec& spec : effectSpecs()) {
-    add_box_->addItem(QString::fromStdString(spec.name));
+    add_box_->addItem(QString::fromStdString(spec.label), QString::fromStdString(spec.name));
     add_box_->setItemData(add_box_->count() - 1, QString::fromStdString(spec.summary),
                           Qt::ToolTipRole);
   }
@@ -49,7 +58,8 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
   layout->addLayout(form_);
   layout->addWidget(status_label_);
   layout->addStretch(1);
-  connect(add, &QPushButton::clicked, this, [this] { addEffect(add_box_->currentText()); });
+  connect(add, &QPushButton::clicked, this,
+          [this] { addEffect(add_box_->currentData().toString()); });
   connect(remove, &QPushButton::clicked, this, &EffectsPanel::removeSelected);
   connect(up, &QPushButton::clicked, this, [this] { moveSelected(-1); });
   connect(down, &QPushButton::clicked, this, [this] { moveSelected(+1); });
@@ -78,8 +88,8 @@ bool EffectsPanel::addEffect(const QString& name) {
   }
   effects.push_back(std::move(step));
   const int index = static_cast<int>(effects.size()) - 1;
-  document_->undoStack()->push(
-      new SetEffectsCommand(document_, std::move(effects), tr("Add effect %1").arg(name)));
+  document_->undoStack()->push(new SetEffectsCommand(
+      document_, std::move(effects), tr("Add effect %1").arg(humanName(spec->name))));
   setSelectedIndex(index);
   return true;
 }
@@ -88,7 +98,7 @@ void EffectsPanel::removeSelected() {
   const int i = selectedIndex();
   if (i < 0) return;
   std::vector<EffectStep> effects = document_->effects();
-  const QString name = QString::fromStdString(effects[static_cast<size_t>(i)].effect);
+  const QString name = humanName(effects[static_cast<size_t>(i)].effect);
   effects.erase(effects.begin() + i);
   document_->undoStack()->push(
       new SetEffectsCommand(document_, std::move(effects), tr("Remove effect %1").arg(name)));
@@ -103,7 +113,7 @@ void EffectsPanel::moveSelected(int delta) {
   std::swap(effects[static_cast<size_t>(i)], effects[static_cast<size_t>(j)]);
   document_->undoStack()->push(new SetEffectsCommand(
       document_, std::move(effects),
-      tr("Move effect %1").arg(QString::fromStdString(effects[static_cast<size_t>(j)].effect))));
+      tr("Move effect %1").arg(humanName(effects[static_cast<size_t>(j)].effect))));
   setSelectedIndex(j);
 }
 
@@ -148,7 +158,7 @@ void EffectsPanel::rebuildList() {
   list_->clear();
   const auto& effects = document_->effects();
   for (size_t i = 0; i < effects.size(); ++i)
-    list_->addItem(QString("%1. %2").arg(i + 1).arg(QString::fromStdString(effects[i].effect)));
+    list_->addItem(QString("%1. %2").arg(i + 1).arg(humanName(effects[i].effect)));
   list_->setCurrentRow(std::min(keep < 0 ? 0 : keep, static_cast<int>(effects.size()) - 1));
   updating_ = false;
   rebuildParameters();
@@ -199,8 +209,29 @@ void EffectsPanel::rebuildParameters() {
       spin->setToolTip(tip);
       const std::string name = p.name;
       connect(spin, &QDoubleSpinBox::valueChanged, this, [this, name] { onSpinChanged(name); });
-      row->addWidget(spin);
       spins_[p.name].push_back(spin);
+      if (!p.isChoice()) {
+        // A slider beside the box for a strength to be felt rather than typed (a lens's k1):
+        // it types into the spin box, so its drag is the box's one merged undo step.
+        auto* slider = new QSlider(Qt::Horizontal, this);
+        slider->setObjectName(spin->objectName() + "/slider");
+        slider->setRange(0, kSliderSteps);
+        slider->setToolTip(tip);
+        const auto at = [spin] {
+          return static_cast<int>(std::lround((spin->value() - spin->minimum()) /
+                                              (spin->maximum() - spin->minimum()) * kSliderSteps));
+        };
+        slider->setValue(at());
+        connect(slider, &QSlider::valueChanged, spin, [spin](int v) {
+          spin->setValue(spin->minimum() + (spin->maximum() - spin->minimum()) * v / kSliderSteps);
+        });
+        connect(spin, &QDoubleSpinBox::valueChanged, slider, [slider, at] {
+          const QSignalBlocker block(slider);
+          slider->setValue(at());
+        });
+        row->addWidget(slider, 1);
+      }
+      row->addWidget(spin);
     }
     form_->addRow(QString::fromStdString(p.name), row);
   }
@@ -226,8 +257,7 @@ void EffectsPanel::onSpinChanged(const std::string& name) {
   gesture_entry_ = index;
   stack->push(new SetEffectsCommand(
       document_, std::move(effects),
-      tr("Set %1 %2").arg(QString::fromStdString(step.effect), QString::fromStdString(name)),
-      gesture_));
+      tr("Set %1 %2").arg(humanName(step.effect), QString::fromStdString(name)), gesture_));
   gesture_stack_index_ = stack->index();
 }
 

@@ -3,7 +3,8 @@
 // document_camera.h). Add any effect of the one effects table (core/effects/effect_table.h),
 // remove or reorder entries, and set the selected entry's parameters. The parameter rows are
 // made from the effect's row of the table: one spin box per number (a row of N for a vector
-// parameter), its range, default and unit (as the suffix).
+// parameter), its range, default and unit (as the suffix), and a slider beside each number
+// that is not a named choice (named NAME/slider or NAME[i]/slider), over the same range.
 //
 // Decisions:
 // - The panel renders nothing itself: the stack is part of the document's camera, so the main
@@ -60,6 +61,7 @@ class EffectsPanel : public QWidget {
   void rebuildList();
   void rebuildParameters();
   void onSpinChanged(const std::string& name);
+  static constexpr int kSliderSteps = 1000;  // a slider's positions over a parameter's range
 
   Document* document_;
   QComboBox* add_box_;

@@ -4,6 +4,7 @@
 #include "ui/commands.h"
 #include "ui/document.h"
 #include "ui/fit_explanation.h"
+#include "ui/line_commands.h"
 
 #include <QButtonGroup>
 #include <QHBoxLayout>
@@ -11,6 +12,7 @@
 #include <QItemSelectionModel>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QTableView>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -18,6 +20,12 @@
 #include <cmath>
 
 namespace artcam::ui {
+namespace {
+
+// The Radial button's id in the model group, beside the ModelClass values.
+constexpr int kRadialId = 100;
+
+}  // namespace
 
 PairsTableModel::PairsTableModel(Document* document, QObject* parent)
     : QAbstractTableModel(parent), document_(document) {
@@ -170,6 +178,13 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
                                                      static_cast<qsizetype>(modelClassName(m).size()))));
     models_->addButton(b, static_cast<int>(m));
     selector->addWidget(b);
+    if (m == ModelClass::Auto) {
+      auto* radial = new QToolButton(this);
+      radial->setText(tr("Radial"));
+      radial->setCheckable(true);
+      models_->addButton(radial, kRadialId);
+      selector->addWidget(radial);
+    }
   }
   selector->addStretch(1);
   models_->setExclusive(true);
@@ -189,15 +204,26 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
   layout->addWidget(table_, 1);
   layout->addLayout(buttons);
   layout->addLayout(selector);
-  layout->addWidget(scores_);
-  layout->addWidget(reason_);
+  // The explanation lives in a box of fixed height: its text changes length with every fit, and
+  // laid out directly it pushed the model buttons up and down a line whenever it rewrapped.
+  auto* explanation = new QWidget;
+  auto* explanation_layout = new QVBoxLayout(explanation);
+  explanation_layout->setContentsMargins(0, 0, 0, 0);
+  explanation_layout->addWidget(scores_);
+  explanation_layout->addWidget(reason_);
+  explanation_layout->addStretch(1);
+  auto* explanation_box = new QScrollArea(this);
+  explanation_box->setObjectName("fitExplanation");
+  explanation_box->setWidget(explanation);
+  explanation_box->setWidgetResizable(true);
+  explanation_box->setFrameShape(QFrame::NoFrame);
+  explanation_box->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  explanation_box->setFixedHeight(QFontMetrics(small).lineSpacing() * kExplanationLines);
+  layout->addWidget(explanation_box);
 
-  connect(models_, &QButtonGroup::idClicked, this, [this](int id) {
-    const auto chosen = static_cast<ModelClass>(id);
-    if (document_->model() != chosen)
-      document_->undoStack()->push(new SetModelCommand(document_, chosen));
-  });
+  connect(models_, &QButtonGroup::idClicked, this, &PairsPanel::chooseModel);
   connect(document_, &Document::modelChanged, this, &PairsPanel::updateExplanation);
+  connect(document_, &Document::linesChanged, this, &PairsPanel::updateModelButtons);
   connect(document_, &Document::cameraChanged, this, &PairsPanel::scheduleExplanation);
 
   connect(remove, &QPushButton::clicked, this, [this] { pushDeleteSelection(document_); });
@@ -213,6 +239,78 @@ PairsPanel::PairsPanel(Document* document, QWidget* parent)
 }
 
 QString PairsPanel::bannerText() const { return banner_->text(); }
+QAbstractButton* PairsPanel::radialButton() const { return models_->button(kRadialId); }
+
+void PairsPanel::chooseModel(int id) {
+  if (!document_->linesDriveFit()) {
+    if (id == kRadialId) return;  // disabled; a programmatic click changes nothing
+    const auto chosen = static_cast<ModelClass>(id);
+    if (document_->model() != chosen)
+      document_->undoStack()->push(new SetModelCommand(document_, chosen));
+    return;
+  }
+  // Lines drive the fit: Auto, Radial and Quadr. name the line fit's model.
+  ModelClass model = document_->model();
+  LineModel line_model = LineModel::Auto;
+  QString text;
+  if (id == kRadialId) {
+    line_model = LineModel::Radial;
+    if (model == ModelClass::Quadratic) model = ModelClass::Auto;
+    text = tr("Lines model: radial");
+  } else if (id == static_cast<int>(ModelClass::Quadratic)) {
+    model = ModelClass::Quadratic;
+    text = tr("Lines model: quadratic");
+  } else if (id == static_cast<int>(ModelClass::Auto)) {
+    model = ModelClass::Auto;
+    text = tr("Lines model: auto");
+  } else {
+    return;  // disabled while lines drive the fit
+  }
+  if (model != document_->model() || line_model != document_->lineModel())
+    document_->undoStack()->push(new SetModelChoiceCommand(document_, model, line_model, text));
+  else
+    updateModelButtons();  // a click on the checked button: keep it checked
+}
+
+void PairsPanel::updateModelButtons() {
+  const bool lines = document_->linesDriveFit();
+  for (QAbstractButton* b : models_->buttons()) {
+    const int id = models_->id(b);
+    const bool for_lines = id == kRadialId || id == static_cast<int>(ModelClass::Auto) ||
+                           id == static_cast<int>(ModelClass::Quadratic);
+    const bool applies = lines ? for_lines : id != kRadialId;
+    b->setEnabled(applies);
+    QString tip;
+    if (id == kRadialId)
+      tip = applies ? tr("Radial: one lens coefficient about the frame centre; straightens the "
+                         "lines without changing their spacing")
+                    : tr("Radial is a lens for straight lines: trace lines with the Line tool");
+    else if (!applies)
+      tip =
+          tr("Lines drive the fit: they determine a lens (Auto, Radial or Quadr.), not this "
+             "model; it applies to pairs alone");
+    else if (lines && id == static_cast<int>(ModelClass::Auto))
+      tip =
+          tr("Auto for lines: the radial lens, or the quadratic only when held-out lines "
+             "confirm it and it adds no keystone or empty frame");
+    else if (id == static_cast<int>(ModelClass::Auto))
+      tip = tr("Auto: the simplest model the pairs support (the reason is below)");
+    else {
+      const std::string_view name = modelClassName(static_cast<ModelClass>(id));
+      tip = tr("Fit the %1 model")
+                .arg(QString::fromUtf8(name.data(), static_cast<qsizetype>(name.size())));
+    }
+    b->setToolTip(tip);
+  }
+  int checked = static_cast<int>(document_->model());
+  if (lines) {
+    const LineModel m = documentLineModel(document_->model(), document_->lineModel());
+    checked = m == LineModel::Radial      ? kRadialId
+              : m == LineModel::Quadratic ? static_cast<int>(ModelClass::Quadratic)
+                                          : static_cast<int>(ModelClass::Auto);
+  }
+  if (QAbstractButton* b = models_->button(checked)) b->setChecked(true);
+}
 QAbstractButton* PairsPanel::modelButton(ModelClass model) const {
   return models_->button(static_cast<int>(model));
 }
@@ -232,9 +330,11 @@ void PairsPanel::scheduleExplanation() {
 
 void PairsPanel::updateExplanation() {
   explanation_timer_->stop();
-  if (QAbstractButton* b = modelButton(document_->model())) b->setChecked(true);
+  updateModelButtons();
   const bool shown = document_->photo() && !document_->manualCamera() && document_->fit().status.ok;
-  scores_->setText(shown ? modelScoresHtml(document_->fit().record) : QString());
+  // A line fit has no per-model pairs table (its record's reason says why its model).
+  const bool scores = shown && !document_->linesDriveFit();
+  scores_->setText(scores ? modelScoresHtml(document_->fit().record) : QString());
   reason_->setText(shown ? fitReasonText(document_->fit().record) : QString());
   scores_->setVisible(!scores_->text().isEmpty());
   reason_->setVisible(!reason_->text().isEmpty());
@@ -250,6 +350,17 @@ void PairsPanel::updateBanner() {
     text = tr("Need %n more pair(s) for this model.", nullptr, need);
   } else if (!document_->fit().status.ok) {
     text = QString::fromStdString(document_->fit().status.message);
+  } else if (document_->linesDriveFit()) {
+    // Not the pairs fit's report ("quadratic, 0 matches, RMS 0 px"): the lines drive it.
+    const FitRecord& r = document_->fit().record;
+    const int lines = static_cast<int>(document_->lineBows().size());
+    text = tr("Lines drive the fit: %1 lens from %n line(s) (Lines panel)", nullptr, lines)
+               .arg(QString::fromStdString(r.model));
+    if (r.matches > 0)
+      text += tr("; %n pair(s) with them, RMS %1 px", nullptr, r.matches)
+                  .arg(QString::number(r.rms_px, 'f', 2));
+    else
+      text += tr("; no pairs");
   } else {
     text = QString::fromStdString(document_->fit().report());
   }

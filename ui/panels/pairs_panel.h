@@ -50,16 +50,25 @@ class PairsPanel : public QWidget {
   QTableView* table() const { return table_; }
   QString bannerText() const;
   QAbstractButton* modelButton(ModelClass model) const;
+  // The model row's Radial button: a lens for straight lines, enabled while lines drive the fit.
+  QAbstractButton* radialButton() const;
   QString modelScoresText() const;  // the per-model table (rich text)
   QString reasonText() const;
 
  private:
   void updateBanner();
+  // Which model buttons apply: with lines driving the fit, Auto, Radial and Quadr.; else every
+  // pairs model. The checked one follows the document's choice.
+  void updateModelButtons();
+  void chooseModel(int id);
   void updateExplanation();
   // The explanation follows fit results at most every kExplanationMs: rich-text labels re-lay out
   // the dock, and during a drag a fit result arrives on every mouse move.
   void scheduleExplanation();
   static constexpr int kExplanationMs = 100;
+  // Lines of the explanation's fixed-height box: the score table of the six models and a
+  // two-line reason; more scrolls.
+  static constexpr int kExplanationLines = 10;
   void selectionFromDocument();
   void selectionToDocument();
 

@@ -56,6 +56,23 @@ QString blockOf(const Camera& camera, int element) {
   return {};
 }
 
+// The term entry (r, c) of Q_i weighs in output element i, for its tooltip: z_i = x Q_i xᵀ
+// (eq 3), so a diagonal entry weighs x_r² and, Q_i being symmetric, an off-diagonal pair of
+// entries together weighs 2·x_r·x_c.
+QString termTip(const Camera& camera, const QStringList& names, int element, int r, int c,
+                double value) {
+  const QString term = r == c ? names.value(r) + QStringLiteral("²")
+                              : QString("2·%1·%2").arg(names.value(r), names.value(c));
+  const QString blocks =
+      blockOf(camera, r) == blockOf(camera, c)
+          ? TensorPanel::tr("%1 block").arg(blockOf(camera, r))
+          : TensorPanel::tr("%1 × %2 blocks").arg(blockOf(camera, r), blockOf(camera, c));
+  return TensorPanel::tr("Q%1[%2, %3]: the weight of %4 (%5) in output %6 (%7 block)\n= %8")
+      .arg(element + 1)
+      .arg(names.value(r), names.value(c), term, blocks, names.value(element),
+           blockOf(camera, element), QString::number(value, 'g', 17));
+}
+
 // Merge keys for SetCameraCommand must not collide with other command ids (commands.h).
 constexpr int kTensorEditMergeBase = 0;  // typed edits are separate undo steps: no merging
 
@@ -131,7 +148,8 @@ QString TensorPanel::summary() const {
     text += tr(", %1 patches").arg(whole.pieces->patches.size());
   if (whole.depth_output == DepthOutput::BlurVariance) text += tr(", depth output: blur variance");
   QStringList effects;
-  for (const EffectStep& e : document_->effects()) effects << QString::fromStdString(e.effect);
+  for (const EffectStep& e : document_->effects())
+    effects << QString::fromStdString(effectLabel(e.effect));
   if (!effects.isEmpty()) text += tr("; effects: %1").arg(effects.join(" → "));
   text += tr(". The tables edit the geometry (layer 1)");
   if (document_->manualCamera()) text += tr(", set by hand");
@@ -190,11 +208,12 @@ void TensorPanel::refresh() {
   if (stage >= static_cast<int>(cam.stages().size())) return;
   updating_ = true;
   const auto& q = cam.stages()[static_cast<size_t>(stage)].q;
+  const QStringList names = elementNames(cam);
   for (size_t i = 0; i < tables_.size() && i < q.size(); ++i) {
     QTableWidget* t = tables_[i];
     for (int r = 0; r < q[i].rows(); ++r)
       for (int c = 0; c < q[i].cols(); ++c) {
-        const QString text = QString::number(q[i](r, c), 'g', 10);
+        const QString text = entryText(q[i](r, c));
         QTableWidgetItem* item = t->item(r, c);
         if (!item) {
           item = new QTableWidgetItem;
@@ -202,10 +221,17 @@ void TensorPanel::refresh() {
           t->setItem(r, c, item);
         }
         if (item->text() != text) item->setText(text);
-        item->setToolTip(QString::number(q[i](r, c), 'g', 17));
+        item->setToolTip(termTip(cam, names, static_cast<int>(i), r, c, q[i](r, c)));
       }
   }
   updating_ = false;
+}
+
+QString TensorPanel::entryText(double value) {
+  // A fit's round-off (6.3e-16 where the model has no term) reads as the zero it is; the rest
+  // to six significant digits, the exact value in the tooltip.
+  if (std::abs(value) < kZeroBelow) return QStringLiteral("0");
+  return QString::number(value, 'g', 6);
 }
 
 void TensorPanel::setEntry(int stage, int element, int row, int col, double value) {

@@ -7,7 +7,8 @@
 // (core/effects/effect_table.h) that needs neither depth nor a second image, under its human
 // name: applied, a preset is the table's builder at its defaults in the photo's frame, the
 // camera `artcam preset NAME --size W×H` writes (its pole check and refusals included), set by
-// hand as the whole camera in one SetCameraCommand.
+// hand as the whole camera in one SetCameraCommand. A cell shows its entry rounded (tiny
+// round-off as 0); its tooltip names the term the entry weighs, its blocks and the exact value.
 #pragma once
 
 #include "core/effects/effect_table.h"
@@ -47,6 +48,9 @@ class TensorPanel : public QWidget {
   // One line on the whole camera: its kind, layers, blocks, depth output and effects; the
   // tables below edit the geometry (the first layer), every other part is kept as it is.
   QString summary() const;
+  // A cell's text: |value| < kZeroBelow is "0", else six significant digits ("0.123457").
+  static constexpr double kZeroBelow = 1e-12;
+  static QString entryText(double value);
 
  private:
   void rebuild();

@@ -16,12 +16,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace artcam::ui {
 namespace {
 
 QString tr(const char* text) { return QCoreApplication::translate("DepthTool", text); }
-QPointF toQt(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
 // The active mask's tint: cyan, away from the overlay's red→blue depth ramp; reduced to at
 // most this many pixels on its long side (a tint needs no more), so it costs < 1 ms a repaint.
 const QColor kMaskTint(40, 220, 255);
@@ -35,9 +35,15 @@ DepthTool::DepthTool(Canvas* canvas, Document* document, DepthToolSettings* sett
 
 DepthModel* DepthTool::depth() const { return document_->depth(); }
 
-Eigen::Vector2d DepthTool::imagePoint(const QPointF& widget) const {
-  const QPointF p = canvas_->view().imageFromWidget(widget);
-  return {p.x(), p.y()};
+std::optional<Eigen::Vector2d> DepthTool::photoPoint(const QPointF& widget, bool say_why) const {
+  const PhotoPoint p = canvas_->photoPixelAt(widget, stroke_inverse_.get());
+  if (!p.pixel && say_why) canvas_->showToolMessage(p.refusal);
+  return p.pixel;
+}
+
+QPointF DepthTool::widgetPoint(const Eigen::Vector2d& photo_px) const {
+  // Off screen (never hit, never seen) where the result shows no such photo pixel.
+  return canvas_->widgetFromPhotoPixel(photo_px).value_or(QPointF(-1e9, -1e9));
 }
 
 int DepthTool::ensureLayer() {
@@ -53,7 +59,22 @@ BrushOptions DepthTool::brush() const {
 void DepthTool::mousePress(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton) return;
   cursor_widget_ = event->position();
-  const Eigen::Vector2d p = imagePoint(event->position());
+  // A stroke maps its whole path through the camera it began under (its own dabs may change
+  // the depth the effects read, never where pixels go, but a refit could).
+  if (mode_ == DepthToolMode::Brush || mode_ == DepthToolMode::Eraser)
+    stroke_inverse_ = canvas_->resultInverse();
+  // A press on a drawn handle (a depth point, the polygon's first vertex) needs no photo pixel.
+  const bool closes =
+      mode_ == DepthToolMode::Polygon && polygon_.size() >= 3 &&
+      QLineF(widgetPoint(polygon_.front()), event->position()).length() <= kHitRadius;
+  const bool on_handle = closes || (mode_ == DepthToolMode::Points && hitAnchor(event->position()));
+  const std::optional<Eigen::Vector2d> at = photoPoint(event->position(), !on_handle);
+  if (!at && !on_handle) {
+    stroke_inverse_.reset();
+    canvas_->update();
+    return;
+  }
+  const Eigen::Vector2d p = at.value_or(Eigen::Vector2d::Zero());
   switch (mode_) {
     case DepthToolMode::Brush:
     case DepthToolMode::Eraser: {
@@ -74,13 +95,12 @@ void DepthTool::mousePress(QMouseEvent* event) {
       }
       stroke_rect_ = strokeDab(mask, p, p, /*first=*/true);
       stroke_last_ = p;
+      stroke_gap_ = false;
       depth()->maskEdited(stroke_layer_, stroke_rect_);
       break;
     }
     case DepthToolMode::Polygon:
-      if (polygon_.size() >= 3 &&
-          QLineF(canvas_->view().widgetFromImage(toQt(polygon_.front())), event->position())
-                  .length() <= kHitRadius) {
+      if (closes) {
         closePolygon(event->modifiers().testFlag(Qt::AltModifier));
       } else {
         polygon_.push_back(p);
@@ -94,13 +114,15 @@ void DepthTool::mousePress(QMouseEvent* event) {
 }
 
 void DepthTool::pressPoints(const QPointF& widget) {
-  const Eigen::Vector2d p = imagePoint(widget);
   const int layer = ensureLayer();
   if (const auto hit = hitAnchor(widget)) {
     drag_anchor_ = *hit;
     drag_before_ = depth()->layer(layer).anchors;
     return;
   }
+  const std::optional<Eigen::Vector2d> at = photoPoint(widget, false);
+  if (!at) return;  // mousePress said why
+  const Eigen::Vector2d p = *at;
   std::vector<DepthAnchor> anchors = depth()->layer(layer).anchors;
   if (static_cast<int>(anchors.size()) < DepthModel::kAnchorCount) {
     anchors.push_back({p, settings_->nextDepth()});
@@ -125,8 +147,7 @@ std::optional<int> DepthTool::hitAnchor(const QPointF& widget) const {
   std::optional<int> best;
   double best_d = kHitRadius;
   for (size_t i = 0; i < anchors.size(); ++i) {
-    const double d =
-        QLineF(canvas_->view().widgetFromImage(toQt(anchors[i].pixel)), widget).length();
+    const double d = QLineF(widgetPoint(anchors[i].pixel), widget).length();
     if (d <= best_d) {
       best_d = d;
       best = static_cast<int>(i);
@@ -138,14 +159,24 @@ std::optional<int> DepthTool::hitAnchor(const QPointF& widget) const {
 void DepthTool::mouseMove(QMouseEvent* event) {
   cursor_widget_ = event->position();
   cursor_inside_ = true;
-  const Eigen::Vector2d p = imagePoint(event->position());
-  if (stroke_layer_ >= 0 && event->buttons().testFlag(Qt::LeftButton)) {
+  const bool dragging =
+      event->buttons().testFlag(Qt::LeftButton) && (stroke_layer_ >= 0 || drag_anchor_ >= 0);
+  const std::optional<Eigen::Vector2d> at =
+      dragging ? photoPoint(event->position(), false) : std::nullopt;
+  if (dragging && !at) {
+    // No photo pixel under the cursor: this dab is skipped, and the stroke resumes with a
+    // fresh dab rather than a segment across what the result does not show.
+    stroke_gap_ = true;
+  } else if (stroke_layer_ >= 0 && dragging) {
+    const Eigen::Vector2d p = *at;
     RegionMask* mask = depth()->maskForStroke(stroke_layer_);
-    const PixelRect r = strokeDab(mask, stroke_last_, p, /*first=*/false);
+    const PixelRect r = strokeDab(mask, stroke_gap_ ? p : stroke_last_, p, /*first=*/false);
     stroke_last_ = p;
+    stroke_gap_ = false;
     stroke_rect_ = stroke_rect_.united(r);
     depth()->maskEdited(stroke_layer_, r);
-  } else if (drag_anchor_ >= 0 && event->buttons().testFlag(Qt::LeftButton)) {
+  } else if (drag_anchor_ >= 0 && dragging) {
+    const Eigen::Vector2d p = *at;
     // Live while dragging; the undo step is pushed on release with the press-time values.
     std::vector<DepthAnchor> anchors = depth()->layer(depth()->activeLayer()).anchors;
     if (drag_anchor_ < static_cast<int>(anchors.size())) {
@@ -199,6 +230,7 @@ void DepthTool::finishStroke() {
   stroke_before_ = RegionMask();
   stroke_rect_ = {};
   stroke_edges_.reset();
+  stroke_inverse_.reset();
 }
 
 void DepthTool::closePolygon(bool erase) {
@@ -245,11 +277,36 @@ void DepthTool::paintActiveMask(QPainter& painter) const {
   const RegionMask& mask = depth()->layer(layer).mask;
   if (mask.empty()) return;
   // A tint of the active plane's mask, so a stroke shows at once, before the plane has the
-  // three depths the depth overlay needs.
+  // three depths the depth overlay needs: over the photo as it is, over the result warped as
+  // the result warps the photo.
+  const CanvasViewMode shown = canvas_->shownMode();
   const QRectF rect = canvas_->view().widgetFromImage(QRectF(0, 0, mask.width(), mask.height()));
-  const int side = static_cast<int>(std::ceil(std::max(rect.width(), rect.height())));
-  const QImage tint = maskTint(mask, kMaskTint, std::clamp(side, 1, kMaskTintMaxSide));
   painter.save();
+  painter.setRenderHint(QPainter::SmoothPixmapTransform, true);
+  if (shown != CanvasViewMode::Result) {
+    if (shown == CanvasViewMode::Split)
+      painter.setClipRect(QRectF(0, 0, canvas_->dividerX(), canvas_->height()));
+    const int side = static_cast<int>(std::ceil(std::max(rect.width(), rect.height())));
+    painter.drawImage(rect, maskTint(mask, kMaskTint, std::clamp(side, 1, kMaskTintMaxSide)));
+  }
+  painter.restore();
+  if (shown == CanvasViewMode::Result || shown == CanvasViewMode::Split)
+    paintMaskOnResult(painter, mask);
+}
+
+void DepthTool::paintMaskOnResult(QPainter& painter, const RegionMask& mask) const {
+  const QRectF rect = canvas_->view().widgetFromImage(QRectF(0, 0, mask.width(), mask.height()));
+  const int side = std::clamp(static_cast<int>(std::ceil(std::max(rect.width(), rect.height()))), 1,
+                              kMaskTintMaxSide);
+  const FrameSize grid = maskTintSize(mask, side);
+  // The grid's photo pixels come from the warp's inverse map once per camera and size
+  // (result_inverse.h); each repaint only looks the mask up.
+  const QImage tint =
+      maskTintThrough(mask, kMaskTint, grid, canvas_->resultInverse()->photoPixelsOfGrid(grid));
+  painter.save();
+  if (canvas_->shownMode() == CanvasViewMode::Split)
+    painter.setClipRect(
+        QRectF(canvas_->dividerX(), 0, canvas_->width() - canvas_->dividerX(), canvas_->height()));
   painter.setRenderHint(QPainter::SmoothPixmapTransform, true);
   painter.drawImage(rect, tint);
   painter.restore();
@@ -262,7 +319,7 @@ void DepthTool::paint(QPainter& painter) {
   if (const int layer = depth()->activeLayer(); layer >= 0) {
     const auto& anchors = depth()->layer(layer).anchors;
     for (size_t i = 0; i < anchors.size(); ++i) {
-      const QPointF c = view.widgetFromImage(toQt(anchors[i].pixel));
+      const QPointF c = widgetPoint(anchors[i].pixel);
       QPainterPath diamond;
       diamond.moveTo(c + QPointF(0, -7));
       diamond.lineTo(c + QPointF(7, 0));
@@ -280,7 +337,7 @@ void DepthTool::paint(QPainter& painter) {
   painter.setBrush(Qt::NoBrush);
   if (mode_ == DepthToolMode::Polygon && !polygon_.empty()) {
     QPolygonF poly;
-    for (const Eigen::Vector2d& v : polygon_) poly << view.widgetFromImage(toQt(v));
+    for (const Eigen::Vector2d& v : polygon_) poly << widgetPoint(v);
     poly << cursor_widget_;
     painter.setPen(QPen(QColor(255, 200, 60), 1.5, Qt::DashLine));
     painter.drawPolyline(poly);
@@ -288,18 +345,52 @@ void DepthTool::paint(QPainter& painter) {
     painter.drawEllipse(poly.front(), kHitRadius * 0.6, kHitRadius * 0.6);
   }
   if ((mode_ == DepthToolMode::Brush || mode_ == DepthToolMode::Eraser) && cursor_inside_) {
-    // The brush outline at its true size, and its hard core.
+    // The brush outline at its true size, and its hard core: a circle of photo pixels, so over
+    // the result its image through the camera (what a dab there paints).
+    const QPen outer =
+        QPen(mode_ == DepthToolMode::Eraser ? QColor(255, 120, 120) : Qt::white, 1.0);
+    const double hardness = settings_->hardness();
+    if (const std::optional<QPolygonF> ring = resultRing(settings_->radius())) {
+      painter.setPen(QPen(Qt::black, 2.0));
+      painter.drawPolygon(*ring);
+      painter.setPen(outer);
+      painter.drawPolygon(*ring);
+      if (settings_->radius() * hardness * view.scale() > 2.0)
+        if (const auto core = resultRing(settings_->radius() * hardness)) {
+          painter.setPen(QPen(Qt::white, 1.0, Qt::DotLine));
+          painter.drawPolygon(*core);
+        }
+      return;
+    }
     const double r = settings_->radius() * view.scale();
     painter.setPen(QPen(Qt::black, 2.0));
     painter.drawEllipse(cursor_widget_, r, r);
-    painter.setPen(QPen(mode_ == DepthToolMode::Eraser ? QColor(255, 120, 120) : Qt::white, 1.0));
+    painter.setPen(outer);
     painter.drawEllipse(cursor_widget_, r, r);
-    const double core = r * settings_->hardness();
+    const double core = r * hardness;
     if (core > 2.0) {
       painter.setPen(QPen(Qt::white, 1.0, Qt::DotLine));
       painter.drawEllipse(cursor_widget_, core, core);
     }
   }
+}
+
+std::optional<QPolygonF> DepthTool::resultRing(double radius_px) const {
+  if (canvas_->photoVisibleAt(cursor_widget_)) return std::nullopt;
+  const auto inverse = canvas_->resultInverse();
+  const std::optional<Eigen::Vector2d> centre =
+      canvas_->photoPixelAt(cursor_widget_, inverse.get()).pixel;
+  if (!centre) return std::nullopt;
+  constexpr int kSides = 48;
+  QPolygonF ring;
+  for (int k = 0; k < kSides; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / kSides;
+    const auto r =
+        inverse->resultPixelOf(*centre + radius_px * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    if (!r) return std::nullopt;  // across a pole: the plain circle says enough
+    ring << canvas_->view().widgetFromImage(QPointF(r->x(), r->y()));
+  }
+  return ring;
 }
 
 void DepthTool::cancel() {

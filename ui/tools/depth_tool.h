@@ -10,8 +10,14 @@
 // Painting with no layer creates one first (same undo macro as the first stroke).
 // With the settings' edge-aware switch, a stroke paints only what its first pixel's colour
 // reaches inside each dab (core/depth/edge_aware_brush.h). While the tool is active the
-// active layer's mask is tinted over the photo (depth_mask_tint.h), so strokes show before
-// the plane has its three depths.
+// active layer's mask is tinted (depth_mask_tint.h), so strokes show before the plane has its
+// three depths.
+// The tool works on the result too (canvas.h): masks, vertices and depth points are photo
+// pixels, and a press over the result is the photo pixel the result shows there (the camera's
+// inverse, Canvas::photoPixelAt), so depth is painted while the result and its effects stay on
+// screen; the tint, the vertices and the points are drawn where the result shows them. A stroke
+// maps its whole path through the camera it began under; a press where the result shows no
+// photo pixel is refused with a status message, and a stroke's dabs there are skipped.
 #pragma once
 
 #include "core/depth/edge_aware_brush.h"
@@ -21,15 +27,18 @@
 #include "ui/tools/tool.h"
 
 #include <QPointF>
+#include <QPolygonF>
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace artcam::ui {
 
 class DepthModel;
+class ResultInverse;
 
 class DepthTool : public Tool {
  public:
@@ -53,9 +62,14 @@ class DepthTool : public Tool {
   bool wantsLoupe() const override {
     return mode_ == DepthToolMode::Points || mode_ == DepthToolMode::Polygon;
   }
+  bool worksOnResult() const override { return true; }
 
  private:
-  Eigen::Vector2d imagePoint(const QPointF& widget) const;
+  // The photo pixel under a widget point (through the stroke's inverse during a stroke); none,
+  // with the refusal in the status bar when `say_why`.
+  std::optional<Eigen::Vector2d> photoPoint(const QPointF& widget, bool say_why) const;
+  // Where a photo pixel is drawn (the canvas's photo or result); off screen when nowhere.
+  QPointF widgetPoint(const Eigen::Vector2d& photo_px) const;
   DepthModel* depth() const;
   int ensureLayer();  // the active layer, made if there is none
   BrushOptions brush() const;
@@ -63,6 +77,10 @@ class DepthTool : public Tool {
   PixelRect strokeDab(RegionMask* mask, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
                       bool first);
   void paintActiveMask(QPainter& painter) const;
+  void paintMaskOnResult(QPainter& painter, const RegionMask& mask) const;
+  // A circle of `radius_px` photo pixels about the photo pixel under the cursor, as the result
+  // shows it (widget points); none where the photo shows, or nothing maps.
+  std::optional<QPolygonF> resultRing(double radius_px) const;
   void closePolygon(bool erase);
   void pressPoints(const QPointF& widget);
   std::optional<int> hitAnchor(const QPointF& widget) const;
@@ -78,6 +96,8 @@ class DepthTool : public Tool {
   Eigen::Vector2d stroke_last_{0, 0};
   bool stroke_made_layer_ = false;
   std::optional<EdgeAwareOptions> stroke_edges_;  // edge-aware stroke: its reference colour
+  std::shared_ptr<const ResultInverse> stroke_inverse_;  // the camera the stroke began under
+  bool stroke_gap_ = false;  // the last move had no photo pixel: the next dab starts afresh
   // Polygon in progress (photo pixels).
   std::vector<Eigen::Vector2d> polygon_;
   // Depth point drag.

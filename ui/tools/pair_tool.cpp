@@ -41,7 +41,6 @@ std::optional<PairTool::Hit> PairTool::hitTest(const QPointF& widget) const {
     for (Endpoint e : {Endpoint::Source, Endpoint::Target}) {
       const Eigen::Vector2d& p = e == Endpoint::Source ? pairs[i].source : pairs[i].target;
       const QPointF at = canvas_->view().widgetFromImage(QPointF(p.x(), p.y()));
-      if (e == Endpoint::Source && !canvas_->sourcesEditableAt(at)) continue;  // over the result
       const double d = distance(at, widget);
       if (d <= best_d) {
         best_d = d;
@@ -94,6 +93,19 @@ void PairTool::mouseMove(QMouseEvent* event) {
         drag_before_.clear();
         for (int i : drag_indices_)
           drag_before_.push_back(document_->pairs().at(static_cast<size_t>(i)));
+        drag_inverse_.reset();
+        drag_last_photo_.reset();
+        if (grabbed_.endpoint == Endpoint::Source && !canvas_->photoVisibleAt(press_widget_)) {
+          // Grabbed over the result: the cursor's motion is mapped back through this camera
+          // for the whole drag. A press where the result shows no photo pixel moves the
+          // sources by the cursor's motion in pixels, as on the photo.
+          auto inverse = canvas_->resultInverse();
+          if (const PhotoPoint at = canvas_->photoPixelAt(press_widget_, inverse.get()); at.pixel) {
+            drag_inverse_ = std::move(inverse);
+            drag_press_photo_ = *at.pixel;
+            drag_last_photo_ = at.pixel;
+          }
+        }
         dragTo(cursor_widget_);
       }
       break;
@@ -114,8 +126,14 @@ void PairTool::mouseMove(QMouseEvent* event) {
 }
 
 void PairTool::dragTo(const QPointF& widget) {
-  const QPointF delta = imagePoint(widget) - imagePoint(press_widget_);
-  const Eigen::Vector2d d = toEigen(delta);
+  Eigen::Vector2d d = toEigen(imagePoint(widget) - imagePoint(press_widget_));
+  if (drag_inverse_) {
+    const PhotoPoint now =
+        drag_inverse_->photoPixelOf(toEigen(imagePoint(widget)), drag_last_photo_);
+    if (!now.pixel) return;  // off the photo: the sources stay where they last were
+    drag_last_photo_ = now.pixel;
+    d = *now.pixel - drag_press_photo_;
+  }
   std::vector<Pair> after = drag_before_;
   for (Pair& p : after) (grabbed_.endpoint == Endpoint::Source ? p.source : p.target) += d;
   document_->undoStack()->push(
@@ -132,12 +150,16 @@ void PairTool::mouseRelease(QMouseEvent* event) {
   switch (g) {
     case Gesture::PressedEmpty: {
       const Eigen::Vector2d p = toEigen(imagePoint(cursor_widget_));
-      if (!pending_source_ && !canvas_->sourcesEditableAt(cursor_widget_)) {
-        source_hint_at_ = cursor_widget_;
+      if (!pending_source_) {
         document_->setSelection({});
-      } else if (!pending_source_) {
-        pending_source_ = p;
-        document_->setSelection({});
+        const PhotoPoint source = canvas_->photoPixelAt(cursor_widget_);
+        if (source.pixel) {
+          pending_source_ = source.pixel;
+        } else {
+          source_hint_at_ = cursor_widget_;
+          source_hint_ = source.refusal;
+          canvas_->showToolMessage(source.refusal);
+        }
       } else {
         Pair pair;
         pair.source = *pending_source_;
@@ -156,8 +178,7 @@ void PairTool::mouseRelease(QMouseEvent* event) {
             canvas_->view().widgetFromImage(QPointF(pairs[i].source.x(), pairs[i].source.y()));
         const QPointF t =
             canvas_->view().widgetFromImage(QPointF(pairs[i].target.x(), pairs[i].target.y()));
-        if ((band.contains(s) && canvas_->sourcesEditableAt(s)) || band.contains(t))
-          sel.push_back(static_cast<int>(i));
+        if (band.contains(s) || band.contains(t)) sel.push_back(static_cast<int>(i));
       }
       document_->setSelection(sel);
       break;
@@ -167,6 +188,7 @@ void PairTool::mouseRelease(QMouseEvent* event) {
     case Gesture::None:
       break;
   }
+  drag_inverse_.reset();
   canvas_->update();
 }
 
@@ -194,8 +216,7 @@ void PairTool::paint(QPainter& painter) {
     painter.drawEllipse(s, 5.0, 5.0);
   }
   if (source_hint_at_) {
-    const QString hint = QCoreApplication::translate(
-        "PairTool", "Sources are placed on the photo: press \\ or use Split");
+    const QString& hint = source_hint_;
     const QRectF box(*source_hint_at_ + QPointF(12, 8),
                      QSizeF(painter.fontMetrics().horizontalAdvance(hint) + 12,
                             painter.fontMetrics().height() + 6));
@@ -219,6 +240,7 @@ void PairTool::cancel() {
   pending_source_.reset();
   source_hint_at_.reset();
   gesture_ = Gesture::None;
+  drag_inverse_.reset();
   canvas_->update();
 }
 

@@ -4,23 +4,27 @@
 // merged undo step per drag), a drag on empty space selects with a rubber band, Delete removes
 // the selection, Escape drops a half-made pair.
 //
-// Over the warped result (Canvas::sourcesEditableAt false: Result mode, right of the Split
-// divider, once the result's geometry is not the identity) only targets are edited, since target
-// pixels are result pixels; sources are grabbed and placed only where the photo shows. A click
-// there that would place a new source places nothing and says where sources go. While the
-// geometry is the identity (a fresh photo) the result's pixels are the photo's, so sources are
-// placed on it too.
+// Over the warped result (Result, right of the Split divider) a source is the photo pixel the
+// result shows where it is clicked (Canvas::photoPixelAt: the camera's inverse), so a whole pair
+// is placed where the user looks; a click where the result shows no photo pixel places nothing
+// and the status bar says why. A source dragged over the result moves by the cursor's motion
+// mapped back through the camera as it was when the drag began: the drag's own moves refit the
+// camera, and mapping through each new one would feed the source's motion back into itself.
 #pragma once
 
 #include "ui/document.h"
 #include "ui/tools/tool.h"
 
 #include <QPointF>
+#include <QString>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace artcam::ui {
+
+class ResultInverse;
 
 class PairTool : public Tool {
  public:
@@ -66,10 +70,16 @@ class PairTool : public Tool {
   bool shift_ = false;
   std::optional<Eigen::Vector2d> pending_source_;
   std::optional<QPointF> source_hint_at_;  // widget point of a refused source click
+  QString source_hint_;                    // and why it was refused
   // Dragging state: grabbed endpoint, the pairs moved and their values at press time.
   Hit grabbed_{-1, Endpoint::Source};
   std::vector<int> drag_indices_;
   std::vector<Pair> drag_before_;
+  // A source drag over the result: the inverse it began with, the photo pixel under the press,
+  // and the last photo pixel under the cursor (the next solve's start).
+  std::shared_ptr<const ResultInverse> drag_inverse_;
+  Eigen::Vector2d drag_press_photo_{0, 0};
+  std::optional<Eigen::Vector2d> drag_last_photo_;
   int gesture_id_ = 0;  // merges the MovePairsCommands of one drag
   static int next_gesture_id_;
 };

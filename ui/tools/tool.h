@@ -34,8 +34,9 @@ class Tool {
   virtual void cancel() = 0;
   // Whether a point is being placed or dragged now: the canvas then shows its loupe.
   virtual bool wantsLoupe() const { return false; }
-  // Whether the tool works in the target frame, i.e. on the warped result: then the canvas may
-  // show the result while it is active (canvas.h); tools that edit the photo itself keep false.
+  // Whether the tool works on the warped result: then the canvas may show the result while it
+  // is active (canvas.h), and the tool maps its photo points through Canvas::photoPixelAt;
+  // tools that only edit the photo in its own frame keep false (the canvas shows the photo).
   virtual bool worksOnResult() const { return false; }
   // What the status bar names as the active tool, and the cursor the canvas shows while it is
   // active (tool_cursor.h: a crosshair tagged with the tool's key), so the tool in use is

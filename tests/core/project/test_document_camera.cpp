@@ -58,7 +58,7 @@ class TestDocumentCamera : public QObject {
     const std::vector<EffectStep> stack = {{"aerial-perspective", {}}, {"barrel", {}}};
     const DocumentArtcam without = assembleDocumentArtcam(base, stack, kFrame, false);
     QCOMPARE(without.applied, std::vector<int>{1});
-    QVERIFY2(without.note.find("effect 1 (aerial-perspective) left out: it reads depth") == 0,
+    QVERIFY2(without.note.find("effect 1 (Aerial perspective) left out: it reads depth") == 0,
              without.note.c_str());
     QVERIFY(!readsDepth(without.camera));
     const DocumentArtcam with = assembleDocumentArtcam(base, stack, kFrame, true);
@@ -77,7 +77,8 @@ class TestDocumentCamera : public QObject {
     const DocumentArtcam refused = assembleDocumentArtcam(
         base, {{"depth-of-field", {}}, {"aerial-perspective", {}}}, kFrame, true);
     QCOMPARE(refused.applied, std::vector<int>{0});
-    QVERIFY2(refused.note.find("effect 2 (aerial-perspective) left out") == 0, refused.note.c_str());
+    QVERIFY2(refused.note.find("effect 2 (Aerial perspective) left out") == 0,
+             refused.note.c_str());
   }
 
   void largestValidRectIsTheBiggestOpaqueRectangle() {

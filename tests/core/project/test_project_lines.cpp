@@ -65,6 +65,37 @@ class TestProjectLines : public QObject {
     QVERIFY(old->lines.empty());
   }
 
+  // The lines' model and each line's role are kept; a project without them reads as auto with
+  // no roles, and an unknown name is refused naming its place.
+  void lineModelAndRolesSurvive() {
+    StudioProject p;
+    p.photo_path = "/x/p.png";
+    p.lines = facadeLines();
+    p.lines[0].role = LineRole::Horizontal;
+    p.lines[2].role = LineRole::Vertical;
+    p.line_model = LineModel::Radial;
+    const std::string json = studioProjectToJson(p, "/x/a.artcamproj");
+    const Result<StudioProject> back = parseStudioProject(json, "/x/a.artcamproj");
+    QVERIFY2(back.ok(), back.status.message.c_str());
+    QCOMPARE(back->line_model, LineModel::Radial);
+    QCOMPARE(back->lines[0].role, LineRole::Horizontal);
+    QCOMPARE(back->lines[1].role, LineRole::None);
+    QCOMPARE(back->lines[2].role, LineRole::Vertical);
+    const Result<StudioProject> bad = parseStudioProject(
+        R"({"format":"artcam-studio-project","version":4,"photo":"p.png","line_model":"fisheye"})",
+        "/d/o.artcamproj");
+    QVERIFY(!bad.ok());
+    QVERIFY2(bad.status.message.find("/line_model") != std::string::npos,
+             bad.status.message.c_str());
+    const Result<StudioProject> bad_role =
+        parseStudioProject(R"({"format":"artcam-studio-project","version":4,"photo":"p.png",)"
+                           R"("lines":[{"points":[[1,1],[2,2],[3,4]],"role":"diagonal"}]})",
+                           "/d/o.artcamproj");
+    QVERIFY(!bad_role.ok());
+    QVERIFY2(bad_role.status.message.find("/lines/0/role") != std::string::npos,
+             bad_role.status.message.c_str());
+  }
+
   void documentGeometryIsTheLineFit() {
     DocumentFitInputs in;
     in.frame = kFrame;
