@@ -238,8 +238,8 @@ bool Session::offerRecovery() {
 }
 
 void Session::recover(const RecoveryOffer& offer) {
-  autosave_->adopt(offer.recovery_path);  // no other window offers it while this one has it
   const quint64 serial = ++open_serial_;
+  pending_recovery_file_ = offer.recovery_path;
   const QString recovery = offer.recovery_path, project = offer.project_path;
   runInBackground(
       this, [recovery](JobContext&) { return readProjectAndLook(recovery, /*recovery=*/true); },
@@ -323,6 +323,9 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
         readDepthMapAsync(p.depth_map->path, p.depth_map->options, /*undoable=*/false);
       }
       project_path_ = pending_project_path_;
+      // Recovered: the file is this window's now, so no other offers it; it goes with this
+      // window's next recovery write or clean save (not before the work is in the document).
+      if (pending_recovered_) autosave_->adopt(pending_recovery_file_);
       if (pending_recovered_ || pending_located_) {
         // Recovered work is not saved yet; a located photo's new place is not either.
         document_->undoStack()->resetClean();

@@ -194,6 +194,7 @@ class Session : public QObject {
   Autosave* autosave_;
   bool pending_recovered_ = false;
   bool pending_located_ = false;
+  QString pending_recovery_file_;  // the recovery file being recovered (recover)
   quint64 photo_serial_ = 0;  // bumps per loaded photo; stale depth map loads are dropped
 };
 
