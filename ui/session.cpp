@@ -81,6 +81,17 @@ QString errorOf(const JobOutcome<Status>& outcome) {
 
 }  // namespace
 
+void Session::finishWrite(const JobOutcome<Status>& outcome, const QString& action,
+                          const QString& written) {
+  if (const QString error = errorOf(outcome); !error.isEmpty()) {
+    showError(action, error);
+    emit fileWritten(false, error);
+    return;
+  }
+  emit statusMessage(written);
+  emit fileWritten(true, written);
+}
+
 Session::Session(Document* document, QWidget* dialog_parent, QObject* parent)
     : QObject(parent),
       document_(document),
@@ -546,14 +557,7 @@ bool Session::exportArtcam(const QString& path) {
   runInBackground(
       this, [path, held](JobContext&) { return writeArtcam(path.toStdString(), *held); },
       [this, path](JobOutcome<Status> outcome) {
-        if (const QString error = errorOf(outcome); !error.isEmpty()) {
-          showError(tr("Export camera"), error);
-          emit fileWritten(false, error);
-          return;
-        }
-        const QString message = tr("Exported camera to %1").arg(path);
-        emit statusMessage(message);
-        emit fileWritten(true, message);
+        finishWrite(outcome, tr("Export camera"), tr("Exported camera to %1").arg(path));
       });
   return true;
 }
@@ -632,14 +636,7 @@ bool Session::exportDepthMap(const QString& path) {
                                  [&job](double f) { return job.progress(f); });
       },
       [this, path](JobOutcome<Status> outcome) {
-        if (const QString error = errorOf(outcome); !error.isEmpty()) {
-          showError(tr("Export depth map"), error);
-          emit fileWritten(false, error);
-          return;
-        }
-        const QString message = tr("Exported the depth map to %1").arg(path);
-        emit statusMessage(message);
-        emit fileWritten(true, message);
+        finishWrite(outcome, tr("Export depth map"), tr("Exported the depth map to %1").arg(path));
       });
   return true;
 }

@@ -173,6 +173,10 @@ class Session : public QObject {
   void applyDepthMap(const QString& path, const DepthFileOptions& options,
                      std::shared_ptr<const ImageF> map, bool undoable);
   void showError(const QString& title, const QString& message);
+  // The end of a background export (.artcam, depth map): the error shown under `action`, or
+  // `written` on the status line; fileWritten either way.
+  void finishWrite(const JobOutcome<Status>& outcome, const QString& action,
+                   const QString& written);
   void addRecent(const QString& path);
 
   Document* document_;
