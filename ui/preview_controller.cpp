@@ -55,6 +55,7 @@ void PreviewController::schedule() {
   request.source = source_;
   request.encoding = encoding_;
   request.camera = document_->artcam();
+  request.stored_orientation = photo->full.info.stored_orientation;
   // A camera that reads depth waits for the depth raster while the document has depth: the
   // raster comes through the overlay's throttled update a moment after the camera (opening a
   // project sets both), and a pass without it fails with "this camera reads depth", shown in the

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/render_worker.h"
 
+#include "core/pipeline/camera_frame.h"
 #include "core/pipeline/render.h"
 #include "ui/image_convert.h"
 
@@ -26,8 +27,17 @@ WarpOptions RenderWorker::passOptions(int width, int height) {
 QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& options,
                                 WarpSummary* summary) {
   const Artcam& camera = job.camera;
+  // The pyramid holds the upright photo; a camera applied before the turn renders from the
+  // float preview copy, turned back (camera_frame.h).
+  const ImageF* source = job.source && !job.source->empty() ? job.source.get() : nullptr;
+  const FrameSize upright = source ? FrameSize{source->width, source->height}
+                            : job.pyramid ? FrameSize{job.pyramid->level(0).width,
+                                                      job.pyramid->level(0).height}
+                                          : FrameSize{};
+  const int turn = turnAfterCamera(camera, upright, job.stored_orientation);
+  const bool use_pyramid = job.pyramid && (turn == 1 || !source);
   RenderInputs inputs;
-  if (job.pyramid) {
+  if (use_pyramid) {
     inputs.photo = job.pyramid->level(0);
     inputs.pyramid = job.pyramid.get();
   }
@@ -41,14 +51,14 @@ QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& opt
   render_options.warp = options;
   RenderSummary rs;
   QImage image;
-  if (job.pyramid && !needsLinearPhoto(camera)) {
+  if (use_pyramid && !needsLinearPhoto(camera)) {
     image = QImage(options.width, options.height, QImage::Format_RGBA8888_Premultiplied);
     ImageView view = packedView<void>(image.bits(), image.width(), image.height(), 4,
                                       PixelType::UInt8, /*alpha_channel=*/3);
     view.row_bytes = image.bytesPerLine();
-    render(inputs, camera, render_options, view, &rs);
+    renderTurned(inputs, camera, render_options, turn, view, &rs);
   } else {
-    const ImageF out = render(inputs, camera, render_options, &rs);
+    const ImageF out = renderTurned(inputs, camera, render_options, turn, &rs);
     if (!rs.cancelled) image = qimageFromLinear(out);
   }
   if (summary) {

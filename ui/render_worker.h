@@ -39,6 +39,9 @@ struct RenderRequest {
   // Depth block input for cameras that read depth (core/depth/depth_raster.h form, any size).
   std::shared_ptr<const ImageF> depth;
   Artcam camera;  // the document's whole camera
+  // The photo's EXIF orientation (ImageInfo::stored_orientation): a camera made for the stored
+  // raster is applied before the turn (core/pipeline/camera_frame.h).
+  int stored_orientation = 1;
   int width = 0;  // full-pass output size (the coarse pass is a quarter of it)
   int height = 0;
   quint64 generation = 0;

@@ -47,7 +47,8 @@ const char* const kBatchUsage =
     "An output that exists already is refused unless --overwrite; one that would replace an\n"
     "input (or the camera) is always refused, as are two inputs that would write one output.\n"
     "--json prints, instead of the summary line, one JSON object {files: [{input, output,\n"
-    "status (written, failed or not done), error, width, height, render_ms, description}],\n"
+    "status (written, failed or not done), error, width, height, render_ms, description,\n"
+    "warning (when IN's aspect differs from the camera's source frame)}],\n"
     "totals: {files, written, failed, not_done, seconds, megapixels, mpix_per_s},\n"
     "interrupted}.\n\n"
     "options:\n"
@@ -91,6 +92,7 @@ struct FileResult {
   int height = 0;
   double render_ms = 0.0;
   std::string description;
+  std::string warning;  // warp's aspect warning (the output-frame rule, render.h), if any
 };
 
 struct BatchTally {
@@ -202,6 +204,11 @@ int batchCommand(const std::vector<std::string>& argv) {
       const BatchItem& names = items[item->index];
       if (guarded(item->index, [&] { encodeWarp(item->image, request, no_report, camera); })) {
         tally.written.fetch_add(1);
+        // A photo of another aspect than the camera's source frame is stretched: said, as warp
+        // says it.
+        if (!item->image.warning.empty())
+          std::fprintf(stderr, "artcam batch: warning: %s: %s\n", names.input.c_str(),
+                       item->image.warning.c_str());
         // Channels past RGBA that are not warped are said, never dropped silently.
         if (const std::string left_out = leftOutWarning(item->image, names.input, names.output);
             !left_out.empty())
@@ -211,7 +218,8 @@ int batchCommand(const std::vector<std::string>& argv) {
             !profile.empty())
           std::fprintf(stderr, "artcam batch: warning: %s\n", profile.c_str());
         results[item->index] = {"written", "", item->image.width, item->image.height,
-                                item->image.render_ms, item->image.description};
+                                item->image.render_ms, item->image.description,
+                                item->image.warning};
         tally.megapixels.store(tally.megapixels.load() + mpix);  // only this thread adds
         char line[64];
         std::snprintf(line, sizeof line, "%zu/%zu ", item->index + 1, items.size());
@@ -259,6 +267,7 @@ int batchCommand(const std::vector<std::string>& argv) {
         j["height"] = f.height;
         j["render_ms"] = f.render_ms;
         j["description"] = f.description;
+        if (!f.warning.empty()) j["warning"] = f.warning;
       }
       files.push_back(j);
     }

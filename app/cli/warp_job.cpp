@@ -5,6 +5,7 @@
 #include "app/cli/memory.h"
 #include "core/depth/depth_raster.h"
 #include "core/io/depth_file.h"
+#include "core/pipeline/camera_frame.h"
 #include "core/util/memory_budget.h"
 
 #include <algorithm>
@@ -62,7 +63,8 @@ void readOrLeaveOutExtra(const WarpCameraFile& camera, DecodedInput& decoded,
 // image's output size: same camera, same source positions. Depth-like groups take the nearest
 // filter (isDepthChannel says why); the others the image's.
 ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, int width,
-                          int height, const RenderOptions& image_options, double& render_ms) {
+                          int height, int turn, const RenderOptions& image_options,
+                          double& render_ms) {
   ExtraChannels warped;
   for (ChannelGroup& group : source.groups) {
     RenderOptions options = image_options;
@@ -74,7 +76,7 @@ ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, 
     RenderInputs inputs;
     inputs.photo = viewOf(std::as_const(group.image));
     RenderSummary summary;
-    render(inputs, camera.camera, options, viewOf(out.image), &summary);
+    renderTurned(inputs, camera.camera, options, turn, viewOf(out.image), &summary);
     if (summary.cancelled) return {};
     render_ms += summary.render_ms;
     group.image = ImageF();  // the input group is no longer needed
@@ -248,11 +250,18 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
   options.warp.progress = progress;
   const ImageF* depth = request.depth ? &*request.depth : nullptr;
   RenderSummary summary;
+  // The camera's frame (camera_frame.h): a camera made for the stored raster corrects it before
+  // the EXIF turn.
+  const ImageInfo& info = source.stored ? source.stored->info : source.loaded->info;
+  const FrameSize upright = source.stored
+                                ? FrameSize{source.stored->width, source.stored->height}
+                                : FrameSize{source.loaded->image.width, source.loaded->image.height};
+  const int turn = turnAfterCamera(camera.camera, upright, info.stored_orientation);
   try {
     if (source.stored) {
       const StoredImage& in = *source.stored;
-      const OutputFrame frame = outputFrameFor(camera.camera, {in.width, in.height},
-                                               options.warp.width, options.warp.height);
+      const OutputFrame frame = outputFrameTurned(camera.camera, upright, turn,
+                                                  options.warp.width, options.warp.height);
       const bool add_alpha = in.alpha_channel < 0 && formatStoresAlpha(out.output);
       const int channels = in.channels + (add_alpha ? 1 : 0);
       // Uninitialised: the render writes every output pixel (warp.h), so the render's threads
@@ -267,7 +276,7 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
       RenderInputs inputs;
       inputs.photo = in.view();
       inputs.depth = depth;
-      render(inputs, camera.camera, options, out.stored->view(), &summary);
+      renderTurned(inputs, camera.camera, options, turn, out.stored->view(), &summary);
       if (!summary.cancelled) dropAddedAlpha(*out.stored, in.alpha_channel >= 0);
       out.like = in.info;
       out.width = frame.size.width;
@@ -278,7 +287,7 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
       const StoredEncoding encoding = storedEncodingOf(in.info);
       RenderInputs inputs = RenderInputs::of(in.image, depth, &encoding);
       if (request.second) inputs.second = &*request.second;
-      ImageF image = render(inputs, camera.camera, options, &summary);
+      ImageF image = renderTurned(inputs, camera.camera, options, turn, &summary);
       if (!summary.cancelled) {
         if (in.image.alpha_channel < 0) dropOpaqueAlpha(image);
         out.width = image.width;
@@ -286,8 +295,8 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
         out.image = std::move(image);
       }
       out.like = in.info;
-      out.warning = outputFrameFor(camera.camera, {in.image.width, in.image.height},
-                                   options.warp.width, options.warp.height).warning;
+      out.warning = outputFrameTurned(camera.camera, upright, turn, options.warp.width,
+                                      options.warp.height).warning;
       // The second image lies over the photo's frame (core/pipeline/render.h): another size is
       // stretched to it, which a user should hear about.
       if (request.second && (request.second->width != in.image.width ||
@@ -303,8 +312,8 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
           out.warning += (out.warning.empty() ? "" : "; ") + stretched;
     }
     if (!summary.cancelled && !source.extra.empty()) {
-      out.extra = renderExtra(camera, std::move(source.extra), out.width, out.height, options,
-                              summary.render_ms);
+      out.extra = renderExtra(camera, std::move(source.extra), out.width, out.height, turn,
+                              options, summary.render_ms);
       out.extra_names = out.extra.names();
       summary.cancelled = out.extra.empty();
     }

@@ -367,6 +367,12 @@ Artcam artcamAt(const Json& root) {
              "expected \"depth\" or \"blur-variance\", found " + describe(Json(name)));
     camera.depth_output = *output;
   }
+  if (root.contains("frame")) {
+    const std::string name = stringAt(root["frame"], "/frame");
+    const std::optional<CameraFrame> frame = cameraFrameFromName(name);
+    if (!frame) refuse("/frame", "expected \"sensor\" or \"upright\", found " + describe(Json(name)));
+    camera.frame = *frame;
+  }
   if (root.contains("patches")) camera.pieces = piecesAt(root, camera.main());
   if (root.contains("matches")) camera.matches = matchesAt(root["matches"], "/matches");
   if (root.contains("fit")) camera.fit = fitAt(root["fit"], "/fit");
@@ -466,6 +472,7 @@ struct Builder {
     }
     if (d.depth_output != DepthOutput::Depth)
       root["depth_output"] = std::string(depthOutputName(d.depth_output));
+    if (d.frame) root["frame"] = std::string(cameraFrameName(*d.frame));
     if (!d.matches.empty()) {
       Json matches = Json::array();
       for (size_t m = 0; m < d.matches.size(); ++m) {

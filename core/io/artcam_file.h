@@ -8,6 +8,8 @@
 //     "stages": [ { "tensors": [ [[…N numbers…] ×N rows] ×N tensors ] }, … ],
 //     "layers": [ { "stages": [ … ] }, … ],              // optional: layers after the first
 //     "depth_output": "depth" | "blur-variance",         // optional, default "depth"
+//     "frame": "sensor" | "upright",                       // optional: the raster it was made
+//                                                          // for (core/pipeline/camera_frame.h)
 //     "matches": [ {"source": [x, y], "target": [X, Y], "enabled": true}, … ],  // optional
 //     "fit": { "model": …, "matches": …, "rms_px": …, "max_px": …, "residuals_px": […],
 //              "singular_values": […], "reason": … },                          // optional

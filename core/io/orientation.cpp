@@ -10,6 +10,11 @@ int validOrientation(int value) { return value >= 1 && value <= 8 ? value : 1; }
 
 bool orientationSwapsAxes(int orientation) { return orientation >= 5 && orientation <= 8; }
 
+int inverseOrientation(int orientation) {
+  const int o = validOrientation(orientation);
+  return o == 6 ? 8 : o == 8 ? 6 : o;
+}
+
 void reorientPixels(const void* stored, int width, int height, size_t pixel_bytes, int orientation,
                     void* upright) {
   const auto* in = static_cast<const std::uint8_t*>(stored);

@@ -23,6 +23,9 @@ namespace artcam {
 int validOrientation(int value);
 // Whether the upright photo is the stored raster's transpose in size (5..8).
 bool orientationSwapsAxes(int orientation);
+// The orientation that turns the upright photo back into the stored raster: 6 and 8 (a quarter
+// turn each way) undo each other, the others (mirrors, the half turn, transposes) themselves.
+int inverseOrientation(int orientation);
 
 // Copies the stored raster (`width` x `height` pixels of `pixel_bytes` each) into `upright`
 // (height x width pixels for 5..8, else width x height). The two must not overlap.

@@ -263,6 +263,7 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
 
   if (s.within_tolerance) {
     s.camera = Artcam(single.camera);
+    s.camera.frame = CameraFrame::Sensor;  // the lens draws on the sensor, however it was held
     s.camera.matches = fit_matches;
     s.camera.fit = single.record;
     if (tca) {
@@ -332,6 +333,7 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   s.unmapped = f.unmapped;
   s.within_tolerance = f.unmapped == 0 && f.max <= options.max_error_px;
   s.camera = Artcam(single.status ? single.camera : pieces.camera.patches.front().camera);
+  s.camera.frame = CameraFrame::Sensor;
   if (single.status) s.camera.fit = single.record;
   s.camera.matches = inside;
   s.camera.pieces = pieces.camera;

@@ -21,6 +21,16 @@ std::optional<DepthOutput> depthOutputFromName(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view cameraFrameName(CameraFrame frame) {
+  return frame == CameraFrame::Sensor ? "sensor" : "upright";
+}
+
+std::optional<CameraFrame> cameraFrameFromName(std::string_view name) {
+  if (name == "sensor") return CameraFrame::Sensor;
+  if (name == "upright") return CameraFrame::Upright;
+  return std::nullopt;
+}
+
 std::string_view artcamKindName(ArtcamKind kind) {
   switch (kind) {
     case ArtcamKind::Single: return "single";

@@ -36,6 +36,14 @@ enum class DepthOutput { Depth, BlurVariance };
 std::string_view depthOutputName(DepthOutput output);  // "depth", "blur-variance"
 std::optional<DepthOutput> depthOutputFromName(std::string_view name);
 
+// The raster a camera was made for (core/pipeline/camera_frame.h): the photo as the sensor
+// stored it (a lens camera: the lens projects onto the sensor, whatever way the camera was
+// held), or the photo as shown, turned upright by its EXIF orientation (cameras fitted to what
+// the user sees). Unset (files that do not say): decided by the camera's source frame.
+enum class CameraFrame { Upright, Sensor };
+std::string_view cameraFrameName(CameraFrame frame);  // "upright", "sensor"
+std::optional<CameraFrame> cameraFrameFromName(std::string_view name);
+
 // What kind of camera it is, most specific first: what `artcam info` reports and what the render
 // front door dispatches on (together with the structure analysis of each layer).
 enum class ArtcamKind {
@@ -57,6 +65,7 @@ struct Artcam {
   std::vector<Camera> layers;
   std::optional<PiecewiseCamera> pieces;
   DepthOutput depth_output = DepthOutput::Depth;
+  std::optional<CameraFrame> frame;
   std::vector<PointMatch> matches;
   std::optional<FitRecord> fit;
 

@@ -3,6 +3,7 @@
 
 #include "core/depth/depth_raster.h"
 #include "core/io/stored_image.h"
+#include "core/pipeline/camera_frame.h"
 
 #include <algorithm>
 #include <array>
@@ -103,7 +104,12 @@ ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam
   render_options.warp.progress = progress;
   RenderSummary local;
   RenderSummary* s = summary ? summary : &local;
-  ImageF out = render(RenderInputs::of(photo, depth, &encoding), camera, render_options, s);
+  // In the camera's frame (camera_frame.h): a lens camera corrects the stored raster, then the
+  // result is turned upright.
+  const int turn =
+      turnAfterCamera(camera, {photo.width, photo.height}, loaded.info.stored_orientation);
+  ImageF out =
+      renderTurned(RenderInputs::of(photo, depth, &encoding), camera, render_options, turn, s);
   if (s->cancelled || out.empty()) return out;
   if (options.crop_to_valid) {
     const ValidRect r = largestValidRect(out);
