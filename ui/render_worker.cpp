@@ -30,10 +30,10 @@ QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& opt
   // The pyramid holds the upright photo; a camera applied before the turn renders from the
   // float preview copy, turned back (camera_frame.h).
   const ImageF* source = job.source && !job.source->empty() ? job.source.get() : nullptr;
-  const FrameSize upright = source ? FrameSize{source->width, source->height}
-                            : job.pyramid ? FrameSize{job.pyramid->level(0).width,
-                                                      job.pyramid->level(0).height}
-                                          : FrameSize{};
+  const FrameSize upright =
+      source        ? FrameSize{source->width, source->height}
+      : job.pyramid ? FrameSize{job.pyramid->level(0).width, job.pyramid->level(0).height}
+                    : FrameSize{};
   const int turn = turnAfterCamera(camera, upright, job.stored_orientation);
   const bool use_pyramid = job.pyramid && (turn == 1 || !source);
   RenderInputs inputs;

@@ -217,8 +217,12 @@ int batchCommand(const std::vector<std::string>& argv) {
                 droppedProfileWarning(item->image, names.input, names.output);
             !profile.empty())
           std::fprintf(stderr, "artcam batch: warning: %s\n", profile.c_str());
-        results[item->index] = {"written", "", item->image.width, item->image.height,
-                                item->image.render_ms, item->image.description,
+        results[item->index] = {"written",
+                                "",
+                                item->image.width,
+                                item->image.height,
+                                item->image.render_ms,
+                                item->image.description,
                                 item->image.warning};
         tally.megapixels.store(tally.megapixels.load() + mpix);  // only this thread adds
         char line[64];

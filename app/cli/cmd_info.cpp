@@ -91,6 +91,7 @@ int infoCommand(const std::vector<std::string>& argv) {
   j["stages"] = camera.stages().size();
   j["layers"] = artcam.layers.size();
   j["depth_output"] = std::string(depthOutputName(artcam.depth_output));
+  if (artcam.frame) j["frame"] = std::string(cameraFrameName(*artcam.frame));
   j["poles"] = poles.describe();
   if (artcam.pieces) {
     const PiecewiseCamera& p = *artcam.pieces;
@@ -131,6 +132,10 @@ int infoCommand(const std::vector<std::string>& argv) {
   std::printf("frames:    source %dx%d, target %dx%d (tensors in the normalised frames)\n",
               camera.sourceSize().width, camera.sourceSize().height, camera.targetSize().width,
               camera.targetSize().height);
+  if (artcam.frame)
+    std::printf("made for:  the %s\n", *artcam.frame == CameraFrame::Sensor
+                                           ? "sensor's raster (applied before the EXIF turn)"
+                                           : "upright photo (applied after the EXIF turn)");
   std::printf("poles:     %s\n", poles.describe().c_str());
   if (artcam.layers.size() > 1)
     std::printf("layers:    %zu (the picture is the sum of the layers' colours)\n",

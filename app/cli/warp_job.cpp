@@ -253,15 +253,15 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
   // The camera's frame (camera_frame.h): a camera made for the stored raster corrects it before
   // the EXIF turn.
   const ImageInfo& info = source.stored ? source.stored->info : source.loaded->info;
-  const FrameSize upright = source.stored
-                                ? FrameSize{source.stored->width, source.stored->height}
-                                : FrameSize{source.loaded->image.width, source.loaded->image.height};
+  const FrameSize upright =
+      source.stored ? FrameSize{source.stored->width, source.stored->height}
+                    : FrameSize{source.loaded->image.width, source.loaded->image.height};
   const int turn = turnAfterCamera(camera.camera, upright, info.stored_orientation);
   try {
     if (source.stored) {
       const StoredImage& in = *source.stored;
-      const OutputFrame frame = outputFrameTurned(camera.camera, upright, turn,
-                                                  options.warp.width, options.warp.height);
+      const OutputFrame frame =
+          outputFrameTurned(camera.camera, upright, turn, options.warp.width, options.warp.height);
       const bool add_alpha = in.alpha_channel < 0 && formatStoresAlpha(out.output);
       const int channels = in.channels + (add_alpha ? 1 : 0);
       // Uninitialised: the render writes every output pixel (warp.h), so the render's threads
@@ -295,8 +295,9 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
         out.image = std::move(image);
       }
       out.like = in.info;
-      out.warning = outputFrameTurned(camera.camera, upright, turn, options.warp.width,
-                                      options.warp.height).warning;
+      out.warning =
+          outputFrameTurned(camera.camera, upright, turn, options.warp.width, options.warp.height)
+              .warning;
       // The second image lies over the photo's frame (core/pipeline/render.h): another size is
       // stretched to it, which a user should hear about.
       if (request.second && (request.second->width != in.image.width ||
@@ -312,8 +313,8 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
           out.warning += (out.warning.empty() ? "" : "; ") + stretched;
     }
     if (!summary.cancelled && !source.extra.empty()) {
-      out.extra = renderExtra(camera, std::move(source.extra), out.width, out.height, turn,
-                              options, summary.render_ms);
+      out.extra = renderExtra(camera, std::move(source.extra), out.width, out.height, turn, options,
+                              summary.render_ms);
       out.extra_names = out.extra.names();
       summary.cancelled = out.extra.empty();
     }

@@ -370,7 +370,8 @@ Artcam artcamAt(const Json& root) {
   if (root.contains("frame")) {
     const std::string name = stringAt(root["frame"], "/frame");
     const std::optional<CameraFrame> frame = cameraFrameFromName(name);
-    if (!frame) refuse("/frame", "expected \"sensor\" or \"upright\", found " + describe(Json(name)));
+    if (!frame)
+      refuse("/frame", "expected \"sensor\" or \"upright\", found " + describe(Json(name)));
     camera.frame = *frame;
   }
   if (root.contains("patches")) camera.pieces = piecesAt(root, camera.main());

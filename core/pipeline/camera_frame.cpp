@@ -124,19 +124,22 @@ void renderTurned(const RenderInputs& inputs, const Artcam& camera, const Render
   const int w = swap ? out.height : out.width, h = swap ? out.width : out.height;
   const size_t pixel = static_cast<size_t>(out.pixelBytes());
   std::vector<std::uint8_t> rendered(static_cast<size_t>(w) * static_cast<size_t>(h) * pixel);
-  const ImageView view = packedView<void>(rendered.data(), w, h, out.channels, out.type,
-                                          out.alpha_channel);
+  const ImageView view =
+      packedView<void>(rendered.data(), w, h, out.channels, out.type, out.alpha_channel);
   RenderSummary local;
   RenderSummary* s = summary ? summary : &local;
   render(stored.inputs, camera, storedFrameOptions(options, turn), view, s);
   if (s->cancelled) return;
-  const std::vector<std::uint8_t> upright =
-      turnedBytes(packedView<const void>(rendered.data(), w, h, out.channels, out.type,
-                                         out.alpha_channel),
-                  turn);
   const size_t row = static_cast<size_t>(out.width) * pixel;
-  for (int y = 0; y < out.height; ++y)
-    std::memcpy(out.row(y), upright.data() + row * static_cast<size_t>(y), row);
+  if (static_cast<size_t>(out.row_bytes) == row) {
+    reorientPixels(rendered.data(), w, h, pixel, turn, out.data);
+  } else {
+    const std::vector<std::uint8_t> upright = turnedBytes(
+        packedView<const void>(rendered.data(), w, h, out.channels, out.type, out.alpha_channel),
+        turn);
+    for (int y = 0; y < out.height; ++y)
+      std::memcpy(out.row(y), upright.data() + row * static_cast<size_t>(y), row);
+  }
   s->size = {out.width, out.height};
 }
 
@@ -147,8 +150,8 @@ ImageF renderTurned(const RenderInputs& inputs, const Artcam& camera, const Rend
   RenderSummary local;
   RenderSummary* s = summary ? summary : &local;
   ImageF depth;
-  const ImageF image =
-      render(stored.inputs, camera, storedFrameOptions(options, turn), s, depth_out ? &depth : nullptr);
+  const ImageF image = render(stored.inputs, camera, storedFrameOptions(options, turn), s,
+                              depth_out ? &depth : nullptr);
   if (image.empty()) return image;
   if (depth_out) *depth_out = depth.empty() ? ImageF() : turnedImage(depth, turn);
   ImageF out = turnedImage(image, turn);

@@ -127,8 +127,8 @@ class TestCliCameraFrame : public QObject {
                                  "600x400", "-o", path("lens.artcam")});
     QVERIFY2(made.exit_code == 0, qPrintable(made.err));
     // The truth: the sensor raster corrected, then turned.
-    const auto r = artcamCli({"warp", path("sensor.jpg"), path("lens.artcam"), "-o",
-                              path("sensor_fixed.png")});
+    const auto r = artcamCli(
+        {"warp", path("sensor.jpg"), path("lens.artcam"), "-o", path("sensor_fixed.png")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
   }
 
@@ -176,8 +176,8 @@ class TestCliCameraFrame : public QObject {
     QJsonObject cam = QJsonDocument::fromJson(readAll(path("lens.artcam"))).object();
     cam.remove("frame");
     QVERIFY(writeAll(path("old.artcam"), QJsonDocument(cam).toJson()));
-    const auto r = artcamCli(
-        {"warp", path("portrait.jpg"), path("old.artcam"), "-o", path("old_fixed.png")});
+    const auto r =
+        artcamCli({"warp", path("portrait.jpg"), path("old.artcam"), "-o", path("old_fixed.png")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     const Difference d = difference(readPixels(spath("old_fixed.png")),
                                     turnedQuarterClockwise(spath("sensor_fixed.png")));
