@@ -20,6 +20,7 @@ const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
     "                   [--format EXT] [--threads N] [--quality N]\n"
     "                   [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
+    "                   [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n"
     "                   [--second FILE]\n\n"
@@ -83,7 +84,11 @@ const char* const kWarpUsage =
     "                       IN's)\n"
     "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
     "                       IN's ICC profile when it had one, embedded; srgb: sRGB, with an\n"
-    "                       sRGB profile). Float output is linear Rec.709/D65 either way\n"
+    "                       sRGB profile). Float output is linear Rec.709/D65, but an OpenEXR\n"
+    "                       output keeps an EXR input's other primaries (ACEScg) with input\n"
+    "  --colourspace-in NAME the OpenColorIO colour space the input is in, over what the\n"
+    "                       file says (config: $OCIO, else OpenImageIO's built-in one)\n"
+    "  --colourspace-out NAME the OpenColorIO colour space the output is encoded in\n"
     "  --stats              print render_ms and mpix_per_s on stderr\n"
     "  --json               the result (and --stats) as one JSON object on stdout\n"
     "  --overwrite          replace OUT if it exists (--force is the same); never IN\n"
@@ -108,6 +113,8 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
+                         {"--colourspace-in", "", true},
+                         {"--colourspace-out", "", true},
                          {"--stats", "", false},
                          {"--json", "", false},
                          {"--overwrite", "", false},

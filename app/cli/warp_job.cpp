@@ -59,18 +59,19 @@ void readOrLeaveOutExtra(const WarpCameraFile& camera, DecodedInput& decoded,
 }
 
 // Each group of extra channels through the same render entry point as the image, into the
-// image's output size: same camera, same source positions. Depth-like groups take the nearest
-// filter (isDepthChannel says why); the others the image's.
+// image's output size: same camera, same source positions. Depth- and ID-like groups take the
+// nearest filter (isDepthChannel, sampledNearest say why); the others the image's.
 ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, int width,
                           int height, const RenderOptions& image_options, double& render_ms) {
   ExtraChannels warped;
   for (ChannelGroup& group : source.groups) {
     RenderOptions options = image_options;
-    if (group.depth) {
+    if (group.nearest) {
       options.warp.filter = Filter::Nearest;
       options.warp.antialias = false;
     }
-    ChannelGroup out{group.names, ImageF(width, height, group.image.channels, -1), group.depth};
+    ChannelGroup out{group.names, ImageF(width, height, group.image.channels, -1), group.depth,
+                     group.nearest, group.stored_types};
     RenderInputs inputs;
     inputs.photo = viewOf(std::as_const(group.image));
     RenderSummary summary;
@@ -87,11 +88,19 @@ ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, 
 
 std::string leftOutWarning(const RenderedOutput& output, const std::string& input_name,
                            const std::string& output_name) {
-  std::string names;
+  std::string names, parts;
   for (const std::string& c : output.left_out) names += (names.empty() ? "" : ", ") + c;
-  if (names.empty()) return "";
-  return input_name + ": channels beyond colour and alpha (" + names +
-         ") are not warped and are left out of " + output_name + ": " + output.left_out_reason;
+  for (const std::string& p : output.like.other_parts)
+    parts += (parts.empty() ? "\"" : ", \"") + p + "\"";
+  std::string line;
+  if (!names.empty())
+    line = "channels beyond colour and alpha (" + names + ") are not warped and are left out of " +
+           output_name + ": " + output.left_out_reason;
+  // The readers hand over a multi-part OpenEXR's first part (image_io.h, ImageInfo::other_parts).
+  if (!parts.empty())
+    line += (line.empty() ? "" : "; ") + std::string("the parts after the first (") + parts +
+            ") are not warped and are left out of " + output_name;
+  return line.empty() ? "" : input_name + ": " + line;
 }
 
 std::string droppedProfileWarning(const RenderedOutput& output, const std::string& input_name,
@@ -121,6 +130,7 @@ WarpRequest parseWarpRequest(const Args& args) {
   depth.scale = numberOption(args, "--depth-scale", depth.scale, 0, kUnbounded, Ends::OpenMin);
   depth.baseline_focal = numberOption(args, "--disparity", depth.baseline_focal, 0, kUnbounded);
   parseWriteOptions(args, request.write);  // every usage error before a file is read
+  request.colour_space_in = parseColourSpaceIn(args);
   request.stats = args.has("--stats");
   // Nothing is printed here: the files read are reported with the result (WarpRequest::inputs),
   // so standard output carries only the image or the one JSON object.
@@ -184,18 +194,23 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
   decoded.output = output;
   ReadImageOptions read;
   read.progress = progress;
+  read.colour_space = request.colour_space_in;
   // The stored-type path where the output keeps the input's encoding (peak memory ≤ input +
   // output + a small constant); re-encoding between integer and float files, and cameras that
   // render from the linear photo, go through linear light (image_io.h); so does
   // --colourspace srgb, which may re-encode an ICC-tagged input.
-  if (!camera.linear && request.write.colour_space == WriteImageOptions::ColourSpace::Input) {
+  // Named OpenColorIO colour spaces convert, so they go through linear light too.
+  if (!camera.linear && request.write.colour_space == WriteImageOptions::ColourSpace::Input &&
+      request.colour_space_in.empty() && request.write.ocio_colour_space.empty()) {
     const auto shape = readStoredShape(input);
     if (!shape) throw CommandError(shape.status.message);
     const PixelType type = shape->type;
     const std::string& asked = request.write.pixel_type;
     const bool same_type = asked.empty() || (asked == "uint8" && type == PixelType::UInt8) ||
                            (asked == "uint16" && type == PixelType::UInt16);
-    if (same_type && storedWriteKeepsEncoding(output, type)) {
+    // Values in other primaries (an ACEScg EXR) keep them only where the output names them.
+    const bool primaries_kept = !shape->foreign_primaries || formatStoresExtraChannels(output);
+    if (same_type && primaries_kept && storedWriteKeepsEncoding(output, type)) {
       // The decoded photo and the output together (the output frame as the rule gives it, an
       // EXIF turn aside), and the float copy readStoredImage also checks, against the budget.
       const FrameSize out = outputFrameFor(camera.camera, {shape->width, shape->height},

@@ -59,6 +59,7 @@ struct WarpRequest {
   std::optional<ImageF> depth;  // --depth FILE, read once for every input
   std::optional<ImageF> second;  // --second FILE, linear premultiplied, for compositing cameras
   WriteImageOptions write;      // --quality, --bit-depth (write_args.h); progress unset
+  std::string colour_space_in;  // --colourspace-in NAME (write_args.h); empty: as files say
   bool stats = false;
   std::vector<RequestInput> inputs;  // the depth map and second image read, in that order
 };

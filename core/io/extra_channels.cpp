@@ -43,12 +43,25 @@ Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo
                ? spec.channelnames[static_cast<size_t>(c)]
                : "channel " + std::to_string(c);
   };
-  // Runs of one kind (depth-like or not), cut at four: [begin, end) in the file's channels.
+  const auto formatOf = [&](int c) {
+    return c < static_cast<int>(spec.channelformats.size())
+               ? spec.channelformats[static_cast<size_t>(c)]
+               : spec.format;
+  };
+  const auto integerAt = [&](int c) {
+    const OIIO::TypeDesc t = formatOf(c);
+    return t.basetype != OIIO::TypeDesc::HALF && t.basetype != OIIO::TypeDesc::FLOAT &&
+           t.basetype != OIIO::TypeDesc::DOUBLE;
+  };
+  // Runs of one kind (depth-like, other sampled-nearest, or interpolated), cut at four:
+  // [begin, end) in the file's channels.
+  const auto kindOf = [&](int c) {
+    return isDepthChannel(nameOf(c)) ? 2 : sampledNearest(nameOf(c), integerAt(c)) ? 1 : 0;
+  };
   std::vector<std::pair<int, int>> runs;
   for (int c = first; c < spec.nchannels; ++c) {
-    const bool depth = isDepthChannel(nameOf(c));
     if (runs.empty() || runs.back().second - runs.back().first == 4 ||
-        isDepthChannel(nameOf(runs.back().first)) != depth)
+        kindOf(runs.back().first) != kindOf(c))
       runs.emplace_back(c, c + 1);
     else
       runs.back().second = c + 1;
@@ -60,7 +73,9 @@ Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo
     const int n = end - begin;
     ChannelGroup group;
     for (int c = begin; c < end; ++c) group.names.push_back(nameOf(c));
-    group.depth = isDepthChannel(group.names.front());
+    group.depth = kindOf(begin) == 2;
+    group.nearest = kindOf(begin) != 0;
+    for (int c = begin; c < end; ++c) group.stored_types.push_back(formatOf(c).c_str());
     ImageF stored(spec.width, spec.height, n, -1);
     bool ok = false;
     try {
@@ -109,7 +124,18 @@ Status addExtraChannels(OIIO::ImageSpec& spec, const std::string& format,
       ++spec.nchannels;
     }
   }
-  spec.channelformats.clear();  // one pixel type for every channel
+  // Each extra channel in the type the file stored it in (OpenImageIO converts the float rows
+  // written to each channel's type); the image's own channels in the spec's.
+  std::vector<OIIO::TypeDesc> formats(static_cast<size_t>(spec.nchannels) - extra->names().size(),
+                                      spec.format);
+  for (const ChannelGroup& g : extra->groups)
+    for (size_t k = 0; k < g.names.size(); ++k)
+      formats.push_back(k < g.stored_types.size() && !g.stored_types[k].empty()
+                            ? OIIO::TypeDesc(g.stored_types[k])
+                            : spec.format);
+  const bool one_type = std::all_of(formats.begin(), formats.end(),
+                                    [&](OIIO::TypeDesc t) { return t == spec.format; });
+  spec.channelformats = one_type ? std::vector<OIIO::TypeDesc>{} : formats;
   return Status::success();
 }
 

@@ -4,15 +4,18 @@
 // type) refuse the same files with the same one-line messages.
 #pragma once
 
+#include "core/colour/chromaticities.h"
+#include "core/colour/transfer.h"
 #include "core/io/image_io.h"
 #include "core/io/io_text.h"
 #include "core/io/jpeg_decode.h"
-#include "core/colour/transfer.h"
 #include "core/model/status.h"
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,6 +76,19 @@ inline int keptChannels(const OIIO::ImageSpec& spec) {
   return alpha >= 0 ? alpha + 1 : spec.nchannels >= 3 ? 3 : 1;
 }
 
+// The type of the channels a reader keeps (keptChannels): the widest of their own types where
+// a file's channels differ (an EXR's half RGBA beside a float Z, whose spec.format is float),
+// so the image keeps its own type and the extra channels theirs.
+inline OIIO::TypeDesc keptFormat(const OIIO::ImageSpec& spec) {
+  if (spec.channelformats.empty()) return spec.format;
+  OIIO::TypeDesc widest = spec.channelformats[0];
+  const int kept = std::min(keptChannels(spec), static_cast<int>(spec.channelformats.size()));
+  for (int c = 1; c < kept; ++c)
+    if (spec.channelformats[static_cast<size_t>(c)].size() > widest.size())
+      widest = spec.channelformats[static_cast<size_t>(c)];
+  return widest;
+}
+
 // The bytes of `spec`'s embedded ICC profile ("ICCProfile"), for checkEmbeddedProfile; empty
 // when it has none.
 inline std::vector<unsigned char> embeddedProfileBytes(const OIIO::ImageSpec& spec) {
@@ -103,6 +119,14 @@ inline Status dataWindowIsDisplayWindow(const OIIO::ImageInput& in, const OIIO::
                          "), whose pixels the camera's are; make them one with oiiotool " +
                          "--croptofull");
 }
+
+// The primaries and white of `spec`'s RGB as its "chromaticities" attribute (OpenEXR) gives
+// them, when they are not the working space's (chromaticities.h); empty for Rec.709/D65, no
+// attribute, or fewer than three colour channels. Fails in one line naming `path` for
+// chromaticities that make no RGB space (a y of 0, primaries on one line): guessing would
+// mislabel every colour.
+Result<std::optional<Chromaticities>> foreignChromaticities(const OIIO::ImageSpec& spec,
+                                                            const std::string& path);
 
 // The orientation a reader turns the raster upright from (orientation.h), 1..8: exiv2's
 // photoOrientation (EXIF first, then XMP, as the photo conventions and most viewers order

@@ -11,6 +11,7 @@
 // `kTableVersion` and the struct's size only catch a module from another build.
 #pragma once
 
+#include "core/io/colour_spaces.h"
 #include "core/io/depth_file.h"
 #include "core/io/image_io.h"
 #include "core/io/stmap_file.h"
@@ -48,7 +49,9 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
 Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& options,
                              DepthFileSummary* summary);
 
-constexpr int kTableVersion = 2;
+Status checkColourSpace(const std::string& name, const std::string& option);
+
+constexpr int kTableVersion = 3;
 
 struct Table {
   int version = kTableVersion;
@@ -68,6 +71,7 @@ struct Table {
   decltype(&writeStmap) write_stmap = &writeStmap;
   decltype(&readStmapSamples) read_stmap_samples = &readStmapSamples;
   decltype(&readDepthFile) read_depth_file = &readDepthFile;
+  decltype(&checkColourSpace) check_colour_space = &checkColourSpace;
 };
 
 }  // namespace artcam::oiio_io

@@ -152,7 +152,7 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   const int alpha = io_input::keptAlpha(spec);
 
   std::string pixel_type;
-  const PixelType type = storedType(spec.format, pixel_type);
+  const PixelType type = storedType(io_input::keptFormat(spec), pixel_type);
   const Transfer transfer =
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
           .value_or(type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
@@ -285,7 +285,7 @@ Result<std::unique_ptr<StoredImageReader>> openStoredImageReader(const std::stri
   state->channels_ = io_input::keptChannels(spec);
   state->alpha = io_input::keptAlpha(spec);
   std::string pixel_type;
-  state->type_ = storedType(spec.format, pixel_type);
+  state->type_ = storedType(io_input::keptFormat(spec), pixel_type);
   const Transfer transfer =
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
           .value_or(state->type_ == PixelType::Float ? Transfer::linear() : Transfer::srgb());
@@ -348,8 +348,11 @@ Result<StoredShape> readStoredShape(const std::string& path) {
   if (const Status windows = io_input::dataWindowIsDisplayWindow(**opened, spec, path); !windows)
     return Result<StoredShape>::failure(windows.message);
   std::string name;
+  const auto primaries = io_input::foreignChromaticities(spec, path);
+  if (!primaries) return Result<StoredShape>::failure(primaries.status.message);
   return Result<StoredShape>::success(
-      StoredShape{spec.width, spec.height, io_input::keptChannels(spec), storedType(spec.format, name)});
+      StoredShape{spec.width, spec.height, io_input::keptChannels(spec),
+                  storedType(spec.format, name), primaries.value->has_value()});
 }
 
 bool storedWriteKeepsEncoding(const std::string& path, PixelType type) {
