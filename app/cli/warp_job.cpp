@@ -42,18 +42,25 @@ void dropAddedAlpha(StoredImage& image, bool input_had_alpha) {
 void readOrLeaveOutExtra(const WarpCameraFile& camera, DecodedInput& decoded,
                          const ReadImageOptions& read) {
   const ImageInfo& info = decoded.stored ? decoded.stored->info : decoded.loaded->info;
-  if (info.dropped_channels.empty()) return;
+  if (info.dropped_channels.empty() && info.other_parts.empty()) return;
   std::string reason = extraChannelsUnsupported(camera.camera);
   if (!reason.empty())
     reason = camera.path + ": " + reason;
   else if (!formatStoresExtraChannels(decoded.output))
     reason = "its format holds no channels beyond RGBA (OpenEXR does)";
+  if (reason.empty() && !info.other_parts.empty()) {
+    auto parts = readOtherParts(decoded.input, info, read);
+    if (!parts) throw CommandError(parts.status.message);
+    decoded.parts = std::move(*parts.value);
+  }
+  if (!reason.empty()) decoded.left_out_reason = reason;  // said for the parts too
+  if (info.dropped_channels.empty()) return;
   if (!reason.empty()) {
     decoded.left_out = info.dropped_channels;
     decoded.left_out_reason = reason;
     return;
   }
-  auto extra = readExtraChannels(decoded.input, info, read);
+  auto extra = readExtraChannels(decoded.input, info, read);  // the first part's
   if (!extra) throw CommandError(extra.status.message);
   decoded.extra = std::move(*extra.value);
 }
@@ -90,8 +97,9 @@ std::string leftOutWarning(const RenderedOutput& output, const std::string& inpu
                            const std::string& output_name) {
   std::string names, parts;
   for (const std::string& c : output.left_out) names += (names.empty() ? "" : ", ") + c;
-  for (const std::string& p : output.like.other_parts)
-    parts += (parts.empty() ? "\"" : ", \"") + p + "\"";
+  if (!output.parts_written)
+    for (const std::string& p : output.like.other_parts)
+      parts += (parts.empty() ? "\"" : ", \"") + p + "\"";
   std::string line;
   if (!names.empty())
     line = "channels beyond colour and alpha (" + names + ") are not warped and are left out of " +
@@ -99,7 +107,8 @@ std::string leftOutWarning(const RenderedOutput& output, const std::string& inpu
   // The readers hand over a multi-part OpenEXR's first part (image_io.h, ImageInfo::other_parts).
   if (!parts.empty())
     line += (line.empty() ? "" : "; ") + std::string("the parts after the first (") + parts +
-            ") are not warped and are left out of " + output_name;
+            ") are not warped and are left out of " + output_name +
+            (output.left_out_reason.empty() ? std::string() : ": " + output.left_out_reason);
   return line.empty() ? "" : input_name + ": " + line;
 }
 
@@ -323,6 +332,14 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
       out.extra_names = out.extra.names();
       summary.cancelled = out.extra.empty();
     }
+    // Each later part through the same camera, as extra channels are (same source positions).
+    for (ImagePart& part : source.parts) {
+      if (summary.cancelled) break;
+      ImagePart warped{part.name, renderExtra(camera, std::move(part.channels), out.width,
+                                              out.height, options, summary.render_ms)};
+      summary.cancelled = warped.channels.empty();
+      out.parts.push_back(std::move(warped));
+    }
   } catch (const std::bad_alloc&) {
     throw CommandError(out.output + ": cannot render: not enough memory");
   } catch (const std::invalid_argument& e) {
@@ -357,6 +374,7 @@ void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progre
   WriteImageOptions options = request.write;
   options.progress = progress;
   if (!output.extra.empty()) options.extra_channels = &output.extra;
+  if (!output.parts.empty()) options.other_parts = &output.parts;
   const Status s = output.stored
                        ? writeStoredImage(output.output, std::as_const(*output.stored).view(),
                                           &output.like, options)
@@ -365,6 +383,8 @@ void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progre
   output.stored.reset();
   output.image.reset();
   output.extra = {};
+  output.parts_written = !output.parts.empty();
+  output.parts = {};
 }
 
 }  // namespace artcam::cli

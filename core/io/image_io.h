@@ -196,6 +196,19 @@ bool sampledNearest(const std::string& name, bool integer);
 Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo& info,
                                         const ReadImageOptions& options = {});
 
+// A later part of a multi-part OpenEXR (ImageInfo::other_parts): its name and every channel of
+// it, read as readExtraChannels reads extra channels (stored floats, upright, grouped).
+struct ImagePart {
+  std::string name;
+  ExtraChannels channels;
+};
+
+// The parts of `path` after the first, in the file's order. Fails in one line naming the file and
+// the part when a part's data window is not the first part's (its pixels would not lie on the
+// image's) or cannot be read.
+Result<std::vector<ImagePart>> readOtherParts(const std::string& path, const ImageInfo& info,
+                                              const ReadImageOptions& options = {});
+
 // Whether `path`'s format holds named channels beyond RGBA (OpenEXR).
 bool formatStoresExtraChannels(const std::string& path);
 
@@ -229,6 +242,10 @@ struct WriteImageOptions {
   // was half): each group of the image's size. Only OpenEXR outputs take them; another format
   // refuses the write. Null or empty: none.
   const ExtraChannels* extra_channels = nullptr;
+  // Parts written after the image's own (a multi-part OpenEXR's later parts, warped), each of
+  // the image's size, in its windows; the image's part keeps `like`'s name, else "rgba". Only
+  // OpenEXR outputs take them; another format refuses the write. Null or empty: none.
+  const std::vector<ImagePart>* other_parts = nullptr;
   // Names of the image's own channels, one per channel (a depth map's "Z", as compositors
   // name depth). Empty: `like`'s names, else R, G, B, A (Y for one colour channel).
   std::vector<std::string> channel_names = {};

@@ -329,13 +329,16 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
                                    : pixel_type == "uint16" ? OIIO::TypeDesc::UINT16
                                                             : OIIO::TypeDesc::FLOAT;
 
+  // A multi-part OpenEXR's later parts, after the image's (extra_channels.h).
+  auto part_specs = io_extra::partSpecs(spec, format, options.other_parts, path);
+  if (!part_specs) return part_specs.status;
   const Status written = writeAtomically(path, [&](const std::string& temp) {
     // OIIO names the file it was given; the user knows only the target.
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + replaceAll(oneLine(message), temp, path));
     };
     io_checked::CheckedWrite checked(std::move(out));
-    if (!checked.open(temp, spec)) return failure(checked.cause());
+    if (!checked.open(temp, *part_specs)) return failure(checked.cause());
     constexpr int kBand = 64;
     std::vector<float> encoded;
     std::vector<float> with_channels;
@@ -368,6 +371,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       // Scanline numbers are the data window's (its origin, keepDisplayWindow, may not be 0).
       ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, data);
     }
+    if (ok && part_specs->size() > 1)
+      ok = io_extra::writeParts(checked.output(), temp, *part_specs, *options.other_parts);
     if (!ok || !checked.close()) return failure(checked.cause());
     if (like && like->metadata) {
       return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, same_encoding},

@@ -97,6 +97,13 @@ Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo
   return t ? t->read_extra_channels(path, info, options) : std::move(failed);
 }
 
+Result<std::vector<ImagePart>> readOtherParts(const std::string& path, const ImageInfo& info,
+                                              const ReadImageOptions& options) {
+  Result<std::vector<ImagePart>> failed;
+  const auto* t = tableOr(failed, path, "read");
+  return t ? t->read_other_parts(path, info, options) : std::move(failed);
+}
+
 bool formatStoresExtraChannels(const std::string& path) {
   if (jpeg_file::jpegExtension(path)) return false;
   const auto* t = loaded().table;

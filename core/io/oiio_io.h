@@ -30,6 +30,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
 Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo& info,
                                         const ReadImageOptions& options);
 bool formatStoresExtraChannels(const std::string& path);
+Result<std::vector<ImagePart>> readOtherParts(const std::string& path, const ImageInfo& info,
+                                              const ReadImageOptions& options);
 
 Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options);
 Result<StoredShape> readStoredShape(const std::string& path);
@@ -51,7 +53,7 @@ Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& op
 
 Status checkColourSpace(const std::string& name, const std::string& option);
 
-constexpr int kTableVersion = 3;
+constexpr int kTableVersion = 4;
 
 struct Table {
   int version = kTableVersion;
@@ -72,6 +74,7 @@ struct Table {
   decltype(&readStmapSamples) read_stmap_samples = &readStmapSamples;
   decltype(&readDepthFile) read_depth_file = &readDepthFile;
   decltype(&checkColourSpace) check_colour_space = &checkColourSpace;
+  decltype(&readOtherParts) read_other_parts = &readOtherParts;
 };
 
 }  // namespace artcam::oiio_io

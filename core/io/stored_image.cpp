@@ -480,12 +480,15 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   // Straight through when the layout is already the file's; else bands of rows converted.
   const bool direct = channels == image.channels && (alpha < 0 || associated) && !with_extra;
   const int sample = pixelTypeSize(image.type);
+  // A multi-part OpenEXR's later parts, after the image's (extra_channels.h).
+  auto part_specs = io_extra::partSpecs(spec, format, options.other_parts, path);
+  if (!part_specs) return part_specs.status;
   const Status written = writeAtomically(path, [&](const std::string& temp) {
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + io_text::replaceAll(oneLine(message), temp, path));
     };
     io_checked::CheckedWrite checked(std::move(out));
-    if (!checked.open(temp, spec)) return failure(checked.cause());
+    if (!checked.open(temp, *part_specs)) return failure(checked.cause());
     bool ok = true;
     CancelHook context{options.progress};  // cancel between bands
     const OIIO::ProgressCallback callback = context.callback();
@@ -541,6 +544,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
           checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), data);
     }
     if (context.cancelled) return failure("cancelled");
+    if (ok && part_specs->size() > 1)
+      ok = io_extra::writeParts(checked.output(), temp, *part_specs, *options.other_parts);
     if (!ok || !checked.close()) return failure(checked.cause());
     // The transfer is the input's (see above), so the colour-space tags still hold.
     if (like && like->metadata)

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // What an OpenEXR plate holds beside its colour, through artcam warp: ID-like channels (an
 // object ID, an index, Cryptomatte hashes, integer channels) sampled at the nearest texel, each
-// channel's stored type kept (half RGBA beside a float Z), and a multi-part file's later parts
-// named as left out in one warning line.
+// channel's stored type kept (half RGBA beside a float Z), and every part of a multi-part file
+// warped (or, into a format of one part, named as left out in one warning line).
 //
 // Truths: the source point of each output pixel comes from the homography's pixel matrix here,
 // not from the code under test; the nearest texel is the one containing it (pixel centres at
@@ -104,6 +104,30 @@ bool writeIdPlate(const QString& path) {
   auto out = OIIO::ImageOutput::create(path.toStdString());
   return out && out->open(path.toStdString(), spec) &&
          out->write_image(OIIO::TypeDesc::UNKNOWN, native.data()) && out->close();
+}
+
+float depthValue(int x, int y) { return static_cast<float>(1 + x + kW * y); }
+
+// Part "beauty" (half RGB), then part "depthpass": Z and an object ID, float.
+bool writeTwoParts(const QString& path) {
+  OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(kW, kH, 3, OIIO::TypeDesc::HALF),
+                              OIIO::ImageSpec(kW, kH, 2, OIIO::TypeDesc::FLOAT)};
+  specs[0].attribute("name", "beauty");
+  specs[1].attribute("name", "depthpass");
+  specs[1].channelnames = {"Z", "object.id"};
+  const std::vector<float> rgb(static_cast<size_t>(kW) * kH * 3, 0.5f);
+  std::vector<float> aux;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      aux.push_back(depthValue(x, y));
+      aux.push_back(objectId(x, y));
+    }
+  const std::string file = path.toStdString();
+  auto out = OIIO::ImageOutput::create(file);
+  return out && out->supports("multiimage") && out->open(file, 2, specs) &&
+         out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) &&
+         out->open(file, specs[1], OIIO::ImageOutput::AppendSubimage) &&
+         out->write_image(OIIO::TypeDesc::FLOAT, aux.data()) && out->close();
 }
 
 struct ReadBack {
@@ -237,27 +261,61 @@ class TestCliExrParts : public QObject {
     QCOMPARE(back.spec.channelformat(4), OIIO::TypeDesc(OIIO::TypeDesc::FLOAT));
   }
 
-  // A second part is not dropped silently: one warning line names it, the first part written.
-  void laterPartsAreNamedAsLeftOut() {
-    OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(kW, kH, 3, OIIO::TypeDesc::HALF),
-                                OIIO::ImageSpec(kW, kH, 1, OIIO::TypeDesc::FLOAT)};
-    specs[0].attribute("name", "beauty");
-    specs[1].attribute("name", "depthpass");
-    specs[1].channelnames = {"Z"};
-    const std::vector<float> rgb(static_cast<size_t>(kW) * kH * 3, 0.5f);
-    const std::vector<float> z(static_cast<size_t>(kW) * kH, 7.0f);
-    {
-      const std::string file = path("two-part.exr").toStdString();
-      auto out = OIIO::ImageOutput::create(file);
-      QVERIFY(out && out->supports("multiimage"));
-      QVERIFY(out->open(file, 2, specs));
-      QVERIFY(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
-      QVERIFY(out->open(file, specs[1], OIIO::ImageOutput::AppendSubimage));
-      QVERIFY(out->write_image(OIIO::TypeDesc::FLOAT, z.data()));
-      QVERIFY(out->close());
-    }
+  // A two-part EXR (colour, then a part of depth and an object ID) keeps both parts: the second
+  // warped through the same camera, each channel at the nearest texel of the same source point,
+  // its name, channel names and types kept.
+  void everyPartIsWarped() {
+    QVERIFY(writeTwoParts(path("two-part.exr")));
     const Run r = artcamCli(
         {"warp", path("two-part.exr"), path("h.artcam"), "-o", path("two-part-out.exr"), "-q"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY2(!r.err.contains("left out"), qPrintable(r.err));
+    auto in = OIIO::ImageInput::open(path("two-part-out.exr").toStdString());
+    QVERIFY(in);
+    QCOMPARE(in->spec().get_string_attribute("name"), std::string("beauty"));
+    // The first part's colour (and the alpha a warp adds where pixels have no preimage).
+    QCOMPARE(in->spec().channelnames.front(), std::string("R"));
+    QVERIFY(in->seek_subimage(1, 0));
+    const OIIO::ImageSpec second = in->spec();
+    QCOMPARE(second.get_string_attribute("name"), std::string("depthpass"));
+    QCOMPARE(second.channelnames, (std::vector<std::string>{"Z", "object.id"}));
+    QCOMPARE(second.channelformat(0), OIIO::TypeDesc(OIIO::TypeDesc::FLOAT));
+    QCOMPARE(second.width, kW);
+    QVERIFY(!in->seek_subimage(2, 0));
+    in->geterror();
+    QVERIFY(in->seek_subimage(1, 0));
+    std::vector<float> values(static_cast<size_t>(kW) * kH * 2);
+    QVERIFY(in->read_image(1, 0, 0, 2, OIIO::TypeDesc::FLOAT, values.data()));
+    const Eigen::Matrix3d source_from_target = targetFromSourcePx().inverse();
+    int checked = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const Eigen::Vector3d s = source_from_target * Eigen::Vector3d(x + 0.5, y + 0.5, 1.0);
+        const double sx = s.x() / s.z(), sy = s.y() / s.z();
+        if (sx < 1.0 || sy < 1.0 || sx > kW - 1.0 || sy > kH - 1.0) continue;
+        const double fx = sx - std::floor(sx), fy = sy - std::floor(sy);
+        if (fx < 1e-3 || fx > 1 - 1e-3 || fy < 1e-3 || fy > 1 - 1e-3) continue;
+        const int tx = static_cast<int>(std::floor(sx)), ty = static_cast<int>(std::floor(sy));
+        const float* px = &values[(static_cast<size_t>(y) * kW + static_cast<size_t>(x)) * 2];
+        QVERIFY2(px[0] == depthValue(tx, ty) && px[1] == objectId(tx, ty),
+                 qPrintable(QString("output (%1, %2): Z %3 id %4, expected %5 and %6")
+                                .arg(x)
+                                .arg(y)
+                                .arg(double(px[0]))
+                                .arg(double(px[1]))
+                                .arg(double(depthValue(tx, ty)))
+                                .arg(double(objectId(tx, ty)))));
+        ++checked;
+      }
+    QVERIFY2(checked > kW * kH / 2, qPrintable(QString::number(checked)));
+  }
+
+  // Into a format of one part, the later parts are not dropped silently: one warning line names
+  // them and why, the first part written.
+  void laterPartsAreNamedAsLeftOut() {
+    QVERIFY(writeTwoParts(path("two-part.exr")));
+    const Run r = artcamCli(
+        {"warp", path("two-part.exr"), path("h.artcam"), "-o", path("two-part-out.png"), "-q"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     const QStringList lines = r.err.trimmed().split('\n');
     int naming = 0;
@@ -266,7 +324,7 @@ class TestCliExrParts : public QObject {
           line.contains(path("two-part.exr")) && line.contains("left out"))
         ++naming;
     QVERIFY2(naming == 1, qPrintable(r.err));
-    QVERIFY(QFile::exists(path("two-part-out.exr")));
+    QVERIFY(QFile::exists(path("two-part-out.png")));
   }
 };
 
