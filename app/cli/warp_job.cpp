@@ -5,6 +5,7 @@
 #include "app/cli/memory.h"
 #include "core/depth/depth_raster.h"
 #include "core/io/depth_file.h"
+#include "core/model/frames.h"
 #include "core/util/memory_budget.h"
 
 #include <algorithm>
@@ -89,6 +90,43 @@ ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, 
     warped.groups.push_back(std::move(out));
   }
   return warped;
+}
+
+// An OpenEXR plate whose data window is not its display window (overscan): the camera, made for
+// the display window, re-expressed for the data window's pixels (reframeToRegions), so the
+// output holds the same data window of the camera's output frame. Empty for any other input.
+std::optional<WarpCameraFile> forDataWindow(const WarpCameraFile& camera,
+                                            const DecodedInput& source,
+                                            const WarpRequest& request) {
+  if (!source.loaded) return std::nullopt;
+  const ImageInfo& info = source.loaded->info;
+  const ImageF& image = source.loaded->image;
+  if (info.display_width <= 0 ||
+      (info.data_origin_x == 0 && info.data_origin_y == 0 && info.display_width == image.width &&
+       info.display_height == image.height))
+    return std::nullopt;
+  const std::string what =
+      source.input + ": its data window (" + sizeText(image.width, image.height) + " at " +
+      std::to_string(info.data_origin_x) + ", " + std::to_string(info.data_origin_y) +
+      ") is not its display window (" + sizeText(info.display_width, info.display_height) + ")";
+  if (camera.camera.isPiecewise())
+    throw CommandError(what + ", and " + camera.path +
+                       " is piecewise: its patches lie on the display window");
+  if (camera.camera.sourceSize().width * camera.camera.targetSize().height !=
+      camera.camera.sourceSize().height * camera.camera.targetSize().width)
+    throw CommandError(what + ", and " + camera.path +
+                       "'s output frame is not of the input frame's aspect");
+  if (request.options.warp.width > 0 || request.depth || request.second)
+    throw CommandError(what + ": --size, --depth and --second take display-window images");
+  WarpCameraFile reframed = camera;
+  const FrameSize display{info.display_width, info.display_height};
+  const FrameSize data{image.width, image.height};
+  for (Camera& layer : reframed.camera.layers) {
+    layer.setFrames(display, display);
+    reframeToRegions(layer, info.data_origin_x, info.data_origin_y, data, info.data_origin_x,
+                     info.data_origin_y, data);
+  }
+  return reframed;
 }
 
 }  // namespace
@@ -204,6 +242,7 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
   ReadImageOptions read;
   read.progress = progress;
   read.colour_space = request.colour_space_in;
+  read.data_window = true;  // an overscan plate is kept (renderForWarp re-expresses the camera)
   // The stored-type path where the output keeps the input's encoding (peak memory ≤ input +
   // output + a small constant); re-encoding between integer and float files, and cameras that
   // render from the linear photo, go through linear light (image_io.h); so does
@@ -219,7 +258,8 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
                            (asked == "uint16" && type == PixelType::UInt16);
     // Values in other primaries (an ACEScg EXR) keep them only where the output names them.
     const bool primaries_kept = !shape->foreign_primaries || formatStoresExtraChannels(output);
-    if (same_type && primaries_kept && storedWriteKeepsEncoding(output, type)) {
+    if (same_type && primaries_kept && !shape->data_window &&
+        storedWriteKeepsEncoding(output, type)) {
       // The decoded photo and the output together (the output frame as the rule gives it, an
       // EXIF turn aside), and the float copy readStoredImage also checks, against the budget.
       const FrameSize out = outputFrameFor(camera.camera, {shape->width, shape->height},
@@ -256,9 +296,11 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
   return decoded;
 }
 
-RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
+RenderedOutput renderForWarp(const WarpCameraFile& given, DecodedInput&& input,
                              const WarpRequest& request, const Progress& progress) {
   DecodedInput source = std::move(input);  // freed on return, before the output is encoded
+  const std::optional<WarpCameraFile> reframed = forDataWindow(given, source, request);
+  const WarpCameraFile& camera = reframed ? *reframed : given;
   RenderedOutput out;
   out.output = source.output;
   if (source.streamed) {  // rendered band by band as encodeWarp writes

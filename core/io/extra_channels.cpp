@@ -107,7 +107,9 @@ Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo
   if (!opened) return R::failure(opened.status.message);
   OIIO::ImageInput& in = **opened;
   const OIIO::ImageSpec spec = in.spec();
-  if (const Status windows = io_input::dataWindowIsDisplayWindow(in, spec, path); !windows)
+  if (const Status windows =
+          io_input::dataWindowIsDisplayWindow(in, spec, path, options.data_window);
+      !windows)
     return R::failure(windows.message);
   return readGroups(in, 0, io_input::keptChannels(spec), info, options, path);
 }
@@ -261,6 +263,19 @@ bool writeParts(OIIO::ImageOutput& out, const std::string& temp,
 void keepDisplayWindow(OIIO::ImageSpec& spec, const std::string& format,
                        const OIIO::ImageSpec* like) {
   if (format != "openexr" || !like) return;
+  // An image of `like`'s data window that is not its display window (overscan kept): both
+  // windows as they were.
+  if ((like->x != like->full_x || like->y != like->full_y || like->width != like->full_width ||
+       like->height != like->full_height) &&
+      like->full_width > 0 && spec.width == like->width && spec.height == like->height) {
+    spec.x = like->x;
+    spec.y = like->y;
+    spec.full_x = like->full_x;
+    spec.full_y = like->full_y;
+    spec.full_width = like->full_width;
+    spec.full_height = like->full_height;
+    return;
+  }
   spec.x = spec.full_x = like->full_x;
   spec.y = spec.full_y = like->full_y;
   spec.full_width = spec.width;

@@ -262,6 +262,13 @@ ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
   if (info.format_name == "jpeg") info.jpeg_quality = estimateJpegQuality(path);
   info.metadata = std::move(metadata);
   if (spec.get_int_attribute("oiio:subimages", 1) > 1) info.other_parts = otherPartNames(path);
+  if (info.format_name == "openexr" && spec.full_width > 0 && spec.full_height > 0 &&
+      orientation == 1) {
+    info.data_origin_x = spec.x - spec.full_x;
+    info.data_origin_y = spec.y - spec.full_y;
+    info.display_width = spec.full_width;
+    info.display_height = spec.full_height;
+  }
   if (auto primaries = foreignChromaticities(spec, path); primaries)
     info.chromaticities = *primaries.value;
   for (int c = keptChannels(spec); c < spec.nchannels; ++c)

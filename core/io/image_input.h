@@ -101,9 +101,11 @@ inline std::vector<unsigned char> embeddedProfileBytes(const OIIO::ImageSpec& sp
 // An OpenEXR file whose data window is not its display window is refused (image_io.h, "Data
 // and display windows"): the readers hand over the data window's pixels while camera pixels
 // are display-window pixels. Other formats have no separate display window.
+// `data_window` (ReadImageOptions::data_window): the caller places the data window's pixels
+// itself, so any data window is taken.
 inline Status dataWindowIsDisplayWindow(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
-                                        const std::string& path) {
-  if (std::string(in.format_name()) != "openexr") return Status::success();
+                                        const std::string& path, bool data_window = false) {
+  if (data_window || std::string(in.format_name()) != "openexr") return Status::success();
   if (spec.full_width <= 0 || spec.full_height <= 0) return Status::success();
   if (spec.x == spec.full_x && spec.y == spec.full_y && spec.width == spec.full_width &&
       spec.height == spec.full_height)
@@ -112,12 +114,12 @@ inline Status dataWindowIsDisplayWindow(const OIIO::ImageInput& in, const OIIO::
     return std::to_string(w) + "x" + std::to_string(h) + " at (" + std::to_string(x) + ", " +
            std::to_string(y) + ")";
   };
-  return Status::failure(path + ": cannot read: the data window (" +
-                         window(spec.x, spec.y, spec.width, spec.height) +
-                         ") is not the display window (" +
-                         window(spec.full_x, spec.full_y, spec.full_width, spec.full_height) +
-                         "), whose pixels the camera's are; make them one with oiiotool " +
-                         "--croptofull");
+  return Status::failure(
+      path + ": cannot read: the data window (" + window(spec.x, spec.y, spec.width, spec.height) +
+      ") is not the display window (" +
+      window(spec.full_x, spec.full_y, spec.full_width, spec.full_height) +
+      "), whose pixels the camera's are; artcam warp and batch keep it, or make " +
+      "them one with oiiotool --croptofull");
 }
 
 // The primaries and white of `spec`'s RGB as its "chromaticities" attribute (OpenEXR) gives

@@ -120,7 +120,9 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   if (!opened) return R::failure(opened.status.message);
   const OIIO::ImageInput::unique_ptr& in = *opened;
   const OIIO::ImageSpec spec = in->spec();
-  if (const Status windows = io_input::dataWindowIsDisplayWindow(*in, spec, path); !windows)
+  if (const Status windows =
+          io_input::dataWindowIsDisplayWindow(*in, spec, path, options.data_window);
+      !windows)
     return R::failure(windows.message);
 
   const int channels = io_input::keptChannels(spec);

@@ -55,15 +55,20 @@
 //   Each extra channel keeps its stored type in an OpenEXR output (ChannelGroup::stored_types),
 //   and the image's own channels theirs (a half RGBA beside a float Z stays half).
 // - Multi-part OpenEXR: the readers hand over the first part; the others are named in
-//   ImageInfo::other_parts, and commands say they are left out in one warning line.
+//   ImageInfo::other_parts and read on request (readOtherParts) as extra channels are, each
+//   part of the first part's data window; WriteImageOptions::other_parts writes them back as
+//   parts after the image's. Commands that cannot write them say so in one warning line.
 // - Data and display windows (OpenEXR): camera pixel coordinates are display-window pixels,
 //   pixel (0, 0) being the display window's top-left one (the OpenEXR and Nuke convention).
 //   The readers hand over the data window's pixels, so they refuse a file whose data window
 //   is not its display window (one line naming both and the fix, oiiotool --croptofull):
-//   placing the pixels anywhere else would move them silently. On write, an OpenEXR output
-//   gets `like`'s display-window origin, its size being the image's, and a data window equal
-//   to it: a warp of the whole frame keeps the input's display window, and an image of
-//   another size starts where the input's frame did.
+//   placing the pixels anywhere else would move them silently; unless the caller asks for the
+//   data window (ReadImageOptions::data_window) and places them by ImageInfo::data_origin (warp
+//   and batch re-express the camera for them, core/model/frames.h reframeToRegions). On write,
+//   an OpenEXR output of `like`'s data-window size keeps both of `like`'s windows (overscan
+//   kept); otherwise it gets `like`'s display-window origin, its size being the image's, and a
+//   data window equal to it: a warp of the whole frame keeps the input's display window, and
+//   an image of another size starts where the input's frame did.
 // - Write: the format follows the extension. Pixel type = options, else `like`'s, else the
 //   format's natural one, then fitted to what the format stores (EXR has no 8/16-bit: half;
 //   PNG has no float: uint16; JPEG/BMP/TGA/GIF/WebP: uint8). Float/half files are written
@@ -143,6 +148,12 @@ struct ImageInfo {
   // "part N"): the readers hand over the first part only, and commands name the rest as left
   // out in one warning line.
   std::vector<std::string> other_parts;
+  // Where the pixels handed over lie in the frame camera pixels are in (an OpenEXR's display
+  // window): the data window's origin relative to the display window's, and the display
+  // window's size. (0, 0) and the image's size unless ReadImageOptions::data_window took an
+  // overscan file; display_width 0: not recorded (the image's size).
+  int data_origin_x = 0, data_origin_y = 0;
+  int display_width = 0, display_height = 0;
 };
 
 struct ReadImageOptions {
@@ -152,6 +163,11 @@ struct ReadImageOptions {
   // says of itself; empty: as the file says. readImage only: the stored-value readers keep the
   // stored numbers.
   std::string colour_space = {};
+  // Take an OpenEXR whose data window is not its display window (overscan), handing over the
+  // data window's pixels, instead of refusing it: for callers that place them by
+  // ImageInfo::data_origin (artcam warp and batch re-express the camera for them). readImage,
+  // readExtraChannels and readOtherParts only.
+  bool data_window = false;
 };
 
 // Channels beyond the image's own, as their stored float values, each group holding 1..4 of

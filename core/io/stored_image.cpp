@@ -345,14 +345,14 @@ Result<StoredShape> readStoredShape(const std::string& path) {
   auto opened = io_input::openImageInput(path, /*whole=*/false);
   if (!opened) return Result<StoredShape>::failure(opened.status.message);
   const OIIO::ImageSpec& spec = (*opened)->spec();
-  if (const Status windows = io_input::dataWindowIsDisplayWindow(**opened, spec, path); !windows)
-    return Result<StoredShape>::failure(windows.message);
+  // Reported, not refused: the readers refuse (or, asked to, keep) the data window.
+  const bool overscan = !io_input::dataWindowIsDisplayWindow(**opened, spec, path);
   std::string name;
   const auto primaries = io_input::foreignChromaticities(spec, path);
   if (!primaries) return Result<StoredShape>::failure(primaries.status.message);
   return Result<StoredShape>::success(
       StoredShape{spec.width, spec.height, io_input::keptChannels(spec),
-                  storedType(spec.format, name), primaries.value->has_value()});
+                  storedType(spec.format, name), primaries.value->has_value(), overscan});
 }
 
 bool storedWriteKeepsEncoding(const std::string& path, PixelType type) {

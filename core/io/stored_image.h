@@ -62,6 +62,9 @@ struct StoredShape {
   // The file's RGB is in primaries other than the working space's (ImageInfo::chromaticities):
   // only an output that names its primaries (OpenEXR) may keep the stored values.
   bool foreign_primaries = false;
+  // An OpenEXR whose data window is not its display window (image_io.h): only readImage with
+  // ReadImageOptions::data_window takes it.
+  bool data_window = false;
 };
 Result<StoredShape> readStoredShape(const std::string& path);
 

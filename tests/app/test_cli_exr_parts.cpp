@@ -2,7 +2,8 @@
 // What an OpenEXR plate holds beside its colour, through artcam warp: ID-like channels (an
 // object ID, an index, Cryptomatte hashes, integer channels) sampled at the nearest texel, each
 // channel's stored type kept (half RGBA beside a float Z), and every part of a multi-part file
-// warped (or, into a format of one part, named as left out in one warning line).
+// warped (or, into a format of one part, named as left out in one warning line), and overscan
+// (a data window beyond the display window) kept.
 //
 // Truths: the source point of each output pixel comes from the homography's pixel matrix here,
 // not from the code under test; the nearest texel is the one containing it (pixel centres at
@@ -325,6 +326,69 @@ class TestCliExrParts : public QObject {
         ++naming;
     QVERIFY2(naming == 1, qPrintable(r.err));
     QVERIFY(QFile::exists(path("two-part-out.png")));
+  }
+
+  // Overscan: a data window beyond the display window is kept. The output has both windows of
+  // the input, and each of its data-window pixels holds the input's colour at the source point
+  // of its display-window position (the colour is linear in position, so bilinear is exact).
+  void overscanIsKeptAsADataWindow() {
+    constexpr int kOx = -8, kOy = -6, kDw = kW + 16, kDh = kH + 12;
+    OIIO::ImageSpec spec(kDw, kDh, 3, OIIO::TypeDesc::FLOAT);
+    spec.x = kOx;
+    spec.y = kOy;
+    spec.full_x = spec.full_y = 0;
+    spec.full_width = kW;
+    spec.full_height = kH;
+    std::vector<float> pixels;
+    for (int y = 0; y < kDh; ++y)
+      for (int x = 0; x < kDw; ++x)
+        for (float v : {(x + kOx + 0.5f) / kW, (y + kOy + 0.5f) / kH, 0.5f}) pixels.push_back(v);
+    const std::string file = path("overscan.exr").toStdString();
+    {
+      auto out = OIIO::ImageOutput::create(file);
+      QVERIFY(out && out->open(file, spec) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+    }
+    const Run r = artcamCli(
+        {"warp", path("overscan.exr"), path("h.artcam"), "-o", path("overscan-out.exr"), "-q"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    const ReadBack back = readBack(path("overscan-out.exr"));
+    QVERIFY(!back.pixels.empty());
+    QCOMPARE(back.spec.x, kOx);
+    QCOMPARE(back.spec.y, kOy);
+    QCOMPARE(back.spec.width, kDw);
+    QCOMPARE(back.spec.height, kDh);
+    QCOMPARE(back.spec.full_x, 0);
+    QCOMPARE(back.spec.full_y, 0);
+    QCOMPARE(back.spec.full_width, kW);
+    QCOMPARE(back.spec.full_height, kH);
+    const Eigen::Matrix3d source_from_target = targetFromSourcePx().inverse();
+    const size_t n = static_cast<size_t>(back.spec.nchannels);
+    int checked = 0, outside_display = 0;
+    for (int y = 0; y < kDh; ++y)
+      for (int x = 0; x < kDw; ++x) {
+        const double tx = x + kOx + 0.5, ty = y + kOy + 0.5;  // display-window position
+        const Eigen::Vector3d s = source_from_target * Eigen::Vector3d(tx, ty, 1.0);
+        const double sx = s.x() / s.z(), sy = s.y() / s.z();
+        // A texel's margin inside the data window: every bilinear tap is a real texel.
+        if (sx < kOx + 1.0 || sy < kOy + 1.0 || sx > kOx + kDw - 1.0 || sy > kOy + kDh - 1.0)
+          continue;
+        const float* px = &back.pixels[(static_cast<size_t>(y) * kDw + static_cast<size_t>(x)) * n];
+        QVERIFY2(std::abs(px[0] - sx / kW) < 1e-4 && std::abs(px[1] - sy / kH) < 1e-4,
+                 qPrintable(QString("data pixel (%1, %2): %3, %4; expected %5, %6")
+                                .arg(x)
+                                .arg(y)
+                                .arg(double(px[0]))
+                                .arg(double(px[1]))
+                                .arg(sx / kW)
+                                .arg(sy / kH)));
+        if (tx < 0 || ty < 0 || tx > kW || ty > kH) ++outside_display;
+        ++checked;
+      }
+    QVERIFY2(checked > kW * kH / 2 && outside_display > 100,
+             qPrintable(QString("%1 checked, %2 outside the display window")
+                            .arg(checked)
+                            .arg(outside_display)));
   }
 };
 
