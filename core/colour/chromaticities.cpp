@@ -83,9 +83,18 @@ bool Chromaticities::valid() const {
 }
 
 std::string Chromaticities::describe() const {
-  char text[160];
-  std::snprintf(text, sizeof text, "R(%.4g, %.4g) G(%.4g, %.4g) B(%.4g, %.4g) W(%.4g, %.4g)", xy[0],
-                xy[1], xy[2], xy[3], xy[4], xy[5], xy[6], xy[7]);
+  // A value that is no number is said in words: a hostile file's NaN is not printed as "nan".
+  const auto value = [](double v) {
+    if (!std::isfinite(v)) return std::string("not a number");
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v);
+    return std::string(text);
+  };
+  const char* names[] = {"R", "G", "B", "W"};
+  std::string text;
+  for (size_t k = 0; k < 4; ++k)
+    text += (k ? " " : "") + std::string(names[k]) + "(" + value(xy[2 * k]) + ", " +
+            value(xy[2 * k + 1]) + ")";
   return text;
 }
 
