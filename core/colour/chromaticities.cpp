@@ -109,6 +109,23 @@ Matrix3 chromaticitiesFromWorking(const Chromaticities& file) {
   return inverse(workingFromChromaticities(file));
 }
 
+std::optional<Chromaticities> chromaticitiesOfMatrix(const Matrix3& file_from_working) {
+  if (!(std::fabs(determinant(file_from_working)) > 1e-12)) return std::nullopt;
+  // Column k of XYZ-from-file is the XYZ of the file's primary k; their sum its white.
+  const Matrix3 xyz = multiply(xyzFromRgb(Chromaticities::rec709()), inverse(file_from_working));
+  Chromaticities c;
+  for (int k = 0; k < 4; ++k) {
+    const std::array<double, 3> v =
+        k < 3 ? std::array<double, 3>{xyz[k], xyz[3 + k], xyz[6 + k]} : apply(xyz, {1.0, 1.0, 1.0});
+    const double sum = v[0] + v[1] + v[2];
+    if (!(std::fabs(sum) > 1e-12)) return std::nullopt;
+    c.xy[2 * k] = v[0] / sum;
+    c.xy[2 * k + 1] = v[1] / sum;
+  }
+  if (!c.valid()) return std::nullopt;
+  return c;
+}
+
 void applyMatrix(const Matrix3& m, float* data, size_t pixels, int channels, int alpha_channel) {
   int rgb[3];
   int found = 0;

@@ -39,6 +39,11 @@ using Matrix3 = std::array<double, 9>;
 Matrix3 workingFromChromaticities(const Chromaticities& file);
 Matrix3 chromaticitiesFromWorking(const Chromaticities& file);
 
+// The chromaticities of the RGB space whose linear values are `file_from_working` times the
+// working space's (the inverse of workingFromChromaticities, its white as the map puts it: an
+// adapted space's white is D65's); empty when the matrix is singular or makes no RGB space.
+std::optional<Chromaticities> chromaticitiesOfMatrix(const Matrix3& file_from_working);
+
 // In place over `pixels` interleaved pixels of `channels` floats: the first three non-alpha
 // channels are R, G, B; alpha (at `alpha_channel`, -1: none) and any other channel unchanged.
 void applyMatrix(const Matrix3& m, float* data, size_t pixels, int channels, int alpha_channel);

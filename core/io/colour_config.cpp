@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -120,6 +121,28 @@ Status toWorking(const std::string& name, float* data, size_t pixels, int channe
 Status fromWorking(const std::string& name, float* data, size_t pixels, int channels,
                    const std::string& what) {
   return convert(config().working, name, data, pixels, channels, what);
+}
+
+std::optional<Chromaticities> linearChromaticities(const std::string& name) {
+  const Config& c = config();
+  if (!c.error.empty()) return std::nullopt;
+  // The basis, then values that a matrix must map as the basis says (scaled, negative, > 1).
+  const float probe[6][3] = {
+      {1, 0, 0},          {0, 1, 0}, {0, 0, 1}, {0.3f, 0.6f, 0.1f}, {0.75f, 1.5f, 0.25f},
+      {-0.2f, 0.4f, 1.3f}};
+  float values[6][3];
+  std::memcpy(values, probe, sizeof values);
+  if (!fromWorking(name, &values[0][0], 6, 3, "probe")) return std::nullopt;
+  Matrix3 m{};
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) m[static_cast<size_t>(r * 3 + k)] = values[k][r];
+  for (int p = 3; p < 6; ++p)
+    for (int r = 0; r < 3; ++r) {
+      double want = 0;
+      for (int k = 0; k < 3; ++k) want += m[static_cast<size_t>(r * 3 + k)] * probe[p][k];
+      if (!(std::fabs(want - values[p][r]) <= 1e-5 * (1.0 + std::fabs(want)))) return std::nullopt;
+    }
+  return chromaticitiesOfMatrix(m);
 }
 
 }  // namespace artcam::io_colour

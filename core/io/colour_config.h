@@ -3,9 +3,11 @@
 // decisions): the readers and writers convert through these.
 #pragma once
 
+#include "core/colour/chromaticities.h"
 #include "core/model/status.h"
 
 #include <cstddef>
+#include <optional>
 #include <string>
 
 namespace artcam::io_colour {
@@ -19,5 +21,10 @@ Status toWorking(const std::string& name, float* data, size_t pixels, int channe
                  const std::string& what);
 Status fromWorking(const std::string& name, float* data, size_t pixels, int channels,
                    const std::string& what);
+
+// The chromaticities of colour space `name` when the config's map into it from the working space
+// is linear (a matrix: ACEScg, linear P3), so an OpenEXR output in it can name its primaries;
+// empty for a space with a curve (sRGB, a log space) or when the config cannot convert.
+std::optional<Chromaticities> linearChromaticities(const std::string& name);
 
 }  // namespace artcam::io_colour

@@ -13,7 +13,10 @@
 //   resampled in linear light (a plate in a log space is not resampled in its log numbers).
 // - A name written (WriteImageOptions::ocio_colour_space) encodes the output from the working
 //   space into it, straight colour, before quantising; the file is labelled with it
-//   ("oiio:ColorSpace"), with no ICC profile and no chromaticities (OCIO names no primaries).
+//   ("oiio:ColorSpace", which OpenEXR does not keep), with no ICC profile. An OpenEXR output
+//   names the space's primaries (chromaticities) when the conversion into it is a matrix
+//   (ACEScg, linear P3: probed on the basis and checked on other values), so a reader that
+//   honours chromaticities reads its colours right; a space with a curve names none.
 // - RGB only: OCIO converts colour triples; a grey image is refused in one line.
 #pragma once
 

@@ -219,6 +219,13 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       float xy[8];
       for (size_t k = 0; k < 8; ++k) xy[k] = static_cast<float>(label.xy[k]);
       spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), xy);
+    } else if (format == "openexr") {
+      // A named space that is a matrix from the working space has primaries: they are named.
+      if (const auto named_primaries = io_colour::linearChromaticities(named)) {
+        float xy[8];
+        for (size_t k = 0; k < 8; ++k) xy[k] = static_cast<float>(named_primaries->xy[k]);
+        spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), xy);
+      }
     }
   } else {
     spec.erase_attribute("chromaticities");  // integer values are encoded from the working space

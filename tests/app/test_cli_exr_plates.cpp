@@ -223,7 +223,9 @@ class TestCliExrPlates : public QObject {
   }
 
   // --colourspace-out encodes the output into the named space: a Rec.709 EXR into ACEScg, as
-  // oiiotool converts it, labelled with the name and not with Rec.709's chromaticities.
+  // oiiotool converts it. ACEScg is a matrix from the working space, so the EXR names its
+  // primaries: read back, it gives the sRGB oiiotool makes of the input. sRGB (a curve) names
+  // none.
   void namedOutputColourSpaceMatchesOiiotool() {
     if (oiiotool_.isEmpty()) QSKIP("oiiotool is not installed: no outside truth to compare with");
     QVERIFY(writeExr(path("unlabelled.exr"), nullptr));
@@ -239,9 +241,26 @@ class TestCliExrPlates : public QObject {
                       error),
              qPrintable(error));
     const Pixels out = readPixels(path("to-acescg.exr"));
-    QVERIFY(chromaticitiesOf(out.spec).empty());
     const double worst = maxDifference(out, readPixels(path("to-acescg-truth.exr")));
     QVERIFY2(worst >= 0 && worst <= 1e-5, qPrintable(QString("max difference %1").arg(worst)));
+    QCOMPARE(chromaticitiesOf(out.spec).size(), size_t{8});
+    const Run back = artcamCli({"warp", path("to-acescg.exr"), path("id.artcam"), "-o",
+                                path("back.png"), "--bit-depth", "8", "-q"});
+    QVERIFY2(back.exit_code == 0, qPrintable(back.err));
+    QVERIFY2(oiiotool({path("unlabelled.exr"), "--colorconvert", "lin_rec709", "sRGB", "-d",
+                       "uint8", "-o", path("back-truth.png")},
+                      error),
+             qPrintable(error));
+    const double round_trip =
+        maxDifference(readPixels(path("back.png")), readPixels(path("back-truth.png")));
+    QVERIFY2(round_trip >= 0 && round_trip <= 1.0 / 255 + 1e-6,
+             qPrintable(QString("read back: max difference %1/255").arg(round_trip * 255)));
+    qputenv("OCIO", path("config.ocio").toUtf8());
+    const Run curve = artcamCli({"warp", path("unlabelled.exr"), path("id.artcam"), "-o",
+                                 path("to-srgb.exr"), "--colourspace-out", "sRGB", "-q"});
+    qunsetenv("OCIO");
+    QVERIFY2(curve.exit_code == 0, qPrintable(curve.err));
+    QVERIFY(chromaticitiesOf(readPixels(path("to-srgb.exr")).spec).empty());
   }
 
   // An unknown name is a usage error in one line naming the option and some valid names, before

@@ -56,6 +56,16 @@ class TestChromaticities : public QObject {
     QCOMPARE(px[3], 0.5f);
   }
 
+  // A matrix from the working space gives back the primaries it was made from (P3, D65: no
+  // adaptation to undo).
+  void chromaticitiesOfAMatrixAreItsPrimaries() {
+    const auto found = chromaticitiesOfMatrix(chromaticitiesFromWorking(kDisplayP3));
+    QVERIFY(found);
+    for (size_t k = 0; k < 8; ++k)
+      QVERIFY2(std::fabs(found->xy[k] - kDisplayP3.xy[k]) < 1e-9, found->describe().c_str());
+    QVERIFY(!chromaticitiesOfMatrix(Matrix3{1, 0, 0, 0, 1, 0, 0, 0, 0}));
+  }
+
   void degenerateChromaticitiesAreInvalid() {
     QVERIFY(kAcescg.valid());
     Chromaticities zero_y = kAcescg;
