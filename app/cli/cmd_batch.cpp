@@ -32,6 +32,7 @@ const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
     "                    [--quality N] [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
+    "                    [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                    [--overwrite] [--json] [--quiet]\n\n"
     "Warps every IN through the camera into DIR (created if missing), as artcam warp does\n"
     "(upright, with IN's metadata, quality and pixel type unless --quality or --bit-depth),\n"
@@ -65,7 +66,11 @@ const char* const kBatchUsage =
     "                       IN's)\n"
     "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
     "                       IN's ICC profile when it had one, embedded; srgb: sRGB, with an\n"
-    "                       sRGB profile). Float output is linear Rec.709/D65 either way\n"
+    "                       sRGB profile). Float output is linear Rec.709/D65, but an OpenEXR\n"
+    "                       output keeps an EXR input's other primaries (ACEScg) with input\n"
+    "  --colourspace-in NAME the OpenColorIO colour space the input is in, over what the\n"
+    "                       file says (config: $OCIO, else OpenImageIO's built-in one)\n"
+    "  --colourspace-out NAME the OpenColorIO colour space the output is encoded in\n"
     "  --overwrite          replace outputs that exist (--force is the same); never an input\n"
     "  --json               the results as one JSON object on stdout (above)\n"
     "  -q, --quiet          no progress and no per-file lines (errors and summary only)\n\n"
@@ -114,6 +119,8 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
+                         {"--colourspace-in", "", true},
+                         {"--colourspace-out", "", true},
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--json", "", false},

@@ -28,6 +28,7 @@ const char* const kExportUsage =
     "usage: artcam export PROJECT.artcamproj -o OUT [--photo FILE] [--camera-out CAM.artcam]\n"
     "                     [--depth-out DEPTH.exr] [--size WxH] [--filter NAME] [--quality N]\n"
     "                     [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
+    "                     [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                     [--crop-valid | --fill R,G,B[,A]]\n"
     "                     [--json] [--quiet] [--overwrite]\n\n"
     "Renders a project saved by ARTcam Studio at the photo's full resolution, exactly as the\n"
@@ -55,7 +56,11 @@ const char* const kExportUsage =
     "  --bit-depth B          8, 16, half or float (default: the photo's)\n"
     "  --colourspace C        input or srgb: what 8/16-bit OUT is encoded in (default input:\n"
     "                         the photo's ICC profile when it had one, embedded; srgb: sRGB,\n"
-    "                         with an sRGB profile). Float OUT is linear Rec.709/D65 either way\n"
+    "                         with an sRGB profile). Float OUT is linear Rec.709/D65, but an\n"
+    "                         OpenEXR keeps an EXR photo's other primaries (ACEScg) with input\n"
+    "  --colourspace-in NAME  the OpenColorIO colour space the photo is in, over what the file\n"
+    "                         says (config: $OCIO, else OpenImageIO's built-in one)\n"
+    "  --colourspace-out NAME the OpenColorIO colour space OUT is encoded in\n"
     "  --crop-valid           crop to the largest rectangle whose every pixel has a preimage\n"
     "  --fill R,G,B[,A]       linear colour under pixels without a preimage (default: none,\n"
     "                         they stay transparent; a JPEG, which has no alpha, is filled\n"
@@ -98,6 +103,8 @@ int exportCommand(const std::vector<std::string>& argv) {
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
+                         {"--colourspace-in", "", true},
+                         {"--colourspace-out", "", true},
                          {"--crop-valid", "", false},
                          {"--fill", "", true},
                          {"--json", "", false},
@@ -120,6 +127,8 @@ int exportCommand(const std::vector<std::string>& argv) {
     options.filter = *filter;
   }
   parseWriteOptions(args, options.write);
+  ReadImageOptions read;
+  read.colour_space = parseColourSpaceIn(args);
   options.crop_to_valid = args.has("--crop-valid");
   if (const auto fill = args.value("--fill")) {
     if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");
@@ -160,7 +169,7 @@ int exportCommand(const std::vector<std::string>& argv) {
 
   const CooperativeInterrupt interrupt;
   ProgressBar bar(0, args.has("--quiet"));
-  Result<ProjectScene> scene = loadProjectScene(*project, project_path);
+  Result<ProjectScene> scene = loadProjectScene(*project, project_path, read);
   if (!scene) throw CommandError(scene.status.message);
   if (!scene->camera.note.empty())
     std::fprintf(stderr, "artcam export: warning: %s\n", scene->camera.note.c_str());

@@ -20,6 +20,7 @@ const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
     "                   [--format EXT] [--threads N] [--quality N]\n"
     "                   [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
+    "                   [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n"
     "                   [--second FILE]\n\n"
@@ -36,10 +37,12 @@ const char* const kWarpUsage =
     "Channels: IN's channels are kept; an alpha channel is added only where some pixel has no\n"
     "preimage (transparent; black in formats without alpha) or IN had alpha. Channels beyond\n"
     "RGBA (an EXR's Z, N.x, AOVs) are warped at the same source positions into an EXR OUT,\n"
-    "names kept (depth Z/ZBack/depth by the nearest texel); OUT in another format, or a\n"
+    "names and types kept (depth and ID-like channels: *.id, *.index, crypto*, integers, by\n"
+    "the nearest texel), every part of a multi-part EXR too; OUT in another format, or a\n"
     "camera that moves R, G, B apart or changes colour or depth, leaves them out with a\n"
     "warning. An EXR OUT keeps IN's display-window origin; an EXR IN whose data window is\n"
-    "not its display window is refused (oiiotool IN --croptofull -o FIXED makes them one).\n"
+    "not its display window (overscan) keeps both windows (not with --size, --depth,\n"
+    "--second or a piecewise camera).\n"
     "IN is read upright: an EXIF orientation (a portrait photo stored sideways) is applied\n"
     "first, and OUT is written upright with orientation 1. A camera made for the sensor's\n"
     "raster (lens cameras; one whose \"frame\" is \"sensor\", or an older file whose source\n"
@@ -86,7 +89,11 @@ const char* const kWarpUsage =
     "                       IN's)\n"
     "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
     "                       IN's ICC profile when it had one, embedded; srgb: sRGB, with an\n"
-    "                       sRGB profile). Float output is linear Rec.709/D65 either way\n"
+    "                       sRGB profile). Float output is linear Rec.709/D65, but an OpenEXR\n"
+    "                       output keeps an EXR input's other primaries (ACEScg) with input\n"
+    "  --colourspace-in NAME the OpenColorIO colour space the input is in, over what the\n"
+    "                       file says (config: $OCIO, else OpenImageIO's built-in one)\n"
+    "  --colourspace-out NAME the OpenColorIO colour space the output is encoded in\n"
     "  --stats              print render_ms and mpix_per_s on stderr\n"
     "  --json               the result (and --stats) as one JSON object on stdout\n"
     "  --overwrite          replace OUT if it exists (--force is the same); never IN\n"
@@ -111,6 +118,8 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--quality", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
+                         {"--colourspace-in", "", true},
+                         {"--colourspace-out", "", true},
                          {"--stats", "", false},
                          {"--json", "", false},
                          {"--overwrite", "", false},

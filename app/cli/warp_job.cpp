@@ -5,6 +5,7 @@
 #include "app/cli/memory.h"
 #include "core/depth/depth_raster.h"
 #include "core/io/depth_file.h"
+#include "core/model/frames.h"
 #include "core/pipeline/camera_frame.h"
 #include "core/util/memory_budget.h"
 
@@ -43,36 +44,44 @@ void dropAddedAlpha(StoredImage& image, bool input_had_alpha) {
 void readOrLeaveOutExtra(const WarpCameraFile& camera, DecodedInput& decoded,
                          const ReadImageOptions& read) {
   const ImageInfo& info = decoded.stored ? decoded.stored->info : decoded.loaded->info;
-  if (info.dropped_channels.empty()) return;
+  if (info.dropped_channels.empty() && info.other_parts.empty()) return;
   std::string reason = extraChannelsUnsupported(camera.camera);
   if (!reason.empty())
     reason = camera.path + ": " + reason;
   else if (!formatStoresExtraChannels(decoded.output))
     reason = "its format holds no channels beyond RGBA (OpenEXR does)";
+  if (reason.empty() && !info.other_parts.empty()) {
+    auto parts = readOtherParts(decoded.input, info, read);
+    if (!parts) throw CommandError(parts.status.message);
+    decoded.parts = std::move(*parts.value);
+  }
+  if (!reason.empty()) decoded.left_out_reason = reason;  // said for the parts too
+  if (info.dropped_channels.empty()) return;
   if (!reason.empty()) {
     decoded.left_out = info.dropped_channels;
     decoded.left_out_reason = reason;
     return;
   }
-  auto extra = readExtraChannels(decoded.input, info, read);
+  auto extra = readExtraChannels(decoded.input, info, read);  // the first part's
   if (!extra) throw CommandError(extra.status.message);
   decoded.extra = std::move(*extra.value);
 }
 
 // Each group of extra channels through the same render entry point as the image, into the
-// image's output size: same camera, same source positions. Depth-like groups take the nearest
-// filter (isDepthChannel says why); the others the image's.
+// image's output size: same camera, same source positions. Depth- and ID-like groups take the
+// nearest filter (isDepthChannel, sampledNearest say why); the others the image's.
 ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, int width,
                           int height, int turn, const RenderOptions& image_options,
                           double& render_ms) {
   ExtraChannels warped;
   for (ChannelGroup& group : source.groups) {
     RenderOptions options = image_options;
-    if (group.depth) {
+    if (group.nearest) {
       options.warp.filter = Filter::Nearest;
       options.warp.antialias = false;
     }
-    ChannelGroup out{group.names, ImageF(width, height, group.image.channels, -1), group.depth};
+    ChannelGroup out{group.names, ImageF(width, height, group.image.channels, -1), group.depth,
+                     group.nearest, group.stored_types};
     RenderInputs inputs;
     inputs.photo = viewOf(std::as_const(group.image));
     RenderSummary summary;
@@ -85,15 +94,62 @@ ExtraChannels renderExtra(const WarpCameraFile& camera, ExtraChannels&& source, 
   return warped;
 }
 
+// An OpenEXR plate whose data window is not its display window (overscan): the camera, made for
+// the display window, re-expressed for the data window's pixels (reframeToRegions), so the
+// output holds the same data window of the camera's output frame. Empty for any other input.
+std::optional<WarpCameraFile> forDataWindow(const WarpCameraFile& camera,
+                                            const DecodedInput& source,
+                                            const WarpRequest& request) {
+  if (!source.loaded) return std::nullopt;
+  const ImageInfo& info = source.loaded->info;
+  const ImageF& image = source.loaded->image;
+  if (info.display_width <= 0 ||
+      (info.data_origin_x == 0 && info.data_origin_y == 0 && info.display_width == image.width &&
+       info.display_height == image.height))
+    return std::nullopt;
+  const std::string what =
+      source.input + ": its data window (" + sizeText(image.width, image.height) + " at " +
+      std::to_string(info.data_origin_x) + ", " + std::to_string(info.data_origin_y) +
+      ") is not its display window (" + sizeText(info.display_width, info.display_height) + ")";
+  if (camera.camera.isPiecewise())
+    throw CommandError(what + ", and " + camera.path +
+                       " is piecewise: its patches lie on the display window");
+  if (camera.camera.sourceSize().width * camera.camera.targetSize().height !=
+      camera.camera.sourceSize().height * camera.camera.targetSize().width)
+    throw CommandError(what + ", and " + camera.path +
+                       "'s output frame is not of the input frame's aspect");
+  if (request.options.warp.width > 0 || request.depth || request.second)
+    throw CommandError(what + ": --size, --depth and --second take display-window images");
+  WarpCameraFile reframed = camera;
+  const FrameSize display{info.display_width, info.display_height};
+  const FrameSize data{image.width, image.height};
+  for (Camera& layer : reframed.camera.layers) {
+    layer.setFrames(display, display);
+    reframeToRegions(layer, info.data_origin_x, info.data_origin_y, data, info.data_origin_x,
+                     info.data_origin_y, data);
+  }
+  return reframed;
+}
+
 }  // namespace
 
 std::string leftOutWarning(const RenderedOutput& output, const std::string& input_name,
                            const std::string& output_name) {
-  std::string names;
+  std::string names, parts;
   for (const std::string& c : output.left_out) names += (names.empty() ? "" : ", ") + c;
-  if (names.empty()) return "";
-  return input_name + ": channels beyond colour and alpha (" + names +
-         ") are not warped and are left out of " + output_name + ": " + output.left_out_reason;
+  if (!output.parts_written)
+    for (const std::string& p : output.like.other_parts)
+      parts += (parts.empty() ? "\"" : ", \"") + p + "\"";
+  std::string line;
+  if (!names.empty())
+    line = "channels beyond colour and alpha (" + names + ") are not warped and are left out of " +
+           output_name + ": " + output.left_out_reason;
+  // The readers hand over a multi-part OpenEXR's first part (image_io.h, ImageInfo::other_parts).
+  if (!parts.empty())
+    line += (line.empty() ? "" : "; ") + std::string("the parts after the first (") + parts +
+            ") are not warped and are left out of " + output_name +
+            (output.left_out_reason.empty() ? std::string() : ": " + output.left_out_reason);
+  return line.empty() ? "" : input_name + ": " + line;
 }
 
 std::string droppedProfileWarning(const RenderedOutput& output, const std::string& input_name,
@@ -123,6 +179,7 @@ WarpRequest parseWarpRequest(const Args& args) {
   depth.scale = numberOption(args, "--depth-scale", depth.scale, 0, kUnbounded, Ends::OpenMin);
   depth.baseline_focal = numberOption(args, "--disparity", depth.baseline_focal, 0, kUnbounded);
   parseWriteOptions(args, request.write);  // every usage error before a file is read
+  request.colour_space_in = parseColourSpaceIn(args);
   request.stats = args.has("--stats");
   // Nothing is printed here: the files read are reported with the result (WarpRequest::inputs),
   // so standard output carries only the image or the one JSON object.
@@ -186,18 +243,25 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
   decoded.output = output;
   ReadImageOptions read;
   read.progress = progress;
+  read.colour_space = request.colour_space_in;
+  read.data_window = true;  // an overscan plate is kept (renderForWarp re-expresses the camera)
   // The stored-type path where the output keeps the input's encoding (peak memory ≤ input +
   // output + a small constant); re-encoding between integer and float files, and cameras that
   // render from the linear photo, go through linear light (image_io.h); so does
   // --colourspace srgb, which may re-encode an ICC-tagged input.
-  if (!camera.linear && request.write.colour_space == WriteImageOptions::ColourSpace::Input) {
+  // Named OpenColorIO colour spaces convert, so they go through linear light too.
+  if (!camera.linear && request.write.colour_space == WriteImageOptions::ColourSpace::Input &&
+      request.colour_space_in.empty() && request.write.ocio_colour_space.empty()) {
     const auto shape = readStoredShape(input);
     if (!shape) throw CommandError(shape.status.message);
     const PixelType type = shape->type;
     const std::string& asked = request.write.pixel_type;
     const bool same_type = asked.empty() || (asked == "uint8" && type == PixelType::UInt8) ||
                            (asked == "uint16" && type == PixelType::UInt16);
-    if (same_type && storedWriteKeepsEncoding(output, type)) {
+    // Values in other primaries (an ACEScg EXR) keep them only where the output names them.
+    const bool primaries_kept = !shape->foreign_primaries || formatStoresExtraChannels(output);
+    if (same_type && primaries_kept && !shape->data_window &&
+        storedWriteKeepsEncoding(output, type)) {
       // The decoded photo and the output together (the output frame as the rule gives it, an
       // EXIF turn aside), and the float copy readStoredImage also checks, against the budget.
       const FrameSize out = outputFrameFor(camera.camera, {shape->width, shape->height},
@@ -234,9 +298,11 @@ DecodedInput decodeForWarp(const WarpCameraFile& camera, const WarpRequest& requ
   return decoded;
 }
 
-RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
+RenderedOutput renderForWarp(const WarpCameraFile& given, DecodedInput&& input,
                              const WarpRequest& request, const Progress& progress) {
   DecodedInput source = std::move(input);  // freed on return, before the output is encoded
+  const std::optional<WarpCameraFile> reframed = forDataWindow(given, source, request);
+  const WarpCameraFile& camera = reframed ? *reframed : given;
   RenderedOutput out;
   out.output = source.output;
   if (source.streamed) {  // rendered band by band as encodeWarp writes
@@ -318,6 +384,14 @@ RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,
       out.extra_names = out.extra.names();
       summary.cancelled = out.extra.empty();
     }
+    // Each later part through the same camera, as extra channels are (same source positions).
+    for (ImagePart& part : source.parts) {
+      if (summary.cancelled) break;
+      ImagePart warped{part.name, renderExtra(camera, std::move(part.channels), out.width,
+                                              out.height, turn, options, summary.render_ms)};
+      summary.cancelled = warped.channels.empty();
+      out.parts.push_back(std::move(warped));
+    }
   } catch (const std::bad_alloc&) {
     throw CommandError(out.output + ": cannot render: not enough memory");
   } catch (const std::invalid_argument& e) {
@@ -352,6 +426,7 @@ void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progre
   WriteImageOptions options = request.write;
   options.progress = progress;
   if (!output.extra.empty()) options.extra_channels = &output.extra;
+  if (!output.parts.empty()) options.other_parts = &output.parts;
   const Status s = output.stored
                        ? writeStoredImage(output.output, std::as_const(*output.stored).view(),
                                           &output.like, options)
@@ -360,6 +435,8 @@ void encodeWarp(RenderedOutput& output, const WarpRequest& request, const Progre
   output.stored.reset();
   output.image.reset();
   output.extra = {};
+  output.parts_written = !output.parts.empty();
+  output.parts = {};
 }
 
 }  // namespace artcam::cli

@@ -59,6 +59,7 @@ struct WarpRequest {
   std::optional<ImageF> depth;  // --depth FILE, read once for every input
   std::optional<ImageF> second;  // --second FILE, linear premultiplied, for compositing cameras
   WriteImageOptions write;      // --quality, --bit-depth (write_args.h); progress unset
+  std::string colour_space_in;  // --colourspace-in NAME (write_args.h); empty: as files say
   bool stats = false;
   std::vector<RequestInput> inputs;  // the depth map and second image read, in that order
 };
@@ -82,6 +83,7 @@ struct DecodedInput {
   // them and the camera renders them (extraChannelsUnsupported), else named in left_out with the
   // reason.
   ExtraChannels extra;
+  std::vector<ImagePart> parts;  // a multi-part EXR's later parts, read where the output keeps them
   std::vector<std::string> left_out;
   std::string left_out_reason;  // "out.png's format holds at most four channels"
   double megapixels() const;
@@ -109,6 +111,8 @@ struct RenderedOutput {
   std::vector<std::string> extra_names;  // their names (kept after encodeWarp frees them)
   std::vector<std::string> left_out;  // extra channels not warped (DecodedInput's)
   std::string left_out_reason;
+  std::vector<ImagePart> parts;  // the input's later parts, warped (written after the image)
+  bool parts_written = false;    // encodeWarp wrote them (kept after it frees them)
 };
 // Consumes the input (freed before returning).
 RenderedOutput renderForWarp(const WarpCameraFile& camera, DecodedInput&& input,

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "app/cli/write_args.h"
 
+#include "core/io/colour_spaces.h"
+
 namespace artcam::cli {
 
 std::string pixelTypeForBitDepth(const std::string& bit_depth) {
@@ -21,6 +23,21 @@ void parseWriteOptions(const Args& args, WriteImageOptions& options) {
     else
       throw UsageError("--colourspace expects input or srgb, not \"" + *space + "\"");
   }
+  if (const auto named = args.value("--colourspace-out")) {
+    if (args.has("--colourspace"))
+      throw UsageError("--colourspace and --colourspace-out both say how the output is encoded");
+    if (const Status known = checkColourSpace(*named, "--colourspace-out"); !known)
+      throw UsageError(known.message);
+    options.ocio_colour_space = *named;
+  }
+}
+
+std::string parseColourSpaceIn(const Args& args) {
+  const auto named = args.value("--colourspace-in");
+  if (!named) return {};
+  if (const Status known = checkColourSpace(*named, "--colourspace-in"); !known)
+    throw UsageError(known.message);
+  return *named;
 }
 
 }  // namespace artcam::cli

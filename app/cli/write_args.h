@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// --quality N, --bit-depth 8|16|half|float and --colourspace input|srgb: how the commands that
-// write a photo (export, warp, batch) encode it. One parser, so the three accept and refuse the same spellings.
+// --quality N, --bit-depth 8|16|half|float, --colourspace input|srgb and --colourspace-in/-out
+// NAME: how the commands that write a photo (export, warp, batch) read and encode it. One parser,
+// so the three accept and refuse the same spellings.
 #pragma once
 
 #include "app/cli/args.h"
@@ -19,6 +20,12 @@ std::string pixelTypeForBitDepth(const std::string& bit_depth);
 // (absent: left empty, the input's) and options.colour_space from --colourspace ("input", the
 // default: integer outputs keep an ICC-tagged input's profile; "srgb": sRGB with an sRGB
 // profile; image_io.h). Throws UsageError naming the option.
+// --colourspace-out NAME sets options.ocio_colour_space (an OpenColorIO colour space,
+// colour_spaces.h), refused beside --colourspace.
 void parseWriteOptions(const Args& args, WriteImageOptions& options);
+
+// --colourspace-in NAME: the OpenColorIO colour space the inputs are read in (empty: as each
+// file says). Throws UsageError naming the option for a name the config does not have.
+std::string parseColourSpaceIn(const Args& args);
 
 }  // namespace artcam::cli

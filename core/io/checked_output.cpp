@@ -119,6 +119,10 @@ CheckedWrite::~CheckedWrite() {
 }
 
 bool CheckedWrite::open(const std::string& temp, const OIIO::ImageSpec& spec) {
+  return open(temp, std::vector<OIIO::ImageSpec>{spec});
+}
+
+bool CheckedWrite::open(const std::string& temp, const std::vector<OIIO::ImageSpec>& specs) {
   OIIO::ImageOutput& out = *out_;
   temp_ = temp;
   if (takesCheckedOutput(out)) {
@@ -138,7 +142,8 @@ bool CheckedWrite::open(const std::string& temp, const OIIO::ImageSpec& spec) {
     }
     ::close(fd);
   }
-  return out.open(temp, spec);
+  return specs.size() == 1 ? out.open(temp, specs.front())
+                           : out.open(temp, static_cast<int>(specs.size()), specs.data());
 }
 
 bool CheckedWrite::close() {

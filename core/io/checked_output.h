@@ -22,6 +22,7 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace artcam::io_checked {
 
@@ -70,6 +71,9 @@ class CheckedWrite {
   OIIO::ImageOutput& output() { return *out_; }
   // false: the file could not be made or the writer refused the spec; see cause().
   bool open(const std::string& temp, const OIIO::ImageSpec& spec);
+  // The same for a file of several parts (subimages), `specs` in order: the first is written
+  // after this open, each next one after out.open(temp, spec, AppendSubimage).
+  bool open(const std::string& temp, const std::vector<OIIO::ImageSpec>& specs);
   // out.close(), then the proxy's finish() (or, without a proxy, the read-back); false when
   // either failed; see cause().
   bool close();

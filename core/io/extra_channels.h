@@ -25,6 +25,19 @@ Status addExtraChannels(OIIO::ImageSpec& spec, const std::string& format,
 void interleaveRows(const float* main, int main_channels, int width, int y0, int y1,
                     const ExtraChannels& extra, std::vector<float>& out);
 
+// The specs of every part a writer opens: `first` (the image's, made the first part and named
+// "rgba" when it has no name and parts follow), then one per part in `parts` at its windows,
+// each channel in its stored type. Fails in one line naming `path` when the format is not
+// OpenEXR, names repeat, or a part is not the image's size. Null or empty `parts`: {first}.
+Result<std::vector<OIIO::ImageSpec>> partSpecs(OIIO::ImageSpec& first, const std::string& format,
+                                               const std::vector<ImagePart>* parts,
+                                               const std::string& path);
+
+// After the first part's scanlines: each later part of `specs` appended and written from `parts`
+// (specs[k] is parts[k - 1]'s). False on the writer's failure (its message in out.geterror()).
+bool writeParts(OIIO::ImageOutput& out, const std::string& temp,
+                const std::vector<OIIO::ImageSpec>& specs, const std::vector<ImagePart>& parts);
+
 // An OpenEXR output's windows: display window at `like`'s display-window origin with the
 // spec's size, data window equal to it. Other formats and a null `like` are left as they are.
 void keepDisplayWindow(OIIO::ImageSpec& spec, const std::string& format,

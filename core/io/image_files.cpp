@@ -46,6 +46,21 @@ bool isDepthChannel(const std::string& name) {
   return last == "Z" || last == "ZBack" || io_text::lower(last) == "depth";
 }
 
+bool sampledNearest(const std::string& name, bool integer) {
+  if (integer || isDepthChannel(name)) return true;
+  const std::string lowered = io_text::lower(name);
+  const size_t dot = lowered.rfind('.');
+  const std::string last = dot == std::string::npos ? lowered : lowered.substr(dot + 1);
+  if (last == "id" || last == "index") return true;
+  for (size_t start = 0; start <= lowered.size();) {
+    if (lowered.compare(start, 6, "crypto") == 0) return true;
+    const size_t next = lowered.find('.', start);
+    if (next == std::string::npos) break;
+    start = next + 1;
+  }
+  return false;
+}
+
 int jpegQualityFor(const WriteImageOptions& options, const ImageInfo* like) {
   if (options.jpeg_quality) return std::clamp(*options.jpeg_quality, 1, 100);
   if (like && like->format_name == "jpeg" && like->jpeg_quality > 0) return like->jpeg_quality;

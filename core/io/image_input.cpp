@@ -167,6 +167,25 @@ Result<std::unique_ptr<JpegDecoder>> jpegCodecPath(const OIIO::ImageInput& in,
   return decoder;
 }
 
+Result<std::optional<Chromaticities>> foreignChromaticities(const OIIO::ImageSpec& spec,
+                                                            const std::string& path) {
+  using R = Result<std::optional<Chromaticities>>;
+  const OIIO::ParamValue* attribute = spec.find_attribute("chromaticities");
+  const int colours = keptChannels(spec) - (keptAlpha(spec) >= 0 ? 1 : 0);
+  if (!attribute || colours < 3) return R::success(std::nullopt);
+  const OIIO::TypeDesc type = attribute->type();
+  if (type.basetype != OIIO::TypeDesc::FLOAT || type.numelements() * type.aggregate != 8)
+    return R::success(std::nullopt);
+  Chromaticities file;
+  const auto* values = static_cast<const float*>(attribute->data());
+  for (size_t k = 0; k < 8; ++k) file.xy[k] = values[k];
+  if (!file.valid())
+    return R::failure(path + ": cannot read: the chromaticities attribute (" + file.describe() +
+                      ") describes no RGB colour space");
+  if (file.isRec709()) return R::success(std::nullopt);
+  return R::success(file);
+}
+
 int storedOrientation(const OIIO::ImageSpec& spec, const PhotoMetadata* metadata) {
   if (metadata)
     if (const int tagged = photoOrientation(*metadata); tagged != 0)
@@ -187,6 +206,25 @@ std::shared_ptr<const OIIO::ImageSpec> uprightSpec(const OIIO::ImageSpec& spec, 
   }
   if (orientation != 1 || spec.find_attribute("Orientation")) upright->attribute("Orientation", 1);
   return upright;
+}
+
+// The names of a multi-part file's parts after the first (image_io.h, ImageInfo::other_parts).
+std::vector<std::string> otherPartNames(const std::string& path) {
+  std::vector<std::string> names;
+  try {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+      OIIO::geterror();  // clear the thread's pending message
+      return names;
+    }
+    for (int part = 1; in->seek_subimage(part, 0); ++part) {
+      const std::string name = in->spec().get_string_attribute("name");
+      names.push_back(name.empty() ? "part " + std::to_string(part) : name);
+    }
+    in->geterror();  // the failed seek past the last part
+  } catch (const std::exception&) {
+  }
+  return names;
 }
 
 }  // namespace
@@ -223,6 +261,16 @@ ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
   info.spec = uprightSpec(spec, orientation);
   if (info.format_name == "jpeg") info.jpeg_quality = estimateJpegQuality(path);
   info.metadata = std::move(metadata);
+  if (spec.get_int_attribute("oiio:subimages", 1) > 1) info.other_parts = otherPartNames(path);
+  if (info.format_name == "openexr" && spec.full_width > 0 && spec.full_height > 0 &&
+      orientation == 1) {
+    info.data_origin_x = spec.x - spec.full_x;
+    info.data_origin_y = spec.y - spec.full_y;
+    info.display_width = spec.full_width;
+    info.display_height = spec.full_height;
+  }
+  if (auto primaries = foreignChromaticities(spec, path); primaries)
+    info.chromaticities = *primaries.value;
   for (int c = keptChannels(spec); c < spec.nchannels; ++c)
     info.dropped_channels.push_back(c < static_cast<int>(spec.channelnames.size()) &&
                                             !spec.channelnames[static_cast<size_t>(c)].empty()

@@ -4,15 +4,18 @@
 // type) refuse the same files with the same one-line messages.
 #pragma once
 
+#include "core/colour/chromaticities.h"
+#include "core/colour/transfer.h"
 #include "core/io/image_io.h"
 #include "core/io/io_text.h"
 #include "core/io/jpeg_decode.h"
-#include "core/colour/transfer.h"
 #include "core/model/status.h"
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,6 +76,19 @@ inline int keptChannels(const OIIO::ImageSpec& spec) {
   return alpha >= 0 ? alpha + 1 : spec.nchannels >= 3 ? 3 : 1;
 }
 
+// The type of the channels a reader keeps (keptChannels): the widest of their own types where
+// a file's channels differ (an EXR's half RGBA beside a float Z, whose spec.format is float),
+// so the image keeps its own type and the extra channels theirs.
+inline OIIO::TypeDesc keptFormat(const OIIO::ImageSpec& spec) {
+  if (spec.channelformats.empty()) return spec.format;
+  OIIO::TypeDesc widest = spec.channelformats[0];
+  const int kept = std::min(keptChannels(spec), static_cast<int>(spec.channelformats.size()));
+  for (int c = 1; c < kept; ++c)
+    if (spec.channelformats[static_cast<size_t>(c)].size() > widest.size())
+      widest = spec.channelformats[static_cast<size_t>(c)];
+  return widest;
+}
+
 // The bytes of `spec`'s embedded ICC profile ("ICCProfile"), for checkEmbeddedProfile; empty
 // when it has none.
 inline std::vector<unsigned char> embeddedProfileBytes(const OIIO::ImageSpec& spec) {
@@ -85,9 +101,11 @@ inline std::vector<unsigned char> embeddedProfileBytes(const OIIO::ImageSpec& sp
 // An OpenEXR file whose data window is not its display window is refused (image_io.h, "Data
 // and display windows"): the readers hand over the data window's pixels while camera pixels
 // are display-window pixels. Other formats have no separate display window.
+// `data_window` (ReadImageOptions::data_window): the caller places the data window's pixels
+// itself, so any data window is taken.
 inline Status dataWindowIsDisplayWindow(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
-                                        const std::string& path) {
-  if (std::string(in.format_name()) != "openexr") return Status::success();
+                                        const std::string& path, bool data_window = false) {
+  if (data_window || std::string(in.format_name()) != "openexr") return Status::success();
   if (spec.full_width <= 0 || spec.full_height <= 0) return Status::success();
   if (spec.x == spec.full_x && spec.y == spec.full_y && spec.width == spec.full_width &&
       spec.height == spec.full_height)
@@ -96,13 +114,21 @@ inline Status dataWindowIsDisplayWindow(const OIIO::ImageInput& in, const OIIO::
     return std::to_string(w) + "x" + std::to_string(h) + " at (" + std::to_string(x) + ", " +
            std::to_string(y) + ")";
   };
-  return Status::failure(path + ": cannot read: the data window (" +
-                         window(spec.x, spec.y, spec.width, spec.height) +
-                         ") is not the display window (" +
-                         window(spec.full_x, spec.full_y, spec.full_width, spec.full_height) +
-                         "), whose pixels the camera's are; make them one with oiiotool " +
-                         "--croptofull");
+  return Status::failure(
+      path + ": cannot read: the data window (" + window(spec.x, spec.y, spec.width, spec.height) +
+      ") is not the display window (" +
+      window(spec.full_x, spec.full_y, spec.full_width, spec.full_height) +
+      "), whose pixels the camera's are; artcam warp and batch keep it, or make " +
+      "them one with oiiotool --croptofull");
 }
+
+// The primaries and white of `spec`'s RGB as its "chromaticities" attribute (OpenEXR) gives
+// them, when they are not the working space's (chromaticities.h); empty for Rec.709/D65, no
+// attribute, or fewer than three colour channels. Fails in one line naming `path` for
+// chromaticities that make no RGB space (a y of 0, primaries on one line): guessing would
+// mislabel every colour.
+Result<std::optional<Chromaticities>> foreignChromaticities(const OIIO::ImageSpec& spec,
+                                                            const std::string& path);
 
 // The orientation a reader turns the raster upright from (orientation.h), 1..8: exiv2's
 // photoOrientation (EXIF first, then XMP, as the photo conventions and most viewers order

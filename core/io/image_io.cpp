@@ -16,6 +16,7 @@
 #include "core/colour/icc_profile.h"
 #include "core/colour/transfer.h"
 #include "core/io/atomic_file.h"
+#include "core/io/colour_config.h"
 #include "core/io/embedded_profile.h"
 #include "core/io/image_input.h"
 #include "core/io/integer_decode.h"
@@ -119,12 +120,14 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   if (!opened) return R::failure(opened.status.message);
   const OIIO::ImageInput::unique_ptr& in = *opened;
   const OIIO::ImageSpec spec = in->spec();
-  if (const Status windows = io_input::dataWindowIsDisplayWindow(*in, spec, path); !windows)
+  if (const Status windows =
+          io_input::dataWindowIsDisplayWindow(*in, spec, path, options.data_window);
+      !windows)
     return R::failure(windows.message);
 
   const int channels = io_input::keptChannels(spec);
   const int alpha = io_input::keptAlpha(spec);
-  const std::string pixel_type = pixelTypeName(spec.format);
+  const std::string pixel_type = pixelTypeName(io_input::keptFormat(spec));
   const Transfer transfer =
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
           .value_or(io_text::isIntegerPixelType(pixel_type) ? Transfer::srgb()
@@ -136,7 +139,15 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   auto profile = checkEmbeddedProfile(io_input::embeddedProfileBytes(spec),
                                       channels - (alpha >= 0 ? 1 : 0), jpeg, path);
   if (!profile) return R::failure(profile.status.message);
+  // A named colour space (colour_spaces.h) is the whole description: no profile, no primaries.
+  const std::string& named = options.colour_space;
+  if (!named.empty()) *profile = EmbeddedProfile{};
   const std::shared_ptr<const IccProfile>& icc = profile->converting;
+  // The file's primaries and white, when not the working space's (an ACEScg EXR): its linear
+  // values are converted into the working space below (chromaticities.h). A profile wins.
+  auto primaries = io_input::foreignChromaticities(spec, path);
+  if (!primaries) return R::failure(primaries.status.message);
+  if (!named.empty()) primaries.value = std::optional<Chromaticities>();
 
   LoadedImage loaded;
   loaded.image = ImageF(spec.width, spec.height, channels, alpha);
@@ -153,20 +164,26 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
       (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16) &&
       (!associated || linear);
   std::unique_ptr<JpegDecoder> codec;
-  if (!icc) {
+  if (!icc && named.empty()) {
     auto found = io_input::jpegCodecPath(*in, spec, path);
     if (!found) return R::failure(found.status.message);
     codec = std::move(*found.value);
   }
   try {
-    if (icc) {
-      // The profile converts encoded values (OIIO scales integers to 0..1) to the working space.
+    if (icc || !named.empty()) {
+      // The profile or the named colour space converts encoded values (OIIO scales integers to
+      // 0..1) to the working space.
       ok = read(OIIO::TypeDesc::FLOAT, image.data.data());
       if (ok && !context.cancelled) {
         if (associated) unpremultiply(image);
-        icc->toWorking(image.data.data(),
-                       static_cast<size_t>(image.width) * static_cast<size_t>(image.height),
-                       image.channels, image.alpha_channel);
+        const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+        if (icc) {
+          icc->toWorking(image.data.data(), pixels, image.channels, image.alpha_channel);
+        } else if (const Status converted = io_colour::toWorking(
+                       named, image.data.data(), pixels, image.channels, path + ": cannot read");
+                   !converted) {
+          return R::failure(converted.message);
+        }
       }
     } else if (codec && tables) {
       // The codec path (jpeg_decode.h), then the same tables as below.
@@ -196,7 +213,11 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   if (!ok) return R::failure(path + ": cannot read: " + oneLine(in->geterror()));
   if (const Status damage = io_input::decodeProblems(*in, path); !damage)
     return R::failure(damage.message);
-  if (!associated || icc) premultiply(image);
+  if (!associated || icc || !named.empty()) premultiply(image);
+  if (*primaries && !icc)
+    applyMatrix(workingFromChromaticities(**primaries), image.data.data(),
+                static_cast<size_t>(image.width) * static_cast<size_t>(image.height),
+                image.channels, image.alpha_channel);
   in->close();
 
   // Upright, as the photo is shown (orientation.h): a second buffer for a moment, once per read.
@@ -214,6 +235,12 @@ Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& o
   loaded.info = io_input::describeImage(*in, spec, path, pixel_type, transfer, orientation,
                                        std::move(metadata));
   recordEmbeddedProfile(*profile, loaded.info);
+  if (!named.empty()) {
+    loaded.info.ocio_colour_space = named;
+    loaded.info.colour_space = "OCIO: " + named;
+    loaded.info.srgb = false;
+    loaded.info.chromaticities.reset();
+  }
   if (options.progress) options.progress(1.0);
   return R::success(std::move(loaded));
 }

@@ -24,14 +24,22 @@
 //   (ImageInfo::profile_dropped): not applied, not carried into any output. Every reader, the
 //   stored-value ones too, takes this one decision (embedded_profile.h), so a profile an
 //   output carries always describes the values written.
+// - Chromaticities (OpenEXR): a file whose "chromaticities" attribute names primaries or a white
+//   other than the working space's (an ACEScg plate: AP1, D60) is converted from them into the
+//   working space by readImage (chromaticities.h: RGB → XYZ, Bradford to D65, XYZ → Rec.709);
+//   ImageInfo::chromaticities records them. Chromaticities that make no RGB space are refused
+//   in one line. The stored-value readers keep the values in them, so only an OpenEXR output
+//   (which names them again) takes the stored path for such a file.
 // - Output colour (WriteImageOptions::colour_space): float/half files hold the working space as
-//   it is, and EXR says so with the "chromaticities" attribute (Rec.709 primaries, D65; an EXR
-//   input's own chromaticities are carried instead, its values having been read unconverted);
-//   they never carry an ICC profile. Integer files, by default (Input), are encoded back into the
-//   profile `like` was converted from, with that profile embedded (an Adobe RGB photo stays
-//   Adobe RGB; values round-trip to the quantisation step, or to ~1e-6 in linear light where a
-//   pure power curve's slope at 0 magnifies float rounding); Srgb encodes sRGB and embeds an
-//   sRGB profile. Otherwise (Input, `like` had no converting profile) see "Write" below.
+//   it is, and EXR says so with the "chromaticities" attribute (Rec.709 primaries, D65), except
+//   that an OpenEXR output of an input in other primaries is converted back into them and says
+//   so (Input, the default; Srgb keeps the working space); they never carry an ICC profile.
+//   A named OpenColorIO colour space (ocio_colour_space, colour_spaces.h) overrides all this.
+//   Integer files, by default (Input), are encoded back into the profile `like` was converted from,
+//   with that profile embedded (an Adobe RGB photo stays Adobe RGB; values round-trip to the
+//   quantisation step, or to ~1e-6 in linear light where a pure power curve's slope at 0 magnifies
+//   float rounding); Srgb encodes sRGB and embeds an sRGB profile. Otherwise (Input, `like` had no
+//   converting profile) see "Write" below.
 // - Channels: colour and alpha (Y, YA, RGB, RGBA) make the image: the channels up to alpha
 //   when the file has one among its first four, else its first three (one when it has fewer).
 //   Every other channel of a file (an EXR's Z, N.x, diffuse.R, …; with or without alpha) is
@@ -41,16 +49,26 @@
 //   each group renders like a photo of its own; WriteImageOptions::extra_channels writes them
 //   back, by name, after the image's own channels. Only OpenEXR holds named extra channels
 //   (formatStoresExtraChannels): a writer asked to put them into another format refuses.
-// - Depth-like extra channels (isDepthChannel: Z, ZBack, depth) are grouped apart from the
-//   others, so a caller can resample them with the nearest filter (see isDepthChannel).
+// - Depth-like extra channels (isDepthChannel: Z, ZBack, depth) and ID-like ones
+//   (sampledNearest: *.id, *.index, Cryptomatte layers, integer channels) are grouped apart from
+//   the others, so a caller can resample them with the nearest filter (ChannelGroup::nearest).
+//   Each extra channel keeps its stored type in an OpenEXR output (ChannelGroup::stored_types),
+//   and the image's own channels theirs (a half RGBA beside a float Z stays half).
+// - Multi-part OpenEXR: the readers hand over the first part; the others are named in
+//   ImageInfo::other_parts and read on request (readOtherParts) as extra channels are, each
+//   part of the first part's data window; WriteImageOptions::other_parts writes them back as
+//   parts after the image's. Commands that cannot write them say so in one warning line.
 // - Data and display windows (OpenEXR): camera pixel coordinates are display-window pixels,
 //   pixel (0, 0) being the display window's top-left one (the OpenEXR and Nuke convention).
 //   The readers hand over the data window's pixels, so they refuse a file whose data window
 //   is not its display window (one line naming both and the fix, oiiotool --croptofull):
-//   placing the pixels anywhere else would move them silently. On write, an OpenEXR output
-//   gets `like`'s display-window origin, its size being the image's, and a data window equal
-//   to it: a warp of the whole frame keeps the input's display window, and an image of
-//   another size starts where the input's frame did.
+//   placing the pixels anywhere else would move them silently; unless the caller asks for the
+//   data window (ReadImageOptions::data_window) and places them by ImageInfo::data_origin (warp
+//   and batch re-express the camera for them, core/model/frames.h reframeToRegions). On write,
+//   an OpenEXR output of `like`'s data-window size keeps both of `like`'s windows (overscan
+//   kept); otherwise it gets `like`'s display-window origin, its size being the image's, and a
+//   data window equal to it: a warp of the whole frame keeps the input's display window, and
+//   an image of another size starts where the input's frame did.
 // - Write: the format follows the extension. Pixel type = options, else `like`'s, else the
 //   format's natural one, then fitted to what the format stores (EXR has no 8/16-bit: half;
 //   PNG has no float: uint16; JPEG/BMP/TGA/GIF/WebP: uint8). Float/half files are written
@@ -74,6 +92,7 @@
 //   are JPEG (a photo keeps its compression), else 95.
 #pragma once
 
+#include "core/colour/chromaticities.h"
 #include "core/colour/stored_encoding.h"
 #include "core/model/image.h"
 #include "core/model/status.h"
@@ -118,11 +137,37 @@ struct ImageInfo {
   // not describe the pixels as read (embedded_profile.h); empty when none was dropped. Commands
   // say it in one warning line.
   std::string profile_dropped;
+  // The primaries and white of the file's RGB when they are not the working space's (an EXR's
+  // chromaticities attribute, e.g. ACEScg's AP1 and D60): readImage converted the colour from
+  // them into the working space, the stored-value readers keep the values in them.
+  std::optional<Chromaticities> chromaticities;
+  // The OpenColorIO colour space readImage converted the colour from (ReadImageOptions::
+  // colour_space; colour_space is then "OCIO: " and it); empty: none.
+  std::string ocio_colour_space;
+  // The names of a multi-part OpenEXR's parts after the first (their "name" attribute, else
+  // "part N"): the readers hand over the first part only, and commands name the rest as left
+  // out in one warning line.
+  std::vector<std::string> other_parts;
+  // Where the pixels handed over lie in the frame camera pixels are in (an OpenEXR's display
+  // window): the data window's origin relative to the display window's, and the display
+  // window's size. (0, 0) and the image's size unless ReadImageOptions::data_window took an
+  // overscan file; display_width 0: not recorded (the image's size).
+  int data_origin_x = 0, data_origin_y = 0;
+  int display_width = 0, display_height = 0;
 };
 
 struct ReadImageOptions {
   // Progress in [0, 1]; return false to cancel (the read then fails with "cancelled").
   std::function<bool(double)> progress;
+  // An OpenColorIO colour space the file's values are in (colour_spaces.h), over what the file
+  // says of itself; empty: as the file says. readImage only: the stored-value readers keep the
+  // stored numbers.
+  std::string colour_space = {};
+  // Take an OpenEXR whose data window is not its display window (overscan), handing over the
+  // data window's pixels, instead of refusing it: for callers that place them by
+  // ImageInfo::data_origin (artcam warp and batch re-express the camera for them). readImage,
+  // readExtraChannels and readOtherParts only.
+  bool data_window = false;
 };
 
 // Channels beyond the image's own, as their stored float values, each group holding 1..4 of
@@ -132,6 +177,11 @@ struct ChannelGroup {
   std::vector<std::string> names;  // the file's names of the group's channels
   ImageF image;
   bool depth = false;  // every channel is depth-like (isDepthChannel)
+  // Every channel is sampled, not interpolated (sampledNearest: depth and ID-like channels).
+  bool nearest = false;
+  // Each channel's type as the file stores it ("half", "float", "uint32"; empty: unknown): an
+  // OpenEXR output writes the channel in it again.
+  std::vector<std::string> stored_types = {};
 };
 struct ExtraChannels {
   std::vector<ChannelGroup> groups;
@@ -147,12 +197,33 @@ struct ExtraChannels {
 // else (normals, AOV colour, masks) takes the image's filter, as Nuke's STMap does.
 bool isDepthChannel(const std::string& name);
 
+// ID-like channel names, whose values are labels, not quantities: an interpolated ID names no
+// object (half-way between IDs 3 and 5 is object 4), and a Cryptomatte hash interpolated is no
+// object's hash. "id" and "index" as the last part of the name ("crypto.id", "obj.index",
+// "id"), and every channel of a Cryptomatte layer (a part of the name starting "crypto", any
+// case: "CryptoObject00.R"). Together with depth-like channels and integer-typed ones (`integer`:
+// the file stores the channel as an integer), they are sampled at the nearest texel.
+bool sampledNearest(const std::string& name, bool integer);
+
 // The extra channels of `path` (ImageInfo::dropped_channels, in that order), upright as the
 // image `info` describes (its stored_orientation): depth-like and other channels in groups of
 // their own, each consecutive run of one kind cut into groups of at most four. Empty when the
 // file has none. Fails in one line naming the file.
 Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo& info,
                                         const ReadImageOptions& options = {});
+
+// A later part of a multi-part OpenEXR (ImageInfo::other_parts): its name and every channel of
+// it, read as readExtraChannels reads extra channels (stored floats, upright, grouped).
+struct ImagePart {
+  std::string name;
+  ExtraChannels channels;
+};
+
+// The parts of `path` after the first, in the file's order. Fails in one line naming the file and
+// the part when a part's data window is not the first part's (its pixels would not lie on the
+// image's) or cannot be read.
+Result<std::vector<ImagePart>> readOtherParts(const std::string& path, const ImageInfo& info,
+                                              const ReadImageOptions& options = {});
 
 // Whether `path`'s format holds named channels beyond RGBA (OpenEXR).
 bool formatStoresExtraChannels(const std::string& path);
@@ -187,9 +258,16 @@ struct WriteImageOptions {
   // was half): each group of the image's size. Only OpenEXR outputs take them; another format
   // refuses the write. Null or empty: none.
   const ExtraChannels* extra_channels = nullptr;
+  // Parts written after the image's own (a multi-part OpenEXR's later parts, warped), each of
+  // the image's size, in its windows; the image's part keeps `like`'s name, else "rgba". Only
+  // OpenEXR outputs take them; another format refuses the write. Null or empty: none.
+  const std::vector<ImagePart>* other_parts = nullptr;
   // Names of the image's own channels, one per channel (a depth map's "Z", as compositors
   // name depth). Empty: `like`'s names, else R, G, B, A (Y for one colour channel).
   std::vector<std::string> channel_names = {};
+  // An OpenColorIO colour space the output is encoded in from the working space (colour_spaces.h),
+  // over colour_space; empty: none.
+  std::string ocio_colour_space = {};
   // Where a save's one warning line goes (metadata left out), whole, without a prefix.
   // Empty: standard error, as "warning: LINE".
   std::function<void(const std::string&)> warning = {};

@@ -6,6 +6,7 @@
 #include "core/colour/transfer.h"
 #include "core/io/atomic_file.h"
 #include "core/io/checked_output.h"
+#include "core/io/colour_config.h"
 #include "core/io/extra_channels.h"
 #include "core/io/image_input.h"
 #include "core/io/image_io.h"
@@ -86,6 +87,23 @@ std::vector<std::string> defaultChannelNames(int channels, int alpha) {
   return names;
 }
 
+// Straight colour from associated and back, over interleaved values (alpha 0: colour 0).
+void unpremultiplyValues(float* data, size_t pixels, int channels, int alpha) {
+  for (size_t p = 0; p < pixels; ++p) {
+    float* px = data + p * static_cast<size_t>(channels);
+    const float a = px[alpha];
+    for (int c = 0; c < channels; ++c)
+      if (c != alpha) px[c] = a > 0.0f ? px[c] / a : 0.0f;
+  }
+}
+void premultiplyValues(float* data, size_t pixels, int channels, int alpha) {
+  for (size_t p = 0; p < pixels; ++p) {
+    float* px = data + p * static_cast<size_t>(channels);
+    for (int c = 0; c < channels; ++c)
+      if (c != alpha) px[c] *= px[alpha];
+  }
+}
+
 template <class T>
 std::vector<T> quantise(const std::vector<float>& values) {
   constexpr double kMax = static_cast<double>(std::numeric_limits<T>::max());
@@ -140,22 +158,28 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
   std::optional<Transfer> like_transfer =
       like ? Transfer::fromColourSpace(like->colour_space) : std::nullopt;
   if (like && !like_transfer) like_transfer = like->srgb ? Transfer::srgb() : Transfer::linear();
-  const bool want_srgb = options.colour_space == WriteImageOptions::ColourSpace::Srgb;
+  // A named OpenColorIO colour space (colour_spaces.h) encodes the output on its own: the
+  // values reach it as linear working-space light, no transfer, profile or primaries beside it.
+  const std::string& named = options.ocio_colour_space;
+  const bool want_srgb =
+      named.empty() && options.colour_space == WriteImageOptions::ColourSpace::Srgb;
   // An integer input converted through a profile keeps no transfer of its own: where its
   // profile does not encode the output (below), sRGB does.
-  const Transfer transfer =
-      !integer ? Transfer::linear()
-      : like && isIntegerType(like->pixel_type) && !like->icc && !want_srgb ? *like_transfer
-                                                                             : Transfer::srgb();
+  const Transfer transfer = !integer || !named.empty() ? Transfer::linear()
+                            : like && isIntegerType(like->pixel_type) && !like->icc &&
+                                    like->ocio_colour_space.empty() && !want_srgb
+                                ? *like_transfer
+                                : Transfer::srgb();
 
   // The profile integer values are encoded in (image_io.h, "Output colour"): `like`'s converting
   // profile by default, where it describes these channels; sRGB's when asked for.
   const int colour_channels = image.channels - (image.alpha_channel >= 0 ? 1 : 0);
-  const IccProfile* encode_icc = integer && !want_srgb && like && like->icc &&
+  const IccProfile* encode_icc = integer && named.empty() && !want_srgb && like && like->icc &&
                                          like->icc->colourChannels() == colour_channels
                                      ? like->icc.get()
                                      : nullptr;
-  const bool same_encoding = encode_icc ? isIntegerType(like->pixel_type)
+  const bool same_encoding = !named.empty()      ? false
+                             : encode_icc        ? isIntegerType(like->pixel_type)
                              : like && like->icc ? false
                                                  : like_transfer && *like_transfer == transfer;
 
@@ -175,16 +199,38 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     // A profile that does not describe the values (embedded_profile.h) labels no output.
     if (!like->profile_dropped.empty()) spec.erase_attribute("ICCProfile");
   }
+  // An OpenEXR output of an input in other primaries (an ACEScg plate) goes back into them by
+  // default, as an integer output goes back into its input's profile: a plate keeps its space.
+  const std::optional<Chromaticities> file_primaries = !integer && format == "openexr" && like &&
+                                                               like->chromaticities && !like->icc &&
+                                                               named.empty() && !want_srgb
+                                                           ? like->chromaticities
+                                                           : std::nullopt;
+  const std::optional<Matrix3> to_file_primaries =
+      file_primaries ? std::optional<Matrix3>(chromaticitiesFromWorking(*file_primaries))
+                     : std::nullopt;
   if (!integer) {
-    // Float files hold the working space; OpenEXR names its primaries and white, others are
-    // linear by convention. No ICC profile describes them. An EXR input's own chromaticities,
-    // carried over above, stay: its values were read as they are, not converted.
+    // Float files hold the working space (or the input's primaries, above); OpenEXR names its
+    // primaries and white, others are linear by convention. No ICC profile describes them.
     spec.erase_attribute("ICCProfile");
-    if (format == "openexr" && !spec.find_attribute("chromaticities")) {
-      const float rec709_d65[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
-      spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), rec709_d65);
+    spec.erase_attribute("chromaticities");
+    if (format == "openexr" && named.empty()) {
+      const Chromaticities label = file_primaries ? *file_primaries : Chromaticities::rec709();
+      float xy[8];
+      for (size_t k = 0; k < 8; ++k) xy[k] = static_cast<float>(label.xy[k]);
+      spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), xy);
+    } else if (format == "openexr") {
+      // A named space that is a matrix from the working space has primaries: they are named.
+      if (const auto named_primaries = io_colour::linearChromaticities(named)) {
+        float xy[8];
+        for (size_t k = 0; k < 8; ++k) xy[k] = static_cast<float>(named_primaries->xy[k]);
+        spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), xy);
+      }
     }
-  } else if (encode_icc || want_srgb) {
+  } else {
+    spec.erase_attribute("chromaticities");  // integer values are encoded from the working space
+  }
+  if (integer && (encode_icc || want_srgb)) {
     const std::vector<unsigned char> profile =
         encode_icc ? encode_icc->bytes() : IccProfile::srgbBytes();
     spec.erase_attribute("ICCProfile");
@@ -212,7 +258,9 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     return extra;
   const bool with_extra = options.extra_channels && !options.extra_channels->empty();
   // The profile is the whole label: no transfer tag (a PNG sRGB or gAMA chunk) beside it.
-  if (encode_icc)
+  if (!named.empty())
+    spec.attribute("oiio:ColorSpace", named);
+  else if (encode_icc)
     spec.erase_attribute("oiio:ColorSpace");
   else
     spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
@@ -246,7 +294,7 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       }
     }
   };
-  auto encodeRows = [&](int y0, int y1, std::vector<float>& encoded) {
+  auto encodeRows = [&](int y0, int y1, std::vector<float>& encoded) -> Status {
     encoded.clear();
     forEachSample(
         y0, y1,
@@ -258,11 +306,23 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     if (encode_icc)
       encode_icc->fromWorking(encoded.data(), encoded.size() / static_cast<size_t>(channels),
                               channels, alpha);
+
+    if (to_file_primaries)
+      applyMatrix(*to_file_primaries, encoded.data(),
+                  encoded.size() / static_cast<size_t>(channels), channels, alpha);
+    if (named.empty()) return Status::success();
+    // OpenColorIO converts straight colour: an associated output's is divided out and back.
+    const size_t pixels = encoded.size() / static_cast<size_t>(channels);
+    if (alpha >= 0 && associated) unpremultiplyValues(encoded.data(), pixels, channels, alpha);
+    const Status converted = io_colour::fromWorking(named, encoded.data(), pixels, channels,
+                                                    fail.substr(0, fail.size() - 2));
+    if (alpha >= 0 && associated) premultiplyValues(encoded.data(), pixels, channels, alpha);
+    return converted;
   };
   // 8-bit output through a transfer (no profile to convert through): straight to bytes by the
   // thresholds of quantise8.h, the same integers as encoding each sample and rounding it.
   std::optional<Quantise8> to_byte, alpha_to_byte;
-  if (pixel_type == "uint8" && !encode_icc && !with_extra) {
+  if (pixel_type == "uint8" && !encode_icc && !with_extra && named.empty()) {
     to_byte.emplace(transfer);
     if (keep_alpha) alpha_to_byte.emplace(Transfer::linear());
   }
@@ -276,13 +336,16 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
                                    : pixel_type == "uint16" ? OIIO::TypeDesc::UINT16
                                                             : OIIO::TypeDesc::FLOAT;
 
+  // A multi-part OpenEXR's later parts, after the image's (extra_channels.h).
+  auto part_specs = io_extra::partSpecs(spec, format, options.other_parts, path);
+  if (!part_specs) return part_specs.status;
   const Status written = writeAtomically(path, [&](const std::string& temp) {
     // OIIO names the file it was given; the user knows only the target.
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + replaceAll(oneLine(message), temp, path));
     };
     io_checked::CheckedWrite checked(std::move(out));
-    if (!checked.open(temp, spec)) return failure(checked.cause());
+    if (!checked.open(temp, *part_specs)) return failure(checked.cause());
     constexpr int kBand = 64;
     std::vector<float> encoded;
     std::vector<float> with_channels;
@@ -298,7 +361,7 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
         ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, bytes.data());
         continue;
       }
-      encodeRows(y0, y1, encoded);
+      if (const Status band = encodeRows(y0, y1, encoded); !band) return band;
       const void* data = encoded.data();
       if (with_extra) {  // OpenEXR only, so float samples
         io_extra::interleaveRows(encoded.data(), channels, image.width, y0, y1,
@@ -315,6 +378,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
       // Scanline numbers are the data window's (its origin, keepDisplayWindow, may not be 0).
       ok = checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, data_type, data);
     }
+    if (ok && part_specs->size() > 1)
+      ok = io_extra::writeParts(checked.output(), temp, *part_specs, *options.other_parts);
     if (!ok || !checked.close()) return failure(checked.cause());
     if (like && like->metadata) {
       return writePhotoMetadata(temp, *like->metadata, {image.width, image.height, same_encoding},

@@ -75,7 +75,9 @@ const oiio_io::Table* tableOr(R& failure, const std::string& path, const char* v
 }  // namespace
 
 Result<LoadedImage> readImage(const std::string& path, const ReadImageOptions& options) {
-  if (auto jpeg = jpeg_file::readFloat(path, options)) return std::move(*jpeg);
+  // A named colour space is converted by the module (colour_spaces.h).
+  if (options.colour_space.empty())
+    if (auto jpeg = jpeg_file::readFloat(path, options)) return std::move(*jpeg);
   Result<LoadedImage> failed;
   const auto* t = tableOr(failed, path, "read");
   return t ? t->read_image(path, options) : std::move(failed);
@@ -93,6 +95,13 @@ Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo
   Result<ExtraChannels> failed;
   const auto* t = tableOr(failed, path, "read");
   return t ? t->read_extra_channels(path, info, options) : std::move(failed);
+}
+
+Result<std::vector<ImagePart>> readOtherParts(const std::string& path, const ImageInfo& info,
+                                              const ReadImageOptions& options) {
+  Result<std::vector<ImagePart>> failed;
+  const auto* t = tableOr(failed, path, "read");
+  return t ? t->read_other_parts(path, info, options) : std::move(failed);
 }
 
 bool formatStoresExtraChannels(const std::string& path) {
@@ -179,6 +188,12 @@ Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& op
   Result<ImageF> failed;
   const auto* t = tableOr(failed, path, "read");
   return t ? t->read_depth_file(path, options, summary) : std::move(failed);
+}
+
+Status checkColourSpace(const std::string& name, const std::string& option) {
+  Status failed;
+  const auto* t = tableOr(failed, option, "use a colour space");
+  return t ? t->check_colour_space(name, option) : std::move(failed);
 }
 
 }  // namespace artcam

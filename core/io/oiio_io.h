@@ -11,6 +11,7 @@
 // `kTableVersion` and the struct's size only catch a module from another build.
 #pragma once
 
+#include "core/io/colour_spaces.h"
 #include "core/io/depth_file.h"
 #include "core/io/image_io.h"
 #include "core/io/stmap_file.h"
@@ -29,6 +30,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
 Result<ExtraChannels> readExtraChannels(const std::string& path, const ImageInfo& info,
                                         const ReadImageOptions& options);
 bool formatStoresExtraChannels(const std::string& path);
+Result<std::vector<ImagePart>> readOtherParts(const std::string& path, const ImageInfo& info,
+                                              const ReadImageOptions& options);
 
 Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOptions& options);
 Result<StoredShape> readStoredShape(const std::string& path);
@@ -48,7 +51,9 @@ Result<StmapSamples> readStmapSamples(const std::string& path, const StmapSample
 Result<ImageF> readDepthFile(const std::string& path, const DepthFileOptions& options,
                              DepthFileSummary* summary);
 
-constexpr int kTableVersion = 2;
+Status checkColourSpace(const std::string& name, const std::string& option);
+
+constexpr int kTableVersion = 4;
 
 struct Table {
   int version = kTableVersion;
@@ -68,6 +73,8 @@ struct Table {
   decltype(&writeStmap) write_stmap = &writeStmap;
   decltype(&readStmapSamples) read_stmap_samples = &readStmapSamples;
   decltype(&readDepthFile) read_depth_file = &readDepthFile;
+  decltype(&checkColourSpace) check_colour_space = &checkColourSpace;
+  decltype(&readOtherParts) read_other_parts = &readOtherParts;
 };
 
 }  // namespace artcam::oiio_io

@@ -152,7 +152,7 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
   const int alpha = io_input::keptAlpha(spec);
 
   std::string pixel_type;
-  const PixelType type = storedType(spec.format, pixel_type);
+  const PixelType type = storedType(io_input::keptFormat(spec), pixel_type);
   const Transfer transfer =
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
           .value_or(type == PixelType::Float ? Transfer::linear() : Transfer::srgb());
@@ -285,7 +285,7 @@ Result<std::unique_ptr<StoredImageReader>> openStoredImageReader(const std::stri
   state->channels_ = io_input::keptChannels(spec);
   state->alpha = io_input::keptAlpha(spec);
   std::string pixel_type;
-  state->type_ = storedType(spec.format, pixel_type);
+  state->type_ = storedType(io_input::keptFormat(spec), pixel_type);
   const Transfer transfer =
       Transfer::fromColourSpace(spec.get_string_attribute("oiio:ColorSpace"))
           .value_or(state->type_ == PixelType::Float ? Transfer::linear() : Transfer::srgb());
@@ -345,11 +345,14 @@ Result<StoredShape> readStoredShape(const std::string& path) {
   auto opened = io_input::openImageInput(path, /*whole=*/false);
   if (!opened) return Result<StoredShape>::failure(opened.status.message);
   const OIIO::ImageSpec& spec = (*opened)->spec();
-  if (const Status windows = io_input::dataWindowIsDisplayWindow(**opened, spec, path); !windows)
-    return Result<StoredShape>::failure(windows.message);
+  // Reported, not refused: the readers refuse (or, asked to, keep) the data window.
+  const bool overscan = !io_input::dataWindowIsDisplayWindow(**opened, spec, path);
   std::string name;
+  const auto primaries = io_input::foreignChromaticities(spec, path);
+  if (!primaries) return Result<StoredShape>::failure(primaries.status.message);
   return Result<StoredShape>::success(
-      StoredShape{spec.width, spec.height, io_input::keptChannels(spec), storedType(spec.format, name)});
+      StoredShape{spec.width, spec.height, io_input::keptChannels(spec),
+                  storedType(spec.format, name), primaries.value->has_value(), overscan});
 }
 
 bool storedWriteKeepsEncoding(const std::string& path, PixelType type) {
@@ -477,12 +480,15 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
   // Straight through when the layout is already the file's; else bands of rows converted.
   const bool direct = channels == image.channels && (alpha < 0 || associated) && !with_extra;
   const int sample = pixelTypeSize(image.type);
+  // A multi-part OpenEXR's later parts, after the image's (extra_channels.h).
+  auto part_specs = io_extra::partSpecs(spec, format, options.other_parts, path);
+  if (!part_specs) return part_specs.status;
   const Status written = writeAtomically(path, [&](const std::string& temp) {
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + io_text::replaceAll(oneLine(message), temp, path));
     };
     io_checked::CheckedWrite checked(std::move(out));
-    if (!checked.open(temp, spec)) return failure(checked.cause());
+    if (!checked.open(temp, *part_specs)) return failure(checked.cause());
     bool ok = true;
     CancelHook context{options.progress};  // cancel between bands
     const OIIO::ProgressCallback callback = context.callback();
@@ -538,6 +544,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
           checked.output().write_scanlines(spec.y + y0, spec.y + y1, 0, oiioType(image.type), data);
     }
     if (context.cancelled) return failure("cancelled");
+    if (ok && part_specs->size() > 1)
+      ok = io_extra::writeParts(checked.output(), temp, *part_specs, *options.other_parts);
     if (!ok || !checked.close()) return failure(checked.cause());
     // The transfer is the input's (see above), so the colour-space tags still hold.
     if (like && like->metadata)

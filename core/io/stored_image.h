@@ -59,6 +59,12 @@ Result<StoredImage> readStoredImage(const std::string& path, const ReadImageOpti
 struct StoredShape {
   int width = 0, height = 0, channels = 0;
   PixelType type = PixelType::UInt8;
+  // The file's RGB is in primaries other than the working space's (ImageInfo::chromaticities):
+  // only an output that names its primaries (OpenEXR) may keep the stored values.
+  bool foreign_primaries = false;
+  // An OpenEXR whose data window is not its display window (image_io.h): only readImage with
+  // ReadImageOptions::data_window takes it.
+  bool data_window = false;
 };
 Result<StoredShape> readStoredShape(const std::string& path);
 

@@ -66,6 +66,29 @@ void changeOutputFrame(Camera& camera, int block, const Eigen::MatrixXd& a_col) 
   for (int i = 0; i < k; ++i) q[off + i] = std::move(mixed[i]);
 }
 
+void reframeToRegions(Camera& camera, double source_x, double source_y, FrameSize source_size,
+                      double target_x, double target_y, FrameSize target_size) {
+  const int position = camera.layout().find(BlockKind::Position);
+  if (position >= 0 && camera.layout().blocks[static_cast<size_t>(position)].size == 3) {
+    const auto shift = [](double x, double y) {
+      Eigen::Matrix3d t = Eigen::Matrix3d::Identity();
+      t(0, 2) = x;
+      t(1, 2) = y;
+      return t;
+    };
+    // region-normalised → region pixels → frame pixels → frame-normalised, for column vectors.
+    const Eigen::Matrix3d frame_from_source = normalizedFromPixelMatrix(camera.sourceSize()) *
+                                              shift(source_x, source_y) *
+                                              pixelFromNormalizedMatrix(source_size);
+    const Eigen::Matrix3d target_from_frame = normalizedFromPixelMatrix(target_size) *
+                                              shift(-target_x, -target_y) *
+                                              pixelFromNormalizedMatrix(camera.targetSize());
+    changeInputFrame(camera, position, frame_from_source.transpose());
+    changeOutputFrame(camera, position, target_from_frame);
+  }
+  camera.setFrames(source_size, target_size);
+}
+
 std::vector<Eigen::Matrix3d> positionTensorsInPixels(const Camera& camera) {
   const BlockLayout& layout = camera.layout();
   if (layout.blocks.size() != 1 || layout.blocks[0].kind != BlockKind::Position ||

@@ -32,6 +32,16 @@ void changeInputFrame(Camera& camera, int block, const Eigen::MatrixXd& h_row);
 // Q'_i = Σ_j A_ij Q_j over the elements of output block `block`, in the LAST stage.
 void changeOutputFrame(Camera& camera, int block, const Eigen::MatrixXd& a_col);
 
+// The camera re-expressed for images that hold a region of its frames rather than the frames
+// themselves: source pixels are those of `source_size` pixels whose top-left corner lies at
+// (source_x, source_y) of the camera's source frame (an OpenEXR's data window in its display
+// window: overscan, or a crop), and likewise target pixels. The position block's input and
+// output frames change (eq 3's tensors, the §5 rule above), the frames become the regions' sizes;
+// a camera without a position block only changes frames. Every stage but the first's inputs and
+// the last's outputs is untouched.
+void reframeToRegions(Camera& camera, double source_x, double source_y, FrameSize source_size,
+                      double target_x, double target_y, FrameSize target_size);
+
 // The 2D position block re-expressed with pixel coordinates on both sides (for renderers and
 // peers that think in pixels): 3 tensors such that target_pixel = z / z_3 for z = x_p Q xᵀ_p.
 std::vector<Eigen::Matrix3d> positionTensorsInPixels(const Camera& camera);

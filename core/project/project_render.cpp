@@ -178,7 +178,8 @@ Status writeDepthMapFile(const std::string& path, const ImageF& raster,
   return writeImage(path, depthMapImage(raster), nullptr, options);
 }
 
-Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where) {
+Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where,
+                                      const ReadImageOptions& photo_read) {
   using R = Result<ProjectScene>;
   ProjectScene scene;
   // The whole document against the budget from the photo's header, before it is decoded.
@@ -190,7 +191,7 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
         !fits)
       return R::failure(fits.message);
   }
-  Result<LoadedImage> photo = readImage(project.photo_path);
+  Result<LoadedImage> photo = readImage(project.photo_path, photo_read);
   if (!photo) return R::failure(where + ": photo: " + photo.status.message);
   scene.photo = std::move(*photo.value);
   const FrameSize frame{scene.photo.image.width, scene.photo.image.height};

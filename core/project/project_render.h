@@ -67,7 +67,8 @@ struct ProjectScene {
 };
 
 // Reads the photo and the depth map the project names. Messages name the file that failed.
-Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where);
+Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::string& where,
+                                      const ReadImageOptions& photo_read = {});
 
 // The painted planes (with three anchors each) over the map, at the photo's size; `has_depth`
 // says whether any pixel got a depth. The studio's depth model makes the same raster.
