@@ -154,7 +154,8 @@ int cameraCommand(const std::vector<std::string>& argv) {
   options.tca = !args.has("--no-tca");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
-  checkOutputs(args, {*output}, {});
+  checkOutputs(args, {*output},
+               from ? std::vector<std::string>{*from} : std::vector<std::string>{});
 
   const auto db = loadDatabase();
   std::optional<PhotoLensChoice> choice;

@@ -199,8 +199,10 @@ Result<LensEntry> LensDatabase::find(std::string_view name, double crop) const {
 
 std::string PhotoLensLookup::searched() const {
   std::string out;
+  // Cameras mostly repeat the make in the model ("Canon", "Canon PowerShot G11").
+  const bool make_in_model = lower(hint.camera_model).rfind(lower(hint.camera_maker), 0) == 0;
   const std::string camera_tags =
-      hint.camera_maker.empty() ? hint.camera_model : hint.camera_maker + " " + hint.camera_model;
+      make_in_model ? hint.camera_model : hint.camera_maker + " " + hint.camera_model;
   if (!hint.lens_model.empty()) out = "lens \"" + hint.lens_model + "\"";
   if (!camera_tags.empty()) {
     out += (out.empty() ? "camera \"" : " with camera \"") + camera_tags + "\"";
@@ -227,7 +229,7 @@ PhotoLensLookup LensDatabase::lookUp(const LensHint& hint) const {
     }
     if (cameras && cameras[0]) {
       camera = cameras[0];
-      out.camera = text(camera->Maker) + " " + text(camera->Model);
+      out.camera = text(camera->Model);  // lensfun's models hold the brand: "Nikon D750"
       out.camera_crop = camera->CropFactor;
     }
   }
@@ -245,8 +247,11 @@ PhotoLensLookup LensDatabase::lookUp(const LensHint& hint) const {
       if (!out.lenses.empty()) out.lens_match = how;
     }
     if (out.lenses.empty() && !camera) {
+      // No camera to narrow the lenses to a mount: only the strict matches, since lensfun's
+      // loose one would take any lens sharing a word ("50mm") for the photo's.
       LensSearchMatch how = LensSearchMatch::None;
       out.lenses = search(hint.lens_model, 0, &how);
+      if (how == LensSearchMatch::LensfunLoose) out.lenses.clear();
       out.lens_match = lensSearchMatchName(how);
     }
   }

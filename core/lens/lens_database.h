@@ -50,11 +50,12 @@ const char* lensSearchMatchName(LensSearchMatch match);  // "words", "lensfun", 
 
 // The lensfun entries a photo's EXIF leads to (LensDatabase::lookUp): the camera lensfun knows
 // by the EXIF make and model, and the lenses for the EXIF lens name on that camera (else, with
-// no lens name, the lenses lensfun lists for the camera: a compact's fixed lens), those that
-// cover the focal length first.
+// no lens name or none matching, the lenses lensfun lists for the camera: a compact's fixed
+// lens), those that cover the focal length first. Without a camera only strict name matches
+// count: a loose one is narrowed to the camera's mount or not taken.
 struct PhotoLensLookup {
   LensHint hint;
-  std::string camera;             // lensfun's "maker model" of the camera; empty: none matched
+  std::string camera;             // lensfun's model name of the camera; empty: none matched
   double camera_crop = 0.0;       // that camera's crop factor; 0 when none matched
   bool camera_loose = false;      // the camera was found only by lensfun's loose match
   std::vector<LensEntry> lenses;  // best first

@@ -4,7 +4,6 @@
 #include "core/io/photo_metadata.h"
 #include "core/io/stored_image.h"
 
-#include <algorithm>
 #include <cstdio>
 
 namespace artcam {
@@ -54,16 +53,11 @@ Result<PhotoLensChoice> lensForPhoto(const LensDatabase& database, const std::st
   const PhotoLensLookup& found = choice.lookup;
   if (found.lenses.empty())
     return R::failure(path + ": no lens in the lensfun database matches " + found.searched());
-  if (found.lens_match == "the camera's lenses") {
+  if (found.lens_match == "the camera's lenses" && found.lenses.size() != 1)
     // Without a lens name lensfun knows, only a camera with one lens (a compact's) decides it.
-    const auto covers = std::count_if(found.lenses.begin(), found.lenses.end(), [&](const auto& e) {
-      return hint.focal_mm >= e.min_focal_mm - 0.05 && hint.focal_mm <= e.max_focal_mm + 0.05;
-    });
-    if (covers != 1)
-      return R::failure(path + ": its EXIF names no lens lensfun knows (" + found.searched() +
-                        "), and " + std::to_string(found.lenses.size()) +
-                        " lenses fit that camera (name one with --lens NAME)");
-  }
+    return R::failure(path + ": its EXIF names no lens lensfun knows (" + found.searched() +
+                      "), and " + std::to_string(found.lenses.size()) +
+                      " lenses fit that camera (name one with --lens NAME)");
   choice.options = base;
   choice.options.lens = found.lenses.front().model;
   choice.options.focal_mm = hint.focal_mm;

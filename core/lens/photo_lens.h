@@ -23,7 +23,7 @@ struct PhotoLensChoice {
   // Photos with equal keys get the same camera: lensfun's camera, the lens, the focal length,
   // the crop factor and the raster size (a zoom shoot makes one camera per focal length).
   std::string key() const;
-  // "Nikon AF-S Nikkor 50mm f/1.4G at 50 mm, crop 1 (camera Nikon Corporation Nikon D750)"
+  // "Nikon AF-S Nikkor 50mm f/1.4G at 50 mm, crop 1 (camera Nikon D750)"
   std::string describe() const;
 };
 

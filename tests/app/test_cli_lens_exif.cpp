@@ -13,6 +13,7 @@
 
 #include <QDir>
 #include <QFile>
+#include <QFileInfo>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -155,14 +156,23 @@ class TestCliLensExif : public QObject {
     Exif unknown;
     unknown.maker = "Acme";
     unknown.model = "Acme Zorp 9";
-    unknown.lens = "Zorpinar 7mm f/0.9";
+    unknown.lens = "Zorpinar 50mm";  // "50mm" alone must not pick some 50 mm lens
+    unknown.focal_mm = 50;
     const QString odd = dir.filePath("unknown.jpg");
     QVERIFY(writePhoto(odd, unknown));
     oneLine({"lens", "camera", "--from", odd, "-o", cam}, 1,
-            {odd, "Zorpinar 7mm f/0.9", "Acme Zorp 9", "lensfun"});
+            {odd, "Zorpinar 50mm", "Acme Zorp 9", "lensfun"});
     oneLine({"lens", "camera", "--from", odd, "--focal", "7", "-o", cam}, 2, {"--focal", "--from"});
     oneLine({"lens", "camera", "--from", dir.filePath("missing.jpg"), "-o", cam}, 1,
             {"missing.jpg"});
+    // The camera never replaces the photo it was read from.
+    const QString good = dir.filePath("good.jpg");
+    QVERIFY(writePhoto(good, Exif{}));
+    const qint64 size = QFileInfo(good).size();
+    const auto over = artcamCli({"lens", "camera", "--from", good, "-o", good, "--overwrite"});
+    QVERIFY(over.exit_code != 0);
+    QVERIFY2(over.err.contains(good), qPrintable(over.err));
+    QCOMPARE(QFileInfo(good).size(), size);
   }
 
   // The done-when figure: one zoom shoot at three focal lengths (6.1 mm twice) corrected by one
