@@ -33,10 +33,10 @@ namespace artcam::cli {
 
 const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
-    "       artcam batch --lens-from-exif IN... -o DIR [options as above]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
     "                    [--quality N] [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
-    "                    [--overwrite] [--json] [--quiet]\n\n"
+    "                    [--overwrite] [--json] [--quiet]\n"
+    "       artcam batch --lens-from-exif IN... -o DIR [options as above]\n\n"
     "Warps every IN through the camera into DIR (created if missing), as artcam warp does\n"
     "(upright, with IN's metadata, quality and pixel type unless --quality or --bit-depth),\n"
     "under IN's name, with --suffix added to the name and --format EXT as the extension\n"
@@ -134,7 +134,8 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--quiet", "-q", false},
                          {"--lens-from-exif", "", false}});
   const bool lens_from_exif = args.has("--lens-from-exif");
-  const size_t first_input = lens_from_exif ? 0 : 1;  // CAM.artcam comes first unless
+  // CAM.artcam comes first, unless each IN's camera comes from its EXIF.
+  const size_t first_input = lens_from_exif ? 0 : 1;
   if (args.positional().size() < first_input + 1)
     throw UsageError(lens_from_exif ? "expected at least one IN"
                                     : "expected CAM.artcam and at least one IN");
