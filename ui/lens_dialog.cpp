@@ -63,7 +63,11 @@ LensDialog::LensDialog(std::shared_ptr<const LensDatabase> database, FrameSize p
   connect(buttons_, &QDialogButtonBox::accepted, this, &QDialog::accept);
   connect(buttons_, &QDialogButtonBox::rejected, this, &QDialog::reject);
 
-  suggestions_ = database_->suggest(hint);
+  // The lookup `artcam lens camera --from` makes: its first lens is the one the CLI takes, and
+  // the crop factor of the camera lensfun knows from the EXIF is the one it uses.
+  const PhotoLensLookup lookup = database_->lookUp(hint);
+  suggestions_ = lookup.lenses;
+  if (lookup.camera_crop > 0) crop_->setValue(lookup.camera_crop);
   connect(search_, &QLineEdit::textChanged, this, &LensDialog::fill);
   connect(list_, &QListWidget::currentRowChanged, this, &LensDialog::selectionChanged);
   connect(list_, &QListWidget::itemDoubleClicked, this, &QDialog::accept);
@@ -88,7 +92,7 @@ void LensDialog::selectionChanged() {
     about_->setText(search_->text().trimmed().isEmpty()
                         ? tr("No suggestion from the photo's EXIF: type to search the %1 lenses.")
                               .arg(database_->size())
-                        : tr("No lens holds every word."));
+                        : tr("No lens matches, not even by lensfun's loose search."));
     return;
   }
   const LensEntry& e = shown_[static_cast<size_t>(row)];

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // Lens ▸ From Database…: choose a lens of the lensfun database (core/lens) and the settings of
 // `artcam lens camera` for the open photo. The list searches as you type (every word must
-// begin a word of the lens's name); with the field empty it shows the lenses the photo's EXIF
-// suggests (its lens name, else the lenses lensfun lists for its camera, those covering its
-// focal length first), and the focal length starts at the EXIF one. The dialog only chooses:
+// begin a word of the lens's name, else lensfun's own match, LensDatabase::search); with the
+// field empty it shows the lenses LensDatabase::lookUp finds for the photo's EXIF (the lookup
+// `artcam lens camera --from` makes: its first lens is the CLI's choice), the crop factor
+// starts at that of the camera lensfun knows and the focal length at the EXIF one. The dialog
+// only chooses:
 // Session makes the camera off the GUI thread and sets it as the document's camera.
 #pragma once
 

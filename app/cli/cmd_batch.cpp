@@ -7,6 +7,7 @@
 // bands of rows (interrupt.h) and keeps the finished outputs.
 #include "app/cli/args.h"
 #include "app/cli/batch_inputs.h"
+#include "app/cli/batch_lens.h"
 #include "app/cli/bounded_queue.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
@@ -22,6 +23,8 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -33,7 +36,8 @@ const char* const kBatchUsage =
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
     "                    [--quality N] [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                    [--colourspace-in NAME] [--colourspace-out NAME]\n"
-    "                    [--overwrite] [--json] [--quiet]\n\n"
+    "                    [--overwrite] [--json] [--quiet]\n"
+    "       artcam batch --lens-from-exif IN... -o DIR [options as above]\n\n"
     "Warps every IN through the camera into DIR (created if missing), as artcam warp does\n"
     "(upright, with IN's metadata, quality and pixel type unless --quality or --bit-depth),\n"
     "under IN's name, with --suffix added to the name and --format EXT as the extension\n"
@@ -51,7 +55,14 @@ const char* const kBatchUsage =
     "status (written, failed or not done), error, width, height, render_ms, description,\n"
     "warning (when IN's aspect differs from the camera's source frame)}],\n"
     "totals: {files, written, failed, not_done, seconds, megapixels, mpix_per_s},\n"
-    "interrupted}.\n\n"
+    "interrupted}.\n"
+    "--lens-from-exif takes no CAM.artcam: each IN is corrected by the camera artcam lens\n"
+    "camera --from IN makes (its EXIF's camera, lens and focal length in the lensfun\n"
+    "database, for its stored raster), one camera made per distinct camera, lens, focal\n"
+    "length and size and kept for the rest, so a zoom shoot makes one per focal length. A\n"
+    "photo whose EXIF gives no lens camera fails alone. Each file's line names its lens and\n"
+    "focal length; --json adds lens: {model, focal_mm, crop, camera, camera_number} per file\n"
+    "and lens_cameras (cameras made) to totals.\n\n"
     "options:\n"
     "  -o, --output DIR     the folder for the outputs (required)\n"
     "  --suffix S           added to each output's name before the extension (default none)\n"
@@ -73,20 +84,24 @@ const char* const kBatchUsage =
     "  --colourspace-out NAME the OpenColorIO colour space the output is encoded in\n"
     "  --overwrite          replace outputs that exist (--force is the same); never an input\n"
     "  --json               the results as one JSON object on stdout (above)\n"
-    "  -q, --quiet          no progress and no per-file lines (errors and summary only)\n\n"
+    "  -q, --quiet          no progress and no per-file lines (errors and summary only)\n"
+    "  --lens-from-exif     each IN's lens camera from its EXIF, instead of CAM.artcam\n\n"
     "Examples:\n"
     "  artcam batch lens.artcam shoot/*.jpg -o fixed/\n"
-    "  artcam batch lens.artcam frames/f_%04d.png -o out/ --format exr --suffix _warped\n";
+    "  artcam batch lens.artcam frames/f_%04d.png -o out/ --format exr --suffix _warped\n"
+    "  artcam batch --lens-from-exif zoom-shoot/*.jpg -o fixed/\n";
 
 namespace {
 
 struct Decoded {
   size_t index;
   DecodedInput image;
+  std::shared_ptr<const WarpCameraFile> camera;  // CAM.artcam's, or the frame's lens camera
 };
 struct Rendered {
   size_t index;
   RenderedOutput image;
+  std::shared_ptr<const WarpCameraFile> camera;
 };
 
 // One file's result for --json; each slot is written by the one stage that settles its file.
@@ -98,6 +113,7 @@ struct FileResult {
   double render_ms = 0.0;
   std::string description;
   std::string warning;  // warp's aspect warning (the output-frame rule, render.h), if any
+  std::optional<BatchLensFrame> lens;  // --lens-from-exif: the frame's lens
 };
 
 struct BatchTally {
@@ -124,8 +140,14 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--json", "", false},
-                         {"--quiet", "-q", false}});
-  if (args.positional().size() < 2) throw UsageError("expected CAM.artcam and at least one IN");
+                         {"--quiet", "-q", false},
+                         {"--lens-from-exif", "", false}});
+  const bool lens_from_exif = args.has("--lens-from-exif");
+  // CAM.artcam comes first, unless each IN's camera comes from its EXIF.
+  const size_t first_input = lens_from_exif ? 0 : 1;
+  if (args.positional().size() < first_input + 1)
+    throw UsageError(lens_from_exif ? "expected at least one IN"
+                                    : "expected CAM.artcam and at least one IN");
   const auto folder = args.value("--output");
   if (!folder) throw UsageError("missing -o DIR");
   BatchNaming naming{*folder, args.valueOr("--suffix", ""), args.valueOr("--format", "")};
@@ -138,7 +160,8 @@ int batchCommand(const std::vector<std::string>& argv) {
 
   std::vector<std::string> inputs;
   for (const std::string& in : expandBatchInputs(
-           std::vector<std::string>(args.positional().begin() + 1, args.positional().end()),
+           std::vector<std::string>(args.positional().begin() + static_cast<long>(first_input),
+                                    args.positional().end()),
            first)) {
     // A hidden ".name.tmp-<pid>-<n>.ext" is an unfinished save, not a photo.
     if (isAtomicTemporaryName(std::filesystem::path(in).filename().string())) {
@@ -158,10 +181,15 @@ int batchCommand(const std::vector<std::string>& argv) {
   {
     std::vector<std::string> outputs, read = inputs;
     for (const BatchItem& item : items) outputs.push_back(item.output);
-    read.push_back(args.positional()[0]);
+    if (!lens_from_exif) read.push_back(args.positional()[0]);
     checkOutputs(args, outputs, read);
   }
-  const WarpCameraFile camera = loadWarpCamera(args.positional()[0]);
+  std::shared_ptr<const WarpCameraFile> fixed_camera;
+  std::optional<BatchLensCameras> lens_cameras;
+  if (lens_from_exif)
+    lens_cameras.emplace();
+  else
+    fixed_camera = std::make_shared<const WarpCameraFile>(loadWarpCamera(args.positional()[0]));
 
   const CooperativeInterrupt interrupt;
   ProgressBar bar(static_cast<int>(items.size()), quiet);
@@ -197,8 +225,14 @@ int batchCommand(const std::vector<std::string>& argv) {
     for (size_t i = 0; i < items.size() && !interruptRequested(); ++i) {
       if (!decoded.waitForSpace()) break;
       if (!guarded(i, [&] {
-            decoded.push({i, decodeForWarp(camera, request, items[i].input, items[i].output,
-                                           no_report)});
+            std::shared_ptr<const WarpCameraFile> camera = fixed_camera;
+            if (lens_cameras) {
+              results[i].lens = lens_cameras->forPhoto(items[i].input);
+              camera = results[i].lens->camera;
+            }
+            decoded.push(
+                {i, decodeForWarp(*camera, request, items[i].input, items[i].output, no_report),
+                 camera});
           }))
         bar.itemDone(0.0, "");
     }
@@ -209,7 +243,8 @@ int batchCommand(const std::vector<std::string>& argv) {
       if (interruptRequested()) break;
       const double mpix = static_cast<double>(item->image.width) * item->image.height / 1e6;
       const BatchItem& names = items[item->index];
-      if (guarded(item->index, [&] { encodeWarp(item->image, request, no_report, camera); })) {
+      if (guarded(item->index,
+                  [&] { encodeWarp(item->image, request, no_report, *item->camera); })) {
         tally.written.fetch_add(1);
         // A photo of another aspect than the camera's source frame is stretched: said, as warp
         // says it.
@@ -224,19 +259,20 @@ int batchCommand(const std::vector<std::string>& argv) {
                 droppedProfileWarning(item->image, names.input, names.output);
             !profile.empty())
           std::fprintf(stderr, "artcam batch: warning: %s\n", profile.c_str());
-        results[item->index] = {"written",
-                                "",
-                                item->image.width,
-                                item->image.height,
-                                item->image.render_ms,
-                                item->image.description,
-                                item->image.warning};
+        FileResult& result = results[item->index];
+        result.status = "written";
+        result.width = item->image.width;
+        result.height = item->image.height;
+        result.render_ms = item->image.render_ms;
+        result.description = item->image.description;
+        result.warning = item->image.warning;
         tally.megapixels.store(tally.megapixels.load() + mpix);  // only this thread adds
         char line[64];
         std::snprintf(line, sizeof line, "%zu/%zu ", item->index + 1, items.size());
         bar.itemDone(mpix, line + names.input + " -> " + names.output + " (" +
                                std::to_string(item->image.width) + "x" +
                                std::to_string(item->image.height) + ", " + item->image.description +
+                               (result.lens ? ", lens " + result.lens->choice.describe() : "") +
                                ")");
       } else {
         bar.itemDone(0.0, "");
@@ -251,7 +287,9 @@ int batchCommand(const std::vector<std::string>& argv) {
     const size_t index = item->index;
     if (!guarded(index, [&] {
           rendered.push(
-              {index, renderForWarp(camera, std::move(item->image), request, render_progress)});
+              {index,
+               renderForWarp(*item->camera, std::move(item->image), request, render_progress),
+               item->camera});
         }))
       bar.itemDone(0.0, "");
   }
@@ -280,6 +318,14 @@ int batchCommand(const std::vector<std::string>& argv) {
         j["description"] = f.description;
         if (!f.warning.empty()) j["warning"] = f.warning;
       }
+      if (f.lens) {
+        const LensCameraOptions& o = f.lens->choice.options;
+        j["lens"] = {{"model", o.lens},
+                     {"focal_mm", o.focal_mm},
+                     {"crop", o.crop},
+                     {"camera", f.lens->choice.lookup.camera},
+                     {"camera_number", f.lens->camera_number}};
+      }
       files.push_back(j);
     }
     const nlohmann::json totals = {{"files", items.size()},
@@ -290,8 +336,9 @@ int batchCommand(const std::vector<std::string>& argv) {
                                    {"megapixels", tally.megapixels.load()},
                                    {"mpix_per_s", mpix_per_s},
                                    {"folder", naming.folder}};
-    const nlohmann::json report = {
+    nlohmann::json report = {
         {"files", files}, {"totals", totals}, {"interrupted", interruptRequested()}};
+    if (lens_cameras) report["totals"]["lens_cameras"] = lens_cameras->made();
     std::printf("%s\n", report.dump().c_str());
   } else {
     std::printf(
@@ -299,6 +346,9 @@ int batchCommand(const std::vector<std::string>& argv) {
       items.size(), naming.folder.c_str(), failed,
       interruptRequested() ? (", " + std::to_string(left) + " not done (interrupted)").c_str() : "",
       seconds, mpix_per_s);
+    if (lens_cameras)
+      std::printf("batch: %d lens camera%s made from the photos' EXIF\n", lens_cameras->made(),
+                  lens_cameras->made() == 1 ? "" : "s");
   }
   std::fflush(stdout);
   // 130 means work was left undone; a signal after the last file was in place changes nothing

@@ -123,9 +123,34 @@ const lfLens* LensDatabase::lens(int index) const {
   return lenses_.at(static_cast<size_t>(index));
 }
 
-std::vector<LensEntry> LensDatabase::search(std::string_view query, int limit) const {
+const char* lensSearchMatchName(LensSearchMatch match) {
+  switch (match) {
+    case LensSearchMatch::Words:
+      return "words";
+    case LensSearchMatch::Lensfun:
+      return "lensfun";
+    case LensSearchMatch::LensfunLoose:
+      return "lensfun-loose";
+    default:
+      return "none";
+  }
+}
+
+std::vector<LensEntry> LensDatabase::entriesOf(const lfLens** found) const {
+  std::vector<LensEntry> out;
+  for (int i = 0; found && found[i]; ++i) {
+    const auto at = std::find(lenses_.begin(), lenses_.end(), found[i]);
+    if (at != lenses_.end()) out.push_back(entries_[static_cast<size_t>(at - lenses_.begin())]);
+  }
+  lf_free(found);
+  return out;
+}
+
+std::vector<LensEntry> LensDatabase::search(std::string_view query, int limit,
+                                            LensSearchMatch* how) const {
   const std::vector<std::string> ws = words(query);
   std::vector<LensEntry> hits;
+  if (how) *how = LensSearchMatch::None;
   if (ws.empty()) return hits;
   for (const LensEntry& e : entries_)
     if (holdsAll(e, ws)) hits.push_back(e);
@@ -134,6 +159,19 @@ std::vector<LensEntry> LensDatabase::search(std::string_view query, int limit) c
     if (ea != eb) return ea;
     return std::tie(a.maker, a.model) < std::tie(b.maker, b.model);
   });
+  LensSearchMatch match = hits.empty() ? LensSearchMatch::None : LensSearchMatch::Words;
+  // Words split at spaces miss "nikon 50mm 1.4" for "Nikon AF-S Nikkor 50mm f/1.4G"; lensfun's
+  // own matcher splits at punctuation as well and ranks by its score, so it is the fallback,
+  // its strict form before the loose one (which needs only some of the words).
+  const std::string pattern(query);
+  for (const auto& [flags, kind] :
+       {std::pair{0, LensSearchMatch::Lensfun},
+        std::pair{int{LF_SEARCH_LOOSE}, LensSearchMatch::LensfunLoose}}) {
+    if (!hits.empty()) break;
+    hits = entriesOf(db_->FindLenses(nullptr, nullptr, pattern.c_str(), flags));
+    if (!hits.empty()) match = kind;
+  }
+  if (how) *how = match;
   if (limit > 0 && static_cast<int>(hits.size()) > limit) hits.resize(static_cast<size_t>(limit));
   return hits;
 }
@@ -159,31 +197,83 @@ Result<LensEntry> LensDatabase::find(std::string_view name, double crop) const {
   return Result<LensEntry>::failure(message);
 }
 
-std::vector<LensEntry> LensDatabase::suggest(const LensHint& hint, int limit) const {
-  std::vector<LensEntry> found;
-  if (!hint.lens_model.empty()) found = search(hint.lens_model, 0);
-  if (found.empty() && !hint.camera_model.empty()) {
-    // lensfun lists the lenses that fit a camera's mount; a compact's fixed lens is on a mount
-    // of its own, so this finds exactly it.
-    const lfCamera** cameras =
-        db_->FindCamerasExt(hint.camera_maker.empty() ? nullptr : hint.camera_maker.c_str(),
-                            hint.camera_model.c_str(), 0);
-    if (cameras && cameras[0]) {
-      const lfLens** lenses = db_->FindLenses(cameras[0], nullptr, nullptr, 0);
-      for (int i = 0; lenses && lenses[i]; ++i) {
-        const auto at = std::find(lenses_.begin(), lenses_.end(), lenses[i]);
-        if (at != lenses_.end()) found.push_back(entries_[static_cast<size_t>(at - lenses_.begin())]);
-      }
-      lf_free(lenses);
-    }
-    lf_free(cameras);
+std::string PhotoLensLookup::searched() const {
+  std::string out;
+  // Cameras mostly repeat the make in the model ("Canon", "Canon PowerShot G11").
+  const bool make_in_model = lower(hint.camera_model).rfind(lower(hint.camera_maker), 0) == 0;
+  const std::string camera_tags =
+      make_in_model ? hint.camera_model : hint.camera_maker + " " + hint.camera_model;
+  if (!hint.lens_model.empty()) out = "lens \"" + hint.lens_model + "\"";
+  if (!camera_tags.empty()) {
+    out += (out.empty() ? "camera \"" : " with camera \"") + camera_tags + "\"";
+    out += camera.empty() ? std::string(" (not in lensfun)")
+                          : " (lensfun: " + camera + (camera_loose ? ", loose match)" : ")");
   }
+  return out.empty() ? "no lens or camera" : out;
+}
+
+PhotoLensLookup LensDatabase::lookUp(const LensHint& hint) const {
+  PhotoLensLookup out;
+  out.hint = hint;
+  const lfCamera* camera = nullptr;
+  const lfCamera** cameras = nullptr;
+  if (!hint.camera_model.empty()) {
+    // lensfun normalises makers ("NIKON CORPORATION" is "Nikon"); its loose match is the fallback
+    // for a model it spells otherwise, and the camera chosen is said in every report.
+    const char* maker = hint.camera_maker.empty() ? nullptr : hint.camera_maker.c_str();
+    cameras = db_->FindCamerasExt(maker, hint.camera_model.c_str(), 0);
+    if (!cameras || !cameras[0]) {
+      lf_free(cameras);
+      cameras = db_->FindCamerasExt(maker, hint.camera_model.c_str(), LF_SEARCH_LOOSE);
+      out.camera_loose = cameras && cameras[0];
+    }
+    if (cameras && cameras[0]) {
+      camera = cameras[0];
+      out.camera = text(camera->Model);  // lensfun's models hold the brand: "Nikon D750"
+      out.camera_crop = camera->CropFactor;
+    }
+  }
+  if (!hint.lens_model.empty()) {
+    // An exact model name first; else lensfun's match of the EXIF name among the lenses that fit
+    // the camera (its mount and crop), strict before loose; else the name searched alone.
+    for (const LensEntry& e : entries_)
+      if (namedExactly(e, hint.lens_model)) out.lenses.push_back(e);
+    if (!out.lenses.empty()) out.lens_match = "exact name";
+    const std::string model = hint.lens_model;
+    for (const auto& [flags, how] :
+         {std::pair{0, "lensfun"}, std::pair{int{LF_SEARCH_LOOSE}, "lensfun loose"}}) {
+      if (!out.lenses.empty() || !camera) break;
+      out.lenses = entriesOf(db_->FindLenses(camera, nullptr, model.c_str(), flags));
+      if (!out.lenses.empty()) out.lens_match = how;
+    }
+    if (out.lenses.empty() && !camera) {
+      // No camera to narrow the lenses to a mount: only the strict matches, since lensfun's
+      // loose one would take any lens sharing a word ("50mm") for the photo's.
+      LensSearchMatch how = LensSearchMatch::None;
+      out.lenses = search(hint.lens_model, 0, &how);
+      if (how == LensSearchMatch::LensfunLoose) out.lenses.clear();
+      out.lens_match = lensSearchMatchName(how);
+    }
+  }
+  if (out.lenses.empty() && camera) {
+    // lensfun lists the lenses that fit a camera's mount; a compact's fixed lens is on a mount
+    // of its own, so this finds exactly it (its EXIF lens name is often only "6.1-30.5 mm").
+    out.lenses = entriesOf(db_->FindLenses(camera, nullptr, nullptr, 0));
+    if (!out.lenses.empty()) out.lens_match = "the camera's lenses";
+  }
+  if (out.lenses.empty()) out.lens_match.clear();
+  lf_free(cameras);
   if (hint.focal_mm > 0) {
     const auto covers = [&](const LensEntry& e) {
       return hint.focal_mm >= e.min_focal_mm - 0.05 && hint.focal_mm <= e.max_focal_mm + 0.05;
     };
-    std::stable_partition(found.begin(), found.end(), covers);
+    std::stable_partition(out.lenses.begin(), out.lenses.end(), covers);
   }
+  return out;
+}
+
+std::vector<LensEntry> LensDatabase::suggest(const LensHint& hint, int limit) const {
+  std::vector<LensEntry> found = lookUp(hint).lenses;
   if (limit > 0 && static_cast<int>(found.size()) > limit) found.resize(static_cast<size_t>(limit));
   return found;
 }

@@ -21,7 +21,8 @@ _artcam_options() {
                 --stats --json --overwrite --force --quiet -q --depth --depth-scale --disparity
                 --second" ;;
     batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
-                 --bit-depth --colourspace --colourspace-in --colourspace-out --overwrite --force --json --quiet -q" ;;
+                 --bit-depth --colourspace --colourspace-in --colourspace-out --overwrite --force --json --quiet -q
+                 --lens-from-exif" ;;
     info) echo "--json" ;;
     "bench render") echo "--size --reps --threads --plot --peer --only --filter --type --no-e2e
                           --no-suite --cameras --overwrite --force" ;;
@@ -35,7 +36,7 @@ _artcam_options() {
     export) echo "--output -o --photo --camera-out --depth-out --size --filter --quality --bit-depth --colourspace --colourspace-in --colourspace-out
                   --crop-valid --fill --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --source-size --json --overwrite --force" ;;
-    lens) echo "--limit --json --lens --focal --crop --size --output -o --distort --no-tca
+    lens) echo "--limit --json --lens --from --focal --crop --size --output -o --distort --no-tca
                 --max-error --overwrite --force" ;;
     insert) echo "--output -o --matches --camera --canonical --table --grid-on-table --region
                   --max-error --save-camera --mesh-step --overwrite --force --quiet -q" ;;

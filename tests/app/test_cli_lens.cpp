@@ -66,6 +66,23 @@ class TestCliLens : public QObject {
       QVERIFY(model.contains("10-22"));
     }
     QVERIFY(found);
+    // Words of a lens name split at punctuation ("f/1.4G"): lensfun's own match finds what
+    // whole-word beginnings miss. The name is one of Debian's lensfun database (slr-nikon.xml).
+    const auto nikon = artcamCli({"lens", "search", "nikon", "50mm", "1.4", "--json"});
+    QCOMPARE(nikon.exit_code, 0);
+    const QJsonObject nikon_report = json(nikon.out);
+    QCOMPARE(nikon_report["match"].toString(), QString("lensfun"));
+    bool nikkor = false;
+    for (const auto& l : nikon_report["lenses"].toArray()) {
+      const QString model = l.toObject()["model"].toString();
+      nikkor = nikkor || model == "Nikon AF-S Nikkor 50mm f/1.4G";
+      QVERIFY2(model.contains("Nikon") && model.contains("50mm") && model.contains("1.4"),
+               qPrintable(model));
+    }
+    QVERIFY(nikkor);
+    const auto nikon_text = artcamCli({"lens", "search", "nikon", "50mm", "1.4"});
+    QVERIFY(nikon_text.out.contains("lensfun's own match"));
+    QVERIFY(nikon_text.out.contains("Nikon AF-S Nikkor 50mm f/1.4G"));
     const auto none = artcamCli({"lens", "search", "nosuchlensmakerxyz"});
     QCOMPARE(none.exit_code, 0);
     QVERIFY(none.out.contains("no lens"));

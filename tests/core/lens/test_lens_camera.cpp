@@ -16,6 +16,8 @@
 
 #include <QtTest/QtTest>
 
+#include <algorithm>
+
 #include <lensfun/lensfun.h>
 
 #include <cmath>
@@ -269,6 +271,20 @@ class TestLensCamera : public QObject {
     QCOMPARE(db_->search(kFisheye).front().model, std::string(kFisheye));
     QVERIFY(db_->search("").empty());
     QVERIFY(db_->search("nosuchlensmakerxyz").empty());
+    // "1.4" begins no space-separated word of "Nikon AF-S Nikkor 50mm f/1.4G" (Debian's
+    // slr-nikon.xml): lensfun's own matcher, which splits at punctuation, finds it.
+    LensSearchMatch how = LensSearchMatch::None;
+    const std::vector<LensEntry> nikon = db_->search("nikon 50mm 1.4", 0, &how);
+    QCOMPARE(how, LensSearchMatch::Lensfun);
+    QVERIFY(std::any_of(nikon.begin(), nikon.end(), [](const LensEntry& e) {
+      return e.model == "Nikon AF-S Nikkor 50mm f/1.4G";
+    }));
+    for (const LensEntry& e : nikon)
+      QVERIFY2(QString::fromStdString(e.model).contains("50mm"), e.model.c_str());
+    // Only some words known: the loose match, still the lenses holding them.
+    const std::vector<LensEntry> loose = db_->search("nikkor 50mm zzzunknownword", 0, &how);
+    QCOMPARE(how, LensSearchMatch::LensfunLoose);
+    QVERIFY(!loose.empty());
     // Of several calibrations, the crop nearest the one asked for.
     QCOMPARE(db_->find(kPrime, 1.6)->crop_factor, double(1.622f));
     QCOMPARE(db_->find(kPrime, 1.0)->crop_factor, 1.0);
@@ -289,6 +305,18 @@ class TestLensCamera : public QObject {
     const std::vector<LensEntry> from_lens = db_->suggest(hint);
     QVERIFY(!from_lens.empty());
     QCOMPARE(from_lens.front().model, std::string("Canon EF-S 10-22mm f/3.5-4.5 USM"));
+    // A Nikon body's EXIF: lensfun knows the camera (its crop factor 1 is the camera's, in
+    // slr-nikon.xml), and its lens by the name the camera writes.
+    hint = {};
+    hint.camera_maker = "NIKON CORPORATION";
+    hint.camera_model = "NIKON D750";
+    hint.lens_model = "AF-S Nikkor 50mm f/1.4G";
+    hint.focal_mm = 50;
+    const PhotoLensLookup nikon = db_->lookUp(hint);
+    QVERIFY2(nikon.camera.find("D750") != std::string::npos, nikon.camera.c_str());
+    QCOMPARE(nikon.camera_crop, 1.0);
+    QVERIFY(!nikon.lenses.empty());
+    QCOMPARE(nikon.lenses.front().model, std::string("Nikon AF-S Nikkor 50mm f/1.4G"));
   }
 };
 
