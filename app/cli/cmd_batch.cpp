@@ -31,6 +31,7 @@ namespace artcam::cli {
 const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
+    "                    [--edge transparent|extend|black] [--subsampling 444|422|420]\n"
     "                    [--quality N] [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                    [--overwrite] [--json] [--quiet]\n\n"
     "Warps every IN through the camera into DIR (created if missing), as artcam warp does\n"
@@ -57,9 +58,16 @@ const char* const kBatchUsage =
     "  --first N            first frame number of a pattern (default 0, else 1)\n"
     "  --size WxH           output size in pixels (default: the target frame scaled to IN)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
+    "  --edge MODE          what the filter reads past each IN's edge: extend (default: the edge\n"
+    "                       pixel, as Hugin's nona and fulla and OpenImageIO's clamp), "
+    "transparent\n"
+    "                       (the last half pixel fades out; black in formats without alpha) or\n"
+    "                       black (opaque black: the output composited over black)\n"
     "  --threads N          render threads (default 0: all cores)\n"
     "  --quality N          JPEG quality 1-100 (default: each IN's when it and its output\n"
     "                       are JPEG, else 95)\n"
+    "  --subsampling S      JPEG chroma subsampling 444, 422 or 420 (default: IN's when IN and\n"
+    "                       OUT are JPEG, else 420)\n"
     "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
     "                       IN's)\n"
     "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
@@ -108,8 +116,10 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--first", "", true},
                          {"--size", "", true},
                          {"--filter", "", true},
+                         {"--edge", "", true},
                          {"--threads", "", true},
                          {"--quality", "", true},
+                         {"--subsampling", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
                          {"--overwrite", "", false},

@@ -27,6 +27,7 @@ namespace artcam::cli {
 const char* const kExportUsage =
     "usage: artcam export PROJECT.artcamproj -o OUT [--photo FILE] [--camera-out CAM.artcam]\n"
     "                     [--depth-out DEPTH.exr] [--size WxH] [--filter NAME] [--quality N]\n"
+    "                     [--edge transparent|extend|black] [--subsampling 444|422|420]\n"
     "                     [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                     [--crop-valid | --fill R,G,B[,A]]\n"
     "                     [--json] [--quiet] [--overwrite]\n\n"
@@ -50,8 +51,13 @@ const char* const kExportUsage =
     "                         aspect)\n"
     "  --filter NAME          nearest, bilinear or bicubic (default bilinear, as artcam warp and\n"
     "                         the studio's canvas: the same camera gives the same pixels)\n"
+    "  --edge MODE            what the filter reads past the photo's edge: extend (default: the\n"
+    "                         edge pixel, as artcam warp), transparent (the last half pixel\n"
+    "                         fades out) or black (opaque black: composited over black)\n"
     "  --quality N            JPEG quality 1-100 (default: the photo's when it is a JPEG,\n"
     "                         else 95)\n"
+    "  --subsampling S        JPEG chroma subsampling 444, 422 or 420 (default: the photo's\n"
+    "                         when it is a JPEG, else 420)\n"
     "  --bit-depth B          8, 16, half or float (default: the photo's)\n"
     "  --colourspace C        input or srgb: what 8/16-bit OUT is encoded in (default input:\n"
     "                         the photo's ICC profile when it had one, embedded; srgb: sRGB,\n"
@@ -95,7 +101,9 @@ int exportCommand(const std::vector<std::string>& argv) {
                          {"--depth-out", "", true},
                          {"--size", "", true},
                          {"--filter", "", true},
+                         {"--edge", "", true},
                          {"--quality", "", true},
+                         {"--subsampling", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
                          {"--crop-valid", "", false},
@@ -120,6 +128,7 @@ int exportCommand(const std::vector<std::string>& argv) {
     options.filter = *filter;
   }
   parseWriteOptions(args, options.write);
+  options.edge = parseEdgeOption(args);
   options.crop_to_valid = args.has("--crop-valid");
   if (const auto fill = args.value("--fill")) {
     if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");

@@ -18,7 +18,8 @@ namespace artcam::cli {
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--format EXT] [--threads N] [--quality N]\n"
+    "                   [--edge transparent|extend|black] [--format EXT] [--threads N]\n"
+    "                   [--quality N] [--subsampling 444|422|420]\n"
     "                   [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n"
@@ -76,9 +77,16 @@ const char* const kWarpUsage =
     "                       file OUT, whose extension says the format\n"
     "  --size WxH           output size in pixels (default: the target frame scaled as above)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
+    "  --edge MODE          what the filter reads past IN's edge: extend (default: the edge\n"
+    "                       pixel, as Hugin's nona and fulla and OpenImageIO's clamp), "
+    "transparent\n"
+    "                       (the last half pixel fades out; black in formats without alpha) or\n"
+    "                       black (opaque black: the output composited over black)\n"
     "  --threads N          worker threads (default 0: all cores)\n"
     "  --quality N          JPEG quality 1-100 (default: IN's when IN and OUT are JPEG, else\n"
     "                       95)\n"
+    "  --subsampling S      JPEG chroma subsampling 444, 422 or 420 (default: IN's when IN and\n"
+    "                       OUT are JPEG, else 420)\n"
     "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
     "                       IN's)\n"
     "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
@@ -104,8 +112,10 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--format", "", true},
                          {"--size", "", true},
                          {"--filter", "", true},
+                         {"--edge", "", true},
                          {"--threads", "", true},
                          {"--quality", "", true},
+                         {"--subsampling", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
                          {"--stats", "", false},

@@ -13,6 +13,11 @@ std::string pixelTypeForBitDepth(const std::string& bit_depth) {
 void parseWriteOptions(const Args& args, WriteImageOptions& options) {
   if (args.has("--quality")) options.jpeg_quality = intOption(args, "--quality", 0, 1, 100);
   if (const auto bits = args.value("--bit-depth")) options.pixel_type = pixelTypeForBitDepth(*bits);
+  if (const auto sub = args.value("--subsampling")) {
+    if (*sub != "444" && *sub != "422" && *sub != "420")
+      throw UsageError("--subsampling expects 444, 422 or 420, not \"" + *sub + "\"");
+    options.jpeg_subsampling = std::string() + (*sub)[0] + ':' + (*sub)[1] + ':' + (*sub)[2];
+  }
   if (const auto space = args.value("--colourspace")) {
     if (*space == "input")
       options.colour_space = WriteImageOptions::ColourSpace::Input;
@@ -21,6 +26,14 @@ void parseWriteOptions(const Args& args, WriteImageOptions& options) {
     else
       throw UsageError("--colourspace expects input or srgb, not \"" + *space + "\"");
   }
+}
+
+EdgeMode parseEdgeOption(const Args& args) {
+  const auto name = args.value("--edge");
+  if (!name) return EdgeMode::Extend;
+  const auto mode = edgeModeFromName(*name);
+  if (!mode) throw UsageError("--edge expects transparent, extend or black, not \"" + *name + "\"");
+  return *mode;
 }
 
 }  // namespace artcam::cli

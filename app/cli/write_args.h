@@ -5,6 +5,7 @@
 
 #include "app/cli/args.h"
 #include "core/io/image_io.h"
+#include "core/sampling/filter.h"
 
 #include <string>
 
@@ -14,11 +15,17 @@ namespace artcam::cli {
 // "float"); throws UsageError for anything else.
 std::string pixelTypeForBitDepth(const std::string& bit_depth);
 
+// options.jpeg_subsampling from --subsampling 444|422|420 (absent: a JPEG input's, else 4:2:0).
 // Sets options.jpeg_quality from --quality (a whole number 1..100; absent: left empty, so the
 // writer keeps a JPEG input's quality, else 95) and options.pixel_type from --bit-depth
 // (absent: left empty, the input's) and options.colour_space from --colourspace ("input", the
 // default: integer outputs keep an ICC-tagged input's profile; "srgb": sRGB with an sRGB
 // profile; image_io.h). Throws UsageError naming the option.
 void parseWriteOptions(const Args& args, WriteImageOptions& options);
+
+// --edge transparent|extend|black (core/sampling/filter.h): what warp, batch and export read past
+// the photo's edge; absent: extend, as Hugin's nona and fulla and OpenImageIO's clamp do.
+// Throws UsageError for another value.
+EdgeMode parseEdgeOption(const Args& args);
 
 }  // namespace artcam::cli

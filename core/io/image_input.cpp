@@ -221,7 +221,10 @@ ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
   info.colour_space = transfer.colourSpaceName();
   info.stored_orientation = orientation;
   info.spec = uprightSpec(spec, orientation);
-  if (info.format_name == "jpeg") info.jpeg_quality = estimateJpegQuality(path);
+  if (info.format_name == "jpeg") {
+    info.jpeg_quality = estimateJpegQuality(path);
+    info.jpeg_subsampling = jpegSubsampling(path);
+  }
   info.metadata = std::move(metadata);
   for (int c = keptChannels(spec); c < spec.nchannels; ++c)
     info.dropped_channels.push_back(c < static_cast<int>(spec.channelnames.size()) &&

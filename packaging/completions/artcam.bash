@@ -17,10 +17,10 @@ _artcam_options() {
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
                --quiet -q --stmap --layer --lines" ;;
     map) echo "--json" ;;
-    warp) echo "--output -o --format --size --filter --threads --quality --bit-depth --colourspace
+    warp) echo "--output -o --format --size --filter --edge --subsampling --threads --quality --bit-depth --colourspace
                 --stats --json --overwrite --force --quiet -q --depth --depth-scale --disparity
                 --second" ;;
-    batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
+    batch) echo "--output -o --suffix --format --first --size --filter --edge --subsampling --threads --quality
                  --bit-depth --colourspace --overwrite --force --json --quiet -q" ;;
     info) echo "--json" ;;
     "bench render") echo "--size --reps --threads --plot --peer --only --filter --type --no-e2e
@@ -32,7 +32,7 @@ _artcam_options() {
                   --threads --stats --json --overwrite --force --quiet -q" ;;
     preset) echo "--output -o --overwrite --force --size" ;;
     compose) echo "--output -o --force --overwrite --json" ;;
-    export) echo "--output -o --photo --camera-out --depth-out --size --filter --quality --bit-depth --colourspace
+    export) echo "--output -o --photo --camera-out --depth-out --size --filter --edge --subsampling --quality --bit-depth --colourspace
                   --crop-valid --fill --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --source-size --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --focal --crop --size --output -o --distort --no-tca
