@@ -66,6 +66,8 @@ const char* const kBatchUsage =
     "  --threads N          render threads (default 0: all cores)\n"
     "  --quality N          JPEG quality 1-100 (default: each IN's when it and its output\n"
     "                       are JPEG, else 95)\n"
+    "                       HEIC/AVIF quality (default: the encoder's); PNG: zlib level\n"
+    "                       N/10 (as ImageMagick), the pixels the same\n"
     "  --subsampling S      JPEG chroma subsampling 444, 422 or 420 (default: IN's when IN and\n"
     "                       OUT are JPEG, else 420)\n"
     "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"

@@ -56,6 +56,8 @@ const char* const kExportUsage =
     "                         fades out) or black (opaque black: composited over black)\n"
     "  --quality N            JPEG quality 1-100 (default: the photo's when it is a JPEG,\n"
     "                         else 95)\n"
+    "                         HEIC/AVIF quality (default: the encoder's); PNG: zlib level\n"
+    "                         N/10 (as ImageMagick), the pixels the same\n"
     "  --subsampling S        JPEG chroma subsampling 444, 422 or 420 (default: the photo's\n"
     "                         when it is a JPEG, else 420)\n"
     "  --bit-depth B          8, 16, half or float (default: the photo's)\n"

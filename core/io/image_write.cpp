@@ -7,6 +7,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/checked_output.h"
 #include "core/io/extra_channels.h"
+#include "core/io/format_choices.h"
 #include "core/io/heif_write.h"
 #include "core/io/image_input.h"
 #include "core/io/image_io.h"
@@ -219,13 +220,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
-  if (format == "jpeg") {
-    const int quality = jpegQualityFor(options, like);
-    spec.attribute("CompressionQuality", quality);
-    spec.attribute("Compression", "jpeg:" + std::to_string(quality));
-    spec.attribute("jpeg:subsampling", jpegSubsamplingFor(options, like));
-    left_out = io_jpeg::fitJpegSegments(spec);
-  }
+  io_format::setFormatChoices(spec, format, options, like, like_spec);
+  if (format == "jpeg") left_out = io_jpeg::fitJpegSegments(spec);
 
   // Encoded values in the written channel order, a band of rows at a time: no whole-image
   // copy beside the float image (big images). Each written sample of rows [y0, y1) in order:

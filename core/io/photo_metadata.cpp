@@ -87,8 +87,7 @@ void eraseKey(Exiv2::ExifData& exif, const char* key) {
   if (at != exif.end()) exif.erase(at);
 }
 
-// The program that wrote the file: EXIF's Software and XMP's tiff:Software name it.
-std::string softwareName() { return std::string("artcam ") + ARTCAM_VERSION; }
+std::string softwareName() { return writingSoftware(); }
 
 // The tool the photo came from: EXIF Software, else XMP's tiff:Software or xmp:CreatorTool.
 std::string priorSoftware(const PhotoMetadata& metadata, const Exiv2::XmpData* xmp) {
@@ -200,6 +199,8 @@ std::string updatedXmpPacket(const PhotoMetadata& metadata, const MetadataUpdate
 }
 
 }  // namespace
+
+std::string writingSoftware() { return std::string("artcam ") + ARTCAM_VERSION; }
 
 std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path) {
   const auto lock = exiv2Lock();

@@ -37,6 +37,9 @@ namespace artcam {
 
 struct PhotoMetadata;  // exiv2's Exif and IPTC data and the XMP packet as read
 
+// "artcam <version>": the Software tag of every file artcam writes.
+std::string writingSoftware();
+
 // Null when `path` has no EXIF, IPTC or XMP, or exiv2 does not read its format or its metadata.
 std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path);
 

@@ -3,6 +3,7 @@
 // files are opened with "oiio:UnassociatedAlpha" = 1 so OIIO hands over the stored values and
 // we premultiply ourselves; writes go through a band of rows so no whole-image copy is made.
 #include "core/io/stored_image.h"
+#include "core/io/format_choices.h"
 #include "core/io/heif_write.h"
 #include "core/io/oiio_io.h"
 
@@ -468,13 +469,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
                                                                        : "sRGB");
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
-  if (format == "jpeg") {
-    const int quality = jpegQualityFor(options, like);
-    spec.attribute("CompressionQuality", quality);
-    spec.attribute("Compression", "jpeg:" + std::to_string(quality));
-    spec.attribute("jpeg:subsampling", jpegSubsamplingFor(options, like));
-    left_out = io_jpeg::fitJpegSegments(spec);
-  }
+  io_format::setFormatChoices(spec, format, options, like, like_spec);
+  if (format == "jpeg") left_out = io_jpeg::fitJpegSegments(spec);
 
   // Straight through when the layout is already the file's; else bands of rows converted.
   const bool direct = channels == image.channels && (alpha < 0 || associated) && !with_extra;
