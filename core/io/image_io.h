@@ -178,7 +178,7 @@ struct WriteImageOptions {
   std::optional<int> jpeg_quality;
   // "4:4:4", "4:2:2" or "4:2:0". Empty: `like`'s when it is a JPEG too (so a 4:4:4 photo stays
   // 4:4:4), else libjpeg's default 4:2:0.
-  std::string jpeg_subsampling;
+  std::string jpeg_subsampling = {};
   // Fraction of rows written, between bands; return false to cancel (the write then fails with
   // "cancelled" and no file is left: the save is atomic).
   std::function<bool(double)> progress = {};
