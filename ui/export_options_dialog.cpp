@@ -91,8 +91,8 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
          "Rec.709 either way."));
   // As `artcam export --edge`: what the filter reads past the photo's edge (filter.h).
   edge_->setObjectName("edge");
-  edge_->addItem(tr("Extend the edge pixels"), int(EdgeMode::Extend));
   edge_->addItem(tr("Fade to transparent"), int(EdgeMode::Transparent));
+  edge_->addItem(tr("Extend the edge pixels"), int(EdgeMode::Extend));
   edge_->addItem(tr("Opaque black"), int(EdgeMode::Black));
   edge_->setCurrentIndex(edge_->findData(int(current.edge)));
   edge_->setToolTip(

@@ -12,7 +12,7 @@ const char kFill[] = "export/fill";  // four linear floats, or absent: keep tran
 const char kQuality[] = "export/jpegQuality";
 const char kPixelType[] = "export/pixelType";
 const char kColourSpace[] = "export/colourSpace";
-const char kEdge[] = "export/edge";  // filter.h's names; absent or unknown: extend
+const char kEdge[] = "export/edge";  // filter.h's names; absent or unknown: transparent
 
 }  // namespace
 

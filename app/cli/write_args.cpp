@@ -30,7 +30,7 @@ void parseWriteOptions(const Args& args, WriteImageOptions& options) {
 
 EdgeMode parseEdgeOption(const Args& args) {
   const auto name = args.value("--edge");
-  if (!name) return EdgeMode::Extend;
+  if (!name) return EdgeMode::Transparent;
   const auto mode = edgeModeFromName(*name);
   if (!mode) throw UsageError("--edge expects transparent, extend or black, not \"" + *name + "\"");
   return *mode;

@@ -24,7 +24,9 @@ std::string pixelTypeForBitDepth(const std::string& bit_depth);
 void parseWriteOptions(const Args& args, WriteImageOptions& options);
 
 // --edge transparent|extend|black (core/sampling/filter.h): what warp, batch and export read past
-// the photo's edge; absent: extend, as Hugin's nona and fulla and OpenImageIO's clamp do.
+// the photo's edge; absent: transparent. Extend is what Hugin's nona and fulla and
+// OpenImageIO's clamp do, but transparent stays the default: an ST map (export-map, fit
+// --stmap) gives such pixels alpha 0, so `oiiotool --st_warp` with it reproduces `warp`.
 // Throws UsageError for another value.
 EdgeMode parseEdgeOption(const Args& args);
 

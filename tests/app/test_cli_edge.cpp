@@ -2,9 +2,9 @@
 // --edge on warp and batch against Hugin's fulla, which extends the edge: a scale about the
 // centre slightly above 1 (fulla's radial polynomial 0:0:0:d with --dont-rescale, the camera
 // `lens-distortion --scale 1/d`) puts every border pixel's source in the last half pixel, where
-// the three modes differ. extend (the default) gives fulla's border within 1/255 and its
-// alpha; transparent fades it; black is transparent's colours over opaque black. Skipped, with
-// a message, when fulla is not installed.
+// the three modes differ. extend gives fulla's border within 1/255 and its
+// alpha; transparent (the default, which ST maps assume) fades it; black is transparent's colours
+// over opaque black. Skipped, with a message, when fulla is not installed.
 #include "tests/app/cli_run.h"
 
 #include <OpenImageIO/imageio.h>
@@ -127,7 +127,7 @@ class TestCliEdge : public QObject {
     QVERIFY2(
         e.colour <= kOneStep && e.alpha <= kOneStep,
         qPrintable(QString("extend vs fulla: colour %1, alpha %2").arg(e.colour).arg(e.alpha)));
-    QCOMPARE(borderDifference(by_default, extend).colour, 0.0);
+    QCOMPARE(borderDifference(by_default, transparent).alpha, 0.0);  // the default
     // Transparent fades the border fulla keeps opaque; black is that over opaque black.
     const Difference t = borderDifference(transparent, fulla);
     QVERIFY2(t.alpha > 50.0,

@@ -196,7 +196,7 @@ class TestCalmWindow : public QObject {
     chosen.fill = std::array<float, 4>{0.25f, 0.5f, 0.75f, 1.0f};
     chosen.write.jpeg_quality = 71;
     chosen.write.pixel_type = "uint16";
-    chosen.edge = EdgeMode::Black;  // not the default (extend)
+    chosen.edge = EdgeMode::Black;  // not the default (transparent)
     {
       MainWindow window;
       window.session()->setInteractive(false);
