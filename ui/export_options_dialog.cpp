@@ -37,7 +37,8 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
       colour_(Qt::white),
       quality_(new QSpinBox(this)),
       bit_depth_(new QComboBox(this)),
-      colour_space_(new QComboBox(this)) {
+      colour_space_(new QComboBox(this)),
+      edge_(new QComboBox(this)) {
   setWindowTitle(tr("Export options"));
   setObjectName("exportOptionsDialog");
   const QString suffix = QFileInfo(path).suffix().toLower();
@@ -88,6 +89,15 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
       tr("As the photo: 8- and 16-bit files keep the photo's ICC profile (Adobe RGB stays Adobe "
          "RGB). sRGB: encoded as sRGB with an sRGB profile, for the web. Float files hold linear "
          "Rec.709 either way."));
+  // As `artcam export --edge`: what the filter reads past the photo's edge (filter.h).
+  edge_->setObjectName("edge");
+  edge_->addItem(tr("Fade to transparent"), int(EdgeMode::Transparent));
+  edge_->addItem(tr("Extend the edge pixels"), int(EdgeMode::Extend));
+  edge_->addItem(tr("Opaque black"), int(EdgeMode::Black));
+  edge_->setCurrentIndex(edge_->findData(int(current.edge)));
+  edge_->setToolTip(
+      tr("Extend: the photo's last pixels continue to its edge, as Hugin and OpenImageIO "
+         "resample. Fade: the last half pixel fades out. Black: composited over opaque black."));
   auto* form = new QFormLayout;
   form->addRow(tr("Pixels outside the photo"), keep_);
   form->addRow(QString(), fill_row);
@@ -95,6 +105,7 @@ ExportOptionsDialog::ExportOptionsDialog(const ExportOptions& current, const QSt
   form->addRow(tr("JPEG quality"), quality_);
   form->addRow(tr("Bit depth"), bit_depth_);
   form->addRow(tr("Colour space"), colour_space_);
+  form->addRow(tr("Photo's edge"), edge_);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
   connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
@@ -119,6 +130,7 @@ ExportOptions ExportOptionsDialog::options() const {
   o.write.pixel_type = bit_depth_->currentData().toString().toStdString();
   o.write.colour_space =
       static_cast<WriteImageOptions::ColourSpace>(colour_space_->currentData().toInt());
+  o.edge = static_cast<EdgeMode>(edge_->currentData().toInt());
   return o;
 }
 

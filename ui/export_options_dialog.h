@@ -45,6 +45,7 @@ class ExportOptionsDialog : public QDialog {
   QSpinBox* quality_;
   QComboBox* bit_depth_;
   QComboBox* colour_space_;
+  QComboBox* edge_;
 };
 
 }  // namespace artcam::ui

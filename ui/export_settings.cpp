@@ -12,6 +12,7 @@ const char kFill[] = "export/fill";  // four linear floats, or absent: keep tran
 const char kQuality[] = "export/jpegQuality";
 const char kPixelType[] = "export/pixelType";
 const char kColourSpace[] = "export/colourSpace";
+const char kEdge[] = "export/edge";  // filter.h's names; absent or unknown: transparent
 
 }  // namespace
 
@@ -39,6 +40,8 @@ ExportOptions loadExportOptions(const QSettings& settings) {
   o.write.colour_space = settings.value(kColourSpace).toString() == "srgb"
                              ? WriteImageOptions::ColourSpace::Srgb
                              : WriteImageOptions::ColourSpace::Input;
+  if (const auto edge = edgeModeFromName(settings.value(kEdge).toString().toStdString()))
+    o.edge = *edge;
   return o;
 }
 
@@ -56,6 +59,8 @@ void saveExportOptions(QSettings& settings, const ExportOptions& o) {
   settings.setValue(kColourSpace, o.write.colour_space == WriteImageOptions::ColourSpace::Srgb
                                       ? "srgb"
                                       : "input");
+  settings.setValue(kEdge, QString::fromUtf8(edgeModeName(o.edge).data(),
+                                             static_cast<int>(edgeModeName(o.edge).size())));
 }
 
 ExportOptions exportOptionsForFile(ExportOptions options, const QString& path) {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The export options the studio keeps between sessions (QSettings, group "export": crop or
-// fill and its colour, JPEG quality, bit depth, colour space; the size is per export and is not
-// kept), and the options a file's format can take (core's exportOptionsForOutput: a JPEG,
+// fill and its colour, JPEG quality, bit depth, colour space, edge mode; the size is per export and
+// is not kept), and the options a file's format can take (core's exportOptionsForOutput: a JPEG,
 // which has no alpha, is filled with white rather than written with black corners).
 #pragma once
 

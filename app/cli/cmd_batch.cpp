@@ -34,6 +34,7 @@ namespace artcam::cli {
 const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
+    "                    [--edge transparent|extend|black] [--subsampling 444|422|420]\n"
     "                    [--quality N] [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                    [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                    [--overwrite] [--json] [--quiet]\n"
@@ -70,9 +71,17 @@ const char* const kBatchUsage =
     "  --first N            first frame number of a pattern (default 0, else 1)\n"
     "  --size WxH           output size in pixels (default: the target frame scaled to IN)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
+    "  --edge MODE          what the filter reads past the edge: transparent (default: the\n"
+    "                       last half pixel fades out; black in formats without alpha, as the\n"
+    "                       ST maps of export-map assume), extend (the edge pixel, as Hugin's\n"
+    "                       nona and fulla and OpenImageIO's clamp) or black (opaque black)\n"
     "  --threads N          render threads (default 0: all cores)\n"
     "  --quality N          JPEG quality 1-100 (default: each IN's when it and its output\n"
     "                       are JPEG, else 95)\n"
+    "                       HEIC/AVIF quality (default: the encoder's); PNG: zlib level\n"
+    "                       N/10 (as ImageMagick), the pixels the same\n"
+    "  --subsampling S      JPEG chroma subsampling 444, 422 or 420 (default: IN's when IN and\n"
+    "                       OUT are JPEG, else 420)\n"
     "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
     "                       IN's)\n"
     "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
@@ -131,8 +140,10 @@ int batchCommand(const std::vector<std::string>& argv) {
                          {"--first", "", true},
                          {"--size", "", true},
                          {"--filter", "", true},
+                         {"--edge", "", true},
                          {"--threads", "", true},
                          {"--quality", "", true},
+                         {"--subsampling", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
                          {"--colourspace-in", "", true},

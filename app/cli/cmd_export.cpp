@@ -27,6 +27,7 @@ namespace artcam::cli {
 const char* const kExportUsage =
     "usage: artcam export PROJECT.artcamproj -o OUT [--photo FILE] [--camera-out CAM.artcam]\n"
     "                     [--depth-out DEPTH.exr] [--size WxH] [--filter NAME] [--quality N]\n"
+    "                     [--edge transparent|extend|black] [--subsampling 444|422|420]\n"
     "                     [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                     [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                     [--crop-valid | --fill R,G,B[,A]]\n"
@@ -51,8 +52,15 @@ const char* const kExportUsage =
     "                         aspect)\n"
     "  --filter NAME          nearest, bilinear or bicubic (default bilinear, as artcam warp and\n"
     "                         the studio's canvas: the same camera gives the same pixels)\n"
+    "  --edge MODE            what the filter reads past the photo's edge: transparent\n"
+    "                         (default: the last half pixel fades out), extend (the edge\n"
+    "                         pixel, as Hugin's fulla) or black (composited over black)\n"
     "  --quality N            JPEG quality 1-100 (default: the photo's when it is a JPEG,\n"
     "                         else 95)\n"
+    "                         HEIC/AVIF quality (default: the encoder's); PNG: zlib level\n"
+    "                         N/10 (as ImageMagick), the pixels the same\n"
+    "  --subsampling S        JPEG chroma subsampling 444, 422 or 420 (default: the photo's\n"
+    "                         when it is a JPEG, else 420)\n"
     "  --bit-depth B          8, 16, half or float (default: the photo's)\n"
     "  --colourspace C        input or srgb: what 8/16-bit OUT is encoded in (default input:\n"
     "                         the photo's ICC profile when it had one, embedded; srgb: sRGB,\n"
@@ -100,7 +108,9 @@ int exportCommand(const std::vector<std::string>& argv) {
                          {"--depth-out", "", true},
                          {"--size", "", true},
                          {"--filter", "", true},
+                         {"--edge", "", true},
                          {"--quality", "", true},
+                         {"--subsampling", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
                          {"--colourspace-in", "", true},
@@ -129,6 +139,7 @@ int exportCommand(const std::vector<std::string>& argv) {
   parseWriteOptions(args, options.write);
   ReadImageOptions read;
   read.colour_space = parseColourSpaceIn(args);
+  options.edge = parseEdgeOption(args);
   options.crop_to_valid = args.has("--crop-valid");
   if (const auto fill = args.value("--fill")) {
     if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");

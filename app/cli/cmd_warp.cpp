@@ -18,7 +18,8 @@ namespace artcam::cli {
 
 const char* const kWarpUsage =
     "usage: artcam warp IN CAM.artcam -o OUT [--size WxH] [--filter nearest|bilinear|bicubic]\n"
-    "                   [--format EXT] [--threads N] [--quality N]\n"
+    "                   [--edge transparent|extend|black] [--format EXT] [--threads N]\n"
+    "                   [--quality N] [--subsampling 444|422|420]\n"
     "                   [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                   [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
@@ -50,7 +51,10 @@ const char* const kWarpUsage =
     "pixels, and the result is turned upright after it.\n"
     "OUT keeps IN's pixel type (unless --bit-depth), JPEG quality (unless --quality) and\n"
     "metadata: EXIF, IPTC and the XMP packet as IN has them, with the pixel size updated and the\n"
-    "EXIF thumbnail removed. Where OUT's format stores IN's kind of sample and --bit-depth\n"
+    "EXIF thumbnail removed, Software naming artcam and IN's tool kept in the XMP history\n"
+    "(xmpMM:History); HEIC and AVIF get EXIF and XMP too (IPTC has no place there), a JPEG\n"
+    "IN's chroma subsampling, a 10/12-bit DPX its bits. Where OUT's format stores IN's kind\n"
+    "of sample and --bit-depth\n"
     "does not change it (8/16-bit into PNG/JPEG/TIFF, float into EXR/TIFF) the warp reads and\n"
     "writes the stored values in place (no float copy: peak memory about input + output),\n"
     "interpolating them in the file's own encoding as OpenCV's remap does; otherwise it\n"
@@ -82,9 +86,16 @@ const char* const kWarpUsage =
     "                       file OUT, whose extension says the format\n"
     "  --size WxH           output size in pixels (default: the target frame scaled as above)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
+    "  --edge MODE          what the filter reads past the edge: transparent (default: the\n"
+    "                       last half pixel fades out; black in formats without alpha, as the\n"
+    "                       ST maps of export-map assume), extend (the edge pixel, as Hugin's\n"
+    "                       nona and fulla and OpenImageIO's clamp) or black (opaque black)\n"
     "  --threads N          worker threads (default 0: all cores)\n"
     "  --quality N          JPEG quality 1-100 (default: IN's when IN and OUT are JPEG, else\n"
-    "                       95)\n"
+    "                       95); HEIC/AVIF quality (default: the encoder's); PNG: zlib level\n"
+    "                       N/10 (as ImageMagick), the pixels the same\n"
+    "  --subsampling S      JPEG chroma subsampling 444, 422 or 420 (default: IN's when IN and\n"
+    "                       OUT are JPEG, else 420)\n"
     "  --bit-depth B        8, 16, half or float, fitted to what OUT's format stores (default:\n"
     "                       IN's)\n"
     "  --colourspace C      input or srgb: what 8/16-bit output is encoded in (default input:\n"
@@ -114,8 +125,10 @@ int warpCommand(const std::vector<std::string>& argv) {
                          {"--format", "", true},
                          {"--size", "", true},
                          {"--filter", "", true},
+                         {"--edge", "", true},
                          {"--threads", "", true},
                          {"--quality", "", true},
+                         {"--subsampling", "", true},
                          {"--bit-depth", "", true},
                          {"--colourspace", "", true},
                          {"--colourspace-in", "", true},

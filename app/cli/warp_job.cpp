@@ -166,6 +166,7 @@ WarpRequest parseWarpRequest(const Args& args) {
   const auto filter = filterFromName(filter_name);
   if (!filter) throw UsageError("unknown --filter \"" + filter_name + "\"");
   warp.filter = *filter;
+  warp.edge = parseEdgeOption(args);
   if (args.has("--size")) {
     const FrameSize size = parseSize(*args.value("--size"), "--size");
     checkImageMemory(size, "--size");

@@ -15,6 +15,11 @@ std::string pixelTypeForBitDepth(const std::string& bit_depth) {
 void parseWriteOptions(const Args& args, WriteImageOptions& options) {
   if (args.has("--quality")) options.jpeg_quality = intOption(args, "--quality", 0, 1, 100);
   if (const auto bits = args.value("--bit-depth")) options.pixel_type = pixelTypeForBitDepth(*bits);
+  if (const auto sub = args.value("--subsampling")) {
+    if (*sub != "444" && *sub != "422" && *sub != "420")
+      throw UsageError("--subsampling expects 444, 422 or 420, not \"" + *sub + "\"");
+    options.jpeg_subsampling = std::string() + (*sub)[0] + ':' + (*sub)[1] + ':' + (*sub)[2];
+  }
   if (const auto space = args.value("--colourspace")) {
     if (*space == "input")
       options.colour_space = WriteImageOptions::ColourSpace::Input;
@@ -38,6 +43,14 @@ std::string parseColourSpaceIn(const Args& args) {
   if (const Status known = checkColourSpace(*named, "--colourspace-in"); !known)
     throw UsageError(known.message);
   return *named;
+}
+
+EdgeMode parseEdgeOption(const Args& args) {
+  const auto name = args.value("--edge");
+  if (!name) return EdgeMode::Transparent;
+  const auto mode = edgeModeFromName(*name);
+  if (!mode) throw UsageError("--edge expects transparent, extend or black, not \"" + *name + "\"");
+  return *mode;
 }
 
 }  // namespace artcam::cli

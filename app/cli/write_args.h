@@ -6,6 +6,7 @@
 
 #include "app/cli/args.h"
 #include "core/io/image_io.h"
+#include "core/sampling/filter.h"
 
 #include <string>
 
@@ -15,6 +16,7 @@ namespace artcam::cli {
 // "float"); throws UsageError for anything else.
 std::string pixelTypeForBitDepth(const std::string& bit_depth);
 
+// options.jpeg_subsampling from --subsampling 444|422|420 (absent: a JPEG input's, else 4:2:0).
 // Sets options.jpeg_quality from --quality (a whole number 1..100; absent: left empty, so the
 // writer keeps a JPEG input's quality, else 95) and options.pixel_type from --bit-depth
 // (absent: left empty, the input's) and options.colour_space from --colourspace ("input", the
@@ -27,5 +29,11 @@ void parseWriteOptions(const Args& args, WriteImageOptions& options);
 // --colourspace-in NAME: the OpenColorIO colour space the inputs are read in (empty: as each
 // file says). Throws UsageError naming the option for a name the config does not have.
 std::string parseColourSpaceIn(const Args& args);
+// --edge transparent|extend|black (core/sampling/filter.h): what warp, batch and export read past
+// the photo's edge; absent: transparent. Extend is what Hugin's nona and fulla and
+// OpenImageIO's clamp do, but transparent stays the default: an ST map (export-map, fit
+// --stmap) gives such pixels alpha 0, so `oiiotool --st_warp` with it reproduces `warp`.
+// Throws UsageError for another value.
+EdgeMode parseEdgeOption(const Args& args);
 
 }  // namespace artcam::cli

@@ -67,6 +67,16 @@ int jpegQualityFor(const WriteImageOptions& options, const ImageInfo* like) {
   return 95;
 }
 
+std::string jpegSubsamplingFor(const WriteImageOptions& options, const ImageInfo* like) {
+  const auto known = [](const std::string& s) {
+    return s == "4:4:4" || s == "4:2:2" || s == "4:2:0";
+  };
+  if (known(options.jpeg_subsampling)) return options.jpeg_subsampling;
+  if (like && like->format_name == "jpeg" && known(like->jpeg_subsampling))
+    return like->jpeg_subsampling;
+  return "4:2:0";
+}
+
 int firstLookReduction(int width, int height, int box_width, int box_height) {
   if (box_width <= 0 || box_height <= 0 || width <= 0 || height <= 0) return 1;
   const double bw = box_width, bh = box_height;

@@ -259,7 +259,10 @@ ImageInfo describeImage(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec,
   info.colour_space = transfer.colourSpaceName();
   info.stored_orientation = orientation;
   info.spec = uprightSpec(spec, orientation);
-  if (info.format_name == "jpeg") info.jpeg_quality = estimateJpegQuality(path);
+  if (info.format_name == "jpeg") {
+    info.jpeg_quality = estimateJpegQuality(path);
+    info.jpeg_subsampling = jpegSubsampling(path);
+  }
   info.metadata = std::move(metadata);
   if (spec.get_int_attribute("oiio:subimages", 1) > 1) info.other_parts = otherPartNames(path);
   if (info.format_name == "openexr" && spec.full_width > 0 && spec.full_height > 0 &&

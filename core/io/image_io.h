@@ -125,6 +125,7 @@ struct ImageInfo {
   // handed over is upright and `spec` says Orientation 1.
   int stored_orientation = 1;
   int jpeg_quality = 0;  // a JPEG's estimated quality (jpeg_quality.h); 0: not JPEG, unknown
+  std::string jpeg_subsampling;  // a colour JPEG's, "4:2:0" etc. (jpeg_quality.h); "": none
   std::shared_ptr<const PhotoMetadata> metadata;  // EXIF, IPTC, XMP as read; null: none
   // Channels beyond the four a reader keeps (an EXR's Z, AOVs, a fifth TIFF channel), by name:
   // not part of the image; readExtraChannels reads them, and commands that write the image
@@ -246,6 +247,9 @@ struct WriteImageOptions {
   std::string pixel_type;
   // 1..100. Empty: `like`'s quality when it is a JPEG too (ImageInfo::jpeg_quality), else 95.
   std::optional<int> jpeg_quality;
+  // "4:4:4", "4:2:2" or "4:2:0". Empty: `like`'s when it is a JPEG too (so a 4:4:4 photo stays
+  // 4:4:4), else libjpeg's default 4:2:0.
+  std::string jpeg_subsampling = {};
   // Fraction of rows written, between bands; return false to cancel (the write then fails with
   // "cancelled" and no file is left: the save is atomic).
   std::function<bool(double)> progress = {};
@@ -289,6 +293,9 @@ inline void warnMetadataLeftOut(const WriteImageOptions& options, const std::str
 // The JPEG quality a write uses: options.jpeg_quality clamped to 1..100, else `like`'s estimate
 // when `like` is a JPEG, else 95.
 int jpegQualityFor(const WriteImageOptions& options, const ImageInfo* like);
+// The chroma subsampling a JPEG write uses, by the same rule: options', else `like`'s when it
+// is a JPEG with one of the three, else "4:2:0".
+std::string jpegSubsamplingFor(const WriteImageOptions& options, const ImageInfo* like);
 
 // `like` (may be null) supplies metadata and the default pixel type.
 Status writeImage(const std::string& path, const ImageF& image, const ImageInfo* like = nullptr,

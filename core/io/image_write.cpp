@@ -8,6 +8,8 @@
 #include "core/io/checked_output.h"
 #include "core/io/colour_config.h"
 #include "core/io/extra_channels.h"
+#include "core/io/format_choices.h"
+#include "core/io/heif_write.h"
 #include "core/io/image_input.h"
 #include "core/io/image_io.h"
 #include "core/io/io_text.h"
@@ -266,12 +268,8 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     spec.attribute("oiio:ColorSpace", transfer.colourSpaceName());
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
-  if (format == "jpeg") {
-    const int quality = jpegQualityFor(options, like);
-    spec.attribute("CompressionQuality", quality);
-    spec.attribute("Compression", "jpeg:" + std::to_string(quality));
-    left_out = io_jpeg::fitJpegSegments(spec);
-  }
+  io_format::setFormatChoices(spec, format, options, like, like_spec);
+  if (format == "jpeg") left_out = io_jpeg::fitJpegSegments(spec);
 
   // Encoded values in the written channel order, a band of rows at a time: no whole-image
   // copy beside the float image (big images). Each written sample of rows [y0, y1) in order:
@@ -344,6 +342,26 @@ Status writeImage(const std::string& path, const ImageF& image, const ImageInfo*
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + replaceAll(oneLine(message), temp, path));
     };
+    if (io_heif::writesHeif(format)) {  // 8-bit (fitPixelType), through libheif with metadata
+      std::vector<std::uint8_t> all, rows;
+      std::vector<float> encoded_rows;
+      for (int y0 = 0; y0 < image.height; y0 += 64) {
+        if (options.progress && !options.progress(static_cast<double>(y0) / image.height))
+          return failure("cancelled");
+        const int y1 = std::min(image.height, y0 + 64);
+        if (to_byte) {
+          byteRows(y0, y1, rows);
+        } else {
+          encodeRows(y0, y1, encoded_rows);
+          rows = quantise<std::uint8_t>(encoded_rows);
+        }
+        all.insert(all.end(), rows.begin(), rows.end());
+      }
+      io_heif::HeifImage heif{image.width, image.height, channels, alpha >= 0, all.data(), {}};
+      return io_heif::writeHeifPhoto(temp, path, std::move(heif), &spec, options.jpeg_quality,
+                                     like ? like->metadata.get() : nullptr,
+                                     {image.width, image.height, same_encoding}, left_out);
+    }
     io_checked::CheckedWrite checked(std::move(out));
     if (!checked.open(temp, *part_specs)) return failure(checked.cause());
     constexpr int kBand = 64;

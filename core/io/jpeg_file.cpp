@@ -136,7 +136,7 @@ struct Compressor {
 };
 
 bool startCompress(Compressor& c, int width, int height, int components, int quality,
-                   const HeaderMarkers& markers) {
+                   const std::string& subsampling, const HeaderMarkers& markers) {
   if (setjmp(c.errors.jump)) return false;
   jpeg_create_compress(&c.info);
   c.created = true;
@@ -152,6 +152,11 @@ bool startCompress(Compressor& c, int width, int height, int components, int qua
   c.info.X_density = markers.jfif ? std::max<unsigned short>(1, markers.x_density) : 1;
   c.info.Y_density = markers.jfif ? std::max<unsigned short>(1, markers.y_density) : 1;
   jpeg_set_quality(&c.info, quality, TRUE);
+  // Luma's sampling factors over chroma's 1 × 1, as OpenImageIO's writer sets them.
+  if (components == 3) {
+    c.info.comp_info[0].h_samp_factor = subsampling == "4:4:4" ? 1 : 2;
+    c.info.comp_info[0].v_samp_factor = subsampling == "4:2:0" ? 2 : 1;
+  }
   jpeg_start_compress(&c.info, TRUE);
   for (const std::string& comment : markers.comments)  // with its NUL, as OpenImageIO writes it
     jpeg_write_marker(&c.info, JPEG_COM, reinterpret_cast<const JOCTET*>(comment.c_str()),
@@ -194,6 +199,7 @@ ImageInfo describe(const std::string& path, int stored_orientation,
   info.colour_space = "sRGB";
   info.stored_orientation = stored_orientation;
   info.jpeg_quality = estimateJpegQuality(path);
+  info.jpeg_subsampling = jpegSubsampling(path);
   info.metadata = std::move(metadata);
   return info;
 }
@@ -331,6 +337,7 @@ std::optional<Status> writeBands(const std::string& path, const ConstImageView& 
   // A profile that does not describe the values (embedded_profile.h) labels no output.
   if (like && !like->profile_dropped.empty()) markers.icc.clear();
   const int quality = jpegQualityFor(options, like);
+  const std::string subsampling = jpegSubsamplingFor(options, like);
   std::vector<std::string> left_out;  // metadata a JPEG cannot hold (one warning)
   const Status written = writeAtomically(path, [&](const std::string& temp) {
     auto failure = [&](const std::string& message) {
@@ -340,7 +347,7 @@ std::optional<Status> writeBands(const std::string& path, const ConstImageView& 
     c.file = std::fopen(temp.c_str(), "wb");
     if (!c.file) return failure("cannot create the file");
     c.info.err = c.errors.install();
-    if (!startCompress(c, shape.width, shape.height, colours, quality, markers))
+    if (!startCompress(c, shape.width, shape.height, colours, quality, subsampling, markers))
       return failure(c.errors.fatal);
     // Bands of rows, each handed to libjpeg as it is (alpha dropped first where there is one).
     constexpr int kBand = 64;

@@ -7,14 +7,16 @@
 // for anything this path does not take (nullopt): other formats, CMYK or 12-bit JPEGs, writes
 // that change the pixel type or carry extra channels, a JPEG written from a non-JPEG input
 // (whose header metadata only OpenImageIO reads). What it takes, it does as the module would:
-// - Reading (stored samples, or linear float for readImage): the module's refusals (image_checks.h), the same samples (jpeg_decode.h is the
-//   module's JPEG codec path too), turned upright the same way, the same ImageInfo but for
+// - Reading (stored samples, or linear float for readImage): the module's refusals
+//   (image_checks.h), the same samples (jpeg_decode.h is the module's JPEG codec path too),
+//   turned upright the same way, the same ImageInfo but for
 //   `spec`, which stays null (image_io.h: writers that need it read it again from the file).
 // - Writing: OpenImageIO 2.4's JPEG writer's choices, so either path writes the same bytes:
-//   jpeg_set_defaults (4:2:0 chroma, islow DCT, standard Huffman tables), the quality of
-//   jpegQualityFor, a JFIF header whose density is the input's, the input's comment and ICC
-//   profile; then exiv2 writes the input's EXIF, IPTC and XMP, as every writer does. Colour
-//   is written as it is held, premultiplied (a JPEG has no alpha: composited over black).
+//   jpeg_set_defaults (islow DCT, standard Huffman tables), the quality of jpegQualityFor and
+//   the chroma subsampling of jpegSubsamplingFor, a JFIF header whose density is the input's, the
+//   input's comment and ICC profile; then exiv2 writes the input's EXIF, IPTC and XMP, as every
+//   writer does. Colour is written as it is held, premultiplied (a JPEG has no alpha: composited
+//   over black).
 #pragma once
 
 #include "core/io/stored_image.h"

@@ -80,4 +80,54 @@ int estimateJpegQuality(const std::string& path) {
   return 0;
 }
 
+std::string jpegSubsampling(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  auto byte = [&in]() -> int {
+    const int c = in.get();
+    return c == std::char_traits<char>::eof() ? -1 : c;
+  };
+  if (byte() != 0xFF || byte() != 0xD8) return "";
+  for (int segments = 0; segments < 1000; ++segments) {
+    int marker = byte();
+    if (marker != 0xFF) return "";
+    while (marker == 0xFF) marker = byte();
+    if (marker < 0 || marker == 0xD9 || marker == 0xDA) return "";
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) continue;
+    const int high = byte(), low = byte();
+    if (high < 0 || low < 0) return "";
+    const int length = high * 256 + low - 2;
+    if (length < 0) return "";
+    // SOF0…SOF15 but DHT (C4), JPG (C8) and DAC (CC): precision, height, width, components,
+    // then per component (id, H << 4 | V, table).
+    const bool frame =
+        marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (!frame) {
+      in.seekg(length, std::ios::cur);
+      if (!in) return "";
+      continue;
+    }
+    for (int k = 0; k < 5; ++k)
+      if (byte() < 0) return "";
+    const int components = byte();
+    if (components != 3 || length < 6 + 3 * 3) return "";
+    int h[3], v[3];
+    for (int c = 0; c < 3; ++c) {
+      byte();
+      const int hv = byte();
+      if (byte() < 0 || hv < 0) return "";
+      h[c] = hv >> 4, v[c] = hv & 0x0F;
+    }
+    if (h[1] != h[2] || v[1] != v[2] || h[1] < 1 || v[1] < 1 || h[0] % h[1] || v[0] % v[1])
+      return "";
+    const int across = h[0] / h[1], down = v[0] / v[1];
+    if (across == 1 && down == 1) return "4:4:4";
+    if (across == 2 && down == 1) return "4:2:2";
+    if (across == 2 && down == 2) return "4:2:0";
+    if (across == 1 && down == 2) return "4:4:0";
+    if (across == 4 && down == 1) return "4:1:1";
+    return "";
+  }
+  return "";
+}
+
 }  // namespace artcam

@@ -14,4 +14,10 @@ namespace artcam {
 // the header segments (stops at the first scan), bounds-checked: a hostile file gives 0.
 int estimateJpegQuality(const std::string& path);
 
+// A colour JPEG's chroma subsampling from its frame header (SOF): "4:4:4", "4:2:2", "4:2:0",
+// "4:4:0" or "4:1:1" from the luma component's sampling factors over the chroma ones (as
+// exiftool's YCbCrSubSampling names them); "" for a grey or an unusual layout, no JPEG, or a
+// header that does not parse (the same bounds-checked walk as the quality's).
+std::string jpegSubsampling(const std::string& path);
+
 }  // namespace artcam

@@ -5,9 +5,13 @@
 
 #include <exiv2/exiv2.hpp>
 
-#include <cstdint>
-#include <exception>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <ctime>
+#include <exception>
 #include <mutex>
 #include <set>
 
@@ -83,6 +87,56 @@ void eraseKey(Exiv2::ExifData& exif, const char* key) {
   if (at != exif.end()) exif.erase(at);
 }
 
+std::string softwareName() { return writingSoftware(); }
+
+// The tool the photo came from: EXIF Software, else XMP's tiff:Software or xmp:CreatorTool.
+std::string priorSoftware(const PhotoMetadata& metadata, const Exiv2::XmpData* xmp) {
+  const auto exif = metadata.exif.findKey(Exiv2::ExifKey("Exif.Image.Software"));
+  if (exif != metadata.exif.end() && !exif->toString().empty()) return exif->toString();
+  if (!xmp) return "";
+  for (const char* key : {"Xmp.tiff.Software", "Xmp.xmp.CreatorTool"}) {
+    const auto at = xmp->findKey(Exiv2::XmpKey(key));
+    if (at != xmp->end() && !at->toString().empty()) return at->toString();
+  }
+  return "";
+}
+
+// XMP's own record of the tools a file went through (xmpMM:History, a sequence of stEvt
+// events, what Adobe's and darktable's writers keep and exiftool lists as HistoryAction,
+// HistorySoftwareAgent, HistoryWhen): the photo's tool, when the history does not name one yet,
+// as the event that created it, then this save, "saved" with "changed /" (the whole image, a
+// warp moves every pixel).
+void addHistory(Exiv2::XmpData& xmp, const std::string& prior) {
+  int events = 0;
+  for (const Exiv2::Xmpdatum& d : xmp) {
+    const std::string key = d.key();
+    const std::string head = "Xmp.xmpMM.History[";
+    if (key.rfind(head, 0) != 0) continue;
+    events = std::max(events, std::atoi(key.c_str() + head.size()));
+  }
+  if (events == 0) {
+    Exiv2::XmpTextValue seq;
+    seq.setXmpArrayType(Exiv2::XmpValue::xaSeq);
+    xmp.add(Exiv2::XmpKey("Xmp.xmpMM.History"), &seq);
+  }
+  const auto event = [&xmp](int k, const char* field, const std::string& value) {
+    xmp["Xmp.xmpMM.History[" + std::to_string(k) + "]/stEvt:" + field] = value;
+  };
+  if (events == 0 && !prior.empty()) {
+    event(++events, "action", "created");
+    event(events, "softwareAgent", prior);
+  }
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char when[32];
+  std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  event(++events, "action", "saved");
+  event(events, "changed", "/");
+  event(events, "softwareAgent", softwareName());
+  event(events, "when", when);
+}
+
 Exiv2::ExifData updatedExif(const PhotoMetadata& metadata, const MetadataUpdate& update,
                             const Exiv2::ExifData& written) {
   Exiv2::ExifData exif;
@@ -101,17 +155,25 @@ Exiv2::ExifData updatedExif(const PhotoMetadata& metadata, const MetadataUpdate&
     eraseKey(exif, "Exif.Photo.ColorSpace");
     eraseKey(exif, "Exif.Iop.InteroperabilityIndex");
   }
+  // The writing program, the photo's kept in the XMP history (addHistory).
+  exif["Exif.Image.Software"] = softwareName();
   return exif;
 }
 
 // The packet with its stale fields updated, or `packet` itself (changed false) when none is
 // stale or it does not parse: then it is copied byte for byte.
-std::string updatedXmpPacket(const std::string& packet, const MetadataUpdate& update,
+// Every save adds its history event (addHistory), so a packet that parses always changes; one
+// that does not is copied byte for byte; a photo without XMP gets a packet holding the history.
+std::string updatedXmpPacket(const PhotoMetadata& metadata, const MetadataUpdate& update,
                              bool& changed) {
+  const std::string& packet = metadata.xmp_packet;
   changed = false;
-  if (packet.empty()) return packet;
   Exiv2::XmpData xmp;
-  if (Exiv2::XmpParser::decode(xmp, packet) != 0) return packet;  // unparsed: verbatim
+  if (!packet.empty() && Exiv2::XmpParser::decode(xmp, packet) != 0) return packet;  // verbatim
+  addHistory(xmp, priorSoftware(metadata, &xmp));
+  if (xmp.findKey(Exiv2::XmpKey("Xmp.tiff.Software")) != xmp.end())
+    xmp["Xmp.tiff.Software"] = softwareName();
+  changed = true;
   const std::pair<const char*, std::string> fields[] = {
       {"Xmp.tiff.Orientation", "1"},
       {"Xmp.exif.PixelXDimension", std::to_string(update.width)},
@@ -128,7 +190,6 @@ std::string updatedXmpPacket(const std::string& packet, const MetadataUpdate& up
     auto at = xmp.findKey(Exiv2::XmpKey("Xmp.exif.ColorSpace"));
     if (at != xmp.end()) xmp.erase(at), changed = true;
   }
-  if (!changed) return packet;
   std::string out;
   if (Exiv2::XmpParser::encode(out, xmp, Exiv2::XmpParser::useCompactFormat) != 0) {
     changed = false;
@@ -138,6 +199,8 @@ std::string updatedXmpPacket(const std::string& packet, const MetadataUpdate& up
 }
 
 }  // namespace
+
+std::string writingSoftware() { return std::string("artcam ") + ARTCAM_VERSION; }
 
 std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path) {
   const auto lock = exiv2Lock();
@@ -205,6 +268,38 @@ PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
   return tags;
 }
 
+EncodedPhotoMetadata encodePhotoMetadata(const PhotoMetadata& metadata,
+                                         const MetadataUpdate& update) {
+  const auto lock = exiv2Lock();
+  EncodedPhotoMetadata out;
+  out.iptc = !metadata.iptc.empty();
+  try {
+    const Exiv2::ExifData exif = updatedExif(metadata, update, Exiv2::ExifData());
+    Exiv2::Blob blob;
+    Exiv2::ExifParser::encode(blob, Exiv2::bigEndian, exif);
+    out.exif.assign(blob.begin(), blob.end());
+  } catch (const std::exception&) {
+    out.exif.clear();
+    out.left_out.push_back("the EXIF block (exiv2 cannot encode it)");
+  }
+  bool parses = metadata.xmp_packet.empty();
+  if (!parses) {
+    Exiv2::XmpData parsed;
+    try {
+      parses = Exiv2::XmpParser::decode(parsed, metadata.xmp_packet) == 0;
+    } catch (const std::exception&) {
+    }
+  }
+  if (parses) {
+    bool changed = false;
+    out.xmp = updatedXmpPacket(metadata, update, changed);
+  } else {
+    out.left_out.push_back("the XMP packet (" + std::to_string(metadata.xmp_packet.size()) +
+                           " bytes, it does not parse)");
+  }
+  return out;
+}
+
 Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,
                           const MetadataUpdate& update, const std::string& shown_path,
                           std::vector<std::string>* left_out) {
@@ -213,11 +308,11 @@ Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata
     if (left_out) left_out->push_back(what);
   };
   bool with_exif = true, with_iptc = true;
-  bool with_xmp = !metadata.xmp_packet.empty();
+  bool with_xmp = true;  // a packet without one: the history alone (updatedXmpPacket)
   const std::string xmp_bytes = std::to_string(metadata.xmp_packet.size()) + " bytes";
   // exiv2 parses a packet it is given (setXmpPacket): one its XMP toolkit cannot parse (broken
   // XML, an entity bomb the parser stops) would fail the save, so it is left out.
-  if (with_xmp) {
+  if (!metadata.xmp_packet.empty()) {
     Exiv2::XmpData parsed;
     bool parses = false;
     try {
@@ -245,7 +340,7 @@ Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata
         image->setIptcData(metadata.iptc);
       if (with_xmp && Exiv2::ImageFactory::checkMode(type, Exiv2::mdXmp) & Exiv2::amWrite) {
         bool changed = false;
-        const std::string packet = updatedXmpPacket(metadata.xmp_packet, update, changed);
+        const std::string packet = updatedXmpPacket(metadata, update, changed);
         image->setXmpPacket(packet);
         image->writeXmpFromPacket(true);  // as read, not re-serialised from XmpData
       }

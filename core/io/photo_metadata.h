@@ -7,12 +7,17 @@
 // before it is renamed into place (atomic_file.h): a reader never sees the pixels without them.
 //
 // Decisions:
+// - The writing program: Exif Software (and XMP tiff:Software where present) become
+//   "artcam <version>", and the XMP history (xmpMM:History) records the photo's own tool as the
+//   event that created it and this save as a "saved" event by artcam, so the photo's Software
+//   is kept where exiftool lists it (HistorySoftwareAgent). A photo without XMP gets a packet
+//   holding that history.
 // - Verbatim except what no longer describes the written file: Exif and XMP orientation become
 //   1 (the readers hand over the upright photo, orientation.h), pixel dimensions become the
 //   written size, the EXIF thumbnail is removed (it shows the unwarped photo), the colour-space
 //   tags (Exif ColorSpace, interoperability index) are removed when the transfer changed, and a
 //   TIFF source's image-structure tags (size, strips, compression) give way to the written
-//   file's own. The XMP packet is copied byte for byte unless it holds one of those fields.
+//   file's own. An XMP packet that does not parse is copied byte for byte.
 // - Formats exiv2 cannot write (OpenEXR, HDR, BMP…) keep what OpenImageIO carried.
 // - A source whose metadata exiv2 cannot read is written without it (as before); a failure to
 //   write metadata into a format exiv2 supports fails the save (no file is left), but for a
@@ -31,6 +36,9 @@
 namespace artcam {
 
 struct PhotoMetadata;  // exiv2's Exif and IPTC data and the XMP packet as read
+
+// "artcam <version>": the Software tag of every file artcam writes.
+std::string writingSoftware();
 
 // Null when `path` has no EXIF, IPTC or XMP, or exiv2 does not read its format or its metadata.
 std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path);
@@ -64,5 +72,18 @@ struct MetadataUpdate {
 Status writePhotoMetadata(const std::string& file, const PhotoMetadata& metadata,
                           const MetadataUpdate& update, const std::string& shown_path,
                           std::vector<std::string>* left_out = nullptr);
+
+// The same blocks, updated the same way, encoded for a writer that embeds them itself (HEIF,
+// core/io/heif_write.h): EXIF as a big-endian TIFF structure, the XMP packet. `iptc` says the
+// photo had IPTC, which such a format may have no place for; `left_out` what could not be
+// encoded.
+struct EncodedPhotoMetadata {
+  std::vector<unsigned char> exif;
+  std::string xmp;
+  bool iptc = false;
+  std::vector<std::string> left_out;
+};
+EncodedPhotoMetadata encodePhotoMetadata(const PhotoMetadata& metadata,
+                                         const MetadataUpdate& update);
 
 }  // namespace artcam

@@ -3,6 +3,8 @@
 // files are opened with "oiio:UnassociatedAlpha" = 1 so OIIO hands over the stored values and
 // we premultiply ourselves; writes go through a band of rows so no whole-image copy is made.
 #include "core/io/stored_image.h"
+#include "core/io/format_choices.h"
+#include "core/io/heif_write.h"
 #include "core/io/oiio_io.h"
 
 #include "core/colour/transfer.h"
@@ -470,12 +472,8 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
                                                                        : "sRGB");
   if (alpha >= 0 && !associated) spec.attribute("oiio:UnassociatedAlpha", 1);
   std::vector<std::string> left_out;  // metadata the output cannot hold (one warning)
-  if (format == "jpeg") {
-    const int quality = jpegQualityFor(options, like);
-    spec.attribute("CompressionQuality", quality);
-    spec.attribute("Compression", "jpeg:" + std::to_string(quality));
-    left_out = io_jpeg::fitJpegSegments(spec);
-  }
+  io_format::setFormatChoices(spec, format, options, like, like_spec);
+  if (format == "jpeg") left_out = io_jpeg::fitJpegSegments(spec);
 
   // Straight through when the layout is already the file's; else bands of rows converted.
   const bool direct = channels == image.channels && (alpha < 0 || associated) && !with_extra;
@@ -487,6 +485,26 @@ Status writeStoredImageBands(const std::string& path, const ConstImageView& shap
     auto failure = [&](const std::string& message) {
       return Status::failure(fail + io_text::replaceAll(oneLine(message), temp, path));
     };
+    if (io_heif::writesHeif(format) && image.type == PixelType::UInt8) {
+      // Through libheif with the metadata (heif_write.h): the bands unpremultiplied as below.
+      const size_t row = static_cast<size_t>(image.width) * static_cast<size_t>(channels);
+      std::vector<std::uint8_t> all(row * static_cast<size_t>(image.height));
+      for (int y0 = 0; y0 < image.height; y0 += 64) {
+        if (options.progress && !options.progress(static_cast<double>(y0) / image.height))
+          return failure("cancelled");
+        const int y1 = std::min(image.height, y0 + 64);
+        ConstImageView rows;
+        if (const Status produced = band_rows(y0, y1, rows); !produced) return produced;
+        for (int y = y0; y < y1; ++y)
+          unpremultiplyRow(static_cast<const std::uint8_t*>(rows.row(y - y0)),
+                           all.data() + static_cast<size_t>(y) * row, image.width, image.channels,
+                           image.alpha_channel, keep_alpha, 255.0f);
+      }
+      io_heif::HeifImage heif{image.width, image.height, channels, alpha >= 0, all.data(), {}};
+      return io_heif::writeHeifPhoto(temp, path, std::move(heif), &spec, options.jpeg_quality,
+                                     like ? like->metadata.get() : nullptr,
+                                     {image.width, image.height, true}, left_out);
+    }
     io_checked::CheckedWrite checked(std::move(out));
     if (!checked.open(temp, *part_specs)) return failure(checked.cause());
     bool ok = true;

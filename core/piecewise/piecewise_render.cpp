@@ -870,7 +870,8 @@ void renderPiecewise(const ConstImageView& source, const PiecewiseCamera& camera
   if (source.empty()) throw std::invalid_argument("renderPiecewise: empty source image");
   if (!camera.target_size.isImage() || !camera.source_size.isImage())
     throw std::invalid_argument("renderPiecewise: the camera has no image frames");
-  const SpanSampler sampler(source, out, options.filter, options.allow_simd, options.allow_avx512);  // validates both
+  const SpanSampler sampler(source, out, options.filter, options.allow_simd, options.allow_avx512,
+                            options.edge);  // validates both
   const bool avx512 = options.allow_avx512 && cpuHasAvx512bwvl();
   const FrameSize size{out.width, out.height};
   PiecewiseRenderStats stats;

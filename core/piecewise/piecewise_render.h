@@ -30,6 +30,7 @@ struct PiecewiseRenderOptions {
   double mesh_step_px = 0.0;
   double max_error_px = 1.0 / 256.0;  // source pixels of the image rendered from
   Filter filter = Filter::Bilinear;
+  EdgeMode edge = EdgeMode::Transparent;  // what taps past the source's edge read (filter.h)
   int threads = 0;            // 0: every core
   bool allow_simd = true;     // the span sampler's SIMD clones (span_sampler.h)
   // The AVX-512 clones (the rasteriser's rows and the sampler's) where the CPU has them; off,

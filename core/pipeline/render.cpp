@@ -242,6 +242,7 @@ PiecewiseRenderOptions piecewiseOptions(const RenderOptions& options) {
   PiecewiseRenderOptions p;
   p.mesh_step_px = options.mesh_step_px;
   p.filter = options.warp.filter;
+  p.edge = options.warp.edge;
   p.threads = options.warp.threads;
   p.allow_simd = !options.warp.coordinates.scalar_only;
   p.allow_avx512 = options.warp.coordinates.allow_avx512;
@@ -415,6 +416,8 @@ void render(const RenderInputs& inputs, const Artcam& camera, const RenderOption
   } else {
     renderGeometry(inputs.photo, inputs.pyramid, camera, analysis, options, out, report);
   }
+  if (!report.cancelled)
+    report.transparent_pixels = finishEdge(options.warp.edge, out, report.transparent_pixels);
   report.render_ms = msSince(start);
 }
 
@@ -425,6 +428,9 @@ ImageF render(const RenderInputs& inputs, const Artcam& camera, const RenderOpti
   Analysis analysis;
   RenderSummary& report = startReport(summary, local, camera, analysis);
   ImageF out = renderFloat(inputs, camera, analysis, options, report, depth_out);
+  if (!out.empty())
+    report.transparent_pixels =
+        finishEdge(options.warp.edge, viewOf(out), report.transparent_pixels);
   report.render_ms = msSince(start);
   return out;
 }

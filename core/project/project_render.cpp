@@ -99,6 +99,7 @@ ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam
   const StoredEncoding encoding = storedEncodingOf(loaded.info);
   RenderOptions render_options;
   render_options.warp.filter = options.filter;
+  render_options.warp.edge = options.edge;
   render_options.warp.width = options.width;
   render_options.warp.height = options.height;
   render_options.warp.progress = progress;

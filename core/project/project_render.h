@@ -25,6 +25,9 @@ struct ExportOptions {
   int height = 0;
   // The resampling filter: warp's default, which the studio's canvas also shows.
   Filter filter = Filter::Bilinear;
+  // What the filter reads past the photo's edge (filter.h): transparent by default, as
+  // `artcam warp`; extend as the peers (Hugin's nona and fulla, OpenImageIO's clamp).
+  EdgeMode edge = EdgeMode::Transparent;
   bool crop_to_valid = false;
   // Linear RGB(A) colour under pixels without a preimage; none: they stay transparent.
   std::optional<std::array<float, 4>> fill;

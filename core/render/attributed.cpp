@@ -343,7 +343,7 @@ bool gather(const ImageF& rgba, const StoredEncoding* encoding, const ImageF* de
                                                    options.warp.coordinates, options.warp.threads);
   report.kernel = choice.name;
   report.note = choice.note;
-  const Sampler sampler(rgba, options.warp.filter);
+  const Sampler sampler(rgba, options.warp.filter, options.warp.edge);
   ParallelOptions po = parallelOptions(options);
   po.band_rows = 16;
   return parallelForRows(out_px.height, po, [&](int y0, int y1) {

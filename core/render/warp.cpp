@@ -255,7 +255,7 @@ void warpChannels(const ConstImageView& source, const std::vector<AnalysedCamera
     direct_view.row_bytes = static_cast<std::ptrdiff_t>(kSpanPixels) * pixel_bytes;
   }
   const SpanSampler direct(source, direct_view, options.filter, !options.coordinates.scalar_only,
-                           options.coordinates.allow_avx512);
+                           options.coordinates.allow_avx512, options.edge);
   SpanSampler::ChannelShift shifts[4];
   for (int k = 0; k < count; ++k)
     if (const auto offset = kernels[static_cast<size_t>(k)]->wholePixelOffset())
@@ -278,7 +278,7 @@ void warpChannels(const ConstImageView& source, const std::vector<AnalysedCamera
       span.height = 1;
       span.row_bytes = static_cast<std::ptrdiff_t>(kSpanPixels) * pixel_bytes;
       band_samplers.emplace_back(source, span, options.filter, !options.coordinates.scalar_only,
-                                 options.coordinates.allow_avx512);
+                                 options.coordinates.allow_avx512, options.edge);
     }
     std::vector<RowState> states(static_cast<size_t>(count) * kBandRows);
     const unsigned char* spans[4] = {nullptr, nullptr, nullptr, nullptr};
@@ -365,7 +365,8 @@ void warpImage(const ConstImageView& source, const AnalysedCamera& analysed, con
   camera.validate();
   checkOptions(options);
   const SpanSampler sampler(source, out, options.filter, !options.coordinates.scalar_only,
-                            options.coordinates.allow_avx512);  // validates both images
+                            options.coordinates.allow_avx512,
+                            options.edge);  // validates both images
   checkCamera(camera, structure);
 
   const FrameSize source_px{source.width, source.height};
@@ -544,7 +545,7 @@ long long BandWarp::render(const ConstImageView& window, int window_first, int y
   const size_t row_bytes = static_cast<size_t>(out.width) * static_cast<size_t>(out.pixelBytes());
   if (st.degenerate) {
     for (int y = 0; y < out.height; ++y) std::memset(out.row(y), 0, row_bytes);
-    return static_cast<long long>(out.width) * out.height;
+    return finishEdge(st.options.edge, out, static_cast<long long>(out.width) * out.height);
   }
   // The window's edges that are not the photo's: a tap beyond them would read a row the
   // window does not hold, so the render refuses rather than sample black there.
@@ -554,10 +555,10 @@ long long BandWarp::render(const ConstImageView& window, int window_first, int y
     // No row read: every position lies beyond the photo's reach (sourceRows was empty), where
     // the sampler writes 0 in every channel.
     for (int y = 0; y < out.height; ++y) std::memset(out.row(y), 0, row_bytes);
-    return static_cast<long long>(out.width) * out.height;
+    return finishEdge(st.options.edge, out, static_cast<long long>(out.width) * out.height);
   }
   const SpanSampler sampler(window, out, st.options.filter, !st.options.coordinates.scalar_only,
-                            st.options.coordinates.allow_avx512);
+                            st.options.coordinates.allow_avx512, st.options.edge);
   std::atomic<long long> transparent{0};
   ParallelOptions po;
   po.threads = st.options.threads;
@@ -593,7 +594,34 @@ long long BandWarp::render(const ConstImageView& window, int window_first, int y
     }
     transparent += band_transparent;
   });
-  return transparent.load();
+  return finishEdge(st.options.edge, out, transparent.load());
+}
+
+long long finishEdge(EdgeMode edge, const ImageView& image, long long transparent) {
+  if (edge != EdgeMode::Black || image.alpha_channel < 0)
+    return edge == EdgeMode::Black ? 0 : transparent;
+  const int size = pixelTypeSize(image.type);
+  const std::size_t pixel = static_cast<std::size_t>(image.pixelBytes());
+  const std::size_t at =
+      static_cast<std::size_t>(image.alpha_channel) * static_cast<std::size_t>(size);
+  const float full = pixelTypeFullScale(image.type);
+  for (int y = 0; y < image.height; ++y) {
+    auto* row = static_cast<unsigned char*>(image.row(y)) + at;
+    for (int x = 0; x < image.width; ++x, row += pixel) switch (image.type) {
+        case PixelType::UInt8:
+          *row = 255;
+          break;
+        case PixelType::UInt16: {
+          const std::uint16_t v = 65535;
+          std::memcpy(row, &v, 2);
+          break;
+        }
+        case PixelType::Float:
+          std::memcpy(row, &full, 4);
+          break;
+      }
+  }
+  return 0;
 }
 
 ImageF warpImage(const ImageF& source, const Camera& camera, const WarpOptions& options,

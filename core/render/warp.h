@@ -38,6 +38,9 @@ constexpr double kPreviewCertifyTolerancePx = 1.0 / 16.0;
 
 struct WarpOptions {
   Filter filter = Filter::Bilinear;
+  // What the filter reads past the source's edge (filter.h): every renderer that samples the
+  // photo takes it from here, so warp, batch, export and the studio agree.
+  EdgeMode edge = EdgeMode::Transparent;
   int width = 0;   // output size; 0×0: the camera's target frame size
   int height = 0;
   int threads = 0;  // 0: all cores
@@ -141,6 +144,12 @@ class BandWarp {
   std::unique_ptr<State> state_;
   std::string kernel_name_;
 };
+
+// EdgeMode::Black's half, after any render into `image`: premultiplied colours over opaque
+// black, i.e. the alpha channel (if any) set full, so nothing of the output is transparent.
+// Returns the transparent pixels left: 0 for Black, `transparent` for the other modes (the
+// samplers themselves carry Transparent and Extend).
+long long finishEdge(EdgeMode edge, const ImageView& image, long long transparent);
 
 // Chromatic aberration the way the paper's Fig 4 builds it, on the photo as stored: channel k
 // (k < channel_cameras.size() ≤ the source's colour channels) through its own position camera,

@@ -19,4 +19,23 @@ std::optional<Filter> filterFromName(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view edgeModeName(EdgeMode mode) {
+  switch (mode) {
+    case EdgeMode::Transparent:
+      return "transparent";
+    case EdgeMode::Extend:
+      return "extend";
+    case EdgeMode::Black:
+      return "black";
+  }
+  return "unknown";
+}
+
+std::optional<EdgeMode> edgeModeFromName(std::string_view name) {
+  if (name == "transparent") return EdgeMode::Transparent;
+  if (name == "extend") return EdgeMode::Extend;
+  if (name == "black") return EdgeMode::Black;
+  return std::nullopt;
+}
+
 }  // namespace artcam

@@ -16,9 +16,10 @@ void cubicWeights(double t, double w[4]) {
   w[3] = 0.5 * t3 - 0.5 * t2;
 }
 
-Sampler::Sampler(const ImageF& source, Filter filter)
+Sampler::Sampler(const ImageF& source, Filter filter, EdgeMode edge)
     : source_(source),
       filter_(filter),
+      extend_(edge == EdgeMode::Extend),
       channels_(source.channels),
       out_channels_(source.alpha_channel >= 0 ? source.channels : source.channels + 1),
       out_alpha_(source.alpha_channel >= 0 ? source.alpha_channel : source.channels),
@@ -57,7 +58,9 @@ void Sampler::finish(const float* sum, double coverage, float* out) const {
 void Sampler::nearest(double fx, double fy, float* out) const {
   // The pixel whose square contains the point; the negated test also rejects NaN.
   const double w = source_.width, h = source_.height;
-  if (!(fx >= -0.5 && fx < w - 0.5 && fy >= -0.5 && fy < h - 0.5)) return clear(out);
+  if (!(fx >= -0.5 && fx < w - 0.5 && fy >= -0.5 && fy < h - 0.5) &&
+      !(extend_ && fx > -1.0 && fx < w && fy > -1.0 && fy < h))
+    return clear(out);
   const int x = std::min(static_cast<int>(fx + 0.5), source_.width - 1);
   const int y = std::min(static_cast<int>(fy + 0.5), source_.height - 1);
   const float* p = source_.pixel(x, y);
@@ -84,11 +87,17 @@ void Sampler::bilinear(double fx, double fy, float* out) const {
   }
   double coverage = 0.0;
   for (int j = 0; j < 2; ++j) {
-    const int y = y0 + j;
-    if (y < 0 || y >= h) continue;
+    int y = y0 + j;
+    if (y < 0 || y >= h) {
+      if (!extend_) continue;
+      y = std::clamp(y, 0, h - 1);
+    }
     for (int i = 0; i < 2; ++i) {
-      const int x = x0 + i;
-      if (x < 0 || x >= w) continue;
+      int x = x0 + i;
+      if (x < 0 || x >= w) {
+        if (!extend_) continue;
+        x = std::clamp(x, 0, w - 1);
+      }
       const float wt = wx[i] * wy[j];
       const float* p = source_.pixel(x, y);
       for (int c = 0; c < channels_; ++c) sum[c] += wt * p[c];
@@ -115,13 +124,19 @@ void Sampler::bicubic(double fx, double fy, float* out) const {
   const bool interior = x0 >= 0 && y0 >= 0 && x0 + 3 < w && y0 + 3 < h;
   double coverage = 0.0;
   for (int j = 0; j < 4; ++j) {
-    const int y = y0 + j;
-    if (y < 0 || y >= h) continue;
+    int y = y0 + j;
+    if (y < 0 || y >= h) {
+      if (!extend_) continue;
+      y = std::clamp(y, 0, h - 1);
+    }
     float row_sum[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     double row_cover = 0.0;
     for (int i = 0; i < 4; ++i) {
-      const int x = x0 + i;
-      if (x < 0 || x >= w) continue;
+      int x = x0 + i;
+      if (x < 0 || x >= w) {
+        if (!extend_) continue;
+        x = std::clamp(x, 0, w - 1);
+      }
       const float* p = source_.pixel(x, y);
       for (int c = 0; c < channels_; ++c) row_sum[c] += wx[i] * p[c];
       row_cover += wxd[i];

@@ -6,7 +6,8 @@
 // the continuous index (sx − 0.5, sy − 0.5).
 //
 // Outside the source every channel, alpha included, is 0 — OpenImageIO's "black" wrap — so a
-// bilinear or bicubic tap straddling the border fades in alpha. Colours are premultiplied
+// bilinear or bicubic tap straddling the border fades in alpha; with EdgeMode::Extend a tap
+// outside reads the nearest edge pixel instead (OpenImageIO's "clamp"). Colours are premultiplied
 // (image.h), which is what makes mixing with transparent taps correct.
 //
 // The output has the source's channels, plus alpha appended when the source has none. That
@@ -25,7 +26,9 @@ void checkSourceImage(const ImageF& source);
 
 class Sampler {
  public:
-  Sampler(const ImageF& source, Filter filter);
+  // `edge`: Extend reads the nearest edge pixel for taps outside (filter.h); Black is the
+  // caller's (an opaque alpha afterwards) and reads as Transparent here.
+  Sampler(const ImageF& source, Filter filter, EdgeMode edge = EdgeMode::Transparent);
 
   int outputChannels() const { return out_channels_; }
   int outputAlpha() const { return out_alpha_; }
@@ -44,6 +47,7 @@ class Sampler {
 
   const ImageF& source_;
   Filter filter_;
+  bool extend_;
   int channels_;
   int out_channels_;
   int out_alpha_;

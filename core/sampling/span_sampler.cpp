@@ -35,7 +35,11 @@ inline void cubicWeightsF(float t, float w[4]) {
 // bounds tests; the border paths keep sampling.h's exact semantics.
 template <class T, int C>
 [[gnu::always_inline]] inline float nearestTap(const Context& k, float fx, float fy, float* sum) {
-  if (!(fx >= -0.5f && fx < k.width - 0.5f && fy >= -0.5f && fy < k.height - 0.5f)) return 0.0f;
+  // Extend: the bilinear reach (−1, size) reads the edge pixel, as position_map.h's rule keeps
+  // such pixels; truncation towards 0 below already rounds (−1, −½) to pixel 0.
+  if (!(fx >= -0.5f && fx < k.width - 0.5f && fy >= -0.5f && fy < k.height - 0.5f) &&
+      !(k.extend && fx > -1.0f && fx < k.width && fy > -1.0f && fy < k.height))
+    return 0.0f;
   const int x = std::min(static_cast<int>(fx + 0.5f), k.width - 1);
   const int y = std::min(static_cast<int>(fy + 0.5f), k.height - 1);
   const T* p = pixelAt<T>(k, x, y, C);
@@ -61,13 +65,20 @@ template <class T, int C>
     }
     return 1.0f;
   }
+  // The border: taps outside read 0 (transparent), or the nearest edge pixel (extend).
   float coverage = 0.0f;
   for (int j = 0; j < 2; ++j) {
-    const int y = y0 + j;
-    if (y < 0 || y >= k.height) continue;
+    int y = y0 + j;
+    if (y < 0 || y >= k.height) {
+      if (!k.extend) continue;
+      y = std::clamp(y, 0, k.height - 1);
+    }
     for (int i = 0; i < 2; ++i) {
-      const int x = x0 + i;
-      if (x < 0 || x >= k.width) continue;
+      int x = x0 + i;
+      if (x < 0 || x >= k.width) {
+        if (!k.extend) continue;
+        x = std::clamp(x, 0, k.width - 1);
+      }
       const float w = wx[i] * wy[j];
       const T* p = pixelAt<T>(k, x, y, C);
       for (int c = 0; c < C; ++c) sum[c] += w * static_cast<float>(p[c]);
@@ -97,13 +108,19 @@ template <class T, int C>
   }
   float coverage = 0.0f;
   for (int j = 0; j < 4; ++j) {
-    const int y = y0 + j;
-    if (y < 0 || y >= k.height) continue;
+    int y = y0 + j;
+    if (y < 0 || y >= k.height) {
+      if (!k.extend) continue;
+      y = std::clamp(y, 0, k.height - 1);
+    }
     float row[C] = {};
     float row_cover = 0.0f;
     for (int i = 0; i < 4; ++i) {
-      const int x = x0 + i;
-      if (x < 0 || x >= k.width) continue;
+      int x = x0 + i;
+      if (x < 0 || x >= k.width) {
+        if (!k.extend) continue;
+        x = std::clamp(x, 0, k.width - 1);
+      }
       const T* p = pixelAt<T>(k, x, y, C);
       for (int c = 0; c < C; ++c) row[c] += wx[i] * static_cast<float>(p[c]);
       row_cover += wx[i];
@@ -462,7 +479,7 @@ SpanSampler::SpanFn pickFilter(Filter filter, int channels) {
 }  // namespace
 
 SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter,
-                         bool allow_simd, bool allow_avx512)
+                         bool allow_simd, bool allow_avx512, EdgeMode edge)
     : dst_(dst) {
   if (src.empty() || src.channels < 1 || src.channels > 4)
     throw std::invalid_argument("the source image is empty or has more than 4 channels");
@@ -484,6 +501,7 @@ SpanSampler::SpanSampler(const ConstImageView& src, const ImageView& dst, Filter
   context_.append_alpha = append;
   context_.out_alpha = append ? src.channels : src.alpha_channel;
   context_.full = pixelTypeFullScale(src.type);
+  context_.extend = edge == EdgeMode::Extend;
   filter_ = filter;
   u8_ = src.type == PixelType::UInt8;
   switch (src.type) {

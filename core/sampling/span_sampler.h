@@ -3,7 +3,8 @@
 // source positions, reading 8-bit, 16-bit or float pixels in place (image_view.h).
 //
 // Semantics are those of sampling.h, for every pixel type: pixel centres at i + 0.5, taps
-// outside the source are 0 in every channel (OpenImageIO's "black"), colours premultiplied so
+// outside the source are 0 in every channel (OpenImageIO's "black"; or the nearest edge pixel,
+// EdgeMode::Extend, filter.h), colours premultiplied so
 // border taps fade correctly; an output alpha channel appended to a source without one holds
 // the coverage (sum of the weights of taps inside); an existing alpha is clamped to [0, full];
 // colours are clamped only when stored as integers (rounded to nearest). An output without an
@@ -30,8 +31,12 @@ class SpanSampler {
   // `allow_avx512`: for RGB bilinear (8-bit, 16-bit, float), the AVX-512 clones
   // (span_sampler_avx512.h, also bit-identical) where the CPU has them; false stops at AVX2
   // (tests compare the two).
-  SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter, bool allow_simd = true,
-              bool allow_avx512 = true);
+  // `edge`: what border taps read (filter.h); Extend clamps them to the edge in the border
+  // paths only, so the interior code and its SIMD clones are the same for every mode. Black is
+  // the caller's (an opaque alpha after the render): the sampler reads it as Transparent.
+  SpanSampler(const ConstImageView& src, const ImageView& dst, Filter filter,
+              bool allow_simd = true, bool allow_avx512 = true,
+              EdgeMode edge = EdgeMode::Transparent);
   bool usesSimd() const { return simd_; }
   bool usesAvx512() const { return avx512_; }
 
@@ -74,6 +79,7 @@ class SpanSampler {
     int out_alpha = -1;     // alpha index in the output, or -1
     bool append_alpha = false;
     float full = 1.0f;      // the value of alpha 1
+    bool extend = false;    // border taps read the nearest edge pixel (EdgeMode::Extend)
   };
   using SpanFn = long long (*)(const Context&, unsigned char* out, int n, const float* sx,
                                const float* sy, const unsigned char* valid, int supersample,

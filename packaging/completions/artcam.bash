@@ -17,10 +17,11 @@ _artcam_options() {
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
                --quiet -q --stmap --layer --lines" ;;
     map) echo "--json" ;;
-    warp) echo "--output -o --format --size --filter --threads --quality --bit-depth --colourspace --colourspace-in --colourspace-out
+    warp) echo "--output -o --format --size --filter --edge --subsampling --threads --quality --bit-depth
+                --colourspace --colourspace-in --colourspace-out
                 --stats --json --overwrite --force --quiet -q --depth --depth-scale --disparity
                 --second" ;;
-    batch) echo "--output -o --suffix --format --first --size --filter --threads --quality
+    batch) echo "--output -o --suffix --format --first --size --filter --edge --subsampling --threads --quality
                  --bit-depth --colourspace --colourspace-in --colourspace-out --overwrite --force --json --quiet -q
                  --lens-from-exif" ;;
     info) echo "--json" ;;
@@ -33,7 +34,7 @@ _artcam_options() {
                   --threads --stats --json --overwrite --force --quiet -q" ;;
     preset) echo "--output -o --overwrite --force --size" ;;
     compose) echo "--output -o --force --overwrite --json" ;;
-    export) echo "--output -o --photo --camera-out --depth-out --size --filter --quality --bit-depth --colourspace --colourspace-in --colourspace-out
+    export) echo "--output -o --photo --camera-out --depth-out --size --filter --edge --subsampling --quality --bit-depth --colourspace --colourspace-in --colourspace-out
                   --crop-valid --fill --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --source-size --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --from --focal --crop --size --output -o --distort --no-tca

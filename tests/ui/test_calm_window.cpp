@@ -196,6 +196,7 @@ class TestCalmWindow : public QObject {
     chosen.fill = std::array<float, 4>{0.25f, 0.5f, 0.75f, 1.0f};
     chosen.write.jpeg_quality = 71;
     chosen.write.pixel_type = "uint16";
+    chosen.edge = EdgeMode::Black;  // not the default (transparent)
     {
       MainWindow window;
       window.session()->setInteractive(false);
@@ -214,6 +215,7 @@ class TestCalmWindow : public QObject {
     QCOMPARE(*back.fill, *chosen.fill);
     QCOMPARE(back.write.jpeg_quality, std::optional<int>(71));
     QCOMPARE(back.write.pixel_type, std::string("uint16"));
+    QVERIFY(back.edge == EdgeMode::Black);
     QVERIFY(!back.crop_to_valid);
   }
 
