@@ -4,6 +4,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "app/cli/stdio_paths.h"
 #include "core/io/artcam_file.h"
 #include "core/model/compose.h"
 #include "core/model/structure.h"
@@ -82,7 +83,7 @@ int composeCommand(const std::vector<std::string>& argv) {
                             .dump()
                             .c_str());
   else
-    std::printf("wrote %s: %s camera, %s\n", output->c_str(),
+    std::printf("wrote %s: %s camera, %s\n", outputName(*output).c_str(),
                 std::string(artcamKindName(composed.kind())).c_str(), summary.c_str());
   return 0;
 }

@@ -4,6 +4,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "app/cli/stdio_paths.h"
 #include "core/io/artcam_file.h"
 #include "core/lens/lens_camera.h"
 #include "core/lens/lens_database.h"
@@ -148,7 +149,7 @@ int cameraCommand(const std::vector<std::string>& argv) {
     std::printf("%s\n", j.dump().c_str());
     return 0;
   }
-  std::printf("%s\nwrote %s\n", s.report().c_str(), output->c_str());
+  std::printf("%s\nwrote %s\n", s.report().c_str(), outputName(*output).c_str());
   return 0;
 }
 
