@@ -287,7 +287,8 @@ int fitPositionCommand(const Args& args, const std::string& output, FrameSize so
     // Valid but surprising (nothing inside the target frame, a pole across part of it): written,
     // and said (coverage.h).
     for (const std::string& warning : cameraWarnings(doc))
-      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", output.c_str(), warning.c_str());
+      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", outputName(output).c_str(),
+                   warning.c_str());
 
     if (args.has("--json")) {
       nlohmann::json j = {{"model", fit.record.model},
