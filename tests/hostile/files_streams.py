@@ -28,4 +28,4 @@ put("mv-clip-named.jpg", _ebml)
 put("mv-clip.mpg", b"\0\0\1\xba" + b"\x44\0\4\0\4\1\1\x89\xc3\xf8" + b"\0" * 50)
 put("mv-clip.ts", (b"\x47\x40\x00\x10" + b"\xff" * 184) * 3)
 # A name OpenImageIO gives its movie reader, on bytes no movie format starts with.
-put("mv-nothing.mkv", b"\0" * 256)
+put("mv-nothing.mp4", b"\0" * 256)
