@@ -74,6 +74,24 @@ FrameSize parseSize(const std::string& text, const std::string& option, bool leg
   return size;
 }
 
+FrameSize parseSizeByAspect(const std::string& text, const std::string& option) {
+  const size_t x = text.find_first_of("xX");
+  const std::string_view whole(text);
+  const bool zero_width = x != std::string::npos && whole.substr(0, x) == "0";
+  const bool zero_height = x != std::string::npos && whole.substr(x + 1) == "0";
+  if (zero_width && zero_height)
+    throw UsageError(option + " expects WxH with at most one side 0 (by aspect), got \"" + text +
+                     "\"");
+  if (!zero_width && !zero_height) return parseSize(text, option);
+  const auto given = readInteger(zero_width ? whole.substr(x + 1) : whole.substr(0, x));
+  if (!given || *given <= 0 || *given > 1000000)
+    throw UsageError(option + " expects WxH in pixels (1…1000000; one side 0: by aspect), got \"" +
+                     text + "\"");
+  FrameSize size;
+  (zero_width ? size.height : size.width) = static_cast<int>(*given);
+  return size;
+}
+
 namespace {
 
 // An end of a range as users read it: whole values without a decimal point or exponent.

@@ -49,6 +49,9 @@ class Args {
 // "W,H", for the options that took it before WxH was everywhere (preset --size). Throws
 // UsageError naming the option.
 FrameSize parseSize(const std::string& text, const std::string& option, bool legacy_comma = false);
+// WxH where one side may be 0, "the other by the output's aspect" ("300x0", "0x200"); both 0
+// is refused (that is the default, said by leaving the option out). UsageError otherwise.
+FrameSize parseSizeByAspect(const std::string& text, const std::string& option);
 
 // Numbers on the command line have one spelling, so every option refuses the same things:
 // the WHOLE text is the number (std::from_chars: no leading space or '+', no trailing unit, no

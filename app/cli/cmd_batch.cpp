@@ -13,6 +13,7 @@
 #include "app/cli/interrupt.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/stdio_paths.h"
 #include "app/cli/warp_job.h"
 #include "core/io/atomic_file.h"
 
@@ -161,6 +162,12 @@ int batchCommand(const std::vector<std::string>& argv) {
                                     : "expected CAM.artcam and at least one IN");
   const auto folder = args.value("--output");
   if (!folder) throw UsageError("missing -o DIR");
+  refuseStreamFolder(*folder, "batch's -o DIR");
+  for (auto in = args.positional().begin() + 1; in != args.positional().end(); ++in)
+    if (isStreamPath(*in))
+      throw UsageError(
+          "batch reads its photos by name; for one photo through standard input use "
+          "artcam warp - CAM -o OUT");
   BatchNaming naming{*folder, args.valueOr("--suffix", ""), args.valueOr("--format", "")};
   if (!naming.format.empty() && naming.format.front() == '.') naming.format.erase(0, 1);
   std::optional<long> first;

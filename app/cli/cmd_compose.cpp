@@ -4,7 +4,9 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "app/cli/stdio_paths.h"
 #include "core/io/artcam_file.h"
+#include "core/io/text_input.h"
 #include "core/model/compose.h"
 #include "core/model/structure.h"
 
@@ -42,19 +44,22 @@ int composeCommand(const std::vector<std::string>& argv) {
                          {"--force", "", false},
                          {"--overwrite", "", false},
                          {"--json", "", false}});
-  const std::vector<std::string>& inputs = args.positional();
-  if (inputs.size() < 2) throw UsageError("compose needs at least two camera files");
+  const std::vector<std::string>& paths = args.positional();
+  if (paths.size() < 2) throw UsageError("compose needs at least two camera files");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT.artcam");
-  checkOutputs(args, {*output}, inputs);
+  checkOutputs(args, {*output}, paths);
+  // The names messages give: "<stdin>" for "-".
+  std::vector<std::string> inputs;
+  for (const std::string& path : paths) inputs.push_back(textInputName(path));
 
-  auto first = readArtcam(inputs[0]);
+  auto first = readArtcam(paths[0]);
   if (!first) throw CommandError(first.status.message);
   Artcam composed = std::move(*first);
   const bool json = args.has("--json");
   nlohmann::json steps = nlohmann::json::array();
   for (size_t i = 1; i < inputs.size(); ++i) {
-    const auto next = readArtcam(inputs[i]);
+    const auto next = readArtcam(paths[i]);
     if (!next) throw CommandError(next.status.message);
     std::string description;
     auto c = composeArtcams(composed, *next, &description);
@@ -67,11 +72,12 @@ int composeCommand(const std::vector<std::string>& argv) {
   // first's image): refused like such a file would be on read. One that only misses the target
   // frame is valid, and warned about below.
   if (const Status s = validateArtcam(composed); !s)
-    throw CommandError(*output + ": the composed camera is not usable: " + s.message);
+    throw CommandError(outputName(*output) + ": the composed camera is not usable: " + s.message);
   if (const Status s = writeArtcam(*output, composed); !s) throw CommandError(s.message);
   // One whose picture misses the target frame is valid (coverage.h): written, and said.
   for (const std::string& warning : cameraWarnings(composed))
-    std::fprintf(stderr, "artcam compose: warning: %s: %s\n", output->c_str(), warning.c_str());
+    std::fprintf(stderr, "artcam compose: warning: %s: %s\n", outputName(*output).c_str(),
+                 warning.c_str());
   const std::string summary = analyseStructure(composed.main()).summary;
   if (json)
     std::printf("%s\n", nlohmann::json{{"output", *output},
@@ -82,7 +88,7 @@ int composeCommand(const std::vector<std::string>& argv) {
                             .dump()
                             .c_str());
   else
-    std::printf("wrote %s: %s camera, %s\n", output->c_str(),
+    std::printf("wrote %s: %s camera, %s\n", outputName(*output).c_str(),
                 std::string(artcamKindName(composed.kind())).c_str(), summary.c_str());
   return 0;
 }

@@ -126,8 +126,8 @@ int exportCommand(const std::vector<std::string>& argv) {
   if (!output) throw UsageError("missing -o OUT");
   ExportOptions options;
   if (const auto size = args.value("--size")) {
-    const FrameSize s = parseSize(*size, "--size");
-    checkImageMemory(s, "--size");
+    const FrameSize s = parseSizeByAspect(*size, "--size");
+    if (s.width > 0 && s.height > 0) checkImageMemory(s, "--size");
     options.width = s.width;
     options.height = s.height;
   }

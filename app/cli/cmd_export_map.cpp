@@ -4,6 +4,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "app/cli/stdio_paths.h"
 #include "core/io/artcam_file.h"
 #include "core/io/stmap_file.h"
 #include "core/pipeline/source_maps.h"
@@ -93,6 +94,8 @@ int exportMapCommand(const std::vector<std::string>& argv) {
   if (!convention)
     throw UsageError("--convention expects stmap or opencv, not \"" + convention_name + "\"");
   checkOutputs(args, {*output}, {path});
+  // The camera's "-" is read as text (readArtcam); the map's "-" is an EXR spooled to stdout.
+  StdioPaths streams(args, "", *output, "exr");
 
   const auto camera = readArtcam(path);
   if (!camera) throw CommandError(camera.status.message);
@@ -123,7 +126,10 @@ int exportMapCommand(const std::vector<std::string>& argv) {
     if (!layer.name.empty()) names.push_back(layer.name);
     invalid = std::max(invalid, layer.map.invalid_pixels);
   }
-  if (const Status s = writeStmap(*output, layers, *convention); !s) throw CommandError(s.message);
+  streams.open();
+  if (const Status s = writeStmap(streams.output(), layers, *convention); !s)
+    throw CommandError(streams.named(s.message));
+  streams.sendOutput();
   const long long transparent = maps->transparentPixels();
   if (args.has("--json")) {
     const nlohmann::json j = {{"output", *output},
@@ -139,10 +145,11 @@ int exportMapCommand(const std::vector<std::string>& argv) {
   } else {
     const std::string what =
         names.empty() ? "map" : std::to_string(names.size()) + " maps (" + joined(names, ", ") + ")";
-    std::printf("%s %s %dx%d (%s), %lld pixels without a preimage, %lld that read nothing "
-                "(transparent in artcam warp)\nwrote %s\n",
-                std::string(stmapConventionName(*convention)).c_str(), what.c_str(), size.width,
-                size.height, maps->kernel.c_str(), invalid, transparent, output->c_str());
+    std::printf(
+        "%s %s %dx%d (%s), %lld pixels without a preimage, %lld that read nothing "
+        "(transparent in artcam warp)\nwrote %s\n",
+        std::string(stmapConventionName(*convention)).c_str(), what.c_str(), size.width,
+        size.height, maps->kernel.c_str(), invalid, transparent, streams.outputName().c_str());
   }
   return 0;
 }

@@ -5,12 +5,14 @@
 #include "app/cli/fit_input.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/stdio_paths.h"
 #include "core/colour/colour_map.h"
 #include "core/fit/fit_colour.h"
 #include "core/fit/fit_image.h"
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
 #include "core/io/stmap_file.h"
+#include "core/io/text_input.h"
 
 #include <nlohmann/json.hpp>
 
@@ -181,7 +183,7 @@ int fitColourCommand(const Args& args, const std::string& output) {
       for (int k : fit.inliers) std::printf(" %d", k + 1);
       std::printf("\n");
     }
-    std::printf("wrote %s\n", output.c_str());
+    std::printf("wrote %s\n", outputName(output).c_str());
     return 0;
   });
 }
@@ -285,7 +287,8 @@ int fitPositionCommand(const Args& args, const std::string& output, FrameSize so
     // Valid but surprising (nothing inside the target frame, a pole across part of it): written,
     // and said (coverage.h).
     for (const std::string& warning : cameraWarnings(doc))
-      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", output.c_str(), warning.c_str());
+      std::fprintf(stderr, "artcam fit: warning: %s: %s\n", outputName(output).c_str(),
+                   warning.c_str());
 
     if (args.has("--json")) {
       nlohmann::json j = {{"model", fit.record.model},
@@ -328,14 +331,14 @@ int fitPositionCommand(const Args& args, const std::string& output, FrameSize so
         for (int k : fit.record.inliers) std::printf(" %d", k + 1);
         std::printf("\n");
       }
-      std::printf("wrote %s\n", output.c_str());
+      std::printf("wrote %s\n", outputName(output).c_str());
     }
     return 0;
   });
 }
 
 MatchInput csvInput(const std::string& csv, int dimension) {
-  return {csv, [csv, dimension] {
+  return {textInputName(csv), [csv, dimension] {
             auto matches = readMatchesCsv(csv, dimension);
             if (!matches) throw CommandError(matches.status.message);
             return std::move(*matches);
@@ -359,21 +362,25 @@ int fitStmapCommand(const Args& args, const std::string& map_path) {
   if (const auto size_text = args.value("--size"))
     options.source_px = parseSize(*size_text, "--size");
   options.layer = args.valueOr("--layer", "");
-  const auto samples = readStmapSamples(map_path, options);
-  if (!samples) throw CommandError(samples.status.message);
+  // A map from standard input ("-") is spooled and read as a named one (standard_streams.h).
+  StdioPaths streams(args, map_path, "");
+  streams.open();
+  const auto samples = readStmapSamples(streams.input(), options);
+  if (!samples) throw CommandError(streams.named(samples.status.message));
+  const std::string& map_name = streams.inputName();
   if (!args.has("--json"))
-    std::printf("%s: %zu samples (every %d px) of a %dx%d %s map, source %dx%d\n", map_path.c_str(),
-                samples->matches.size(), samples->step, samples->map_px.width,
-                samples->map_px.height,
+    std::printf("%s: %zu samples (every %d px) of a %dx%d %s map, source %dx%d\n",
+                streams.inputName().c_str(), samples->matches.size(), samples->step,
+                samples->map_px.width, samples->map_px.height,
                 std::string(stmapConventionName(samples->convention)).c_str(),
                 samples->source_px.width, samples->source_px.height);
-  const MatchInput input{map_path, [&samples] { return samples->matches; }};
+  const MatchInput input{map_name, [&samples] { return samples->matches; }};
   if (args.has("--piecewise")) {
     // Patches tile the source frame; samples that read from outside it (a barrel map's corners)
     // hold no photo and would stretch the patches past the frame, so they are left out here.
     // The single camera keeps them: they constrain its shape.
     const MatchInput inside{
-        map_path, [&samples, &map_path] {
+        map_name, [&samples, &map_name] {
           std::vector<PointMatch> kept;
           for (const PointMatch& m : samples->matches)
             if (m.source.x() >= 0 && m.source.y() >= 0 &&
@@ -381,7 +388,7 @@ int fitStmapCommand(const Args& args, const std::string& map_path) {
                 m.source.y() <= samples->source_px.height)
               kept.push_back(m);
           if (kept.empty())
-            throw CommandError(map_path + ": every sample of the map reads from outside the " +
+            throw CommandError(map_name + ": every sample of the map reads from outside the " +
                                std::to_string(samples->source_px.width) + "x" +
                                std::to_string(samples->source_px.height) + " source frame");
           return kept;

@@ -8,6 +8,7 @@
 #include "app/cli/fit_input.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/stdio_paths.h"
 #include "core/fit/fit_lines.h"
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
@@ -100,7 +101,7 @@ int fitLinesCommand(const Args& args, const std::string& lines_path) {
     for (size_t k = 0; k < fit.bows.size(); ++k)
       std::printf("line %s: %d points, bow %.3g px (before %.3g px)\n", fit.bows[k].label.c_str(),
                   fit.bows[k].points, fit.bows[k].max_px, fit.bows_before[k].max_px);
-    std::printf("wrote %s\n", output->c_str());
+    std::printf("wrote %s\n", outputName(*output).c_str());
     return 0;
   });
 }

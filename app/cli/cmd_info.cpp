@@ -7,6 +7,7 @@
 #include "core/fit/poles.h"
 #include "core/io/artcam_file.h"
 #include "core/io/image_checks.h"
+#include "core/io/text_input.h"
 #include "core/model/structure.h"
 #include "core/piecewise/piecewise_fit.h"
 
@@ -39,9 +40,12 @@ std::string lookalike(const std::string& path) {
   // Only a regular file is opened: a named pipe would block the open (readArtcam refused it).
   if (!image_checks::regularFile(path)) return "";
   std::ifstream in(path, std::ios::binary);
-  char head[16] = {};
+  char head[512] = {};
   in.read(head, sizeof head);
-  const std::string h(head, static_cast<size_t>(in.gcount()));
+  const std::string whole(head, static_cast<size_t>(in.gcount()));
+  if (const std::string movie = image_checks::movieContainer(whole); !movie.empty())
+    return "a movie (" + movie + ")";
+  const std::string h = whole.substr(0, 16);
   const auto starts = [&](const char* magic, size_t n) { return h.compare(0, n, magic, n) == 0; };
   if (starts("\x89PNG", 4)) return "a PNG image";
   if (starts("\xff\xd8\xff", 3)) return "a JPEG image";
@@ -79,7 +83,7 @@ int infoCommand(const std::vector<std::string>& argv) {
   const PoleCheck poles = checkPoles(camera);
 
   nlohmann::json j;
-  j["file"] = path;
+  j["file"] = textInputName(path);
   j["kind"] = std::string(artcamKindName(artcam.kind()));
   nlohmann::json blocks = nlohmann::json::array();
   for (const Block& b : camera.blocks())
@@ -123,7 +127,7 @@ int infoCommand(const std::vector<std::string>& argv) {
     return 0;
   }
 
-  std::printf("file:      %s\n", path.c_str());
+  std::printf("file:      %s\n", textInputName(path).c_str());
   std::printf("kind:      %s\n", std::string(artcamKindName(artcam.kind())).c_str());
   std::printf("blocks:   ");
   for (const Block& b : camera.blocks())

@@ -4,6 +4,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "app/cli/stdio_paths.h"
 #include "core/io/artcam_file.h"
 #include "core/lens/lens_camera.h"
 #include "core/lens/lens_database.h"
@@ -201,7 +202,7 @@ int cameraCommand(const std::vector<std::string>& argv) {
   if (choice)
     std::printf("%s: %s, %dx%d (from its EXIF: %s)\n", from->c_str(), choice->describe().c_str(),
                 options.size.width, options.size.height, choice->lookup.searched().c_str());
-  std::printf("%s\nwrote %s\n", s.report().c_str(), output->c_str());
+  std::printf("%s\nwrote %s\n", s.report().c_str(), outputName(*output).c_str());
   return 0;
 }
 

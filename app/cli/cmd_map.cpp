@@ -2,8 +2,10 @@
 // artcam map: source pixels → target pixels through any camera, exact to %.17g.
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/stdio_paths.h"
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
+#include "core/io/text_input.h"
 #include "core/model/structure.h"
 #include "core/render/attributed.h"
 
@@ -37,8 +39,9 @@ const char* const kMapUsage =
 int mapCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--json", "", false}});
   args.expectPositional(2, "CAM.artcam and POINTS.csv");
-  const std::string& path = args.positional()[0];
-  const auto camera = readArtcam(path);
+  checkStreamArguments(args, args.positional(), {});
+  const std::string path = textInputName(args.positional()[0]);
+  const auto camera = readArtcam(args.positional()[0]);
   if (!camera) throw CommandError(camera.status.message);
   const Camera& main = camera->main();
   const int position = main.layout().find(BlockKind::Position);
@@ -92,7 +95,7 @@ int mapCommand(const std::vector<std::string>& argv) {
     std::fprintf(stderr,
                  "artcam map: warning: %s: %zu of %zu points have no image (%s), their X,Y left "
                  "empty: row%s %s\n",
-                 args.positional()[1].c_str(), unmapped.size(), points->size(),
+                 textInputName(args.positional()[1]).c_str(), unmapped.size(), points->size(),
                  camera->pieces ? "outside every patch, or on a patch's pole curve"
                                 : "on the camera's pole curve",
                  unmapped.size() > 1 ? "s" : "", rows_text.c_str());

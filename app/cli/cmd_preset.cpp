@@ -11,6 +11,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "app/cli/stdio_paths.h"
 #include "core/cameras/glc.h"
 #include "core/cameras/projective_cameras.h"
 #include "core/cloud/sample_clouds.h"
@@ -338,8 +339,8 @@ int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) 
     throw CommandError("preset " + effect.name + ": " + e.what());
   }
   if (const Status s = writeArtcam(output, camera); !s) throw CommandError(s.message);
-  std::printf("wrote %s (%s: %ssize=%s)\n", output.c_str(), effect.name.c_str(), summary.c_str(),
-              size.c_str());
+  std::printf("wrote %s (%s: %ssize=%s)\n", outputName(output).c_str(), effect.name.c_str(),
+              summary.c_str(), size.c_str());
   return 0;
 }
 
@@ -367,7 +368,7 @@ int writeEffect3d(const Effect3dSpec& effect, const std::vector<std::string>& ar
     throw CommandError("preset " + effect.name + ": " + e.what());
   }
   if (const Status s = writeArtcam(output, Artcam(camera)); !s) throw CommandError(s.message);
-  std::printf("wrote %s (%s: %s%s=%s %s=%s)\n", output.c_str(), effect.name.c_str(),
+  std::printf("wrote %s (%s: %s%s=%s %s=%s)\n", outputName(output).c_str(), effect.name.c_str(),
               summary.c_str(), kObjectCentre, centre.c_str(), kObjectRadius, radius.c_str());
   if (effect.colour_layers)
     std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
@@ -456,8 +457,8 @@ int presetCommand(const std::vector<std::string>& argv) {
       throw CommandError(std::string("preset ") + p.name + ": " + e.what());
     }
     if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
-    std::printf("wrote %s (%s%s%s)\n", output.c_str(), p.name, summary.empty() ? "" : ": ",
-                summary.c_str());
+    std::printf("wrote %s (%s%s%s)\n", outputName(output).c_str(), p.name,
+                summary.empty() ? "" : ": ", summary.c_str());
     return 0;
   }
   if (const Effect3dSpec* effect = findEffect3d(name)) return writeEffect3d(*effect, argv);
@@ -472,7 +473,7 @@ int presetCommand(const std::vector<std::string>& argv) {
       throw CommandError(std::string("preset ") + p.name + ": " + e.what());
     }
     if (const Status s = writePly(output, cloud); !s) throw CommandError(s.message);
-    std::printf("wrote %s (%zu points; %s: %s)\n", output.c_str(), cloud.size(), p.name,
+    std::printf("wrote %s (%zu points; %s: %s)\n", outputName(output).c_str(), cloud.size(), p.name,
                 summary.c_str());
     return 0;
   }

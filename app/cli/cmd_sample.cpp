@@ -6,6 +6,7 @@
 #include "app/cli/memory.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/stdio_paths.h"
 #include "core/colour/specular_pair.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
@@ -103,6 +104,7 @@ int sampleCommand(const std::vector<std::string>& argv) {
   args.expectPositional(1, "the sample's name");
   const auto dir = args.value("--output");
   if (!dir) throw UsageError("missing -o DIR");
+  refuseStreamFolder(*dir, "sample's -o DIR");
   const int squares = intOption(args, "--squares", 24, 2, 256);
   const std::string& name = args.positional()[0];
   if (name != "mirror-sphere" && name != "water-glass" && name != "specular-pair")

@@ -8,6 +8,7 @@
 #include "app/cli/progress.h"
 #include "app/cli/stdio_paths.h"
 #include "app/cli/warp_job.h"
+#include "core/util/parallel.h"
 
 #include <nlohmann/json.hpp>
 
@@ -63,9 +64,10 @@ const char* const kWarpUsage =
     "(lcms2) and, by default, 8/16-bit OUT is encoded back into it with it embedded.\n"
     "OUT is written atomically (Ctrl-C leaves no partial file; exit status 130). An OUT that\n"
     "exists is refused unless --overwrite; OUT is never IN, the camera or the depth file.\n"
-    "--stats prints render_ms=<ms> mpix_per_s=<Mpix/s> on stderr (the render alone, without\n"
-    "file I/O). --json prints one JSON object on stdout instead of the \"wrote\" line:\n"
-    "{output, width, height, description}, with --stats also render_ms and mpix_per_s, with\n"
+    "--stats prints render_ms=<ms> mpix_per_s=<Mpix/s> threads=<N> on stderr (the render alone,\n"
+    "without file I/O; N: --threads, else the CPUs of the process's affinity mask and cgroup\n"
+    "cpu.max). --json prints one JSON object on stdout instead of the \"wrote\" line:\n"
+    "{output, width, height, description}, with --stats also render_ms, mpix_per_s, threads; with\n"
     "--depth also depth {file, width, height, min, max, holes}, with --second second {file,\n"
     "width, height}.\n"
     "Every camera kind renders: a piecewise camera (artcam fit --piecewise) by its seamless\n"
@@ -146,12 +148,12 @@ int warpCommand(const std::vector<std::string>& argv) {
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");
   StdioPaths streams(args, args.positional()[0], *output);
-  // Standard streams are no files: no output to refuse, no input to protect.
-  std::vector<std::string> inputs = {args.positional()[1]};
-  if (!streams.inputIsStdin()) inputs.push_back(args.positional()[0]);
+  // Standard streams are no files: no output to refuse, no input to protect (checkOutputs
+  // leaves "-" out), but only one input can be standard input.
+  std::vector<std::string> inputs = {args.positional()[1], args.positional()[0]};
   if (const auto depth = args.value("--depth")) inputs.push_back(*depth);
   if (const auto second = args.value("--second")) inputs.push_back(*second);
-  if (!streams.outputIsStdout()) checkOutputs(args, {*output}, inputs);
+  checkOutputs(args, {*output}, inputs);
   const WarpRequest request = parseWarpRequest(args);
   const WarpCameraFile camera = loadWarpCamera(args.positional()[1]);
   streams.open();
@@ -208,10 +210,12 @@ int warpCommand(const std::vector<std::string>& argv) {
       if (request.stats) {
         j["render_ms"] = rendered.render_ms;
         j["mpix_per_s"] = mpix_per_s;
+        j["threads"] = resolveThreadCount(request.options.warp.threads);
       }
       std::printf("%s\n", j.dump().c_str());
     } else if (request.stats) {
-      std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f\n", rendered.render_ms, mpix_per_s);
+      std::fprintf(stderr, "render_ms=%.3f mpix_per_s=%.2f threads=%d\n", rendered.render_ms,
+                   mpix_per_s, resolveThreadCount(request.options.warp.threads));
     }
     if (!args.has("--json")) {
       for (const RequestInput& in : request.inputs)

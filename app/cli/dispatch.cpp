@@ -72,6 +72,11 @@ int runCommand(int argc, char** argv) {
                     "artcam");
     return 2;
   }
+  // `artcam help CMD [SUB]` is `artcam CMD [SUB] --help`, as git and cargo read it.
+  if (args[0] == "help" && args.size() > 1) {
+    args.erase(args.begin());
+    args.push_back("--help");
+  }
   if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     printHelp();
     return 0;

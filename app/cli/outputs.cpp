@@ -2,6 +2,7 @@
 #include "app/cli/outputs.h"
 
 #include "app/cli/commands.h"
+#include "app/cli/stdio_paths.h"
 #include "core/io/atomic_file.h"
 
 #include <filesystem>
@@ -18,12 +19,16 @@ bool isSameFile(const std::string& a, const std::string& b) {
   return fs::equivalent(a, b, ec) && !ec;
 }
 
-void checkOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
-                  bool overwrite) {
+void checkOutputs(const std::vector<std::string>& all_outputs,
+                  const std::vector<std::string>& inputs, bool overwrite) {
+  // "-" is standard output, never a file to compare, replace or reserve (stdio_paths.h).
+  std::vector<std::string> outputs;
+  for (const std::string& out : all_outputs)
+    if (!isStreamPath(out)) outputs.push_back(out);
   // Inputs first: that refusal holds whatever the options, so it is the one to report.
   for (const std::string& out : outputs)
     for (const std::string& in : inputs)
-      if (isSameFile(in, out))
+      if (!isStreamPath(in) && isSameFile(in, out))
         throw CommandError(out + ": refusing to overwrite the input " + in +
                            " (an output never replaces one of its inputs, even with --overwrite)");
   for (const std::string& out : outputs) {
@@ -47,6 +52,7 @@ void checkOutputs(const std::vector<std::string>& outputs, const std::vector<std
 
 void checkOutputs(const Args& args, const std::vector<std::string>& outputs,
                   const std::vector<std::string>& inputs) {
+  checkStreamArguments(args, inputs, outputs);
   checkOutputs(outputs, inputs, overwriteRequested(args));
 }
 

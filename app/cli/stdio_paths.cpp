@@ -8,10 +8,15 @@
 
 namespace artcam::cli {
 
-StdioPaths::StdioPaths(const Args& args, const std::string& input, const std::string& output)
+StdioPaths::StdioPaths(const Args& args, const std::string& input, const std::string& output,
+                       const std::string& fixed_format)
     : input_path_(input), output_path_(output), input_name_(input), output_name_(output) {
-  const auto format = args.value("--format");
-  if (isStreamPath(output)) {
+  const auto format = fixed_format.empty() ? args.value("--format") : std::nullopt;
+  if (!fixed_format.empty()) {
+    format_ = fixed_format;
+    if (isStreamPath(output) && args.has("--json"))
+      throw UsageError("--json prints on standard output, which -o - uses for the image");
+  } else if (isStreamPath(output)) {
     if (!format)
       throw UsageError("-o - writes to standard output and needs --format EXT (png, jpg, exr, "
                        "tif, ...): there is no file extension to choose the format from");
@@ -61,6 +66,29 @@ std::string StdioPaths::named(std::string message) const {
 void StdioPaths::sendOutput() const {
   if (!stdout_) return;
   if (const Status sent = stdout_->send(); !sent) throw CommandError(sent.message);
+}
+
+void checkStreamArguments(const Args& args, const std::vector<std::string>& inputs,
+                          const std::vector<std::string>& outputs) {
+  const auto streams = [](const std::vector<std::string>& paths) {
+    return std::count_if(paths.begin(), paths.end(), isStreamPath);
+  };
+  if (streams(inputs) > 1)
+    throw UsageError(
+        "two inputs are \"-\": standard input holds one file; give the others by name");
+  if (streams(outputs) > 1)
+    throw UsageError(
+        "two outputs are \"-\": standard output carries one file; give the others "
+        "by name");
+  if (streams(outputs) == 0) return;
+  if (args.has("--json"))
+    throw UsageError("--json prints on standard output, which -o - uses for the file");
+  reserveStandardOutputForData();
+}
+
+void refuseStreamFolder(const std::string& path, const std::string& what) {
+  if (isStreamPath(path))
+    throw UsageError(what + " names a folder for many files; \"-\" (standard output) carries one");
 }
 
 }  // namespace artcam::cli

@@ -17,6 +17,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace artcam::cli {
 
@@ -24,7 +25,10 @@ class StdioPaths {
  public:
   // `input` and `output` as typed ("-" or a path). Checks the dialect above (UsageError: exit 2);
   // nothing is read yet, so a command can finish its own usage checks first.
-  StdioPaths(const Args& args, const std::string& input, const std::string& output);
+  // `fixed_format`: the extension of the one format the command writes (export-map's "exr");
+  // `-o -` then needs no --format. "" for commands that write any image format.
+  StdioPaths(const Args& args, const std::string& input, const std::string& output,
+             const std::string& fixed_format = "");
   // Reads standard input when the input is "-" and makes the output's spool when it is "-";
   // throws CommandError naming the stream. The paths below are the spools' from then on.
   void open();
@@ -53,5 +57,24 @@ class StdioPaths {
 
 // Whether a command-line path means a standard stream.
 inline bool isStreamPath(const std::string& path) { return path == "-"; }
+
+// The name a report gives an output: "<stdout>" for "-", else the path.
+inline std::string outputName(const std::string& path) {
+  return isStreamPath(path) ? kStdoutName : path;
+}
+
+// The rule for "-" among a command's file arguments (`inputs` and `outputs` as typed), checked
+// before any work (checkOutputs calls it; a command without outputs calls it itself):
+// - standard input holds one file, so at most one input is "-";
+// - standard output carries one file, so at most one output is "-", and `--json` (which prints
+//   on it) is refused beside it;
+// - an output "-" reserves standard output for the data (reserveStandardOutputForData): the
+//   command's reports go to stderr.
+// Throws UsageError (exit 2).
+void checkStreamArguments(const Args& args, const std::vector<std::string>& inputs,
+                          const std::vector<std::string>& outputs);
+// Refuses "-" for an argument that names a folder (`what`: "-o DIR"): there is no stream of
+// many files. Throws UsageError.
+void refuseStreamFolder(const std::string& path, const std::string& what);
 
 }  // namespace artcam::cli

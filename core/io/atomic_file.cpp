@@ -4,6 +4,8 @@
 // the target's extension because image writers pick their format from it.
 #include "core/io/atomic_file.h"
 
+#include "core/io/standard_streams.h"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>  // renameat2
@@ -175,6 +177,15 @@ int removeStaleTemporaries(const std::string& path) {
 Status writeAtomically(const std::string& path,
                        const std::function<Status(const std::string& temp_path)>& write) {
   if (path.empty()) return Status::failure("cannot write: empty file name");
+  // "-": standard output. The writer writes a private spool file, sent only once it succeeded,
+  // so a failed write puts nothing on the stream (standard_streams.h).
+  if (path == "-") {
+    auto spool = StdoutSpool::create("data");
+    if (!spool) return spool.status;
+    const Status written = write((*spool)->path());
+    if (!written) return Status::failure((*spool)->named(written.message));
+    return (*spool)->send();
+  }
   removeStaleTemporaries(path);
   const std::string temp = temporaryPathFor(path);
   // Registered before the writer creates it, so a signal at any point finds it.

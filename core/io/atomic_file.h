@@ -20,6 +20,9 @@ namespace artcam {
 
 // `write` receives the temporary path (same folder and extension as `path`) and returns
 // whether it succeeded; its message is passed on.
+// `path` "-" is standard output: `write` writes a private spool file, copied to standard output
+// once it succeeded (standard_streams.h). Image writers choose the format by extension, so a
+// command hands them a spool of its own instead (app/cli/stdio_paths.h).
 Status writeAtomically(const std::string& path,
                        const std::function<Status(const std::string& temp_path)>& write);
 Status writeTextAtomically(const std::string& path, const std::string& text);

@@ -160,9 +160,13 @@ bool CheckedWrite::close() {
 // SGI writer on a full disk: "wrote", a file cut at the limit). The file is read back whole:
 // the formats without a proxy are rare, and a save must not say "wrote" over a cut file.
 bool CheckedWrite::readsBack() {
-  auto in = OIIO::ImageInput::open(temp_);
+  // The writer's own format's reader: never a guess from the name (which could pick a reader
+  // this program must not run, image_checks::movieContainer).
+  auto in = OIIO::ImageInput::create(out_->format_name());
+  OIIO::ImageSpec opened;
   const OIIO::ImageSpec& written = out_->spec();
-  bool ok = in && in->spec().width == written.width && in->spec().height == written.height;
+  bool ok = in && in->open(temp_, opened) && in->spec().width == written.width &&
+            in->spec().height == written.height;
   if (ok) {
     std::vector<unsigned char> pixels(in->spec().image_bytes());
     ok = in->read_image(0, 0, 0, in->spec().nchannels, in->spec().format, pixels.data());

@@ -69,9 +69,10 @@ std::string formatFromSignature(std::string_view head) {
 }
 
 // Formats whose files the table above cannot tell (Targa and RLA have no signature; camera
-// raw files and videos have many): read when the extension names them, by that reader alone.
+// raw files have many): read when the extension names them, by that reader alone. Movies are
+// never read (image_checks::movieContainer says why).
 bool readByExtension(const std::string& format) {
-  return format == "targa" || format == "rla" || format == "raw" || format == "ffmpeg";
+  return format == "targa" || format == "rla" || format == "raw";
 }
 
 // The format whose reader OpenImageIO registers for `extension` (no dot, any case), or "". Looked
@@ -101,10 +102,13 @@ Result<OIIO::ImageInput::unique_ptr> createReader(const std::string& path) {
     return R::failure(path + ": cannot read: " + std::strerror(errno));
   }
   if (head.empty()) return R::failure(path + ": cannot read: the file is empty");
-  const std::string signature = formatFromSignature(head);
   std::string by_extension;
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension.size() > 1) by_extension = formatForExtension(extension.substr(1));
+  std::string movie = image_checks::movieContainer(head);
+  if (movie.empty() && by_extension == "ffmpeg") movie = extension.substr(1);
+  if (!movie.empty()) return R::failure(image_checks::movieRefusal(path, movie));
+  const std::string signature = formatFromSignature(head);
   const std::string format =
       !by_extension.empty() && (by_extension == signature || readByExtension(by_extension))
           ? by_extension
@@ -236,8 +240,12 @@ std::shared_ptr<const OIIO::ImageSpec> likeSpec(const ImageInfo* like) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   try {
-    auto in = OIIO::ImageInput::open(like->path, &config);
-    if (!in) {
+    // Through the reader choice of every read, never OpenImageIO's own guess by name.
+    auto created = createReader(like->path);
+    if (!created) return nullptr;
+    OIIO::ImageInput::unique_ptr in = std::move(*created.value);
+    OIIO::ImageSpec opened;
+    if (!in->open(like->path, opened, config)) {
       OIIO::geterror();  // clear the thread's pending message
       return nullptr;
     }

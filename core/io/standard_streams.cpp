@@ -51,6 +51,8 @@ int anonymousFile() {
 }
 
 bool g_stdout_closed_at_start = false;
+// The descriptor data for standard output goes to: 1 unless reserveStandardOutputForData ran.
+int g_data_fd = STDOUT_FILENO;
 
 }  // namespace
 
@@ -68,6 +70,40 @@ void guardStandardDescriptors() {
 }
 
 bool standardOutputWasClosed() { return g_stdout_closed_at_start; }
+
+void reserveStandardOutputForData() {
+  if (g_data_fd != STDOUT_FILENO) return;
+  std::fflush(stdout);
+  const int data = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3);
+  if (data < 0) return;  // the data then shares descriptor 1, as without the reservation
+  if (::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+    ::close(data);
+    return;
+  }
+  g_data_fd = data;
+}
+
+Status writeStandardOutputData(const std::string& bytes) {
+  const std::string fail = kStdoutName + ": cannot write: ";
+  if (g_stdout_closed_at_start) return Status::failure(fail + "standard output is closed");
+  std::fflush(stdout);
+  // A reader that closes the pipe early (`| head -c 10`) would kill the process by SIGPIPE with
+  // no word; ignored for this write, the write fails with EPIPE and the command says so.
+  struct sigaction ignore {
+  }, previous{};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  const bool ignoring = sigaction(SIGPIPE, &ignore, &previous) == 0;
+  const bool written = writeAll(g_data_fd, bytes.data(), bytes.size());
+  const int write_errno = errno;
+  if (ignoring) sigaction(SIGPIPE, &previous, nullptr);
+  if (!written)
+    return Status::failure(fail + (write_errno == EPIPE
+                                       ? std::string("the reader closed the pipe before all "
+                                                     "was written")
+                                       : std::string(std::strerror(write_errno))));
+  return Status::success();
+}
 
 Status finishStandardOutput() {
   const std::string fail = kStdoutName + ": cannot write: ";
@@ -157,22 +193,10 @@ Status StdoutSpool::send() const {
   if (!read_ok) return Status::failure(fail + "cannot read back the encoded image");
   // Nothing else of ours is on standard output (the commands report on stderr), so the raw
   // descriptor carries exactly the image.
-  std::fflush(stdout);
-  // A reader that closes the pipe early (`| head -c 10`) would kill the process by SIGPIPE with
-  // no word; ignored for this write, the write fails with EPIPE and the command says so.
-  struct sigaction ignore {}, previous {};
-  ignore.sa_handler = SIG_IGN;
-  sigemptyset(&ignore.sa_mask);
-  const bool ignoring = sigaction(SIGPIPE, &ignore, &previous) == 0;
-  const bool written = writeAll(STDOUT_FILENO, bytes.data(), bytes.size());
-  const int write_errno = errno;
-  if (ignoring) sigaction(SIGPIPE, &previous, nullptr);
-  if (!written)
-    return Status::failure(fail + (write_errno == EPIPE
-                                       ? std::string("the reader closed the pipe before the "
-                                                     "whole image was written")
-                                       : std::string(std::strerror(write_errno))));
-  return Status::success();
+  const Status sent = writeStandardOutputData(std::string(bytes.begin(), bytes.end()));
+  if (!sent && sent.message.find("closed the pipe") != std::string::npos)
+    return Status::failure(fail + "the reader closed the pipe before the whole image was written");
+  return sent;
 }
 
 std::string StdoutSpool::named(std::string message) const {

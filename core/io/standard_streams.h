@@ -89,6 +89,17 @@ bool standardOutputWasClosed();
 // errno's text, when anything written to it was lost (a full disk, /dev/full, a closed stdout).
 Status finishStandardOutput();
 
+// Data on standard output: an .artcam, a CSV or an image a command writes to "-".
+// Decided: the command's data and its reports never share the stream. reserveStandardOutputFor-
+// Data moves the data's descriptor aside and points descriptor 1 at standard error, so every
+// report a command prints ("wrote …", a fit's figures) reaches the terminal and a pipe
+// (`artcam fit … -o - | jq .`) gets the data alone, whichever command prints. Call it once
+// the command knows an output is "-", before anything is printed.
+void reserveStandardOutputForData();
+// Writes `bytes` to standard output (the reserved descriptor, else 1) and fails naming
+// <stdout>: a reader that closed the pipe early (EPIPE, never a silent SIGPIPE), a full disk.
+Status writeStandardOutputData(const std::string& bytes);
+
 // Whether OpenImageIO writes a file with this extension (no dot, any case): what `--format`
 // accepts.
 bool imageExtensionWritable(const std::string& extension);

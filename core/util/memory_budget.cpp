@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/util/memory_budget.h"
 
+#include "core/util/slot_limits.h"
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -31,11 +33,18 @@ std::optional<double> budgetFromEnvironment(bool* set) {
   return mb;
 }
 
-double machineBudgetBytes() {
+// The memory of this process's slot: its cgroup's memory.max when that is below the machine's
+// physical memory (slot_limits.h); `limited` says it was.
+double machineBudgetBytes(bool* limited = nullptr) {
   const long pages = sysconf(_SC_PHYS_PAGES);
   const long page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return 4.0 * 1024.0 * 1024.0 * 1024.0;  // unknown: 4 GiB
-  return 0.5 * static_cast<double>(pages) * static_cast<double>(page);
+  double memory = pages <= 0 || page <= 0
+                      ? 8.0 * 1024.0 * 1024.0 * 1024.0  // unknown: a 4 GiB budget
+                      : static_cast<double>(pages) * static_cast<double>(page);
+  const std::optional<double> slot = processSlotLimits().memory_bytes;
+  if (limited) *limited = slot && *slot < memory;
+  if (slot && *slot < memory) memory = *slot;
+  return 0.5 * memory;
 }
 
 }  // namespace
@@ -49,9 +58,13 @@ double memoryBudgetBytes() {
 std::string describeMemoryBudget() {
   bool set = false;
   const bool from_variable = budgetFromEnvironment(&set).has_value();
+  bool limited = false;
+  machineBudgetBytes(&limited);
   return "the memory budget of " + describeBytes(memoryBudgetBytes()) +
          (from_variable ? std::string(" (") + kVariable + ")"
-                        : std::string(" (half this machine's memory; ") + kVariable + " sets it)");
+          : limited
+              ? std::string(" (half this process's cgroup memory.max; ") + kVariable + " sets it)"
+              : std::string(" (half this machine's memory; ") + kVariable + " sets it)");
 }
 
 std::string memoryBudgetProblem() {

@@ -11,7 +11,8 @@
 namespace artcam {
 
 // ARTCAM_MAX_MEMORY_MB (MiB) when set to a number > 0, else half of the machine's physical memory
-// (4 GiB when the system does not say).
+// (4 GiB when the system does not say), or half of the process's cgroup memory.max when that is
+// smaller (a farm slot, a container: slot_limits.h).
 double memoryBudgetBytes();
 
 // "the memory budget of 11.6 GiB (half this machine's memory; ARTCAM_MAX_MEMORY_MB sets it)",

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/util/parallel.h"
 
+#include "core/util/slot_limits.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -138,7 +140,7 @@ class Pool {
 
 int resolveThreadCount(int threads) {
   if (threads > 0) return threads;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return slotThreadCount();  // the CPUs this process may use, not the machine's (slot_limits.h)
 }
 
 bool parallelForRows(int rows, const ParallelOptions& options,

@@ -8,7 +8,7 @@
 namespace artcam {
 
 struct ParallelOptions {
-  int threads = 0;     // 0: std::thread::hardware_concurrency()
+  int threads = 0;     // 0: the CPUs this process may use (slotThreadCount, slot_limits.h)
   int band_rows = 16;  // rows per work item
   // Called on the CALLING thread (never on a worker) after bands complete, with the fraction
   // of rows done, at least once (with 1.0 when nothing was cancelled); return false to cancel.
@@ -23,7 +23,7 @@ struct ParallelOptions {
 bool parallelForRows(int rows, const ParallelOptions& options,
                      const std::function<void(int, int)>& band);
 
-// The thread count `threads` stands for (0: all cores, at least 1).
+// The thread count `threads` stands for (0: every CPU of the process's slot, at least 1).
 int resolveThreadCount(int threads);
 
 }  // namespace artcam

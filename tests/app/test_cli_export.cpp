@@ -11,6 +11,8 @@
 
 #include <QtTest/QtTest>
 
+#include <tuple>
+
 #include <QCryptographicHash>
 #include <QDir>
 #include <QFile>
@@ -240,6 +242,25 @@ class TestCliExport : public QObject {
  private:
   QTemporaryDir dir_;
   QString project_;
+
+  // --size with one side 0: the other by the output's aspect (600x400 here, 3:2), as --help
+  // says; both 0 or a bad side refused.
+  void oneSideZeroIsByAspect() {
+    for (const auto& [size, width, height] :
+         {std::tuple<QString, int, int>{"300x0", 300, 200}, {"0x200", 300, 200}}) {
+      const Run r = artcamCli({"export", project_, "-o", dir_.filePath("aspect.png"), "--size",
+                               size, "--json", "-q", "--overwrite"});
+      QVERIFY2(r.exit_code == 0, qPrintable(size + ": " + r.err));
+      const QJsonObject j = QJsonDocument::fromJson(r.out.toUtf8()).object();
+      QCOMPARE(j["width"].toInt(), width);
+      QCOMPARE(j["height"].toInt(), height);
+    }
+    for (const char* bad : {"0x0", "0xabc", "-3x0"}) {
+      const Run r = artcamCli({"export", project_, "-o", dir_.filePath("bad.png"), "--size", bad});
+      QCOMPARE(r.exit_code, 2);
+      QVERIFY2(r.err.contains("--size"), qPrintable(r.err));
+    }
+  }
 };
 
 QTEST_GUILESS_MAIN(TestCliExport)

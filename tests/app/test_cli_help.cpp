@@ -158,6 +158,20 @@ class TestCliHelp : public QObject {
       if (!listed(list.out, QString::fromUtf8(other))) problems << QString(other) + " not in preset list";
     QVERIFY2(problems.isEmpty(), qPrintable(problems.join('\n')));
   }
+
+  // `artcam help CMD` is CMD's own page (what `artcam CMD --help` prints), for every command.
+  void helpCommandPrintsThatCommandsPage() {
+    for (const QString& command : commandsFromDispatch()) {
+      const auto own = artcamCli({command, "--help"});
+      const auto help = artcamCli({"help", command});
+      QCOMPARE(help.exit_code, 0);
+      QVERIFY2(help.out.startsWith("usage: artcam " + command), qPrintable(command));
+      QCOMPARE(help.out, own.out);
+    }
+    QCOMPARE(artcamCli({"help", "bench", "effects"}).out,
+             artcamCli({"bench", "effects", "--help"}).out);
+    QCOMPARE(artcamCli({"help", "nosuch"}).exit_code, 2);
+  }
 };
 
 QTEST_GUILESS_MAIN(TestCliHelp)
