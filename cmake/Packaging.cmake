@@ -35,11 +35,13 @@ install(FILES ${PROJECT_SOURCE_DIR}/resources/coffee.png ${PROJECT_SOURCE_DIR}/r
   ${PROJECT_SOURCE_DIR}/resources/sample.artcamproj ${PROJECT_SOURCE_DIR}/resources/sample-matches.csv
   DESTINATION ${CMAKE_INSTALL_DATADIR}/artcam-studio/examples)
 
-# Shell completions, where bash-completion and zsh look for them (loaded on first use of artcam).
+# Shell completions, where bash-completion, zsh and fish look for them (loaded on first use of artcam).
 install(FILES ${PROJECT_SOURCE_DIR}/packaging/completions/artcam.bash
   DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions RENAME artcam)
 install(FILES ${PROJECT_SOURCE_DIR}/packaging/completions/_artcam
   DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)
+install(FILES ${PROJECT_SOURCE_DIR}/packaging/completions/artcam.fish
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/fish/vendor_completions.d)
 
 # Manual pages, compressed as Debian policy asks (gzip -9n: no name or time stamp inside, so
 # the package is reproducible).

@@ -34,6 +34,18 @@ grep -q ':application/x-artcam-project+json:\*\.artcamproj$' "$scratch/mime/glob
 types="$(sed -n 's/^MimeType=//p' "$dir/$id.desktop" | tr ';' '\n' | grep '^application/x-artcam' || true)"
 [[ $(wc -w <<<"$types") -eq 2 ]] || fail "$id.desktop should list both ARTcam MIME types, has: $types"
 for t in $types; do grep -q "type=\"$t\"" "$dir/$id.mime.xml" || fail "$t is not in $id.mime.xml"; done
+# Every photo format the studio's Open dialog offers (kPhotoPatterns in ui/session.cpp) is one
+# the entry claims, so a file manager offers the studio for each: extension -> MIME type by the
+# system's shared-mime-info globs.
+patterns="$(sed -n '/^const char kPhotoPatterns\[\] =/,/;$/p' "$dir/../../ui/session.cpp" |
+  grep -o '\*\.[a-z0-9]*' | sed 's/^\*\.//')"
+[[ $(wc -w <<<"$patterns") -ge 10 ]] || fail "cannot read kPhotoPatterns from ui/session.cpp"
+claimed=";$(sed -n 's/^MimeType=//p' "$dir/$id.desktop")"
+for ext in $patterns; do
+  mime="$(awk -F: -v g="*.$ext" '$3 == g { print $2; exit }' /usr/share/mime/globs2)"
+  [[ -n "$mime" ]] || continue  # no system type names it (DPX, Radiance HDR): nothing to claim
+  [[ "$claimed" == *";$mime;"* ]] || fail "$id.desktop opens *.$ext in the studio but its MimeType lacks $mime"
+done
 grep -qx "Icon=$id" "$dir/$id.desktop" || fail "$id.desktop does not name the icon $id"
 [[ -f "$dir/icons/$id.svg" ]] || fail "icons/$id.svg missing"
 grep -q "<launchable type=\"desktop-id\">$id.desktop</launchable>" "$dir/$id.metainfo.xml" \

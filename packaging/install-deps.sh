@@ -10,6 +10,9 @@ packages=(build-essential cmake ninja-build ccache pkg-config
   # Peers the tests compare with (skipped without them): Hugin's fulla for the edge modes,
   # exiftool for the metadata of HEIC/AVIF/WebP outputs.
   hugin-tools libimage-exiftool-perl
+  # fish, to run the fish completion in tests/app/test_cli_completions.cpp; ffmpeg makes the
+  # real movie clips tests/app/test_cli_movies.cpp checks are refused.
+  fish ffmpeg
   # The hostile corpus (CTest hostile/corpus) is driven by python3; oiiotool makes its images.
   # The README's Python example (CTest docs/code_blocks) reads arrays with numpy and OpenImageIO;
   # the user guide's ST-map recipe warps with OpenCV's remap.

@@ -32,9 +32,15 @@ namespace {
 
 const char kRecentKey[] = "recentFiles";
 
+// The photo formats the studio's Open dialogs offer. packaging/check-desktop-files.sh reads this
+// line: the desktop entry's MimeType must name each of these extensions' MIME types.
+const char kPhotoPatterns[] =
+    "*.png *.jpg *.jpeg *.tif *.tiff *.exr *.bmp *.webp *.heic *.heif *.avif *.dpx *.hdr *.tga "
+    "*.ppm *.pgm *.pnm";
+
 QString photoFilter() {
-  return QCoreApplication::translate(
-      "Session", "Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.bmp *.webp);;All files (*)");
+  return QCoreApplication::translate("Session", "Images (%1);;All files (*)")
+      .arg(QLatin1String(kPhotoPatterns));
 }
 
 QString projectFilter() {
@@ -758,8 +764,8 @@ void Session::loadDepthMapDialog(double scale, bool inverse) {
 void Session::openDialog() {
   const QString path = QFileDialog::getOpenFileName(
       dialog_parent_, tr("Open photo or project"), QString(),
-      tr("Photos and projects (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.bmp *.webp *.%1);;")
-              .arg(kProjectExtension) +
+      tr("Photos and projects (%1 *.%2);;")
+              .arg(QLatin1String(kPhotoPatterns), QLatin1String(kProjectExtension)) +
           projectFilter() + ";;" + photoFilter());
   if (!path.isEmpty()) openPath(path);
 }

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 # bash completion for artcam(1), installed as /usr/share/bash-completion/completions/artcam.
-# Completes the commands, bench's sub-commands, each command's options, preset names and a
-# preset's parameters. The option lists mirror the parsers' OptionSpec lists in
+# Completes the commands, bench's sub-commands, each command's options and their values, preset
+# names and a preset's parameters. The option lists mirror the parsers' OptionSpec lists in
 # app/cli/cmd_<command>*.cpp; tests/app/test_cli_completions.cpp fails when one is missing here
 # or in _artcam (zsh). Preset names and parameters are asked of `artcam preset list` at
 # completion time, so they follow the effects table without an edit here. Plain bash: it needs
@@ -55,6 +55,14 @@ _artcam_presets() {
     }'
 }
 
+# The values an option takes, as the page's --help spells them ("--filter nearest|bilinear|
+# bicubic"), asked of artcam at completion time like the presets, so they follow the parsers.
+_artcam_values() {
+  # $2 unquoted: "bench render" is two words.
+  "$1" $2 --help 2>/dev/null | grep -o -- "$3 [a-z0-9.]*\(|[a-z0-9.]*\)\+" | cut -d' ' -f2 |
+    tr '|' '\n' | sort -u
+}
+
 _artcam() {
   local cur="${COMP_WORDS[COMP_CWORD]}"
   local artcam="${COMP_WORDS[0]}"
@@ -88,6 +96,14 @@ _artcam() {
       fi
       ;;
   esac
+  if [[ $COMP_CWORD -ge 2 && "${COMP_WORDS[COMP_CWORD-1]}" == --* ]]; then
+    local values
+    values="$(_artcam_values "$artcam" "$page" "${COMP_WORDS[COMP_CWORD-1]}")"
+    if [[ -n "$values" ]]; then
+      COMPREPLY=($(compgen -W "$values" -- "$cur"))
+      return 0
+    fi
+  fi
   if [[ "$cur" == -* ]]; then
     local options
     options="$(_artcam_options "$page") --help -h"

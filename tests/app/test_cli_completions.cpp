@@ -25,6 +25,23 @@ namespace {
 
 const QString kBashFile = QStringLiteral(ARTCAM_SOURCE_DIR "/packaging/completions/artcam.bash");
 const QString kZshFile = QStringLiteral(ARTCAM_SOURCE_DIR "/packaging/completions/_artcam");
+const QString kFishFile = QStringLiteral(ARTCAM_SOURCE_DIR "/packaging/completions/artcam.fish");
+
+// Option values as the manual page (docs/man/artcam.1) documents them: each row an option of a
+// page and the words its parser accepts, written here by hand, never read from a completion file
+// or from the --help text the completions parse.
+struct ValueRow {
+  QStringList words;
+  QString option;
+  QStringList values;
+};
+const QList<ValueRow> kValueRows = {
+    {{"warp"}, "--filter", {"nearest", "bilinear", "bicubic"}},
+    {{"warp"}, "--edge", {"transparent", "extend", "black"}},
+    {{"batch"}, "--subsampling", {"444", "422", "420"}},
+    {{"export"}, "--bit-depth", {"8", "16", "half", "float"}},
+    {{"export-map"}, "--convention", {"stmap", "opencv"}},
+};
 
 // One completion page: the words that reach it after `artcam` and the options its parser takes.
 // bench is the one command with sub-commands: cmd_bench.cpp is `bench render` (also bench with
@@ -71,6 +88,21 @@ QStringList bashComplete(const QStringList& words, QString* registration = nullp
   if (!bash.waitForFinished(60000) || bash.exitCode() != 0) return {QStringLiteral("<bash failed>")};
   if (registration) *registration = QString::fromUtf8(bash.readAllStandardError()).trimmed();
   return QString::fromUtf8(bash.readAllStandardOutput()).split('\n', Qt::SkipEmptyParts);
+}
+
+// What fish offers for a command line ending in the given (possibly empty) word, with the
+// completion file loaded; empty when fish is not installed.
+QStringList fishComplete(const QString& line) {
+  QProcess fish;
+  fish.start(QStringLiteral("fish"),
+             {QStringLiteral("--no-config"), QStringLiteral("-c"),
+              QStringLiteral("source $argv[1]; and complete -C $argv[2]"), kFishFile, line});
+  if (!fish.waitForFinished(60000) || fish.exitCode() != 0)
+    return {QStringLiteral("<fish failed: ") + QString::fromUtf8(fish.readAllStandardError()) + '>'};
+  QStringList words;
+  for (const QString& row : QString::fromUtf8(fish.readAllStandardOutput()).split('\n', Qt::SkipEmptyParts))
+    words << row.section('\t', 0, 0);
+  return words;
 }
 
 // The text of a `(label)` branch of a zsh case statement at the given indentation, up to the
@@ -146,6 +178,48 @@ class TestCliCompletions : public QObject {
         problems << "artcam preset " + name + " --<TAB> offers --size " +
                         QString::number(offered.count(QStringLiteral("--size"))) + " times";
     }
+    QVERIFY2(problems.isEmpty(), qPrintable(problems.join('\n')));
+  }
+
+  // After an option that takes one of a few words, bash offers those words.
+  void bashOffersOptionValues() {
+    const QString cli = QStringLiteral(ARTCAM_CLI_PATH);
+    QStringList problems;
+    for (const ValueRow& row : kValueRows) {
+      const QStringList offered = bashComplete(QStringList{cli} + row.words + QStringList{row.option, ""});
+      for (const QString& v : row.values)
+        if (!offered.contains(v))
+          problems << "artcam " + row.words.join(' ') + ' ' + row.option + " <TAB> does not offer " + v +
+                          " (offers: " + offered.join(' ') + ')';
+    }
+    QCOMPARE(bashComplete({cli, "warp", "--edge", "ex"}), QStringList{"extend"});
+    QVERIFY2(problems.isEmpty(), qPrintable(problems.join('\n')));
+  }
+
+  // fish: the same commands, every option of every page, and the option values.
+  void fishOffersCommandsOptionsAndValues() {
+    if (QStandardPaths::findExecutable(QStringLiteral("fish")).isEmpty())
+      QSKIP("fish is not installed (packaging/install-deps.sh installs it)");
+    const QString cli = QStringLiteral(ARTCAM_CLI_PATH);
+    QStringList problems;
+    const QStringList top = fishComplete(cli + ' ');
+    for (const QString& c : commandsFromDispatch())
+      if (!top.contains(c)) problems << "fish: artcam <TAB> does not offer " + c;
+    for (const Page& page : pagesFromSources()) {
+      const QStringList offered = fishComplete(cli + ' ' + page.words.join(' ') + " -");
+      for (const QString& option : page.options)
+        if (!offered.contains(option))
+          problems << "fish: artcam " + page.words.join(' ') + " -<TAB> does not offer " + option;
+    }
+    for (const ValueRow& row : kValueRows) {
+      const QStringList offered = fishComplete(cli + ' ' + row.words.join(' ') + ' ' + row.option + ' ');
+      for (const QString& v : row.values)
+        if (!offered.contains(v))
+          problems << "fish: artcam " + row.words.join(' ') + ' ' + row.option + " <TAB> does not offer " + v;
+    }
+    const QStringList presets = fishComplete(cli + " preset ");
+    if (!presets.contains(QStringLiteral("cube-of-cubes")))
+      problems << "fish: artcam preset <TAB> does not offer cube-of-cubes";
     QVERIFY2(problems.isEmpty(), qPrintable(problems.join('\n')));
   }
 
