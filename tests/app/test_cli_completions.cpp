@@ -98,9 +98,11 @@ QStringList fishComplete(const QString& line) {
              {QStringLiteral("--no-config"), QStringLiteral("-c"),
               QStringLiteral("source $argv[1]; and complete -C $argv[2]"), kFishFile, line});
   if (!fish.waitForFinished(60000) || fish.exitCode() != 0)
-    return {QStringLiteral("<fish failed: ") + QString::fromUtf8(fish.readAllStandardError()) + '>'};
+    return {QStringLiteral("<fish failed: ") + QString::fromUtf8(fish.readAllStandardError()) +
+            '>'};
   QStringList words;
-  for (const QString& row : QString::fromUtf8(fish.readAllStandardOutput()).split('\n', Qt::SkipEmptyParts))
+  for (const QString& row :
+       QString::fromUtf8(fish.readAllStandardOutput()).split('\n', Qt::SkipEmptyParts))
     words << row.section('\t', 0, 0);
   return words;
 }
@@ -186,11 +188,12 @@ class TestCliCompletions : public QObject {
     const QString cli = QStringLiteral(ARTCAM_CLI_PATH);
     QStringList problems;
     for (const ValueRow& row : kValueRows) {
-      const QStringList offered = bashComplete(QStringList{cli} + row.words + QStringList{row.option, ""});
+      const QStringList offered =
+          bashComplete(QStringList{cli} + row.words + QStringList{row.option, ""});
       for (const QString& v : row.values)
         if (!offered.contains(v))
-          problems << "artcam " + row.words.join(' ') + ' ' + row.option + " <TAB> does not offer " + v +
-                          " (offers: " + offered.join(' ') + ')';
+          problems << "artcam " + row.words.join(' ') + ' ' + row.option +
+                          " <TAB> does not offer " + v + " (offers: " + offered.join(' ') + ')';
     }
     QCOMPARE(bashComplete({cli, "warp", "--edge", "ex"}), QStringList{"extend"});
     QVERIFY2(problems.isEmpty(), qPrintable(problems.join('\n')));
@@ -212,10 +215,12 @@ class TestCliCompletions : public QObject {
           problems << "fish: artcam " + page.words.join(' ') + " -<TAB> does not offer " + option;
     }
     for (const ValueRow& row : kValueRows) {
-      const QStringList offered = fishComplete(cli + ' ' + row.words.join(' ') + ' ' + row.option + ' ');
+      const QStringList offered =
+          fishComplete(cli + ' ' + row.words.join(' ') + ' ' + row.option + ' ');
       for (const QString& v : row.values)
         if (!offered.contains(v))
-          problems << "fish: artcam " + row.words.join(' ') + ' ' + row.option + " <TAB> does not offer " + v;
+          problems << "fish: artcam " + row.words.join(' ') + ' ' + row.option +
+                          " <TAB> does not offer " + v;
     }
     const QStringList presets = fishComplete(cli + " preset ");
     if (!presets.contains(QStringLiteral("cube-of-cubes")))
