@@ -7,12 +7,14 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build ccache pkg-config
   qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
   libexiv2-dev libjpeg62-turbo-dev liblcms2-dev liblensfun-dev liblensfun-data-v1 libheif-dev
-  # Peers the tests compare with (skipped without them): Hugin's fulla for the edge modes,
+  # Peers the tests compare with (their tests fail without them): Hugin's fulla for the edge modes,
   # exiftool for the metadata of HEIC/AVIF/WebP outputs.
   hugin-tools libimage-exiftool-perl
   # fish, to run the fish completion in tests/app/test_cli_completions.cpp; ffmpeg makes the
   # real movie clips tests/app/test_cli_movies.cpp checks are refused.
   fish ffmpeg
+  # jq reads the JSON that `artcam fit -o -` pipes out in tests/app/test_cli_streams.cpp.
+  jq
   # The hostile corpus (CTest hostile/corpus) is driven by python3; oiiotool makes its images.
   # The README's Python example (CTest docs/code_blocks) reads arrays with numpy and OpenImageIO;
   # the user guide's ST-map recipe warps with OpenCV's remap.

@@ -5,7 +5,7 @@
 // The truths are outside the code under test: oiiotool's --colorconvert through an OCIO config
 // written here, whose ACEScg is OCIO's own built-in AP1 → linear Rec.709 transform (Bradford)
 // and whose sRGB is the IEC 61966-2-1 curve as an OCIO exponent-with-linear transform. Without
-// oiiotool the comparisons against it are skipped, saying so.
+// oiiotool the comparisons against it fail, saying so.
 #include "tests/app/cli_run.h"
 
 #include "core/io/artcam_file.h"
@@ -152,7 +152,7 @@ class TestCliExrPlates : public QObject {
   // An ACEScg plate to an 8-bit sRGB PNG: the colour converted from AP1 into sRGB's primaries,
   // within 1/255 of oiiotool --colorconvert ACEScg sRGB.
   void acescgPlateToSrgbPngMatchesOiiotool() {
-    if (oiiotool_.isEmpty()) QSKIP("oiiotool is not installed: no outside truth to compare with");
+    if (oiiotool_.isEmpty()) QFAIL("oiiotool is not installed: no outside truth to compare with (packaging/install-deps.sh installs it; a missing peer is a failed check, not a pass)");
     const Run r = artcamCli({"warp", path("acescg.exr"), path("id.artcam"), "-o", path("out.png"),
                              "--bit-depth", "8", "-q"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
@@ -183,7 +183,7 @@ class TestCliExrPlates : public QObject {
   // --colourspace srgb: an EXR in the working space, labelled Rec.709/D65, its values those of
   // oiiotool --colorconvert ACEScg lin_rec709.
   void acescgPlateToWorkingSpaceExrMatchesOiiotool() {
-    if (oiiotool_.isEmpty()) QSKIP("oiiotool is not installed: no outside truth to compare with");
+    if (oiiotool_.isEmpty()) QFAIL("oiiotool is not installed: no outside truth to compare with (packaging/install-deps.sh installs it; a missing peer is a failed check, not a pass)");
     const Run r =
         artcamCli({"warp", path("acescg.exr"), path("id.artcam"), "-o", path("rec709.exr"),
                    "--bit-depth", "float", "--colourspace", "srgb", "-q"});
@@ -203,7 +203,7 @@ class TestCliExrPlates : public QObject {
   // --colourspace-in names the plate's space where the file says nothing (no chromaticities):
   // through $OCIO's config, the same pixels as oiiotool's conversion.
   void namedInputColourSpaceMatchesOiiotool() {
-    if (oiiotool_.isEmpty()) QSKIP("oiiotool is not installed: no outside truth to compare with");
+    if (oiiotool_.isEmpty()) QFAIL("oiiotool is not installed: no outside truth to compare with (packaging/install-deps.sh installs it; a missing peer is a failed check, not a pass)");
     QVERIFY(writeExr(path("unlabelled.exr"), nullptr));
     qputenv("OCIO", path("config.ocio").toUtf8());
     const Run r =
@@ -227,7 +227,7 @@ class TestCliExrPlates : public QObject {
   // primaries: read back, it gives the sRGB oiiotool makes of the input. sRGB (a curve) names
   // none.
   void namedOutputColourSpaceMatchesOiiotool() {
-    if (oiiotool_.isEmpty()) QSKIP("oiiotool is not installed: no outside truth to compare with");
+    if (oiiotool_.isEmpty()) QFAIL("oiiotool is not installed: no outside truth to compare with (packaging/install-deps.sh installs it; a missing peer is a failed check, not a pass)");
     QVERIFY(writeExr(path("unlabelled.exr"), nullptr));
     qputenv("OCIO", path("config.ocio").toUtf8());
     const Run r =
