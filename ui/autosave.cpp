@@ -85,8 +85,13 @@ Autosave::Prompt Autosave::dialogPrompt(QWidget* parent) {
 }
 
 // A write in flight finishes on its own (atomic, and it removes what was removed meanwhile);
-// at application exit the job helper waits for it.
-Autosave::~Autosave() = default;
+// at application exit the job helper waits for it. Otherwise nobody works on this instance's
+// recoveries any more, so their locks go now: the finished job's functor may still hold the
+// shared state for a moment on its pool thread, and another session must not see them taken.
+Autosave::~Autosave() {
+  const std::lock_guard<std::mutex> lock(stale_->mutex);
+  if (!stale_->writing) stale_->locks.clear();
+}
 
 void Autosave::setProjectPath(const QString& path) {
   const QString abs = path.isEmpty() ? QString() : QFileInfo(path).absoluteFilePath();

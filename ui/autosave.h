@@ -63,7 +63,7 @@ class Autosave : public QObject {
   static Prompt dialogPrompt(QWidget* parent);
 
   explicit Autosave(Snapshot snapshot, QObject* parent = nullptr);
-  ~Autosave() override;  // waits for a write in flight
+  ~Autosave() override;  // releases its locks (a write in flight keeps its own to the end)
 
   void setRecoveryDir(const QString& dir) { dir_ = dir; }
   const QString& recoveryDir() const { return dir_; }

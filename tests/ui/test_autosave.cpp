@@ -134,6 +134,7 @@ class TestAutosave : public QObject {
   void projectRecoveryIsOfferedOnlyWhenNewer() {
     const QString project = dir_.filePath("recover-me.artcamproj");
     std::optional<State> saved_state, edited_state;
+    QString recovery_lock;
     {
       Document doc;
       Session session(&doc, nullptr);
@@ -158,7 +159,12 @@ class TestAutosave : public QObject {
       QVERIFY(f.open(QIODevice::ReadWrite));
       QVERIFY(f.setFileTime(QFileInfo(project).lastModified().addSecs(5),
                             QFileDevice::FileModificationTime));
+      recovery_lock = recovery + ".lock";
+      QVERIFY(QFile::exists(recovery_lock));
     }
+    // The session is gone: its lock goes with it at once, not when the finished write's job is
+    // torn down on its pool thread (a race that hid the offer below under load).
+    QVERIFY(!QFile::exists(recovery_lock));
     {
       // Declined: the saved project opens.
       Document doc;
