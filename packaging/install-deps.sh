@@ -19,6 +19,9 @@ packages=(build-essential cmake ninja-build ccache pkg-config
   # The README's Python example (CTest docs/code_blocks) reads arrays with numpy and OpenImageIO;
   # the user guide's ST-map recipe warps with OpenCV's remap.
   python3 python3-numpy python3-openimageio python3-opencv
+  # `import artcam` (python/): pybind11 builds it; pytest runs its tests, dask.distributed the
+  # cluster half (artcam.dask) and its LocalCluster tests.
+  pybind11-dev python3-dev python3-pytest python3-distributed
   # CI's fuzzing job (packaging/ci-sanitizers.sh): libFuzzer comes with clang's runtime.
   clang-14 libclang-rt-14-dev
   # Validators of the desktop files and manual pages (CTest packaging/*); file is for cpack's DEB.

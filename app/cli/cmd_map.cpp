@@ -6,8 +6,7 @@
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
 #include "core/io/text_input.h"
-#include "core/model/structure.h"
-#include "core/render/attributed.h"
+#include "core/pipeline/point_map.h"
 
 #include <nlohmann/json.hpp>
 
@@ -43,22 +42,8 @@ int mapCommand(const std::vector<std::string>& argv) {
   const std::string path = textInputName(args.positional()[0]);
   const auto camera = readArtcam(args.positional()[0]);
   if (!camera) throw CommandError(camera.status.message);
-  const Camera& main = camera->main();
-  const int position = main.layout().find(BlockKind::Position);
-  if (position < 0 || main.blocks()[static_cast<size_t>(position)].size != 3 ||
-      !main.sourceSize().isImage())
-    throw CommandError(path + ": map needs an image camera (this one is 3D or has no position)");
-  // Each layer's position part: exact where positions read position alone.
-  std::vector<Camera> geometry;
-  for (size_t l = 0; l < camera->layers.size(); ++l) {
-    const Camera& layer = camera->layers[l];
-    if (analyseStructure(layer).geometry_depends_on_attributes)
-      throw CommandError(path + ": " +
-                         (camera->layers.size() > 1 ? "layer " + std::to_string(l + 1) + ": " : "") +
-                         "its positions depend on colour or depth, so where a point goes depends "
-                         "on the photo; map cannot say (warp renders it)");
-    geometry.push_back(layer.blocks().size() == 1 ? layer : positionPart(layer));
-  }
+  const auto mapper = PointMapper::of(*camera, path);
+  if (!mapper) throw CommandError(mapper.status.message);
   const auto points = readPointsCsv(args.positional()[1]);
   if (!points) throw CommandError(points.status.message);
   const bool json = args.has("--json");
@@ -71,9 +56,8 @@ int mapCommand(const std::vector<std::string>& argv) {
     std::snprintf(line, sizeof line, "%.17g,%.17g", p.x(), p.y());
     std::string text = line;
     nlohmann::json targets = nlohmann::json::array();
-    for (const Camera& g : geometry) {
-      const auto y = camera->pieces ? camera->pieces->targetPixelFromSourcePixel(p)
-                                    : targetPixelFromSourcePixel(g, p);
+    for (size_t layer = 0; layer < mapper->layers(); ++layer) {
+      const auto y = mapper->map(layer, p);
       if (!y) {  // a per-point flag, never a made-up number: empty fields, null in JSON
         if (unmapped.empty() || unmapped.back() != k + 1) unmapped.push_back(k + 1);
         text += ",,";
@@ -101,7 +85,7 @@ int mapCommand(const std::vector<std::string>& argv) {
                  unmapped.size() > 1 ? "s" : "", rows_text.c_str());
   }
   if (json) {
-    const nlohmann::json doc = {{"camera", path}, {"layers", geometry.size()}, {"points", rows}};
+    const nlohmann::json doc = {{"camera", path}, {"layers", mapper->layers()}, {"points", rows}};
     std::printf("%s\n", doc.dump().c_str());
   } else {
     std::fputs(out.c_str(), stdout);

@@ -1,0 +1,5 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "python/src/common.h"
+namespace artcam::python {
+void registerLenses(py::module_&) {}
+}  // namespace artcam::python

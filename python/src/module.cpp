@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: Apache-2.0
+// artcam._artcam: the extension behind `import artcam` (python/artcam/__init__.py re-exports it).
+#include "app/cli/commands.h"
+#include "python/src/common.h"
+
+#include <filesystem>
+#include <fstream>
+
+namespace artcam::python {
+
+void raiseOSError(const std::string& message) {
+  PyErr_SetString(PyExc_OSError, message.c_str());
+  throw py::error_already_set();
+}
+
+void raiseReadError(const std::string& path, const std::string& message) {
+  std::error_code ec;
+  PyObject* type = PyExc_ValueError;
+  if (!std::filesystem::exists(path, ec))
+    type = PyExc_FileNotFoundError;
+  else if (std::filesystem::is_directory(path, ec))
+    type = PyExc_IsADirectoryError;
+  else if (!std::ifstream(path).good())
+    type = PyExc_PermissionError;
+  PyErr_SetString(type, message.c_str());
+  throw py::error_already_set();
+}
+
+void raiseValueError(const std::string& message) { throw py::value_error(message); }
+
+cli::Args argsFromKeywords(const py::dict& options, const std::vector<cli::OptionSpec>& specs,
+                           std::vector<std::string> positional) {
+  std::vector<std::string> argv = std::move(positional);
+  for (const auto& [key, value] : options) {
+    if (value.is_none()) continue;
+    std::string name = "--" + py::str(key).cast<std::string>();
+    for (char& c : name)
+      if (c == '_') c = '-';
+    bool known = false;
+    for (const cli::OptionSpec& spec : specs) known = known || spec.name == name;
+    if (!known)
+      throw py::type_error("unexpected keyword argument '" + py::str(key).cast<std::string>() +
+                           "'");
+    if (py::isinstance<py::bool_>(value)) {
+      if (value.cast<bool>()) argv.push_back(name);
+      continue;
+    }
+    argv.push_back(name);
+    if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+      // A size as (width, height): the CLI's WxH.
+      const auto items = value.cast<std::vector<long long>>();
+      if (items.size() != 2) raiseValueError(name + " expects (width, height)");
+      argv.push_back(std::to_string(items[0]) + "x" + std::to_string(items[1]));
+    } else {
+      argv.push_back(py::str(value).cast<std::string>());
+    }
+  }
+  return cli::Args(argv, specs);
+}
+
+}  // namespace artcam::python
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(_artcam, m) {
+  using namespace artcam;
+  m.doc() = "The ARTcam engine (Attributed Rational Tensor cameras): read, fit, map and render.";
+  // The CLI's refusals are Python's: a bad option value is a ValueError, a file that fails a
+  // ValueError or OSError (the functions that read files say which), each with the CLI's line.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const cli::UsageError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const cli::CommandError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    }
+  });
+  python::registerCameras(m);
+  python::registerImages(m);
+  python::registerBatch(m);
+  python::registerFitting(m);
+  python::registerLenses(m);
+  python::registerExports(m);
+  python::registerPresets(m);
+}

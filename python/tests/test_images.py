@@ -1,0 +1,73 @@
+# SPDX-License-Identifier: Apache-2.0
+import numpy as np
+import pytest
+
+import artcam
+from conftest import gradient_photo
+
+
+def test_warp_of_an_array_equals_the_cli_warp_of_its_file(samples, run_cli, tmp_path):
+    photo = gradient_photo(600, 400)
+    artcam.write_image(str(tmp_path / "in.png"), photo)
+    run_cli("warp", tmp_path / "in.png", samples / "sample.artcam", "-o", tmp_path / "cli.tif",
+            "--edge", "black")
+    cli = artcam.read_image(str(tmp_path / "cli.tif")).pixels
+    cam = artcam.read(str(samples / "sample.artcam"))
+    out = cam.warp(photo, edge="black")
+    assert out.dtype == np.uint8 and out.shape == cli.shape
+    np.testing.assert_array_equal(out, cli)
+
+
+def test_write_image_like_keeps_bytes_of_the_cli_path(samples, run_cli, tmp_path):
+    photo = artcam.read_image(str(samples / "coffee.png"))
+    cam = artcam.read(str(samples / "sample.artcam"))
+    artcam.write_image(str(tmp_path / "py.png"), cam.warp(photo.pixels), like=photo)
+    run_cli("warp", samples / "coffee.png", samples / "sample.artcam", "-o", tmp_path / "cli.png")
+    assert (tmp_path / "py.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint16, np.float32])
+def test_warp_keeps_dtype_and_reads_strided_rows(samples, dtype):
+    cam = artcam.read(str(samples / "sample.artcam"))
+    big = gradient_photo(700, 500, dtype=dtype)
+    crop = big[50:450, 60:660]  # rows strided, pixels packed: read in place
+    assert not crop.flags.c_contiguous
+    out = cam.warp(crop, edge="black")
+    assert out.dtype == dtype
+    np.testing.assert_array_equal(out, cam.warp(np.ascontiguousarray(crop), edge="black"))
+
+
+def test_alpha_marks_pixels_without_a_preimage(run_cli, tmp_path):
+    run_cli("preset", "barrel", "--k", "-0.3", "--size", "600x400", "-o", tmp_path / "b.artcam")
+    cam = artcam.read(str(tmp_path / "b.artcam"))
+    out = cam.warp(gradient_photo(600, 400), alpha=True)
+    assert out.shape[2] == 4
+    transparent = out[..., 3] == 0
+    assert transparent.any() and not transparent.all()
+    assert (out[transparent][:, :3] == 0).all()  # premultiplied
+
+
+def test_refusals(samples, tmp_path):
+    cam = artcam.read(str(samples / "sample.artcam"))
+    photo = gradient_photo(600, 400)
+    with pytest.raises(ValueError, match="dtype float64"):
+        cam.warp(photo.astype(np.float64))
+    with pytest.raises(ValueError, match="not contiguous"):
+        cam.warp(photo[:, ::2])
+    with pytest.raises(ValueError, match="channels"):
+        cam.warp(np.zeros((10, 10, 5), np.uint8))
+    with pytest.raises(ValueError, match="filter"):
+        cam.warp(photo, filter="lanczos")
+    with pytest.raises(FileNotFoundError, match="missing.png"):
+        artcam.read_image(str(tmp_path / "missing.png"))
+    with pytest.raises(ValueError, match="--quality"):
+        artcam.write_image(str(tmp_path / "q.jpg"), photo, quality=500)
+    assert not (tmp_path / "q.jpg").exists()
+    with pytest.raises(OSError, match="no-such-folder"):
+        artcam.write_image(str(tmp_path / "no-such-folder" / "x.png"), photo)
+
+
+def test_aspect_stretch_is_warned(samples):
+    cam = artcam.read(str(samples / "sample.artcam"))
+    with pytest.warns(UserWarning, match="aspect|stretch"):
+        cam.warp(gradient_photo(400, 400))
