@@ -96,8 +96,8 @@ set(CPACK_PACKAGE_DESCRIPTION
   "ARTcam Studio fits Attributed Rational Tensor cameras (every output
 coordinate a ratio of quadratic forms of the input) to point matches and
 warps photographs through them: lens distortion, reflections, refractions
-and artistic deformations. The package holds the artcam-studio GUI and the
-artcam command-line tool.")
+and artistic deformations. The package holds the artcam-studio GUI, the
+artcam command-line tool and the artcam Python 3 module.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_STRIP_FILES ON)  # RelWithDebInfo binaries carry debug info the package does not need
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # artcam-studio_<version>-<release>_<arch>.deb
@@ -109,6 +109,13 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS "${PROJECT_BINARY_DIR}/lib")
 # lensfun's database is data, not a shared library, so shlibdeps cannot find it.
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "liblensfun-data-v1")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "qt6-wayland")
+if(ARTCAM_BUILD_PYTHON)
+  # `import artcam` is built for Debian 12's Python 3.11 ABI and hands out numpy arrays;
+  # artcam.dask runs on dask.distributed where it is installed.
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS
+    ", python3 (>= 3.11), python3 (<< 3.12), python3-numpy")
+  string(APPEND CPACK_DEBIAN_PACKAGE_SUGGESTS ", python3-distributed")
+endif()
 set(CPACK_DEBIAN_COMPRESSION_TYPE xz)
 include(CPack)
 

@@ -26,6 +26,7 @@ chroot "$root" /bin/bash -euo pipefail -c '
   artcam --version
   artcam warp "$examples/coffee.png" "$examples/sample.artcam" -o /tmp/coffee-warped.png
   artcam-studio --version
+  python3 -c "import artcam; print(artcam.read(\"$examples/sample.artcam\"))"
   # The studio opens the sample project and runs until the timeout ends it (status 124).
   status=0; QT_QPA_PLATFORM=offscreen timeout 5 artcam-studio "$examples/sample.artcamproj" \
     >/dev/null 2>&1 || status=$?
