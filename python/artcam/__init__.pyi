@@ -36,7 +36,8 @@ class Camera:
         """N×2 source pixels → N×2 target pixels (N×L×2 for L layers); NaN without an image."""
     def warp(self, image: PixelArray, *, depth: npt.ArrayLike | None = None,
              size: tuple[int, int] | None = None, filter: Filter = "bilinear",
-             edge: Edge = "transparent", alpha: bool = False, threads: int = 0) -> PixelArray:
+             edge: Edge = "transparent", alpha: bool = False, threads: int = 0,
+             out: PixelArray | None = None) -> PixelArray:
         """Renders `image` (read in place) through the camera, as `artcam warp` does."""
 
 class Image:

@@ -64,10 +64,26 @@ py::dtype dtypeOf(PixelType type) {
                                      : py::dtype::of<float>();
 }
 
+// An output array over the engine's own pixel buffer (huge pages, left uninitialised for a
+// render that writes every pixel, pixel_buffer.h), as the CLI's output is: numpy's allocator
+// would fault 72 MB of small pages in on the render's first touch.
 py::array newArray(PixelType type, int width, int height, int channels, bool ndim2) {
-  std::vector<py::ssize_t> shape{height, width};
-  if (!ndim2) shape.push_back(channels);
-  return py::array(dtypeOf(type), shape);
+  auto buffer = std::make_shared<PixelBuffer>(
+      static_cast<size_t>(width) * height * channels * pixelTypeSize(type),
+      PixelBuffer::Init::Uninitialised);
+  const py::ssize_t item = pixelTypeSize(type);
+  std::vector<py::ssize_t> shape{height, width}, strides{py::ssize_t(width) * channels * item};
+  if (ndim2) {
+    strides.push_back(item);
+  } else {
+    shape.push_back(channels);
+    strides.push_back(channels * item);
+    strides.push_back(item);
+  }
+  void* data = buffer->data();
+  const py::capsule owner(new std::shared_ptr<PixelBuffer>(std::move(buffer)),
+                          [](void* p) { delete static_cast<std::shared_ptr<PixelBuffer>*>(p); });
+  return py::array(dtypeOf(type), shape, strides, data, owner);
 }
 
 // The stored numbers as linear float RGBA, premultiplied, for the cameras that render from the
@@ -132,7 +148,8 @@ std::optional<ImageF> depthOf(const py::object& depth) {
 
 py::array warpArray(const PyCamera& self, const py::array& image, const py::object& depth_in,
                     const py::object& size, const std::string& filter_name,
-                    const std::string& edge_name, bool alpha, int threads) {
+                    const std::string& edge_name, bool alpha, int threads,
+                    const py::object& out_given) {
   const Artcam& camera = *self.camera;
   const ArrayImage in = viewOfArray(image, "image");
   RenderOptions options;
@@ -175,11 +192,27 @@ py::array warpArray(const PyCamera& self, const py::array& image, const py::obje
       // output array: no copy of the input, none of the output.
       const bool add_alpha = alpha && in.view.alpha_channel < 0;
       const int channels = in.view.channels + (add_alpha ? 1 : 0);
-      out = newArray(in.view.type, frame.size.width, frame.size.height, channels,
-                     in.grey_ndim2 && channels == 1);
-      const ImageView view =
-          packedView<void>(out.mutable_data(), frame.size.width, frame.size.height, channels,
-                           in.view.type, add_alpha ? in.view.channels : in.view.alpha_channel);
+      const bool ndim2 = in.grey_ndim2 && channels == 1;
+      ImageView view;
+      if (out_given.is_none()) {
+        out = newArray(in.view.type, frame.size.width, frame.size.height, channels, ndim2);
+        view = packedView<void>(out.mutable_data(), frame.size.width, frame.size.height, channels,
+                                in.view.type, add_alpha ? in.view.channels : in.view.alpha_channel);
+      } else {
+        // Rendered into the caller's array (numpy's out=, OpenCV's dst): its shape and dtype must
+        // be the output's; a render that reuses one array pays no allocation.
+        out = out_given.cast<py::array>();
+        const ArrayImage target = viewOfArray(out, "out");
+        if (!out.writeable()) raiseValueError("out: the array is read-only");
+        if (target.view.type != in.view.type || target.view.width != frame.size.width ||
+            target.view.height != frame.size.height || target.view.channels != channels)
+          raiseValueError("out: expected a " + std::to_string(frame.size.height) + "×" +
+                          std::to_string(frame.size.width) + "×" + std::to_string(channels) +
+                          " array of the image's dtype");
+        view = packedView<void>(out.mutable_data(), frame.size.width, frame.size.height, channels,
+                                in.view.type, add_alpha ? in.view.channels : in.view.alpha_channel);
+        view.row_bytes = target.view.row_bytes;
+      }
       py::gil_scoped_release release;
       render(inputs, camera, options, view, &summary);
     } else {
@@ -188,6 +221,10 @@ py::array warpArray(const PyCamera& self, const py::array& image, const py::obje
       const StoredEncoding encoding = in.view.type == PixelType::Float
                                           ? StoredEncoding()
                                           : StoredEncoding::ofTransfer(Transfer::srgb());
+      if (!out_given.is_none())
+        raiseValueError(self.name +
+                        ": out= is for cameras of position alone (this one renders "
+                        "from the linear photo into a new array)");
       const bool keep_alpha = alpha || in.view.alpha_channel >= 0;
       out = newArray(in.view.type, frame.size.width, frame.size.height, keep_alpha ? 4 : 3, false);
       void* data = out.mutable_data();

@@ -71,3 +71,41 @@ def test_aspect_stretch_is_warned(samples):
     cam = artcam.read(str(samples / "sample.artcam"))
     with pytest.warns(UserWarning, match="aspect|stretch"):
         cam.warp(gradient_photo(400, 400))
+
+
+def test_out_renders_into_the_callers_array(samples):
+    cam = artcam.read(str(samples / "sample.artcam"))
+    photo = gradient_photo(600, 400)
+    expected = cam.warp(photo)
+    into = np.zeros_like(expected)
+    assert cam.warp(photo, out=into) is into
+    np.testing.assert_array_equal(into, expected)
+    with pytest.raises(ValueError, match="out: expected a 400×600×3"):
+        cam.warp(photo, out=np.zeros((400, 600, 4), np.uint8))
+    frozen = np.zeros_like(expected)
+    frozen.flags.writeable = False
+    with pytest.raises(ValueError, match="read-only"):
+        cam.warp(photo, out=frozen)
+
+
+def test_warp_holds_no_copy_of_a_24_megapixel_photo(run_cli, tmp_path):
+    # In a fresh process: the peak RSS growth from before the input exists to after the warp is
+    # input + output + 64 MiB at most (a float copy of the input alone would be 288 MB more).
+    import subprocess
+    import sys
+    run_cli("preset", "lens-distortion", "--k1", "-0.1", "--size", "6000x4000", "-o",
+            tmp_path / "lens.artcam")
+    bench = __import__("pathlib").Path(__file__).parents[1] / "bench" / "warp_array.py"
+    code = (
+        "import sys; sys.path.insert(0, %r)\n"
+        "import warp_array, artcam\n"
+        "cam = artcam.read(%r)\n"
+        "before = warp_array.peak_rss_bytes()\n"
+        "photo = warp_array.make_photo(6000, 4000)\n"
+        "out = cam.warp(photo)\n"
+        "print(warp_array.peak_rss_bytes() - before, photo.nbytes + out.nbytes)\n"
+    ) % (str(bench.parent), str(tmp_path / "lens.artcam"))
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    grown, images = map(int, done.stdout.split())
+    assert images == 2 * 6000 * 4000 * 3
+    assert grown <= images + (64 << 20), f"peak grew {grown >> 20} MiB for {images >> 20} MiB of images"
