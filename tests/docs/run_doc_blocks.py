@@ -5,7 +5,8 @@
 usage: run_doc_blocks.py REPO_ROOT ARTCAM_DIR [--only FILE] [--keep] [--verbose] [--python PATH]
 
 REPO_ROOT is the checkout; ARTCAM_DIR the folder holding the built `artcam` (the build's app/).
-The files: README.md, docs/user-guide.md, docs/performance.md, docs/robustness.md. Each fenced
+The files: README.md, docs/user-guide.md, docs/python.md, docs/performance.md,
+docs/robustness.md. Each fenced
 block's language (the word after the opening fence) says what happens to it:
 
   sh       run. The blocks of one file run in order, each as `bash -euo pipefail BLOCK` with
@@ -52,13 +53,16 @@ import sys
 import tempfile
 import time
 
-DOC_FILES = ["README.md", "docs/user-guide.md", "docs/performance.md", "docs/robustness.md"]
+DOC_FILES = ["README.md", "docs/user-guide.md", "docs/python.md", "docs/performance.md",
+             "docs/robustness.md"]
 RUN_LANGS = {"sh", "python"}
 CHECK_LANGS = {"install", "studio", "long"}
 PROSE_LANGS = {"console", "text"}
 BLOCK_TIMEOUT_S = 120
 # Debian packages of the modules a python block may import, for the skip message.
-PY_PACKAGES = {"numpy": "python3-numpy", "OpenImageIO": "python3-openimageio", "cv2": "python3-opencv"}
+PY_PACKAGES = {"numpy": "python3-numpy", "OpenImageIO": "python3-openimageio", "cv2": "python3-opencv",
+               "artcam": "artcam-studio (a build's python/ folder)",
+               "distributed": "python3-distributed"}
 
 FENCE_OPEN = re.compile(r"^( {0,3}|\s*)(`{3,}|~{3,})\s*([^\s`]*)\s*$")
 LIST_ITEM = re.compile(r"^\s*([-*+]|\d+[.)])\s")
@@ -271,6 +275,12 @@ class Checker:
             return [] if self.artcam_sub(args[0]) else ["artcam %s: not a subcommand" % args[0]]
         if cmd == "artcam-studio":
             return ["artcam-studio %s: no such file" % a for a in plain if not self.exists(a)]
+        if cmd == "dask":
+            # dask.distributed's own command line (the cluster pages): python3-distributed.
+            if "python3-distributed" not in self.packages:
+                return ["%s: python3-distributed is not in packaging/install-deps.sh" % shown]
+            return [] if plain and plain[0] in ("scheduler", "worker", "ssh") else [
+                "%s: dask subcommand %s has no check" % (shown, plain[0] if plain else "")]
         if cmd == "man":
             return [] if plain and self.exists("docs/man/%s.1" % plain[-1]) else [
                 "%s: no such manual page in docs/man" % shown]
@@ -309,6 +319,11 @@ def main():
     env = dict(os.environ)
     env["PATH"] = artcam_dir + os.pathsep + env.get("PATH", "")
     env["QT_QPA_PLATFORM"] = "offscreen"
+    # `import artcam` from the same build as the artcam program (<build>/python beside <build>/app).
+    build_python = os.path.join(os.path.dirname(artcam_dir), "python")
+    if os.path.isdir(os.path.join(build_python, "artcam")):
+        for e in (env, os.environ):
+            e["PYTHONPATH"] = build_python + (os.pathsep + e["PYTHONPATH"] if e.get("PYTHONPATH") else "")
     scripts = tempfile.mkdtemp(prefix="artcam-doc-blocks-")
 
     passed, failed, skipped = 0, 0, []
