@@ -19,3 +19,14 @@ from ._artcam import *  # noqa: F401,F403
 from ._artcam import Camera, Image, read, from_json, read_image, write_image  # noqa: F401
 
 __version__ = "0.1.0"
+
+
+def warp(camera, image, **options):
+    """``camera.warp(image, **options)``: renders `image` through `camera` (an artcam.Camera, or
+    a .artcam path), as ``artcam warp`` renders a photo. See help(artcam.Camera.warp)."""
+    if not isinstance(camera, Camera):
+        camera = read(str(camera))
+    return camera.warp(image, **options)
+
+
+warp.__doc__ += "\n\n" + (Camera.warp.__doc__ or "")

@@ -25,6 +25,8 @@ class Camera:
     @property
     def target_size(self) -> tuple[int, int]: ...
     @property
+    def frames(self) -> dict[str, tuple[int, int]]: ...
+    @property
     def frame(self) -> Literal["sensor", "upright"] | None: ...
     @property
     def name(self) -> str: ...
@@ -77,3 +79,6 @@ def warp_files_options_check(options: dict[str, Any]) -> None:
 def warp_files(camera: Camera, items: Sequence[tuple[str, str]],
                options: dict[str, Any] = ...) -> list[dict[str, Any]]:
     """Each (input, output) through `camera` as `artcam batch` does; one row each."""
+
+def warp(camera: Camera | str, image: PixelArray, **options: Any) -> PixelArray:
+    """camera.warp(image, **options), the camera given or read from a path."""

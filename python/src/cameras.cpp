@@ -83,6 +83,15 @@ Pickles as its .artcam text, so it ships to Dask workers as one small string.)do
           "target_size", [](const PyCamera& c) { return sizeTuple(c.camera->targetSize()); },
           "(width, height) of the target frame (the output's size for a photo of source_size).")
       .def_property_readonly(
+          "frames",
+          [](const PyCamera& c) {
+            py::dict d;
+            d["source"] = sizeTuple(c.camera->sourceSize());
+            d["target"] = sizeTuple(c.camera->targetSize());
+            return d;
+          },
+          "{'source': (w, h), 'target': (w, h)}: the frames of the .artcam file's \"frames\".")
+      .def_property_readonly(
           "frame",
           [](const PyCamera& c) -> py::object {
             if (!c.camera->frame) return py::none();

@@ -109,3 +109,39 @@ def test_warp_holds_no_copy_of_a_24_megapixel_photo(run_cli, tmp_path):
     grown, images = map(int, done.stdout.split())
     assert images == 2 * 6000 * 4000 * 3
     assert grown <= images + (64 << 20), f"peak grew {grown >> 20} MiB for {images >> 20} MiB of images"
+
+
+def test_the_gil_is_released_while_it_renders(run_cli, tmp_path):
+    # Python keeps running beside a render on another thread: with the GIL held through the
+    # render, the loop below would stand still until it ended.
+    import threading
+    import time
+    run_cli("preset", "lens-distortion", "--k1", "-0.1", "--size", "3000x2000", "-o",
+            tmp_path / "lens.artcam")
+    cam = artcam.read(str(tmp_path / "lens.artcam"))
+    photo = gradient_photo(3000, 2000)
+    spans = []
+
+    def render():
+        for _ in range(4):
+            t = time.perf_counter()
+            cam.warp(photo, filter="bicubic", threads=1)
+            spans.append(time.perf_counter() - t)
+
+    worker = threading.Thread(target=render)
+    beats = []
+    worker.start()
+    while worker.is_alive():
+        beats.append(time.perf_counter())
+    worker.join()
+    # The longest stretch without a beat of the loop is far shorter than one render.
+    longest_gap = max(b - a for a, b in zip(beats, beats[1:]))
+    assert longest_gap < 0.5 * min(spans), (longest_gap, spans)
+
+
+def test_module_warp_and_frames(samples):
+    cam = artcam.read(str(samples / "sample.artcam"))
+    photo = gradient_photo(600, 400)
+    np.testing.assert_array_equal(artcam.warp(str(samples / "sample.artcam"), photo), cam.warp(photo))
+    assert cam.frames == {"source": cam.source_size, "target": cam.target_size}
+    assert "filter" in artcam.warp.__doc__ and "no copy" in artcam.Camera.warp.__doc__
