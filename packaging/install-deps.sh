@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build ccache pkg-config
   qt6-base-dev libgl-dev libeigen3-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
   libexiv2-dev libjpeg62-turbo-dev liblcms2-dev liblensfun-dev liblensfun-data-v1 libheif-dev
+  # OpenCV's semi-global stereo matcher (artcam stereo): the three component packages it needs.
+  libopencv-calib3d-dev libopencv-imgproc-dev libopencv-core-dev
   # Peers the tests compare with (their tests fail without them): Hugin's fulla for the edge modes,
   # exiftool for the metadata of HEIC/AVIF/WebP outputs.
   hugin-tools libimage-exiftool-perl

@@ -8,6 +8,8 @@
 #include "app/cli/progress.h"
 #include "app/cli/stdio_paths.h"
 #include "core/colour/specular_pair.h"
+#include "core/depth/stereo_house.h"
+#include "core/io/atomic_file.h"
 #include "core/io/image_io.h"
 #include "core/io/matches_csv.h"
 #include "core/piecewise/sample_scenes.h"
@@ -19,8 +21,9 @@
 namespace artcam::cli {
 
 const char* const kSampleUsage =
-    "usage: artcam sample mirror-sphere|water-glass|specular-pair -o DIR [--squares N]\n"
-    "                     [--size WxH] [--overwrite]\n\n"
+    "usage: artcam sample mirror-sphere|water-glass|specular-pair|stereo-house -o DIR\n"
+    "                     [--squares N]"
+    " [--size WxH] [--overwrite]\n\n"
     "Ray traces a sample scene for `artcam insert` into DIR:\n"
     "  NAME.png        the photo: a chrome sphere on a table that carries a calibration\n"
     "                  checkerboard (mirror-sphere), or a glass of water in front of a\n"
@@ -40,6 +43,13 @@ const char* const kSampleUsage =
     "  specular-samples.csv      colour samples (linear RGB, silver → green) on a grid of\n"
     "                            the reflector (every side/64-th pixel), for\n"
     "                            artcam fit --block colour\n"
+    "stereo-house renders a rectified stereo pair of a gabled house on a lawn (the scene of\n"
+    "the paper's Fig 2), for artcam stereo:\n"
+    "  house-left.png, house-right.png  the pair (the right eye 0.25 to the left eye's right)\n"
+    "  house-depth.exr   the left view's true depth along the view axis (0: sky)\n"
+    "  house-walls.csv   the walls the left view sees: wall,x,y rows, each wall's corners in\n"
+    "                    the left image, in order\n"
+    "  and prints the pair's baseline·focal for artcam stereo --baseline-focal\n"
     "options:\n"
     "  --squares N     squares along the board's side (default 24)\n"
     "  --size WxH      photo size (default 640x480)\n"
@@ -92,6 +102,56 @@ int specularPairSample(const Args& args, const std::string& dir) {
   });
 }
 
+// The stereo pair of Figs 2 and 3 (core/depth/stereo_house.h), with its true depth and walls.
+int stereoHouseSample(const Args& args, const std::string& dir) {
+  if (args.has("--squares")) throw UsageError("--squares is for mirror-sphere and water-glass");
+  const FrameSize size = parseSize(args.valueOr("--size", "640x480"), "--size");
+  if (size.width < 64 || size.height < 48 || size.width > 4096 || size.height > 4096)
+    throw UsageError("stereo-house's --size must be from 64x48 to 4096x4096");
+  const std::filesystem::path base(dir);
+  const std::string left = (base / "house-left.png").string();
+  const std::string right = (base / "house-right.png").string();
+  const std::string depth = (base / "house-depth.exr").string();
+  const std::string walls = (base / "house-walls.csv").string();
+  std::error_code ec;  // the folder first: checkOutputs checks every output's folder
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw CommandError(dir + ": cannot create the directory: " + ec.message());
+  checkOutputs(args, {left, right, depth, walls}, {});
+  return runJobStages("sample", args.has("--quiet"), [&](JobStages& job) {
+    job.stage("ray tracing");
+    StereoHouseScene scene;
+    scene.focal_px *= size.width / 640.0;
+    scene.width = size.width;
+    scene.height = size.height;
+    const StereoHousePair pair = renderStereoHouse(scene);
+    WriteImageOptions write;
+    write.progress = job.polled("writing house-left.png");
+    if (const Status s = writeImage(left, pair.left, nullptr, write); !s)
+      throw CommandError(s.message);
+    write.progress = job.polled("writing house-right.png");
+    if (const Status s = writeImage(right, pair.right, nullptr, write); !s)
+      throw CommandError(s.message);
+    WriteImageOptions exr;
+    exr.pixel_type = "float";
+    if (const Status s = writeImage(depth, pair.left_depth, nullptr, exr); !s)
+      throw CommandError(s.message);
+    std::string csv = "wall,x,y\n";
+    char line[128];
+    for (const HouseWall& w : pair.walls)
+      for (const Eigen::Vector2d& p : w.left_px) {
+        std::snprintf(line, sizeof line, "%s,%.17g,%.17g\n", w.name.c_str(), p.x(), p.y());
+        csv += line;
+      }
+    if (const Status s = writeTextAtomically(walls, csv); !s) throw CommandError(s.message);
+    job.finish();
+    std::printf("wrote %s, %s, %s, %s\n", left.c_str(), right.c_str(), depth.c_str(),
+                walls.c_str());
+    std::printf("baseline-focal %.17g (artcam stereo %s %s --baseline-focal %.17g -o depth.exr)\n",
+                scene.baselineFocal(), left.c_str(), right.c_str(), scene.baselineFocal());
+    return 0;
+  });
+}
+
 }  // namespace
 
 int sampleCommand(const std::vector<std::string>& argv) {
@@ -107,10 +167,14 @@ int sampleCommand(const std::vector<std::string>& argv) {
   refuseStreamFolder(*dir, "sample's -o DIR");
   const int squares = intOption(args, "--squares", 24, 2, 256);
   const std::string& name = args.positional()[0];
-  if (name != "mirror-sphere" && name != "water-glass" && name != "specular-pair")
-    throw UsageError("unknown sample \"" + name + "\" (mirror-sphere, water-glass or specular-pair)",
-                     didYouMean(name, {"mirror-sphere", "water-glass", "specular-pair"}));
+  if (name != "mirror-sphere" && name != "water-glass" && name != "specular-pair" &&
+      name != "stereo-house")
+    throw UsageError(
+        "unknown sample \"" + name +
+            "\" (mirror-sphere, water-glass, specular-pair or stereo-house)",
+        didYouMean(name, {"mirror-sphere", "water-glass", "specular-pair", "stereo-house"}));
   if (name == "specular-pair") return specularPairSample(args, *dir);
+  if (name == "stereo-house") return stereoHouseSample(args, *dir);
   const FrameSize size = parseSize(args.valueOr("--size", "640x480"), "--size");
   checkImageMemory(size, "--size");
   const std::filesystem::path base(*dir);

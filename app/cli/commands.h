@@ -35,6 +35,7 @@ int presetCommand(const std::vector<std::string>& args);
 int composeCommand(const std::vector<std::string>& args);
 int insertCommand(const std::vector<std::string>& args);
 int sampleCommand(const std::vector<std::string>& args);
+int stereoCommand(const std::vector<std::string>& args);
 int exportCommand(const std::vector<std::string>& args);  // artcam export: a studio project
 int exportMapCommand(const std::vector<std::string>& args);  // artcam export-map: an ST map
 int lensCommand(const std::vector<std::string>& args);  // artcam lens: the lensfun database
@@ -53,6 +54,7 @@ std::string presetHelp();
 extern const char* const kComposeUsage;
 extern const char* const kInsertUsage;
 extern const char* const kSampleUsage;
+extern const char* const kStereoUsage;
 extern const char* const kExportUsage;
 extern const char* const kExportMapUsage;
 extern const char* const kLensUsage;

@@ -30,10 +30,10 @@ const Command kCommands[] = {
      exportCommand},
     {"export-map", "write a camera's inverse map as an ST map (Nuke, OpenCV)", kExportMapUsage,
      exportMapCommand},
-    {"lens", "search the lensfun database; a camera that corrects a lens", kLensUsage,
-     lensCommand},
+    {"lens", "search the lensfun database; a camera that corrects a lens", kLensUsage, lensCommand},
     {"insert", "render a graphic into a reflection or refraction", kInsertUsage, insertCommand},
     {"sample", "ray trace a sample photo and grid matches for insert", kSampleUsage, sampleCommand},
+    {"stereo", "a depth map from a rectified stereo pair", kStereoUsage, stereoCommand},
 };
 
 void printHelp() {

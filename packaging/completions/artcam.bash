@@ -8,7 +8,7 @@
 # neither the bash-completion package's helpers nor a particular bash-completion version.
 
 _artcam_commands="fit map warp batch info bench render preset compose export export-map lens
-                  insert sample"
+                  insert sample stereo"
 
 # The options of one page: a command, or bench's sub-command ("bench fit").
 _artcam_options() {
@@ -42,6 +42,7 @@ _artcam_options() {
     insert) echo "--output -o --matches --camera --canonical --table --grid-on-table --region
                   --max-error --save-camera --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;
+    stereo) echo "--output -o --baseline-focal --max-disparity --block --overwrite --force --json" ;;
   esac
 }
 
