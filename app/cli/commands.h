@@ -36,6 +36,7 @@ int composeCommand(const std::vector<std::string>& args);
 int insertCommand(const std::vector<std::string>& args);
 int sampleCommand(const std::vector<std::string>& args);
 int stereoCommand(const std::vector<std::string>& args);
+int unfoldCommand(const std::vector<std::string>& args);
 int exportCommand(const std::vector<std::string>& args);  // artcam export: a studio project
 int exportMapCommand(const std::vector<std::string>& args);  // artcam export-map: an ST map
 int lensCommand(const std::vector<std::string>& args);  // artcam lens: the lensfun database
@@ -55,6 +56,7 @@ extern const char* const kComposeUsage;
 extern const char* const kInsertUsage;
 extern const char* const kSampleUsage;
 extern const char* const kStereoUsage;
+extern const char* const kUnfoldUsage;
 extern const char* const kExportUsage;
 extern const char* const kExportMapUsage;
 extern const char* const kLensUsage;

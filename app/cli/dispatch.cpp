@@ -34,6 +34,8 @@ const Command kCommands[] = {
     {"insert", "render a graphic into a reflection or refraction", kInsertUsage, insertCommand},
     {"sample", "ray trace a sample photo and grid matches for insert", kSampleUsage, sampleCommand},
     {"stereo", "a depth map from a rectified stereo pair", kStereoUsage, stereoCommand},
+    {"unfold", "a camera that unfolds the walls of a building (Fig 2)", kUnfoldUsage,
+     unfoldCommand},
 };
 
 void printHelp() {

@@ -184,6 +184,12 @@ Eigen::Vector3d StereoHouseScene::right() const {
 }
 Eigen::Vector3d StereoHouseScene::down() const { return forward().cross(right()).normalized(); }
 
+Eigen::Vector3d stereoHouseColourAlong(const Eigen::Vector3d& origin,
+                                       const Eigen::Vector3d& direction) {
+  const Hit h = trace(origin, direction);
+  return std::isfinite(h.t) ? h.colour : sky(direction);
+}
+
 StereoHousePair renderStereoHouse(const StereoHouseScene& scene) {
   StereoHousePair pair;
   pair.left = renderView(scene, scene.left_eye, &pair.left_depth);

@@ -50,4 +50,9 @@ struct StereoHousePair {
 
 StereoHousePair renderStereoHouse(const StereoHouseScene& scene = {});
 
+// The colour (linear RGB) the scene shows along one ray: what an orthographic view of a wall
+// sees, for checking an unfolded picture (unfold_walls.h) against the scene itself.
+Eigen::Vector3d stereoHouseColourAlong(const Eigen::Vector3d& origin,
+                                       const Eigen::Vector3d& direction);
+
 }  // namespace artcam

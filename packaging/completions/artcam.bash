@@ -8,7 +8,7 @@
 # neither the bash-completion package's helpers nor a particular bash-completion version.
 
 _artcam_commands="fit map warp batch info bench render preset compose export export-map lens
-                  insert sample stereo"
+                  insert sample stereo unfold"
 
 # The options of one page: a command, or bench's sub-command ("bench fit").
 _artcam_options() {
@@ -43,6 +43,7 @@ _artcam_options() {
                   --max-error --save-camera --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;
     stereo) echo "--output -o --baseline-focal --max-disparity --block --overwrite --force --json" ;;
+    unfold) echo "--output -o --depth --walls --focal --principal --scale --overwrite --force --json" ;;
   esac
 }
 

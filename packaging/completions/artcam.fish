@@ -36,7 +36,7 @@ function __artcam_complete
     set -l page (__artcam_page)
     if test -z "$page"
         printf '%s\n' fit map warp batch info bench render preset compose export export-map lens \
-            insert sample stereo help --help --version
+            insert sample stereo unfold help --help --version
         return
     end
     set -l page_words (string split ' ' -- $page)

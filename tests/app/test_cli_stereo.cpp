@@ -69,6 +69,46 @@ class TestCliStereo : public QObject {
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
   }
 
+  void unfoldsTheWalls() {
+    // Fig 2 end to end: the pair, its depth, the walls the sample marks, the unfolding camera
+    // and its render; the picture is as wide as the photo and about as tall as the walls are
+    // (4 + 3 wide, 3.2 tall at the gable: 640 × 640·3.2/7 ≈ 293).
+    QTemporaryDir dir;
+    Run r = artcamCli({"sample", "stereo-house", "-o", dir.path()});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"stereo", dir.filePath("house-left.png"), dir.filePath("house-right.png"),
+                   "--baseline-focal", "140", "-o", dir.filePath("depth.exr")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    r = artcamCli({"unfold", dir.filePath("house-left.png"), "--depth", dir.filePath("depth.exr"),
+                   "--walls", dir.filePath("house-walls.csv"), "--focal", "560", "-o",
+                   dir.filePath("unfold.artcam"), "--json"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("\"front\"") && r.out.contains("\"side\""), qPrintable(r.out));
+    r = artcamCli({"warp", dir.filePath("house-left.png"), dir.filePath("unfold.artcam"), "-o",
+                   dir.filePath("unfolded.png")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("piecewise") && r.out.contains("2 patches"), qPrintable(r.out));
+    int w = 0, h = 0;
+    channelZero(dir.filePath("unfolded.png"), &w, &h);
+    QCOMPARE(w, 640);
+    QVERIFY2(std::abs(h - 293) <= 8, qPrintable(QString::number(h)));
+    // Refusals: a required option, a broken outline file (named with its line).
+    r = artcamCli({"unfold", dir.filePath("house-left.png"), "--depth", dir.filePath("depth.exr"),
+                   "--walls", dir.filePath("house-walls.csv"), "-o", dir.filePath("u2.artcam")});
+    QCOMPARE(r.exit_code, 2);
+    QVERIFY2(r.err.contains("--focal"), qPrintable(r.err));
+    QFile bad(dir.filePath("bad.csv"));
+    QVERIFY(bad.open(QIODevice::WriteOnly));
+    bad.write("wall,x,y\nfront,10,20\nfront,30,twenty\n");
+    bad.close();
+    r = artcamCli({"unfold", dir.filePath("house-left.png"), "--depth", dir.filePath("depth.exr"),
+                   "--walls", dir.filePath("bad.csv"), "--focal", "560", "-o",
+                   dir.filePath("u3.artcam")});
+    QCOMPARE(r.exit_code, 1);
+    QVERIFY2(r.err.contains("bad.csv:3"), qPrintable(r.err));
+    QVERIFY(!QFile::exists(dir.filePath("u3.artcam")));
+  }
+
   void refusals() {
     QTemporaryDir dir;
     Run r = artcamCli({"sample", "stereo-house", "-o", dir.path(), "--size", "160x120"});

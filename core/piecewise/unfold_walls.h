@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: Apache-2.0
+// The paper's Fig 2: a building's walls "unfolded" into one picture, each wall seen
+// orthogonally, from one image of a stereo pair and the depth it gives (stereo_depth.h). The
+// user marks each wall's outline; the wall's plane comes from the depth inside it (a robust
+// least-squares plane), each wall maps to its own rectangle of the output by the homography
+// photo → plane → wall coordinates (a position-only camera, eq 3 with Q = lifted linear maps),
+// and the walls lie side by side, bottom-aligned, at one scale: a piecewise camera (§5) whose
+// patches are the walls. The roof above them is not part of any wall and is left out.
+#pragma once
+
+#include "core/model/artcam.h"
+#include "core/model/image.h"
+#include "core/model/status.h"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace artcam {
+
+// A wall's outline in the photo, in order around the wall, its FIRST edge the wall's base (it
+// gives the wall's horizontal: bottom-left → bottom-right); the walls left to right.
+struct WallOutline {
+  std::string name;
+  std::vector<Eigen::Vector2d> photo_px;
+};
+
+struct UnfoldOptions {
+  double focal_px = 0.0;  // the photo's focal length in pixels (required)
+  // The principal point; negative: the photo's centre.
+  Eigen::Vector2d principal_px{-1.0, -1.0};
+  // Output pixels per depth unit along the walls; 0: the walls span the photo's width.
+  double px_per_unit = 0.0;
+};
+
+struct UnfoldedWall {
+  std::string name;
+  Eigen::Vector3d normal;            // the fitted plane's, in the camera's frame (x right, y down)
+  double width = 0.0, height = 0.0;  // in depth units
+  int depth_samples = 0;             // depth pixels inside the outline used by the plane
+  double plane_rms = 0.0;            // their distance from the plane, depth units
+  double left_out_share = 0.0;       // of the outline past the seam with a neighbour (not shown)
+};
+
+struct UnfoldSummary {
+  std::vector<UnfoldedWall> walls;
+  FrameSize size;  // the unfolded picture
+  double px_per_unit = 0.0;
+};
+
+// Parses a walls CSV: rows "name,x,y" (a header line "wall,x,y" allowed), each wall's corners
+// in order, the walls in the order they first appear. `where` names the file in messages.
+Result<std::vector<WallOutline>> parseWallsCsv(const std::string& text, const std::string& where);
+
+// The unfolding camera for `photo` (the size of the image `depth` was measured for; the depth
+// map may be of another size, scaled to the photo's frame). Fails, naming the wall, for an
+// outline with fewer than 3 corners or outside the frame, too little depth inside it, a plane
+// seen edge-on, or walls that overlap.
+Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
+                           const std::vector<WallOutline>& walls, const UnfoldOptions& options,
+                           UnfoldSummary* summary = nullptr);
+
+}  // namespace artcam
