@@ -9,6 +9,8 @@ packages=(build-essential cmake ninja-build ccache pkg-config
   libexiv2-dev libjpeg62-turbo-dev liblcms2-dev liblensfun-dev liblensfun-data-v1 libheif-dev
   # OpenCV's semi-global stereo matcher (artcam stereo): the three component packages it needs.
   libopencv-calib3d-dev libopencv-imgproc-dev libopencv-core-dev
+  # G'MIC's filters for the finishing marks (--finish pencil, charcoal, painting, cartoon).
+  libgmic-dev
   # Peers the tests compare with (their tests fail without them): Hugin's fulla for the edge modes,
   # exiftool for the metadata of HEIC/AVIF/WebP outputs.
   hugin-tools libimage-exiftool-perl

@@ -25,7 +25,7 @@ const char* const kWarpUsage =
     "                   [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                   [--stats] [--json] [--quiet] [--overwrite]\n"
     "                   [--depth FILE [--depth-scale S] [--disparity BF]]\n"
-    "                   [--second FILE]\n\n"
+    "                   [--second FILE] [--finish pencil|charcoal|painting|cartoon]\n\n"
     "Warps IN through the camera into OUT (format from OUT's extension, via OpenImageIO).\n"
     "IN \"-\" reads the photo from standard input (any format, found from its bytes); OUT \"-\"\n"
     "writes the image to standard output in the format --format EXT names (png, jpg, exr,\n"
@@ -115,35 +115,27 @@ const char* const kWarpUsage =
     "  --depth-scale S      multiplies an integer depth file's values (default 1)\n"
     "  --disparity BF       the depth file holds disparity; depth = BF / disparity (default:\n"
     "                       off, the file holds depth)\n"
-    "  --second FILE        the second image for compositing cameras (no default)\n\n"
+    "  --second FILE        the second image for compositing cameras (no default)\n"
+    "  --finish NAME        marks after the render (G'MIC): pencil, charcoal, painting or\n"
+    "                       cartoon (default none)\n\n"
     "Examples:\n"
     "  artcam warp photo.jpg lens.artcam -o fixed.jpg\n"
     "  cat photo.jpg | artcam warp - lens.artcam -o - --format png | display -\n"
     "  artcam warp photo.png dof.artcam -o blurred.png --depth depth.exr --filter bicubic\n"
-    "  artcam warp title.png over.artcam -o card.png --second backdrop.png\n";
+    "  artcam warp title.png over.artcam -o card.png --second backdrop.png\n"
+    "  artcam warp photo.jpg fig5.artcam -o marked.jpg --finish pencil\n";
 
 int warpCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--output", "-o", true},
-                         {"--format", "", true},
-                         {"--size", "", true},
-                         {"--filter", "", true},
-                         {"--edge", "", true},
-                         {"--threads", "", true},
-                         {"--quality", "", true},
-                         {"--subsampling", "", true},
-                         {"--bit-depth", "", true},
-                         {"--colourspace", "", true},
-                         {"--colourspace-in", "", true},
-                         {"--colourspace-out", "", true},
-                         {"--stats", "", false},
-                         {"--json", "", false},
-                         {"--overwrite", "", false},
-                         {"--force", "", false},
-                         {"--quiet", "-q", false},
-                         {"--depth", "", true},
-                         {"--depth-scale", "", true},
-                         {"--disparity", "", true},
-                         {"--second", "", true}});
+  const Args args(
+      argv,
+      {{"--output", "-o", true},    {"--format", "", true},         {"--size", "", true},
+       {"--filter", "", true},      {"--edge", "", true},           {"--threads", "", true},
+       {"--quality", "", true},     {"--subsampling", "", true},    {"--bit-depth", "", true},
+       {"--colourspace", "", true}, {"--colourspace-in", "", true}, {"--colourspace-out", "", true},
+       {"--stats", "", false},      {"--json", "", false},          {"--overwrite", "", false},
+       {"--force", "", false},      {"--quiet", "-q", false},       {"--depth", "", true},
+       {"--depth-scale", "", true}, {"--disparity", "", true},      {"--second", "", true},
+       {"--finish", "", true}});
   args.expectPositional(2, "IN and CAM.artcam");
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o OUT");

@@ -4,6 +4,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/memory.h"
 #include "core/depth/depth_raster.h"
+#include "core/effects/finish.h"
 #include "core/io/depth_file.h"
 #include "core/model/frames.h"
 #include "core/pipeline/camera_frame.h"
@@ -182,6 +183,17 @@ WarpRequest parseWarpRequest(const Args& args) {
   parseWriteOptions(args, request.write);  // every usage error before a file is read
   request.colour_space_in = parseColourSpaceIn(args);
   request.stats = args.has("--stats");
+  if (const auto finish = args.value("--finish")) {
+    if (!finishByName(*finish)) {
+      std::vector<std::string> names;
+      for (const FinishInfo& f : finishes()) names.push_back(f.name);
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      throw UsageError("unknown --finish \"" + *finish + "\" (" + list + ")",
+                       didYouMean(*finish, names));
+    }
+    request.finish = *finish;
+  }
   // Nothing is printed here: the files read are reported with the result (WarpRequest::inputs),
   // so standard output carries only the image or the one JSON object.
   if (const auto path = args.value("--depth")) {
@@ -306,6 +318,9 @@ RenderedOutput renderForWarp(const WarpCameraFile& given, DecodedInput&& input,
   const WarpCameraFile& camera = reframed ? *reframed : given;
   RenderedOutput out;
   out.output = source.output;
+  if (source.streamed && !request.finish.empty())
+    throw CommandError(source.input + ": too big to hold whole for the " + request.finish +
+                       " finish (it marks the whole picture at once)");
   if (source.streamed) {  // rendered band by band as encodeWarp writes
     out.like = source.streamed->info();
     out.streamed = std::move(source.streamed);
@@ -378,6 +393,21 @@ RenderedOutput renderForWarp(const WarpCameraFile& given, DecodedInput&& input,
                                                              {in.image.width, in.image.height});
             !stretched.empty())
           out.warning += (out.warning.empty() ? "" : "; ") + stretched;
+    }
+    // Marks after the render (core/effects/finish.h), on the values as they will be stored.
+    if (!summary.cancelled && !request.finish.empty()) {
+      Status marked;
+      if (out.stored) {
+        marked = applyFinish(out.stored->view(), request.finish);
+      } else if (out.image) {
+        const StoredEncoding encoding = storedEncodingOf(out.like);
+        ImageF& image = *out.image;
+        const size_t pixels = static_cast<size_t>(image.width) * image.height;
+        encoding.encode(image.data.data(), pixels, image.channels, image.alpha_channel);
+        marked = applyFinish(viewOf(image), request.finish);
+        encoding.decode(image.data.data(), pixels, image.channels, image.alpha_channel);
+      }
+      if (!marked) throw CommandError(out.output + ": " + marked.message);
     }
     if (!summary.cancelled && !source.extra.empty()) {
       out.extra = renderExtra(camera, std::move(source.extra), out.width, out.height, turn, options,

@@ -61,6 +61,7 @@ struct WarpRequest {
   WriteImageOptions write;      // --quality, --bit-depth (write_args.h); progress unset
   std::string colour_space_in;  // --colourspace-in NAME (write_args.h); empty: as files say
   bool stats = false;
+  std::string finish;  // --finish NAME: marks after the render (core/effects/finish.h); "": none
   std::vector<RequestInput> inputs;  // the depth map and second image read, in that order
 };
 

@@ -20,7 +20,7 @@ _artcam_options() {
     warp) echo "--output -o --format --size --filter --edge --subsampling --threads --quality --bit-depth
                 --colourspace --colourspace-in --colourspace-out
                 --stats --json --overwrite --force --quiet -q --depth --depth-scale --disparity
-                --second" ;;
+                --second --finish" ;;
     batch) echo "--output -o --suffix --format --first --size --filter --edge --subsampling --threads --quality
                  --bit-depth --colourspace --colourspace-in --colourspace-out --overwrite --force --json --quiet -q
                  --lens-from-exif" ;;
