@@ -12,6 +12,7 @@
 
 #include "core/io/jpeg_file.h"
 #include "core/io/standard_streams.h"
+#include "core/util/module_path.h"
 
 #include <dlfcn.h>
 
@@ -24,14 +25,6 @@ namespace {
 
 constexpr const char* kModuleName = "libartcam_io_oiio.so";
 
-std::string moduleDirectory() {
-  Dl_info self{};
-  if (dladdr(reinterpret_cast<void*>(&moduleDirectory), &self) == 0 || !self.dli_fname) return {};
-  const std::string path = self.dli_fname;
-  const size_t slash = path.rfind('/');
-  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
 struct Loaded {
   const oiio_io::Table* table = nullptr;
   std::string why;  // why not, when table is null
@@ -41,7 +34,8 @@ const Loaded& loaded() {
   static const Loaded result = [] {
     Loaded l;
     const char* forced = std::getenv("ARTCAM_IO_MODULE");
-    const std::string path = forced && *forced ? std::string(forced) : moduleDirectory() + kModuleName;
+    const std::string path =
+        forced && *forced ? std::string(forced) : engineModuleDirectory() + kModuleName;
     // RTLD_LOCAL: the module's ~250 libraries stay out of the global scope that later lookups
     // search.
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

@@ -39,7 +39,7 @@ class Camera:
     def warp(self, image: PixelArray, *, depth: npt.ArrayLike | None = None,
              size: tuple[int, int] | None = None, filter: Filter = "bilinear",
              edge: Edge = "transparent", alpha: bool = False, threads: int = 0,
-             out: PixelArray | None = None) -> PixelArray:
+             out: PixelArray | None = None, finish: str | None = None) -> PixelArray:
         """Renders `image` (read in place) through the camera, as `artcam warp` does."""
 
 class Image:
@@ -55,6 +55,8 @@ class Image:
     @property
     def channels(self) -> int: ...
 
+def finishes() -> list[tuple[str, str]]:
+    """The finishing marks warp(finish=...) applies: (name, description)."""
 def read(path: str) -> Camera:
     """Reads a .artcam file (FileNotFoundError, ValueError naming the place)."""
 def from_json(text: str, name: str = "<camera>") -> Camera:

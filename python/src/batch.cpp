@@ -13,10 +13,12 @@ namespace {
 
 // batch's options that shape a frame's pixels and encoding (cmd_batch.cpp's spec, by name).
 const std::vector<cli::OptionSpec> kFrameSpecs = {
-    {"--size", "", true},           {"--filter", "", true},      {"--edge", "", true},
-    {"--threads", "", true},        {"--quality", "", true},     {"--subsampling", "", true},
-    {"--bit-depth", "", true},      {"--colourspace", "", true}, {"--colourspace-in", "", true},
-    {"--colourspace-out", "", true}};
+    {"--size", "", true},           {"--filter", "", true},
+    {"--edge", "", true},           {"--threads", "", true},
+    {"--quality", "", true},        {"--subsampling", "", true},
+    {"--bit-depth", "", true},      {"--colourspace", "", true},
+    {"--colourspace-in", "", true}, {"--colourspace-out", "", true},
+    {"--finish", "", true}};
 
 py::list planFrames(const std::vector<std::string>& inputs, const std::string& folder,
                     const std::string& suffix, std::string format, const py::object& first,
@@ -125,7 +127,7 @@ for a malformed pattern or two inputs that would write one output.)doc");
 Warps each (input, output) file pair through `camera` exactly as `artcam batch` does (the same
 decode, render and encode: the same bytes), each output written atomically. `options` holds
 batch's keywords: size, filter, edge, threads, quality, subsampling, bit_depth, colourspace,
-colourspace_in, colourspace_out. Existing outputs are replaced (the caller decides what to
+colourspace_in, colourspace_out, finish. Existing outputs are replaced (the caller decides what to
 skip). Returns one dict per pair: input, output, status ('written' or 'failed'), error, width,
 height, render_ms, description, warning — the rows of `artcam batch --json`.)doc");
 }

@@ -128,7 +128,7 @@ Raises ValueError for a camera whose positions depend on colour or depth.)doc")
       .def("warp", &warpArray, py::arg("image"), py::kw_only(), py::arg("depth") = py::none(),
            py::arg("size") = py::none(), py::arg("filter") = "bilinear",
            py::arg("edge") = "transparent", py::arg("alpha") = false, py::arg("threads") = 0,
-           py::arg("out") = py::none(),
+           py::arg("out") = py::none(), py::arg("finish") = py::none(),
            R"doc(
 Renders `image` through the camera, as `artcam warp` renders a photo (same pixels).
 
@@ -146,6 +146,8 @@ alpha: add an alpha channel (pixels with no preimage transparent) when the image
 threads: render threads, 0 for all cores. The GIL is released while it renders.
 out: an array to render into (its shape and dtype the output's), for cameras of position
   alone: a loop over frames that reuses one output array allocates nothing.
+finish: marks after the render, as `artcam warp --finish`: 'pencil', 'charcoal', 'painting' or
+  'cartoon' (artcam.finishes()).
 
 Returns the output array (`out`, or a new one of the image's dtype). Raises ValueError for a wrong dtype or shape.)doc")
       .def("__repr__",

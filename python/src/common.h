@@ -53,6 +53,6 @@ namespace artcam::python {
 // Camera.warp (images.cpp), bound on the Camera class (cameras.cpp).
 py::array warpArray(const PyCamera& camera, const py::array& image, const py::object& depth,
                     const py::object& size, const std::string& filter, const std::string& edge,
-                    bool alpha, int threads, const py::object& out);
+                    bool alpha, int threads, const py::object& out, const py::object& finish);
 
 }  // namespace artcam::python

@@ -3,6 +3,7 @@
 // write_image, the CLI's reader and writer (orientation, metadata, ICC profile and quality kept).
 #include "app/cli/write_args.h"
 #include "core/colour/icc_profile.h"
+#include "core/effects/finish.h"
 #include "core/io/photo_metadata.h"
 #include "core/io/stored_image.h"
 #include "core/pipeline/render.h"
@@ -149,7 +150,7 @@ std::optional<ImageF> depthOf(const py::object& depth) {
 py::array warpArray(const PyCamera& self, const py::array& image, const py::object& depth_in,
                     const py::object& size, const std::string& filter_name,
                     const std::string& edge_name, bool alpha, int threads,
-                    const py::object& out_given) {
+                    const py::object& out_given, const py::object& finish) {
   const Artcam& camera = *self.camera;
   const ArrayImage in = viewOfArray(image, "image");
   RenderOptions options;
@@ -173,6 +174,12 @@ py::array warpArray(const PyCamera& self, const py::array& image, const py::obje
     options.warp.width = static_cast<int>(wh[0]);
     options.warp.height = static_cast<int>(wh[1]);
   }
+  const std::string finish_name = finish.is_none() ? std::string() : finish.cast<std::string>();
+  if (!finish_name.empty() && !finishByName(finish_name)) {
+    std::string names;
+    for (const FinishInfo& f : finishes()) names += (names.empty() ? "" : ", ") + f.name;
+    raiseValueError("finish: unknown finish \"" + finish_name + "\" (" + names + ")");
+  }
   const std::optional<ImageF> depth = depthOf(depth_in);
   if (readsDepth(camera) && !depth)
     raiseValueError(self.name + ": the camera reads depth: pass depth=");
@@ -186,6 +193,7 @@ py::array warpArray(const PyCamera& self, const py::array& image, const py::obje
   inputs.photo = in.view;
   inputs.depth = depth ? &*depth : nullptr;
   py::array out;
+  Status marked;
   try {
     if (!needsLinearPhoto(camera)) {
       // The stored numbers resampled as they are (core/render/warp.h), straight into the
@@ -215,6 +223,8 @@ py::array warpArray(const PyCamera& self, const py::array& image, const py::obje
       }
       py::gil_scoped_release release;
       render(inputs, camera, options, view, &summary);
+      // Marks on the stored values, as artcam warp --finish applies them.
+      if (!summary.cancelled && !finish_name.empty()) marked = applyFinish(view, finish_name);
     } else {
       // Colour, depth, layers or patches: the linear photo, decoded as the CLI decodes a file
       // without a profile, and the result encoded back the same way.
@@ -234,6 +244,11 @@ py::array warpArray(const PyCamera& self, const py::array& image, const py::obje
       inputs.encoding = &encoding;
       ImageF rendered = render(inputs, camera, options, &summary);
       if (!summary.cancelled) storeRgba(rendered, encoding, in.view.type, keep_alpha, data);
+      if (!summary.cancelled && !finish_name.empty())
+        marked =
+            applyFinish(packedView<void>(data, frame.size.width, frame.size.height,
+                                         keep_alpha ? 4 : 3, in.view.type, keep_alpha ? 3 : -1),
+                        finish_name);
     }
   } catch (const std::invalid_argument& e) {
     raiseValueError(self.name + ": cannot render: " + e.what());
@@ -241,6 +256,7 @@ py::array warpArray(const PyCamera& self, const py::array& image, const py::obje
     PyErr_NoMemory();
     throw py::error_already_set();
   }
+  if (!marked) raiseValueError(marked.message);
   return out;
 }
 
@@ -360,6 +376,15 @@ quality and chroma subsampling in the output, as `artcam warp` does.)doc")
         return "<artcam.Image " + std::to_string(s.width) + "x" + std::to_string(s.height) + "x" +
                std::to_string(s.channels) + " " + s.info.pixel_type + " (" + s.info.path + ")>";
       });
+  m.def(
+      "finishes",
+      [] {
+        py::list out;
+        for (const FinishInfo& f : finishes()) out.append(py::make_tuple(f.name, f.description));
+        return out;
+      },
+      "The finishing marks Camera.warp(finish=...) and artcam warp --finish apply: (name, "
+      "description) pairs.");
   m.def("read_image", &readImageFile, py::arg("path"), R"doc(
 Reads a photo as `artcam warp` does (every format OpenImageIO reads; movies refused): the stored
 numbers, upright. Raises FileNotFoundError for a missing file and ValueError naming the file and

@@ -145,3 +145,15 @@ def test_module_warp_and_frames(samples):
     np.testing.assert_array_equal(artcam.warp(str(samples / "sample.artcam"), photo), cam.warp(photo))
     assert cam.frames == {"source": cam.source_size, "target": cam.target_size}
     assert "filter" in artcam.warp.__doc__ and "no copy" in artcam.Camera.warp.__doc__
+
+
+def test_finish_equals_the_cli(samples, run_cli, tmp_path):
+    photo = artcam.read_image(str(samples / "coffee.png"))
+    cam = artcam.read(str(samples / "sample.artcam"))
+    assert "pencil" in [name for name, _ in artcam.finishes()]
+    artcam.write_image(str(tmp_path / "py.png"), cam.warp(photo.pixels, finish="pencil"), like=photo)
+    run_cli("warp", samples / "coffee.png", samples / "sample.artcam", "-o", tmp_path / "cli.png",
+            "--finish", "pencil")
+    assert (tmp_path / "py.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
+    with pytest.raises(ValueError, match="unknown finish"):
+        cam.warp(photo.pixels, finish="crayola")
