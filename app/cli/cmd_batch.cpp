@@ -34,10 +34,12 @@ namespace artcam::cli {
 
 const char* const kBatchUsage =
     "usage: artcam batch CAM.artcam IN... -o DIR [--suffix S] [--format EXT] [--first N]\n"
+    "                    [--frames LIST] [--chunk K/N] [--skip-existing]\n"
     "                    [--size WxH] [--filter nearest|bilinear|bicubic] [--threads N]\n"
     "                    [--edge transparent|extend|black] [--subsampling 444|422|420]\n"
     "                    [--quality N] [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                    [--colourspace-in NAME] [--colourspace-out NAME]\n"
+    "                    [--finish pencil|charcoal|painting|cartoon]\n"
     "                    [--overwrite] [--json] [--quiet]\n"
     "       artcam batch --lens-from-exif IN... -o DIR [options as above]\n\n"
     "Warps every IN through the camera into DIR (created if missing), as artcam warp does\n"
@@ -45,7 +47,12 @@ const char* const kBatchUsage =
     "under IN's name, with --suffix added to the name and --format EXT as the extension\n"
     "(format) if given. An IN written as a printf-style pattern, e.g. frames/f_%04d.png, is a\n"
     "frame sequence: numbers from --first N (default 0, or 1 when there is no frame 0) up to\n"
-    "the first missing frame.\n"
+    "the first missing frame, or exactly the frames of --frames (a missing one fails).\n"
+    "For a render farm: --frames 1001-1100 (x2 for every other frame; lists such as\n"
+    "1001,1010-1020) and --chunk K/N (the K-th of N contiguous slices of the files, sizes\n"
+    "differing by at most one) split a shot into tasks whose union is the whole run; every\n"
+    "output is written atomically, so a retried task is harmless, and --skip-existing lets a\n"
+    "rerun do only what is missing.\n"
     "Decoding, rendering and encoding overlap across files (about two inputs and two outputs\n"
     "in memory at a time). On a terminal stderr shows a progress bar (files done, Mpix/s,\n"
     "ETA); otherwise one line per file. A file that fails gets one error line and the rest go\n"
@@ -54,10 +61,11 @@ const char* const kBatchUsage =
     "An output that exists already is refused unless --overwrite; one that would replace an\n"
     "input (or the camera) is always refused, as are two inputs that would write one output.\n"
     "--json prints, instead of the summary line, one JSON object {files: [{input, output,\n"
-    "status (written, failed or not done), error, width, height, render_ms, description,\n"
-    "warning (when IN's aspect differs from the camera's source frame)}],\n"
-    "totals: {files, written, failed, not_done, seconds, megapixels, mpix_per_s},\n"
-    "interrupted}.\n"
+    "frame (for a pattern's frames), status (written, skipped, failed or not done), error,\n"
+    "width, height, render_ms, description, warning (when IN's aspect differs from the\n"
+    "camera's source frame)}], totals: {files, written, skipped, failed, not_done, seconds,\n"
+    "megapixels, mpix_per_s}, frames: {done, skipped, failed, not_done} (frame numbers, or\n"
+    "the input's name for a file of no pattern), chunk (with --chunk), interrupted}.\n"
     "--lens-from-exif takes no CAM.artcam: each IN is corrected by the camera artcam lens\n"
     "camera --from IN makes (its EXIF's camera, lens and focal length in the lensfun\n"
     "database, for its stored raster), one camera made per distinct camera, lens, focal\n"
@@ -70,6 +78,9 @@ const char* const kBatchUsage =
     "  --suffix S           added to each output's name before the extension (default none)\n"
     "  --format EXT         output extension, e.g. tif, png, jpg, exr (default: the input's)\n"
     "  --first N            first frame number of a pattern (default 0, else 1)\n"
+    "  --frames LIST        the frames of a pattern to do: 1001-1100, 1001-1100x2, 1001,1005\n"
+    "  --chunk K/N          only the K-th of N equal contiguous slices of the files\n"
+    "  --skip-existing      leave outputs that exist as they are (status skipped)\n"
     "  --size WxH           output size in pixels (default: the target frame scaled to IN)\n"
     "  --filter NAME        nearest, bilinear or bicubic (default bilinear)\n"
     "  --edge MODE          what the filter reads past the edge: transparent (default: the\n"
@@ -92,6 +103,7 @@ const char* const kBatchUsage =
     "  --colourspace-in NAME the OpenColorIO colour space the input is in, over what the\n"
     "                       file says (config: $OCIO, else OpenImageIO's built-in one)\n"
     "  --colourspace-out NAME the OpenColorIO colour space the output is encoded in\n"
+    "  --finish NAME        marks after the render (G'MIC), as artcam warp --finish\n"
     "  --overwrite          replace outputs that exist (--force is the same); never an input\n"
     "  --json               the results as one JSON object on stdout (above)\n"
     "  -q, --quiet          no progress and no per-file lines (errors and summary only)\n"
@@ -99,6 +111,7 @@ const char* const kBatchUsage =
     "Examples:\n"
     "  artcam batch lens.artcam shoot/*.jpg -o fixed/\n"
     "  artcam batch lens.artcam frames/f_%04d.png -o out/ --format exr --suffix _warped\n"
+    "  artcam batch lens.artcam plate.%04d.exr -o out/ --frames 1001-1100 --chunk 3/10\n"
     "  artcam batch --lens-from-exif zoom-shoot/*.jpg -o fixed/\n";
 
 namespace {
@@ -135,24 +148,17 @@ struct BatchTally {
 }  // namespace
 
 int batchCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--output", "-o", true},
-                         {"--suffix", "", true},
-                         {"--format", "", true},
-                         {"--first", "", true},
-                         {"--size", "", true},
-                         {"--filter", "", true},
-                         {"--edge", "", true},
-                         {"--threads", "", true},
-                         {"--quality", "", true},
-                         {"--subsampling", "", true},
-                         {"--bit-depth", "", true},
-                         {"--colourspace", "", true},
-                         {"--colourspace-in", "", true},
-                         {"--colourspace-out", "", true},
-                         {"--overwrite", "", false},
-                         {"--force", "", false},
-                         {"--json", "", false},
-                         {"--quiet", "-q", false},
+  const Args args(argv, {{"--output", "-o", true},       {"--suffix", "", true},
+                         {"--format", "", true},         {"--first", "", true},
+                         {"--frames", "", true},         {"--chunk", "", true},
+                         {"--skip-existing", "", false}, {"--finish", "", true},
+                         {"--size", "", true},           {"--filter", "", true},
+                         {"--edge", "", true},           {"--threads", "", true},
+                         {"--quality", "", true},        {"--subsampling", "", true},
+                         {"--bit-depth", "", true},      {"--colourspace", "", true},
+                         {"--colourspace-in", "", true}, {"--colourspace-out", "", true},
+                         {"--overwrite", "", false},     {"--force", "", false},
+                         {"--json", "", false},          {"--quiet", "-q", false},
                          {"--lens-from-exif", "", false}});
   const bool lens_from_exif = args.has("--lens-from-exif");
   // CAM.artcam comes first, unless each IN's camera comes from its EXIF.
@@ -173,21 +179,33 @@ int batchCommand(const std::vector<std::string>& argv) {
   std::optional<long> first;
   if (const auto text = args.value("--first"))
     first = static_cast<long>(parseInteger(*text, "--first", -kMaxFrameNumber, kMaxFrameNumber));
+  std::optional<std::vector<long>> frames;
+  if (const auto text = args.value("--frames")) {
+    if (first) throw UsageError("--first and --frames both say where a pattern starts; give one");
+    frames = parseFrameList(*text);
+  }
+  std::optional<BatchChunk> chunk;
+  if (const auto text = args.value("--chunk")) chunk = parseChunk(*text);
+  const bool skip_existing = args.has("--skip-existing");
+  if (skip_existing && overwriteRequested(args))
+    throw UsageError(
+        "--skip-existing keeps outputs that exist and --overwrite replaces them; "
+        "give one");
   const WarpRequest request = parseWarpRequest(args);
   const bool quiet = args.has("--quiet");
 
-  std::vector<std::string> inputs;
-  for (const std::string& in : expandBatchInputs(
+  std::vector<BatchInput> inputs;
+  for (BatchInput& in : expandBatchInputs(
            std::vector<std::string>(args.positional().begin() + static_cast<long>(first_input),
                                     args.positional().end()),
-           first)) {
+           first, frames ? &*frames : nullptr)) {
     // A hidden ".name.tmp-<pid>-<n>.ext" is an unfinished save, not a photo.
-    if (isAtomicTemporaryName(std::filesystem::path(in).filename().string())) {
+    if (isAtomicTemporaryName(std::filesystem::path(in.path).filename().string())) {
       std::fprintf(stderr, "artcam batch: skipping %s: the temporary file of an unfinished save\n",
-                   in.c_str());
+                   in.path.c_str());
       continue;
     }
-    inputs.push_back(in);
+    inputs.push_back(std::move(in));
   }
   if (inputs.empty()) throw CommandError("no input images");
   std::error_code ec;
@@ -195,12 +213,30 @@ int batchCommand(const std::vector<std::string>& argv) {
   if (!std::filesystem::is_directory(naming.folder))
     throw CommandError(naming.folder + ": cannot create the output folder" +
                        (ec ? ": " + ec.message() : std::string(": it is not a folder")));
-  const std::vector<BatchItem> items = planBatch(inputs, naming);
+  // Named over the whole shot, so every chunk's outputs are the whole run's (and clashes are
+  // found whichever chunk they fall in); then this chunk's slice.
+  std::vector<BatchItem> items = planBatch(inputs, naming);
+  if (chunk) {
+    const auto [begin, end] = chunkRange(items.size(), *chunk);
+    items = std::vector<BatchItem>(items.begin() + static_cast<long>(begin),
+                                   items.begin() + static_cast<long>(end));
+  }
+  // What this run does: every item but those --skip-existing leaves alone.
+  std::vector<size_t> todo;
+  std::vector<bool> skipped(items.size(), false);
   {
-    std::vector<std::string> outputs, read = inputs;
+    std::vector<std::string> outputs, read;
+    for (const BatchInput& in : inputs) read.push_back(in.path);
     for (const BatchItem& item : items) outputs.push_back(item.output);
     if (!lens_from_exif) read.push_back(args.positional()[0]);
-    checkOutputs(args, outputs, read);
+    // An output is never an input, skipped or not; with --skip-existing one that exists is
+    // kept instead of refused.
+    checkOutputs(outputs, read, overwriteRequested(args) || skip_existing);
+    for (size_t i = 0; i < items.size(); ++i) {
+      std::error_code exists_ec;
+      skipped[i] = skip_existing && std::filesystem::exists(items[i].output, exists_ec);
+      if (!skipped[i]) todo.push_back(i);
+    }
   }
   std::shared_ptr<const WarpCameraFile> fixed_camera;
   std::optional<BatchLensCameras> lens_cameras;
@@ -210,9 +246,11 @@ int batchCommand(const std::vector<std::string>& argv) {
     fixed_camera = std::make_shared<const WarpCameraFile>(loadWarpCamera(args.positional()[0]));
 
   const CooperativeInterrupt interrupt;
-  ProgressBar bar(static_cast<int>(items.size()), quiet);
+  ProgressBar bar(static_cast<int>(todo.size()), quiet);
   BatchTally tally;
   std::vector<FileResult> results(items.size());
+  for (size_t i = 0; i < items.size(); ++i)
+    if (skipped[i]) results[i].status = "skipped";
   auto fail = [&](size_t index, const std::string& message) {
     if (interruptRequested()) return;  // a cancelled stage is not the file's fault
     tally.failed.fetch_add(1);
@@ -240,7 +278,8 @@ int batchCommand(const std::vector<std::string>& argv) {
   BoundedQueue<Decoded> decoded(1);
   BoundedQueue<Rendered> rendered(1);
   std::thread decoder([&] {
-    for (size_t i = 0; i < items.size() && !interruptRequested(); ++i) {
+    for (size_t k = 0; k < todo.size() && !interruptRequested(); ++k) {
+      const size_t i = todo[k];
       if (!decoded.waitForSpace()) break;
       if (!guarded(i, [&] {
             std::shared_ptr<const WarpCameraFile> camera = fixed_camera;
@@ -320,14 +359,27 @@ int batchCommand(const std::vector<std::string>& argv) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int written = tally.written.load(), failed = tally.failed.load();
-  const int left = static_cast<int>(items.size()) - written - failed;
+  const int skipped_count = static_cast<int>(items.size() - todo.size());
+  const int left = static_cast<int>(todo.size()) - written - failed;
   const double mpix_per_s = seconds > 0 ? tally.megapixels.load() / seconds : 0.0;
   if (args.has("--json")) {
     nlohmann::json files = nlohmann::json::array();
+    nlohmann::json by_status = {{"done", nlohmann::json::array()},
+                                {"skipped", nlohmann::json::array()},
+                                {"failed", nlohmann::json::array()},
+                                {"not_done", nlohmann::json::array()}};
     for (size_t i = 0; i < items.size(); ++i) {
       const FileResult& f = results[i];
       nlohmann::json j = {{"input", items[i].input}, {"output", items[i].output},
                           {"status", f.status}};
+      if (items[i].frame) j["frame"] = *items[i].frame;
+      // Frames by number (a file of no pattern by its name), for a farm's task log.
+      const nlohmann::json frame =
+          items[i].frame ? nlohmann::json(*items[i].frame) : nlohmann::json(items[i].input);
+      by_status[f.status == "written"    ? "done"
+                : f.status == "not done" ? "not_done"
+                                         : f.status]
+          .push_back(frame);
       if (f.status == "failed") j["error"] = f.error;
       if (f.status == "written") {
         j["width"] = f.width;
@@ -348,22 +400,32 @@ int batchCommand(const std::vector<std::string>& argv) {
     }
     const nlohmann::json totals = {{"files", items.size()},
                                    {"written", written},
+                                   {"skipped", skipped_count},
                                    {"failed", failed},
                                    {"not_done", left},
                                    {"seconds", seconds},
                                    {"megapixels", tally.megapixels.load()},
                                    {"mpix_per_s", mpix_per_s},
                                    {"folder", naming.folder}};
-    nlohmann::json report = {
-        {"files", files}, {"totals", totals}, {"interrupted", interruptRequested()}};
+    nlohmann::json report = {{"files", files},
+                             {"totals", totals},
+                             {"frames", by_status},
+                             {"interrupted", interruptRequested()}};
+    if (chunk) report["chunk"] = {{"index", chunk->index}, {"count", chunk->count}};
     if (lens_cameras) report["totals"]["lens_cameras"] = lens_cameras->made();
     std::printf("%s\n", report.dump().c_str());
   } else {
-    std::printf(
-      "batch: %d of %zu written to %s, %d failed%s in %.1f s (%.1f Mpix/s)\n", written,
-      items.size(), naming.folder.c_str(), failed,
-      interruptRequested() ? (", " + std::to_string(left) + " not done (interrupted)").c_str() : "",
-      seconds, mpix_per_s);
+    const std::string kept =
+        skipped_count > 0 ? ", " + std::to_string(skipped_count) + " skipped (they exist)" : "";
+    const std::string slice =
+        chunk ? " (chunk " + std::to_string(chunk->index) + "/" + std::to_string(chunk->count) + ")"
+              : "";
+    std::printf("batch: %d of %zu written to %s%s%s, %d failed%s in %.1f s (%.1f Mpix/s)\n",
+                written, items.size(), naming.folder.c_str(), slice.c_str(), kept.c_str(), failed,
+                interruptRequested()
+                    ? (", " + std::to_string(left) + " not done (interrupted)").c_str()
+                    : "",
+                seconds, mpix_per_s);
     if (lens_cameras)
       std::printf("batch: %d lens camera%s made from the photos' EXIF\n", lens_cameras->made(),
                   lens_cameras->made() == 1 ? "" : "s");

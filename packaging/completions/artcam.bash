@@ -21,7 +21,7 @@ _artcam_options() {
                 --colourspace --colourspace-in --colourspace-out
                 --stats --json --overwrite --force --quiet -q --depth --depth-scale --disparity
                 --second --finish" ;;
-    batch) echo "--output -o --suffix --format --first --size --filter --edge --subsampling --threads --quality
+    batch) echo "--output -o --suffix --format --first --frames --chunk --skip-existing --finish --size --filter --edge --subsampling --threads --quality
                  --bit-depth --colourspace --colourspace-in --colourspace-out --overwrite --force --json --quiet -q
                  --lens-from-exif" ;;
     info) echo "--json" ;;

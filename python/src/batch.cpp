@@ -8,6 +8,8 @@
 #include "core/pipeline/render.h"
 #include "python/src/common.h"
 
+#include <tuple>
+
 namespace artcam::python {
 namespace {
 
@@ -23,17 +25,28 @@ const std::vector<cli::OptionSpec> kFrameSpecs = {
 py::list planFrames(const std::vector<std::string>& inputs, const std::string& folder,
                     const std::string& suffix, std::string format, const py::object& first,
                     const py::object& frames, const py::object& chunk) {
-  if (!frames.is_none() || !chunk.is_none()) raiseValueError("frames/chunk: TODO");
   std::optional<long> first_frame;
   if (!first.is_none())
-    first_frame = static_cast<long>(cli::parseInteger(py::str(first).cast<std::string>(), "--first",
+    first_frame = static_cast<long>(cli::parseInteger(py::str(first).cast<std::string>(), "first",
                                                       -cli::kMaxFrameNumber, cli::kMaxFrameNumber));
+  std::optional<std::vector<long>> frame_list;
+  if (!frames.is_none()) {
+    if (first_frame) raiseValueError("first and frames both say where a pattern starts; give one");
+    frame_list = cli::parseFrameList(py::str(frames).cast<std::string>(), "frames");
+  }
   if (!format.empty() && format.front() == '.') format.erase(0, 1);
-  const std::vector<cli::BatchItem> items =
-      cli::planBatch(cli::expandBatchInputs(inputs, first_frame), {folder, suffix, format});
+  // batch's order: named over the whole shot, then the chunk's slice (cmd_batch.cpp).
+  std::vector<cli::BatchItem> items = cli::planBatch(
+      cli::expandBatchInputs(inputs, first_frame, frame_list ? &*frame_list : nullptr),
+      {folder, suffix, format});
+  size_t begin = 0, end = items.size();
+  if (!chunk.is_none())
+    std::tie(begin, end) =
+        cli::chunkRange(items.size(), cli::parseChunk(py::str(chunk).cast<std::string>(), "chunk"));
   py::list out;
-  for (const cli::BatchItem& item : items)
-    out.append(py::make_tuple(py::none(), item.input, item.output));
+  for (size_t i = begin; i < end; ++i)
+    out.append(py::make_tuple(items[i].frame ? py::object(py::int_(*items[i].frame)) : py::none(),
+                              items[i].input, items[i].output));
   return out;
 }
 
@@ -105,9 +118,11 @@ void registerBatch(py::module_& m) {
         py::arg("suffix") = "", py::arg("format") = "", py::arg("first") = py::none(),
         py::arg("frames") = py::none(), py::arg("chunk") = py::none(), R"doc(
 The (frame, input, output) triples `artcam batch IN... -o FOLDER` would work through: a printf-style
-pattern (frames/f_%04d.exr) expanded from `first` up to the first missing frame, outputs named
-as batch names them (`suffix` added to the stem, `format` as the extension). Raises ValueError
-for a malformed pattern or two inputs that would write one output.)doc");
+pattern (frames/f_%04d.exr) expanded from `first` up to the first missing frame, or exactly the
+frames of `frames` ("1001-1100x2", batch's --frames), then the slice `chunk` ("2/4", batch's
+--chunk); outputs named as batch names them (`suffix` added to the stem, `format` as the
+extension). `frame` is None for a file of no pattern. Raises ValueError for a malformed pattern,
+frame list or chunk, and OSError for two inputs that would write one output.)doc");
   m.def(
       "check_outputs",
       [](const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,

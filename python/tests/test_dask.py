@@ -70,3 +70,18 @@ def test_existing_outputs_refused_or_skipped(client, samples, tmp_path):
     with pytest.raises(ValueError, match="--quality"):
         artcam.dask.warp_sequence(client, cam, pattern, tmp_path / "q", first=1001,
                                    quality=0)
+
+
+def test_frames_and_chunk_are_batchs(client, run_cli, samples, tmp_path):
+    pattern = make_sequence(tmp_path / "plates", count=6)
+    cam = str(samples / "sample.artcam")
+    batch = run_cli("batch", cam, pattern, "-o", tmp_path / "batch", "--frames", "1001-1006x2",
+                    "--chunk", "2/2", "--json")
+    import json
+    wanted = json.loads(batch.stdout)["frames"]["done"]
+    result = artcam.dask.warp_sequence(client, cam, pattern, tmp_path / "dask",
+                                       frames="1001-1006x2", chunk="2/2")
+    assert sorted(result.done) == wanted == [1003, 1005]
+    assert sorted(os.listdir(tmp_path / "dask")) == sorted(os.listdir(tmp_path / "batch"))
+    for name in os.listdir(tmp_path / "batch"):
+        assert (tmp_path / "batch" / name).read_bytes() == (tmp_path / "dask" / name).read_bytes()

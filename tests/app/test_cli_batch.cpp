@@ -10,10 +10,16 @@
 
 #include <QDir>
 #include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QProcess>
 #include <QTemporaryDir>
 
 #include <signal.h>
+
+#include <memory>
+#include <vector>
 
 using namespace artcam;
 using namespace artcam::test;
@@ -148,6 +154,123 @@ class TestCliBatch : public QObject {
       QVERIFY2(refused.err.contains("frame pattern"), qPrintable(refused.err));
     }
     QVERIFY(visibleFiles(path("seq-bad")).isEmpty());
+  }
+
+  // A farm's split of one shot: four --chunk K/4 tasks, run at once, write exactly the whole
+  // run's files, byte for byte, each frame by one task; a retried task is harmless
+  // (--skip-existing, --overwrite); --frames picks frames by number, with steps, and a listed
+  // frame that is missing fails as that frame.
+  void framesAndChunksForAFarm() {
+    QVERIFY(QDir().mkpath(path("shot")));
+    for (int k = 1001; k <= 1010; ++k)
+      QVERIFY(writeNoisePhoto(path(QStringLiteral("shot/p.%1.png").arg(k)), 60 + k % 3, 40));
+    const QString pattern = path("shot/p.%04d.png");
+    auto json = [](const Run& r) { return QJsonDocument::fromJson(r.out.toUtf8()).object(); };
+    auto numbers = [](const QJsonValue& v) {
+      QList<int> n;
+      for (const QJsonValue& x : v.toArray()) n.append(x.toInt());
+      return n;
+    };
+    QList<int> all;
+    for (int k = 1001; k <= 1010; ++k) all.append(k);
+
+    const Run whole = artcamCli(
+        {"batch", kCamera, pattern, "-o", path("whole"), "--frames", "1001-1010", "--json"});
+    QVERIFY2(whole.exit_code == 0, qPrintable(whole.err));
+    QCOMPARE(numbers(json(whole)["frames"].toObject()["done"]), all);
+    QCOMPARE(json(whole)["files"].toArray()[0].toObject()["frame"].toInt(), 1001);
+
+    std::vector<std::unique_ptr<QProcess>> tasks;
+    for (int k = 1; k <= 4; ++k) {
+      auto p = std::make_unique<QProcess>();
+      p->start(QStringLiteral(ARTCAM_CLI_PATH),
+               {"batch", kCamera, pattern, "-o", path("farm"), "--frames", "1001-1010", "--chunk",
+                QStringLiteral("%1/4").arg(k), "--json", "--threads", "1"});
+      tasks.push_back(std::move(p));
+    }
+    QList<int> done;
+    for (auto& p : tasks) {
+      QVERIFY(p->waitForFinished(120000));
+      QCOMPARE(p->exitCode(), 0);
+      const QJsonObject report = QJsonDocument::fromJson(p->readAllStandardOutput()).object();
+      const QList<int> mine = numbers(report["frames"].toObject()["done"]);
+      QVERIFY2(mine.size() == 2 || mine.size() == 3, qPrintable(QString::number(mine.size())));
+      done += mine;
+    }
+    QCOMPARE(done, all);  // in order, each frame once
+    QCOMPARE(visibleFiles(path("farm")), visibleFiles(path("whole")));
+    QCOMPARE(visibleFiles(path("farm")).size(), 10);
+    for (const QString& name : visibleFiles(path("whole")))
+      QVERIFY2(fileBytes(path("farm/") + name) == fileBytes(path("whole/") + name),
+               qPrintable(name));
+    QVERIFY(hiddenFiles(path("farm")).isEmpty());
+
+    // The same task again: refused without a choice, skipped or replaced with one.
+    const QStringList task2 = {"batch",    kCamera,     pattern,   "-o",  path("farm"),
+                               "--frames", "1001-1010", "--chunk", "2/4", "--json"};
+    QCOMPARE(artcamCli(task2).exit_code, 1);
+    const Run again = artcamCli(task2 + QStringList{"--skip-existing"});
+    QVERIFY2(again.exit_code == 0, qPrintable(again.err));
+    QCOMPARE(json(again)["totals"].toObject()["written"].toInt(), 0);
+    QCOMPARE(numbers(json(again)["frames"].toObject()["skipped"]), QList<int>({1003, 1004, 1005}));
+    QCOMPARE(json(again)["files"].toArray()[0].toObject()["status"].toString(), QString("skipped"));
+    const Run text = artcamCli({"batch", kCamera, pattern, "-o", path("farm"), "--frames",
+                                "1001-1010", "--chunk", "2/4", "--skip-existing"});
+    QVERIFY2(text.out.contains("0 of 3 written") && text.out.contains("3 skipped"),
+             qPrintable(text.out));
+    const QByteArray before = fileBytes(path("farm/p.1004.png"));
+    QVERIFY(QFile::remove(path("farm/p.1004.png")));
+    const Run redo = artcamCli(task2 + QStringList{"--skip-existing"});
+    QCOMPARE(numbers(json(redo)["frames"].toObject()["done"]), QList<int>({1004}));
+    QCOMPARE(fileBytes(path("farm/p.1004.png")), before);
+    QCOMPARE(artcamCli(task2 + QStringList{"--overwrite"}).exit_code, 0);
+    QCOMPARE(fileBytes(path("farm/p.1004.png")), before);
+
+    // Steps and lists; a listed frame with no file fails alone, as that frame.
+    const Run stepped = artcamCli(
+        {"batch", kCamera, pattern, "-o", path("step"), "--frames", "1001-1010x3", "--json"});
+    QVERIFY2(stepped.exit_code == 0, qPrintable(stepped.err));
+    QCOMPARE(numbers(json(stepped)["frames"].toObject()["done"]),
+             QList<int>({1001, 1004, 1007, 1010}));
+    const Run gaps = artcamCli(
+        {"batch", kCamera, pattern, "-o", path("gaps"), "--frames", "1009-1012,1002", "--json"});
+    QCOMPARE(gaps.exit_code, 1);
+    QCOMPARE(numbers(json(gaps)["frames"].toObject()["done"]), QList<int>({1009, 1010, 1002}));
+    QCOMPARE(numbers(json(gaps)["frames"].toObject()["failed"]), QList<int>({1011, 1012}));
+    QVERIFY2(gaps.err.contains("p.1011.png"), qPrintable(gaps.err));
+
+    // More slices than frames: the empty ones succeed with nothing to do.
+    const Run empty = artcamCli(
+        {"batch", kCamera, pattern, "-o", path("thin"), "--frames", "1001-1003", "--chunk", "1/5"});
+    QVERIFY2(empty.exit_code == 0 && empty.out.contains("0 of 0 written"), qPrintable(empty.out));
+
+    // Refusals name the option, in one line, before any work.
+    const QList<QStringList> refused = {{"--frames", "1010-1001"},
+                                        {"--frames", "abc"},
+                                        {"--frames", "1001x2"},
+                                        {"--frames", "1001-1010x0"},
+                                        {"--frames", "1001,"},
+                                        {"--frames", "-3-4"},
+                                        {"--frames", "10x2-20"},
+                                        {"--frames", "0-2000000000"},
+                                        {"--chunk", "0/4"},
+                                        {"--chunk", "5/4"},
+                                        {"--chunk", "2"},
+                                        {"--chunk", "a/b"},
+                                        {"--frames", "1-2", "--first", "1"},
+                                        {"--skip-existing", "--overwrite"}};
+    for (const QStringList& extra : refused) {
+      const Run r =
+          artcamCli(QStringList{"batch", kCamera, pattern, "-o", path("refused")} + extra);
+      QVERIFY2(r.exit_code == 2, qPrintable(extra.join(' ') + ": " + r.err));
+      QVERIFY2(r.err.contains(extra[0]) || r.err.contains("--first"),
+               qPrintable(extra.join(' ') + ": " + r.err));
+    }
+    const Run plain =
+        artcamCli({"batch", kCamera, path("in/a.png"), "-o", path("refused"), "--frames", "1-2"});
+    QCOMPARE(plain.exit_code, 2);
+    QVERIFY2(plain.err.contains("not one"), qPrintable(plain.err));
+    QVERIFY(visibleFiles(path("refused")).isEmpty());
   }
 
   // SIGINT once the first output is finished: exit 130, the finished outputs complete, no
