@@ -256,8 +256,16 @@ std::string listing() {
   return s;
 }
 
-// Parses "--name value" pairs against a preset's defaults.
-Params parseParams(const char* spec, const std::vector<std::string>& argv, std::string& output,
+std::string requiredOutput(const Args& args) {
+  const auto output = args.value("--output");
+  if (!output) throw UsageError("missing -o OUT");
+  checkOutputs(args, {*output}, {});
+  return *output;
+}
+
+// Parses "--name value" pairs against a preset's defaults; `output` (when asked for) gets -o's
+// file, checked as every output is.
+Params parseParams(const char* spec, const std::vector<std::string>& argv, std::string* output,
                    std::string& summary) {
   std::vector<OptionSpec> specs = {
       {"--output", "-o", true}, {"--overwrite", "", false}, {"--force", "", false}};
@@ -265,10 +273,7 @@ Params parseParams(const char* spec, const std::vector<std::string>& argv, std::
   for (const auto& [name, value] : defs) specs.push_back({"--" + name, "", true});
   const Args args(argv, specs);
   args.expectPositional(1, "NAME");
-  const auto out = args.value("--output");
-  if (!out) throw UsageError("missing -o OUT");
-  output = *out;
-  checkOutputs(args, {output}, {});
+  if (output) *output = requiredOutput(args);
   std::map<std::string, std::vector<double>> values;
   for (const auto& [name, fallback] : defs) {
     const std::string text = args.valueOr("--" + name, fallback);
@@ -317,41 +322,34 @@ Args effectArgs(const std::vector<EffectParam>& params, const std::vector<std::s
   return args;
 }
 
-std::string requiredOutput(const Args& args) {
-  const auto output = args.value("--output");
-  if (!output) throw UsageError("missing -o OUT");
-  checkOutputs(args, {*output}, {});
-  return *output;
-}
-
-// `artcam preset EFFECT [--PARAM VALUE …] [--size WxH] -o OUT` for a row of the effects table.
-int writeEffect(const EffectSpec& effect, const std::vector<std::string>& argv) {
+// `artcam preset EFFECT [--PARAM VALUE …] [--size WxH]` for a row of the effects table.
+PresetCamera makeEffect(const EffectSpec& effect, const std::vector<std::string>& argv,
+                        std::string* output) {
   const Args args = effectArgs(effect.params, argv, {{"--size", "", true}});
-  const std::string output = requiredOutput(args);
+  if (output) *output = requiredOutput(args);
   const std::string size = args.valueOr("--size", kDefaultEffectSize);
   const FrameSize frame = effectFrame(size);
   std::string summary;
   const EffectValues values = parseEffectValues(effect.params, args, summary);
-  Artcam camera;
+  PresetCamera made;
   try {
-    camera = buildEffect(effect.name, values, frame);
+    made.camera = buildEffect(effect.name, values, frame);
   } catch (const std::invalid_argument& e) {
     throw CommandError("preset " + effect.name + ": " + e.what());
   }
-  if (const Status s = writeArtcam(output, camera); !s) throw CommandError(s.message);
-  std::printf("wrote %s (%s: %ssize=%s)\n", outputName(output).c_str(), effect.name.c_str(),
-              summary.c_str(), size.c_str());
-  return 0;
+  made.summary = effect.name + ": " + summary + "size=" + size;
+  return made;
 }
 
-// `artcam preset EFFECT-3D [--PARAM VALUE …] [--object-centre X,Y,Z] [--object-radius R] -o OUT`
-// for a row of the 3D effects table.
-int writeEffect3d(const Effect3dSpec& effect, const std::vector<std::string>& argv) {
+// `artcam preset EFFECT-3D [--PARAM VALUE …] [--object-centre X,Y,Z] [--object-radius R]` for a
+// row of the 3D effects table.
+PresetCamera makeEffect3d(const Effect3dSpec& effect, const std::vector<std::string>& argv,
+                          std::string* output) {
   const std::string centre_option = std::string("--") + kObjectCentre;
   const std::string radius_option = std::string("--") + kObjectRadius;
   const Args args =
       effectArgs(effect.params, argv, {{centre_option, "", true}, {radius_option, "", true}});
-  const std::string output = requiredOutput(args);
+  if (output) *output = requiredOutput(args);
   const std::string centre = args.valueOr(centre_option, kDefaultObjectCentre);
   const std::string radius = args.valueOr(radius_option, kDefaultObjectRadius);
   ObjectFrame frame;
@@ -361,18 +359,44 @@ int writeEffect3d(const Effect3dSpec& effect, const std::vector<std::string>& ar
   frame.radius = parseNumber(radius, radius_option, 0, kUnbounded, Ends::OpenMin);
   std::string summary;
   const EffectValues values = parseEffectValues(effect.params, args, summary);
-  Camera camera;
+  PresetCamera made;
   try {
-    camera = buildEffect3d(effect.name, values, frame);
+    made.camera = Artcam(buildEffect3d(effect.name, values, frame));
   } catch (const std::invalid_argument& e) {
     throw CommandError("preset " + effect.name + ": " + e.what());
   }
-  if (const Status s = writeArtcam(output, Artcam(camera)); !s) throw CommandError(s.message);
-  std::printf("wrote %s (%s: %s%s=%s %s=%s)\n", outputName(output).c_str(), effect.name.c_str(),
-              summary.c_str(), kObjectCentre, centre.c_str(), kObjectRadius, radius.c_str());
-  if (effect.colour_layers)
-    std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
-  return 0;
+  made.summary = effect.name + ": " + summary + kObjectCentre + "=" + centre + " " + kObjectRadius +
+                 "=" + radius;
+  made.colour_layers = effect.colour_layers;
+  return made;
+}
+
+PresetCamera makePresetCamera(const std::vector<std::string>& argv, std::string* output) {
+  if (argv.empty() || argv[0].starts_with("-")) throw UsageError("missing NAME");
+  const std::string& name = argv[0];
+  for (const Preset& p : kPresets) {
+    if (name != p.name) continue;
+    std::string summary;
+    const Params params = parseParams(p.params, argv, output, summary);
+    PresetCamera made;
+    try {
+      made.camera = Artcam(p.build(params));
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("preset ") + p.name + ": " + e.what());
+    }
+    made.summary = p.name + std::string(summary.empty() ? "" : ": ") + summary;
+    return made;
+  }
+  if (const Effect3dSpec* effect = findEffect3d(name)) return makeEffect3d(*effect, argv, output);
+  if (const EffectSpec* effect = findEffect(name)) return makeEffect(*effect, argv, output);
+  std::vector<std::string> names;
+  for (const Preset& p : kPresets) names.push_back(p.name);
+  for (const Effect3dSpec& e : effect3dSpecs()) names.push_back(e.name);
+  for (const EffectSpec& e : effectSpecs()) names.push_back(e.name);
+  for (const CloudPreset& p : kCloudPresets)
+    if (name == p.name) throw UsageError("preset " + name + " makes a point cloud, not a camera");
+  throw UsageError("unknown preset \"" + name + "\" (artcam preset list shows them)",
+                   didYouMean(name, names));
 }
 
 }  // namespace
@@ -439,6 +463,20 @@ std::string presetHelp() {
   return s;
 }
 
+PresetCamera presetCamera(const std::vector<std::string>& argv) {
+  return makePresetCamera(argv, nullptr);
+}
+
+std::vector<std::string> presetCameraNames() {
+  std::vector<std::string> names;
+  for (const Preset& p : kPresets) names.push_back(p.name);
+  for (const Effect3dSpec& e : effect3dSpecs()) names.push_back(e.name);
+  for (const EffectSpec& e : effectSpecs()) names.push_back(e.name);
+  return names;
+}
+
+std::string presetListing() { return listing(); }
+
 int presetCommand(const std::vector<std::string>& argv) {
   if (argv.empty() || argv[0].starts_with("-")) throw UsageError("missing NAME");
   const std::string& name = argv[0];
@@ -447,25 +485,9 @@ int presetCommand(const std::vector<std::string>& argv) {
     return 0;
   }
   std::string output, summary;
-  for (const Preset& p : kPresets) {
-    if (name != p.name) continue;
-    const Params params = parseParams(p.params, argv, output, summary);
-    Artcam doc;
-    try {
-      doc = Artcam(p.build(params));
-    } catch (const std::invalid_argument& e) {
-      throw CommandError(std::string("preset ") + p.name + ": " + e.what());
-    }
-    if (const Status s = writeArtcam(output, doc); !s) throw CommandError(s.message);
-    std::printf("wrote %s (%s%s%s)\n", outputName(output).c_str(), p.name,
-                summary.empty() ? "" : ": ", summary.c_str());
-    return 0;
-  }
-  if (const Effect3dSpec* effect = findEffect3d(name)) return writeEffect3d(*effect, argv);
-  if (const EffectSpec* effect = findEffect(name)) return writeEffect(*effect, argv);
   for (const CloudPreset& p : kCloudPresets) {
     if (name != p.name) continue;
-    const Params params = parseParams(p.params, argv, output, summary);
+    const Params params = parseParams(p.params, argv, &output, summary);
     PointCloud cloud;
     try {
       cloud = p.build(params);
@@ -477,13 +499,12 @@ int presetCommand(const std::vector<std::string>& argv) {
                 summary.c_str());
     return 0;
   }
-  std::vector<std::string> names = {"list"};
-  for (const Preset& p : kPresets) names.push_back(p.name);
-  for (const Effect3dSpec& e : effect3dSpecs()) names.push_back(e.name);
-  for (const EffectSpec& e : effectSpecs()) names.push_back(e.name);
-  for (const CloudPreset& p : kCloudPresets) names.push_back(p.name);
-  throw UsageError("unknown preset \"" + name + "\" (artcam preset list shows them)",
-                   didYouMean(name, names));
+  const PresetCamera made = makePresetCamera(argv, &output);
+  if (const Status s = writeArtcam(output, made.camera); !s) throw CommandError(s.message);
+  std::printf("wrote %s (%s)\n", outputName(output).c_str(), made.summary.c_str());
+  if (made.colour_layers)
+    std::printf("render it with --layers rgb: each colour layer moves by its own scale\n");
+  return 0;
 }
 
 }  // namespace artcam::cli

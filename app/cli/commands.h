@@ -5,6 +5,8 @@
 // cause. Commands that write files check them first with outputs.h.
 #pragma once
 
+#include "core/model/artcam.h"
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,6 +54,18 @@ extern const char* const kRenderUsage;
 extern const char* const kPresetUsage;
 // kPresetUsage followed by the image effects of core's table (effects/effect_table.h).
 std::string presetHelp();
+
+// The camera `artcam preset NAME [--PARAM VALUE …]` makes (argv from NAME on, no -o), for
+// callers that hold it instead of writing it (the Python module); the same parsing, ranges and
+// messages. `summary` is the words the command prints after "wrote OUT".
+struct PresetCamera {
+  Artcam camera;
+  std::string summary;
+  bool colour_layers = false;  // render with --layers rgb
+};
+PresetCamera presetCamera(const std::vector<std::string>& argv);
+std::vector<std::string> presetCameraNames();  // view cameras, 3D effects, image effects
+std::string presetListing();                   // `artcam preset list`'s text
 extern const char* const kComposeUsage;
 extern const char* const kInsertUsage;
 extern const char* const kSampleUsage;

@@ -45,7 +45,7 @@ Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers
         layer.map->source_px != first.source_px || (layers.size() > 1 && layer.name.empty()))
       throw std::invalid_argument("writeStmap: layers of different frames, or an unnamed layer");
   const bool st = convention == StmapConvention::StMap;
-  const int per_layer = st ? 4 : 2;
+  const int per_layer = stmapChannelCount(convention);
   const int channels = per_layer * static_cast<int>(layers.size());
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
   // 32-bit float, never half: half keeps 11 bits, a third of a pixel at 2000 px.
@@ -65,7 +65,6 @@ Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers
   spec.attribute(kSourceWidthAttribute, first.source_px.width);
   spec.attribute(kSourceHeightAttribute, first.source_px.height);
   if (layers.size() > 1) spec.attribute(kLayersAttribute, layer_names);
-  const double w = first.source_px.width, h = first.source_px.height;
   // Rows are converted and written in bands, so the file costs no second copy of the map.
   constexpr int kBand = 64;
   std::vector<float> band(static_cast<size_t>(width) * kBand * static_cast<size_t>(channels));
@@ -78,24 +77,7 @@ Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers
                          static_cast<size_t>(channels)];
         for (const StmapLayer& layer : layers) {
           const PositionMap& map = *layer.map;
-          const size_t k = map.index(x, y);
-          const Preimage pre = map.preimage[k];
-          const double sx = map.x_px[k], sy = map.y_px[k];
-          if (st) {
-            // A = 1 only where the warp reads the photo (position_map.h). A preimage outside
-            // the photo keeps its position (the camera's geometry, which fit --stmap fits); no
-            // preimage is R = G = 0, finite.
-            if (pre != Preimage::None) {
-              p[0] = static_cast<float>(sx / w);
-              p[1] = static_cast<float>(1.0 - sy / h);
-              p[3] = pre == Preimage::InPhoto ? 1.0f : 0.0f;
-            }
-          } else {
-            // A position outside the photo reads nothing under remap's constant border, as the
-            // warp's transparent pixel; −1 marks no preimage (it too reads nothing there).
-            p[0] = pre != Preimage::None ? static_cast<float>(sx - 0.5) : -1.0f;
-            p[1] = pre != Preimage::None ? static_cast<float>(sy - 0.5) : -1.0f;
-          }
+          stmapPixel(map, map.index(x, y), convention, p);
           p += per_layer;
         }
       }

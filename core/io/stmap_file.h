@@ -55,6 +55,30 @@ struct StmapLayer {
   const PositionMap* map = nullptr;
 };
 
+// The values one pixel `k` of `map` is stored as: StMap R, G, B, A (A = 1 only where the warp
+// reads the photo, position_map.h; a preimage outside the photo keeps its position; no preimage
+// is R = G = 0), OpenCv map_x, map_y (−1 for no preimage). What writeStmap writes and the
+// Python module's export_map returns.
+inline int stmapChannelCount(StmapConvention convention) {
+  return convention == StmapConvention::StMap ? 4 : 2;
+}
+inline void stmapPixel(const PositionMap& map, size_t k, StmapConvention convention, float* p) {
+  const Preimage pre = map.preimage[k];
+  const double sx = map.x_px[k], sy = map.y_px[k];
+  const double w = map.source_px.width, h = map.source_px.height;
+  if (convention == StmapConvention::StMap) {
+    p[0] = pre != Preimage::None ? static_cast<float>(sx / w) : 0.0f;
+    p[1] = pre != Preimage::None ? static_cast<float>(1.0 - sy / h) : 0.0f;
+    p[2] = 0.0f;
+    p[3] = pre == Preimage::InPhoto ? 1.0f : 0.0f;
+  } else {
+    // A position outside the photo reads nothing under remap's constant border, as the warp's
+    // transparent pixel; −1 marks no preimage (it too reads nothing there).
+    p[0] = pre != Preimage::None ? static_cast<float>(sx - 0.5) : -1.0f;
+    p[1] = pre != Preimage::None ? static_cast<float>(sy - 0.5) : -1.0f;
+  }
+}
+
 // Writes atomically; errors name the file and the cause. Throws std::invalid_argument for no
 // layer, layers of different frames, or an unnamed layer among several.
 Status writeStmap(const std::string& path, const std::vector<StmapLayer>& layers,

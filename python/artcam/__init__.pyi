@@ -84,3 +84,53 @@ def warp_files(camera: Camera, items: Sequence[tuple[str, str]],
 
 def warp(camera: Camera | str, image: PixelArray, **options: Any) -> PixelArray:
     """camera.warp(image, **options), the camera given or read from a path."""
+
+Size = tuple[int, int]
+PathArg = str | PathLike[str]
+Report = dict[str, Any]
+
+def preset(name: str, **params: Any) -> Camera:
+    """A camera from the effects tables or a view camera, as `artcam preset NAME --PARAM V`."""
+def presets() -> list[str]:
+    """The names preset() takes."""
+def preset_listing() -> str:
+    """`artcam preset list`: every preset with its parameters, defaults and ranges."""
+def compose(first: Camera, second: Camera, *more: Camera) -> Camera:
+    """One camera applying each in turn, as `artcam compose`."""
+
+def fit(src: npt.ArrayLike | PathArg, dst: npt.ArrayLike | None = None,
+        size: Size | None = None, *, target_size: Size | None = None,
+        model: Literal["auto", "translation", "similarity", "affine", "homography",
+                       "quadratic"] = "auto",
+        robust: bool = False, threshold: float | None = None, refine: bool = True,
+        allow_poles: bool = False, enabled: Sequence[bool] | None = None
+        ) -> tuple[Camera, Report]:
+    """A camera fitted to N×2 (or N×3) matches, and `artcam fit --json`'s report."""
+def fit_lines(lines: Sequence[npt.ArrayLike] | dict[str, npt.ArrayLike] | PathArg, size: Size, *,
+              pairs_src: npt.ArrayLike | None = None, pairs_dst: npt.ArrayLike | None = None,
+              target_size: Size | None = None,
+              model: Literal["auto", "radial", "quadratic"] = "auto") -> tuple[Camera, Report]:
+    """A lens camera that straightens traced lines, as `artcam fit --lines`."""
+def fit_stmap(path: str, *, size: Size | None = None, layer: str = "",
+              model: str = "auto", robust: bool = False) -> tuple[Camera, Report]:
+    """A camera fitted to an ST map, as `artcam fit --stmap`."""
+def fit_colour(src: npt.ArrayLike, dst: npt.ArrayLike, size: Size, *,
+               model: Literal["auto", "linear", "affine", "quadratic"] = "auto",
+               robust: bool = False, threshold: float | None = None, srgb: bool = False,
+               enabled: Sequence[bool] | None = None) -> tuple[Camera, Report]:
+    """A colour camera fitted to N×3 colour samples, as `artcam fit --block colour`."""
+
+def export_map(camera: Camera, size: Size, *, convention: Literal["stmap", "opencv"] = "stmap",
+               source_size: Size | None = None,
+               path: PathArg | None = None) -> npt.NDArray[np.float32]:
+    """The camera's inverse map (H×W×4 STMap or H×W×2 cv::remap maps), as `artcam export-map`."""
+def export_project(project: str, out: str, **options: Any) -> Report:
+    """A studio project rendered into `out`, as `artcam export` (the studio's File > Export)."""
+
+def lens_search(text: str, *, limit: int = 50) -> list[dict[str, Any]]:
+    """Lenses of the lensfun database, as `artcam lens search`."""
+def lens_camera(lens: str | None = None, focal: float | None = None, size: Size | None = None,
+                *, photo: PathArg | None = None, crop: float | None = None,
+                distort: bool = False, tca: bool = True,
+                max_error: float | None = None) -> tuple[Camera, Report]:
+    """The camera correcting (or simulating) a lens, as `artcam lens camera`."""

@@ -1,5 +1,201 @@
 // SPDX-License-Identifier: Apache-2.0
+// artcam.export_map (the ST maps of `artcam export-map`, as arrays or a file) and
+// artcam.export_project (a saved studio project rendered as `artcam export` renders it).
+#include "app/cli/args.h"
+#include "app/cli/commands.h"
+#include "app/cli/memory.h"
+#include "app/cli/outputs.h"
+#include "app/cli/write_args.h"
+#include "core/io/artcam_file.h"
+#include "core/io/image_io.h"
+#include "core/io/stmap_file.h"
+#include "core/io/stored_image.h"
+#include "core/pipeline/source_maps.h"
+#include "core/project/project_render.h"
+#include "core/project/studio_project.h"
+#include "core/sampling/filter.h"
 #include "python/src/common.h"
+
+#include <filesystem>
+
 namespace artcam::python {
-void registerExports(py::module_&) {}
+namespace {
+
+FrameSize sizeArgument(const py::object& size, const char* what) {
+  const auto wh = size.cast<std::pair<long long, long long>>();
+  if (wh.first < 1 || wh.second < 1 || wh.first > (1 << 20) || wh.second > (1 << 20))
+    raiseValueError(std::string(what) + " expects (width, height) from 1 to 2^20");
+  return {static_cast<int>(wh.first), static_cast<int>(wh.second)};
+}
+
+py::array_t<float> exportMap(const PyCamera& camera, const py::object& size_in,
+                             const std::string& convention_name, const py::object& source_size,
+                             const py::object& path) {
+  const FrameSize size = sizeArgument(size_in, "size");
+  const auto convention = stmapConventionFromName(convention_name);
+  if (!convention)
+    raiseValueError("convention expects stmap or opencv, not \"" + convention_name + "\"");
+  // As export-map: the maps are held whole (9 bytes a pixel a layer), at most 2^27 pixels.
+  const long long pixels = static_cast<long long>(size.width) * size.height *
+                           static_cast<long long>(camera.camera->layers.size());
+  if (pixels > (1LL << 27))
+    raiseValueError("size is too large for a map (at most 2^27 pixels in all layers)");
+  SourceMapsOptions options;
+  if (!source_size.is_none()) options.source_px = sizeArgument(source_size, "source_size");
+  Result<SourceMaps> maps;
+  {
+    py::gil_scoped_release release;
+    maps = sourceMaps(*camera.camera, size, options);
+  }
+  if (!maps) raiseValueError(camera.name + ": " + maps.status.message);
+  const int per_layer = stmapChannelCount(*convention);
+  const size_t layers = maps->layers.size();
+  py::array_t<float> out(std::vector<py::ssize_t>{size.height, size.width,
+                                                  static_cast<py::ssize_t>(per_layer * layers)});
+  float* p = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    for (int y = 0; y < size.height; ++y)
+      for (int x = 0; x < size.width; ++x)
+        for (const SourceMapLayer& layer : maps->layers) {
+          stmapPixel(layer.map, layer.map.index(x, y), *convention, p);
+          p += per_layer;
+        }
+  }
+  if (!path.is_none()) {
+    const std::string file = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+    std::vector<StmapLayer> files;
+    for (const SourceMapLayer& layer : maps->layers) files.push_back({layer.name, &layer.map});
+    Status s;
+    {
+      py::gil_scoped_release release;
+      s = writeStmap(file, files, *convention);
+    }
+    if (!s) raiseOSError(s.message);
+  }
+  return out;
+}
+
+const std::vector<cli::OptionSpec> kExportSpecs = {
+    {"--photo", "", true},          {"--size", "", true},
+    {"--filter", "", true},         {"--edge", "", true},
+    {"--quality", "", true},        {"--subsampling", "", true},
+    {"--bit-depth", "", true},      {"--colourspace", "", true},
+    {"--colourspace-in", "", true}, {"--colourspace-out", "", true},
+    {"--crop-valid", "", false},    {"--camera-out", "", true},
+    {"--overwrite", "", false}};
+
+py::dict exportProject(const std::string& project_path, const std::string& output,
+                       const py::kwargs& keywords) {
+  const cli::Args args = argsFromKeywords(keywords, kExportSpecs);
+  ExportOptions options;
+  if (const auto size = args.value("--size")) {
+    const FrameSize s = cli::parseSizeByAspect(*size, "--size");
+    if (s.width > 0 && s.height > 0) cli::checkImageMemory(s, "--size");
+    options.width = s.width;
+    options.height = s.height;
+  }
+  if (const auto filter_name = args.value("--filter")) {
+    const auto filter = filterFromName(*filter_name);
+    if (!filter) raiseValueError("unknown filter \"" + *filter_name + "\"");
+    options.filter = *filter;
+  }
+  cli::parseWriteOptions(args, options.write);
+  ReadImageOptions read;
+  read.colour_space = cli::parseColourSpaceIn(args);
+  options.edge = cli::parseEdgeOption(args);
+  options.crop_to_valid = args.has("--crop-valid");
+  options = exportOptionsForOutput(std::move(options), output);
+
+  Result<StudioProject> project = readStudioProject(project_path);
+  if (!project) raiseReadError(project_path, project.status.message);
+  if (const auto photo = args.value("--photo")) {
+    Result<StoredShape> shape = readStoredShape(*photo);
+    if (!shape) raiseReadError(*photo, project_path + ": photo: " + shape.status.message);
+    if (const Status s =
+            checkProjectPhotoSize(*project, {shape->width, shape->height}, *photo, project_path);
+        !s)
+      raiseValueError(s.message);
+    project->photo_path = std::filesystem::absolute(*photo).string();
+  }
+  std::vector<std::string> outputs = {output};
+  const auto camera_out = args.value("--camera-out");
+  if (camera_out) outputs.push_back(*camera_out);
+  std::vector<std::string> inputs = {project_path, project->photo_path};
+  if (project->depth_map) inputs.push_back(project->depth_map->path);
+  cli::checkOutputs(outputs, inputs, args.has("--overwrite"));
+  if (std::error_code ec;
+      !args.value("--photo") && !std::filesystem::exists(project->photo_path, ec))
+    raiseOSError(project_path + ": its photo " + project->photo_path +
+                 " is missing (moved?); give its new place with photo=FILE");
+
+  Result<ProjectScene> scene;
+  RenderSummary summary;
+  ImageF out;
+  Status written;
+  std::string failure;
+  {
+    py::gil_scoped_release release;
+    scene = loadProjectScene(*project, project_path, read);
+    if (scene) {
+      const bool reads_depth = readsDepth(scene->camera.camera);
+      try {
+        out = renderExport(scene->photo, reads_depth ? &scene->depth : nullptr,
+                           scene->camera.camera, options, {}, &summary);
+        written = writeImage(output, out, &scene->photo.info, options.write);
+        if (written && camera_out) written = writeArtcam(*camera_out, scene->camera.camera);
+      } catch (const std::invalid_argument& e) {
+        failure = project_path + ": " + e.what();
+      }
+    }
+  }
+  if (!scene) raiseOSError(scene.status.message);
+  if (!failure.empty()) raiseValueError(failure);
+  if (!written) raiseOSError(written.message);
+  py::dict report;
+  report["output"] = output;
+  report["width"] = out.width;
+  report["height"] = out.height;
+  report["description"] = summary.describe();
+  report["render_ms"] = summary.render_ms;
+  report["kind"] = std::string(artcamKindName(scene->camera.camera.kind()));
+  report["effects_applied"] = scene->camera.applied.size();
+  report["effects"] = project->effects.size();
+  if (!scene->camera.note.empty()) report["warning"] = scene->camera.note;
+  if (camera_out) report["camera_out"] = *camera_out;
+  report["camera"] = PyCamera{std::make_shared<const Artcam>(scene->camera.camera), project_path};
+  return report;
+}
+
+}  // namespace
+
+void registerExports(py::module_& m) {
+  m.def("export_map", &exportMap, py::arg("camera"), py::arg("size"), py::kw_only(),
+        py::arg("convention") = "stmap", py::arg("source_size") = py::none(),
+        py::arg("path") = py::none(), R"doc(
+The camera's inverse map for a `size` = (width, height) output, as `artcam export-map` writes it:
+for each output pixel where `artcam warp` reads the photo.
+
+convention: 'stmap' (Nuke/Fusion/Resolve STMap: channels R = x / W, G = 1 - y / H, B = 0,
+  A = 1 where the pixel reads the photo) or 'opencv' (cv::remap's map_x, map_y; -1 where there
+  is no preimage).
+source_size: the photo the map will warp (default the camera's source frame).
+path: also write the map there (.exr, atomically, with the header export-map writes).
+
+Returns an H×W×C float32 array (C = 4 or 2; a per-channel camera, e.g. chromatic aberration,
+holds one map per colour channel side by side: C = 12 or 6, in R, G, B order). With the opencv
+convention `cv2.remap(photo, m[..., 0], m[..., 1], cv2.INTER_LINEAR)` warps as the camera does.
+Raises ValueError for a camera no map can carry (positions that read colour or depth, 3D).)doc");
+  m.def("export_project", &exportProject, py::arg("project"), py::arg("out"), R"doc(
+Renders a saved studio project (.artcamproj) into `out`, as `artcam export PROJECT -o OUT` does
+(the studio's File > Export: the same pixels). Keywords are export's options: photo (the photo's
+new place if it moved), size ((w, h), one side 0 for the aspect), filter, edge, quality,
+subsampling, bit_depth, colourspace, colourspace_in, colourspace_out, crop_valid, camera_out
+(also write the project's camera), overwrite.
+
+Returns a dict: output, width, height, description, render_ms, kind, effects, effects_applied,
+warning, camera (the project's camera as an artcam.Camera). Raises OSError for a missing or
+unreadable file or an output that exists, ValueError for a bad option or project.)doc");
+}
+
 }  // namespace artcam::python

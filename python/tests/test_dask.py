@@ -9,7 +9,7 @@ import artcam
 import artcam.dask
 from conftest import gradient_photo
 
-distributed = pytest.importorskip("distributed")
+import distributed  # python3-distributed (install-deps.sh): a missing peer fails, not skips
 
 
 @pytest.fixture(scope="module")
