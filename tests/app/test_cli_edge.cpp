@@ -124,6 +124,7 @@ class TestCliEdge : public QObject {
     QVERIFY2(inside.colour <= kOneStep,
              qPrintable(QString("inside the border, bilinear vs fulla: %1").arg(inside.colour)));
     const Difference e = borderDifference(extend, fulla);
+    qInfo("border, --edge extend vs fulla: colour %.3f/255, alpha %.3f/255", e.colour, e.alpha);
     QVERIFY2(
         e.colour <= kOneStep && e.alpha <= kOneStep,
         qPrintable(QString("extend vs fulla: colour %1, alpha %2").arg(e.colour).arg(e.alpha)));
