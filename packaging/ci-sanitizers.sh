@@ -75,7 +75,7 @@ asan() {
 fuzz() {
   local build="${ARTCAM_FUZZ_DIR:-$root/build-fuzz}"
   local cxx="${ARTCAM_FUZZ_CXX:-clang++-14}"
-  local names=(artcam piecewise matches_csv colour_csv ply)
+  local names=(artcam piecewise matches_csv colour_csv walls_csv ply)
   [[ "${ARTCAM_CI_FUZZ_PROJECT:-0}" == 1 ]] && names+=(project)
   CXX="$cxx" stage "fuzz configure" cmake -S "$root" -B "$build" -G Ninja \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARTCAM_FUZZ=ON -DARTCAM_BUILD_GUI=OFF \

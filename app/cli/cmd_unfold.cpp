@@ -11,6 +11,7 @@
 #include "core/io/image_io.h"
 #include "core/io/stored_image.h"
 #include "core/io/text_input.h"
+#include "core/io/walls_csv.h"
 #include "core/piecewise/unfold_walls.h"
 
 #include <nlohmann/json.hpp>
@@ -27,8 +28,9 @@ const char* const kUnfoldUsage =
     "orthogonally, and the walls lie side by side, bottom-aligned, at one scale; a piecewise\n"
     "camera whose patches are the walls (pixels outside every wall stay empty). Render it\n"
     "with artcam warp PHOTO OUT.artcam -o unfolded.png.\n"
-    "WALLS.csv has rows name,x,y: each wall's corners in the photo in order around it, its\n"
-    "first edge the wall's base (bottom-left to bottom-right), the walls left to right\n"
+    "WALLS.csv has the header wall,x,y, then rows name,x,y: each wall's corners in the photo in\n"
+    "order around it, its first edge the wall's base (bottom-left to bottom-right), the walls\n"
+    "left to right (at most 64 walls of 64 corners)\n"
     "(artcam sample stereo-house writes one). DEPTH is a depth map of PHOTO (artcam stereo),\n"
     "read as artcam warp --depth reads it.\n\n"
     "options:\n"
@@ -82,9 +84,7 @@ int unfoldCommand(const std::vector<std::string>& argv) {
   if (!shape) throw CommandError(shape.status.message);
   auto depth = readDepthFile(*args.value("--depth"));
   if (!depth) throw CommandError(depth.status.message);
-  auto text = readTextInput(*args.value("--walls"));
-  if (!text) throw CommandError(text.status.message);
-  auto walls = parseWallsCsv(*text, textInputName(*args.value("--walls")));
+  auto walls = readWallsCsv(*args.value("--walls"));
   if (!walls) throw CommandError(walls.status.message);
   UnfoldSummary summary;
   auto camera = unfoldWalls(*depth, {shape->width, shape->height}, *walls, options, &summary);

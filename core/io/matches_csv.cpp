@@ -318,16 +318,19 @@ Status writePointsCsv(const std::string& path, const std::vector<Eigen::Vector2d
 // Lines: rows `line,x,y`, one traced point per row; the rows of one line need not be
 // adjacent (a line is every row with its label, in file order), and lines keep the order in
 // which their labels first appear.
-Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::string& name) {
-  using R = Result<std::vector<LineTrace>>;
+Result<std::vector<LabelledPoints>> parseLabelledPointsCsv(std::string_view text,
+                                                           const std::string& name,
+                                                           const std::string& label_column) {
+  using R = Result<std::vector<LabelledPoints>>;
+  const std::string header_text = label_column + ",x,y";
   const std::vector<Line> lines = contentLines(text);
-  if (lines.empty()) return R::failure(name + ": empty, expected the header line,x,y");
+  if (lines.empty()) return R::failure(name + ": empty, expected the header " + header_text);
   std::vector<std::string> header;
   for (std::string_view h : splitFields(lines.front().text)) header.push_back(lower(h));
-  if (header != std::vector<std::string>{"line", "x", "y"})
-    return R::failure(name + ":" + std::to_string(lines.front().number) +
-                      ": expected the header line,x,y, found " + quoted(lines.front().text));
-  std::vector<LineTrace> out;
+  if (header != std::vector<std::string>{label_column, "x", "y"})
+    return R::failure(name + ":" + std::to_string(lines.front().number) + ": expected the header " +
+                      header_text + ", found " + quoted(lines.front().text));
+  std::vector<LabelledPoints> out;
   // Each label's place in `out`: one hash look-up per row keeps the parse linear in the rows
   // (a search of `out` per row made 200 000 one-point lines a quadratic half minute).
   std::unordered_map<std::string, size_t> index_of_label;
@@ -335,9 +338,9 @@ Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::s
     const std::string where = name + ":" + std::to_string(lines[l].number) + ": ";
     const std::vector<std::string_view> fields = splitFields(lines[l].text);
     if (fields.size() != 3)
-      return R::failure(where + "expected a line label and 2 numbers, found " +
+      return R::failure(where + "expected a " + label_column + " label and 2 numbers, found " +
                         std::to_string(fields.size()) + " fields");
-    if (fields[0].empty()) return R::failure(where + "column 1 (line): empty");
+    if (fields[0].empty()) return R::failure(where + "column 1 (" + label_column + "): empty");
     double xy[2] = {};
     for (int k = 0; k < 2; ++k) {
       const std::string column = k == 0 ? "x" : "y";
@@ -347,11 +350,20 @@ Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::s
                           error->substr(error->find(')') + 1));
     }
     const auto [at, added] = index_of_label.try_emplace(std::string(fields[0]), out.size());
-    if (added) out.push_back(LineTrace{at->first, {}, true});
+    if (added) out.push_back(LabelledPoints{at->first, {}, lines[l].number});
     out[at->second].points.emplace_back(xy[0], xy[1]);
   }
-  if (out.empty()) return R::failure(name + ": no rows after the header line,x,y");
+  if (out.empty()) return R::failure(name + ": no rows after the header " + header_text);
   return R::success(std::move(out));
+}
+
+Result<std::vector<LineTrace>> parseLinesCsv(std::string_view text, const std::string& name) {
+  auto labelled = parseLabelledPointsCsv(text, name, "line");
+  if (!labelled) return Result<std::vector<LineTrace>>::failure(labelled.status.message);
+  std::vector<LineTrace> out;
+  for (LabelledPoints& l : *labelled)
+    out.push_back(LineTrace{std::move(l.label), std::move(l.points), true});
+  return Result<std::vector<LineTrace>>::success(std::move(out));
 }
 
 Result<std::vector<LineTrace>> readLinesCsv(const std::string& path) {

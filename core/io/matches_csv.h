@@ -44,6 +44,17 @@ Result<std::vector<PointMatch>> parseMatchesCsv(std::string_view text, const std
                                                 int dimension = 2);
 Result<std::vector<PointMatch>> parseColourSamplesCsv(
     std::string_view text, const std::string& name, ColourEncoding encoding = ColourEncoding::Linear);
+// Points grouped by a label, the header `LABEL,x,y` (lines: `line`, walls: `wall`), one point
+// per row; the rows with one label, in file order, are one group, the groups in the order their
+// labels first appear. `first_line` is where a group starts, for the callers' messages.
+struct LabelledPoints {
+  std::string label;
+  std::vector<Eigen::Vector2d> points;
+  int first_line = 0;
+};
+Result<std::vector<LabelledPoints>> parseLabelledPointsCsv(std::string_view text,
+                                                           const std::string& name,
+                                                           const std::string& label_column);
 // Straight lines traced in a photo: the header `line,x,y`, one point per row (source pixels);
 // `line` is any non-empty label, and the rows with one label, in file order, are one line.
 Result<std::vector<LineTrace>> readLinesCsv(const std::string& path);

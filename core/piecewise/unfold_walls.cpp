@@ -14,8 +14,6 @@
 namespace artcam {
 namespace {
 
-constexpr int kMaxWalls = 64;
-constexpr int kMaxCorners = 64;
 constexpr int kMinDepthSamples = 50;
 
 bool inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
@@ -100,50 +98,6 @@ std::string named(const WallOutline& w, size_t i) {
 }
 
 }  // namespace
-
-Result<std::vector<WallOutline>> parseWallsCsv(const std::string& text, const std::string& where) {
-  using R = Result<std::vector<WallOutline>>;
-  std::vector<WallOutline> walls;
-  std::map<std::string, size_t> index;
-  std::istringstream in(text);
-  std::string line;
-  int row = 0;
-  while (std::getline(in, line)) {
-    ++row;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    const size_t a = line.find(','), b = a == std::string::npos ? a : line.find(',', a + 1);
-    if (b == std::string::npos || line.find(',', b + 1) != std::string::npos)
-      return R::failure(where + ":" + std::to_string(row) + ": expected name,x,y");
-    const std::string name = line.substr(0, a);
-    char* end = nullptr;
-    const std::string xs = line.substr(a + 1, b - a - 1), ys = line.substr(b + 1);
-    const double x = std::strtod(xs.c_str(), &end);
-    const bool x_ok = end && *end == '\0' && !xs.empty();
-    const double y = std::strtod(ys.c_str(), &end);
-    const bool y_ok = end && *end == '\0' && !ys.empty();
-    if (!x_ok || !y_ok) {
-      if (walls.empty() && row == 1) continue;  // a header line
-      return R::failure(where + ":" + std::to_string(row) + ": x and y must be numbers");
-    }
-    if (!std::isfinite(x) || !std::isfinite(y))
-      return R::failure(where + ":" + std::to_string(row) + ": x and y must be finite");
-    auto it = index.find(name);
-    if (it == index.end()) {
-      if (walls.size() >= static_cast<size_t>(kMaxWalls))
-        return R::failure(where + ":" + std::to_string(row) + ": more than " +
-                          std::to_string(kMaxWalls) + " walls");
-      it = index.emplace(name, walls.size()).first;
-      walls.push_back({name, {}});
-    }
-    if (walls[it->second].photo_px.size() >= static_cast<size_t>(kMaxCorners))
-      return R::failure(where + ":" + std::to_string(row) + ": more than " +
-                        std::to_string(kMaxCorners) + " corners on one wall");
-    walls[it->second].photo_px.emplace_back(x, y);
-  }
-  if (walls.empty()) return R::failure(where + ": no walls (rows name,x,y)");
-  return R::success(std::move(walls));
-}
 
 Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
                            const std::vector<WallOutline>& walls, const UnfoldOptions& options,

@@ -21,6 +21,7 @@ namespace artcam {
 
 // A wall's outline in the photo, in order around the wall, its FIRST edge the wall's base (it
 // gives the wall's horizontal: bottom-left → bottom-right); the walls left to right.
+// A wall marked on the photo (core/io/walls_csv.h reads them from a file).
 struct WallOutline {
   std::string name;
   std::vector<Eigen::Vector2d> photo_px;
@@ -48,10 +49,6 @@ struct UnfoldSummary {
   FrameSize size;  // the unfolded picture
   double px_per_unit = 0.0;
 };
-
-// Parses a walls CSV: rows "name,x,y" (a header line "wall,x,y" allowed), each wall's corners
-// in order, the walls in the order they first appear. `where` names the file in messages.
-Result<std::vector<WallOutline>> parseWallsCsv(const std::string& text, const std::string& where);
 
 // The unfolding camera for `photo` (the size of the image `depth` was measured for; the depth
 // map may be of another size, scaled to the photo's frame). Fails, naming the wall, for an

@@ -5,6 +5,6 @@ oiio("st-left.png", "--pattern", "noise:type=uniform:seed=3", "96x64", "3", "-d"
 oiio("st-other.png", "--pattern", "noise:type=uniform:seed=4", "80x64", "3", "-d", "uint8")
 oiio("st-flat.png", "--pattern", "constant:color=0.5,0.5,0.5", "96x64", "3", "-d", "uint8")
 oiio("st-depth.exr", "--pattern", "constant:color=5", "96x64", "1", "-d", "float")
-put("st-many-walls.csv", "".join("w%d,%d,1\n" % (k, k % 90) for k in range(70)).encode())
+put("st-many-walls.csv", ("wall,x,y\n" + "".join("w%d,%d,1\n" % (k, k % 90) for k in range(70))).encode())
 put("st-nan-walls.csv", b"wall,x,y\nfront,1,1\nfront,nan,5\nfront,9,9\n")
-put("st-one-wall.csv", b"front,2,2\nfront,90,2\nfront,90,60\nfront,2,60\n")
+put("st-one-wall.csv", b"wall,x,y\nfront,2,2\nfront,90,2\nfront,90,60\nfront,2,60\n")

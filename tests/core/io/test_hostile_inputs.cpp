@@ -7,8 +7,8 @@
 // The fuzz targets themselves are in fuzz/ (a clang build, docs/robustness.md, "Fuzzing").
 #include "core/io/artcam_file.h"
 #include "core/io/matches_csv.h"
-#include "core/io/artcam_file.h"
 #include "core/io/ply.h"
+#include "core/io/walls_csv.h"
 
 #include <QtTest/QtTest>
 
@@ -89,6 +89,11 @@ std::map<std::string, Reader> readers() {
       {"colour_csv",
        [](const std::string& p) {
          const auto r = readColourSamplesCsv(p, colourEncoding(slurp(p)));
+         return outcomeOf(r, r.ok() ? r->size() : 0);
+       }},
+      {"walls_csv",
+       [](const std::string& p) {
+         const auto r = readWallsCsv(p);
          return outcomeOf(r, r.ok() ? r->size() : 0);
        }},
       {"ply",

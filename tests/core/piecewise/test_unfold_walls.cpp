@@ -130,9 +130,6 @@ class TestUnfoldWalls : public QObject {
     QVERIFY(QString::fromStdString(r.status.message).contains("left to right"));
     UnfoldOptions no_focal;
     QVERIFY(!unfoldWalls(stereo_depth_, {scene_.width, scene_.height}, walls, no_focal).ok());
-    QVERIFY(!parseWallsCsv("wall,x,y\nfront,1,nope\n", "w.csv").ok());
-    QVERIFY(QString::fromStdString(parseWallsCsv("front,1,2,3\n", "w.csv").status.message)
-                .contains("w.csv:1"));
   }
 };
 
