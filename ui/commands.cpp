@@ -93,6 +93,15 @@ bool SetCameraCommand::mergeWith(const QUndoCommand* other) {
   return true;
 }
 
+SetSecondImageCommand::SetSecondImageCommand(Document* document,
+                                             std::optional<Document::SecondImage> second)
+    : document_(document), before_(document->secondImage()), after_(std::move(second)) {
+  setText(after_ ? QObject::tr("Set Second Image") : QObject::tr("Remove Second Image"));
+}
+
+void SetSecondImageCommand::redo() { document_->setSecondImage(after_); }
+void SetSecondImageCommand::undo() { document_->setSecondImage(before_); }
+
 SetEffectsCommand::SetEffectsCommand(Document* document, std::vector<EffectStep> effects,
                                      const QString& text, int gesture)
     : document_(document), before_(document->effects()), after_(std::move(effects)),

@@ -93,6 +93,19 @@ class SetCameraCommand : public QUndoCommand {
 
 // Replaces the effect stack (add, remove, reorder, a parameter edit). Parameter edits of one
 // spin-box gesture share a non-zero `gesture` and merge into one undo step.
+// Sets or removes the second image the compositing effects read.
+class SetSecondImageCommand : public QUndoCommand {
+ public:
+  SetSecondImageCommand(Document* document, std::optional<Document::SecondImage> second);
+  void redo() override;
+  void undo() override;
+
+ private:
+  Document* document_;
+  std::optional<Document::SecondImage> before_;
+  std::optional<Document::SecondImage> after_;
+};
+
 class SetEffectsCommand : public QUndoCommand {
  public:
   SetEffectsCommand(Document* document, std::vector<EffectStep> effects, const QString& text,

@@ -73,6 +73,7 @@ void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
   line_model_ = line_model;
   manual_camera_ = std::move(manual_camera);
   effects_ = std::move(effects);
+  second_.reset();
   colour_block_.reset();
   selection_.clear();
   depth_.reset(frame());
@@ -212,6 +213,14 @@ void Document::setEffects(std::vector<EffectStep> effects) {
   emit cameraChanged();
 }
 
+void Document::setSecondImage(std::optional<SecondImage> second) {
+  second_ = std::move(second);
+  composeStack();
+  assemble();
+  emit secondImageChanged();
+  emit cameraChanged();
+}
+
 void Document::onDepthChanged() {
   if (depth_.hasDepth() == has_depth_) return;
   has_depth_ = depth_.hasDepth();
@@ -280,7 +289,7 @@ void Document::applyFit(FittedCamera fitted) {
 
 void Document::composeStack() {
   const FrameSize f = frame().isImage() ? frame() : FrameSize{1, 1};
-  stack_ = composeEffectStack(effects_, f, has_depth_);
+  stack_ = composeEffectStack(effects_, f, has_depth_, second_.has_value());
 }
 
 void Document::assemble() {

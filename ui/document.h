@@ -11,6 +11,7 @@
 #include "core/fit/fit_image.h"
 #include "core/fit/fit_lines.h"
 #include "core/model/camera.h"
+#include "core/model/image.h"
 #include "core/model/line_trace.h"
 #include "ui/depth_model.h"
 #include "ui/document_fit.h"
@@ -149,6 +150,15 @@ class Document : public QObject {
   // colour, reading the depth of depth() (SetEffectsCommand edits it).
   const std::vector<EffectStep>& effects() const { return effects_; }
   void setEffects(std::vector<EffectStep> effects);
+  // The second image the compositing effects read (over, in, atop, xor, multiply, screen, …:
+  // core/colour/composite.h), laid over the photo's frame; none: those effects are left out
+  // (SetSecondImageCommand edits it; Document::reset clears it).
+  struct SecondImage {
+    QString path;                         // absolute
+    std::shared_ptr<const ImageF> image;  // linear, premultiplied RGBA, as core reads it
+  };
+  const std::optional<SecondImage>& secondImage() const { return second_; }
+  void setSecondImage(std::optional<SecondImage> second);
   // The whole camera the preview, the export, Export Camera and the project render: camera()
   // (or the whole camera set by hand), then the effects that could be applied.
   // core/project/document_camera.h makes it, the same function `artcam export` calls.
@@ -180,6 +190,7 @@ class Document : public QObject {
   void modelChanged();
   void cameraChanged();  // after every refit, even if the camera came out equal
   void effectsChanged();  // the effect stack changed (cameraChanged follows)
+  void secondImageChanged();  // a second image set or removed (cameraChanged follows)
   void selectionChanged();
 
  private:
@@ -202,6 +213,7 @@ class Document : public QObject {
   std::optional<Artcam> manual_camera_;
   std::optional<Camera> colour_block_;
   std::vector<EffectStep> effects_;
+  std::optional<SecondImage> second_;
   EffectStack stack_;  // effects_ composed; remade only when they or has_depth_ change
   DocumentArtcam whole_;
   bool has_depth_ = false;  // depth_.hasDepth() when whole_ was assembled

@@ -48,8 +48,8 @@ void ExportJob::cancel() {
 
 ImageF ExportJob::render(const LoadedImage& photo, const ImageF* depth, const Artcam& camera,
                          const ExportOptions& options, const std::function<bool(double)>& progress,
-                         RenderSummary* summary) {
-  return renderExport(photo, depth, camera, options, progress, summary);
+                         RenderSummary* summary, const ImageF* second) {
+  return renderExport(photo, depth, camera, options, progress, summary, second);
 }
 
 void ExportJob::start() {
@@ -66,13 +66,13 @@ void ExportJob::start() {
   // Everything the work reads is copied or shared here: the job never touches this object.
   job_ = runInBackground(
       this,
-      [photo = photo_, camera = camera_, path = path_, depth = depth_,
+      [photo = photo_, camera = camera_, path = path_, depth = depth_, second = second_,
        options = options_](JobContext& job) {
         RenderSummary summary;
         const ImageF out = render(
             photo->full, depth.get(), camera, options,
             [&job](double f) { return job.progress(f * 0.95); },  // the rest is writing
-            &summary);
+            &summary, second.get());
         if (summary.cancelled || job.cancelled())
           return ExportOutcome{false, tr("Export cancelled.")};
         const Status status =

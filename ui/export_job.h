@@ -32,6 +32,8 @@ class ExportJob : public QObject {
 
   // The depth block's input for cameras that read depth (before start()).
   void setDepth(std::shared_ptr<const ImageF> depth) { depth_ = std::move(depth); }
+  // The second image compositing cameras read (before start()).
+  void setSecond(std::shared_ptr<const ImageF> second) { second_ = std::move(second); }
   // Starts the export off the GUI thread (once).
   void start();
   void cancel();
@@ -40,7 +42,7 @@ class ExportJob : public QObject {
   // `artcam export` calls too. `progress` is polled between tiles (false cancels).
   static ImageF render(const LoadedImage& photo, const ImageF* depth, const Artcam& camera,
                        const ExportOptions& options, const std::function<bool(double)>& progress,
-                       RenderSummary* summary);
+                       RenderSummary* summary, const ImageF* second = nullptr);
   // The status line of a finished export: "Wrote PATH: 600×400, opaque; 1234 pixels without a
   // preimage filled (gather warp, 80 ms)".
   static QString writtenText(const QString& path, const ImageF& out, const RenderSummary& summary);
@@ -58,6 +60,7 @@ class ExportJob : public QObject {
   ExportOptions options_;
   QString path_;
   std::shared_ptr<const ImageF> depth_;
+  std::shared_ptr<const ImageF> second_;
   QPointer<BackgroundJob> job_;
 };
 

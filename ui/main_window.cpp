@@ -219,6 +219,10 @@ void MainWindow::createMenus() {
   file->addAction(tr("Load &Depth Map…"), QKeySequence(tr("Ctrl+Shift+L")), this, [this] {
     session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
   })->setToolTip(tr("A float EXR/TIFF or 16-bit PNG depth map under the painted planes"));
+  file->addAction(tr("Second &Image…"), session_, &Session::loadSecondImageDialog)
+      ->setToolTip(tr("The image the compositing effects (over, in, atop, xor, multiply, screen, "
+                      "…) combine with the photo"));
+  file->addAction(tr("Remove Second Image"), session_, &Session::removeSecondImage);
   file->addSeparator();
   file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
   // The toolbar's labels are short (the menu's say more), so both toolbars fit 1400 px.

@@ -68,6 +68,7 @@ void PreviewController::schedule() {
   if (photo->pyramid && !attributed)
     request.pyramid = std::shared_ptr<const StoredMipPyramid>(photo, photo->pyramid.get());
   if (attributed) request.depth = depth_;
+  if (attributed && document_->secondImage()) request.second = document_->secondImage()->image;
   const FrameSize size = request.pyramid
                              ? livePreviewSize(*photo)
                              : FrameSize{photo->preview.width, photo->preview.height};

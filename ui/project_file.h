@@ -55,6 +55,8 @@ struct Project {
   ViewState view;
   std::vector<DepthPlaneLayer> depth_layers;
   std::optional<DepthMapRef> depth_map;
+  // The second image the compositing effects read (absolute once read; loaded by the session).
+  std::optional<QString> second_path;
   // Named parts the studio's modes contribute (e.g. "insertion"), kept as JSON so this file
   // need not know them; written as "parts" only when there are some (version 2).
   QJsonObject parts;

@@ -46,6 +46,7 @@ QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& opt
     if (inputs.photo.empty()) inputs.photo = viewOf(*job.source);
   }
   inputs.depth = job.depth.get();
+  inputs.second = job.second.get();
   inputs.encoding = job.encoding.get();
   RenderOptions render_options;
   render_options.warp = options;

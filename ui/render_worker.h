@@ -38,6 +38,8 @@ struct RenderRequest {
   std::shared_ptr<const StoredEncoding> encoding;
   // Depth block input for cameras that read depth (core/depth/depth_raster.h form, any size).
   std::shared_ptr<const ImageF> depth;
+  // The second image compositing cameras read (RenderInputs::second), any size.
+  std::shared_ptr<const ImageF> second;
   Artcam camera;  // the document's whole camera
   // The photo's EXIF orientation (ImageInfo::stored_orientation): a camera made for the stored
   // raster is applied before the turn (core/pipeline/camera_frame.h).

@@ -3,6 +3,7 @@
 
 #include "core/io/artcam_file.h"
 #include "core/io/depth_file.h"
+#include "core/io/image_io.h"
 #include "core/io/stored_image.h"
 #include "core/project/project_render.h"
 #include "ui/autosave.h"
@@ -18,6 +19,7 @@
 #include "ui/studio_wording.h"
 
 #include <QCoreApplication>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMessageBox>
@@ -285,6 +287,7 @@ std::optional<Project> Session::currentProject() const {
   if (view_state_) p.view = view_state_();
   p.depth_layers = document_->depth()->layers();
   if (const auto& map = document_->depth()->map()) p.depth_map = DepthMapRef{map->path, map->options};
+  if (const auto& second = document_->secondImage()) p.second_path = second->path;
   for (const ProjectPart& part : parts_)
     if (const QJsonObject o = part.save(); !o.isEmpty()) p.parts[part.name] = o;
   return p;
@@ -339,6 +342,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
         // Loaded like any depth map, but as part of opening: not an undoable edit.
         readDepthMapAsync(p.depth_map->path, p.depth_map->options, /*undoable=*/false);
       }
+      if (p.second_path) readSecondImageAsync(*p.second_path, /*undoable=*/false);
       project_path_ = pending_project_path_;
       // Recovered: the file is this window's now, so no other offers it; it goes with this
       // window's next recovery write or clean save (not before the work is in the document).
@@ -602,6 +606,7 @@ void Session::exportImage(const QString& path) {
   // on the GUI thread; only such cameras pay for it).
   if (readsDepth(document_->artcam()))
     job->setDepth(std::make_shared<const ImageF>(document_->depth()->rasterise()));
+  if (const auto& second = document_->secondImage()) job->setSecond(second->image);
   export_job_ = job;
   QProgressDialog* dialog = nullptr;
   if (interactive_) {
@@ -722,6 +727,64 @@ void Session::applyDepthMap(const QString& path, const DepthFileOptions& options
   const QString message = tr("Loaded depth map %1").arg(QFileInfo(path).fileName());
   emit statusMessage(message);
   emit depthMapLoaded(true, message);
+}
+
+void Session::loadSecondImage(const QString& path) {
+  if (!document_->photo()) {
+    showError(tr("Second image"), tr("Open a photo before the image to composite with it."));
+    return;
+  }
+  const QString abs = QFileInfo(path).absoluteFilePath();
+  emit statusMessage(tr("Loading second image %1…").arg(QFileInfo(abs).fileName()));
+  readSecondImageAsync(abs, /*undoable=*/true);
+}
+
+void Session::readSecondImageAsync(const QString& path, bool undoable) {
+  const quint64 serial = photo_serial_;
+  runInBackground(
+      this, [path](JobContext&) { return readImage(QFile::encodeName(path).toStdString()); },
+      [this, path, serial, undoable](JobOutcome<Result<LoadedImage>> outcome) {
+        if (serial != photo_serial_) return;  // another photo opened meanwhile
+        if (!outcome.value || !*outcome.value) {
+          const QString message = outcome.value
+                                      ? QString::fromStdString(outcome.value->status.message)
+                                      : tr("%1: %2").arg(path, outcome.error);
+          showError(tr("Second image"), message);
+          emit secondImageLoaded(false, message);
+          return;
+        }
+        auto image = std::make_shared<const ImageF>(std::move(outcome.value->value->image));
+        // It lies over the photo's frame, as `artcam warp --second` and `artcam export` take it:
+        // another size is stretched to the photo, and said.
+        const FrameSize f = document_->frame();
+        QString message = tr("Second image %1").arg(QFileInfo(path).fileName());
+        if (image->width != f.width || image->height != f.height)
+          message += tr(" (%1×%2, stretched to the photo's %3×%4)")
+                         .arg(image->width)
+                         .arg(image->height)
+                         .arg(f.width)
+                         .arg(f.height);
+        Document::SecondImage second{path, std::move(image)};
+        if (undoable)
+          document_->undoStack()->push(new SetSecondImageCommand(document_, std::move(second)));
+        else
+          document_->setSecondImage(std::move(second));
+        emit statusMessage(message);
+        emit secondImageLoaded(true, message);
+      });
+}
+
+void Session::removeSecondImage() {
+  if (document_->secondImage())
+    document_->undoStack()->push(new SetSecondImageCommand(document_, std::nullopt));
+}
+
+void Session::loadSecondImageDialog() {
+  if (!document_->photo()) return;
+  const QString path = QFileDialog::getOpenFileName(
+      dialog_parent_, tr("Second image (composited by the colour effects)"),
+      QFileInfo(document_->photo()->path).absolutePath(), photoFilter());
+  if (!path.isEmpty()) loadSecondImage(path);
 }
 
 void Session::openCloud(const QString& path) {

@@ -111,6 +111,9 @@ class Session : public QObject {
   void cancelExport();
   // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.
   void loadDepthMap(const QString& path, const artcam::DepthFileOptions& options);
+  // The second image the compositing effects read (read off the GUI thread; undoable).
+  void loadSecondImage(const QString& path);
+  void removeSecondImage();
   // Reads a point cloud (.ply) on a worker thread for the 3D view; cloudLoaded on success.
   void openCloud(const QString& path);
   // At start-up: offers the newest recovery left by a session that did not close cleanly.
@@ -130,6 +133,7 @@ class Session : public QObject {
   void exportImageDialog();
   void exportDepthMapDialog();
   void loadDepthMapDialog(double scale, bool inverse);
+  void loadSecondImageDialog();
   void openCloudDialog();
   // Lens ▸ From Database… (session_lens.cpp): the lensfun database loaded off the GUI thread,
   // the lens dialog with the photo's EXIF suggestions, then applyLensCamera.
@@ -157,6 +161,7 @@ class Session : public QObject {
   // A project is in the document (ok), or could not be opened (the message says why).
   void projectOpened(bool ok, const QString& message);
   void depthMapLoaded(bool ok, const QString& message);
+  void secondImageLoaded(bool ok, const QString& message);
   void cloudLoaded(const artcam::ui::LoadedCloud& cloud);
   void lensCameraApplied(bool ok, const QString& message);
 
@@ -170,6 +175,7 @@ class Session : public QObject {
   void importReadArtcam(const QString& path, Artcam doc);
   void failOpen(const QString& message);
   void readDepthMapAsync(const QString& path, const DepthFileOptions& options, bool undoable);
+  void readSecondImageAsync(const QString& path, bool undoable);
   void applyDepthMap(const QString& path, const DepthFileOptions& options,
                      std::shared_ptr<const ImageF> map, bool undoable);
   void showError(const QString& title, const QString& message);

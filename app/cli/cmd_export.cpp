@@ -171,6 +171,7 @@ int exportCommand(const std::vector<std::string>& argv) {
       if (outputs[i] == outputs[k] || isSameFile(outputs[i], outputs[k]))
         throw UsageError("two outputs name the same file: " + outputs[i]);
   std::vector<std::string> inputs = {project_path, project->photo_path};
+  if (project->second_path) inputs.push_back(*project->second_path);
   if (project->depth_map) inputs.push_back(project->depth_map->path);
   checkOutputs(args, outputs, inputs);
   if (std::error_code ec;
@@ -191,10 +192,10 @@ int exportCommand(const std::vector<std::string>& argv) {
   RenderSummary summary;
   ImageF out;
   try {
-    out = renderExport(scene->photo, reads_depth ? &scene->depth : nullptr,
-                       scene->camera.camera, options,
+    out = renderExport(scene->photo, reads_depth ? &scene->depth : nullptr, scene->camera.camera,
+                       options,
                        cancelOnInterrupt([&bar](double done) { bar.stage("rendering", done); }),
-                       &summary);
+                       &summary, &scene->second);
   } catch (const std::invalid_argument& e) {
     throw CommandError(project_path + ": " + e.what());
   }

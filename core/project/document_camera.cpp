@@ -107,7 +107,7 @@ Artcam documentBase(const std::optional<Artcam>& manual, const Camera& geometry,
 }
 
 EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize frame,
-                               bool has_depth) {
+                               bool has_depth, bool has_second) {
   EffectStack out;
   auto leaveOut = [&out](size_t i, const EffectStep& step, const std::string& why) {
     if (!out.note.empty()) out.note += "; ";
@@ -126,9 +126,8 @@ EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize
                         "depth map");
       continue;
     }
-    if (spec->needs_second) {
-      leaveOut(i, step, "it composites a second image, which the studio cannot load yet (artcam "
-                        "warp --second FILE renders it)");
+    if (spec->needs_second && !has_second) {
+      leaveOut(i, step, "it composites a second image; open one (File > Second Image…)");
       continue;
     }
     try {
@@ -165,10 +164,11 @@ DocumentArtcam assembleDocumentArtcam(const Artcam& base, const EffectStack& sta
 }
 
 DocumentArtcam assembleDocumentArtcam(const Artcam& base, const std::vector<EffectStep>& effects,
-                                      FrameSize frame, bool has_depth) {
+                                      FrameSize frame, bool has_depth, bool has_second) {
   // Effects act on the picture the geometry makes: its target frame.
   const FrameSize effect_frame = base.targetSize().isImage() ? base.targetSize() : frame;
-  return assembleDocumentArtcam(base, composeEffectStack(effects, effect_frame, has_depth));
+  return assembleDocumentArtcam(base,
+                                composeEffectStack(effects, effect_frame, has_depth, has_second));
 }
 
 }  // namespace artcam

@@ -97,8 +97,9 @@ struct EffectStack {
   std::vector<int> applied;
   std::string note;
 };
+// `has_second`: the document has a second image, so compositing effects apply.
 EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize frame,
-                               bool has_depth);
+                               bool has_depth, bool has_second = false);
 
 // The whole camera: `base` (the geometry with its colour, or a whole camera set by hand), then
 // the composed stack. Composition is associative, so this is the effects applied one by one
@@ -106,6 +107,6 @@ EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize
 DocumentArtcam assembleDocumentArtcam(const Artcam& base, const EffectStack& stack);
 // Both steps at once (headless callers that assemble once).
 DocumentArtcam assembleDocumentArtcam(const Artcam& base, const std::vector<EffectStep>& effects,
-                                      FrameSize frame, bool has_depth);
+                                      FrameSize frame, bool has_depth, bool has_second = false);
 
 }  // namespace artcam

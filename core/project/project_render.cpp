@@ -94,7 +94,7 @@ ExportOptions exportOptionsForOutput(ExportOptions options, const std::string& p
 
 ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam& camera,
                     const ExportOptions& options, const std::function<bool(double)>& progress,
-                    RenderSummary* summary) {
+                    RenderSummary* summary, const ImageF* second) {
   const ImageF& photo = loaded.image;
   const StoredEncoding encoding = storedEncodingOf(loaded.info);
   RenderOptions render_options;
@@ -109,8 +109,9 @@ ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam
   // result is turned upright.
   const int turn =
       turnAfterCamera(camera, {photo.width, photo.height}, loaded.info.stored_orientation);
-  ImageF out =
-      renderTurned(RenderInputs::of(photo, depth, &encoding), camera, render_options, turn, s);
+  RenderInputs inputs = RenderInputs::of(photo, depth, &encoding);
+  inputs.second = second && !second->empty() ? second : nullptr;
+  ImageF out = renderTurned(inputs, camera, render_options, turn, s);
   if (s->cancelled || out.empty()) return out;
   if (options.crop_to_valid) {
     const ValidRect r = largestValidRect(out);
@@ -223,7 +224,13 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
   } catch (const std::exception& e) {
     return R::failure(where + ": /camera: " + e.what());
   }
-  scene.camera = assembleDocumentArtcam(base, project.effects, frame, has_depth);
+  if (project.second_path) {
+    Result<LoadedImage> second = readImage(*project.second_path);
+    if (!second) return R::failure(where + ": second image: " + second.status.message);
+    scene.second = std::move(second->image);
+  }
+  scene.camera =
+      assembleDocumentArtcam(base, project.effects, frame, has_depth, !scene.second.empty());
   if (!base_note.empty())
     scene.camera.note = base_note + (scene.camera.note.empty() ? "" : "; " + scene.camera.note);
   // As the render front door says of `warp --depth`: a map of another aspect is stretched.
@@ -231,6 +238,14 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
       !map.empty() && !stretched.empty())
     scene.camera.note = (scene.camera.note.empty() ? "" : scene.camera.note + "; ") +
                         project.depth_map->path + ": " + stretched;
+  // The second image lies over the photo's frame: another size is stretched to it, and said.
+  if (!scene.second.empty() &&
+      (scene.second.width != frame.width || scene.second.height != frame.height))
+    scene.camera.note =
+        (scene.camera.note.empty() ? "" : scene.camera.note + "; ") + "the second image " +
+        *project.second_path + " is " + std::to_string(scene.second.width) + "x" +
+        std::to_string(scene.second.height) + ", not the photo's " + std::to_string(frame.width) +
+        "x" + std::to_string(frame.height) + ": it is stretched to the photo's frame";
   return R::success(std::move(scene));
 }
 

@@ -56,9 +56,10 @@ ValidRect largestValidRect(const ImageF& image);
 // The export render: full resolution from the linear photo, resampled as `artcam warp` does (in
 // the photo's stored domain, core/pipeline/render.h, with ExportOptions::filter), then fill or
 // crop. `progress` (may be empty) is polled between tiles; false cancels (summary->cancelled).
+// `second`: the image compositing cameras read (RenderInputs::second), or null.
 ImageF renderExport(const LoadedImage& photo, const ImageF* depth, const Artcam& camera,
                     const ExportOptions& options, const std::function<bool(double)>& progress,
-                    RenderSummary* summary);
+                    RenderSummary* summary, const ImageF* second = nullptr);
 
 // A project with everything its render reads: the photo, the camera made from its pairs,
 // colour block and effect stack, and the depth of its planes and map at the photo's size.
@@ -67,6 +68,8 @@ struct ProjectScene {
   DocumentFit fit;
   DocumentArtcam camera;
   ImageF depth;  // (coverage·z, coverage) at the photo's size; empty: no depth
+  // The project's second image (linear, premultiplied RGBA) for compositing effects; empty: none.
+  ImageF second;
 };
 
 // Reads the photo and the depth map the project names. Messages name the file that failed.

@@ -337,6 +337,13 @@ StudioProject projectAt(const Json& root, const std::string& file,
     for (size_t i = 0; i < effects.size(); ++i)
       p.effects.push_back(effectStepAt(effects[i], "/effects/" + std::to_string(i)));
   }
+  if (root.contains("second")) {
+    const Json& second = objectAt(root["second"], "/second");
+    const std::string path =
+        second.contains("path") ? stringAt(second["path"], "/second/path") : "";
+    if (path.empty()) refuse("/second/path", "missing");
+    p.second_path = pathFromFile(path, project_path);
+  }
   if (root.contains("view")) p.view_json = objectAt(root["view"], "/view").dump();
   if (root.contains("parts")) p.parts_json = objectAt(root["parts"], "/parts").dump();
   if (root.contains("depth")) {
@@ -470,10 +477,11 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
   Json root;
   root["format"] = "artcam-studio-project";
   const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
-  const int version = !project.lines.empty() || project.line_model != LineModel::Auto ? 4
-                      : !project.effects.empty()                                      ? 3
-                      : has_depth || !project.parts_json.empty()                      ? 2
-                                                                                      : 1;
+  const int version = project.second_path                                               ? 5
+                      : !project.lines.empty() || project.line_model != LineModel::Auto ? 4
+                      : !project.effects.empty()                                        ? 3
+                      : has_depth || !project.parts_json.empty()                        ? 2
+                                                                                        : 1;
   root["version"] = version;
   if (!project.parts_json.empty()) root["parts"] = Json::parse(project.parts_json);
   root["photo"] = pathForFile(project.photo_path, project_path);
@@ -510,6 +518,8 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
     }
     root["effects"] = effects;
   }
+  if (project.second_path)
+    root["second"] = {{"path", pathForFile(*project.second_path, project_path)}};
   if (!project.view_json.empty()) root["view"] = Json::parse(project.view_json);
   if (has_depth) {
     Json depth;

@@ -3,7 +3,7 @@
 // artcam-studio saves and reopens and what `artcam export` renders headless, so both read a
 // project the same way.
 //
-//   { "format": "artcam-studio-project", "version": 4,
+//   { "format": "artcam-studio-project", "version": 5,
 //     "photo": "relative/or/absolute/path.png",
 //     "photo_size": [w, h],                          // optional: the photo's size when saved
 //     "model": "auto",
@@ -13,6 +13,7 @@
 //     "effects": [ {"effect": "aerial-perspective", "params": {"near": [1], …}}, … ],  // v3
 //     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true,
 //                 "role": "horizontal"}, … ],   // v4, photo px; role optional (or "vertical")
+//     "second": {"path": "over.png"},               // v5: the image compositing effects read
 //     "view": { … },                                // the studio's view state (opaque here)
 //     "depth": {                                    // optional: depth planes and map (v2)
 //       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
@@ -21,9 +22,9 @@
 //     "parts": { "colour": {…, "colour_block": {….artcam…}}, "insertion": {…} } }   // (v2)
 //
 // Versions: a file is written with the lowest version that holds everything in it (1: pairs
-// and view; 2: depth or parts; 3: an effect stack; 4: straight lines), so an older studio
-// refuses a project whose new parts it would silently drop and still opens every project it can
-// represent fully. This reader takes 1 to 4.
+// and view; 2: depth or parts; 3: an effect stack; 4: straight lines; 5: a second image), so an
+// older studio refuses a project whose new parts it would silently drop and still opens every
+// project it can represent fully. This reader takes 1 to 5.
 //
 // Decisions:
 // - "photo_size" records the size the pairs, lines and masks were made on, so a photo located
@@ -63,7 +64,7 @@
 
 namespace artcam {
 
-inline constexpr int kProjectFormatVersion = 4;  // the newest this code reads and writes
+inline constexpr int kProjectFormatVersion = 5;   // the newest this code reads and writes
 inline constexpr int kMaxDepthAnchors = 3;        // a plane in inverse depth needs three
 // An effect stack longer than this is refused: each effect composes with the camera so far,
 // so a stack's work grows faster than its length, and no picture needs hundreds of effects.
@@ -101,6 +102,10 @@ struct StudioProject {
   std::vector<EffectStep> effects;  // applied in order after the geometry and colour
   std::vector<ProjectDepthLayer> depth_layers;
   std::optional<ProjectDepthMap> depth_map;
+  // The second image the colour block's compositing operators read (over, in, atop, xor,
+  // multiply, screen, …: core/colour/composite.h), laid over the photo's frame ("second":
+  // {"path": …}); absolute once read. None: compositing effects are left out.
+  std::optional<std::string> second_path;
   std::string view_json;   // the "view" object as JSON text; empty: none
   std::string parts_json;  // the "parts" object as JSON text; empty: none
 };

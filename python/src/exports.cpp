@@ -122,6 +122,7 @@ py::dict exportProject(const std::string& project_path, const std::string& outpu
   const auto camera_out = args.value("--camera-out");
   if (camera_out) outputs.push_back(*camera_out);
   std::vector<std::string> inputs = {project_path, project->photo_path};
+  if (project->second_path) inputs.push_back(*project->second_path);
   if (project->depth_map) inputs.push_back(project->depth_map->path);
   cli::checkOutputs(outputs, inputs, args.has("--overwrite"));
   if (std::error_code ec;
@@ -141,7 +142,7 @@ py::dict exportProject(const std::string& project_path, const std::string& outpu
       const bool reads_depth = readsDepth(scene->camera.camera);
       try {
         out = renderExport(scene->photo, reads_depth ? &scene->depth : nullptr,
-                           scene->camera.camera, options, {}, &summary);
+                           scene->camera.camera, options, {}, &summary, &scene->second);
         written = writeImage(output, out, &scene->photo.info, options.write);
         if (written && camera_out) written = writeArtcam(*camera_out, scene->camera.camera);
       } catch (const std::invalid_argument& e) {

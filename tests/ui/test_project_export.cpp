@@ -3,6 +3,7 @@
 // (coffee.png, two painted depth planes, aerial perspective then depth of field) opened in the
 // studio shows a preview that matches its full-resolution export scaled down; saved and reopened
 // it exports the same pixels; and `artcam export` on the saved file writes those pixels too.
+#include "core/colour/composite.h"
 #include "core/io/image_io.h"
 #include "tests/app/cli_run.h"
 #include "tests/ui/session_wait.h"
@@ -20,6 +21,7 @@
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -125,6 +127,98 @@ class TestProjectExport : public QObject {
     // pixel is a second code (23 of 720 000 values on this photo).
     QVERIFY2(worst <= 2 && over * 10000 < compared * 3,
              qPrintable(QString("canvas vs export: worst %1 codes, %2 values over 1").arg(worst).arg(over)));
+  }
+
+  // The colour block's compositing in the studio: a project with a second image and a screen
+  // effect shows, exports and saves the screen of the photo and the second image, A + B − A·B
+  // in linear light per pixel (computed here from the two files, not by the renderer), and
+  // `artcam export` of the saved project writes the same pixels; removing the second image
+  // (undoably) leaves the effect out, saying why.
+  void compositingWithASecondImage() {
+    ImageF second(600, 400, 3);
+    for (int y = 0; y < 400; ++y)
+      for (int x = 0; x < 600; ++x) {
+        float* p = second.pixel(x, y);
+        p[0] = 0.6f * x / 600.0f;
+        p[1] = 0.4f * y / 400.0f;
+        p[2] = 0.25f;
+      }
+    QVERIFY(writeImage(dir_.filePath("second.png").toStdString(), second).ok);
+    const auto& ops = compositeOpNames();
+    const int screen = static_cast<int>(std::find(ops.begin(), ops.end(), "screen") - ops.begin());
+    QVERIFY(screen < static_cast<int>(ops.size()));
+    QFile project(dir_.filePath("screen.artcamproj"));
+    QVERIFY(project.open(QIODevice::WriteOnly));
+    project.write(QStringLiteral(R"({"format": "artcam-studio-project", "version": 5,
+      "photo": "coffee.png", "model": "auto", "pairs": [],
+      "effects": [{"effect": "composite", "params": {"op": [%1], "amount": [1]}}],
+      "second": {"path": "second.png"}})")
+                      .arg(screen)
+                      .toUtf8());
+    project.close();
+
+    MainWindow window;
+    window.session()->setInteractive(false);
+    window.session()->openProject(dir_.filePath("screen.artcamproj"));
+    Document* doc = window.document();
+    QVERIFY(QTest::qWaitFor([doc] { return doc->photo() && doc->secondImage(); }, 30000));
+    QVERIFY(QTest::qWaitFor([doc] { return doc->photo()->hasFullImage(); }, 30000));
+    QVERIFY(artcam::ui::test::waitForNewestPreview(*window.preview()));
+    QVERIFY2(doc->artcamNote().empty(), doc->artcamNote().c_str());
+    RenderSummary summary;
+    const ImageF shown = ExportJob::render(doc->photo()->full, nullptr, doc->artcam(), {}, {},
+                                           &summary, doc->secondImage()->image.get());
+    const Result<LoadedImage> a = readImage(dir_.filePath("coffee.png").toStdString());
+    const Result<LoadedImage> b = readImage(dir_.filePath("second.png").toStdString());
+    QVERIFY(a.ok() && b.ok());
+    double worst = 0.0, moved = 0.0;
+    for (int y = 0; y < 400; y += 7)
+      for (int x = 0; x < 600; x += 7)
+        for (int c = 0; c < 3; ++c) {
+          const double pa = a->image.pixel(x, y)[c], pb = b->image.pixel(x, y)[c];
+          const double truth = pa + pb - pa * pb;
+          worst = std::max(worst, std::abs(shown.pixel(x, y)[c] - truth));
+          moved = std::max(moved, std::abs(truth - pa));
+        }
+    qInfo("screen in the studio's export vs A + B - A*B: max %.2e (the effect moves %.3f)", worst,
+          moved);
+    QVERIFY2(worst < 1e-4, qPrintable(QString::number(worst)));
+    QVERIFY(moved > 0.2);
+    // The preview shows it: close to the export scaled down, far from the plain photo.
+    const QImage preview = window.preview()->image();
+    const QImage scaled =
+        qimageFromLinear(boxDownscale(shown, std::max(preview.width(), preview.height())));
+    const double off = artcam::ui::test::meanDifference(scaled, preview);
+    const double plain = artcam::ui::test::meanDifference(
+        qimageFromLinear(boxDownscale(doc->photo()->full.image, scaled.width())), preview);
+    QVERIFY2(off < 3.0 && plain > 4 * off + 2.0,
+             qPrintable(QString("preview vs export %1, vs photo %2").arg(off).arg(plain)));
+
+    // Saved, the project keeps the second image; the CLI exports the same pixels.
+    const QString saved = dir_.filePath("screen-saved.artcamproj");
+    QVERIFY(ui::test::saveAndWait(*window.session(), saved));
+    QFile back(saved);
+    QVERIFY(back.open(QIODevice::ReadOnly));
+    QVERIFY(back.readAll().contains("\"second\""));
+    const QString out = dir_.filePath("screen.exr");
+    const artcam::test::CliRun r =
+        artcam::test::artcamCli({"export", saved, "-o", out, "--bit-depth", "float"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    const Result<LoadedImage> cli = readImage(out.toStdString());
+    QVERIFY(cli.ok());
+    double cli_worst = 0.0;
+    for (size_t i = 0; i < shown.data.size(); ++i)
+      cli_worst =
+          std::max(cli_worst, static_cast<double>(std::abs(cli->image.data[i] - shown.data[i])));
+    QVERIFY2(cli_worst < 1e-6, qPrintable(QString("CLI differs by %1").arg(cli_worst)));
+
+    // Removed: the effect is left out and the note says why; undo brings it back.
+    window.session()->removeSecondImage();
+    QVERIFY(!doc->secondImage());
+    QVERIFY2(QString::fromStdString(doc->artcamNote()).contains("second image"),
+             doc->artcamNote().c_str());
+    doc->undoStack()->undo();
+    QVERIFY(doc->secondImage() && doc->artcamNote().empty());
   }
 
   void saveReopenExportGivesTheSamePixels() {

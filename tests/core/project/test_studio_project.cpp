@@ -97,8 +97,18 @@ class TestStudioProject : public QObject {
     QVERIFY(studioProjectToJson(p, "/x/a.artcamproj").find("\"version\": 3") != std::string::npos);
     p.lines = {LineTrace{"1", {{1, 2}, {3, 4}, {5, 7}}, true}};
     QVERIFY(studioProjectToJson(p, "/x/a.artcamproj").find("\"version\": 4") != std::string::npos);
+    // A second image (the compositing effects' input): version 5, its path relative beneath the
+    // project's folder and absolute once read.
+    p.second_path = "/x/layers/over.png";
+    const std::string with_second = studioProjectToJson(p, "/x/a.artcamproj");
+    QVERIFY(with_second.find("\"version\": 5") != std::string::npos);
+    QVERIFY2(with_second.find("\"path\": \"layers/over.png\"") != std::string::npos,
+             with_second.c_str());
+    const Result<StudioProject> back = parseStudioProject(with_second, "/x/a.artcamproj");
+    QVERIFY2(back.ok(), back.status.message.c_str());
+    QCOMPARE(back->second_path.value_or(""), std::string("/x/layers/over.png"));
     const Result<StudioProject> newer = parseStudioProject(
-        R"({"format":"artcam-studio-project","version":5,"photo":"p.png"})", "/d/n.artcamproj");
+        R"({"format":"artcam-studio-project","version":6,"photo":"p.png"})", "/d/n.artcamproj");
     QVERIFY(!newer.ok());
     QVERIFY2(newer.status.message.find("n.artcamproj: written by a newer ARTcam Studio") == 0,
              newer.status.message.c_str());
@@ -132,6 +142,8 @@ class TestStudioProject : public QObject {
          "x.artcamproj: /lines/0/points/1/1: 4000000000000.0 is beyond any pixel coordinate"},
         {R"("lines":[{"label":"a","points":[[1,2]],"enabled":1}]})",
          "x.artcamproj: /lines/0/enabled: expected true or false"},
+        {R"("second":{"path":""}})", "x.artcamproj: /second/path: missing"},
+        {R"("second":"over.png"})", "x.artcamproj: /second: expected an object"},
     };
     for (const auto& [rest, want] : cases) {
       const std::string got = refusal(rest);
