@@ -102,6 +102,15 @@ SetSecondImageCommand::SetSecondImageCommand(Document* document,
 void SetSecondImageCommand::redo() { document_->setSecondImage(after_); }
 void SetSecondImageCommand::undo() { document_->setSecondImage(before_); }
 
+SetFinishCommand::SetFinishCommand(Document* document, std::string finish)
+    : document_(document), before_(document->finish()), after_(std::move(finish)) {
+  setText(after_.empty() ? QObject::tr("Remove Finish")
+                         : QObject::tr("Finish: %1").arg(QString::fromStdString(after_)));
+}
+
+void SetFinishCommand::redo() { document_->setFinish(after_); }
+void SetFinishCommand::undo() { document_->setFinish(before_); }
+
 SetEffectsCommand::SetEffectsCommand(Document* document, std::vector<EffectStep> effects,
                                      const QString& text, int gesture)
     : document_(document), before_(document->effects()), after_(std::move(effects)),

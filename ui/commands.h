@@ -106,6 +106,19 @@ class SetSecondImageCommand : public QUndoCommand {
   std::optional<Document::SecondImage> after_;
 };
 
+// Sets the finish (the marks after the render), "" for none.
+class SetFinishCommand : public QUndoCommand {
+ public:
+  SetFinishCommand(Document* document, std::string finish);
+  void redo() override;
+  void undo() override;
+
+ private:
+  Document* document_;
+  std::string before_;
+  std::string after_;
+};
+
 class SetEffectsCommand : public QUndoCommand {
  public:
   SetEffectsCommand(Document* document, std::vector<EffectStep> effects, const QString& text,

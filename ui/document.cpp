@@ -74,6 +74,7 @@ void Document::reset(PhotoPtr photo, std::vector<Pair> pairs, ModelClass model,
   manual_camera_ = std::move(manual_camera);
   effects_ = std::move(effects);
   second_.reset();
+  finish_.clear();
   colour_block_.reset();
   selection_.clear();
   depth_.reset(frame());
@@ -219,6 +220,12 @@ void Document::setSecondImage(std::optional<SecondImage> second) {
   assemble();
   emit secondImageChanged();
   emit cameraChanged();
+}
+
+void Document::setFinish(std::string finish) {
+  if (finish == finish_) return;
+  finish_ = std::move(finish);
+  emit finishChanged();
 }
 
 void Document::onDepthChanged() {

@@ -159,6 +159,10 @@ class Document : public QObject {
   };
   const std::optional<SecondImage>& secondImage() const { return second_; }
   void setSecondImage(std::optional<SecondImage> second);
+  // Marks after the render (core/effects/finish.h: pencil, charcoal, painting, cartoon) by
+  // name, "" for none: the preview, the export and the project draw them (SetFinishCommand).
+  const std::string& finish() const { return finish_; }
+  void setFinish(std::string finish);
   // The whole camera the preview, the export, Export Camera and the project render: camera()
   // (or the whole camera set by hand), then the effects that could be applied.
   // core/project/document_camera.h makes it, the same function `artcam export` calls.
@@ -191,6 +195,7 @@ class Document : public QObject {
   void cameraChanged();  // after every refit, even if the camera came out equal
   void effectsChanged();  // the effect stack changed (cameraChanged follows)
   void secondImageChanged();  // a second image set or removed (cameraChanged follows)
+  void finishChanged();       // the finish changed (the camera did not)
   void selectionChanged();
 
  private:
@@ -214,6 +219,7 @@ class Document : public QObject {
   std::optional<Camera> colour_block_;
   std::vector<EffectStep> effects_;
   std::optional<SecondImage> second_;
+  std::string finish_;
   EffectStack stack_;  // effects_ composed; remade only when they or has_depth_ change
   DocumentArtcam whole_;
   bool has_depth_ = false;  // depth_.hasDepth() when whole_ was assembled

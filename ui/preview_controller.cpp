@@ -15,6 +15,7 @@ PreviewController::PreviewController(Document* document, QObject* parent)
   // The same camera over the full photo's copies; the first look's picture stays up until the
   // new one arrives, so the swap shows no gap.
   connect(document_, &Document::photoRefined, this, &PreviewController::schedule);
+  connect(document_, &Document::finishChanged, this, &PreviewController::schedule);
   // Document::reset emits cameraChanged too, so a new photo is covered.
   // Queued: the worker emits from its own thread; values cross by copy.
   connect(&worker_, &RenderWorker::rendered, this, &PreviewController::onRendered,
@@ -69,6 +70,7 @@ void PreviewController::schedule() {
     request.pyramid = std::shared_ptr<const StoredMipPyramid>(photo, photo->pyramid.get());
   if (attributed) request.depth = depth_;
   if (attributed && document_->secondImage()) request.second = document_->secondImage()->image;
+  request.finish = document_->finish();
   const FrameSize size = request.pyramid
                              ? livePreviewSize(*photo)
                              : FrameSize{photo->preview.width, photo->preview.height};

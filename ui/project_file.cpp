@@ -29,6 +29,7 @@ StudioProject toCore(const Project& p) {
   for (const DepthPlaneLayer& l : p.depth_layers) c.depth_layers.push_back({str(l.name), l.mask, l.anchors});
   if (p.depth_map) c.depth_map = ProjectDepthMap{str(p.depth_map->path), p.depth_map->options};
   if (p.second_path) c.second_path = str(*p.second_path);
+  c.finish = p.finish;
   QJsonObject view;
   view["scale"] = p.view.scale;
   view["centre"] = QJsonArray{p.view.centre.x(), p.view.centre.y()};
@@ -105,6 +106,7 @@ Result<Project> fromCore(StudioProject c, const std::string& name) {
     p.depth_layers.push_back({qstr(l.name), std::move(l.mask), std::move(l.anchors)});
   if (c.depth_map) p.depth_map = DepthMapRef{qstr(c.depth_map->path), c.depth_map->options};
   if (c.second_path) p.second_path = qstr(*c.second_path);
+  p.finish = c.finish;
   if (const Status view = readView(c.view_json, name, p.view); !view)
     return Result<Project>::failure(view.message);
   if (!c.parts_json.empty())

@@ -57,6 +57,7 @@ struct Project {
   std::optional<DepthMapRef> depth_map;
   // The second image the compositing effects read (absolute once read; loaded by the session).
   std::optional<QString> second_path;
+  std::string finish;  // marks after the render, "" for none
   // Named parts the studio's modes contribute (e.g. "insertion"), kept as JSON so this file
   // need not know them; written as "parts" only when there are some (version 2).
   QJsonObject parts;

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/render_worker.h"
 
+#include "core/effects/finish.h"
 #include "core/pipeline/camera_frame.h"
 #include "core/pipeline/render.h"
 #include "ui/image_convert.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace artcam::ui {
@@ -52,14 +54,21 @@ QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& opt
   render_options.warp = options;
   RenderSummary rs;
   QImage image;
-  if (use_pyramid && !needsLinearPhoto(camera)) {
+  if (use_pyramid && !needsLinearPhoto(camera) && job.finish.empty()) {
     image = QImage(options.width, options.height, QImage::Format_RGBA8888_Premultiplied);
     ImageView view = packedView<void>(image.bits(), image.width(), image.height(), 4,
                                       PixelType::UInt8, /*alpha_channel=*/3);
     view.row_bytes = image.bytesPerLine();
     renderTurned(inputs, camera, render_options, turn, view, &rs);
   } else {
-    const ImageF out = renderTurned(inputs, camera, render_options, turn, &rs);
+    ImageF out = renderTurned(inputs, camera, render_options, turn, &rs);
+    if (!rs.cancelled && !job.finish.empty()) {
+      const StoredEncoding linear;
+      if (const Status marked =
+              applyFinishLinear(out, job.encoding ? *job.encoding : linear, job.finish);
+          !marked)
+        throw std::runtime_error(marked.message);
+    }
     if (!rs.cancelled) image = qimageFromLinear(out);
   }
   if (summary) {

@@ -40,6 +40,9 @@ struct RenderRequest {
   std::shared_ptr<const ImageF> depth;
   // The second image compositing cameras read (RenderInputs::second), any size.
   std::shared_ptr<const ImageF> second;
+  // Marks after the render (core/effects/finish.h), by name; empty: none. Drawn on the pass's
+  // own pixels, as the export draws them on its own (so at another scale on a bigger photo).
+  std::string finish;
   Artcam camera;  // the document's whole camera
   // The photo's EXIF orientation (ImageInfo::stored_orientation): a camera made for the stored
   // raster is applied before the turn (core/pipeline/camera_frame.h).

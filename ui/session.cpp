@@ -288,6 +288,7 @@ std::optional<Project> Session::currentProject() const {
   p.depth_layers = document_->depth()->layers();
   if (const auto& map = document_->depth()->map()) p.depth_map = DepthMapRef{map->path, map->options};
   if (const auto& second = document_->secondImage()) p.second_path = second->path;
+  p.finish = document_->finish();
   for (const ProjectPart& part : parts_)
     if (const QJsonObject o = part.save(); !o.isEmpty()) p.parts[part.name] = o;
   return p;
@@ -343,6 +344,7 @@ void Session::startLoading(const QString& photo_path, std::optional<Project> pro
         readDepthMapAsync(p.depth_map->path, p.depth_map->options, /*undoable=*/false);
       }
       if (p.second_path) readSecondImageAsync(*p.second_path, /*undoable=*/false);
+      document_->setFinish(p.finish);
       project_path_ = pending_project_path_;
       // Recovered: the file is this window's now, so no other offers it; it goes with this
       // window's next recovery write or clean save (not before the work is in the document).
@@ -600,8 +602,10 @@ void Session::exportImage(const QString& path) {
     });
     return;
   }
-  auto* job = new ExportJob(document_->photo(), document_->artcam(), path,
-                            exportOptionsForFile(export_options_, path), this);
+  ExportOptions options = exportOptionsForFile(export_options_, path);
+  options.finish = document_->finish();  // the document's, not a remembered export setting
+  auto* job =
+      new ExportJob(document_->photo(), document_->artcam(), path, std::move(options), this);
   // A camera with a depth block reads the painted depth (rasterised here: the depth model lives
   // on the GUI thread; only such cameras pay for it).
   if (readsDepth(document_->artcam()))

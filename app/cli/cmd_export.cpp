@@ -31,6 +31,7 @@ const char* const kExportUsage =
     "                     [--bit-depth 8|16|half|float] [--colourspace input|srgb]\n"
     "                     [--colourspace-in NAME] [--colourspace-out NAME]\n"
     "                     [--crop-valid | --fill R,G,B[,A]]\n"
+    "                     [--finish pencil|charcoal|painting|cartoon|none]\n"
     "                     [--json] [--quiet] [--overwrite]\n\n"
     "Renders a project saved by ARTcam Studio at the photo's full resolution, exactly as the\n"
     "studio's File > Export Warped Image does: the camera fitted from the project's point pairs\n"
@@ -69,6 +70,8 @@ const char* const kExportUsage =
     "  --colourspace-in NAME  the OpenColorIO colour space the photo is in, over what the file\n"
     "                         says (config: $OCIO, else OpenImageIO's built-in one)\n"
     "  --colourspace-out NAME the OpenColorIO colour space OUT is encoded in\n"
+    "  --finish NAME          marks after the render (G'MIC), over the project's own finish\n"
+    "                         (the studio's Effects > Finish); none: without it\n"
     "  --crop-valid           crop to the largest rectangle whose every pixel has a preimage\n"
     "  --fill R,G,B[,A]       linear colour under pixels without a preimage (default: none,\n"
     "                         they stay transparent; a JPEG, which has no alpha, is filled\n"
@@ -117,6 +120,7 @@ int exportCommand(const std::vector<std::string>& argv) {
                          {"--colourspace-out", "", true},
                          {"--crop-valid", "", false},
                          {"--fill", "", true},
+                         {"--finish", "", true},
                          {"--json", "", false},
                          {"--overwrite", "", false},
                          {"--force", "", false},
@@ -146,10 +150,12 @@ int exportCommand(const std::vector<std::string>& argv) {
     options.fill = parseFill(*fill);
   }
   options = exportOptionsForOutput(std::move(options), *output);  // a JPEG is filled white
+  const std::optional<std::string> finish = parseFinishOption(args, /*allow_none=*/true);
 
   const std::string& project_path = args.positional()[0];
   Result<StudioProject> project = readStudioProject(project_path);
   if (!project) throw CommandError(project.status.message);
+  options.finish = finish.value_or(project->finish);
   if (const auto photo = args.value("--photo")) {
     // Checked from the header before anything is laid on it: another size would put the
     // pairs and masks on the wrong pixels.

@@ -183,17 +183,7 @@ WarpRequest parseWarpRequest(const Args& args) {
   parseWriteOptions(args, request.write);  // every usage error before a file is read
   request.colour_space_in = parseColourSpaceIn(args);
   request.stats = args.has("--stats");
-  if (const auto finish = args.value("--finish")) {
-    if (!finishByName(*finish)) {
-      std::vector<std::string> names;
-      for (const FinishInfo& f : finishes()) names.push_back(f.name);
-      std::string list;
-      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-      throw UsageError("unknown --finish \"" + *finish + "\" (" + list + ")",
-                       didYouMean(*finish, names));
-    }
-    request.finish = *finish;
-  }
+  if (const auto finish = parseFinishOption(args)) request.finish = *finish;
   // Nothing is printed here: the files read are reported with the result (WarpRequest::inputs),
   // so standard output carries only the image or the one JSON object.
   if (const auto path = args.value("--depth")) {
@@ -400,12 +390,7 @@ RenderedOutput renderForWarp(const WarpCameraFile& given, DecodedInput&& input,
       if (out.stored) {
         marked = applyFinish(out.stored->view(), request.finish);
       } else if (out.image) {
-        const StoredEncoding encoding = storedEncodingOf(out.like);
-        ImageF& image = *out.image;
-        const size_t pixels = static_cast<size_t>(image.width) * image.height;
-        encoding.encode(image.data.data(), pixels, image.channels, image.alpha_channel);
-        marked = applyFinish(viewOf(image), request.finish);
-        encoding.decode(image.data.data(), pixels, image.channels, image.alpha_channel);
+        marked = applyFinishLinear(*out.image, storedEncodingOf(out.like), request.finish);
       }
       if (!marked) throw CommandError(out.output + ": " + marked.message);
     }

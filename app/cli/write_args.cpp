@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "app/cli/write_args.h"
 
+#include "core/effects/finish.h"
+
 #include "core/io/colour_spaces.h"
 
 namespace artcam::cli {
@@ -51,6 +53,22 @@ EdgeMode parseEdgeOption(const Args& args) {
   const auto mode = edgeModeFromName(*name);
   if (!mode) throw UsageError("--edge expects transparent, extend or black, not \"" + *name + "\"");
   return *mode;
+}
+
+std::optional<std::string> parseFinishOption(const Args& args, bool allow_none) {
+  const auto finish = args.value("--finish");
+  if (!finish) return std::nullopt;
+  if (allow_none && *finish == "none") return std::string();
+  if (!finishByName(*finish)) {
+    std::vector<std::string> names;
+    for (const FinishInfo& f : finishes()) names.push_back(f.name);
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    if (allow_none) list += ", or none";
+    throw UsageError("unknown --finish \"" + *finish + "\" (" + list + ")",
+                     didYouMean(*finish, names));
+  }
+  return *finish;
 }
 
 }  // namespace artcam::cli

@@ -8,6 +8,7 @@
 #include "core/io/image_io.h"
 #include "core/sampling/filter.h"
 
+#include <optional>
 #include <string>
 
 namespace artcam::cli {
@@ -35,5 +36,9 @@ std::string parseColourSpaceIn(const Args& args);
 // --stmap) gives such pixels alpha 0, so `oiiotool --st_warp` with it reproduces `warp`.
 // Throws UsageError for another value.
 EdgeMode parseEdgeOption(const Args& args);
+// --finish NAME (core/effects/finish.h): the marks after the render; absent: nullopt. With
+// `allow_none`, "none" is taken (export: drop the project's finish) and returned as "".
+// Throws UsageError for an unknown name, with the names and the nearest.
+std::optional<std::string> parseFinishOption(const Args& args, bool allow_none = false);
 
 }  // namespace artcam::cli

@@ -88,6 +88,14 @@ const FinishInfo* finishByName(std::string_view name) {
   return nullptr;
 }
 
+Status applyFinishLinear(ImageF& linear, const StoredEncoding& encoding, std::string_view name) {
+  const size_t pixels = static_cast<size_t>(linear.width) * static_cast<size_t>(linear.height);
+  encoding.encode(linear.data.data(), pixels, linear.channels, linear.alpha_channel);
+  const Status marked = applyFinish(viewOf(linear), name);
+  encoding.decode(linear.data.data(), pixels, linear.channels, linear.alpha_channel);
+  return marked;
+}
+
 Status applyFinish(const ImageView& image, std::string_view name) {
   const FinishInfo* finish = finishByName(name);
   if (!finish) {

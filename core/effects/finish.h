@@ -5,6 +5,7 @@
 // finish is applied to its output pixels.
 #pragma once
 
+#include "core/colour/stored_encoding.h"
 #include "core/model/image.h"
 #include "core/model/image_view.h"
 #include "core/model/status.h"
@@ -33,5 +34,10 @@ const FinishInfo* finishByName(std::string_view name);
 // are marked, alpha is kept. Fails for an unknown name, an image too big for G'MIC's float
 // copy (4 floats a pixel) or a G'MIC failure, each in one line.
 Status applyFinish(const ImageView& image, std::string_view name);
+// The same on a linear-light render (RGBA premultiplied, as the renderers give it): encoded as
+// it will be stored (`encoding`: the photo's, core/colour/stored_encoding.h), marked, decoded
+// back, so the marks are the ones `artcam warp --finish` draws on that file's values. What the
+// export, the studio's preview and warp's float outputs call.
+Status applyFinishLinear(ImageF& linear, const StoredEncoding& encoding, std::string_view name);
 
 }  // namespace artcam

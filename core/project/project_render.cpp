@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/project/project_render.h"
 
+#include "core/effects/finish.h"
+
 #include "core/depth/depth_raster.h"
 #include "core/io/stored_image.h"
 #include "core/pipeline/camera_frame.h"
@@ -113,6 +115,9 @@ ImageF renderExport(const LoadedImage& loaded, const ImageF* depth, const Artcam
   inputs.second = second && !second->empty() ? second : nullptr;
   ImageF out = renderTurned(inputs, camera, render_options, turn, s);
   if (s->cancelled || out.empty()) return out;
+  if (!options.finish.empty())
+    if (const Status marked = applyFinishLinear(out, encoding, options.finish); !marked)
+      throw std::invalid_argument(marked.message);
   if (options.crop_to_valid) {
     const ValidRect r = largestValidRect(out);
     if (r.width() <= 0 || r.height() <= 0)

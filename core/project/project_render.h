@@ -31,6 +31,9 @@ struct ExportOptions {
   bool crop_to_valid = false;
   // Linear RGB(A) colour under pixels without a preimage; none: they stay transparent.
   std::optional<std::array<float, 4>> fill;
+  // Marks after the render (core/effects/finish.h: pencil, charcoal, painting, cartoon), on
+  // the values as they will be stored; empty: none. The project's "finish".
+  std::string finish;
   WriteImageOptions write;  // pixel type (bit depth), JPEG quality
 };
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/project/studio_project.h"
 
+#include "core/effects/finish.h"
 #include "core/io/artcam_file.h"
 #include "core/io/atomic_file.h"
 #include "core/io/io_text.h"
@@ -344,6 +345,14 @@ StudioProject projectAt(const Json& root, const std::string& file,
     if (path.empty()) refuse("/second/path", "missing");
     p.second_path = pathFromFile(path, project_path);
   }
+  if (root.contains("finish")) {
+    p.finish = stringAt(root["finish"], "/finish");
+    if (!finishByName(p.finish)) {
+      std::string names;
+      for (const FinishInfo& f : finishes()) names += (names.empty() ? "" : ", ") + f.name;
+      refuse("/finish", "unknown finish " + describe(root["finish"]) + " (" + names + ")");
+    }
+  }
   if (root.contains("view")) p.view_json = objectAt(root["view"], "/view").dump();
   if (root.contains("parts")) p.parts_json = objectAt(root["parts"], "/parts").dump();
   if (root.contains("depth")) {
@@ -477,7 +486,7 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
   Json root;
   root["format"] = "artcam-studio-project";
   const bool has_depth = !project.depth_layers.empty() || project.depth_map.has_value();
-  const int version = project.second_path                                               ? 5
+  const int version = project.second_path || !project.finish.empty()                    ? 5
                       : !project.lines.empty() || project.line_model != LineModel::Auto ? 4
                       : !project.effects.empty()                                        ? 3
                       : has_depth || !project.parts_json.empty()                        ? 2
@@ -520,6 +529,7 @@ std::string studioProjectToJson(const StudioProject& project, const std::string&
   }
   if (project.second_path)
     root["second"] = {{"path", pathForFile(*project.second_path, project_path)}};
+  if (!project.finish.empty()) root["finish"] = project.finish;
   if (!project.view_json.empty()) root["view"] = Json::parse(project.view_json);
   if (has_depth) {
     Json depth;

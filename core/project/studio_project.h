@@ -14,6 +14,7 @@
 //     "lines": [ {"label": "1", "points": [[x, y], …], "enabled": true,
 //                 "role": "horizontal"}, … ],   // v4, photo px; role optional (or "vertical")
 //     "second": {"path": "over.png"},               // v5: the image compositing effects read
+//     "finish": "pencil",                           // v5: marks after the render (G'MIC)
 //     "view": { … },                                // the studio's view state (opaque here)
 //     "depth": {                                    // optional: depth planes and map (v2)
 //       "layers": [ {"name": "Plane 1", "size": [w, h], "mask": "<base64 of run bytes>",
@@ -22,7 +23,8 @@
 //     "parts": { "colour": {…, "colour_block": {….artcam…}}, "insertion": {…} } }   // (v2)
 //
 // Versions: a file is written with the lowest version that holds everything in it (1: pairs
-// and view; 2: depth or parts; 3: an effect stack; 4: straight lines; 5: a second image), so an
+// and view; 2: depth or parts; 3: an effect stack; 4: straight lines; 5: a second image or a
+// finish), so an
 // older studio refuses a project whose new parts it would silently drop and still opens every
 // project it can represent fully. This reader takes 1 to 5.
 //
@@ -106,6 +108,8 @@ struct StudioProject {
   // multiply, screen, …: core/colour/composite.h), laid over the photo's frame ("second":
   // {"path": …}); absolute once read. None: compositing effects are left out.
   std::optional<std::string> second_path;
+  // Marks after the render (core/effects/finish.h), by name; empty: none ("finish", v5).
+  std::string finish;
   std::string view_json;   // the "view" object as JSON text; empty: none
   std::string parts_json;  // the "parts" object as JSON text; empty: none
 };

@@ -35,7 +35,7 @@ _artcam_options() {
     preset) echo "--output -o --overwrite --force --size" ;;
     compose) echo "--output -o --force --overwrite --json" ;;
     export) echo "--output -o --photo --camera-out --depth-out --size --filter --edge --subsampling --quality --bit-depth --colourspace --colourspace-in --colourspace-out
-                  --crop-valid --fill --json --overwrite --force --quiet -q" ;;
+                  --crop-valid --fill --finish --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --source-size --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --from --focal --crop --size --output -o --distort --no-tca
                 --max-error --overwrite --force" ;;

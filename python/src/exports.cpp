@@ -83,7 +83,7 @@ const std::vector<cli::OptionSpec> kExportSpecs = {
     {"--bit-depth", "", true},      {"--colourspace", "", true},
     {"--colourspace-in", "", true}, {"--colourspace-out", "", true},
     {"--crop-valid", "", false},    {"--camera-out", "", true},
-    {"--overwrite", "", false}};
+    {"--finish", "", true},         {"--overwrite", "", false}};
 
 py::dict exportProject(const std::string& project_path, const std::string& output,
                        const py::kwargs& keywords) {
@@ -106,9 +106,11 @@ py::dict exportProject(const std::string& project_path, const std::string& outpu
   options.edge = cli::parseEdgeOption(args);
   options.crop_to_valid = args.has("--crop-valid");
   options = exportOptionsForOutput(std::move(options), output);
+  const std::optional<std::string> finish = cli::parseFinishOption(args, /*allow_none=*/true);
 
   Result<StudioProject> project = readStudioProject(project_path);
   if (!project) raiseReadError(project_path, project.status.message);
+  options.finish = finish.value_or(project->finish);
   if (const auto photo = args.value("--photo")) {
     Result<StoredShape> shape = readStoredShape(*photo);
     if (!shape) raiseReadError(*photo, project_path + ": photo: " + shape.status.message);
@@ -191,8 +193,9 @@ Raises ValueError for a camera no map can carry (positions that read colour or d
 Renders a saved studio project (.artcamproj) into `out`, as `artcam export PROJECT -o OUT` does
 (the studio's File > Export: the same pixels). Keywords are export's options: photo (the photo's
 new place if it moved), size ((w, h), one side 0 for the aspect), filter, edge, quality,
-subsampling, bit_depth, colourspace, colourspace_in, colourspace_out, crop_valid, camera_out
-(also write the project's camera), overwrite.
+subsampling, bit_depth, colourspace, colourspace_in, colourspace_out, crop_valid, finish (marks
+over the project's own finish; 'none' without), camera_out (also write the project's camera),
+overwrite.
 
 Returns a dict: output, width, height, description, render_ms, kind, effects, effects_applied,
 warning, camera (the project's camera as an artcam.Camera). Raises OSError for a missing or

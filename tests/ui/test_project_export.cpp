@@ -13,9 +13,11 @@
 #include "ui/export_job.h"
 #include "ui/image_convert.h"
 #include "ui/main_window.h"
+#include "ui/panels/effects_panel.h"
 #include "ui/preview_controller.h"
 #include "ui/session.h"
 
+#include <QComboBox>
 #include <QFile>
 #include <QSignalSpy>
 #include <QTemporaryDir>
@@ -219,6 +221,68 @@ class TestProjectExport : public QObject {
              doc->artcamNote().c_str());
     doc->undoStack()->undo();
     QVERIFY(doc->secondImage() && doc->artcamNote().empty());
+  }
+
+  // Marks in the studio: the Effects panel's finish is drawn by the preview, the export and the
+  // saved project alike (the canvas shows the 600×400 photo whole, so the same pixels);
+  // `artcam export` of the saved project writes the studio's export byte for byte, `--finish
+  // none` the unmarked picture.
+  void finishIsDrawnByPreviewExportAndProject() {
+    QVERIFY(QFile::exists(dir_.filePath("sample.artcamproj")) ||
+            QFile::copy(QString(ARTCAM_RESOURCES_DIR) + "/sample.artcamproj",
+                        dir_.filePath("sample.artcamproj")));
+    MainWindow window;
+    window.session()->setInteractive(false);
+    window.session()->openProject(dir_.filePath("sample.artcamproj"));
+    Document* doc = window.document();
+    QVERIFY(QTest::qWaitFor([doc] { return doc->photo() && doc->photo()->hasFullImage(); }, 30000));
+    QVERIFY(artcam::ui::test::waitForNewestPreview(*window.preview()));
+    const QImage plain_preview = window.preview()->image();
+    QVERIFY(doc->finish().empty());
+    auto* box = window.findChild<EffectsPanel*>()->finishBox();
+    box->setCurrentIndex(box->findData(QStringLiteral("pencil")));
+    QCOMPARE(doc->finish(), std::string("pencil"));
+    QVERIFY(artcam::ui::test::waitForNewestPreview(*window.preview()));
+    const QImage marked_preview = window.preview()->image();
+    ExportOptions options;
+    options.finish = doc->finish();
+    RenderSummary summary;
+    const ImageF exported =
+        ExportJob::render(doc->photo()->full, nullptr, doc->artcam(), options, {}, &summary);
+    const QImage shown = qimageFromLinear(exported);
+    QCOMPARE(shown.size(), marked_preview.size());
+    const double off = artcam::ui::test::meanDifference(shown, marked_preview);
+    const double marks = artcam::ui::test::meanDifference(plain_preview, marked_preview);
+    qInfo("pencil: preview vs export %.2f codes; marked vs plain preview %.2f", off, marks);
+    QVERIFY2(off < 1.0 && marks > 10.0,
+             qPrintable(QString("preview vs export %1, marks %2").arg(off).arg(marks)));
+
+    const QString saved = dir_.filePath("pencil.artcamproj");
+    QVERIFY(ui::test::saveAndWait(*window.session(), saved));
+    const QString out = dir_.filePath("pencil.exr");
+    const artcam::test::CliRun r =
+        artcam::test::artcamCli({"export", saved, "-o", out, "--bit-depth", "float"});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    const Result<LoadedImage> cli = readImage(out.toStdString());
+    QVERIFY(cli.ok());
+    QVERIFY(cli->image.data == exported.data);
+    const artcam::test::CliRun none =
+        artcam::test::artcamCli({"export", saved, "-o", dir_.filePath("none.exr"), "--bit-depth",
+                                 "float", "--finish", "none"});
+    QVERIFY2(none.exit_code == 0, qPrintable(none.err));
+    const Result<LoadedImage> unmarked = readImage(dir_.filePath("none.exr").toStdString());
+    const ImageF plain =
+        ExportJob::render(doc->photo()->full, nullptr, doc->artcam(), {}, {}, &summary);
+    QVERIFY(unmarked.ok() && unmarked->image.data == plain.data);
+    const artcam::test::CliRun bad = artcam::test::artcamCli(
+        {"export", saved, "-o", dir_.filePath("bad.png"), "--finish", "crayon"});
+    QCOMPARE(bad.exit_code, 2);
+    QVERIFY2(bad.err.contains("unknown --finish \"crayon\""), qPrintable(bad.err));
+
+    // Undo takes the marks away again.
+    doc->undoStack()->undo();
+    QVERIFY(doc->finish().empty());
+    QCOMPARE(box->currentIndex(), 0);
   }
 
   void saveReopenExportGivesTheSamePixels() {

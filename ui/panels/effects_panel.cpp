@@ -4,6 +4,8 @@
 #include "ui/commands.h"
 #include "ui/document.h"
 
+#include "core/effects/finish.h"
+
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
@@ -30,7 +32,19 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
       add_box_(new QComboBox(this)),
       list_(new QListWidget(this)),
       form_(new QFormLayout),
-      status_label_(new QLabel(this)) {
+      status_label_(new QLabel(this)),
+      finish_box_(new QComboBox(this)) {
+  // Marks after the render (G'MIC, core/effects/finish.h): not a camera, so not in the stack,
+  // but part of the picture the preview, the export and the project show.
+  finish_box_->addItem(tr("None"), QString());
+  for (const FinishInfo& f : finishes()) {
+    finish_box_->addItem(QString::fromStdString(f.name), QString::fromStdString(f.name));
+    finish_box_->setItemData(finish_box_->count() - 1, QString::fromStdString(f.description),
+                             Qt::ToolTipRole);
+  }
+  finish_box_->setToolTip(
+      tr("Marks drawn over the result (pencil, charcoal, painting, cartoon), "
+         "as artcam warp --finish draws them"));
   for (const EffectSpec& spec : effectSpecs()) {
     add_box_->addItem(QString::fromStdString(spec.label), QString::fromStdString(spec.name));
     add_box_->setItemData(add_box_->count() - 1, QString::fromStdString(spec.summary),
@@ -57,7 +71,24 @@ EffectsPanel::EffectsPanel(Document* document, QWidget* parent)
   layout->addLayout(edit_row);
   layout->addLayout(form_);
   layout->addWidget(status_label_);
+  auto* finish_row = new QFormLayout;
+  finish_row->addRow(tr("&Finish"), finish_box_);
+  layout->addLayout(finish_row);
   layout->addStretch(1);
+  connect(finish_box_, &QComboBox::currentIndexChanged, this, [this] {
+    const std::string name = finish_box_->currentData().toString().toStdString();
+    if (!updating_ && name != document_->finish())
+      document_->undoStack()->push(new SetFinishCommand(document_, name));
+  });
+  const auto show_finish = [this] {
+    const int at = finish_box_->findData(QString::fromStdString(document_->finish()));
+    const bool was = updating_;
+    updating_ = true;
+    finish_box_->setCurrentIndex(std::max(0, at));
+    updating_ = was;
+  };
+  connect(document_, &Document::finishChanged, this, show_finish);
+  connect(document_, &Document::photoChanged, this, show_finish);
   connect(add, &QPushButton::clicked, this,
           [this] { addEffect(add_box_->currentData().toString()); });
   connect(remove, &QPushButton::clicked, this, &EffectsPanel::removeSelected);

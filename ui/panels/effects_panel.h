@@ -57,6 +57,10 @@ class EffectsPanel : public QWidget {
 
   QString status() const;
 
+  // The finish row: marks after the render ("" none, or a name of core/effects/finish.h); a
+  // change pushes SetFinishCommand.
+  QComboBox* finishBox() const { return finish_box_; }
+
  private:
   void rebuildList();
   void rebuildParameters();
@@ -68,6 +72,7 @@ class EffectsPanel : public QWidget {
   QListWidget* list_;
   QFormLayout* form_;
   QLabel* status_label_;
+  QComboBox* finish_box_;
   std::map<std::string, std::vector<QDoubleSpinBox*>> spins_;
   int built_for_ = -1;  // the stack entry the spin boxes were made for
   std::string built_effect_;

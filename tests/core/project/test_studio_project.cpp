@@ -107,6 +107,11 @@ class TestStudioProject : public QObject {
     const Result<StudioProject> back = parseStudioProject(with_second, "/x/a.artcamproj");
     QVERIFY2(back.ok(), back.status.message.c_str());
     QCOMPARE(back->second_path.value_or(""), std::string("/x/layers/over.png"));
+    p.second_path.reset();
+    p.finish = "charcoal";
+    const std::string with_finish = studioProjectToJson(p, "/x/a.artcamproj");
+    QVERIFY(with_finish.find("\"version\": 5") != std::string::npos);
+    QCOMPARE(parseStudioProject(with_finish, "/x/a.artcamproj")->finish, std::string("charcoal"));
     const Result<StudioProject> newer = parseStudioProject(
         R"({"format":"artcam-studio-project","version":6,"photo":"p.png"})", "/d/n.artcamproj");
     QVERIFY(!newer.ok());
@@ -144,6 +149,7 @@ class TestStudioProject : public QObject {
          "x.artcamproj: /lines/0/enabled: expected true or false"},
         {R"("second":{"path":""}})", "x.artcamproj: /second/path: missing"},
         {R"("second":"over.png"})", "x.artcamproj: /second: expected an object"},
+        {R"("finish":"crayon"})", "x.artcamproj: /finish: unknown finish \"crayon\" (pencil"},
     };
     for (const auto& [rest, want] : cases) {
       const std::string got = refusal(rest);
