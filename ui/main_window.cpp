@@ -219,6 +219,9 @@ void MainWindow::createMenus() {
   file->addAction(tr("Load &Depth Map…"), QKeySequence(tr("Ctrl+Shift+L")), this, [this] {
     session_->loadDepthMapDialog(depth_panel_->mapScale(), depth_panel_->mapInverse());
   })->setToolTip(tr("A float EXR/TIFF or 16-bit PNG depth map under the painted planes"));
+  file->addAction(tr("Depth from Stereo &Pair…"), session_, &Session::depthFromStereoDialog)
+      ->setToolTip(tr("The photo is the left view of a rectified pair: choose the right one; "
+                      "the depth (OpenCV's semi-global matcher) becomes the depth map"));
   file->addAction(tr("Second &Image…"), session_, &Session::loadSecondImageDialog)
       ->setToolTip(tr("The image the compositing effects (over, in, atop, xor, multiply, screen, "
                       "…) combine with the photo"));

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ui/session.h"
 
+#include "core/depth/stereo_depth.h"
 #include "core/io/artcam_file.h"
 #include "core/io/depth_file.h"
 #include "core/io/image_io.h"
@@ -22,6 +23,7 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QMessageBox>
 #include <QProgressDialog>
 #include <QPushButton>
@@ -731,6 +733,70 @@ void Session::applyDepthMap(const QString& path, const DepthFileOptions& options
   const QString message = tr("Loaded depth map %1").arg(QFileInfo(path).fileName());
   emit statusMessage(message);
   emit depthMapLoaded(true, message);
+}
+
+void Session::depthFromStereo(const QString& right_path, double baseline_focal,
+                              const QString& depth_path) {
+  const PhotoPtr photo = document_->photo();
+  if (!photo || !photo->hasFullImage()) {
+    showError(tr("Depth from stereo pair"), tr("Open the left view (whole) first."));
+    return;
+  }
+  emit statusMessage(tr("Matching %1 against %2…")
+                         .arg(QFileInfo(photo->path).fileName(), QFileInfo(right_path).fileName()));
+  const quint64 serial = photo_serial_;
+  const QString out = QFileInfo(depth_path).absoluteFilePath();
+  runInBackground(
+      this,
+      [photo, right_path, baseline_focal, out](JobContext&) -> Status {
+        const Result<LoadedImage> right = readImage(QFile::encodeName(right_path).toStdString());
+        if (!right) return Status::failure(right.status.message);
+        StereoOptions options;
+        options.baseline_focal = baseline_focal;
+        if (const Status s = checkStereoOptions(options, right->image.width, right->image.height);
+            !s)
+          return s;
+        const Result<ImageF> depth =
+            artcam::depthFromStereo(photo->full.image, right->image, options);
+        if (!depth)
+          return Status::failure(photo->path.toStdString() + ", " + right_path.toStdString() +
+                                 ": " + depth.status.message);
+        WriteImageOptions write;
+        write.pixel_type = "float";
+        write.channel_names = {"Z"};
+        return writeImage(QFile::encodeName(out).toStdString(), *depth, nullptr, write);
+      },
+      [this, serial, out](JobOutcome<Status> outcome) {
+        if (serial != photo_serial_) return;
+        if (!outcome.value || !*outcome.value) {
+          const QString message =
+              outcome.value ? QString::fromStdString(outcome.value->message) : outcome.error;
+          showError(tr("Depth from stereo pair"), message);
+          emit depthMapLoaded(false, message);
+          return;
+        }
+        readDepthMapAsync(out, DepthFileOptions{}, /*undoable=*/true);
+      });
+}
+
+void Session::depthFromStereoDialog() {
+  const PhotoPtr photo = document_->photo();
+  if (!photo) return;
+  const QString right = QFileDialog::getOpenFileName(
+      dialog_parent_, tr("The right view of the stereo pair (the photo is the left)"),
+      QFileInfo(photo->path).absolutePath(), photoFilter());
+  if (right.isEmpty()) return;
+  bool ok = false;
+  const double baseline_focal = QInputDialog::getDouble(
+      dialog_parent_, tr("Depth from stereo pair"),
+      tr("Baseline × focal length (depth units × px): depth = this / disparity"), 100.0, 1e-6, 1e12,
+      4, &ok);
+  if (!ok) return;
+  const QFileInfo left(photo->path);
+  const QString out = QFileDialog::getSaveFileName(
+      dialog_parent_, tr("Save the depth map"),
+      left.absolutePath() + "/" + left.completeBaseName() + "-depth.exr", tr("OpenEXR (*.exr)"));
+  if (!out.isEmpty()) depthFromStereo(right, baseline_focal, out);
 }
 
 void Session::loadSecondImage(const QString& path) {

@@ -111,6 +111,12 @@ class Session : public QObject {
   void cancelExport();
   // Loads a depth map file on a worker thread; when it arrives it becomes an undoable edit.
   void loadDepthMap(const QString& path, const artcam::DepthFileOptions& options);
+  // Depth from a rectified stereo pair (core/depth/stereo_depth.h, OpenCV's semi-global
+  // matcher): the photo is the left view, `right_path` the right one, `baseline_focal` the
+  // baseline times the focal length in px. The depth is written to `depth_path` (float EXR,
+  // channel Z, atomically) and loaded as the document's depth map (undoable), so the project
+  // keeps it as any depth map. depthMapLoaded reports the outcome.
+  void depthFromStereo(const QString& right_path, double baseline_focal, const QString& depth_path);
   // The second image the compositing effects read (read off the GUI thread; undoable).
   void loadSecondImage(const QString& path);
   void removeSecondImage();
@@ -134,6 +140,7 @@ class Session : public QObject {
   void exportDepthMapDialog();
   void loadDepthMapDialog(double scale, bool inverse);
   void loadSecondImageDialog();
+  void depthFromStereoDialog();
   void openCloudDialog();
   // Lens ▸ From Database… (session_lens.cpp): the lensfun database loaded off the GUI thread,
   // the lens dialog with the photo's EXIF suggestions, then applyLensCamera.
