@@ -127,7 +127,9 @@ EffectStack composeEffectStack(const std::vector<EffectStep>& effects, FrameSize
       continue;
     }
     if (spec->needs_second && !has_second) {
-      leaveOut(i, step, "it composites a second image; open one (File > Second Image…)");
+      leaveOut(i, step,
+               "it composites a second image and there is none (the studio's File > Second "
+               "Image…, a project's \"second\")");
       continue;
     }
     try {
