@@ -99,6 +99,15 @@ void RenderWorker::serve(RenderRequest& job) {
                                                    std::max(1, job.height / kCoarseFactor));
     options.progress = [this](double) { return keepGoing(); };
     WarpSummary summary;
+    if (final_pass && !job.finish.empty()) {
+      // The marks take G'MIC a good part of a second and cannot be cancelled: the picture
+      // without them first (a drag stays live), the marked one when no newer edit came.
+      RenderRequest unmarked = job;
+      unmarked.finish.clear();
+      const QImage plain = renderPass(unmarked, options, &summary);
+      if (summary.cancelled || !keepGoing()) return;
+      emit rendered(plain, job.generation, /*final_pass=*/false, summary.render_ms);
+    }
     const QImage image = renderPass(job, options, &summary);
     if (summary.cancelled || !keepGoing()) return;  // a newer request arrived: drop this one
     if (final_pass) last_final_ms_ = summary.render_ms;

@@ -136,6 +136,39 @@ class TestPreview : public QObject {
     QCOMPARE(passes.size(), expected);
   }
 
+  // With a finish the picture without marks comes first (G'MIC's marks take a good part of a
+  // second and cannot be cancelled, so a drag stays live), then the marked final pass.
+  void finishComesAfterThePlainPicture() {
+    const PhotoPtr photo = test::syntheticPhoto();
+    Document doc;
+    doc.reset(photo, test::ninePairs());
+    RenderWorker worker;
+    QList<QPair<bool, QImage>> passes;
+    connect(&worker, &RenderWorker::rendered, this,
+            [&](const QImage& image, quint64, bool final_pass, double) {
+              passes << qMakePair(final_pass, image);
+            });
+    RenderRequest r;
+    r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
+    r.camera = doc.artcam();
+    r.width = photo->preview.width;
+    r.height = photo->preview.height;
+    r.generation = 1;
+    r.finish = "pencil";
+    worker.request(r);
+    QTRY_VERIFY_WITH_TIMEOUT(!passes.isEmpty() && passes.back().first, 30000);
+    QVERIFY(passes.size() >= 2);
+    const QImage plain = passes[passes.size() - 2].second, marked = passes.back().second;
+    QVERIFY(!passes[passes.size() - 2].first);
+    RenderRequest unmarked = r;
+    unmarked.finish.clear();
+    QCOMPARE(plain, RenderWorker::renderPass(unmarked, RenderWorker::passOptions(r.width, r.height),
+                                             nullptr));
+    QCOMPARE(marked,
+             RenderWorker::renderPass(r, RenderWorker::passOptions(r.width, r.height), nullptr));
+    QVERIFY(marked != plain);
+  }
+
   void newestRequestWins() {
     const PhotoPtr photo = test::syntheticPhoto();
     Document doc;
