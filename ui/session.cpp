@@ -746,6 +746,17 @@ void Session::depthFromStereo(const QString& right_path, double baseline_focal,
                          .arg(QFileInfo(photo->path).fileName(), QFileInfo(right_path).fileName()));
   const quint64 serial = photo_serial_;
   const QString out = QFileInfo(depth_path).absoluteFilePath();
+  // The depth is never written over the pair it is measured from.
+  for (const QString& input : {photo->path, right_path})
+    if (QFileInfo(out) == QFileInfo(input) ||
+        (QFileInfo::exists(out) &&
+         QFileInfo(out).canonicalFilePath() == QFileInfo(input).canonicalFilePath())) {
+      const QString message =
+          tr("%1: refusing to write the depth over an input of the pair").arg(out);
+      showError(tr("Depth from stereo pair"), message);
+      emit depthMapLoaded(false, message);
+      return;
+    }
   runInBackground(
       this,
       [photo, right_path, baseline_focal, out](JobContext&) -> Status {

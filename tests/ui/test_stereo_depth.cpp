@@ -95,6 +95,20 @@ class TestStereoDepth : public QObject {
              qPrintable(message));
     QVERIFY(!QFile::exists(path("bad-depth.exr")));
     QVERIFY(!doc->depth()->map());
+
+    // Never over an input of the pair.
+    const QByteArray right_bytes = [&] {
+      QFile f(path("house/house-right.png"));
+      return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+    }();
+    loaded.clear();
+    session->depthFromStereo(path("house/house-right.png"), 140.0, path("house/house-right.png"));
+    QVERIFY(loaded.count() == 1 || loaded.wait(30000));
+    QVERIFY(!loaded.first().at(0).toBool());
+    QVERIFY2(loaded.first().at(1).toString().contains("refusing"),
+             qPrintable(loaded.first().at(1).toString()));
+    QFile f(path("house/house-right.png"));
+    QVERIFY(f.open(QIODevice::ReadOnly) && f.readAll() == right_bytes);
   }
 };
 
