@@ -21,17 +21,22 @@
 namespace artcam::cli {
 
 const char* const kSampleUsage =
-    "usage: artcam sample mirror-sphere|water-glass|specular-pair|stereo-house -o DIR\n"
+    "usage: artcam sample mirror-sphere|water-glass|glass-of-water|specular-pair|stereo-house\n"
+    "                     -o DIR\n"
     "                     [--squares N]"
     " [--size WxH] [--overwrite]\n\n"
     "Ray traces a sample scene for `artcam insert` into DIR:\n"
     "  NAME.png        the photo: a chrome sphere on a table that carries a calibration\n"
     "                  checkerboard (mirror-sphere), or a glass of water in front of a\n"
-    "                  checkerboard backdrop (water-glass)\n"
+    "                  checkerboard backdrop (water-glass; glass-of-water: a glass with its\n"
+    "                  wall, filled to half its height, the paper's Fig 8 whole)\n"
     "  NAME-grid.csv   the checkerboard's corners seen in the reflection or refraction:\n"
     "                  src_x,src_y in the board's canonical view (512×512), dst_x,dst_y in\n"
     "                  the photo, exact to 1e-6 px\n"
     "  emblem.png      a 512×512 graphic with alpha to insert\n"
+    "glass-of-water's NAME-grid.csv is the grid seen through the water; it also writes\n"
+    "  glass-of-water-air-grid.csv  the grid seen through the air above the waterline\n"
+    "  (insert the graphic through each: two refractions of one glass)\n"
     "mirror-sphere also writes what puts the graphic on the table too (the paper's Fig 7):\n"
     "  mirror-sphere-table.csv   grid corners seen directly on the table (canonical view →\n"
     "                            photo, the clicks that fix the board's homography)\n"
@@ -167,12 +172,13 @@ int sampleCommand(const std::vector<std::string>& argv) {
   refuseStreamFolder(*dir, "sample's -o DIR");
   const int squares = intOption(args, "--squares", 24, 2, 256);
   const std::string& name = args.positional()[0];
-  if (name != "mirror-sphere" && name != "water-glass" && name != "specular-pair" &&
-      name != "stereo-house")
-    throw UsageError(
-        "unknown sample \"" + name +
-            "\" (mirror-sphere, water-glass, specular-pair or stereo-house)",
-        didYouMean(name, {"mirror-sphere", "water-glass", "specular-pair", "stereo-house"}));
+  if (name != "mirror-sphere" && name != "water-glass" && name != "glass-of-water" &&
+      name != "specular-pair" && name != "stereo-house")
+    throw UsageError("unknown sample \"" + name +
+                         "\" (mirror-sphere, water-glass, glass-of-water, specular-pair or "
+                         "stereo-house)",
+                     didYouMean(name, {"mirror-sphere", "water-glass", "glass-of-water",
+                                       "specular-pair", "stereo-house"}));
   if (name == "specular-pair") return specularPairSample(args, *dir);
   if (name == "stereo-house") return stereoHouseSample(args, *dir);
   const FrameSize size = parseSize(args.valueOr("--size", "640x480"), "--size");
@@ -182,10 +188,13 @@ int sampleCommand(const std::vector<std::string>& argv) {
   const std::string csv = (base / (name + "-grid.csv")).string();
   const std::string emblem = (base / "emblem.png").string();
   const bool sphere = name == "mirror-sphere";
+  const bool glass = name == "glass-of-water";
+  const std::string air_csv = (base / (name + "-air-grid.csv")).string();
   const std::string table_csv = (base / (name + "-table.csv")).string();
   const std::string region_csv = (base / (name + "-region.csv")).string();
   std::vector<std::string> outputs = {photo, csv, emblem};
   if (sphere) outputs.insert(outputs.end(), {table_csv, region_csv});
+  if (glass) outputs.push_back(air_csv);
   std::error_code ec;  // the folder first: checkOutputs checks every output's folder
   std::filesystem::create_directories(*dir, ec);
   if (ec) throw CommandError(*dir + ": cannot create the directory: " + ec.message());
@@ -203,6 +212,13 @@ int sampleCommand(const std::vector<std::string>& argv) {
       scene.photo_width = size.width;
       scene.photo_height = size.height;
       sample = makeMirrorSphereSample(scene, squares);
+    } else if (glass) {
+      GlassOfWaterScene scene;
+      scene.focal_px = 0.9 * size.width;
+      scene.backdrop_half = 0.75;
+      scene.photo_width = size.width;
+      scene.photo_height = size.height;
+      sample = makeGlassOfWaterSample(scene, squares);
     } else {
       WaterGlassScene scene;
       scene.focal_px = 0.9 * size.width;
@@ -225,6 +241,11 @@ int sampleCommand(const std::vector<std::string>& argv) {
       if (const Status s = writePointsCsv(region_csv, sample.region); !s)
         throw CommandError(s.message);
     }
+    if (glass) {
+      job.stage("writing " + name + "-air-grid.csv");
+      if (const Status s = writeMatchesCsv(air_csv, sample.air_matches); !s)
+        throw CommandError(s.message);
+    }
     job.stage("drawing emblem.png");
     const ImageF graphic = makeEmblemGraphic(512);
     write.progress = job.polled("writing emblem.png");
@@ -233,6 +254,9 @@ int sampleCommand(const std::vector<std::string>& argv) {
     job.finish();
     std::printf("wrote %s, %s (%zu grid corners), %s\n", photo.c_str(), csv.c_str(),
                 sample.grid_matches.size(), emblem.c_str());
+    if (glass)
+      std::printf("wrote %s (%zu grid corners through the air)\n", air_csv.c_str(),
+                  sample.air_matches.size());
     if (sphere)
       std::printf("wrote %s (%zu corners on the table), %s (%zu outline points)\n",
                   table_csv.c_str(), sample.table_matches.size(), region_csv.c_str(),

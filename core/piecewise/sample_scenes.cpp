@@ -166,6 +166,14 @@ SampleScene makeWaterGlassSample(const WaterGlassScene& scene, int squares) {
   return makeSample(scene, squares, {0.88, 0.95, 0.97});  // water absorbs a little red
 }
 
+SampleScene makeGlassOfWaterSample(GlassOfWaterScene scene, int squares) {
+  scene.medium = GlassOfWaterScene::Medium::Water;
+  SampleScene out = makeSample(scene, squares, {0.9, 0.96, 0.98});  // glass and water, faintly
+  scene.medium = GlassOfWaterScene::Medium::Air;
+  out.air_matches = makeSample(scene, squares, {0.9, 0.96, 0.98}).grid_matches;
+  return out;
+}
+
 ImageF makeEmblemGraphic(int size) {
   ImageF g(size, size, 4, 3);
   const double c = 0.5 * size;

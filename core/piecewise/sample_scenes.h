@@ -192,6 +192,117 @@ struct WaterGlassScene {
   }
 };
 
+// The paper's Fig 8 glass whole: a glass (a vertical tube of glass, its wall `wall` thick) filled
+// with water up to `water_level` (world y), in front of the backdrop. A ray below the waterline
+// passes glass, water, glass; above it glass, air, glass (Snell's law at each of the four
+// surfaces), so the photo sees the backdrop through two different refractions, which the
+// paper fits with patches of their own (6 through air, 16 through water). `medium` picks which
+// of the two graphicFromPhoto answers for; rays whose path inside crosses the water's surface
+// (the meniscus band), that meet only the glass wall (near the silhouette) or that enter farther
+// than region_fraction of the inner radius from the axis have no image in either.
+struct GlassOfWaterScene {
+  enum class Medium { Air, Water };
+  int photo_width = 320, photo_height = 240;
+  double focal_px = 300.0;
+  Eigen::Vector3d eye{0.0, 0.0, 6.0};  // looking down -z
+  double radius = 1.2;                 // the glass's outside; axis: the y axis
+  double wall = 0.06;                  // the glass's thickness
+  double glass_index = 1.5;
+  double water_index = 1.333;
+  double water_level = 0.0;  // world y of the water's surface
+  double backdrop_z = -1.6;
+  double backdrop_half = 1.5;
+  double region_fraction = 0.5;
+  int graphic_size = 512;
+  Medium medium = Medium::Water;
+
+  static std::optional<Eigen::Vector3d> refract(const Eigen::Vector3d& d, Eigen::Vector3d n,
+                                                double eta) {
+    double cosi = -n.dot(d);
+    if (cosi < 0.0) {
+      n = -n;
+      cosi = -cosi;
+    }
+    const double k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+    if (k < 0.0) return std::nullopt;
+    return (eta * d + (eta * cosi - std::sqrt(k)) * n).normalized();
+  }
+  static std::optional<double> cylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                        double r, bool far) {
+    const double a = d.x() * d.x() + d.z() * d.z();
+    const double b = o.x() * d.x() + o.z() * d.z();
+    const double c = o.x() * o.x() + o.z() * o.z() - r * r;
+    const double disc = b * b - a * c;
+    if (a <= 0.0 || disc <= 0.0) return std::nullopt;
+    const double t = far ? (-b + std::sqrt(disc)) / a : (-b - std::sqrt(disc)) / a;
+    if (t <= 1e-12) return std::nullopt;
+    return t;
+  }
+  static Eigen::Vector3d normalAt(const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(p.x(), 0.0, p.z()).normalized();
+  }
+  Eigen::Vector2d backdropPx(const Eigen::Vector3d& hit) const {
+    return {(hit.x() + backdrop_half) / (2.0 * backdrop_half) * graphic_size,
+            (backdrop_half - hit.y()) / (2.0 * backdrop_half) * graphic_size};
+  }
+
+  // The ray through photo pixel p; `seen` gets the medium it crossed (when it crossed one whole).
+  TracedRay trace(const Eigen::Vector2d& p, std::optional<Medium>* seen = nullptr) const {
+    Eigen::Vector3d d((p.x() - 0.5 * photo_width) / focal_px,
+                      -(p.y() - 0.5 * photo_height) / focal_px, -1.0);
+    d.normalize();
+    TracedRay out;
+    if (seen) seen->reset();
+    const auto t_outer = cylinder(eye, d, radius, false);
+    if (!t_outer) {
+      out.on_plane = true;
+      out.plane_px = backdropPx(eye + ((backdrop_z - eye.z()) / d.z()) * d);
+      return out;
+    }
+    out.through_object = true;
+    out.in_region = false;
+    const double inner = radius - wall;
+    const Eigen::Vector3d a = eye + *t_outer * d;  // air → glass
+    const auto d1 = refract(d, normalAt(a), 1.0 / glass_index);
+    if (!d1) return out;
+    const auto t_inner = cylinder(a, *d1, inner, false);
+    if (!t_inner) return out;                      // only the wall: no image
+    const Eigen::Vector3d b = a + *t_inner * *d1;  // glass → medium
+    const Medium m = b.y() < water_level ? Medium::Water : Medium::Air;
+    const double n_inside = m == Medium::Water ? water_index : 1.0;
+    const auto d2 = refract(*d1, normalAt(b), glass_index / n_inside);
+    if (!d2) return out;
+    const auto t_across = cylinder(b, *d2, inner, true);
+    if (!t_across) return out;
+    const Eigen::Vector3d c = b + *t_across * *d2;  // medium → glass
+    // The surface between water and air is crossed: that ray bends at it too (the meniscus
+    // band a user leaves out of both regions).
+    if ((c.y() < water_level) != (m == Medium::Water)) return out;
+    const auto d3 = refract(*d2, normalAt(c), n_inside / glass_index);
+    if (!d3) return out;
+    const auto t_wall = cylinder(c, *d3, radius, true);
+    if (!t_wall) return out;
+    const Eigen::Vector3d e = c + *t_wall * *d3;  // glass → air
+    const auto d4 = refract(*d3, normalAt(e), glass_index);
+    if (!d4 || d4->z() >= 0.0) return out;
+    out.on_plane = true;
+    out.plane_px = backdropPx(e + ((backdrop_z - e.z()) / d4->z()) * *d4);
+    out.in_region = std::abs(b.x()) <= region_fraction * inner;
+    if (seen) *seen = m;
+    return out;
+  }
+
+  std::optional<Eigen::Vector2d> graphicFromPhoto(const Eigen::Vector2d& p) const {
+    std::optional<Medium> seen;
+    const TracedRay r = trace(p, &seen);
+    if (!r.through_object || !r.on_plane || !r.in_region || seen != medium) return std::nullopt;
+    const Eigen::Vector2d& g = r.plane_px;
+    if (g.x() < 0.0 || g.y() < 0.0 || g.x() > graphic_size || g.y() > graphic_size)
+      return std::nullopt;
+    return g;
+  }
+};
+
 // The bundled samples (`artcam sample`): a photo of the scene whose graphic plane carries a
 // calibration checkerboard of `squares` × `squares` (linear float RGB, 3×3 supersampled),
 // and the grid's corners seen through the object as matches (graphic pixels → photo pixels),
@@ -209,9 +320,13 @@ struct SampleScene {
   std::vector<PointMatch> grid_matches;
   std::vector<PointMatch> table_matches;  // mirror sphere only
   std::vector<Eigen::Vector2d> region;    // mirror sphere only
+  std::vector<PointMatch> air_matches;    // glass of water only: the grid seen above the water
 };
 SampleScene makeMirrorSphereSample(const MirrorSphereScene& scene, int squares);
 SampleScene makeWaterGlassSample(const WaterGlassScene& scene, int squares);
+// The glass with its waterline: grid_matches through the water, air_matches through the air
+// above it (scene.medium is ignored).
+SampleScene makeGlassOfWaterSample(GlassOfWaterScene scene, int squares);
 
 // A graphic to insert: a colourful emblem with premultiplied alpha (a ring and a star).
 ImageF makeEmblemGraphic(int size);

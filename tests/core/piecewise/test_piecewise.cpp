@@ -192,6 +192,38 @@ class TestPiecewise : public QObject {
     QVERIFY2(c.psnr_db > 35.0, qPrintable(QString::number(c.psnr_db)));
   }
 
+  // Fig 8 whole: one glass seen through air above the waterline and through water below it,
+  // each region fitted piecewise to its own traced matches, each insertion against the ray
+  // tracer; the water bends more, so it needs more patches than the air.
+  void refractsThroughAirAndWaterInOneGlass() {
+    int patches[2] = {0, 0};
+    for (const auto medium :
+         {artcam::GlassOfWaterScene::Medium::Air, artcam::GlassOfWaterScene::Medium::Water}) {
+      artcam::GlassOfWaterScene glass;
+      glass.medium = medium;
+      const bool water = medium == artcam::GlassOfWaterScene::Medium::Water;
+      const std::vector<PointMatch> matches = tracedMatches(glass, 3.0, 0.5);
+      QVERIFY2(matches.size() > 300, qPrintable(QString::number(matches.size())));
+      PiecewiseOptions options;
+      options.max_error_px = 0.25;
+      const PiecewiseSummary fit = fitPiecewise(matches, source_, target_, options);
+      QVERIFY2(fit.status.ok, fit.status.message.c_str());
+      std::printf("glass, through %s: %s\n", water ? "water" : "air", fit.report().c_str());
+      QVERIFY(fit.converged);
+      QVERIFY(fit.max_px <= options.max_error_px);
+      patches[water ? 1 : 0] = static_cast<int>(fit.camera.patches.size());
+      const ImageF graphic = makeGraphic(glass.graphic_size);
+      const Comparison c = compareWithTracer(renderPiecewise(graphic, fit.camera), graphic, glass);
+      std::printf("glass through %s vs ray tracing: PSNR %.1f dB over %d pixels, coverage %.4f\n",
+                  water ? "water" : "air", c.psnr_db, c.pixels, c.coverage);
+      QVERIFY(c.pixels > 1000);
+      QVERIFY(c.coverage > 0.95);
+      QVERIFY2(c.psnr_db > 35.0, qPrintable(QString::number(c.psnr_db)));
+    }
+    QVERIFY2(patches[1] > patches[0],
+             qPrintable(QString("air %1, water %2").arg(patches[0]).arg(patches[1])));
+  }
+
   void fitsAFisheyeBeyondOneQuadratic() {
     // Equidistant fisheye: a rectilinear pixel at radius r from the centre lands at
     // f·atan(r / f) (a 140° diagonal field on 640×480): stronger than one rational quadratic.
