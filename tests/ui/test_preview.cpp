@@ -26,6 +26,17 @@ namespace {
 bool waitForNewest(const PreviewController& c) { return artcam::ui::test::waitForNewestPreview(c); }
 QImage directRender(const Document& d) { return artcam::ui::test::directPreviewRender(d); }
 
+// A first request (generation 1) for the whole preview copy of `photo` through `doc`'s camera.
+RenderRequest wholePreviewRequest(const PhotoPtr& photo, const Document& doc) {
+  RenderRequest r;
+  r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
+  r.camera = doc.artcam();
+  r.width = photo->preview.width;
+  r.height = photo->preview.height;
+  r.generation = 1;
+  return r;
+}
+
 }  // namespace
 
 class TestPreview : public QObject {
@@ -116,12 +127,7 @@ class TestPreview : public QObject {
               passes << qMakePair(final_pass, image.width());
               if (final_pass) final_ms = ms;
             });
-    RenderRequest r;
-    r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
-    r.camera = doc.artcam();
-    r.width = photo->preview.width;
-    r.height = photo->preview.height;
-    r.generation = 1;
+    RenderRequest r = wholePreviewRequest(photo, doc);
     worker.request(r);
     QTRY_COMPARE_WITH_TIMEOUT(passes.size(), 2, 30000);
     QCOMPARE(passes[0], qMakePair(false, 320 / RenderWorker::kCoarseFactor));
@@ -148,12 +154,7 @@ class TestPreview : public QObject {
             [&](const QImage& image, quint64, bool final_pass, double) {
               passes << qMakePair(final_pass, image);
             });
-    RenderRequest r;
-    r.source = std::shared_ptr<const ImageF>(photo, &photo->preview);
-    r.camera = doc.artcam();
-    r.width = photo->preview.width;
-    r.height = photo->preview.height;
-    r.generation = 1;
+    RenderRequest r = wholePreviewRequest(photo, doc);
     r.finish = "pencil";
     worker.request(r);
     QTRY_VERIFY_WITH_TIMEOUT(!passes.isEmpty() && passes.back().first, 30000);
