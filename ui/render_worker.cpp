@@ -27,7 +27,8 @@ WarpOptions RenderWorker::passOptions(int width, int height) {
 // straight into the RGBA8 QImage; everything else (colour, depth, layers) renders from the float
 // preview copy and is encoded for display.
 QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& options,
-                                WarpSummary* summary) {
+                                WarpSummary* summary,
+                                const std::function<bool(const QImage&, double)>& before_marks) {
   const Artcam& camera = job.camera;
   // The pyramid holds the upright photo; a camera applied before the turn renders from the
   // float preview copy, turned back (camera_frame.h).
@@ -62,6 +63,9 @@ QImage RenderWorker::renderPass(const RenderRequest& job, const WarpOptions& opt
     renderTurned(inputs, camera, render_options, turn, view, &rs);
   } else {
     ImageF out = renderTurned(inputs, camera, render_options, turn, &rs);
+    if (!rs.cancelled && !job.finish.empty() && before_marks &&
+        !before_marks(qimageFromLinear(out), rs.render_ms))
+      rs.cancelled = true;
     if (!rs.cancelled && !job.finish.empty()) {
       const StoredEncoding linear;
       if (const Status marked =
@@ -99,16 +103,18 @@ void RenderWorker::serve(RenderRequest& job) {
                                                    std::max(1, job.height / kCoarseFactor));
     options.progress = [this](double) { return keepGoing(); };
     WarpSummary summary;
-    if (final_pass && !job.finish.empty()) {
-      // The marks take G'MIC a good part of a second and cannot be cancelled: the picture
-      // without them first (a drag stays live), the marked one when no newer edit came.
-      RenderRequest unmarked = job;
-      unmarked.finish.clear();
-      const QImage plain = renderPass(unmarked, options, &summary);
-      if (summary.cancelled || !keepGoing()) return;
-      emit rendered(plain, job.generation, /*final_pass=*/false, summary.render_ms);
-    }
-    const QImage image = renderPass(job, options, &summary);
+    // The marks take G'MIC a good part of a second and cannot be cancelled: the final pass
+    // shows the picture without them first (a drag stays live), then the marked one when no
+    // newer edit came.
+    const auto plain_first = [&](const QImage& plain, double render_ms) {
+      if (!keepGoing()) return false;
+      emit rendered(plain, job.generation, /*final_pass=*/false, render_ms);
+      return true;
+    };
+    const QImage image =
+        renderPass(job, options, &summary,
+                   final_pass ? std::function<bool(const QImage&, double)>(plain_first)
+                              : std::function<bool(const QImage&, double)>());
     if (summary.cancelled || !keepGoing()) return;  // a newer request arrived: drop this one
     if (final_pass) last_final_ms_ = summary.render_ms;
     emit rendered(image, job.generation, final_pass, summary.render_ms);

@@ -23,6 +23,7 @@
 #include <QImage>
 #include <QString>
 
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -67,8 +68,11 @@ class RenderWorker : public NewestRequestWorker<RenderRequest> {
   // One pass of a request with those options (plus a progress hook): what the worker emits,
   // rendered by core's front door (core/pipeline/render.h). A camera that needs the linear
   // photo (needsLinearPhoto: colour, depth, layers) renders from `source`, never the pyramid.
+  // With a finish, `before_marks` (when given) gets the picture before the marks are drawn on
+  // it and the render's time; returning false stops there (summary->cancelled, an empty image).
   static QImage renderPass(const RenderRequest& job, const WarpOptions& options,
-                           WarpSummary* summary);
+                           WarpSummary* summary,
+                           const std::function<bool(const QImage&, double)>& before_marks = {});
 
   // request() replaces the pending request and cancels the one in flight at its next tile;
   // shutdown() stops the thread (idempotent; the destructor calls it). A pass that throws is

@@ -839,12 +839,9 @@ void Session::readSecondImageAsync(const QString& path, bool undoable) {
         // another size is stretched to the photo, and said.
         const FrameSize f = document_->frame();
         QString message = tr("Second image %1").arg(QFileInfo(path).fileName());
-        if (image->width != f.width || image->height != f.height)
-          message += tr(" (%1×%2, stretched to the photo's %3×%4)")
-                         .arg(image->width)
-                         .arg(image->height)
-                         .arg(f.width)
-                         .arg(f.height);
+        if (const std::string stretched = secondImageSizeNote({image->width, image->height}, f);
+            !stretched.empty())
+          message += ": " + QString::fromStdString(stretched);
         Document::SecondImage second{path, std::move(image)};
         if (undoable)
           document_->undoStack()->push(new SetSecondImageCommand(document_, std::move(second)));

@@ -372,12 +372,11 @@ RenderedOutput renderForWarp(const WarpCameraFile& given, DecodedInput&& input,
               .warning;
       // The second image lies over the photo's frame (core/pipeline/render.h): another size is
       // stretched to it, which a user should hear about.
-      if (request.second && (request.second->width != in.image.width ||
-                             request.second->height != in.image.height))
-        out.warning += (out.warning.empty() ? "" : "; ") + std::string("the second image is ") +
-                       sizeText(request.second->width, request.second->height) +
-                       ", not the photo's " + sizeText(in.image.width, in.image.height) +
-                       ": it is stretched to the photo's frame";
+      if (request.second)
+        if (const std::string stretched = secondImageSizeNote(
+                {request.second->width, request.second->height}, {in.image.width, in.image.height});
+            !stretched.empty())
+          out.warning += (out.warning.empty() ? "" : "; ") + stretched;
       if (depth)
         if (const std::string stretched = depthMapAspectNote({depth->width, depth->height},
                                                              {in.image.width, in.image.height});

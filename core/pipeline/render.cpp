@@ -16,6 +16,13 @@
 
 namespace artcam {
 
+std::string secondImageSizeNote(FrameSize second, FrameSize photo) {
+  if (second == photo) return {};
+  return "the second image is " + std::to_string(second.width) + "x" +
+         std::to_string(second.height) + ", not the photo's " + std::to_string(photo.width) + "x" +
+         std::to_string(photo.height) + ": it is stretched to the photo's frame";
+}
+
 RenderInputs RenderInputs::of(const ImageF& linear_photo, const ImageF* depth,
                               const StoredEncoding* encoding) {
   RenderInputs inputs;

@@ -81,6 +81,10 @@ struct RenderOptions {
 enum class RenderPath { Geometry, Preview, ColourOnly, Gather, Splat, Layered, Piecewise };
 std::string_view renderPathName(RenderPath path);
 
+// "" when a second image (RenderInputs::second) of `second`'s size lies texel for texel over a
+// photo of `photo`'s; else the warning every path gives: it is stretched to the photo's frame.
+std::string secondImageSizeNote(FrameSize second, FrameSize photo);
+
 struct RenderSummary {
   RenderPath path = RenderPath::Geometry;
   bool blurred = false;          // the depth-of-field blur stack ran after the layers

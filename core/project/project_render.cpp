@@ -244,13 +244,13 @@ Result<ProjectScene> loadProjectScene(const StudioProject& project, const std::s
     scene.camera.note = (scene.camera.note.empty() ? "" : scene.camera.note + "; ") +
                         project.depth_map->path + ": " + stretched;
   // The second image lies over the photo's frame: another size is stretched to it, and said.
-  if (!scene.second.empty() &&
-      (scene.second.width != frame.width || scene.second.height != frame.height))
-    scene.camera.note =
-        (scene.camera.note.empty() ? "" : scene.camera.note + "; ") + "the second image " +
-        *project.second_path + " is " + std::to_string(scene.second.width) + "x" +
-        std::to_string(scene.second.height) + ", not the photo's " + std::to_string(frame.width) +
-        "x" + std::to_string(frame.height) + ": it is stretched to the photo's frame";
+  if (const std::string stretched =
+          scene.second.empty()
+              ? std::string()
+              : secondImageSizeNote({scene.second.width, scene.second.height}, frame);
+      !stretched.empty())
+    scene.camera.note = (scene.camera.note.empty() ? "" : scene.camera.note + "; ") +
+                        *project.second_path + ": " + stretched;
   return R::success(std::move(scene));
 }
 
