@@ -223,7 +223,7 @@ int batchCommand(const std::vector<std::string>& argv) {
   }
   // What this run does: every item but those --skip-existing leaves alone.
   std::vector<size_t> todo;
-  std::vector<bool> skipped(items.size(), false);
+  std::vector<FileResult> results(items.size());
   {
     std::vector<std::string> outputs, read;
     for (const BatchInput& in : inputs) read.push_back(in.path);
@@ -234,8 +234,10 @@ int batchCommand(const std::vector<std::string>& argv) {
     checkOutputs(outputs, read, overwriteRequested(args) || skip_existing);
     for (size_t i = 0; i < items.size(); ++i) {
       std::error_code exists_ec;
-      skipped[i] = skip_existing && std::filesystem::exists(items[i].output, exists_ec);
-      if (!skipped[i]) todo.push_back(i);
+      if (skip_existing && std::filesystem::exists(items[i].output, exists_ec))
+        results[i].status = "skipped";
+      else
+        todo.push_back(i);
     }
   }
   std::shared_ptr<const WarpCameraFile> fixed_camera;
@@ -248,9 +250,6 @@ int batchCommand(const std::vector<std::string>& argv) {
   const CooperativeInterrupt interrupt;
   ProgressBar bar(static_cast<int>(todo.size()), quiet);
   BatchTally tally;
-  std::vector<FileResult> results(items.size());
-  for (size_t i = 0; i < items.size(); ++i)
-    if (skipped[i]) results[i].status = "skipped";
   auto fail = [&](size_t index, const std::string& message) {
     if (interruptRequested()) return;  // a cancelled stage is not the file's fault
     tally.failed.fetch_add(1);

@@ -5,6 +5,7 @@
 #include "app/cli/fit_input.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/reports.h"
 #include "app/cli/stdio_paths.h"
 #include "core/colour/colour_map.h"
 #include "core/fit/fit_colour.h"
@@ -144,29 +145,8 @@ int fitColourCommand(const Args& args, const std::string& output) {
     job.finish();
 
     if (args.has("--json")) {
-      nlohmann::json j = {{"block", "colour"},
-                          {"model", std::string(colourModelName(fit.map.model))},
-                          {"selected", std::string(colourModelName(fit.selected))},
-                          {"samples", fit.delta_e.size()},
-                          {"delta_e", fit.delta_e},
-                          {"mean_de", fit.mean_de},
-                          {"median_de", fit.median_de},
-                          {"max_de", fit.max_de},
-                          {"rms_rgb", fit.rms_rgb},
-                          {"reason", fit.reason},
-                          {"output", output}};
-      if (fit.held_out_de >= 0) j["held_out_de"] = fit.held_out_de;
-      nlohmann::json candidates = nlohmann::json::array();
-      for (const ColourCandidate& c : fit.candidates) {
-        nlohmann::json jc = {{"model", std::string(colourModelName(c.model))},
-                             {"fitted", c.fitted}};
-        if (c.fitted) jc["mean_de"] = c.mean_de;
-        if (c.held_out_de >= 0) jc["held_out_de"] = c.held_out_de;
-        if (!c.fitted) jc["failure"] = c.failure;
-        candidates.push_back(jc);
-      }
-      j["candidates"] = candidates;
-      if (options.robust) j["inliers"] = fit.inliers;
+      nlohmann::json j = colourFitJson(fit, options.robust);
+      j["output"] = output;
       std::printf("%s\n", j.dump().c_str());
       return 0;
     }
@@ -291,30 +271,8 @@ int fitPositionCommand(const Args& args, const std::string& output, FrameSize so
                    warning.c_str());
 
     if (args.has("--json")) {
-      nlohmann::json j = {{"model", fit.record.model},
-                          {"matches", fit.record.matches},
-                          {"rms_px", fit.record.rms_px},
-                          {"max_px", fit.record.max_px},
-                          {"residuals_px", fit.record.residuals_px},
-                          {"singular_values", fit.record.singular_values},
-                          {"reason", fit.record.reason},
-                          {"output", output}};
-      nlohmann::json& jr = j;
-      if (fit.record.held_out_rms_px >= 0) jr["held_out_rms_px"] = fit.record.held_out_rms_px;
-      if (fit.record.algebraic_rms_px >= 0) jr["algebraic_rms_px"] = fit.record.algebraic_rms_px;
-      if (fit.record.pole_checked) {
-        jr["pole_free"] = fit.record.pole_free;
-        jr["pole_margin"] = fit.record.pole_margin;
-      }
-      if (options.robust) jr["inliers"] = fit.record.inliers;
-      // Each rung of the ladder as the choice scored it (-1: not computable).
-      if (!fit.record.criterion.empty()) jr["criterion"] = fit.record.criterion;
-      for (const ModelScore& m : fit.record.models)
-        jr["models"].push_back({{"model", m.model},
-                                {"rms_px", m.rms_px},
-                                {"held_out_rms_px", m.held_out_rms_px},
-                                {"criterion", m.criterion},
-                                {"note", m.note}});
+      nlohmann::json j = fitReportJson(fit.record, options.robust);
+      j["output"] = output;
       std::printf("%s\n", j.dump().c_str());
     } else {
       std::printf("%s\n", fit.report().c_str());

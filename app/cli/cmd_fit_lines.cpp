@@ -8,6 +8,7 @@
 #include "app/cli/fit_input.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/reports.h"
 #include "app/cli/stdio_paths.h"
 #include "core/fit/fit_lines.h"
 #include "core/io/artcam_file.h"
@@ -72,27 +73,8 @@ int fitLinesCommand(const Args& args, const std::string& lines_path) {
     job.finish();
 
     if (args.has("--json")) {
-      nlohmann::json per_line = nlohmann::json::array();
-      for (size_t k = 0; k < fit.bows.size(); ++k)
-        per_line.push_back({{"line", fit.bows[k].label},
-                            {"points", fit.bows[k].points},
-                            {"bow_px", fit.bows[k].max_px},
-                            {"rms_px", fit.bows[k].rms_px},
-                            {"bow_before_px", fit.bows_before[k].max_px}});
-      const FitRecord record = fit.record();
-      nlohmann::json j = {{"model", std::string(lineModelName(fit.model))},
-                          {"lines", per_line},
-                          {"rms_bow_px", fit.rms_bow_px},
-                          {"max_bow_px", fit.max_bow_px},
-                          {"pairs", record.matches},
-                          {"reason", fit.reason},
-                          {"output", *output}};
-      if (fit.model == LineModel::Radial) j["radial_k"] = fit.radial_k;
-      if (record.matches > 0) {
-        j["pair_rms_px"] = record.rms_px;
-        j["pair_max_px"] = record.max_px;
-        j["pair_residuals_px"] = record.residuals_px;
-      }
+      nlohmann::json j = linesFitJson(fit);
+      j["output"] = *output;
       std::printf("%s\n", j.dump().c_str());
       return 0;
     }

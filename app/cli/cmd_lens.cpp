@@ -4,6 +4,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/outputs.h"
+#include "app/cli/reports.h"
 #include "app/cli/stdio_paths.h"
 #include "core/io/artcam_file.h"
 #include "core/lens/lens_camera.h"
@@ -75,14 +76,6 @@ std::shared_ptr<const LensDatabase> loadDatabase() {
   return *db.value;
 }
 
-nlohmann::json lensJson(const LensEntry& e) {
-  return {{"maker", e.maker},           {"model", e.model},
-          {"min_focal_mm", e.min_focal_mm}, {"max_focal_mm", e.max_focal_mm},
-          {"crop_factor", e.crop_factor},   {"type", e.type},
-          {"distortion", e.distortion},     {"tca", e.tca},
-          {"vignetting", e.vignetting}};
-}
-
 int searchCommand(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--limit", "", true}, {"--json", "", false}});
   if (args.positional().empty()) throw UsageError("missing the TEXT to search for");
@@ -95,7 +88,7 @@ int searchCommand(const std::vector<std::string>& argv) {
   const size_t shown = limit > 0 ? std::min(hits.size(), static_cast<size_t>(limit)) : hits.size();
   if (args.has("--json")) {
     nlohmann::json lenses = nlohmann::json::array();
-    for (size_t i = 0; i < shown; ++i) lenses.push_back(lensJson(hits[i]));
+    for (size_t i = 0; i < shown; ++i) lenses.push_back(lensEntryJson(hits[i]));
     std::printf("%s\n", nlohmann::json{{"lenses", lenses},
                                        {"found", hits.size()},
                                        {"match", lensSearchMatchName(match)}}
@@ -172,30 +165,8 @@ int cameraCommand(const std::vector<std::string>& argv) {
                               : s.status.message);
   if (const Status w = writeArtcam(*output, s.camera); !w) throw CommandError(w.message);
   if (args.has("--json")) {
-    nlohmann::json j = {{"lens", lensJson(s.lens)},
-                        {"crop", s.crop},
-                        {"focal_mm", s.focal_mm},
-                        {"distort", options.distort},
-                        {"piecewise", s.piecewise},
-                        {"patches", s.patches},
-                        {"single_max_px", s.single_max_px},
-                        {"single_rms_px", s.single_rms_px},
-                        {"max_px", s.max_px},
-                        {"rms_px", s.rms_px},
-                        {"checked", s.checked},
-                        {"unmapped", s.unmapped},
-                        {"max_error_px", options.max_error_px},
-                        {"within_tolerance", s.within_tolerance},
-                        {"tca", s.tca},
-                        {"tca_max_px", s.tca_max_px},
-                        {"notes", s.notes},
-                        {"output", *output}};
-    if (choice) {
-      j["photo"] = *from;
-      j["camera"] = choice->lookup.camera;
-      j["lens_match"] = choice->lookup.lens_match;
-      j["size"] = {options.size.width, options.size.height};
-    }
+    nlohmann::json j = lensCameraJson(s, options, choice ? &*choice : nullptr, from.value_or(""));
+    j["output"] = *output;
     std::printf("%s\n", j.dump().c_str());
     return 0;
   }

@@ -10,6 +10,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <nlohmann/json.hpp>
 
 #include <memory>
 #include <string>
@@ -35,6 +36,16 @@ struct PyCamera {
 // Keyword options → the CLI's argv ("bit_depth=16" → "--bit-depth 16"; True → the bare flag;
 // None and False → left out), parsed by the CLI's own parser against `specs`, so Python accepts
 // and refuses exactly what the command line does, with its messages.
+// A JSON report of the CLI (app/cli/reports.h) as the Python dict/list/str/number it reads as.
+py::object fromJson(const nlohmann::json& value);
+
+// (width, height) from 1 to 2^20, as every size option takes it; ValueError naming `what`.
+FrameSize sizeArgument(const py::handle& size, const char* what);
+
+// A str or os.PathLike as a path.
+bool isPathLike(const py::handle& value);
+std::string pathOf(const py::handle& value);
+
 cli::Args argsFromKeywords(const py::dict& options, const std::vector<cli::OptionSpec>& specs,
                            std::vector<std::string> positional = {});
 

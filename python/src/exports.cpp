@@ -21,13 +21,6 @@
 namespace artcam::python {
 namespace {
 
-FrameSize sizeArgument(const py::object& size, const char* what) {
-  const auto wh = size.cast<std::pair<long long, long long>>();
-  if (wh.first < 1 || wh.second < 1 || wh.first > (1 << 20) || wh.second > (1 << 20))
-    raiseValueError(std::string(what) + " expects (width, height) from 1 to 2^20");
-  return {static_cast<int>(wh.first), static_cast<int>(wh.second)};
-}
-
 py::array_t<float> exportMap(const PyCamera& camera, const py::object& size_in,
                              const std::string& convention_name, const py::object& source_size,
                              const py::object& path) {
@@ -63,7 +56,7 @@ py::array_t<float> exportMap(const PyCamera& camera, const py::object& size_in,
         }
   }
   if (!path.is_none()) {
-    const std::string file = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+    const std::string file = pathOf(path);
     std::vector<StmapLayer> files;
     for (const SourceMapLayer& layer : maps->layers) files.push_back({layer.name, &layer.map});
     Status s;

@@ -4,6 +4,7 @@
 // the CSV readers' own parser (written as %.17g rows under the header, exact), so an array is
 // checked as a file is: the same bounds, the same refusal of NaN and inf, the same messages
 // (row k, from 0, is line k + 2).
+#include "app/cli/reports.h"
 #include "core/colour/colour_map.h"
 #include "core/fit/fit_colour.h"
 #include "core/fit/fit_image.h"
@@ -19,13 +20,6 @@ namespace artcam::python {
 namespace {
 
 using Rows = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-bool isPath(const py::handle& v) {
-  return py::isinstance<py::str>(v) || py::hasattr(v, "__fspath__");
-}
-std::string pathOf(const py::handle& v) {
-  return py::module_::import("os").attr("fspath")(v).cast<std::string>();
-}
 
 Rows rowsOf(const py::handle& a, py::ssize_t columns, const std::string& what) {
   const Rows rows = Rows::ensure(a);
@@ -62,7 +56,7 @@ std::string csvRows(const Rows& a, const Rows& b, const py::object& enabled,
 
 std::vector<PointMatch> matchesFrom(const py::object& src, const py::object& dst,
                                     const py::object& enabled, int* dimension) {
-  if (isPath(src)) {
+  if (isPathLike(src)) {
     if (!dst.is_none()) raiseValueError("fit: give a matches CSV alone, or src and dst arrays");
     const std::string path = pathOf(src);
     auto read = readMatchesCsv(path, *dimension);
@@ -80,51 +74,18 @@ std::vector<PointMatch> matchesFrom(const py::object& src, const py::object& dst
   return std::move(*parsed);
 }
 
-FrameSize sizeOf(const py::object& size, const char* what) {
-  const auto wh = size.cast<std::pair<long long, long long>>();
-  const long long kMax = 1 << 20;
-  if (wh.first < 1 || wh.second < 1 || wh.first > kMax || wh.second > kMax)
-    raiseValueError(std::string(what) + " expects (width, height) from 1 to 2^20");
-  return {static_cast<int>(wh.first), static_cast<int>(wh.second)};
-}
-
 PyCamera cameraOf(Artcam doc, const std::string& name) {
   return {std::make_shared<const Artcam>(std::move(doc)), name};
 }
 
-py::dict recordDict(const FitRecord& r) {
-  py::dict d;
-  d["model"] = r.model;
-  d["matches"] = r.matches;
-  d["rms_px"] = r.rms_px;
-  d["max_px"] = r.max_px;
-  d["residuals_px"] = r.residuals_px;
-  d["singular_values"] = r.singular_values;
-  d["reason"] = r.reason;
-  if (r.held_out_rms_px >= 0) d["held_out_rms_px"] = r.held_out_rms_px;
-  if (r.algebraic_rms_px >= 0) d["algebraic_rms_px"] = r.algebraic_rms_px;
-  if (r.pole_checked) {
-    d["pole_free"] = r.pole_free;
-    d["pole_margin"] = r.pole_margin;
-  }
-  if (!r.inliers.empty()) d["inliers"] = r.inliers;
-  if (!r.criterion.empty()) d["criterion"] = r.criterion;
-  py::list models;
-  for (const ModelScore& m : r.models) {
-    py::dict s;
-    s["model"] = m.model;
-    s["rms_px"] = m.rms_px;
-    s["held_out_rms_px"] = m.held_out_rms_px;
-    s["criterion"] = m.criterion;
-    s["note"] = m.note;
-    models.append(s);
-  }
-  if (!r.models.empty()) d["models"] = models;
-  return d;
-}
-
 void checked(const Status& s) {
   if (!s) raiseValueError(s.message);
+}
+
+// The CLI's --json report with its summary line beside it.
+py::object reportOf(nlohmann::json report, const std::string& line) {
+  report["report"] = line;
+  return fromJson(report);
 }
 
 py::tuple fit(const py::object& src, const py::object& dst, const py::object& size,
@@ -148,8 +109,8 @@ py::tuple fit(const py::object& src, const py::object& dst, const py::object& si
   FrameSize source, target;
   if (dimension == 2) {
     if (size.is_none()) raiseValueError("fit: size=(width, height) of the source image is missing");
-    source = sizeOf(size, "size");
-    target = target_size.is_none() ? source : sizeOf(target_size, "target_size");
+    source = sizeArgument(size, "size");
+    target = target_size.is_none() ? source : sizeArgument(target_size, "target_size");
   }
   FitSummary summary;
   {
@@ -161,10 +122,11 @@ py::tuple fit(const py::object& src, const py::object& dst, const py::object& si
   Artcam doc(summary.camera);
   doc.matches = matches;
   doc.fit = summary.record;
-  py::dict report = recordDict(summary.record);
-  report["report"] = summary.report();
-  for (const std::string& warning : cameraWarnings(doc)) report["warning"] = warning;
-  return py::make_tuple(cameraOf(std::move(doc), "fit " + summary.record.model), report);
+  nlohmann::json report = cli::fitReportJson(summary.record, options.robust);
+  const std::vector<std::string> warnings = cameraWarnings(doc);
+  if (!warnings.empty()) report["warning"] = warnings.back();
+  return py::make_tuple(cameraOf(std::move(doc), "fit " + summary.record.model),
+                        reportOf(std::move(report), summary.report()));
 }
 
 py::tuple fitLines(const py::object& lines_in, const py::object& size, const py::object& pairs_src,
@@ -178,7 +140,7 @@ py::tuple fitLines(const py::object& lines_in, const py::object& size, const py:
   checked(options.check());
   // Lines: a CSV path, or a list of N×2 arrays (labelled 1, 2, …), or a {label: N×2} dict.
   std::vector<LineTrace> lines;
-  if (isPath(lines_in)) {
+  if (isPathLike(lines_in)) {
     const std::string path = pathOf(lines_in);
     auto read = readLinesCsv(path);
     if (!read) raiseReadError(path, read.status.message);
@@ -215,8 +177,9 @@ py::tuple fitLines(const py::object& lines_in, const py::object& size, const py:
     pairs = matchesFrom(pairs_src, pairs_dst, py::none(), &dimension);
     if (dimension != 2) raiseValueError("fit_lines: pairs are 2D (N×2)");
   }
-  const FrameSize source = sizeOf(size, "size");
-  const FrameSize target = target_size.is_none() ? source : sizeOf(target_size, "target_size");
+  const FrameSize source = sizeArgument(size, "size");
+  const FrameSize target =
+      target_size.is_none() ? source : sizeArgument(target_size, "target_size");
   LinesFitSummary summary;
   {
     py::gil_scoped_release release;
@@ -227,38 +190,15 @@ py::tuple fitLines(const py::object& lines_in, const py::object& size, const py:
   Artcam doc(summary.camera);
   doc.matches = pairs;
   doc.fit = summary.record();
-  py::dict report;
-  py::list per_line;
-  for (size_t k = 0; k < summary.bows.size(); ++k) {
-    py::dict l;
-    l["line"] = summary.bows[k].label;
-    l["points"] = summary.bows[k].points;
-    l["bow_px"] = summary.bows[k].max_px;
-    l["rms_px"] = summary.bows[k].rms_px;
-    l["bow_before_px"] = summary.bows_before[k].max_px;
-    per_line.append(l);
-  }
-  report["model"] = std::string(lineModelName(summary.model));
-  report["lines"] = per_line;
-  report["rms_bow_px"] = summary.rms_bow_px;
-  report["max_bow_px"] = summary.max_bow_px;
-  report["pairs"] = doc.fit->matches;
-  report["reason"] = summary.reason;
-  if (summary.model == LineModel::Radial) report["radial_k"] = summary.radial_k;
-  if (doc.fit->matches > 0) {
-    report["pair_rms_px"] = doc.fit->rms_px;
-    report["pair_max_px"] = doc.fit->max_px;
-    report["pair_residuals_px"] = doc.fit->residuals_px;
-  }
-  report["report"] = summary.report();
   return py::make_tuple(
-      cameraOf(std::move(doc), "fit_lines " + std::string(lineModelName(summary.model))), report);
+      cameraOf(std::move(doc), "fit_lines " + std::string(lineModelName(summary.model))),
+      reportOf(cli::linesFitJson(summary), summary.report()));
 }
 
 py::tuple fitStmap(const std::string& path, const py::object& size, const std::string& layer,
                    const std::string& model, bool robust) {
   StmapSampleOptions options;
-  if (!size.is_none()) options.source_px = sizeOf(size, "size");
+  if (!size.is_none()) options.source_px = sizeArgument(size, "size");
   options.layer = layer;
   Result<StmapSamples> samples;
   {
@@ -280,12 +220,12 @@ py::tuple fitStmap(const std::string& path, const py::object& size, const std::s
   Artcam doc(summary.camera);
   doc.matches = samples->matches;
   doc.fit = summary.record;
-  py::dict report = recordDict(summary.record);
-  report["report"] = summary.report();
+  nlohmann::json report = cli::fitReportJson(summary.record, robust);
   report["samples"] = samples->matches.size();
   report["step_px"] = samples->step;
   report["convention"] = std::string(stmapConventionName(samples->convention));
-  return py::make_tuple(cameraOf(std::move(doc), "fit_stmap " + path), report);
+  return py::make_tuple(cameraOf(std::move(doc), "fit_stmap " + path),
+                        reportOf(std::move(report), summary.report()));
 }
 
 py::tuple fitColour(const py::object& src, const py::object& dst, const py::object& size,
@@ -305,7 +245,7 @@ py::tuple fitColour(const py::object& src, const py::object& dst, const py::obje
     options.robust_threshold_de = threshold.cast<double>();
   }
   checked(options.check());
-  const FrameSize frame = sizeOf(size, "size");
+  const FrameSize frame = sizeArgument(size, "size");
   const Rows a = rowsOf(src, 3, "src"), b = rowsOf(dst, 3, "dst");
   auto samples = parseColourSamplesCsv(
       csvRows(a, b, enabled, "fit_colour", "src_r,src_g,src_b,dst_r,dst_g,dst_b"), "<samples>",
@@ -320,23 +260,9 @@ py::tuple fitColour(const py::object& src, const py::object& dst, const py::obje
   Artcam doc(colourCamera(summary.map, frame));
   doc.matches = *samples;
   doc.fit = summary.record();
-  py::dict report;
-  report["block"] = "colour";
-  report["model"] = std::string(colourModelName(summary.map.model));
-  report["selected"] = std::string(colourModelName(summary.selected));
-  report["samples"] = summary.delta_e.size();
-  report["delta_e"] = summary.delta_e;
-  report["mean_de"] = summary.mean_de;
-  report["median_de"] = summary.median_de;
-  report["max_de"] = summary.max_de;
-  report["rms_rgb"] = summary.rms_rgb;
-  report["reason"] = summary.reason;
-  if (summary.held_out_de >= 0) report["held_out_de"] = summary.held_out_de;
-  if (robust) report["inliers"] = summary.inliers;
-  report["report"] = summary.report();
   return py::make_tuple(
       cameraOf(std::move(doc), "fit_colour " + std::string(colourModelName(summary.map.model))),
-      report);
+      reportOf(cli::colourFitJson(summary, robust), summary.report()));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // artcam.lens_search and artcam.lens_camera: the lensfun database (core/lens), as `artcam lens
 // search` and `artcam lens camera` use it.
+#include "app/cli/reports.h"
 #include "core/lens/lens_camera.h"
 #include "core/lens/lens_database.h"
 #include "core/lens/photo_lens.h"
@@ -24,20 +25,6 @@ std::shared_ptr<const LensDatabase> database() {
   return db;
 }
 
-py::dict lensDict(const LensEntry& e) {
-  py::dict d;
-  d["maker"] = e.maker;
-  d["model"] = e.model;
-  d["min_focal_mm"] = e.min_focal_mm;
-  d["max_focal_mm"] = e.max_focal_mm;
-  d["crop_factor"] = e.crop_factor;
-  d["type"] = e.type;
-  d["distortion"] = e.distortion;
-  d["tca"] = e.tca;
-  d["vignetting"] = e.vignetting;
-  return d;
-}
-
 py::list lensSearch(const std::string& text, int limit) {
   if (limit < 0) raiseValueError("limit must be 0 (all) or more");
   const auto db = database();
@@ -49,9 +36,9 @@ py::list lensSearch(const std::string& text, int limit) {
   }
   py::list out;
   for (size_t i = 0; i < hits.size() && (limit == 0 || i < static_cast<size_t>(limit)); ++i) {
-    py::dict d = lensDict(hits[i]);
-    d["match"] = lensSearchMatchName(match);
-    out.append(d);
+    nlohmann::json lens = cli::lensEntryJson(hits[i]);
+    lens["match"] = lensSearchMatchName(match);
+    out.append(fromJson(lens));
   }
   return out;
 }
@@ -70,10 +57,7 @@ py::tuple lensCamera(const py::object& lens, const py::object& focal, const py::
     options.lens = lens.cast<std::string>();
     options.focal_mm = focal.cast<double>();
     if (!(options.focal_mm > 0)) raiseValueError("focal must be above 0 mm");
-    const auto wh = size.cast<std::pair<int, int>>();
-    if (wh.first < 1 || wh.second < 1 || wh.first > (1 << 20) || wh.second > (1 << 20))
-      raiseValueError("size expects (width, height) from 1 to 2^20");
-    options.size = {wh.first, wh.second};
+    options.size = sizeArgument(size, "size");
   }
   if (!crop.is_none()) {
     options.crop = crop.cast<double>();
@@ -89,7 +73,7 @@ py::tuple lensCamera(const py::object& lens, const py::object& focal, const py::
   std::optional<PhotoLensChoice> choice;
   std::string photo_path;
   if (!photo.is_none()) {
-    photo_path = py::module_::import("os").attr("fspath")(photo).cast<std::string>();
+    photo_path = pathOf(photo);
     Result<PhotoLensChoice> chosen;
     {
       py::gil_scoped_release release;
@@ -107,35 +91,12 @@ py::tuple lensCamera(const py::object& lens, const py::object& focal, const py::
   if (!s.status)
     raiseValueError(choice ? photo_path + ": " + choice->describe() + ": " + s.status.message
                            : s.status.message);
-  py::dict report;
-  report["lens"] = lensDict(s.lens);
-  report["crop"] = s.crop;
-  report["focal_mm"] = s.focal_mm;
-  report["distort"] = options.distort;
-  report["piecewise"] = s.piecewise;
-  report["patches"] = s.patches;
-  report["single_max_px"] = s.single_max_px;
-  report["single_rms_px"] = s.single_rms_px;
-  report["max_px"] = s.max_px;
-  report["rms_px"] = s.rms_px;
-  report["checked"] = s.checked;
-  report["unmapped"] = s.unmapped;
-  report["max_error_px"] = options.max_error_px;
-  report["within_tolerance"] = s.within_tolerance;
-  report["tca"] = s.tca;
-  report["tca_max_px"] = s.tca_max_px;
-  report["notes"] = s.notes;
+  nlohmann::json report = cli::lensCameraJson(s, options, choice ? &*choice : nullptr, photo_path);
   report["report"] = s.report();
-  if (choice) {
-    report["photo"] = photo_path;
-    report["camera"] = choice->lookup.camera;
-    report["lens_match"] = choice->lookup.lens_match;
-    report["size"] = py::make_tuple(options.size.width, options.size.height);
-  }
   const std::string name = "lens " + s.lens.model + " at " +
                            py::repr(py::float_(s.focal_mm)).cast<std::string>() + " mm";
   return py::make_tuple(PyCamera{std::make_shared<const Artcam>(std::move(s.camera)), name},
-                        report);
+                        fromJson(report));
 }
 
 }  // namespace

@@ -28,6 +28,26 @@ void raiseReadError(const std::string& path, const std::string& message) {
 
 void raiseValueError(const std::string& message) { throw py::value_error(message); }
 
+py::object fromJson(const nlohmann::json& value) {
+  return py::module_::import("json").attr("loads")(value.dump());
+}
+
+FrameSize sizeArgument(const py::handle& size, const char* what) {
+  const auto wh = size.cast<std::pair<long long, long long>>();
+  constexpr long long kMax = 1 << 20;
+  if (wh.first < 1 || wh.second < 1 || wh.first > kMax || wh.second > kMax)
+    raiseValueError(std::string(what) + " expects (width, height) from 1 to 2^20");
+  return {static_cast<int>(wh.first), static_cast<int>(wh.second)};
+}
+
+bool isPathLike(const py::handle& value) {
+  return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
+}
+
+std::string pathOf(const py::handle& value) {
+  return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+}
+
 cli::Args argsFromKeywords(const py::dict& options, const std::vector<cli::OptionSpec>& specs,
                            std::vector<std::string> positional) {
   std::vector<std::string> argv = std::move(positional);
