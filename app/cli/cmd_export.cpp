@@ -7,6 +7,7 @@
 #include "app/cli/memory.h"
 #include "app/cli/outputs.h"
 #include "app/cli/progress.h"
+#include "app/cli/project_export.h"
 #include "app/cli/write_args.h"
 
 #include "core/io/artcam_file.h"
@@ -104,30 +105,22 @@ std::array<float, 4> parseFill(const std::string& text) {
 
 }  // namespace
 
-int exportCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--output", "-o", true},
-                         {"--photo", "", true},
-                         {"--camera-out", "", true},
-                         {"--depth-out", "", true},
-                         {"--size", "", true},
-                         {"--filter", "", true},
-                         {"--edge", "", true},
-                         {"--quality", "", true},
-                         {"--subsampling", "", true},
-                         {"--bit-depth", "", true},
-                         {"--colourspace", "", true},
-                         {"--colourspace-in", "", true},
-                         {"--colourspace-out", "", true},
-                         {"--crop-valid", "", false},
-                         {"--fill", "", true},
-                         {"--finish", "", true},
-                         {"--json", "", false},
-                         {"--overwrite", "", false},
-                         {"--force", "", false},
-                         {"--quiet", "-q", false}});
+const std::vector<OptionSpec>& projectExportOptions() {
+  static const std::vector<OptionSpec> options = {
+      {"--photo", "", true},       {"--camera-out", "", true},     {"--depth-out", "", true},
+      {"--size", "", true},        {"--filter", "", true},         {"--edge", "", true},
+      {"--quality", "", true},     {"--subsampling", "", true},    {"--bit-depth", "", true},
+      {"--colourspace", "", true}, {"--colourspace-in", "", true}, {"--colourspace-out", "", true},
+      {"--crop-valid", "", false}, {"--fill", "", true},           {"--finish", "", true},
+      {"--overwrite", "", false},  {"--force", "", false}};
+  return options;
+}
+
+ProjectExport exportProject(const Args& args, const std::string& output,
+                            const std::function<bool(double)>& render_progress,
+                            const std::function<bool(double)>& write_progress,
+                            const std::function<void(const std::string&)>& warn) {
   args.expectPositional(1, "PROJECT.artcamproj");
-  const auto output = args.value("--output");
-  if (!output) throw UsageError("missing -o OUT");
   ExportOptions options;
   if (const auto size = args.value("--size")) {
     const FrameSize s = parseSizeByAspect(*size, "--size");
@@ -149,7 +142,7 @@ int exportCommand(const std::vector<std::string>& argv) {
     if (options.crop_to_valid) throw UsageError("--crop-valid and --fill exclude each other");
     options.fill = parseFill(*fill);
   }
-  options = exportOptionsForOutput(std::move(options), *output);  // a JPEG is filled white
+  options = exportOptionsForOutput(std::move(options), output);  // a JPEG is filled white
   const std::optional<std::string> finish = parseFinishOption(args, /*allow_none=*/true);
 
   const std::string& project_path = args.positional()[0];
@@ -167,11 +160,13 @@ int exportCommand(const std::vector<std::string>& argv) {
       throw CommandError(s.message);
     project->photo_path = std::filesystem::absolute(*photo).string();
   }
-  std::vector<std::string> outputs = {*output};
-  const auto camera_out = args.value("--camera-out");
-  const auto depth_out = args.value("--depth-out");
-  if (camera_out) outputs.push_back(*camera_out);
-  if (depth_out) outputs.push_back(*depth_out);
+  ProjectExport done;
+  done.output = output;
+  done.camera_out = args.value("--camera-out");
+  done.depth_out = args.value("--depth-out");
+  std::vector<std::string> outputs = {output};
+  if (done.camera_out) outputs.push_back(*done.camera_out);
+  if (done.depth_out) outputs.push_back(*done.depth_out);
   for (size_t i = 0; i < outputs.size(); ++i)
     for (size_t k = i + 1; k < outputs.size(); ++k)
       if (outputs[i] == outputs[k] || isSameFile(outputs[i], outputs[k]))
@@ -185,59 +180,84 @@ int exportCommand(const std::vector<std::string>& argv) {
     throw CommandError(project_path + ": its photo " + project->photo_path +
                        " is missing (moved?); give its new place with --photo FILE");
 
-  const CooperativeInterrupt interrupt;
-  ProgressBar bar(0, args.has("--quiet"));
   Result<ProjectScene> scene = loadProjectScene(*project, project_path, read);
   if (!scene) throw CommandError(scene.status.message);
-  if (!scene->camera.note.empty())
-    std::fprintf(stderr, "artcam export: warning: %s\n", scene->camera.note.c_str());
-  if (depth_out && scene->depth.empty())
+  done.note = scene->camera.note;
+  if (!done.note.empty() && warn) warn(done.note);
+  if (done.depth_out && scene->depth.empty())
     throw CommandError(project_path + ": --depth-out: the project has no depth (no plane with "
                                       "three depths, no depth map)");
   const bool reads_depth = readsDepth(scene->camera.camera);
-  RenderSummary summary;
   ImageF out;
   try {
     out = renderExport(scene->photo, reads_depth ? &scene->depth : nullptr, scene->camera.camera,
-                       options,
-                       cancelOnInterrupt([&bar](double done) { bar.stage("rendering", done); }),
-                       &summary, &scene->second);
+                       options, render_progress, &done.summary, &scene->second);
   } catch (const std::invalid_argument& e) {
     throw CommandError(project_path + ": " + e.what());
   }
-  if (summary.cancelled || interruptRequested()) {
-    bar.finish();
+  // Asked once more at the end: a stop that came after the last tile writes nothing either.
+  if (done.summary.cancelled || (render_progress && !render_progress(1.0))) {
+    done.cancelled = true;
+    return done;
+  }
+  options.write.progress = write_progress;
+  if (const Status s = writeImage(output, out, &scene->photo.info, options.write); !s)
+    throw CommandError(s.message);
+  if (done.camera_out)
+    if (const Status s = writeArtcam(*done.camera_out, scene->camera.camera); !s)
+      throw CommandError(s.message);
+  if (done.depth_out)
+    if (const Status s = writeDepthMapFile(*done.depth_out, scene->depth); !s)
+      throw CommandError(s.message);
+  done.width = out.width;
+  done.height = out.height;
+  done.camera = std::move(scene->camera.camera);
+  done.effects_applied = scene->camera.applied.size();
+  done.effects = project->effects.size();
+  return done;
+}
+
+nlohmann::json projectExportJson(const ProjectExport& done) {
+  nlohmann::json j = {{"output", done.output},
+                      {"width", done.width},
+                      {"height", done.height},
+                      {"description", done.summary.describe()},
+                      {"render_ms", done.summary.render_ms},
+                      {"camera", std::string(artcamKindName(done.camera.kind()))},
+                      {"effects_applied", done.effects_applied},
+                      {"effects", done.effects}};
+  if (!done.note.empty()) j["warning"] = done.note;
+  if (done.camera_out) j["camera_out"] = *done.camera_out;
+  if (done.depth_out) j["depth_out"] = *done.depth_out;
+  return j;
+}
+
+int exportCommand(const std::vector<std::string>& argv) {
+  std::vector<OptionSpec> specs = projectExportOptions();
+  specs.insert(specs.end(),
+               {{"--output", "-o", true}, {"--json", "", false}, {"--quiet", "-q", false}});
+  const Args args(argv, specs);
+  args.expectPositional(1, "PROJECT.artcamproj");
+  const auto output = args.value("--output");
+  if (!output) throw UsageError("missing -o OUT");
+  const CooperativeInterrupt interrupt;
+  ProgressBar bar(0, args.has("--quiet"));
+  const ProjectExport done = exportProject(
+      args, *output, cancelOnInterrupt([&bar](double f) { bar.stage("rendering", f); }),
+      cancelOnInterrupt([&bar](double f) { bar.stage("writing", f); }),
+      [](const std::string& note) {
+        std::fprintf(stderr, "artcam export: warning: %s\n", note.c_str());
+      });
+  bar.finish();
+  if (done.cancelled || interruptRequested()) {
     std::fprintf(stderr, "artcam export: interrupted; %s not written\n", output->c_str());
     return interruptExitCode();
   }
-  options.write.progress = cancelOnInterrupt([&bar](double done) { bar.stage("writing", done); });
-  if (const Status s = writeImage(*output, out, &scene->photo.info, options.write); !s)
-    throw CommandError(s.message);
-  bar.finish();
-  if (camera_out)
-    if (const Status s = writeArtcam(*camera_out, scene->camera.camera); !s)
-      throw CommandError(s.message);
-  if (depth_out)
-    if (const Status s = writeDepthMapFile(*depth_out, scene->depth); !s)
-      throw CommandError(s.message);
-  const std::string description = summary.describe();
-  if (args.has("--json")) {
-    nlohmann::json j = {{"output", *output},
-                        {"width", out.width},
-                        {"height", out.height},
-                        {"description", description},
-                        {"render_ms", summary.render_ms},
-                        {"camera", std::string(artcamKindName(scene->camera.camera.kind()))},
-                        {"effects_applied", scene->camera.applied.size()},
-                        {"effects", project->effects.size()}};
-    if (!scene->camera.note.empty()) j["warning"] = scene->camera.note;
-    if (camera_out) j["camera_out"] = *camera_out;
-    if (depth_out) j["depth_out"] = *depth_out;
-    std::printf("%s\n", j.dump().c_str());
-  } else {
-    std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), out.width, out.height,
-                description.c_str());
-  }
+  if (args.has("--json"))
+    std::printf("%s\n", projectExportJson(done).dump().c_str());
+  else
+    std::printf("wrote %s (%dx%d, %s)\n", output->c_str(), done.width, done.height,
+                done.summary.describe().c_str());
   return 0;
 }
 

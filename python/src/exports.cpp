@@ -1,22 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // artcam.export_map (the ST maps of `artcam export-map`, as arrays or a file) and
 // artcam.export_project (a saved studio project rendered as `artcam export` renders it).
-#include "app/cli/args.h"
-#include "app/cli/commands.h"
-#include "app/cli/memory.h"
-#include "app/cli/outputs.h"
-#include "app/cli/write_args.h"
-#include "core/io/artcam_file.h"
-#include "core/io/image_io.h"
+#include "app/cli/project_export.h"
 #include "core/io/stmap_file.h"
-#include "core/io/stored_image.h"
 #include "core/pipeline/source_maps.h"
-#include "core/project/project_render.h"
-#include "core/project/studio_project.h"
-#include "core/sampling/filter.h"
 #include "python/src/common.h"
-
-#include <filesystem>
 
 namespace artcam::python {
 namespace {
@@ -69,97 +57,18 @@ py::array_t<float> exportMap(const PyCamera& camera, const py::object& size_in,
   return out;
 }
 
-const std::vector<cli::OptionSpec> kExportSpecs = {
-    {"--photo", "", true},          {"--size", "", true},
-    {"--filter", "", true},         {"--edge", "", true},
-    {"--quality", "", true},        {"--subsampling", "", true},
-    {"--bit-depth", "", true},      {"--colourspace", "", true},
-    {"--colourspace-in", "", true}, {"--colourspace-out", "", true},
-    {"--crop-valid", "", false},    {"--camera-out", "", true},
-    {"--finish", "", true},         {"--overwrite", "", false}};
-
 py::dict exportProject(const std::string& project_path, const std::string& output,
                        const py::kwargs& keywords) {
-  const cli::Args args = argsFromKeywords(keywords, kExportSpecs);
-  ExportOptions options;
-  if (const auto size = args.value("--size")) {
-    const FrameSize s = cli::parseSizeByAspect(*size, "--size");
-    if (s.width > 0 && s.height > 0) cli::checkImageMemory(s, "--size");
-    options.width = s.width;
-    options.height = s.height;
-  }
-  if (const auto filter_name = args.value("--filter")) {
-    const auto filter = filterFromName(*filter_name);
-    if (!filter) raiseValueError("unknown filter \"" + *filter_name + "\"");
-    options.filter = *filter;
-  }
-  cli::parseWriteOptions(args, options.write);
-  ReadImageOptions read;
-  read.colour_space = cli::parseColourSpaceIn(args);
-  options.edge = cli::parseEdgeOption(args);
-  options.crop_to_valid = args.has("--crop-valid");
-  options = exportOptionsForOutput(std::move(options), output);
-  const std::optional<std::string> finish = cli::parseFinishOption(args, /*allow_none=*/true);
-
-  Result<StudioProject> project = readStudioProject(project_path);
-  if (!project) raiseReadError(project_path, project.status.message);
-  options.finish = finish.value_or(project->finish);
-  if (const auto photo = args.value("--photo")) {
-    Result<StoredShape> shape = readStoredShape(*photo);
-    if (!shape) raiseReadError(*photo, project_path + ": photo: " + shape.status.message);
-    if (const Status s =
-            checkProjectPhotoSize(*project, {shape->width, shape->height}, *photo, project_path);
-        !s)
-      raiseValueError(s.message);
-    project->photo_path = std::filesystem::absolute(*photo).string();
-  }
-  std::vector<std::string> outputs = {output};
-  const auto camera_out = args.value("--camera-out");
-  if (camera_out) outputs.push_back(*camera_out);
-  std::vector<std::string> inputs = {project_path, project->photo_path};
-  if (project->second_path) inputs.push_back(*project->second_path);
-  if (project->depth_map) inputs.push_back(project->depth_map->path);
-  cli::checkOutputs(outputs, inputs, args.has("--overwrite"));
-  if (std::error_code ec;
-      !args.value("--photo") && !std::filesystem::exists(project->photo_path, ec))
-    raiseOSError(project_path + ": its photo " + project->photo_path +
-                 " is missing (moved?); give its new place with photo=FILE");
-
-  Result<ProjectScene> scene;
-  RenderSummary summary;
-  ImageF out;
-  Status written;
-  std::string failure;
+  const cli::Args args = argsFromKeywords(keywords, cli::projectExportOptions(), {project_path});
+  cli::ProjectExport done;
   {
     py::gil_scoped_release release;
-    scene = loadProjectScene(*project, project_path, read);
-    if (scene) {
-      const bool reads_depth = readsDepth(scene->camera.camera);
-      try {
-        out = renderExport(scene->photo, reads_depth ? &scene->depth : nullptr,
-                           scene->camera.camera, options, {}, &summary, &scene->second);
-        written = writeImage(output, out, &scene->photo.info, options.write);
-        if (written && camera_out) written = writeArtcam(*camera_out, scene->camera.camera);
-      } catch (const std::invalid_argument& e) {
-        failure = project_path + ": " + e.what();
-      }
-    }
+    done = cli::exportProject(args, output, {}, {}, {});
   }
-  if (!scene) raiseOSError(scene.status.message);
-  if (!failure.empty()) raiseValueError(failure);
-  if (!written) raiseOSError(written.message);
-  py::dict report;
-  report["output"] = output;
-  report["width"] = out.width;
-  report["height"] = out.height;
-  report["description"] = summary.describe();
-  report["render_ms"] = summary.render_ms;
-  report["kind"] = std::string(artcamKindName(scene->camera.camera.kind()));
-  report["effects_applied"] = scene->camera.applied.size();
-  report["effects"] = project->effects.size();
-  if (!scene->camera.note.empty()) report["warning"] = scene->camera.note;
-  if (camera_out) report["camera_out"] = *camera_out;
-  report["camera"] = PyCamera{std::make_shared<const Artcam>(scene->camera.camera), project_path};
+  // export --json's object, with the camera itself under "camera" and its kind under "kind".
+  py::dict report = fromJson(cli::projectExportJson(done));
+  report["kind"] = report["camera"];
+  report["camera"] = PyCamera{std::make_shared<const Artcam>(std::move(done.camera)), project_path};
   return report;
 }
 
@@ -186,12 +95,13 @@ Raises ValueError for a camera no map can carry (positions that read colour or d
 Renders a saved studio project (.artcamproj) into `out`, as `artcam export PROJECT -o OUT` does
 (the studio's File > Export: the same pixels). Keywords are export's options: photo (the photo's
 new place if it moved), size ((w, h), one side 0 for the aspect), filter, edge, quality,
-subsampling, bit_depth, colourspace, colourspace_in, colourspace_out, crop_valid, finish (marks
-over the project's own finish; 'none' without), camera_out (also write the project's camera),
-overwrite.
+subsampling, bit_depth, colourspace, colourspace_in, colourspace_out, crop_valid, fill
+("r,g,b[,a]"), finish (marks over the project's own finish; 'none' without), camera_out and
+depth_out (also write the project's camera and depth), overwrite.
 
-Returns a dict: output, width, height, description, render_ms, kind, effects, effects_applied,
-warning, camera (the project's camera as an artcam.Camera). Raises OSError for a missing or
+Returns `artcam export --json`'s object as a dict (output, width, height, description,
+render_ms, effects, effects_applied, warning, camera_out, depth_out) with the camera's kind under
+'kind' and 'camera' the project's camera as an artcam.Camera. Raises OSError for a missing or
 unreadable file or an output that exists, ValueError for a bad option or project.)doc");
 }
 

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string_view>
 
 namespace artcam::python {
 
@@ -67,10 +68,16 @@ cli::Args argsFromKeywords(const py::dict& options, const std::vector<cli::Optio
     }
     argv.push_back(name);
     if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
-      // A size as (width, height): the CLI's WxH.
-      const auto items = value.cast<std::vector<long long>>();
-      if (items.size() != 2) raiseValueError(name + " expects (width, height)");
-      argv.push_back(std::to_string(items[0]) + "x" + std::to_string(items[1]));
+      // A size (width, height) as the CLI's WxH; any other sequence (a fill colour) as its
+      // comma-separated list.
+      const py::sequence items = value.cast<py::sequence>();
+      std::string text;
+      for (const py::handle item : items)
+        text += (text.empty()        ? ""
+                 : items.size() == 2 ? "x"
+                                     : ",") +
+                py::str(item).cast<std::string>();
+      argv.push_back(text);
     } else {
       argv.push_back(py::str(value).cast<std::string>());
     }
@@ -93,7 +100,11 @@ PYBIND11_MODULE(_artcam, m) {
     } catch (const cli::UsageError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const cli::CommandError& e) {
-      PyErr_SetString(PyExc_OSError, e.what());
+      // The readers' one wording for a missing file (core/io/file_kind.cpp): Python's own
+      // exception for it, as open() raises.
+      const bool missing =
+          std::string_view(e.what()).find(": cannot read: no such file") != std::string_view::npos;
+      PyErr_SetString(missing ? PyExc_FileNotFoundError : PyExc_OSError, e.what());
     }
   });
   python::registerCameras(m);

@@ -68,7 +68,11 @@ def test_export_project_equals_the_cli(run_cli, samples, tmp_path):
     assert report["camera"].to_json() == (tmp_path / "cli.artcam").read_text()
     half = artcam.export_project(str(project), str(tmp_path / "half.jpg"), size=(300, 0),
                                  quality=90)
-    assert half["width"] == 300
+    assert half["width"] == 300 and half["kind"] == cli["camera"]
+    # A colour as a sequence, as the CLI's list.
+    artcam.export_project(str(project), str(tmp_path / "fill.png"), fill=(0.2, 0.4, 0.6))
+    run_cli("export", project, "-o", tmp_path / "cli-fill.png", "--fill", "0.2,0.4,0.6")
+    assert (tmp_path / "fill.png").read_bytes() == (tmp_path / "cli-fill.png").read_bytes()
     with pytest.raises(OSError, match="exists; pass --overwrite"):
         artcam.export_project(str(project), str(tmp_path / "py.png"))
     with pytest.raises(FileNotFoundError):
