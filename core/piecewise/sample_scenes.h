@@ -112,6 +112,38 @@ struct MirrorSphereScene {
   }
 };
 
+// Snell's law for unit direction `d` meeting a surface of normal `n` (either side) with index
+// ratio eta = n_from / n_to; none on total internal reflection.
+inline std::optional<Eigen::Vector3d> refractRay(const Eigen::Vector3d& d, Eigen::Vector3d n,
+                                                 double eta) {
+  double cosi = -n.dot(d);
+  if (cosi < 0.0) {  // leaving: flip the normal
+    n = -n;
+    cosi = -cosi;
+  }
+  const double k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+  if (k < 0.0) return std::nullopt;  // total internal reflection
+  return (eta * d + (eta * cosi - std::sqrt(k)) * n).normalized();
+}
+
+// Ray–cylinder x² + z² = r² (axis y): the far (exit) or near (entry) root along o + t·d.
+inline std::optional<double> hitVerticalCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                                 double r, bool far) {
+  const double a = d.x() * d.x() + d.z() * d.z();
+  const double b = o.x() * d.x() + o.z() * d.z();
+  const double c = o.x() * o.x() + o.z() * o.z() - r * r;
+  const double disc = b * b - a * c;
+  if (a <= 0.0 || disc <= 0.0) return std::nullopt;
+  const double t = far ? (-b + std::sqrt(disc)) / a : (-b - std::sqrt(disc)) / a;
+  if (t <= 1e-12) return std::nullopt;
+  return t;
+}
+
+// The graphic pixel of a point on a vertical backdrop whose graphic covers x, y ∈ [-half, half].
+inline Eigen::Vector2d backdropGraphicPx(const Eigen::Vector3d& hit, double half, int size) {
+  return {(hit.x() + half) / (2.0 * half) * size, (half - hit.y()) / (2.0 * half) * size};
+}
+
 // A glass of water (a vertical cylinder of water, the glass wall ignored) in front of a
 // vertical backdrop carrying the graphic; the photo sees the backdrop refracted twice
 // (Snell's law at entry and exit), flipped and magnified, as in the paper's Fig 8.
@@ -129,32 +161,11 @@ struct WaterGlassScene {
   double region_fraction = 0.5;
   int graphic_size = 512;
 
-  std::optional<Eigen::Vector3d> refract(const Eigen::Vector3d& d, Eigen::Vector3d n, double eta) const {
-    double cosi = -n.dot(d);
-    if (cosi < 0.0) {  // leaving: flip the normal
-      n = -n;
-      cosi = -cosi;
-    }
-    const double k = 1.0 - eta * eta * (1.0 - cosi * cosi);
-    if (k < 0.0) return std::nullopt;  // total internal reflection
-    return (eta * d + (eta * cosi - std::sqrt(k)) * n).normalized();
-  }
-
-  // Ray–cylinder (x² + z² = r²): the far (exit) or near (entry) root along o + t d.
   std::optional<double> cylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, bool far) const {
-    const double a = d.x() * d.x() + d.z() * d.z();
-    const double b = o.x() * d.x() + o.z() * d.z();
-    const double c = o.x() * o.x() + o.z() * o.z() - radius * radius;
-    const double disc = b * b - a * c;
-    if (a <= 0.0 || disc <= 0.0) return std::nullopt;
-    const double t = far ? (-b + std::sqrt(disc)) / a : (-b - std::sqrt(disc)) / a;
-    if (t <= 1e-12) return std::nullopt;
-    return t;
+    return hitVerticalCylinder(o, d, radius, far);
   }
-
   Eigen::Vector2d backdropPx(const Eigen::Vector3d& hit) const {
-    return {(hit.x() + backdrop_half) / (2.0 * backdrop_half) * graphic_size,
-            (backdrop_half - hit.y()) / (2.0 * backdrop_half) * graphic_size};
+    return backdropGraphicPx(hit, backdrop_half, graphic_size);
   }
 
   // The ray through photo pixel p.
@@ -171,12 +182,14 @@ struct WaterGlassScene {
     out.through_object = true;
     const Eigen::Vector3d a = eye + *t_in * d;
     out.in_region = std::abs(a.x()) <= region_fraction * radius;
-    const auto d_water = refract(d, Eigen::Vector3d(a.x(), 0.0, a.z()).normalized(), 1.0 / water_index);
+    const auto d_water =
+        refractRay(d, Eigen::Vector3d(a.x(), 0.0, a.z()).normalized(), 1.0 / water_index);
     if (!d_water) return out;
     const auto t_out = cylinder(a, *d_water, true);
     if (!t_out) return out;
     const Eigen::Vector3d b = a + *t_out * *d_water;
-    const auto d_air = refract(*d_water, Eigen::Vector3d(b.x(), 0.0, b.z()).normalized(), water_index);
+    const auto d_air =
+        refractRay(*d_water, Eigen::Vector3d(b.x(), 0.0, b.z()).normalized(), water_index);
     if (!d_air || d_air->z() >= 0.0) return out;
     out.on_plane = true;
     out.plane_px = backdropPx(b + ((backdrop_z - b.z()) / d_air->z()) * *d_air);
@@ -216,34 +229,11 @@ struct GlassOfWaterScene {
   int graphic_size = 512;
   Medium medium = Medium::Water;
 
-  static std::optional<Eigen::Vector3d> refract(const Eigen::Vector3d& d, Eigen::Vector3d n,
-                                                double eta) {
-    double cosi = -n.dot(d);
-    if (cosi < 0.0) {
-      n = -n;
-      cosi = -cosi;
-    }
-    const double k = 1.0 - eta * eta * (1.0 - cosi * cosi);
-    if (k < 0.0) return std::nullopt;
-    return (eta * d + (eta * cosi - std::sqrt(k)) * n).normalized();
-  }
-  static std::optional<double> cylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                                        double r, bool far) {
-    const double a = d.x() * d.x() + d.z() * d.z();
-    const double b = o.x() * d.x() + o.z() * d.z();
-    const double c = o.x() * o.x() + o.z() * o.z() - r * r;
-    const double disc = b * b - a * c;
-    if (a <= 0.0 || disc <= 0.0) return std::nullopt;
-    const double t = far ? (-b + std::sqrt(disc)) / a : (-b - std::sqrt(disc)) / a;
-    if (t <= 1e-12) return std::nullopt;
-    return t;
-  }
   static Eigen::Vector3d normalAt(const Eigen::Vector3d& p) {
     return Eigen::Vector3d(p.x(), 0.0, p.z()).normalized();
   }
   Eigen::Vector2d backdropPx(const Eigen::Vector3d& hit) const {
-    return {(hit.x() + backdrop_half) / (2.0 * backdrop_half) * graphic_size,
-            (backdrop_half - hit.y()) / (2.0 * backdrop_half) * graphic_size};
+    return backdropGraphicPx(hit, backdrop_half, graphic_size);
   }
 
   // The ray through photo pixel p; `seen` gets the medium it crossed (when it crossed one whole).
@@ -253,7 +243,7 @@ struct GlassOfWaterScene {
     d.normalize();
     TracedRay out;
     if (seen) seen->reset();
-    const auto t_outer = cylinder(eye, d, radius, false);
+    const auto t_outer = hitVerticalCylinder(eye, d, radius, false);
     if (!t_outer) {
       out.on_plane = true;
       out.plane_px = backdropPx(eye + ((backdrop_z - eye.z()) / d.z()) * d);
@@ -263,27 +253,27 @@ struct GlassOfWaterScene {
     out.in_region = false;
     const double inner = radius - wall;
     const Eigen::Vector3d a = eye + *t_outer * d;  // air → glass
-    const auto d1 = refract(d, normalAt(a), 1.0 / glass_index);
+    const auto d1 = refractRay(d, normalAt(a), 1.0 / glass_index);
     if (!d1) return out;
-    const auto t_inner = cylinder(a, *d1, inner, false);
+    const auto t_inner = hitVerticalCylinder(a, *d1, inner, false);
     if (!t_inner) return out;                      // only the wall: no image
     const Eigen::Vector3d b = a + *t_inner * *d1;  // glass → medium
     const Medium m = b.y() < water_level ? Medium::Water : Medium::Air;
     const double n_inside = m == Medium::Water ? water_index : 1.0;
-    const auto d2 = refract(*d1, normalAt(b), glass_index / n_inside);
+    const auto d2 = refractRay(*d1, normalAt(b), glass_index / n_inside);
     if (!d2) return out;
-    const auto t_across = cylinder(b, *d2, inner, true);
+    const auto t_across = hitVerticalCylinder(b, *d2, inner, true);
     if (!t_across) return out;
     const Eigen::Vector3d c = b + *t_across * *d2;  // medium → glass
     // The surface between water and air is crossed: that ray bends at it too (the meniscus
     // band a user leaves out of both regions).
     if ((c.y() < water_level) != (m == Medium::Water)) return out;
-    const auto d3 = refract(*d2, normalAt(c), n_inside / glass_index);
+    const auto d3 = refractRay(*d2, normalAt(c), n_inside / glass_index);
     if (!d3) return out;
-    const auto t_wall = cylinder(c, *d3, radius, true);
+    const auto t_wall = hitVerticalCylinder(c, *d3, radius, true);
     if (!t_wall) return out;
     const Eigen::Vector3d e = c + *t_wall * *d3;  // glass → air
-    const auto d4 = refract(*d3, normalAt(e), glass_index);
+    const auto d4 = refractRay(*d3, normalAt(e), glass_index);
     if (!d4 || d4->z() >= 0.0) return out;
     out.on_plane = true;
     out.plane_px = backdropPx(e + ((backdrop_z - e.z()) / d4->z()) * *d4);
