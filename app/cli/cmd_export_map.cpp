@@ -85,9 +85,8 @@ int exportMapCommand(const std::vector<std::string>& argv) {
   const auto size_text = args.value("--size");
   if (!size_text) throw UsageError("missing --size WxH (the map's size, the output frame)");
   const FrameSize size = parseSize(*size_text, "--size");
-  // The maps are held in memory (9 bytes a pixel a layer) before they are written: 2^27 pixels
-  // (e.g. 16384x8192) is about 1.2 GB, past any plate a compositor warps.
-  if (static_cast<long long>(size.width) * size.height > (1LL << 27))
+  // The maps are held whole before they are written (source_maps.h).
+  if (static_cast<long long>(size.width) * size.height > kMaxSourceMapPixels)
     throw UsageError("--size " + *size_text + " is too large for a map (at most 2^27 pixels)");
   const std::string convention_name = args.valueOr("--convention", "stmap");
   const auto convention = stmapConventionFromName(convention_name);
@@ -101,9 +100,9 @@ int exportMapCommand(const std::vector<std::string>& argv) {
   if (!camera) throw CommandError(camera.status.message);
   for (const std::string& warning : cameraWarnings(*camera))
     std::fprintf(stderr, "artcam export-map: warning: %s: %s\n", path.c_str(), warning.c_str());
-  if (camera->layers.size() > 1 &&
-      static_cast<long long>(size.width) * size.height * static_cast<long long>(camera->layers.size()) >
-          (1LL << 27))
+  if (camera->layers.size() > 1 && static_cast<long long>(size.width) * size.height *
+                                           static_cast<long long>(camera->layers.size()) >
+                                       kMaxSourceMapPixels)
     throw UsageError("--size " + *size_text + " is too large for a map of " +
                      std::to_string(camera->layers.size()) + " layers (at most 2^27 pixels in all)");
   SourceMapsOptions map_options;

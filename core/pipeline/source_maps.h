@@ -29,6 +29,11 @@
 
 namespace artcam {
 
+// The most map pixels (all layers together) a caller asks for: the maps are held whole before
+// they are written (9 bytes a pixel a layer), so 2^27 (e.g. 16384x8192) is about 1.2 GB, past
+// any plate a compositor warps.
+inline constexpr long long kMaxSourceMapPixels = 1LL << 27;
+
 struct SourceMapsOptions {
   // The photo the maps will warp, in its pixels; empty: the camera's source frame. The camera is
   // normalised, so only the half-pixel border of what reads the photo (position_map.h) and a

@@ -19,7 +19,7 @@ py::array_t<float> exportMap(const PyCamera& camera, const py::object& size_in,
   // As export-map: the maps are held whole (9 bytes a pixel a layer), at most 2^27 pixels.
   const long long pixels = static_cast<long long>(size.width) * size.height *
                            static_cast<long long>(camera.camera->layers.size());
-  if (pixels > (1LL << 27))
+  if (pixels > kMaxSourceMapPixels)
     raiseValueError("size is too large for a map (at most 2^27 pixels in all layers)");
   SourceMapsOptions options;
   if (!source_size.is_none()) options.source_px = sizeArgument(source_size, "source_size");
