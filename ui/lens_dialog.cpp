@@ -47,6 +47,16 @@ LensDialog::LensDialog(std::shared_ptr<const LensDatabase> database, FrameSize p
   crop_->setValue(0.0);
   crop_->setToolTip(tr("The crop factor of the camera the photo was taken with"));
   form->addRow(tr("Crop factor:"), crop_);
+  aperture_ = new QDoubleSpinBox(this);
+  aperture_->setObjectName("lensAperture");
+  aperture_->setDecimals(1);
+  aperture_->setRange(0.0, 64.0);
+  aperture_->setSingleStep(0.1);
+  aperture_->setPrefix(tr("f/"));
+  aperture_->setSpecialValueText(tr("not known"));
+  aperture_->setValue(hint.aperture > 0 ? hint.aperture : 0.0);
+  aperture_->setToolTip(tr("The f-number the photo was taken at: vignetting depends on it"));
+  form->addRow(tr("Aperture:"), aperture_);
   distort_ = new QCheckBox(tr("Simulate the lens (distort) instead of correcting it"), this);
   distort_->setObjectName("lensDistort");
   form->addRow(distort_);
@@ -55,6 +65,12 @@ LensDialog::LensDialog(std::shared_ptr<const LensDatabase> database, FrameSize p
   tca_->setObjectName("lensTca");
   tca_->setChecked(true);
   form->addRow(tca_);
+  vignetting_ = new QCheckBox(tr("Vignetting as a gain on colour, where the database has it "
+                                 "(needs the aperture)"),
+                              this);
+  vignetting_->setObjectName("lensVignetting");
+  vignetting_->setChecked(true);
+  form->addRow(vignetting_);
   layout->addLayout(form);
 
   buttons_ = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
@@ -120,6 +136,8 @@ LensCameraOptions LensDialog::options() const {
   o.size = photo_size_;
   o.distort = distort_->isChecked();
   o.tca = tca_->isChecked();
+  o.vignetting = vignetting_->isChecked();
+  o.aperture = aperture_->value();
   return o;
 }
 

@@ -4,8 +4,9 @@
 // begin a word of the lens's name, else lensfun's own match, LensDatabase::search); with the
 // field empty it shows the lenses LensDatabase::lookUp finds for the photo's EXIF (the lookup
 // `artcam lens camera --from` makes: its first lens is the CLI's choice), the crop factor
-// starts at that of the camera lensfun knows and the focal length at the EXIF one. The dialog
-// only chooses:
+// starts at that of the camera lensfun knows, the focal length and the aperture at the EXIF
+// ones (vignetting needs the aperture; without one it is left out and the summary says so).
+// The dialog only chooses:
 // Session makes the camera off the GUI thread and sets it as the document's camera.
 #pragma once
 
@@ -38,6 +39,8 @@ class LensDialog : public QDialog {
   QLineEdit* searchField() const { return search_; }
   QListWidget* lensList() const { return list_; }
   QDoubleSpinBox* focalField() const { return focal_; }
+  QDoubleSpinBox* apertureField() const { return aperture_; }
+  QCheckBox* vignettingBox() const { return vignetting_; }
 
  private:
   void fill();             // the list for the search text (or the suggestions)
@@ -52,8 +55,10 @@ class LensDialog : public QDialog {
   QLabel* about_;
   QDoubleSpinBox* focal_;
   QDoubleSpinBox* crop_;
+  QDoubleSpinBox* aperture_;
   QCheckBox* distort_;
   QCheckBox* tca_;
+  QCheckBox* vignetting_;
   QDialogButtonBox* buttons_;
 };
 

@@ -76,13 +76,20 @@ void Session::applyLensCamera(const LensCameraOptions& options,
         document_->undoStack()->push(new SetCameraCommand(
             document_, std::move(camera),
             tr("Lens %1 at %2 mm").arg(QString::fromStdString(s.lens.model)).arg(s.focal_mm)));
-        const QString summary =
+        QString summary =
             tr("%1 at %2 mm: %3 camera, max %4 px against lensfun%5")
                 .arg(QString::fromStdString(s.lens.model))
                 .arg(s.focal_mm)
                 .arg(s.piecewise ? tr("piecewise (%1 patches)").arg(s.patches) : tr("single"))
                 .arg(s.max_px, 0, 'g', 3)
                 .arg(s.within_tolerance ? QString() : tr(" (above the threshold)"));
+        if (s.vignetting)
+          summary += tr("; vignetting at f/%1, max %2 % against lensfun")
+                         .arg(s.aperture)
+                         .arg(s.vignetting_fit.max_percent, 0, 'g', 2);
+        for (const std::string& note : s.notes)
+          if (note.find("vignetting") != std::string::npos)
+            summary += "; " + QString::fromStdString(note);
         emit statusMessage(summary);
         emit lensCameraApplied(true, summary);
       });

@@ -31,6 +31,7 @@ const char* const kFitUsage =
     "                  [--model …]\n"
     "       artcam fit --lines LINES.csv [MATCHES.csv] -o CAM.artcam --size WxH\n"
     "                  [--target-size WxH] [--model auto|radial|quadratic] [--json]\n"
+    "       artcam fit --flat-field FLAT.tif -o CAM.artcam [--cells N] [--json]\n"
     "       artcam fit --dim 3 MATCHES.csv -o CAM.artcam [--model …] [--json]\n"
     "       artcam fit --block colour SAMPLES.csv -o CAM.artcam --size WxH [--srgb]\n"
     "                  [--model auto|linear|affine|quadratic]\n"
@@ -64,7 +65,8 @@ const char* const kFitUsage =
     "samples) where alpha > 0 (or alpha 0 with a position beyond the photo's edge: export-map's\n"
     "pixels that read nothing but still have a preimage), each sample a match from its source\n"
     "position to its pixel centre, and fitted as MATCHES.csv would be (also with --piecewise).\n"
-    "A layered map (export-map of a per-channel camera) needs --layer R, G or B. The map is the target\n"
+    "A layered map (export-map of a per-channel camera) needs --layer R, G or B. The map is the "
+    "target\n"
     "frame; the source size is --size, else the map's artcam:source_width/height, else the\n"
     "map's own size. R = x / W, G = 1 - y / H; a map with artcam:convention opencv holds\n"
     "cv::remap pixels (-1: none). Maps without R and G channels are refused.\n"
@@ -79,6 +81,17 @@ const char* const kFitUsage =
     "distance from its own straight line, px) before and after; --json prints {model, lines:\n"
     "[{line, points, bow_px, rms_px, bow_before_px}], rms_bow_px, max_bow_px, pairs, reason,\n"
     "radial_k, pair_rms_px, pair_max_px, pair_residuals_px, output}.\n"
+    "--flat-field FLAT.tif fits the camera that corrects a lens's vignetting from a flat-field\n"
+    "photo (a grey card or a white wall filling the frame, evenly lit, out of focus; a raw\n"
+    "developed linearly or a 16-bit TIFF is best): the photo is averaged over --cells N cells\n"
+    "along its longer side (default 48), each cell's gain is the axis's level over its own, and\n"
+    "a radial gain (a ratio of quadratics in r², its centre found from the photo) is fitted to\n"
+    "them. The camera's geometry is the identity, its frame the sensor's raster (a portrait\n"
+    "flat field is turned back), its size the photo's; it composes with a lens camera\n"
+    "(artcam compose). Prints the darkest cell (in percent of the axis and in EV), the axis and\n"
+    "the fit's max and RMS error in percent; --json prints {flat_field, size, cells, centre_px,\n"
+    "darkest, rational, max_percent, rms_percent, output}. A flat field with a black or\n"
+    "non-finite region is refused, naming where.\n"
     "--dim 3 fits an object-space camera (position block (X, Y, Z, 1)) to 3D matches with the\n"
     "header src_x,src_y,src_z,dst_x,dst_y,dst_z; no sizes; the quadratic needs 13 matches.\n"
     "--block colour fits the colour block to colour samples: SAMPLES.csv has the header\n"
@@ -96,11 +109,13 @@ const char* const kFitUsage =
     "  artcam fit matches.csv -o lens.artcam --size 6000x4000\n"
     "  artcam fit matches.csv -o mirror.artcam --size 640x480 --piecewise --max-error 0.3\n"
     "  artcam fit --stmap lens-undistort.exr -o lens.artcam\n"
-    "  artcam fit --lines edges.csv -o lens.artcam --size 6000x4000\n";
+    "  artcam fit --lines edges.csv -o lens.artcam --size 6000x4000\n"
+    "  artcam fit --flat-field grey-card.tif -o vignetting.artcam\n";
 
 int fitPiecewiseCommand(const Args& args, const std::string& output, FrameSize source,
                         FrameSize target, const MatchInput& input);  // cmd_fit_piecewise.cpp
 int fitLinesCommand(const Args& args, const std::string& lines_path);  // cmd_fit_lines.cpp
+int fitFlatFieldCommand(const Args& args, const std::string& flat_path);  // cmd_fit_flat.cpp
 
 namespace {
 
@@ -176,26 +191,21 @@ int fitStmapCommand(const Args& args, const std::string& map_path);
 }  // namespace
 
 int fitCommand(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--output", "-o", true},
-                         {"--size", "", true},
-                         {"--target-size", "", true},
-                         {"--model", "", true},
-                         {"--dim", "", true},
-                         {"--no-refine", "", false},
-                         {"--robust", "", false},
-                         {"--threshold", "", true},
-                         {"--allow-poles", "", false},
-                         {"--json", "", false},
-                         {"--block", "", true},
-                         {"--srgb", "", false},
-                         {"--piecewise", "", false},
-                         {"--max-error", "", true},
-                         {"--overwrite", "", false},
-                         {"--force", "", false},
-                         {"--stmap", "", true},
-                         {"--layer", "", true},
-                         {"--lines", "", true},
-                         {"--quiet", "-q", false}});
+  const Args args(
+      argv, {{"--output", "-o", true},   {"--size", "", true},       {"--target-size", "", true},
+             {"--model", "", true},      {"--dim", "", true},        {"--no-refine", "", false},
+             {"--robust", "", false},    {"--threshold", "", true},  {"--allow-poles", "", false},
+             {"--json", "", false},      {"--block", "", true},      {"--srgb", "", false},
+             {"--piecewise", "", false}, {"--max-error", "", true},  {"--overwrite", "", false},
+             {"--force", "", false},     {"--stmap", "", true},      {"--layer", "", true},
+             {"--lines", "", true},      {"--flat-field", "", true}, {"--cells", "", true},
+             {"--quiet", "-q", false}});
+  if (args.has("--cells") && !args.has("--flat-field"))
+    throw UsageError("--cells goes with --flat-field");
+  if (const auto flat = args.value("--flat-field")) {
+    if (args.has("--lines")) throw UsageError("--lines does not apply to --flat-field");
+    return fitFlatFieldCommand(args, *flat);
+  }
   if (args.has("--layer") && !args.has("--stmap"))
     throw UsageError("--layer names a layer of a layered --stmap map");
   if (const auto lines = args.value("--lines")) return fitLinesCommand(args, *lines);

@@ -21,8 +21,10 @@ namespace artcam::cli {
 const char* const kLensUsage =
     "usage: artcam lens search TEXT... [--limit N] [--json]\n"
     "       artcam lens camera --lens NAME --focal MM --size WxH -o CAM.artcam [--crop C]\n"
-    "                          [--distort] [--no-tca] [--max-error PX] [--json]\n"
-    "       artcam lens camera --from PHOTO -o CAM.artcam [--crop C] [--distort] [--no-tca]\n"
+    "                          [--aperture F] [--distance M] [--distort] [--no-tca]\n"
+    "                          [--no-vignetting] [--max-error PX] [--json]\n"
+    "       artcam lens camera --from PHOTO -o CAM.artcam [--crop C] [--aperture F]\n"
+    "                          [--distance M] [--distort] [--no-tca] [--no-vignetting]\n"
     "                          [--max-error PX] [--json]\n\n"
     "Lenses from the lensfun database (Debian's liblensfun-data-v1).\n\n"
     "search lists the lenses whose maker and model hold every word of TEXT (case-insensitive),\n"
@@ -46,15 +48,21 @@ const char* const kLensUsage =
     "(default 0.5 px), else a piecewise one fitted to that threshold. Where the database has\n"
     "transverse chromatic aberration (TCA) the camera is three colour layers, one per channel\n"
     "(--no-tca: geometry only; a piecewise camera cannot be layered, so it leaves TCA out and\n"
-    "says so). Vignetting is reported, not applied: a radial gain is beyond a quadratic\n"
-    "stage's colour block. Prints the lens, the error against lensfun (max and RMS over the\n"
-    "checked points the camera maps; those it gives no image are counted apart) and notes;\n"
-    "--json prints {lens, crop, focal_mm, piecewise, patches, single_max_px, single_rms_px,\n"
-    "max_px, rms_px, checked, unmapped, within_tolerance, tca, tca_max_px, notes, output}.\n\n"
+    "says so). Where the database has vignetting and the aperture is known (--aperture F, the\n"
+    "f-number; --distance M the focus distance in metres, default 1000), the camera also\n"
+    "corrects (--distort: adds) it: a radial gain on colour at the photo's point, fitted to\n"
+    "lensfun's own colour modifier and checked against it in percent (--no-vignetting: leave\n"
+    "it out; a piecewise camera leaves it out and says so). Prints the lens, the error against\n"
+    "lensfun (max and RMS over the checked points the camera maps; those it gives no image\n"
+    "are counted apart) and notes; --json prints {lens, crop, focal_mm, piecewise, patches,\n"
+    "single_max_px, single_rms_px, max_px, rms_px, checked, unmapped, within_tolerance, tca,\n"
+    "tca_max_px, aperture, distance_m, vignetting, vignetting_max_percent,\n"
+    "vignetting_rms_percent, notes, output}.\n\n"
     "--from PHOTO takes the lens, the focal length and the size from the photo: its EXIF make\n"
     "and model find lensfun's camera (its crop factor is --crop's default), its lens model the\n"
     "lens among those that fit it (lensfun's match, strict then loose; a compact without a\n"
-    "lens name its one lens), its focal length --focal, and its stored raster (the sensor's\n"
+    "lens name its one lens), its focal length --focal, its f-number and subject distance\n"
+    "--aperture and --distance (unless given), and its stored raster (the sensor's\n"
     "pixels, before any EXIF turn) --size; --lens, --focal and --size are then refused. A\n"
     "photo without that EXIF, or whose lens lensfun does not know, is refused in one line\n"
     "naming what was missing or searched. The report (and --json's photo, camera, lens_match)\n"
@@ -117,6 +125,9 @@ int cameraCommand(const std::vector<std::string>& argv) {
                          {"--output", "-o", true},
                          {"--distort", "", false},
                          {"--no-tca", "", false},
+                         {"--no-vignetting", "", false},
+                         {"--aperture", "", true},
+                         {"--distance", "", true},
                          {"--max-error", "", true},
                          {"--json", "", false},
                          {"--overwrite", "", false},
@@ -146,6 +157,11 @@ int cameraCommand(const std::vector<std::string>& argv) {
       numberOption(args, "--max-error", options.max_error_px, 0, kUnbounded, Ends::OpenMin);
   options.distort = args.has("--distort");
   options.tca = !args.has("--no-tca");
+  options.vignetting = !args.has("--no-vignetting");
+  options.aperture =
+      numberOption(args, "--aperture", options.aperture, 0, kUnbounded, Ends::OpenMin);
+  options.distance_m =
+      numberOption(args, "--distance", options.distance_m, 0, kUnbounded, Ends::OpenMin);
   const auto output = args.value("--output");
   if (!output) throw UsageError("missing -o CAM.artcam");
   checkOutputs(args, {*output},

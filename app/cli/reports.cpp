@@ -94,23 +94,29 @@ nlohmann::json lensEntryJson(const LensEntry& e) {
 
 nlohmann::json lensCameraJson(const LensCameraSummary& s, const LensCameraOptions& options,
                               const PhotoLensChoice* choice, const std::string& photo) {
-  nlohmann::json j = {{"lens", lensEntryJson(s.lens)},
-                      {"crop", s.crop},
-                      {"focal_mm", s.focal_mm},
-                      {"distort", options.distort},
-                      {"piecewise", s.piecewise},
-                      {"patches", s.patches},
-                      {"single_max_px", s.single_max_px},
-                      {"single_rms_px", s.single_rms_px},
-                      {"max_px", s.max_px},
-                      {"rms_px", s.rms_px},
-                      {"checked", s.checked},
-                      {"unmapped", s.unmapped},
-                      {"max_error_px", options.max_error_px},
-                      {"within_tolerance", s.within_tolerance},
-                      {"tca", s.tca},
-                      {"tca_max_px", s.tca_max_px},
-                      {"notes", s.notes}};
+  nlohmann::json j = {
+      {"lens", lensEntryJson(s.lens)},
+      {"crop", s.crop},
+      {"focal_mm", s.focal_mm},
+      {"distort", options.distort},
+      {"piecewise", s.piecewise},
+      {"patches", s.patches},
+      {"single_max_px", s.single_max_px},
+      {"single_rms_px", s.single_rms_px},
+      {"max_px", s.max_px},
+      {"rms_px", s.rms_px},
+      {"checked", s.checked},
+      {"unmapped", s.unmapped},
+      {"max_error_px", options.max_error_px},
+      {"within_tolerance", s.within_tolerance},
+      {"tca", s.tca},
+      {"tca_max_px", s.tca_max_px},
+      {"aperture", options.aperture},
+      {"distance_m", options.distance_m},
+      {"vignetting", s.vignetting},
+      {"vignetting_max_percent", s.vignetting ? s.vignetting_fit.max_percent : -1.0},
+      {"vignetting_rms_percent", s.vignetting ? s.vignetting_fit.rms_percent : -1.0},
+      {"notes", s.notes}};
   if (choice) {
     j["photo"] = photo;
     j["camera"] = choice->lookup.camera;

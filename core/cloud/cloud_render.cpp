@@ -27,6 +27,7 @@ struct CompiledStage {
   int position = -1;  // offsets of the blocks in x
   int colour = -1;
   int depth = -1;
+  int shading = -1;
 };
 
 // The chain of cameras a point passes through.
@@ -45,6 +46,7 @@ class Chain {
       if (const int c_block = l.find(BlockKind::Colour); c_block >= 0)
         s.colour = l.offsets[c_block];
       if (const int d_block = l.find(BlockKind::Depth); d_block >= 0) s.depth = l.offsets[d_block];
+      if (const int b = l.find(BlockKind::Shading); b >= 0) s.shading = l.offsets[b];
       stages_.push_back(std::move(s));
     }
     reads_colour_after_.assign(stages_.size(), false);
@@ -70,6 +72,7 @@ class Chain {
       if (s.colour >= 0)
         for (int k = 0; k < 4; ++k) x[s.colour + k] = colour[k];
       if (s.depth >= 0) x[s.depth + 1] = 1.0;
+      if (s.shading >= 0) x[s.shading + 1] = 1.0;  // (0, 1): the camera computes it (camera.h)
       s.camera.evaluate(x, y, skip_colour);
       for (int i = 0; i < 3; ++i) point[i] = y[s.position + i];
       if (!point.allFinite()) return false;

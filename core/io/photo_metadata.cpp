@@ -265,14 +265,20 @@ PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
   // OpenImageIO 2.4 writes LensModel (tag 0xa434) into IFD0 rather than the Exif IFD, so
   // files it wrote (ours among them) carry it there.
   if (tags.lens_model.empty()) tags.lens_model = text("Exif.Image.0xa434");
-  try {
-    const auto at = metadata.exif.findKey(Exiv2::ExifKey("Exif.Photo.FocalLength"));
-    if (at != metadata.exif.end() && at->count() > 0) {
-      const double f = static_cast<double>(at->toFloat());
-      if (std::isfinite(f) && f > 0) tags.focal_mm = f;
+  const auto positive = [&](const char* key) {
+    try {
+      const auto at = metadata.exif.findKey(Exiv2::ExifKey(key));
+      if (at != metadata.exif.end() && at->count() > 0) {
+        const double f = static_cast<double>(at->toFloat());
+        if (std::isfinite(f) && f > 0) return f;
+      }
+    } catch (const std::exception&) {
     }
-  } catch (const std::exception&) {
-  }
+    return 0.0;
+  };
+  tags.focal_mm = positive("Exif.Photo.FocalLength");
+  tags.aperture = positive("Exif.Photo.FNumber");
+  tags.distance_m = positive("Exif.Photo.SubjectDistance");
   return tags;
 }
 

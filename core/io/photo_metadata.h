@@ -48,13 +48,16 @@ std::shared_ptr<const PhotoMetadata> readPhotoMetadata(const std::string& path);
 int photoOrientation(const PhotoMetadata& metadata);
 
 // What the photo's EXIF says about the camera and lens (empty / 0 where a tag is absent):
-// Exif.Image.Make and Model, Exif.Photo.LensModel, Exif.Photo.FocalLength in mm. For choosing
-// a lens of the lensfun database (core/lens/lens_database.h).
+// Exif.Image.Make and Model, Exif.Photo.LensModel, Exif.Photo.FocalLength in mm,
+// Exif.Photo.FNumber and Exif.Photo.SubjectDistance in metres. For choosing a lens of the
+// lensfun database (core/lens/lens_database.h) and its vignetting.
 struct PhotoLensTags {
   std::string camera_maker;
   std::string camera_model;
   std::string lens_model;
   double focal_mm = 0.0;
+  double aperture = 0.0;
+  double distance_m = 0.0;
 };
 PhotoLensTags photoLensTags(const PhotoMetadata& metadata);
 

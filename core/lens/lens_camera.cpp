@@ -46,7 +46,7 @@ class LensfunMap {
       : modifier_(lens, static_cast<float>(crop), o.size.width, o.size.height) {
     int flags = LF_MODIFY_DISTORTION | LF_MODIFY_GEOMETRY;
     if (tca) flags |= LF_MODIFY_TCA;
-    // Aperture and distance matter only for vignetting, which is not applied (lens_camera.h).
+    // Aperture and distance matter only for vignetting, which VignettingMap samples.
     applied_ = modifier_.Initialize(lens, LF_PF_F32, static_cast<float>(o.focal_mm), 8.0f,
                                     1000.0f, 1.0f, LF_RECTILINEAR, flags, o.distort);
   }
@@ -94,6 +94,44 @@ class LensfunMap {
         out.target.emplace_back(x, y);
         out.source.push_back(src);
       }
+    }
+    return out;
+  }
+
+ private:
+  lfModifier modifier_;
+  int applied_ = 0;
+};
+
+// lensfun's vignetting gain: its colour modifier run on one white pixel at a time, so the gain
+// is read at any point (lensfun takes the pixel's coordinates as floats).
+class VignettingMap {
+ public:
+  VignettingMap(const lfLens* lens, const LensCameraOptions& o, double crop)
+      : modifier_(lens, static_cast<float>(crop), o.size.width, o.size.height) {
+    applied_ =
+        modifier_.Initialize(lens, LF_PF_F32, static_cast<float>(o.focal_mm),
+                             static_cast<float>(o.aperture), static_cast<float>(o.distance_m), 1.0f,
+                             LF_RECTILINEAR, LF_MODIFY_VIGNETTING, o.distort) &
+        LF_MODIFY_VIGNETTING;
+  }
+  bool applied() const { return applied_ != 0; }
+  // The gain at artcam pixel point p (lensfun's pixel centres are integers).
+  double gain(const Eigen::Vector2d& p) const {
+    alignas(16) float rgb[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    modifier_.ApplyColorModification(rgb, static_cast<float>(p.x() - 0.5),
+                                     static_cast<float>(p.y() - 0.5), 1, 1,
+                                     LF_CR_3(RED, GREEN, BLUE), 3 * sizeof(float));
+    return rgb[1];
+  }
+  // Gain samples for the camera: at each sample's source point, the gain at that point
+  // (correcting) or at its target pixel (simulating). Sources outside the frame are left out.
+  std::vector<GainSample> samples(const MapSamples& m, FrameSize size, bool distort) const {
+    std::vector<GainSample> out;
+    for (size_t i = 0; i < m.target.size(); ++i) {
+      const Eigen::Vector2d& src = m.source[i][1];
+      if (src.x() < 0 || src.y() < 0 || src.x() > size.width || src.y() > size.height) continue;
+      out.push_back({src, gain(distort ? m.target[i] : src)});
     }
     return out;
   }
@@ -197,6 +235,12 @@ std::string LensCameraSummary::report() const {
   if (unmapped > 0) out += "; " + std::to_string(unmapped) + " more have no image";
   out += within_tolerance ? "" : " (ABOVE the threshold)";
   if (tca) out += "\nTCA: three colour layers, worst channel max " + px(tca_max_px);
+  if (vignetting) {
+    char f[32];
+    std::snprintf(f, sizeof f, "f/%g", aperture);
+    out += std::string("\nvignetting at ") + f + ": gain " + vignetting_fit.report() +
+           " against lensfun";
+  }
   for (const std::string& n : notes) out += "\nnote: " + n;
   return out;
 }
@@ -231,9 +275,16 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
     return failure(s, entry->model + ": lensfun has no distortion model at " +
                           std::to_string(options.focal_mm) + " mm");
   const bool tca = (map.applied() & LF_MODIFY_TCA) != 0;
-  if (entry->vignetting)
-    s.notes.push_back("vignetting is in the database but not applied: a radial gain is beyond "
-                      "one quadratic stage's colour block");
+  if (options.aperture < 0 || !std::isfinite(options.aperture))
+    return failure(s, "the aperture must be a positive f-number");
+  if (!(options.distance_m > 0) || !std::isfinite(options.distance_m))
+    return failure(s, "the focus distance must be a positive number of metres");
+  s.aperture = options.aperture;
+  const bool want_vignetting = options.vignetting && entry->vignetting;
+  if (want_vignetting && !(options.aperture > 0))
+    s.notes.push_back(
+        "vignetting is in the database but not applied: give the aperture "
+        "(the f-number the photo was taken at) to correct it");
   if (options.tca && entry->tca && !tca)
     s.notes.push_back("TCA is in the database but lensfun has none at this focal length");
 
@@ -292,6 +343,25 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
         s.notes.push_back("TCA left out: a colour channel's camera could not be fitted");
       }
     }
+    if (want_vignetting && options.aperture > 0) {
+      const VignettingMap vignetting(lens, options, s.crop);
+      if (!vignetting.applied()) {
+        s.notes.push_back(
+            "vignetting is in the database but lensfun has none at this focal "
+            "length and aperture");
+      } else {
+        s.vignetting_fit =
+            fitRadialGain(vignetting.samples(fit_samples, size, options.distort),
+                          vignetting.samples(check_samples, size, options.distort), size);
+        if (s.vignetting_fit.status) {
+          for (Camera& layer : s.camera.layers)
+            layer = withRadialGain(layer, s.vignetting_fit.gain);
+          s.vignetting = true;
+        } else {
+          s.notes.push_back("vignetting left out: " + s.vignetting_fit.status.message);
+        }
+      }
+    }
     s.status = Status::success();
     return s;
   }
@@ -339,6 +409,10 @@ LensCameraSummary lensCamera(const LensDatabase& database, const LensCameraOptio
   s.camera.pieces = pieces.camera;
   if (tca)
     s.notes.push_back("TCA is in the database but left out: a piecewise camera cannot be layered");
+  if (want_vignetting && options.aperture > 0)
+    s.notes.push_back(
+        "vignetting is in the database but left out: a piecewise camera's patches "
+        "are position-only");
   s.status = Status::success();
   return s;
 }

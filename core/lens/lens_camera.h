@@ -25,11 +25,18 @@
 // (red, green, blue; core/effects/chromatic.h's block layout), each fitted to lensfun's
 // subpixel coordinates of its channel. A piecewise camera cannot be layered (validateArtcam),
 // so a lens that needs patches gets its geometry and a note saying TCA was left out.
-// Vignetting is a radial gain, c·(1 + k1 r² + k2 r⁴ + k3 r⁶): degree three or more in the
-// point, beyond one quadratic stage's colour block (eq 3), so it is reported, not applied.
+//
+// Vignetting, where the database has it and the aperture is given (lensfun interpolates its
+// calibration over focal length, aperture and distance), is a radial gain on colour in the
+// same camera (core/lens/vignetting.h: a three-stage chain per layer), fitted to lensfun's own
+// colour modifier (lfModifier::ApplyColorModification) sampled at the fit grid's source points
+// and checked on the check grid, in percent. Correcting, the gain lensfun applies to the photo
+// as shot at the source point; simulating, the one it applies at the target pixel. A piecewise
+// camera's patches are position-only, so a lens that needs patches leaves vignetting out, said.
 #pragma once
 
 #include "core/lens/lens_database.h"
+#include "core/lens/vignetting.h"
 #include "core/model/artcam.h"
 #include "core/model/status.h"
 
@@ -45,6 +52,9 @@ struct LensCameraOptions {
   FrameSize size;              // the photo's size in pixels
   bool distort = false;        // simulate the lens instead of correcting it
   bool tca = true;             // layers per colour channel where the database has TCA
+  bool vignetting = true;      // the gain, where the database has it and aperture > 0
+  double aperture = 0.0;       // f-number the photo was taken at; 0: not known (no vignetting)
+  double distance_m = 1000.0;  // focus distance, metres (vignetting varies a little with it)
   double max_error_px = 0.5;   // single camera up to this, piecewise beyond it
   int fit_samples = 64;        // fit grid, along the longer side (the piecewise fit doubles it)
   int check_samples = 241;     // check grid, along the longer side
@@ -69,6 +79,9 @@ struct LensCameraSummary {
   int patches = 0;
   bool tca = false;             // the camera has TCA layers
   double tca_max_px = -1.0;     // the worst channel's max error when tca
+  bool vignetting = false;      // the camera carries the vignetting gain
+  double aperture = 0.0;
+  GainFitSummary vignetting_fit;   // against lensfun's colour modifier, when vignetting
   std::vector<std::string> notes;  // what of the database entry was not applied, and why
   std::string report() const;      // a few lines for the CLI
 };

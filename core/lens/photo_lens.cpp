@@ -20,12 +20,14 @@ std::string number(double v) {
 
 std::string PhotoLensChoice::key() const {
   return lookup.camera + "\n" + options.lens + "\n" + number(options.focal_mm) + "\n" +
+         number(options.aperture) + "\n" + number(options.distance_m) + "\n" +
          number(options.crop) + "\n" + std::to_string(options.size.width) + "x" +
          std::to_string(options.size.height);
 }
 
 std::string PhotoLensChoice::describe() const {
   std::string out = options.lens + " at " + number(options.focal_mm) + " mm";
+  if (options.aperture > 0) out += " f/" + number(options.aperture);
   if (options.crop > 0) out += ", crop " + number(options.crop);
   if (!lookup.camera.empty()) out += " (camera " + lookup.camera + ")";
   return out;
@@ -61,6 +63,10 @@ Result<PhotoLensChoice> lensForPhoto(const LensDatabase& database, const std::st
   choice.options = base;
   choice.options.lens = found.lenses.front().model;
   choice.options.focal_mm = hint.focal_mm;
+  // The caller's aperture and distance win; the EXIF's fill in (vignetting needs them).
+  if (!(base.aperture > 0)) choice.options.aperture = hint.aperture;
+  if (hint.distance_m > 0 && base.distance_m == LensCameraOptions{}.distance_m)
+    choice.options.distance_m = hint.distance_m;
   if (!(base.crop > 0)) choice.options.crop = found.camera_crop;
   choice.options.size = FrameSize{shape->width, shape->height};
   return R::success(std::move(choice));

@@ -19,9 +19,12 @@ namespace artcam {
 struct PhotoLensChoice {
   std::string path;
   PhotoLensLookup lookup;
-  LensCameraOptions options;  // lens, focal_mm, crop and size from the photo; the rest the caller's
+  // lens, focal_mm, crop and size from the photo, and aperture and distance_m where its EXIF has
+  // them and the caller gave none; the rest the caller's.
+  LensCameraOptions options;
   // Photos with equal keys get the same camera: lensfun's camera, the lens, the focal length,
-  // the crop factor and the raster size (a zoom shoot makes one camera per focal length).
+  // the aperture and distance, the crop factor and the raster size (a zoom shoot makes one
+  // camera per focal length, and per aperture where vignetting is corrected).
   std::string key() const;
   // "Nikon AF-S Nikkor 50mm f/1.4G at 50 mm, crop 1 (camera Nikon D750)"
   std::string describe() const;

@@ -17,6 +17,8 @@ std::string_view blockKindName(BlockKind kind) {
     case BlockKind::Colour: return "colour";
     case BlockKind::Depth: return "depth";
     case BlockKind::SecondColour: return "second-colour";
+    case BlockKind::Shading:
+      return "shading";
   }
   return "unknown";
 }
@@ -26,6 +28,7 @@ std::optional<BlockKind> blockKindFromName(std::string_view name) {
   if (name == "colour" || name == "color") return BlockKind::Colour;
   if (name == "depth") return BlockKind::Depth;
   if (name == "second-colour" || name == "second-color") return BlockKind::SecondColour;
+  if (name == "shading") return BlockKind::Shading;
   return std::nullopt;
 }
 
@@ -35,6 +38,8 @@ bool isValidBlock(const Block& block) {
     case BlockKind::Colour: return block.size == 4;
     case BlockKind::Depth: return block.size == 2;
     case BlockKind::SecondColour: return block.size == 4;
+    case BlockKind::Shading:
+      return block.size == 2;
   }
   return false;
 }

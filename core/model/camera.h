@@ -29,7 +29,12 @@ namespace artcam {
 // of compositing cameras (core/colour/composite.h). Like colour its weight is alpha, kept (and
 // clamped to [0, 1]) by eq 5, not divided out to 1. Its outputs are not rendered; cameras pass
 // it through unchanged so that chains keep it.
-enum class BlockKind { Position, Colour, Depth, SecondColour };
+// Shading (s, 1) is a scalar no image supplies: its input is (0, 1), and a chain's earlier
+// stages compute it from position so that a later stage's colour block can multiply colour by
+// it (c·s is a pc-type coupling of eq 6 one stage on). That is how one camera carries a radial
+// gain of higher degree than a quadratic form can, lens vignetting (core/lens/vignetting.h).
+// Its outputs are not rendered.
+enum class BlockKind { Position, Colour, Depth, SecondColour, Shading };
 
 // Colour and second colour: blocks whose weight is alpha (kept by eq 5, premultiplied again
 // between stages).

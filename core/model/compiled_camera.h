@@ -15,8 +15,8 @@ namespace artcam {
 class CompiledCamera {
  public:
   // The widest layout a camera may have (camera.cpp, isValidBlock): position 4, colour 4,
-  // depth 2, second colour 4.
-  static constexpr int kMaxDimension = 14;
+  // depth 2, second colour 4, shading 2.
+  static constexpr int kMaxDimension = 16;
   using Vector = std::array<double, kMaxDimension>;
 
   CompiledCamera() = default;

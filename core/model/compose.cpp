@@ -219,42 +219,61 @@ bool readsDepth(const Camera& camera) {
   return false;
 }
 
-// A position-only camera written over `blocks`: its position tensors embedded at the position
-// block, every other element passed on (x_i · x_unit, as Camera::identity does).
+// `camera` written over `blocks`, which hold each of its blocks (same kind and size): its tensors
+// embedded where its blocks are, every other element passed on (x_i · x_unit, as
+// Camera::identity does).
 Camera liftToBlocks(const Camera& camera, const std::vector<Block>& blocks) {
   const BlockLayout layout(blocks);
-  const int p = layout.offsets[static_cast<size_t>(layout.find(BlockKind::Position))];
-  const int k = camera.dimension();
+  const BlockLayout& own = camera.layout();
+  std::vector<int> at(static_cast<size_t>(own.dimension));  // own element → wide element
+  for (size_t b = 0; b < own.blocks.size(); ++b) {
+    const int w = layout.find(own.blocks[b].kind);
+    for (int k = 0; k < own.blocks[b].size; ++k)
+      at[static_cast<size_t>(own.offsets[b] + k)] = layout.offsets[static_cast<size_t>(w)] + k;
+  }
+  std::vector<bool> mine(static_cast<size_t>(layout.dimension), false);
+  for (int i : at) mine[static_cast<size_t>(i)] = true;
   std::vector<Stage> stages;
   for (const Stage& stage : camera.stages()) {
     Stage lifted;
-    for (int i = 0; i < layout.dimension; ++i) {
-      if (i >= p && i < p + k) {
-        Eigen::MatrixXd q = Eigen::MatrixXd::Zero(layout.dimension, layout.dimension);
-        q.block(p, p, k, k) = stage.q[static_cast<size_t>(i - p)];
-        lifted.q.push_back(std::move(q));
-      } else {
-        lifted.q.push_back(symmetricOuter(Eigen::VectorXd::Unit(layout.dimension, i),
-                                          Eigen::VectorXd::Unit(layout.dimension, layout.unitIndex())));
-      }
+    lifted.q.assign(static_cast<size_t>(layout.dimension), Eigen::MatrixXd());
+    for (int i = 0; i < layout.dimension; ++i)
+      if (!mine[static_cast<size_t>(i)])
+        lifted.q[static_cast<size_t>(i)] =
+            symmetricOuter(Eigen::VectorXd::Unit(layout.dimension, i),
+                           Eigen::VectorXd::Unit(layout.dimension, layout.unitIndex()));
+    for (int i = 0; i < own.dimension; ++i) {
+      Eigen::MatrixXd q = Eigen::MatrixXd::Zero(layout.dimension, layout.dimension);
+      const Eigen::MatrixXd& o = stage.q[static_cast<size_t>(i)];
+      for (int r = 0; r < own.dimension; ++r)
+        for (int c = 0; c < own.dimension; ++c) q(at[size_t(r)], at[size_t(c)]) = o(r, c);
+      lifted.q[static_cast<size_t>(at[static_cast<size_t>(i)])] = std::move(q);
     }
     stages.push_back(std::move(lifted));
   }
   return Camera(blocks, std::move(stages), camera.sourceSize(), camera.targetSize());
 }
 
-bool positionOnly(const Camera& c) {
-  return c.blocks().size() == 1 && c.blocks()[0].kind == BlockKind::Position;
+// Every block of `narrow` is in `wide` (same kind and size), in the same order.
+bool blocksWithin(const std::vector<Block>& narrow, const std::vector<Block>& wide) {
+  size_t w = 0;
+  for (const Block& b : narrow) {
+    while (w < wide.size() && wide[w] != b) ++w;
+    if (w == wide.size()) return false;
+    ++w;
+  }
+  return true;
 }
 
-// Brings a position-only side to the other side's blocks, so a lens composes with a camera
-// that carries colour or depth.
+// Brings the side whose blocks the other holds to the other's blocks, so a lens composes with
+// a camera that carries colour or depth, and a colour camera with one that carries shading. The
+// lifted side passes the blocks it lacks on unchanged, which is what it did to them.
 std::pair<Camera, Camera> commonBlocks(const Camera& a, const Camera& b) {
   if (a.blocks() == b.blocks()) return {a, b};
   const int pa = a.layout().find(BlockKind::Position), pb = b.layout().find(BlockKind::Position);
   if (pa < 0 || pb < 0 || a.blocks()[size_t(pa)] != b.blocks()[size_t(pb)]) return {a, b};
-  if (positionOnly(a)) return {liftToBlocks(a, b.blocks()), b};
-  if (positionOnly(b)) return {a, liftToBlocks(b, a.blocks())};
+  if (blocksWithin(a.blocks(), b.blocks())) return {liftToBlocks(a, b.blocks()), b};
+  if (blocksWithin(b.blocks(), a.blocks())) return {a, liftToBlocks(b, a.blocks())};
   return {a, b};
 }
 

@@ -17,6 +17,8 @@ const char* blockName(BlockKind kind) {
     case BlockKind::Colour: return "colour block";
     case BlockKind::Depth: return "depth block";
     case BlockKind::SecondColour: return "second-colour block";
+    case BlockKind::Shading:
+      return "shading block";
   }
   return "block";
 }

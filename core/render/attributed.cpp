@@ -75,6 +75,7 @@ AttributeEvaluator::AttributeEvaluator(const Camera& camera) : compiled_(camera)
   if (const int c = layout.find(BlockKind::Colour); c >= 0) colour_ = layout.offsets[c];
   if (const int d = layout.find(BlockKind::Depth); d >= 0) depth_ = layout.offsets[d];
   if (const int b = layout.find(BlockKind::SecondColour); b >= 0) second_ = layout.offsets[b];
+  if (const int s = layout.find(BlockKind::Shading); s >= 0) shading_ = layout.offsets[s];
   if (depth_ >= 0) {
     const std::vector<bool> from_depth = taintedOutputs(camera, {depth_, depth_ + 1});
     if (colour_ >= 0) colour_reads_depth_ = from_depth[static_cast<size_t>(colour_)];
@@ -99,6 +100,7 @@ void AttributeEvaluator::evaluate(double u_n, double v_n, const float* rgba, dou
   }
   if (second_ >= 0 && second)
     for (int k = 0; k < 4; ++k) x[second_ + k] = second[k];
+  if (shading_ >= 0) x[shading_ + 1] = 1.0;  // (0, 1): computed by the camera (camera.h)
   compiled_.evaluateHomogeneous(x, z);  // eq 3 (through every stage)
 
   // eq 5, block by block.

@@ -171,15 +171,17 @@ class AttributeEvaluator {
     bool position_valid = false;  // finite position with q_h != 0
     bool attributes_valid = false;  // finite colour/depth with positive colour weight
   };
-  // x = [(u_n, v_n, 1) | rgba (premultiplied) | (d, 1) | second (premultiplied)] through the
-  // camera. Without a colour block the input colour passes through; `second` (4 floats) is read
-  // only by cameras with a second-colour block, and null reads as transparent.
+  // x = [(u_n, v_n, 1) | rgba (premultiplied) | (d, 1) | second (premultiplied) | (0, 1)]
+  // through the camera (the last is the shading block, which the camera computes itself). Without a
+  // colour block the input colour passes through; `second` (4 floats) is read only by cameras with
+  // a second-colour block, and null reads as transparent.
   void evaluate(double u_n, double v_n, const float* rgba, double depth, Output& out,
                 const float* second = nullptr) const;
 
  private:
   CompiledCamera compiled_;
-  int position_ = -1, colour_ = -1, depth_ = -1, second_ = -1;  // element offsets, -1: none
+  // Element offsets, -1: none.
+  int position_ = -1, colour_ = -1, depth_ = -1, second_ = -1, shading_ = -1;
   bool colour_reads_depth_ = false;
   bool geometry_reads_colour_[4] = {false, false, false, false};
   bool geometry_reads_depth_ = false;

@@ -8,6 +8,7 @@
 #include "ui/main_window.h"
 #include "ui/session.h"
 
+#include <QCheckBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QLineEdit>
@@ -109,6 +110,55 @@ class TestLensDialog : public QObject {
     QVERIFY(!applied.back().at(0).toBool());
     QVERIFY(applied.back().at(1).toString().contains("6.1-30.5"));
     QVERIFY(!doc.manualCamera());
+  }
+
+  // Vignetting: the dialog takes the EXIF's f-number, and the session's camera carries the gain
+  // in every layer, as the core function makes it; without an aperture the summary says why
+  // there is none.
+  void vignettingFromTheDialog() {
+    const char* const prime = "Canon EF 50mm f/1.8 MkII";
+    LensHint hint;
+    hint.focal_mm = 50;
+    hint.aperture = 2.8;
+    LensDialog dialog(db_, {600, 400}, hint);
+    dialog.searchField()->setText("canon ef 50mm f/1.8 mkii");
+    QVERIFY(dialog.lensList()->count() >= 1);
+    QCOMPARE(dialog.apertureField()->value(), 2.8);
+    QVERIFY(dialog.vignettingBox()->isChecked());
+    LensCameraOptions o = dialog.options();
+    QCOMPARE(o.lens, std::string(prime));
+    QCOMPARE(o.aperture, 2.8);
+    QVERIFY(o.vignetting);
+
+    Document doc;
+    doc.reset(test::syntheticPhoto(600, 400));
+    Session session(&doc, nullptr);
+    session.setInteractive(false);
+    QSignalSpy applied(&session, &Session::lensCameraApplied);
+    o.crop = 1.6;  // one camera at this crop (patches would leave vignetting out)
+    session.applyLensCamera(o, db_);
+    QTRY_COMPARE_WITH_TIMEOUT(applied.size(), 1, 60000);
+    QVERIFY2(applied.front().at(0).toBool(), qPrintable(applied.front().at(1).toString()));
+    QVERIFY2(applied.front().at(1).toString().contains("vignetting at f/2.8"),
+             qPrintable(applied.front().at(1).toString()));
+    QVERIFY(doc.manualCamera());
+    o.size = {600, 400};
+    const LensCameraSummary direct = lensCamera(*db_, o);
+    QVERIFY(direct.vignetting);
+    QCOMPARE(doc.manualCamera()->layers.size(), direct.camera.layers.size());
+    for (size_t l = 0; l < direct.camera.layers.size(); ++l) {
+      QVERIFY(hasShading(doc.manualCamera()->layers[l]));
+      QCOMPARE(doc.manualCamera()->layers[l].stages().size(), size_t{3});
+      for (size_t st = 0; st < 3; ++st)
+        QCOMPARE(doc.manualCamera()->layers[l].stages()[st].q,
+                 direct.camera.layers[l].stages()[st].q);
+    }
+    o.aperture = 0;
+    session.applyLensCamera(o, db_);
+    QTRY_COMPARE_WITH_TIMEOUT(applied.size(), 2, 60000);
+    QVERIFY2(applied.back().at(1).toString().contains("give the aperture"),
+             qPrintable(applied.back().at(1).toString()));
+    QVERIFY(!hasShading(doc.manualCamera()->main()));
   }
 
   void mainWindowHasTheMenu() {

@@ -39,6 +39,9 @@ QStringList elementNames(const Camera& camera) {
       case BlockKind::SecondColour:
         local = {"ar2", "ag2", "ab2", "a2"};
         break;
+      case BlockKind::Shading:
+        local = {"s", "sh"};
+        break;
     }
     while (local.size() < b.size) local << QString("x%1").arg(names.size() + local.size());
     names << local.mid(0, b.size);
