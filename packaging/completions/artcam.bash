@@ -15,7 +15,7 @@ _artcam_options() {
   case "$1" in
     fit) echo "--output -o --size --target-size --model --dim --no-refine --robust --threshold
                --allow-poles --json --block --srgb --piecewise --max-error --overwrite --force
-               --quiet -q --stmap --layer --lines" ;;
+               --quiet -q --stmap --layer --lines --flat-field --cells" ;;
     map) echo "--json" ;;
     warp) echo "--output -o --format --size --filter --edge --subsampling --threads --quality --bit-depth
                 --colourspace --colourspace-in --colourspace-out
@@ -38,7 +38,7 @@ _artcam_options() {
                   --crop-valid --fill --finish --json --overwrite --force --quiet -q" ;;
     export-map) echo "--output -o --size --convention --source-size --json --overwrite --force" ;;
     lens) echo "--limit --json --lens --from --focal --crop --size --output -o --distort --no-tca
-                --max-error --overwrite --force" ;;
+                --aperture --distance --no-vignetting --max-error --overwrite --force" ;;
     insert) echo "--output -o --matches --camera --canonical --table --grid-on-table --region
                   --max-error --save-camera --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;
