@@ -269,7 +269,11 @@ PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
     try {
       const auto at = metadata.exif.findKey(Exiv2::ExifKey(key));
       if (at != metadata.exif.end() && at->count() > 0) {
-        const double f = static_cast<double>(at->toFloat());
+        // EXIF stores these as rationals: divided in double, 2.8 stays 2.8 (toFloat's float
+        // would make it 2.7999999).
+        const Exiv2::Rational r = at->toRational();
+        const double f = r.second != 0 ? double(r.first) / double(r.second)
+                                       : static_cast<double>(at->toFloat());
         if (std::isfinite(f) && f > 0) return f;
       }
     } catch (const std::exception&) {

@@ -67,8 +67,9 @@ Eigen::Vector2d fitCentre(const std::vector<GainSample>& samples, FrameSize fram
       const Eigen::Vector2d d = samples[size_t(i)].source_px - c;
       const double t = d.squaredNorm() / (radius * radius);
       const double dg_dt = a[1] + t * (2.0 * a[2] + t * 3.0 * a[3]);
-      J.row(i) << 1.0, t, t * t, t * t * t, dg_dt * -2.0 * d.x() / (radius * radius) * radius,
-          dg_dt * -2.0 * d.y() / (radius * radius) * radius;  // centre in units of R
+      // The centre's step is in units of R: dt/dc = -2 d / R.
+      J.row(i) << 1.0, t, t * t, t * t * t, -2.0 * dg_dt * d.x() / radius,
+          -2.0 * dg_dt * d.y() / radius;
       r[i] = a[0] + t * (a[1] + t * (a[2] + t * a[3])) - samples[size_t(i)].gain;
     }
     Eigen::MatrixXd H = J.transpose() * J;

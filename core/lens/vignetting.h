@@ -6,8 +6,8 @@
 // source pixel p, the vignetting centre c and R half the frame's diagonal (so t ≤ 1 over a
 // centred frame). lensfun's model is the polynomial 1 + k1 t + k2 t² + k3 t³ (`pa`, for
 // simulating) and its inverse (for correcting); a ratio of quadratics in t follows both within
-// a fraction of a percent where a quadratic form in position alone (a ratio of linear
-// functions of t) is off by up to 13 % (lensfun's Canon EF 50 mm f/1.8 at f/2).
+// a fraction of a percent where a ratio of linear functions of t is off by up to 13 %
+// (lensfun's Canon EF 50 mm f/1.8 polynomial at f/2 over t in [0, 1]).
 //
 // The camera. A colour output is at most bilinear in colour and position, so the gain is the
 // shading block's (camera.h), in three stages over [position | colour | shading]:
@@ -74,8 +74,7 @@ GainFitSummary fitRadialGain(const std::vector<GainSample>& fit,
 // std::invalid_argument for other block layouts.
 Camera withRadialGain(const Camera& camera, const RadialGain& gain);
 
-// Whether `camera` was made by withRadialGain (it has a shading block), and the gain it
-// applies at a source pixel (colour output over colour input, for an opaque grey input).
+// Whether `camera` carries a gain (it has a shading block, as withRadialGain makes).
 bool hasShading(const Camera& camera);
 
 // A flat-field photo (a grey card or a white wall shot through the lens, linear light) to the
