@@ -272,8 +272,8 @@ PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
         // EXIF stores these as rationals: divided in double, 2.8 stays 2.8 (toFloat's float
         // would make it 2.7999999).
         const Exiv2::Rational r = at->toRational();
-        const double f = r.second != 0 ? double(r.first) / double(r.second)
-                                       : static_cast<double>(at->toFloat());
+        const double f =
+            r.second != 0 ? double(r.first) / double(r.second) : static_cast<double>(at->toFloat());
         if (std::isfinite(f) && f > 0) return f;
       }
     } catch (const std::exception&) {

@@ -72,8 +72,9 @@ class TestCliVignetting : public QObject {
 
  private slots:
   void lensCameraAperture() {
-    const QStringList base = {"lens", "camera", "--lens", kPrime, "--focal", "50", "--crop", "1.6",
-                              "--size", "450x300", "--overwrite", "-o", path("v.artcam")};
+    const QStringList base = {"lens",        "camera", "--lens",        kPrime,   "--focal",
+                              "50",          "--crop", "1.6",           "--size", "450x300",
+                              "--overwrite", "-o",     path("v.artcam")};
     auto r = artcamCli(base + QStringList{"--aperture", "2", "--json"});
     QCOMPARE(r.exit_code, 0);
     QJsonObject j = json(r.out);
@@ -130,7 +131,8 @@ class TestCliVignetting : public QObject {
   // the field flat within 1 %; a field with a black corner is refused in one line naming it.
   void flatField() {
     QVERIFY(writeFloat(path("flat.exr"), cosFourthField()));
-    auto r = artcamCli({"fit", "--flat-field", path("flat.exr"), "-o", path("flat.artcam"), "--json"});
+    auto r =
+        artcamCli({"fit", "--flat-field", path("flat.exr"), "-o", path("flat.artcam"), "--json"});
     QCOMPARE(r.exit_code, 0);
     const QJsonObject j = json(r.out);
     const QJsonArray centre = j["centre_px"].toArray();
@@ -157,7 +159,8 @@ class TestCliVignetting : public QObject {
     QVERIFY2(r.err.contains("black.exr") && r.err.contains("(0, 0)"), qPrintable(r.err));
     QVERIFY(r.err.trimmed().count('\n') < 3);
     QVERIFY(!QFile::exists(path("black.artcam")));
-    r = artcamCli({"fit", "--flat-field", path("flat.exr"), "--lines", "x.csv", "-o", path("x.artcam")});
+    r = artcamCli(
+        {"fit", "--flat-field", path("flat.exr"), "--lines", "x.csv", "-o", path("x.artcam")});
     QCOMPARE(r.exit_code, 2);
     r = artcamCli({"fit", "--cells", "8", "m.csv", "-o", path("x.artcam"), "--size", "4x4"});
     QCOMPARE(r.exit_code, 2);
@@ -167,20 +170,31 @@ class TestCliVignetting : public QObject {
   // pixels of the two warps one after the other (the first keeps every pixel in place).
   void composesBeforeTheLens() {
     QVERIFY(writeFloat(path("flat.exr"), cosFourthField()));
-    QCOMPARE(artcamCli({"fit", "--flat-field", path("flat.exr"), "-o", path("f.artcam"), "--overwrite"}).exit_code, 0);
+    QCOMPARE(
+        artcamCli({"fit", "--flat-field", path("flat.exr"), "-o", path("f.artcam"), "--overwrite"})
+            .exit_code,
+        0);
     QCOMPARE(artcamCli({"lens", "camera", "--lens", "Lumix G Vario 45-200mm f/4.0-5.6 Mega OIS",
                         "--focal", "45", "--size", "450x300", "-o", path("tca.artcam")})
                  .exit_code,
              0);
-    auto r = artcamCli({"compose", path("f.artcam"), path("tca.artcam"), "-o", path("both.artcam")});
+    auto r =
+        artcamCli({"compose", path("f.artcam"), path("tca.artcam"), "-o", path("both.artcam")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-    QCOMPARE(artcamCli({"warp", path("flat.exr"), path("both.artcam"), "-o", path("one.exr")}).exit_code, 0);
-    QCOMPARE(artcamCli({"warp", path("flat.exr"), path("f.artcam"), "-o", path("step.exr")}).exit_code, 0);
-    QCOMPARE(artcamCli({"warp", path("step.exr"), path("tca.artcam"), "-o", path("two.exr")}).exit_code, 0);
+    QCOMPARE(
+        artcamCli({"warp", path("flat.exr"), path("both.artcam"), "-o", path("one.exr")}).exit_code,
+        0);
+    QCOMPARE(
+        artcamCli({"warp", path("flat.exr"), path("f.artcam"), "-o", path("step.exr")}).exit_code,
+        0);
+    QCOMPARE(
+        artcamCli({"warp", path("step.exr"), path("tca.artcam"), "-o", path("two.exr")}).exit_code,
+        0);
     const std::vector<float> one = pixels(path("one.exr")), two = pixels(path("two.exr"));
     QCOMPARE(one.size(), two.size());
     double worst = 0.0;
-    for (size_t i = 0; i < one.size(); ++i) worst = std::max(worst, double(std::abs(one[i] - two[i])));
+    for (size_t i = 0; i < one.size(); ++i)
+      worst = std::max(worst, double(std::abs(one[i] - two[i])));
     QVERIFY2(worst < 2e-3, qPrintable(QString::number(worst)));
   }
 };
