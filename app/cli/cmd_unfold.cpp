@@ -22,11 +22,13 @@ namespace artcam::cli {
 
 const char* const kUnfoldUsage =
     "usage: artcam unfold PHOTO --depth DEPTH --walls WALLS.csv --focal F -o OUT.artcam\n"
-    "                     [--scale S] [--principal X,Y] [--overwrite] [--json]\n\n"
+    "                     [--scale S] [--principal X,Y] [--no-roof] [--overwrite] [--json]\n\n"
     "Makes the camera that unfolds a building's walls into one picture (the paper's Fig 2):\n"
     "each wall's plane is fitted to the depth inside its outline, the wall is seen\n"
     "orthogonally, and the walls lie side by side, bottom-aligned, at one scale; a piecewise\n"
-    "camera whose patches are the walls (pixels outside every wall stay empty). Render it\n"
+    "camera whose patches are the walls. Over a wall shorter than the tallest, the roof the\n"
+    "photo shows above it (up to where the depth ends) is stretched to the picture's top;\n"
+    "other pixels outside every wall stay empty. Render it\n"
     "with artcam warp PHOTO OUT.artcam -o unfolded.png.\n"
     "WALLS.csv has the header wall,x,y, then rows name,x,y: each wall's corners in the photo in\n"
     "order around it, its first edge the wall's base (bottom-left to bottom-right), the walls\n"
@@ -40,10 +42,11 @@ const char* const kUnfoldUsage =
     "  --principal X,Y    the principal point in pixels (default: the photo's centre)\n"
     "  --scale S          output pixels per depth unit along the walls (default: the walls\n"
     "                     span the photo's width)\n"
+    "  --no-roof          leave the band above shorter walls empty\n"
     "  -o, --output OUT   the camera (.artcam; - for standard output)\n"
     "  --overwrite        replace OUT if it exists (--force is the same)\n"
     "  --json             per wall: name, normal, width, height, depth_samples, plane_rms,\n"
-    "                     left_out_share; and the output size\n\n"
+    "                     left_out_share, roof_height, roof_stretch; and the output size\n\n"
     "Example:\n"
     "  artcam sample stereo-house -o house\n"
     "  artcam stereo house/house-left.png house/house-right.png --baseline-focal 140 \\\n"
@@ -60,6 +63,7 @@ int unfoldCommand(const std::vector<std::string>& argv) {
                          {"--focal", "", true},
                          {"--principal", "", true},
                          {"--scale", "", true},
+                         {"--no-roof", "", false},
                          {"--overwrite", "", false},
                          {"--force", "", false},
                          {"--json", "", false}});
@@ -71,6 +75,7 @@ int unfoldCommand(const std::vector<std::string>& argv) {
   UnfoldOptions options;
   options.focal_px = numberOption(args, "--focal", 0.0, 0.0, kUnbounded, Ends::OpenMin);
   options.px_per_unit = numberOption(args, "--scale", 0.0, 0.0, kUnbounded, Ends::OpenMin);
+  options.stretch_roof = !args.has("--no-roof");
   if (const auto p = args.value("--principal")) {
     const std::vector<double> xy = parseNumberList(*p, "--principal", 0.0, kMaxFrameSide);
     if (xy.size() != 2) throw UsageError("--principal expects X,Y");
@@ -102,7 +107,9 @@ int unfoldCommand(const std::vector<std::string>& argv) {
                       {"height", w.height},
                       {"depth_samples", w.depth_samples},
                       {"plane_rms", w.plane_rms},
-                      {"left_out_share", w.left_out_share}});
+                      {"left_out_share", w.left_out_share},
+                      {"roof_height", w.roof_height},
+                      {"roof_stretch", w.roof_stretch}});
     const nlohmann::json j = {{"output", *out},
                               {"width", summary.size.width},
                               {"height", summary.size.height},
@@ -111,14 +118,20 @@ int unfoldCommand(const std::vector<std::string>& argv) {
     std::printf("%s\n", j.dump().c_str());
     return 0;
   }
-  for (const UnfoldedWall& w : summary.walls)
+  for (const UnfoldedWall& w : summary.walls) {
+    std::string notes;
+    if (w.left_out_share > 0.005)
+      notes += ", " + std::to_string(static_cast<int>(100 * w.left_out_share + 0.5)) +
+               "% past the seam left out";
+    if (w.roof_height > 0) {
+      char roof[96];
+      std::snprintf(roof, sizeof roof, "; the roof over it (%.3g up) stretched x%.2f",
+                    w.roof_height, w.roof_stretch);
+      notes += roof;
+    }
     std::fprintf(report, "wall %s: %.3g x %.3g, plane from %d depth pixels (rms %.3g)%s\n",
-                 w.name.c_str(), w.width, w.height, w.depth_samples, w.plane_rms,
-                 w.left_out_share > 0.005
-                     ? (", " + std::to_string(static_cast<int>(100 * w.left_out_share + 0.5)) +
-                        "% past the seam left out")
-                           .c_str()
-                     : "");
+                 w.name.c_str(), w.width, w.height, w.depth_samples, w.plane_rms, notes.c_str());
+  }
   std::fprintf(report, "wrote %s (%zu walls unfolded into %dx%d)\n", out->c_str(),
                summary.walls.size(), summary.size.width, summary.size.height);
   return 0;

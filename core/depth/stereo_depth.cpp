@@ -5,6 +5,7 @@
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -51,6 +52,8 @@ Status checkStereoOptions(const StereoOptions& o, int width, int height) {
         "the focal length in pixels)");
   if (o.max_disparity < 0 || o.max_disparity > 1024)
     return Status::failure("--max-disparity expects a whole number from 0 to 1024");
+  if (!(o.min_texture >= 0.0) || !std::isfinite(o.min_texture))
+    return Status::failure("the texture threshold must be a number ≥ 0");
   if (o.block_size < 3 || o.block_size > 11 || o.block_size % 2 == 0)
     return Status::failure("--block expects an odd number from 3 to 11");
   const int d = searchedDisparities(o, width);
@@ -84,8 +87,18 @@ Result<ImageF> depthFromStereo(const ImageF& left, const ImageF& right, const St
       /*uniquenessRatio=*/10, /*speckleWindowSize=*/100, /*speckleRange=*/2,
       cv::StereoSGBM::MODE_SGBM_3WAY);
   cv::Mat disparity;  // CV_16S, 16 × disparity; below 0: none
+  cv::Mat texture;    // CV_32F: the mean |∂I/∂x| over the matcher's window, grey levels per px
   try {
-    sgbm->compute(greyBytes(left), greyBytes(right), disparity);
+    const cv::Mat grey_left = greyBytes(left);
+    sgbm->compute(grey_left, greyBytes(right), disparity);
+    // Where the window has no horizontal texture the cost is flat along the epipolar line and
+    // the matcher only spreads its neighbours' disparities (a textureless sky takes the roof's
+    // depth for tens of pixels): such pixels get none.
+    if (o.min_texture > 0) {
+      cv::Mat dx;
+      cv::Sobel(grey_left, dx, CV_32F, 1, 0, 3, 1.0 / 8.0);
+      cv::boxFilter(cv::abs(dx), texture, CV_32F, cv::Size(b, b));
+    }
   } catch (const cv::Exception&) {
     return Result<ImageF>::failure("the stereo matcher failed on this pair");
   } catch (const std::bad_alloc&) {
@@ -100,6 +113,7 @@ Result<ImageF> depthFromStereo(const ImageF& left, const ImageF& right, const St
     for (int x = 0; x < left.width; ++x) {
       if (x >= disparities) ++seen;
       if (row[x] <= 0) continue;  // no match, or at infinity (no finite depth)
+      if (!texture.empty() && texture.at<float>(y, x) < o.min_texture) continue;
       const double d = row[x] / 16.0;
       const double z = o.baseline_focal / d;
       *depth.pixel(x, y) = static_cast<float>(z);

@@ -20,6 +20,10 @@ struct StereoOptions {
   // 0: a quarter of the width, at most 256.
   int max_disparity = 0;
   int block_size = 5;  // odd, 3 … 11: the matcher's window
+  // A pixel whose window in the left image has less horizontal texture than this (the mean
+  // |∂I/∂x| of its 8-bit grey, levels per pixel) gets no depth: the matcher cannot place it and
+  // would spread its neighbours' disparities over it. 0: keep every match.
+  double min_texture = 0.2;
 };
 
 struct StereoSummary {

@@ -271,9 +271,14 @@ PhotoLensTags photoLensTags(const PhotoMetadata& metadata) {
       if (at != metadata.exif.end() && at->count() > 0) {
         // EXIF stores these as rationals: divided in double, 2.8 stays 2.8 (toFloat's float
         // would make it 2.7999999).
-        const Exiv2::Rational r = at->toRational();
-        const double f =
-            r.second != 0 ? double(r.first) / double(r.second) : static_cast<double>(at->toFloat());
+        // The tags are unsigned: read as such (toRational's signed pair turns a numerator past
+        // 2^31 negative).
+        double f = static_cast<double>(at->toFloat());
+        if (const auto* u = dynamic_cast<const Exiv2::URationalValue*>(&at->value());
+            u && !u->value_.empty() && u->value_[0].second != 0)
+          f = double(u->value_[0].first) / double(u->value_[0].second);
+        else if (const Exiv2::Rational r = at->toRational(); r.second != 0)
+          f = double(r.first) / double(r.second);
         if (std::isfinite(f) && f > 0) return f;
       }
     } catch (const std::exception&) {

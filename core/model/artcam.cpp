@@ -182,14 +182,18 @@ Status checkPieces(const Artcam& camera) {
     }
     if (Status s = checkCamera(p.camera, where + "/camera: ", &box); !s) return s;
   }
-  // Patches tile the source: neighbours share edges, interiors never overlap.
+  // Patches tile the source: neighbours share edges, interiors never overlap — unless both
+  // patches have support hulls whose interiors are apart (every renderer asks a patch only
+  // inside its support grown by the margin, so a source pixel still has one patch).
   for (size_t i = 0; i < pieces.patches.size(); ++i)
     for (size_t j = i + 1; j < pieces.patches.size(); ++j) {
       const PatchRect& a = pieces.patches[i].rect;
       const PatchRect& b = pieces.patches[j].rect;
       const double w = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);
       const double h = std::min(a.y1, b.y1) - std::max(a.y0, b.y0);
-      if (w > 1e-6 && h > 1e-6)
+      if (w > 1e-6 && h > 1e-6 &&
+          !convexInteriorsApart(pieces.patches[i].support, pieces.patches[j].support,
+                                2.0 * pieces.support_margin_px))
         return Status::failure("/patches/" + std::to_string(j) + "/rect: overlaps patch " +
                                std::to_string(i));
     }

@@ -119,4 +119,26 @@ std::optional<Eigen::Vector2d> PiecewiseCamera::targetPixelFromSourcePixel(
   return std::nullopt;
 }
 
+bool convexInteriorsApart(const std::vector<Eigen::Vector2d>& a,
+                          const std::vector<Eigen::Vector2d>& b, double gap) {
+  if (a.size() < 3 || b.size() < 3) return false;
+  double size = 0.0;
+  for (const auto* poly : {&a, &b})
+    for (const Eigen::Vector2d& p : *poly) size = std::max(size, p.cwiseAbs().maxCoeff());
+  const double tolerance = 1e-9 * std::max(size, 1.0);
+  for (const auto* poly : {&a, &b})
+    for (size_t i = 0; i < poly->size(); ++i) {
+      const Eigen::Vector2d e = (*poly)[(i + 1) % poly->size()] - (*poly)[i];
+      if (e.norm() <= tolerance) continue;
+      const Eigen::Vector2d axis = Eigen::Vector2d(-e.y(), e.x()).normalized();
+      double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
+      for (const Eigen::Vector2d& p : a)
+        a0 = std::min(a0, axis.dot(p)), a1 = std::max(a1, axis.dot(p));
+      for (const Eigen::Vector2d& p : b)
+        b0 = std::min(b0, axis.dot(p)), b1 = std::max(b1, axis.dot(p));
+      if (a1 + gap <= b0 + tolerance || b1 + gap <= a0 + tolerance) return true;
+    }
+  return false;
+}
+
 }  // namespace artcam

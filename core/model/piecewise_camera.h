@@ -5,10 +5,12 @@
 // the rectangle of source pixels it answers for.
 //
 // Patches tile the part of the source the matches cover; they do not overlap except on their
-// shared edges. Rectangles and support hulls are drawn in the PATCH FRAME: the source frame,
-// unless a homography was composed before the piecewise camera (PatchFrame below). Neighbours are fitted on shared boundary matches so they agree at the seams
-// (piecewise_fit.h measures how well: seam_gap_px); the renderer removes what is left by
-// averaging the neighbours' predictions at shared mesh vertices (piecewise_render.h).
+// shared edges, or where their support hulls are apart (a wall and the roof over it, Fig 2).
+// Rectangles and support hulls are drawn in the PATCH FRAME: the source frame, unless a homography
+// was composed before the piecewise camera (PatchFrame below). Neighbours are fitted on shared
+// boundary matches so they agree at the seams (piecewise_fit.h measures how well: seam_gap_px); the
+// renderer removes what is left by averaging the neighbours' predictions at shared mesh vertices
+// (piecewise_render.h).
 #pragma once
 
 #include "core/model/camera.h"
@@ -101,5 +103,11 @@ struct PiecewiseCamera {
 
 // Convex hull (Andrew's monotone chain), counter-clockwise, no repeated end point.
 std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> points);
+// Whether two convex polygons' interiors are at least `gap` apart (touching along an edge or at
+// a corner counts as apart for gap 0): some edge direction of either separates them so (the
+// separating axis theorem), to 1e-9 of their size. False when either has fewer than 3 corners
+// (no hull: the whole rectangle).
+bool convexInteriorsApart(const std::vector<Eigen::Vector2d>& a,
+                          const std::vector<Eigen::Vector2d>& b, double gap = 0.0);
 
 }  // namespace artcam

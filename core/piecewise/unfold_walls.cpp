@@ -5,10 +5,13 @@
 #include "core/model/piecewise_camera.h"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace artcam {
@@ -93,6 +96,42 @@ Plane fitPlane(std::vector<DepthSample> samples, double* rms) {
   return plane;
 }
 
+// The homography taking four points to four (column form, (y, 1) ∝ H (x, 1)), by the DLT on
+// points moved to their centroid and scaled to unit spread on both sides; empty when three of
+// them are collinear.
+std::optional<Eigen::Matrix3d> homographyFrom4(const std::array<Eigen::Vector2d, 4>& from,
+                                               const std::array<Eigen::Vector2d, 4>& to) {
+  auto conditioner = [](const std::array<Eigen::Vector2d, 4>& q) {
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const auto& p : q) mean += p / 4.0;
+    double spread = 0.0;
+    for (const auto& p : q) spread += (p - mean).norm() / 4.0;
+    Eigen::Matrix3d t = Eigen::Matrix3d::Identity();
+    const double k = spread > 0 ? 1.0 / spread : 1.0;
+    t(0, 0) = t(1, 1) = k;
+    t(0, 2) = -k * mean.x();
+    t(1, 2) = -k * mean.y();
+    return t;
+  };
+  const Eigen::Matrix3d tf = conditioner(from), tt = conditioner(to);
+  Eigen::Matrix<double, 8, 8> a;
+  Eigen::Matrix<double, 8, 1> b;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector2d x = (tf * from[i].homogeneous()).hnormalized();
+    const Eigen::Vector2d y = (tt * to[i].homogeneous()).hnormalized();
+    a.row(2 * i) << x.x(), x.y(), 1, 0, 0, 0, -y.x() * x.x(), -y.x() * x.y();
+    a.row(2 * i + 1) << 0, 0, 0, x.x(), x.y(), 1, -y.y() * x.x(), -y.y() * x.y();
+    b(2 * i) = y.x();
+    b(2 * i + 1) = y.y();
+  }
+  const Eigen::FullPivLU<Eigen::Matrix<double, 8, 8>> lu(a);
+  if (lu.rank() < 8) return std::nullopt;
+  const Eigen::Matrix<double, 8, 1> h = lu.solve(b);
+  Eigen::Matrix3d m;
+  m << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), 1.0;
+  return tt.inverse() * m * tf;
+}
+
 std::string named(const WallOutline& w, size_t i) {
   return "wall " + (w.name.empty() ? std::to_string(i + 1) : "\"" + w.name + "\"");
 }
@@ -118,11 +157,23 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
   };
   const double sx = static_cast<double>(depth.width) / photo.width;
   const double sy = static_cast<double>(depth.height) / photo.height;
+  // The depth at a photo point; 0 outside the photo or where the depth map has none.
+  auto depthAt = [&](const Eigen::Vector2d& p) {
+    if (!(p.x() >= 0 && p.y() >= 0 && p.x() < photo.width && p.y() < photo.height)) return 0.0f;
+    const int dx = std::min(depth.width - 1, static_cast<int>(p.x() * sx));
+    const int dy = std::min(depth.height - 1, static_cast<int>(p.y() * sy));
+    const float z = *depth.pixel(dx, dy);
+    return z > 0.0f && std::isfinite(z) ? z : 0.0f;
+  };
+  auto project = [&](const Eigen::Vector3d& X) {
+    return Eigen::Vector2d(pp.x() + f * X.x() / X.z(), pp.y() + f * X.y() / X.z());
+  };
 
   struct Layout {
     Plane plane;
     Eigen::Vector3d origin, eu, ev;
     double umin, umax, vmin, vmax;
+    std::vector<Eigen::Vector2d> corner_uv;  // the outline's corners on the plane
   };
   std::vector<Layout> layouts;
   UnfoldSummary local;
@@ -194,6 +245,7 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
     l.umax = l.vmax = -std::numeric_limits<double>::infinity();
     for (const auto& c : corners) {
       const double u = l.eu.dot(c - l.origin), v = l.ev.dot(c - l.origin);
+      l.corner_uv.emplace_back(u, v);
       l.umin = std::min(l.umin, u);
       l.umax = std::max(l.umax, u);
       l.vmin = std::min(l.vmin, v);
@@ -209,9 +261,16 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
     total_width += l.umax - l.umin;
     tallest = std::max(tallest, l.vmax - l.vmin);
   }
-  const double scale = options.px_per_unit > 0 ? options.px_per_unit : photo.width / total_width;
-  const FrameSize out{std::max(1, static_cast<int>(std::ceil(scale * total_width))),
-                      std::max(1, static_cast<int>(std::ceil(scale * tallest)))};
+  double scale = options.px_per_unit > 0 ? options.px_per_unit : photo.width / total_width;
+  FrameSize out{std::max(1, static_cast<int>(std::ceil(scale * total_width))),
+                std::max(1, static_cast<int>(std::ceil(scale * tallest)))};
+  // In a given frame: the walls at the largest scale that fits, centred.
+  Eigen::Vector2d margin = Eigen::Vector2d::Zero();
+  if (options.frame.isImage()) {
+    scale = std::min(options.frame.width / total_width, options.frame.height / tallest);
+    out = options.frame;
+    margin = 0.5 * Eigen::Vector2d(out.width - scale * total_width, out.height - scale * tallest);
+  }
   if (out.width > kMaxFrameSide || out.height > kMaxFrameSide)
     return R::failure("the unfolded picture would be " + std::to_string(out.width) + "x" +
                       std::to_string(out.height) + ": lower the scale");
@@ -237,7 +296,139 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
   PiecewiseCamera pieces;
   pieces.source_size = photo;
   pieces.target_size = out;
-  double offset = 0.0;
+  double offset = margin.x();
+  // The roof over wall i (the paper's Fig 2 stretches it to fit the unfolded walls): the band of
+  // the picture above a wall shorter than the tallest is filled with what the photo shows over
+  // the wall's top edge, up to where the depth ends. On the wall's plane (u along the base, v
+  // up), the roof's top is found column by column, walking up from the top edge until the
+  // depth has stopped for a few pixels (the sky), and taken at the median over the columns: a
+  // ridge parallel to the eaves lies on a line parallel to the top edge there (central
+  // projection onto a plane the ridge is parallel to), and the median is that line wherever the
+  // ridge spans most of the wall. The quadrilateral from the top edge to that line is mapped
+  // onto the band by the homography that keeps the top edge where the wall put it and lifts its
+  // other side to the picture's top, so wall and roof meet on the edge; the roof is seen as the
+  // photo shows it, stretched, not orthogonally (its plane is not fitted). None for a wall whose
+  // top is not one edge across its width (a gable), or with no depth over it.
+  struct RoofBand {
+    CameraPatch patch;
+    double height = 0.0, stretch = 0.0;
+  };
+  auto roofBand = [&](size_t i) -> std::optional<RoofBand> {
+    const Layout& l = layouts[i];
+    const double top_v = l.vmin + tallest;  // the picture's top on this wall's plane
+    const double pixel = 1.0 / scale;       // one output pixel, depth units
+    if (top_v - l.vmax < 2.0 * pixel) return std::nullopt;
+    const size_t n = l.corner_uv.size();
+    size_t edge = n;
+    double best = -std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < n; ++k) {
+      const double low = std::min(l.corner_uv[k].y(), l.corner_uv[(k + 1) % n].y());
+      if (low > best) best = low, edge = k;
+    }
+    Eigen::Vector2d a = l.corner_uv[edge], b = l.corner_uv[(edge + 1) % n];
+    if (a.x() > b.x()) std::swap(a, b);
+    const double width = l.umax - l.umin, height = l.vmax - l.vmin;
+    if (best < l.vmax - 0.02 * height || b.x() - a.x() < 0.9 * width) return std::nullopt;
+    auto onPlane = [&](double u, double v) { return l.origin + u * l.eu + v * l.ev; };
+    const double step = 0.5 * pixel;
+    const int columns = 64, gap_steps = 12;
+    const int max_steps = static_cast<int>(std::ceil(4.0 * (top_v - l.vmin) / step));
+    std::vector<double> tops;
+    for (int c = 0; c < columns; ++c) {
+      const double t = 0.02 + 0.96 * (c + 0.5) / columns;
+      const double u = a.x() + t * (b.x() - a.x());
+      const double v0 = a.y() + t * (b.y() - a.y());
+      double last = v0;
+      int misses = 0;
+      for (int k = 1; k <= max_steps && misses < gap_steps; ++k) {
+        const Eigen::Vector3d X = onPlane(u, v0 + k * step);
+        if (!(X.z() > 0)) break;
+        const Eigen::Vector2d p = project(X);
+        if (!(p.x() >= 0 && p.y() >= 0 && p.x() < photo.width && p.y() < photo.height)) break;
+        if (depthAt(p) > 0.0f) {
+          last = v0 + k * step;
+          misses = 0;
+        } else {
+          ++misses;
+        }
+      }
+      tops.push_back(last - v0);
+    }
+    std::nth_element(tops.begin(), tops.begin() + tops.size() / 2, tops.end());
+    const double roof = tops[tops.size() / 2];
+    if (roof < 2.0 * pixel) return std::nullopt;
+    const double band = top_v - std::max(a.y(), b.y());
+    const std::array<Eigen::Vector2d, 4> from{a, b, {b.x(), b.y() + roof}, {a.x(), a.y() + roof}};
+    const std::array<Eigen::Vector2d, 4> to{a, b, {b.x(), top_v}, {a.x(), top_v}};
+    const auto g = homographyFrom4(from, to);
+    if (!g) return std::nullopt;
+    // The support reaches past the band's top and ends by a mesh cell (64 photo pixels: the
+    // renderer keeps a cell only where its centre is supported, piecewise_render.h); what lies
+    // past them maps outside the band, above the picture or beyond the seams, and is cut there.
+    const Eigen::Vector3d pa = onPlane(a.x(), a.y()), pb = onPlane(b.x(), b.y());
+    if (!(pa.z() > 0 && pb.z() > 0)) return std::nullopt;
+    const double photo_px_per_unit = (project(pa) - project(pb)).norm() / (b - a).norm();
+    const double reach_units = 64.0 / std::max(photo_px_per_unit, 1e-9);
+    const Eigen::Vector2d edge_dir = (b - a).normalized();
+    const double grow = reach_units;
+    const std::array<Eigen::Vector2d, 4> reach{a - grow * edge_dir,
+                                               b + grow * edge_dir,
+                                               {b.x() + grow * edge_dir.x(), b.y() + roof + grow},
+                                               {a.x() - grow * edge_dir.x(), a.y() + roof + grow}};
+    std::vector<Eigen::Vector2d> quad;
+    for (const Eigen::Vector2d& q : reach) {
+      const Eigen::Vector3d X = onPlane(q.x(), q.y());
+      if (!(X.z() > 0)) return std::nullopt;
+      quad.push_back(project(X));
+    }
+    auto target = [&](const Eigen::Vector2d& p) -> std::optional<Eigen::Vector2d> {
+      const Eigen::Vector3d r = ray(p);
+      const double along = l.plane.n.dot(r);
+      if (!(along < -1e-6)) return std::nullopt;
+      const Eigen::Vector3d X = r * (l.plane.d / along);
+      const Eigen::Vector3d uvw =
+          *g * Eigen::Vector3d(l.eu.dot(X - l.origin), l.ev.dot(X - l.origin), 1.0);
+      if (!(std::abs(uvw.z()) > 1e-12)) return std::nullopt;
+      const Eigen::Vector2d uv = uvw.hnormalized();
+      return Eigen::Vector2d(offset + scale * (uv.x() - l.umin),
+                             margin.y() + scale * (tallest - (uv.y() - l.vmin)));
+    };
+    Eigen::AlignedBox2d box;
+    for (const Eigen::Vector2d& q : quad) box.extend(q);
+    std::vector<PointMatch> matches;
+    for (int ka = 0; ka <= 6; ++ka)
+      for (int kb = 0; kb <= 6; ++kb) {
+        const Eigen::Vector2d p(box.min().x() + box.sizes().x() * ka / 6.0,
+                                box.min().y() + box.sizes().y() * kb / 6.0);
+        if (const auto t = target(p)) {
+          PointMatch m;
+          m.source = p;
+          m.target = *t;
+          matches.push_back(m);
+        }
+      }
+    FitOptions fit;
+    fit.model = ModelClass::Homography;
+    fit.refine = false;
+    fit.restarts = 0;
+    fit.diagnostics = false;
+    fit.require_pole_free = false;
+    FitSummary fitted = fitImageCamera(matches, photo, out, fit);
+    if (!fitted.status) return std::nullopt;
+    RoofBand result;
+    result.patch.rect = {cut_left[i], std::max(0.0, box.min().y()), cut_right[i],
+                         std::min<double>(photo.height, box.max().y())};
+    if (!(result.patch.rect.x1 > result.patch.rect.x0 &&
+          result.patch.rect.y1 > result.patch.rect.y0))
+      return std::nullopt;
+    result.patch.support = convexHull(quad);
+    result.patch.camera = std::move(fitted.camera);
+    result.patch.model = "homography";
+    result.patch.matches = static_cast<int>(matches.size());
+    result.height = roof;
+    result.stretch = band / roof;
+    return result;
+  };
   for (size_t i = 0; i < walls.size(); ++i) {
     const Layout& l = layouts[i];
     // photo px → wall (u, v) → output px, exact: a homography; fitted as one from a grid of its
@@ -246,7 +437,8 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
       const Eigen::Vector3d r = ray(p);
       const Eigen::Vector3d X = r * (l.plane.d / l.plane.n.dot(r));
       const double u = l.eu.dot(X - l.origin), v = l.ev.dot(X - l.origin);
-      return Eigen::Vector2d(offset + scale * (u - l.umin), scale * (tallest - (v - l.vmin)));
+      return Eigen::Vector2d(offset + scale * (u - l.umin),
+                             margin.y() + scale * (tallest - (v - l.vmin)));
     };
     Eigen::AlignedBox2d box;
     for (const Eigen::Vector2d& c : walls[i].photo_px) box.extend(c);
@@ -289,6 +481,13 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
       }
     local.walls[i].left_out_share = in ? static_cast<double>(cut) / in : 0.0;
     pieces.patches.push_back(std::move(patch));
+    if (options.stretch_roof) {
+      if (auto roof = roofBand(i)) {
+        pieces.patches.push_back(std::move(roof->patch));
+        local.walls[i].roof_height = roof->height;
+        local.walls[i].roof_stretch = roof->stretch;
+      }
+    }
     offset += scale * (l.umax - l.umin);
   }
   Artcam camera(pieces.patches.front().camera);

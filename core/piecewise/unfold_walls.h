@@ -5,7 +5,9 @@
 // least-squares plane), each wall maps to its own rectangle of the output by the homography
 // photo → plane → wall coordinates (a position-only camera, eq 3 with Q = lifted linear maps),
 // and the walls lie side by side, bottom-aligned, at one scale: a piecewise camera (§5) whose
-// patches are the walls. The roof above them is not part of any wall and is left out.
+// patches are the walls. A wall shorter than the tallest has a band above it in the picture; the
+// roof seen over the wall's top edge (up to where the depth ends: the sky) is stretched to fill
+// it, as the paper's Fig 2 does.
 #pragma once
 
 #include "core/model/artcam.h"
@@ -33,6 +35,12 @@ struct UnfoldOptions {
   Eigen::Vector2d principal_px{-1.0, -1.0};
   // Output pixels per depth unit along the walls; 0: the walls span the photo's width.
   double px_per_unit = 0.0;
+  // The picture's frame; empty: the walls' own extent at px_per_unit. Given (the studio: the
+  // photo's frame, which its camera keeps), the walls are laid out at the largest scale that
+  // fits it, centred, and px_per_unit is not used.
+  FrameSize frame{0, 0};
+  // Fill the band above each shorter wall with the roof seen over it (false: leave it empty).
+  bool stretch_roof = true;
 };
 
 struct UnfoldedWall {
@@ -42,6 +50,11 @@ struct UnfoldedWall {
   int depth_samples = 0;             // depth pixels inside the outline used by the plane
   double plane_rms = 0.0;            // their distance from the plane, depth units
   double left_out_share = 0.0;       // of the outline past the seam with a neighbour (not shown)
+  // The roof over the wall's top edge, measured up the wall's plane to where the depth ends
+  // (depth units; 0: no band, or no roof found over the wall), and the factor it is stretched by
+  // to reach the picture's top.
+  double roof_height = 0.0;
+  double roof_stretch = 0.0;
 };
 
 struct UnfoldSummary {

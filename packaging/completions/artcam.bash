@@ -43,7 +43,7 @@ _artcam_options() {
                   --max-error --save-camera --mesh-step --overwrite --force --quiet -q" ;;
     sample) echo "--output -o --squares --size --overwrite --force --quiet -q" ;;
     stereo) echo "--output -o --baseline-focal --max-disparity --block --overwrite --force --json" ;;
-    unfold) echo "--output -o --depth --walls --focal --principal --scale --overwrite --force --json" ;;
+    unfold) echo "--output -o --depth --walls --focal --principal --scale --no-roof --overwrite --force --json" ;;
   esac
 }
 

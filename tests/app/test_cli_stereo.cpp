@@ -5,6 +5,9 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QTemporaryDir>
 #include <QtTest/QtTest>
 
@@ -84,10 +87,25 @@ class TestCliStereo : public QObject {
                    dir.filePath("unfold.artcam"), "--json"});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
     QVERIFY2(r.out.contains("\"front\"") && r.out.contains("\"side\""), qPrintable(r.out));
+    // The roof over the front wall is stretched into the band above it; the gable end is the
+    // tallest and has none.
+    const QJsonObject report = QJsonDocument::fromJson(r.out.toUtf8()).object();
+    const QJsonArray walls = report.value("walls").toArray();
+    QCOMPARE(walls.size(), 2);
+    QVERIFY2(walls[0].toObject().value("roof_height").toDouble() > 0.5, qPrintable(r.out));
+    QCOMPARE(walls[1].toObject().value("roof_height").toDouble(), 0.0);
     r = artcamCli({"warp", dir.filePath("house-left.png"), dir.filePath("unfold.artcam"), "-o",
                    dir.filePath("unfolded.png")});
     QVERIFY2(r.exit_code == 0, qPrintable(r.err));
-    QVERIFY2(r.out.contains("piecewise") && r.out.contains("2 patches"), qPrintable(r.out));
+    QVERIFY2(r.out.contains("piecewise") && r.out.contains("3 patches"), qPrintable(r.out));
+    // --no-roof leaves the band empty: the walls alone.
+    r = artcamCli({"unfold", dir.filePath("house-left.png"), "--depth", dir.filePath("depth.exr"),
+                   "--walls", dir.filePath("house-walls.csv"), "--focal", "560", "--no-roof", "-o",
+                   dir.filePath("bare.artcam")});
+    QVERIFY2(r.exit_code == 0, qPrintable(r.err));
+    QVERIFY2(!r.out.contains("roof"), qPrintable(r.out));
+    r = artcamCli({"info", dir.filePath("bare.artcam")});
+    QVERIFY2(r.out.contains(QRegularExpression("patches:\\s+2,")), qPrintable(r.out));
     int w = 0, h = 0;
     channelZero(dir.filePath("unfolded.png"), &w, &h);
     QCOMPARE(w, 640);

@@ -50,13 +50,17 @@ class TestStereoDepth : public QObject {
     QVERIFY2(depth.ok(), depth.status.message.c_str());
     QCOMPARE(depth->width, scene_.width);
     std::vector<double> relative;
-    long long truth_pixels = 0;
+    long long truth_pixels = 0, sky = 0, sky_with_depth = 0;
     for (int y = 0; y < scene_.height; ++y)
       for (int x = summary.max_disparity; x < scene_.width; ++x) {
         const float t = *pair_.left_depth.pixel(x, y);
         const float e = *depth->pixel(x, y);
         QVERIFY(std::isfinite(e) && e >= 0.0f);
-        if (t <= 0.0f) continue;
+        if (t <= 0.0f) {
+          ++sky;
+          if (e > 0.0f) ++sky_with_depth;
+          continue;
+        }
         ++truth_pixels;
         if (e > 0.0f) relative.push_back(std::abs(e - t) / t);
       }
@@ -71,6 +75,23 @@ class TestStereoDepth : public QObject {
     QVERIFY2(median < 0.02, qPrintable(QString::number(median)));
     QVERIFY2(p90 < 0.06, qPrintable(QString::number(p90)));
     QVERIFY2(share > 0.9, qPrintable(QString::number(share)));
+    // The textureless sky gets no depth, but for a rim the matcher's window spans: keeping every
+    // match, it carries the roof's depth tens of pixels into the sky.
+    StereoOptions every_match = options;
+    every_match.min_texture = 0.0;
+    const auto spread = depthFromStereo(pair_.left, pair_.right, every_match);
+    QVERIFY(spread.ok());
+    long long spread_sky = 0;
+    for (int y = 0; y < scene_.height; ++y)
+      for (int x = summary.max_disparity; x < scene_.width; ++x)
+        if (*pair_.left_depth.pixel(x, y) <= 0.0f && *spread->pixel(x, y) > 0.0f) ++spread_sky;
+    const double sky_share = static_cast<double>(sky_with_depth) / sky;
+    const double spread_share = static_cast<double>(spread_sky) / sky;
+    qInfo("sky with a depth: %.2f%% of %lld pixels (every match kept: %.2f%%)", 100 * sky_share,
+          sky, 100 * spread_share);
+    QVERIFY2(sky_share < 0.05, qPrintable(QString::number(sky_share)));
+    QVERIFY2(sky_share < 0.25 * spread_share,
+             qPrintable(QString("%1 vs %2").arg(sky_share).arg(spread_share)));
   }
 
   void refusals() {

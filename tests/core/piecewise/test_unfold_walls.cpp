@@ -50,7 +50,7 @@ class TestUnfoldWalls : public QObject {
     const auto camera = unfoldWalls(stereo_depth_, {scene_.width, scene_.height}, outlinesOf(pair_),
                                     options, &summary);
     QVERIFY2(camera.ok(), camera.status.message.c_str());
-    QCOMPARE(camera->pieces->patches.size(), size_t{2});
+    QCOMPARE(camera->pieces->patches.size(), size_t{3});  // and the roof over the front wall
     // The walls' true sizes: front 4 × 2.2, side 3 × 3.2 (to the gable's apex).
     const double true_width[2] = {4.0, 3.0}, true_height[2] = {2.2, 3.2};
     for (int i = 0; i < 2; ++i) {
@@ -111,6 +111,86 @@ class TestUnfoldWalls : public QObject {
         mean, n, control);
     QVERIFY2(mean < 12.0, qPrintable(QString::number(mean)));
     QVERIFY2(mean < 0.6 * control, qPrintable(QString("%1 vs %2").arg(mean).arg(control)));
+  }
+
+  // The band above the front wall (2.2 tall; the gable end reaches 3.2) holds the roof seen over
+  // the front wall's top edge, stretched to the picture's top. Truth: each band pixel stands for
+  // a point on the front wall's plane extended upwards, between the eaves and the ridge's
+  // central projection onto that plane from the left eye (the ridge is parallel to the plane,
+  // so it projects to a horizontal line at a height the scene's geometry fixes), and shows what
+  // the scene shows along the ray from the eye through that point.
+  void roofIsStretchedOverTheShorterWall() {
+    UnfoldOptions options;
+    options.focal_px = scene_.focal_px;
+    UnfoldSummary summary;
+    const auto camera = unfoldWalls(stereo_depth_, {scene_.width, scene_.height}, outlinesOf(pair_),
+                                    options, &summary);
+    QVERIFY2(camera.ok(), camera.status.message.c_str());
+    QCOMPARE(camera->pieces->patches.size(), size_t{3});  // front, its roof, the gable end
+    QCOMPARE(summary.walls[1].roof_height, 0.0);          // the gable is the tallest
+    const HouseWall& front = pair_.walls[0];
+    const Eigen::Vector3d eye = scene_.left_eye;
+    const Eigen::Vector3d ridge(0.0, 3.2, 0.0);
+    const double plane_z = front.corners[0].z();
+    const double ridge_on_plane =
+        eye.y() + (ridge.y() - eye.y()) * (plane_z - eye.z()) / (ridge.z() - eye.z());
+    const double true_roof = ridge_on_plane - 2.2;
+    qInfo("roof over the front wall: %.3f up its plane (truth %.3f), stretched x%.2f",
+          summary.walls[0].roof_height, true_roof, summary.walls[0].roof_stretch);
+    // The matcher's window carries the roof's depth a few pixels into the sky above the ridge.
+    QVERIFY2(std::abs(summary.walls[0].roof_height - true_roof) < 0.1 * true_roof,
+             qPrintable(QString::number(summary.walls[0].roof_height)));
+    const ImageF out = render(RenderInputs::of(pair_.left), *camera);
+    const double s = summary.px_per_unit;
+    const double band_px =
+        s * (std::max(summary.walls[0].height, summary.walls[1].height) - summary.walls[0].height);
+    const Eigen::Vector3d c0 = front.corners[0];
+    const Eigen::Vector3d eu = (front.corners[1] - front.corners[0]).normalized();
+    auto srgb8 = [](double v) {
+      v = std::clamp(v, 0.0, 1.0);
+      return 255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055);
+    };
+    double sum = 0.0, control = 0.0;
+    long long n = 0, empty = 0;
+    const double w_est = summary.walls[0].width;
+    // The right end stops 12 px short: there the photo's part of the band leans past the seam
+    // with the gable end (a vertical cut in the photo) and is the gable's to show.
+    for (int y = 2; y < static_cast<int>(band_px) - 2; ++y)
+      for (int x = 4; x < static_cast<int>(s * w_est) - 12; ++x) {
+        const float* p = out.pixel(x, y);
+        if (p[3] < 0.999f) {
+          ++empty;
+          continue;
+        }
+        const double u = (x + 0.5) / (s * w_est) * 4.0;
+        const double up = 1.0 - (y + 0.5) / band_px;  // 0 at the eaves, 1 at the picture's top
+        const Eigen::Vector3d at = c0 + u * eu + Eigen::Vector3d(0, 2.2 + up * true_roof, 0);
+        const Eigen::Vector3d truth = stereoHouseColourAlong(eye, (at - eye).normalized());
+        // The control: the same pixel against the scene half a roof further up.
+        const Eigen::Vector3d off = stereoHouseColourAlong(
+            eye, (at + Eigen::Vector3d(0, 0.5 * true_roof, 0) - eye).normalized());
+        for (int k = 0; k < 3; ++k) {
+          sum += std::abs(srgb8(p[k] / p[3]) - srgb8(truth[k]));
+          control += std::abs(srgb8(p[k] / p[3]) - srgb8(off[k]));
+        }
+        ++n;
+      }
+    QVERIFY2(n > 5000, qPrintable(QString("%1 band pixels drawn, %2 empty").arg(n).arg(empty)));
+    QVERIFY2(empty < n / 50, qPrintable(QString("%1 band pixels empty").arg(empty)));
+    const double mean = sum / (3.0 * n), shifted = control / (3.0 * n);
+    qInfo(
+        "roof band against the scene: mean |difference| %.2f/255 over %lld pixels (half a roof "
+        "up: %.2f/255)",
+        mean, n, shifted);
+    QVERIFY2(mean < 12.0, qPrintable(QString::number(mean)));
+    QVERIFY2(mean < 0.6 * shifted, qPrintable(QString("%1 vs %2").arg(mean).arg(shifted)));
+    // Asked not to, the band stays empty.
+    options.stretch_roof = false;
+    const auto bare = unfoldWalls(stereo_depth_, {scene_.width, scene_.height}, outlinesOf(pair_),
+                                  options, &summary);
+    QVERIFY(bare.ok());
+    QCOMPARE(bare->pieces->patches.size(), size_t{2});
+    QCOMPARE(summary.walls[0].roof_height, 0.0);
   }
 
   void refusals() {
