@@ -28,6 +28,7 @@
 #include "ui/tools/depth_tool_settings.h"
 #include "ui/tools/line_tool.h"
 #include "ui/tools/pair_tool.h"
+#include "ui/unfold/unfold_studio.h"
 
 #include <QAction>
 #include <QActionGroup>
@@ -184,6 +185,15 @@ MainWindow::MainWindow(QWidget* parent)
     tool_switcher_->addAction(a);
     if (auto* bar = findChild<QToolBar*>(QStringLiteral("mainToolBar"))) bar->addAction(a);
   }
+  auto* unfold = new UnfoldStudio(this, canvas_, document_);  // Unfold menu and wall tool
+  unfold->attachToSession(session_);
+  tool_switcher_->addAction(unfold->wallToolAction());
+  // The wall tool shows the photo it marks; once unfolded, the canvas shows the result.
+  connect(unfold, &UnfoldStudio::unfolded, this, [this](bool ok) {
+    if (ok && tool_switcher_->defaultAction()) tool_switcher_->defaultAction()->trigger();
+  });
+  if (auto* bar = findChild<QToolBar*>(QStringLiteral("mainToolBar")))
+    bar->addAction(unfold->wallToolAction());
   updateTitle();
   resize(1400, 900);
   // The last session's window: size, place, docks and toolbars (saved on a clean close).

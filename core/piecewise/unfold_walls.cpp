@@ -264,12 +264,12 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
   double scale = options.px_per_unit > 0 ? options.px_per_unit : photo.width / total_width;
   FrameSize out{std::max(1, static_cast<int>(std::ceil(scale * total_width))),
                 std::max(1, static_cast<int>(std::ceil(scale * tallest)))};
-  // In a given frame: the walls at the largest scale that fits, centred.
-  Eigen::Vector2d margin = Eigen::Vector2d::Zero();
+  // In a given frame: the walls at the largest scale that fits, from its top-left corner (the
+  // picture they make alone, then transparent to the frame's other sides; what reaches past the
+  // picture's top and left, the roof's reach below, is cut at the frame's edge as it is there).
   if (options.frame.isImage()) {
     scale = std::min(options.frame.width / total_width, options.frame.height / tallest);
     out = options.frame;
-    margin = 0.5 * Eigen::Vector2d(out.width - scale * total_width, out.height - scale * tallest);
   }
   if (out.width > kMaxFrameSide || out.height > kMaxFrameSide)
     return R::failure("the unfolded picture would be " + std::to_string(out.width) + "x" +
@@ -296,7 +296,7 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
   PiecewiseCamera pieces;
   pieces.source_size = photo;
   pieces.target_size = out;
-  double offset = margin.x();
+  double offset = 0.0;
   // The roof over wall i (the paper's Fig 2 stretches it to fit the unfolded walls): the band of
   // the picture above a wall shorter than the tallest is filled with what the photo shows over
   // the wall's top edge, up to where the depth ends. On the wall's plane (u along the base, v
@@ -391,7 +391,7 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
       if (!(std::abs(uvw.z()) > 1e-12)) return std::nullopt;
       const Eigen::Vector2d uv = uvw.hnormalized();
       return Eigen::Vector2d(offset + scale * (uv.x() - l.umin),
-                             margin.y() + scale * (tallest - (uv.y() - l.vmin)));
+                             scale * (tallest - (uv.y() - l.vmin)));
     };
     Eigen::AlignedBox2d box;
     for (const Eigen::Vector2d& q : quad) box.extend(q);
@@ -437,8 +437,7 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
       const Eigen::Vector3d r = ray(p);
       const Eigen::Vector3d X = r * (l.plane.d / l.plane.n.dot(r));
       const double u = l.eu.dot(X - l.origin), v = l.ev.dot(X - l.origin);
-      return Eigen::Vector2d(offset + scale * (u - l.umin),
-                             margin.y() + scale * (tallest - (v - l.vmin)));
+      return Eigen::Vector2d(offset + scale * (u - l.umin), scale * (tallest - (v - l.vmin)));
     };
     Eigen::AlignedBox2d box;
     for (const Eigen::Vector2d& c : walls[i].photo_px) box.extend(c);

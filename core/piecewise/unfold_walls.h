@@ -37,7 +37,8 @@ struct UnfoldOptions {
   double px_per_unit = 0.0;
   // The picture's frame; empty: the walls' own extent at px_per_unit. Given (the studio: the
   // photo's frame, which its camera keeps), the walls are laid out at the largest scale that
-  // fits it, centred, and px_per_unit is not used.
+  // fits it, from its top-left corner (the same picture, then transparent to the frame's other
+  // sides), and px_per_unit is not used.
   FrameSize frame{0, 0};
   // Fill the band above each shorter wall with the roof seen over it (false: leave it empty).
   bool stretch_roof = true;
