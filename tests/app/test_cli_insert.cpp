@@ -7,6 +7,7 @@
 #include "core/piecewise/sample_scenes.h"
 
 #include "tests/app/cli_run.h"
+#include "tests/app/glass_of_water_truth.h"
 
 #include <QtTest/QtTest>
 
@@ -189,52 +190,17 @@ class TestCliInsert : public QObject {
     const ImageF emblem = load(dir.filePath("emblem.png"));
     const ImageF both = load(dir.filePath("both.png"));
     QVERIFY(!photo.empty() && !emblem.empty() && both.width == 320);
-    // The scene `artcam sample` traces at 320x240 (cmd_sample.cpp).
-    GlassOfWaterScene scene;
-    scene.focal_px = 0.9 * 320;
-    scene.backdrop_half = 0.75;
-    scene.photo_width = 320;
-    scene.photo_height = 240;
-    const auto bilinear = [&](const Eigen::Vector2d& g, int c) {
-      const double fx = std::clamp(g.x() - 0.5, 0.0, emblem.width - 1.001);
-      const double fy = std::clamp(g.y() - 0.5, 0.0, emblem.height - 1.001);
-      const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-      const double tx = fx - x0, ty = fy - y0;
-      return (1 - ty) * ((1 - tx) * emblem.pixel(x0, y0)[c] + tx * emblem.pixel(x0 + 1, y0)[c]) +
-             ty * ((1 - tx) * emblem.pixel(x0, y0 + 1)[c] + tx * emblem.pixel(x0 + 1, y0 + 1)[c]);
-    };
     for (const auto medium : {GlassOfWaterScene::Medium::Water, GlassOfWaterScene::Medium::Air}) {
-      scene.medium = medium;
-      double sum = 0.0, moved = 0.0;
-      long long n = 0;
-      // Interior: 4 px from the region's edge, where the grid's matches bound the patches (a
-      // patch reaches a grid step past its outermost corners at most).
-      constexpr int kIn = 4;
-      for (int y = kIn; y + kIn < 240; ++y)
-        for (int x = kIn; x + kIn < 320; ++x) {
-          bool interior = true;
-          for (int dy = -kIn; dy <= kIn && interior; dy += kIn)
-            for (int dx = -kIn; dx <= kIn && interior; dx += kIn)
-              interior = scene.graphicFromPhoto({x + dx + 0.5, y + dy + 0.5}).has_value();
-          if (!interior) continue;
-          const Eigen::Vector2d g = *scene.graphicFromPhoto({x + 0.5, y + 0.5});
-          const double alpha = bilinear(g, 3);
-          for (int c = 0; c < 3; ++c) {
-            const double truth = bilinear(g, c) + (1.0 - alpha) * photo.pixel(x, y)[c];
-            sum += std::abs(both.pixel(x, y)[c] - truth);
-            moved += std::abs(truth - photo.pixel(x, y)[c]);
-          }
-          ++n;
-        }
-      const double mean = sum / (3.0 * n), change = moved / (3.0 * n);
+      const artcam::test::TracerComparison c = artcam::test::compareWithTracer(
+          photo, emblem, both, artcam::test::sampleGlassOfWater320(), medium);
       qInfo(
           "glass of water, through %s: mean %.4f against the tracer over %lld px (the graphic "
           "changes them by %.3f)",
-          medium == GlassOfWaterScene::Medium::Water ? "water" : "air", mean, n, change);
-      QVERIFY(n > 300);
+          medium == GlassOfWaterScene::Medium::Water ? "water" : "air", c.mean, c.pixels, c.change);
+      QVERIFY(c.pixels > 300);
       // A camera of the other medium, or none, is off by about the change itself.
-      QVERIFY2(mean < 0.02 && change > 8 * mean,
-               qPrintable(QString("mean %1, change %2").arg(mean).arg(change)));
+      QVERIFY2(c.mean < 0.02 && c.change > 8 * c.mean,
+               qPrintable(QString("mean %1, change %2").arg(c.mean).arg(c.change)));
     }
   }
 

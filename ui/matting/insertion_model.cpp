@@ -16,6 +16,8 @@ InsertionModel::InsertionModel(Document* document, QObject* parent)
     InsertionState next = state_;
     next.matches.clear();
     next.region.clear();
+    next.other_media.clear();
+    next.current_medium = 0;
     selected_match_ = -1;
     setState(std::move(next));
   });
@@ -31,6 +33,43 @@ void InsertionModel::setState(InsertionState state) {
 void InsertionModel::edit(const InsertionState& next, const QString& text) {
   if (next == state_) return;
   document_->undoStack()->push(new SetInsertionStateCommand(this, state_, next, text));
+}
+
+std::vector<InsertionMedium> InsertionModel::media(const InsertionState& state) {
+  std::vector<InsertionMedium> all = state.other_media;
+  const int at = std::clamp(state.current_medium, 0, static_cast<int>(all.size()));
+  all.insert(all.begin() + at, InsertionMedium{state.matches, state.region});
+  return all;
+}
+
+InsertionState InsertionModel::editing(const InsertionState& state, int index) {
+  std::vector<InsertionMedium> all = media(state);
+  index = std::clamp(index, 0, static_cast<int>(all.size()) - 1);
+  InsertionState next = state;
+  next.matches = all[static_cast<size_t>(index)].matches;
+  next.region = all[static_cast<size_t>(index)].region;
+  all.erase(all.begin() + index);
+  next.other_media = std::move(all);
+  next.current_medium = index;
+  return next;
+}
+
+void InsertionModel::addMedium() {
+  if (state_.matches.empty() && state_.region.empty()) return;  // the edited one is still empty
+  if (mediumCount() >= kMaxInsertionMedia) return;
+  InsertionState next = state_;
+  next.other_media = media(state_);
+  next.current_medium = static_cast<int>(next.other_media.size());
+  next.matches.clear();
+  next.region.clear();
+  selected_match_ = -1;
+  edit(next, tr("New Medium"));
+}
+
+void InsertionModel::editMedium(int index) {
+  if (index == state_.current_medium) return;
+  selected_match_ = -1;
+  edit(editing(state_, index), tr("Edit Medium %1").arg(index + 1));
 }
 
 namespace {

@@ -40,10 +40,26 @@ struct GridMatch {
   bool operator==(const GridMatch&) const = default;
 };
 
+// One refracting or reflecting medium the graphic is seen through (Fig 8: the water, and the
+// air above it): its grid matches and its region, fitted as its own piecewise camera.
+inline constexpr int kMaxInsertionMedia = 16;  // a project's bound
+
+struct InsertionMedium {
+  std::vector<GridMatch> matches;
+  std::vector<Eigen::Vector2d> region;
+  bool operator==(const InsertionMedium&) const = default;
+};
+
 // Everything an undoable Insertion edit may change; commands store whole old and new values.
 struct InsertionState {
+  // The medium being edited (the grid and region tools work on it).
   std::vector<GridMatch> matches;
   std::vector<Eigen::Vector2d> region;  // photo pixels; fewer than 3 points: no region
+  // The other media, in the order the panel lists them, the edited one standing at
+  // `current_medium` among them; the graphic goes through each in that order (as chained
+  // `artcam insert` runs do, each on the last one's output).
+  std::vector<InsertionMedium> other_media;
+  int current_medium = 0;
   FrameSize board_size{512, 512};
   int squares = 24;
   double max_error_px = 0.5;
@@ -52,7 +68,8 @@ struct InsertionState {
   GraphicPlacement placement;  // default: the graphic fills the board
 
   bool operator==(const InsertionState& o) const {
-    return matches == o.matches && region == o.region && board_size == o.board_size &&
+    return matches == o.matches && region == o.region && other_media == o.other_media &&
+           current_medium == o.current_medium && board_size == o.board_size &&
            squares == o.squares && max_error_px == o.max_error_px && graphic == o.graphic &&
            graphic_path == o.graphic_path && placement == o.placement;
   }
@@ -72,6 +89,16 @@ class InsertionModel : public QObject {
 
   // Convenience: the edit as one undo step on the document's stack (no step when unchanged).
   void edit(const InsertionState& next, const QString& text);
+
+  // Every medium in the panel's order, the edited one at state().current_medium.
+  static std::vector<InsertionMedium> media(const InsertionState& state);
+  // The state with medium `index` (of media()) the edited one; the others keep their order.
+  static InsertionState editing(const InsertionState& state, int index);
+  // One undo step each: a new, empty medium after the others, edited from now on (the edited
+  // one, when it has matches or a region, stays as it is); and editing medium `index`.
+  void addMedium();  // none past kMaxInsertionMedia
+  void editMedium(int index);
+  int mediumCount() const { return static_cast<int>(state_.other_media.size()) + 1; }
 
   // The matches through the object as core point matches (board → photo).
   std::vector<PointMatch> pointMatches() const;

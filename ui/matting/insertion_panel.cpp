@@ -13,6 +13,7 @@
 #include "ui/save_names.h"
 
 #include <QCheckBox>
+#include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -150,6 +151,22 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   edit_row->addWidget(delete_match);
   edit_row->addWidget(clear_region);
   layout->addLayout(edit_row);
+  // Media (Fig 8: the water, then the air above it): each its own grid and region, the graphic
+  // through all of them; the grid and region tools edit the one chosen here.
+  auto* medium_row = new QHBoxLayout;
+  medium_ = new QComboBox(this);
+  medium_->setToolTip(
+      tr("The medium the grid and region tools edit; the graphic is inserted "
+         "through every medium, in this order"));
+  QPushButton* new_medium = button(
+      tr("New Medium"),
+      tr("Another refracting or reflecting medium (the air above the water): its own grid and "
+         "region; the media so far stay"),
+      this);
+  medium_row->addWidget(new QLabel(tr("Medium"), this));
+  medium_row->addWidget(medium_, 1);
+  medium_row->addWidget(new_medium);
+  layout->addLayout(medium_row);
   layout->addWidget(on_table_);
   layout->addWidget(matches_label_);
   layout->addWidget(board_view_, 1);
@@ -170,6 +187,8 @@ InsertionPanel::InsertionPanel(InsertionModel* model, InsertionPreview* preview,
   connect(export_csv, &QPushButton::clicked, this, &InsertionPanel::exportGridCsvDialog);
   connect(delete_match, &QPushButton::clicked, this, &InsertionPanel::deleteSelectedMatch);
   connect(clear_region, &QPushButton::clicked, this, &InsertionPanel::clearRegion);
+  connect(new_medium, &QPushButton::clicked, model_, &InsertionModel::addMedium);
+  connect(medium_, &QComboBox::activated, model_, &InsertionModel::editMedium);
   connect(board_width_, &QSpinBox::valueChanged, this,
           [this](int w) { setBoardSize(w, board_height_->value()); });
   connect(board_height_, &QSpinBox::valueChanged, this,
@@ -228,6 +247,17 @@ void InsertionPanel::syncFromModel() {
                           (on_table > 0 ? tr(", %n on the table", nullptr, on_table) : QString()) +
                           (s.region.size() >= 3 ? tr(", region of %1 corners").arg(s.region.size())
                                                 : tr(", no region")));
+  {
+    const QSignalBlocker block(medium_);
+    medium_->clear();
+    const std::vector<InsertionMedium> media = InsertionModel::media(s);
+    for (size_t i = 0; i < media.size(); ++i) {
+      const auto through = std::count_if(media[i].matches.begin(), media[i].matches.end(),
+                                         [](const GridMatch& m) { return !m.on_table; });
+      medium_->addItem(tr("%1: %n match(es)", nullptr, static_cast<int>(through)).arg(i + 1));
+    }
+    medium_->setCurrentIndex(s.current_medium);
+  }
   board_view_->updateGeometry();
 }
 
@@ -243,6 +273,16 @@ void InsertionPanel::showFit() {
                  .arg(fit.max_px, 0, 'f', 3)
                  .arg(fit.converged ? QString() : tr(" — some patches above the max error"))
                  .arg(fit.fit_ms, 0, 'f', 0);
+  // The other media, each in a line after the edited one's.
+  for (size_t i = 0, other = 0; i < fit.other_media.size() + 1; ++i) {
+    if (static_cast<int>(i) == fit.current_medium) continue;
+    const InsertionFit::Medium& m = fit.other_media[other++];
+    status += QStringLiteral("\n") + (m.ok ? tr("Medium %1: %2 patches, max %3 px")
+                                                 .arg(i + 1)
+                                                 .arg(m.patches)
+                                                 .arg(m.max_px, 0, 'f', 3)
+                                           : tr("Medium %1: %2").arg(i + 1).arg(m.message));
+  }
   if (!preview_->isCurrent()) status = tr("Fitting… ") + status;
   status_->setText(status);
   report_->setPlainText(fit.ok ? fit.report + (fit.table_report.isEmpty()
@@ -320,7 +360,7 @@ void InsertionPanel::exportComposite(const QString& path) {
   const PhotoPtr photo = model_->document()->photo();
   const InsertionFit& fit = preview_->fit();
   const InsertionState& s = model_->state();
-  if (!photo || !fit.ok || !s.graphic) {
+  if (!photo || !fit.rendersAny() || !s.graphic) {
     const QString m = tr("Nothing to export yet: a photo, a fitted grid and a graphic are needed.");
     reportError(tr("Could not export the inserted image"), m);
     emit compositeExported(false, m);
@@ -344,10 +384,10 @@ void InsertionPanel::exportComposite(const QString& path) {
   status_->setText(tr("Exporting %1…").arg(QFileInfo(path).fileName()));
   runOffThread<bool>(
       this,
-      [p = path.toStdString(), photo, camera = fit.camera, table = fit.table, graphic = s.graphic,
-       region = s.region, placement = s.placement] {
-        const ImageF out = InsertionWorker::composite(photo->full.image, *graphic, *camera, region,
-                                                      placement, table.get());
+      [p = path.toStdString(), photo, fit, graphic = s.graphic, region = s.region,
+       placement = s.placement] {
+        const ImageF out =
+            InsertionWorker::compositeMedia(photo->full.image, *graphic, fit, region, placement);
         const Status st = writeImage(p, out, &photo->full.info);
         return st ? Result<bool>::success(true) : Result<bool>::failure(st.message);
       },

@@ -14,6 +14,7 @@
 #include <QWidget>
 
 class QCheckBox;
+class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QPlainTextEdit;
@@ -37,6 +38,7 @@ class InsertionPanel : public QWidget {
   BoardView* boardView() const { return board_view_; }
   QString reportText() const;
   QString statusText() const;
+  QComboBox* mediumBox() const { return medium_; }
   // Where the tool buttons go (the studio adds its tool actions here).
   QVBoxLayout* toolArea() const { return tool_area_; }
 
@@ -89,6 +91,7 @@ class InsertionPanel : public QWidget {
   QCheckBox* error_map_;
   QLabel* matches_label_;
   QCheckBox* on_table_;
+  QComboBox* medium_;
   BoardView* board_view_;
   QLabel* status_;
   QPlainTextEdit* report_;

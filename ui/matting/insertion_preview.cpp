@@ -41,7 +41,7 @@ void InsertionPreview::shutdown() {
 
 bool InsertionPreview::isCurrent() const {
   return fit_generation_ == requested_ &&
-         (!requested_renders_ || !fit_.ok || composite_generation_ == requested_);
+         (!requested_renders_ || !fit_.rendersAny() || composite_generation_ == requested_);
 }
 
 void InsertionPreview::refresh() {
@@ -56,6 +56,18 @@ void InsertionPreview::refresh() {
   r.graphic = s.graphic;
   r.region = s.region;
   r.placement = s.placement;
+  r.current_medium = s.current_medium;
+  for (const InsertionMedium& medium : s.other_media) {
+    InsertionRequest::Medium m;
+    for (const GridMatch& g : medium.matches) {
+      PointMatch p;
+      p.source = g.board;
+      p.target = g.photo;
+      (g.on_table ? m.table_matches : m.matches).push_back(std::move(p));
+    }
+    m.region = medium.region;
+    r.other_media.push_back(std::move(m));
+  }
   if (const PhotoPtr& photo = model_->document()->photo()) {
     r.photo_size = photo->size();
     // The preview copy (≤ kPreviewMaxSide): the GUI shows it scaled to the photo anyway, and
@@ -63,7 +75,10 @@ void InsertionPreview::refresh() {
     r.photo = std::shared_ptr<const ImageF>(photo, &photo->preview);
   }
   requested_renders_ = r.photo && r.graphic;
-  if (r.matches.empty() || !r.photo) {
+  bool any_matches = !r.matches.empty();
+  for (const InsertionRequest::Medium& m : r.other_media)
+    any_matches = any_matches || !m.matches.empty();
+  if (!any_matches || !r.photo) {
     // Nothing to fit: say so at once rather than asking the worker.
     fit_ = InsertionFit{};
     fit_.message = r.photo ? tr("No grid matches yet: import a grid CSV or click corners.")
@@ -83,7 +98,7 @@ void InsertionPreview::onFitted(const InsertionFit& fit, quint64 generation) {
   if (generation < fit_generation_) return;
   fit_ = fit;
   fit_generation_ = generation;
-  if (generation == requested_ && (!requested_renders_ || !fit.ok)) {
+  if (generation == requested_ && (!requested_renders_ || !fit.rendersAny())) {
     composite_ = QImage();
     composite_generation_ = generation;
     emit compositeChanged();

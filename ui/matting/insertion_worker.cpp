@@ -121,15 +121,38 @@ ImageF InsertionWorker::composite(const ImageF& photo, const ImageF& graphic,
   return insertGraphic(photo, placeGraphic(graphic, camera.source_size, placement), cameras);
 }
 
+ImageF InsertionWorker::compositeMedia(const ImageF& photo, const ImageF& graphic,
+                                       const InsertionFit& fit,
+                                       const std::vector<Eigen::Vector2d>& region,
+                                       const GraphicPlacement& placement) {
+  ImageF out = photo;
+  const int count = static_cast<int>(fit.other_media.size()) + 1;
+  for (int i = 0, other = 0; i < count; ++i) {
+    if (i == fit.current_medium) {
+      if (fit.ok && fit.camera)
+        out = composite(out, graphic, *fit.camera, region, placement, fit.table.get());
+      continue;
+    }
+    const InsertionFit::Medium& m = fit.other_media[static_cast<size_t>(other++)];
+    if (m.ok && m.camera)
+      out = composite(out, graphic, *m.camera, m.region, placement, m.table.get());
+  }
+  return out;
+}
+
 void InsertionWorker::serve(InsertionRequest& job) {
   if (!last_fit_inputs_ || !sameFitInputs(*last_fit_inputs_, job)) {
     // Forget the last fit first: should this one throw, the next request must fit afresh.
     last_fit_inputs_.reset();
     const auto start = std::chrono::steady_clock::now();
-    const PiecewiseSummary summary =
-        fitPiecewise(job.matches, job.board_size, job.photo_size, job.options);
-    last_fit_ = describe(summary);
-    if (last_fit_.ok) describeTable(job, last_fit_);
+    if (job.matches.empty()) {  // a new medium, the others fitted
+      last_fit_ = InsertionFit{};
+      last_fit_.message =
+          tr("No grid matches in this medium yet: import a grid CSV or click corners.");
+    } else {
+      last_fit_ = describe(fitPiecewise(job.matches, job.board_size, job.photo_size, job.options));
+      if (last_fit_.ok) describeTable(job, last_fit_);
+    }
     last_fit_.fit_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();
@@ -142,11 +165,45 @@ void InsertionWorker::serve(InsertionRequest& job) {
     last_fit_inputs_ = std::move(inputs);
   }
   if (!keepGoing()) return;  // a newer request: it may reuse this fit
-  emit fitted(last_fit_, job.generation);
-  if (!last_fit_.ok || !job.photo || !job.graphic || job.photo->empty() || job.graphic->empty())
-    return;
-  const ImageF out = composite(*job.photo, *job.graphic, *last_fit_.camera, job.region,
-                               job.placement, last_fit_.table.get());
+  // The other media: each its own fit, reused while its inputs stay.
+  InsertionFit fit = last_fit_;
+  fit.current_medium = job.current_medium;
+  std::vector<std::pair<InsertionRequest, InsertionFit>> fits;
+  for (const InsertionRequest::Medium& medium : job.other_media) {
+    InsertionRequest inputs;
+    inputs.matches = medium.matches;
+    inputs.table_matches = medium.table_matches;
+    inputs.board_size = job.board_size;
+    inputs.photo_size = job.photo_size;
+    inputs.options = job.options;
+    const auto cached = std::find_if(other_fits_.begin(), other_fits_.end(),
+                                     [&](const auto& f) { return sameFitInputs(f.first, inputs); });
+    InsertionFit other;
+    if (cached != other_fits_.end()) {
+      other = cached->second;
+    } else if (medium.matches.empty()) {
+      other.message = tr("no grid matches");
+    } else {
+      other = describe(fitPiecewise(inputs.matches, job.board_size, job.photo_size, job.options));
+      if (other.ok) describeTable(inputs, other);
+    }
+    fits.emplace_back(std::move(inputs), other);
+    InsertionFit::Medium m;
+    m.ok = other.ok;
+    m.message = other.message;
+    m.patches = other.patches;
+    m.max_px = other.max_px;
+    m.camera = other.camera;
+    m.table = other.table;
+    m.region = medium.region;
+    fit.other_media.push_back(std::move(m));
+    if (!keepGoing()) return;
+  }
+  other_fits_ = std::move(fits);
+  emit fitted(fit, job.generation);
+  if (!job.photo || !job.graphic || job.photo->empty() || job.graphic->empty()) return;
+  if (!fit.rendersAny()) return;
+  const ImageF out = compositeMedia(*job.photo, *job.graphic, fit, job.region, job.placement);
   if (!keepGoing()) return;
   const QImage image = qimageFromLinear(out);
   if (!keepGoing()) return;

@@ -44,6 +44,14 @@ struct InsertionRequest {
   std::shared_ptr<const ImageF> graphic;  // linear premultiplied; null: fit only
   std::vector<Eigen::Vector2d> region;    // photo pixels; < 3 points: no limit
   GraphicPlacement placement;
+  // The other media (InsertionState::other_media), each fitted as its own camera; the graphic
+  // goes through all of them in the panel's order, the edited one at `current_medium`.
+  struct Medium {
+    std::vector<PointMatch> matches, table_matches;
+    std::vector<Eigen::Vector2d> region;
+  };
+  std::vector<Medium> other_media;
+  int current_medium = 0;
 };
 
 // What the panel and the error map show of a fit.
@@ -65,6 +73,25 @@ struct InsertionFit {
   // Per patch: its support hull mapped through its own camera (photo pixels) and its max error.
   QVector<QPolygonF> patch_outlines;
   QVector<double> patch_max_px;
+  // The other media's fits (the request's other_media, in order; their own fields above, no
+  // outlines) and where the edited one stands among them.
+  struct Medium {
+    bool ok = false;
+    QString message;
+    int patches = 0;
+    double max_px = 0.0;
+    std::shared_ptr<const PiecewiseCamera> camera;
+    std::shared_ptr<const Camera> table;
+    std::vector<Eigen::Vector2d> region;
+  };
+  std::vector<Medium> other_media;
+  int current_medium = 0;
+  // Some medium has a camera: the graphic will be drawn.
+  bool rendersAny() const {
+    bool any = ok && camera;
+    for (const Medium& m : other_media) any = any || (m.ok && m.camera);
+    return any;
+  }
 };
 
 class InsertionWorker : public NewestRequestWorker<InsertionRequest> {
@@ -85,6 +112,11 @@ class InsertionWorker : public NewestRequestWorker<InsertionRequest> {
   static ImageF composite(const ImageF& photo, const ImageF& graphic, const PiecewiseCamera& camera,
                           const std::vector<Eigen::Vector2d>& region,
                           const GraphicPlacement& placement = {}, const Camera* table = nullptr);
+  // The graphic through every fitted medium of `fit` in turn, each on the last one's output
+  // (the edited medium with `region`, the others with their own).
+  static ImageF compositeMedia(const ImageF& photo, const ImageF& graphic, const InsertionFit& fit,
+                               const std::vector<Eigen::Vector2d>& region,
+                               const GraphicPlacement& placement = {});
   static InsertionFit describe(const PiecewiseSummary& summary);
 
  signals:
@@ -98,6 +130,8 @@ class InsertionWorker : public NewestRequestWorker<InsertionRequest> {
   // Worker thread only: the inputs of the last fit and its result.
   std::optional<InsertionRequest> last_fit_inputs_;
   InsertionFit last_fit_;
+  // The other media's last fits and their inputs (reused while their matches stay).
+  std::vector<std::pair<InsertionRequest, InsertionFit>> other_fits_;
 };
 
 }  // namespace artcam::ui
