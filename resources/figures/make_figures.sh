@@ -27,7 +27,8 @@ done
 row "$out/fig1.png" "$tmp/f1-identity.png" "$tmp/f1-twist-3d.png" "$tmp/f1-pincushion-3d.png" \
   "$tmp/f1-colour-scale.png" "$tmp/f1-chromatic-aberration-3d.png"
 
-# Fig 2: a stereo pair, its depth, and the walls unfolded (each seen orthogonally), in pencil.
+# Fig 2: a stereo pair, its depth, and the walls unfolded (each seen orthogonally, the roof
+# stretched over the shorter one), in pencil.
 "$artcam" sample stereo-house -o "$tmp/house" >/dev/null
 "$artcam" stereo "$tmp/house/house-left.png" "$tmp/house/house-right.png" --baseline-focal 140 \
   -o "$tmp/house/depth.exr" >/dev/null
