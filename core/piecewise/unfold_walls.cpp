@@ -19,18 +19,6 @@ namespace {
 
 constexpr int kMinDepthSamples = 50;
 
-bool inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 struct Plane {
   Eigen::Vector3d n;  // unit, towards the camera
   double d = 0.0;     // n·X = d
@@ -138,6 +126,19 @@ std::string named(const WallOutline& w, size_t i) {
 
 }  // namespace
 
+bool insideOutline(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  bool in = false;
+  if (poly.empty()) return in;
+  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Eigen::Vector2d& a = poly[i];
+    const Eigen::Vector2d& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
 Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
                            const std::vector<WallOutline>& walls, const UnfoldOptions& options,
                            UnfoldSummary* summary) {
@@ -201,7 +202,7 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
       for (int x = std::max(0, static_cast<int>(box.min().x()));
            x < std::min(photo.width, static_cast<int>(box.max().x()) + 1); ++x) {
         const Eigen::Vector2d p(x + 0.5, y + 0.5);
-        if (!inside(inner, p)) continue;
+        if (!insideOutline(inner, p)) continue;
         const int dx = std::min(depth.width - 1, static_cast<int>(p.x() * sx));
         const int dy = std::min(depth.height - 1, static_cast<int>(p.y() * sy));
         const float z = *depth.pixel(dx, dy);
@@ -474,7 +475,7 @@ Result<Artcam> unfoldWalls(const ImageF& depth, FrameSize photo,
     for (int y = static_cast<int>(box.min().y()); y <= static_cast<int>(box.max().y()); ++y)
       for (int x = static_cast<int>(box.min().x()); x <= static_cast<int>(box.max().x()); ++x) {
         const Eigen::Vector2d p(x + 0.5, y + 0.5);
-        if (!inside(walls[i].photo_px, p)) continue;
+        if (!insideOutline(walls[i].photo_px, p)) continue;
         ++in;
         if (!patch.rect.contains(p)) ++cut;
       }

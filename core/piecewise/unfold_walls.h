@@ -29,6 +29,9 @@ struct WallOutline {
   std::vector<Eigen::Vector2d> photo_px;
 };
 
+// Whether a photo point lies inside the outline (even-odd rule).
+bool insideOutline(const std::vector<Eigen::Vector2d>& outline, const Eigen::Vector2d& p);
+
 struct UnfoldOptions {
   double focal_px = 0.0;  // the photo's focal length in pixels (required)
   // The principal point; negative: the photo's centre.

@@ -123,7 +123,15 @@ void UnfoldStudio::unfold(double focal_px) {
       },
       [this, photo](JobOutcome<Made> outcome) {
         running_ = false;
-        if (document_->photo() != photo) return;  // another photo opened meanwhile
+        // Another photo opened meanwhile (its full decode, of the same photo, may have replaced
+        // a first look: that one is still the photo the walls were marked on).
+        const PhotoPtr now = document_->photo();
+        if (!now || now->path != photo->path || now->size() != photo->size()) {
+          const QString message = tr("not applied: another photo was opened meanwhile");
+          window_->statusBar()->showMessage(tr("Unfold walls: %1").arg(message), 10000);
+          emit unfolded(false, message);
+          return;
+        }
         if (!outcome.value) return fail(outcome.error);
         if (!outcome.value->camera)
           return fail(QString::fromStdString(outcome.value->camera.status.message));

@@ -15,20 +15,6 @@
 #include <cmath>
 
 namespace artcam::ui {
-namespace {
-
-bool inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
-    if ((poly[i].y() > p.y()) != (poly[j].y() > p.y()) &&
-        p.x() < (poly[j].x() - poly[i].x()) * (p.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) +
-                    poly[i].x())
-      in = !in;
-  return in;
-}
-
-}  // namespace
-
 WallTool::WallTool(Canvas* canvas, Document* document, WallsModel* model)
     : Tool(canvas, document), model_(model) {}
 
@@ -86,7 +72,7 @@ bool WallTool::keyPress(QKeyEvent* event) {
       const QPointF p = canvas_->view().imageFromWidget(cursor_widget_);
       std::vector<WallOutline> next = model_->walls();
       for (auto it = next.begin(); it != next.end(); ++it)
-        if (inside(it->photo_px, {p.x(), p.y()})) {
+        if (insideOutline(it->photo_px, {p.x(), p.y()})) {
           next.erase(it);
           model_->edit(std::move(next), QCoreApplication::translate("WallTool", "Remove Wall"));
           canvas_->update();
