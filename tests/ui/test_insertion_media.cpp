@@ -6,6 +6,7 @@
 // through each medium (the truth of tests/app/glass_of_water_truth.h, as for the command line's
 // two chained inserts, whose picture it equals); editing a medium keeps the other; undo takes
 // the new medium back; the project keeps both.
+#include "core/io/artcam_file.h"
 #include "core/io/image_io.h"
 #include "tests/app/cli_run.h"
 #include "tests/app/glass_of_water_truth.h"
@@ -98,6 +99,30 @@ class TestInsertionMedia : public QObject {
     QCOMPARE(panel.mediumBox()->count(), 2);
     QCOMPARE(panel.mediumBox()->currentIndex(), 1);
     QVERIFY2(panel.statusText().contains("Medium 1:"), qPrintable(panel.statusText()));
+
+    // Export Piecewise Camera writes the edited medium's camera and says it is one of two: a
+    // file that passed for the whole chain would insert through the air only.
+    QSignalSpy camera_done(&panel, &InsertionPanel::cameraExported);
+    panel.exportCamera(path("air.artcam"));
+    QVERIFY(camera_done.wait(60000));
+    const QString said = camera_done.last().at(1).toString();
+    QVERIFY2(camera_done.last().at(0).toBool(), qPrintable(said));
+    QVERIFY2(said.contains("medium 2 of 2 only"), qPrintable(said));
+    QCOMPARE(panel.statusText(), said);
+    const auto air = readArtcam(path("air.artcam").toStdString());
+    QVERIFY2(air.ok(), air ? "" : air.status.message.c_str());
+    QVERIFY(air->pieces.has_value());
+    QCOMPARE(air->pieces->patches.size(), preview.fit().camera->patches.size());
+    for (const CameraPatch& patch : preview.fit().camera->patches) {
+      // The middle of the patch's own matches: inside its support, so both must answer.
+      Eigen::Vector2d probe = Eigen::Vector2d::Zero();
+      for (const Eigen::Vector2d& corner : patch.support) probe += corner;
+      probe /= double(std::max<size_t>(1, patch.support.size()));
+      const auto written = air->pieces->targetPixelFromSourcePixel(probe);
+      const auto fitted = preview.fit().camera->targetPixelFromSourcePixel(probe);
+      QVERIFY(written.has_value() && fitted.has_value());
+      QVERIFY((*written - *fitted).norm() < 1e-9);
+    }
 
     QSignalSpy exported(&panel, &InsertionPanel::compositeExported);
     panel.exportComposite(path("studio-both.png"));

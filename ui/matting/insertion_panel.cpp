@@ -418,9 +418,19 @@ void InsertionPanel::exportCamera(const QString& path) {
         const Status st = writeArtcam(p, doc);
         return st ? Result<bool>::success(true) : Result<bool>::failure(st.message);
       },
-      [this, path](Result<bool> r) {
-        const QString m = r ? tr("Wrote %1").arg(path) : QString::fromStdString(r.status.message);
+      [this, path, medium = model_->state().current_medium,
+       media = model_->mediumCount()](Result<bool> r) {
+        // A chain of media is one camera each: say which one this file holds, never let it
+        // pass for the whole chain.
+        QString m = r ? tr("Wrote %1").arg(path) : QString::fromStdString(r.status.message);
+        if (r && media > 1)
+          m = tr("Wrote %1: medium %2 of %3 only. The graphic passes through every medium in "
+                 "turn; choose each in the Medium box and export its camera too.")
+                  .arg(path)
+                  .arg(medium + 1)
+                  .arg(media);
         if (!r) reportError(tr("Could not export the camera"), m);
+        status_->setText(m);
         emit cameraExported(r.ok(), m);
       });
 }
