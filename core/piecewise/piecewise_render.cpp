@@ -76,8 +76,14 @@ struct Mesh {
   ScratchArray<unsigned char> valid;      // some patch maps the vertex
   ScratchArray<int> patch;                // the one patch that maps the vertex; −1: several
                                           // (their average is taken) or none
-  ScratchArray<unsigned char> cell_ok;    // (nx − 1) · (ny − 1): the cell's centre has data
+  ScratchArray<unsigned char> cell_ok;    // (nx − 1) · (ny − 1): the cell's centre has data,
+                                          // or the outline crosses it (extendToOutlines)
+  // The vertex has no data of its own but a cell the outline crosses needs it: mapped through
+  // the patch of that cell's vertices that have data (its index in `patch`). Triangles with
+  // such a vertex are drawn pixel by pixel up to the outline (keepOutlinePixel).
+  ScratchArray<unsigned char> outside;
   bool gaps = false;                      // some vertex or cell centre has no data
+  bool outlines = false;                  // some vertex is `outside`
   // The bend of the lattice's edges from vertex (i, j): to its right, down and down-right
   // neighbour. The exact preimage of the midpoint of the edge's two targets, less the
   // midpoint of its two sources (camera source pixels): what makes the triangles quadratic.
@@ -97,6 +103,11 @@ struct Mesh {
   // second resampling.
   bool has_patch_frame = false;
   Eigen::Matrix3d source_from_patch = Eigen::Matrix3d::Identity();
+  // What keepOutlinePixel asks: the camera (outlives the mesh: meshFor's caller holds it), its
+  // patches' maps, and the rectangles' tolerance.
+  const PiecewiseCamera* camera = nullptr;
+  std::vector<RationalMap> maps;
+  double tolerance = 0.0;
 
   size_t at(int i, int j) const { return static_cast<size_t>(j) * static_cast<size_t>(nx) + static_cast<size_t>(i); }
   // Vertex (i, j) in the patch frame.
@@ -118,7 +129,8 @@ struct Mesh {
 void allocateArrays(Mesh& mesh, size_t vertices, size_t cells) {
   const auto rounded = [](size_t bytes) { return (bytes + 63) / 64 * 64; };  // each array on a cache line
   const size_t points = rounded(vertices * sizeof(Eigen::Vector2d));
-  const size_t bytes = 4 * points + rounded(vertices * sizeof(int)) + rounded(vertices) + rounded(cells);
+  const size_t bytes =
+      4 * points + rounded(vertices * sizeof(int)) + 2 * rounded(vertices) + rounded(cells);
   mesh.storage = takeScratch(bytes);
   char* at = static_cast<char*>(mesh.storage.data());
   const auto carve = [&](auto& array, size_t count, size_t size) {
@@ -130,8 +142,10 @@ void allocateArrays(Mesh& mesh, size_t vertices, size_t cells) {
   for (auto& b : mesh.bend) carve(b, vertices, vertices * sizeof(Eigen::Vector2d));
   carve(mesh.patch, vertices, vertices * sizeof(int));
   carve(mesh.valid, vertices, vertices);
+  carve(mesh.outside, vertices, vertices);
   carve(mesh.cell_ok, cells, cells);
   std::fill(mesh.valid.begin(), mesh.valid.end(), 0);
+  std::fill(mesh.outside.begin(), mesh.outside.end(), 0);
   std::fill(mesh.patch.begin(), mesh.patch.end(), -1);
   std::fill(mesh.cell_ok.begin(), mesh.cell_ok.end(), 0);
 }
@@ -183,6 +197,80 @@ bool preimageNear(const PiecewiseCamera& camera, const std::vector<RationalMap>&
   }
   source = start;
   return start.allFinite();
+}
+
+// Where a patch's data ends inside a cell (the outline of a marked wall, the hull of a fitted
+// grid), the cell would be dropped with the vertices beyond the outline, leaving a staircase up
+// to a cell deep inside it transparent. Instead each such vertex is mapped through the patch of
+// the cell's vertices that have data (its camera is defined past its data; the outline only
+// says where it is trusted) and the cell is drawn; keepOutlinePixel then cuts its triangles at
+// the outline pixel by pixel. A cell the outline only clips at a corner, none of whose
+// vertices has data, is still dropped (at most half a cell's corner).
+void extendToOutlines(Mesh& mesh, const PiecewiseCamera& camera,
+                      const std::vector<RationalMap>& maps, double tolerance) {
+  const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
+  const auto holder = [&](const Eigen::Vector2d& v) {
+    for (size_t k = 0; k < camera.patches.size(); ++k)
+      if (camera.patches[k].rect.contains(v, tolerance) && camera.supports(static_cast<int>(k), v))
+        return static_cast<int>(k);
+    return -1;
+  };
+  for (int j = 0; j < cells_y; ++j)
+    for (int i = 0; i < cells_x; ++i) {
+      const size_t v[4] = {mesh.at(i, j), mesh.at(i + 1, j), mesh.at(i, j + 1),
+                           mesh.at(i + 1, j + 1)};
+      int with_data = -1, without = 0;
+      for (int q = 0; q < 4; ++q) {
+        if (mesh.valid[v[q]] && !mesh.outside[v[q]]) {
+          if (with_data < 0) with_data = q;
+        } else if (!mesh.valid[v[q]]) {
+          ++without;
+        }
+      }
+      if (with_data < 0 || without == 0) continue;
+      const int qi = i + (with_data & 1), qj = j + (with_data >> 1);
+      const int k =
+          mesh.patch[v[with_data]] >= 0 ? mesh.patch[v[with_data]] : holder(mesh.latticeAt(qi, qj));
+      if (k < 0) continue;
+      bool all = true;
+      for (int q = 0; q < 4; ++q) {
+        if (mesh.valid[v[q]]) continue;
+        const Eigen::Vector2d source = mesh.sourceAt(i + (q & 1), j + (q >> 1));
+        Eigen::Vector2d t;
+        if (source.allFinite() && maps[static_cast<size_t>(k)].evaluate(source, t, nullptr) &&
+            t.allFinite()) {
+          mesh.valid[v[q]] = 1;
+          mesh.outside[v[q]] = 1;
+          mesh.patch[v[q]] = k;
+          mesh.target[v[q]] = t.cwiseProduct(mesh.out_scale);
+          mesh.outlines = true;
+        } else {
+          all = false;
+        }
+      }
+      if (all)
+        mesh.cell_ok[static_cast<size_t>(j) * static_cast<size_t>(cells_x) +
+                     static_cast<size_t>(i)] = 1;
+    }
+}
+
+// A pixel of a triangle drawn past an outline (Mesh::outside) is kept where its source
+// position lies in a patch's data (as a vertex's must, buildMesh) and that patch maps it back
+// onto the pixel: a triangle extrapolated across a fold or a pole never shows through.
+bool keepOutlinePixel(const Mesh& mesh, int x, int y, float sx, float sy) {
+  const Eigen::Vector2d source(sx / mesh.source_scale.x(), sy / mesh.source_scale.y());
+  const std::optional<Eigen::Vector2d> p = mesh.camera->patchPixelFromSourcePixel(source);
+  if (!p) return false;
+  const Eigen::Vector2d centre(x + 0.5, y + 0.5);
+  for (size_t k = 0; k < mesh.camera->patches.size(); ++k) {
+    Eigen::Vector2d t;
+    if (mesh.camera->patches[k].rect.contains(*p, mesh.tolerance) &&
+        mesh.camera->supports(static_cast<int>(k), *p) &&
+        mesh.maps[k].evaluate(source, t, nullptr) &&
+        (t.cwiseProduct(mesh.out_scale) - centre).norm() <= 0.5)
+      return true;
+  }
+  return false;
 }
 
 // With `whole_only`, a lattice with a vertex or cell without data is returned as soon as that
@@ -273,6 +361,7 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
   mesh.gaps = std::find(mesh.valid.begin(), mesh.valid.end(), 0) != mesh.valid.end() ||
               std::find(mesh.cell_ok.begin(), mesh.cell_ok.end(), 0) != mesh.cell_ok.end();
   if (whole_only && mesh.gaps) return mesh;
+  if (mesh.gaps) extendToOutlines(mesh, camera, maps, tolerance);
   // Chunks: the target bounding box of each chunk's drawn triangles, per cell row first (in
   // parallel), then merged; the triangle count on the way.
   const int cells_x = std::max(0, nx - 1), cells_y = std::max(0, ny - 1);
@@ -338,6 +427,9 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
       for (int band = y_begin / kBandRows; band <= y_end / kBandRows; ++band)
         mesh.bands[static_cast<size_t>(band)].push_back(cj * mesh.chunks_x + ci);
     }
+  mesh.camera = &camera;
+  mesh.tolerance = tolerance;
+  mesh.maps = std::move(maps);
   return mesh;
 }
 
@@ -780,7 +872,10 @@ long long rasterise(const Eigen::Vector2d t[3], const Eigen::Vector2d s[3], cons
 }
 
 // Every drawn triangle of the chunks listed for the band of output rows [y0, y1).
-long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, float* sy, unsigned char* valid,
+// Triangles with an `outside` vertex go to the outline buffers (sx2, sy2, valid2), which the
+// caller cuts at the outline (keepOutlinePixel); they are null when the mesh has none.
+long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, float* sy,
+                        unsigned char* valid, float* sx2, float* sy2, unsigned char* valid2,
                         bool avx512) {
   const double top = y0 + 0.5 - 1e-9, bottom = y1 - 0.5 + 1e-9;  // the band's pixel centres
   const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
@@ -798,15 +893,19 @@ long long rasteriseBand(const Mesh& mesh, int y0, int y1, int width, float* sx, 
         if (hi < top || lo > bottom) continue;  // the common case: a cell above or below the band
         for (const TriangleShape& shape : kTriangles) {
           Eigen::Vector2d t[3], s[3], bend[3];
-          bool ok = true;
+          bool ok = true, outline = false;
           for (int q = 0; q < 3 && ok; ++q) {
             const size_t at = mesh.at(i + shape.v[q][0], j + shape.v[q][1]);
             ok = mesh.valid[at] != 0;
+            outline = outline || mesh.outside[at] != 0;
             t[q] = mesh.target[at];
             s[q] = mesh.sourceAt(i + shape.v[q][0], j + shape.v[q][1]).cwiseProduct(mesh.source_scale);
             bend[q] = bendOf(mesh, i, j, shape.bend[q]).cwiseProduct(mesh.source_scale);
           }
-          if (ok) covered += rasterise(t, s, bend, y0, y1, width, sx, sy, valid, avx512);
+          if (ok && outline)
+            rasterise(t, s, bend, y0, y1, width, sx2, sy2, valid2, avx512);
+          else if (ok)
+            covered += rasterise(t, s, bend, y0, y1, width, sx, sy, valid, avx512);
         }
       }
     }
@@ -844,12 +943,29 @@ long long forEachRasterisedBand(const Mesh& mesh, FrameSize output, int threads,
   po.band_rows = kBandRows;
   parallelForRows(output.height, po, [&](int y0, int y1) {
     const size_t cells = static_cast<size_t>(kBandRows) * static_cast<size_t>(output.width);
-    const ScratchBlock buffers = takeScratch(cells * (2 * sizeof(float) + 1));
+    const int sets = mesh.outlines ? 2 : 1;
+    const ScratchBlock buffers = takeScratch(sets * cells * (2 * sizeof(float) + 1));
     float* const sx = static_cast<float*>(buffers.data());
     float* const sy = sx + cells;
-    unsigned char* const valid = reinterpret_cast<unsigned char*>(sy + cells);
-    std::memset(valid, 0, cells);
-    const long long band_covered = rasteriseBand(mesh, y0, y1, output.width, sx, sy, valid, avx512);
+    float* const sx2 = mesh.outlines ? sy + cells : nullptr;
+    float* const sy2 = mesh.outlines ? sx2 + cells : nullptr;
+    unsigned char* const valid = reinterpret_cast<unsigned char*>(sx + sets * 2 * cells);
+    unsigned char* const valid2 = mesh.outlines ? valid + cells : nullptr;
+    std::memset(valid, 0, sets * cells);
+    long long band_covered =
+        rasteriseBand(mesh, y0, y1, output.width, sx, sy, valid, sx2, sy2, valid2, avx512);
+    // The outline triangles fill only what no inner triangle drew, cut at the outline.
+    if (mesh.outlines)
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < output.width; ++x) {
+          const size_t at = static_cast<size_t>(y - y0) * static_cast<size_t>(output.width) +
+                            static_cast<size_t>(x);
+          if (valid[at] || !valid2[at] || !keepOutlinePixel(mesh, x, y, sx2[at], sy2[at])) continue;
+          sx[at] = sx2[at];
+          sy[at] = sy2[at];
+          valid[at] = 1;
+          ++band_covered;
+        }
     use(y0, y1, sx, sy, valid);
     covered += band_covered;
   });

@@ -12,7 +12,10 @@
 // ~step²·|∂²s|/8 (a 24 MP fisheye: ~0.004 px at 4 px); quadratic ones by ~step³, so a lattice
 // of 32 px meets 1/256 px where the linear one needed 2 px. The step is chosen by measuring
 // (chooseMeshStep), and each band of rows evaluates its triangles' positions row by row
-// (a quadratic in x per row) into the warp's span sampler.
+// (a quadratic in x per row) into the warp's span sampler. Where a patch's data ends inside a
+// cell (a marked wall's outline, a fitted grid's hull), the cell is drawn through that patch
+// and cut at the outline pixel by pixel, so the picture ends at the outline, not at the cells
+// wholly inside it.
 #pragma once
 
 #include "core/model/image.h"

@@ -220,6 +220,71 @@ class TestPiecewiseMesh : public QObject {
     QCOMPARE(holes, 0);
     QVERIFY2(worst < 1e-4, qPrintable(QString::number(worst)));
   }
+
+  // A patch whose data ends at a slanted outline (a marked wall, the hull of a fitted grid) is
+  // drawn up to that outline, not to the lattice cells wholly inside it: a cell the outline
+  // crosses is drawn through the patch's own camera and cut at the outline pixel by pixel.
+  // Before, a 32-px lattice left a staircase up to a cell deep inside the outline transparent.
+  void aSupportIsDrawnToItsOutline() {
+    const Camera lens = buildEffect("barrel", {{"k", {-0.05}}}, kSize).main();
+    PiecewiseCamera camera;
+    camera.source_size = camera.target_size = kSize;
+    const std::vector<Eigen::Vector2d> outline = {{60, 40}, {250, 20}, {290, 210}, {40, 190}};
+    camera.patches.push_back({{0, 0, double(kSize.width), double(kSize.height)},
+                              outline,
+                              lens,
+                              "quadratic",
+                              0,
+                              0,
+                              0,
+                              true});
+    PiecewiseRenderStats stats;
+    const ImageF out = renderPiecewise(coordinateRamp(), camera, {}, &stats);
+    const RationalMap map(lens, kSize, kSize);
+    // Signed distance of a source point inside the outline (positive) to its nearest edge.
+    const auto inside = [&](const Eigen::Vector2d& s) {
+      double d = std::numeric_limits<double>::infinity();
+      for (size_t k = 0; k < outline.size(); ++k) {
+        const Eigen::Vector2d a = outline[k], b = outline[(k + 1) % outline.size()];
+        const Eigen::Vector2d e = (b - a).normalized();
+        d = std::min(d, e.x() * (s.y() - a.y()) - e.y() * (s.x() - a.x()));
+      }
+      return d;
+    };
+    long long missing = 0, extra = 0, inside_pixels = 0;
+    double worst = 0.0;
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) {
+        // The pixel centre's exact preimage through the lens (Newton from the centre).
+        const Eigen::Vector2d target(x + 0.5, y + 0.5);
+        Eigen::Vector2d s = target;
+        for (int k = 0; k < 30; ++k) {
+          Eigen::Vector2d f;
+          Eigen::Matrix2d j;
+          if (!map.evaluate(s, f, &j)) break;
+          s += j.inverse() * (target - f);
+        }
+        const double d = inside(s);
+        const float* p = out.pixel(x, y);
+        const bool drawn = p[2] > 0.5f;
+        if (d > 1.0) {
+          ++inside_pixels;
+          missing += !drawn;
+          if (drawn && p[2] >= 1.0f && s.x() > 1 && s.y() > 1)
+            worst = std::max(worst, std::hypot(p[0] - s.x(), p[1] - s.y()));
+        }
+        if (d < -1.0) extra += p[2] > 0.0f;
+      }
+    qInfo(
+        "step %.0f px: %lld of %lld pixels inside the outline missing, %lld drawn outside it, "
+        "worst position %.2g px",
+        stats.mesh_step_px, missing, inside_pixels, extra, worst);
+    QVERIFY(inside_pixels > 20000);
+    QVERIFY(stats.mesh_step_px >= 8.0);  // a coarse lattice: the outline crosses its cells
+    QCOMPARE(missing, 0LL);
+    QCOMPARE(extra, 0LL);
+    QVERIFY2(worst <= 1.0 / 256.0, qPrintable(QString::number(worst)));
+  }
 };
 
 QTEST_GUILESS_MAIN(TestPiecewiseMesh)

@@ -67,7 +67,7 @@ class TestUnfoldWalls : public QObject {
     const double s = summary.px_per_unit;
     const double tallest = std::max(summary.walls[0].height, summary.walls[1].height);
     double offset = 0.0, sum = 0.0, shifted_sum = 0.0;
-    long long n = 0;
+    long long n = 0, wall_pixels = 0, covered = 0;
     auto srgb8 = [](double v) {
       v = std::clamp(v, 0.0, 1.0);
       return 255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055);
@@ -84,11 +84,17 @@ class TestUnfoldWalls : public QObject {
         for (int x = static_cast<int>(offset) + 4; x < static_cast<int>(offset + s * w_est) - 4;
              ++x) {
           const float* p = out.pixel(x, y);
-          if (p[3] < 0.999f) continue;  // outside the wall, or its antialiased rim
           const double u = (x + 0.5 - offset) / (s * w_est) * true_width[i];
           const double v = (tallest - (y + 0.5) / s) / h_est * true_height[i];
           if (u < 0.05 || u > true_width[i] - 0.05 || v < 0.05 || v > true_height[i] - 0.05)
             continue;
+          // Coverage below the eaves (the gable above is no rectangle): the wall is drawn up to
+          // its marked outline, not to the lattice cells wholly inside it.
+          if (v < 2.2 - 0.05) {
+            ++wall_pixels;
+            covered += p[3] >= 0.999f;
+          }
+          if (p[3] < 0.999f) continue;  // outside the wall, or its antialiased rim
           const Eigen::Vector3d at = c0 + u * eu + v * ev;
           const Eigen::Vector3d truth = stereoHouseColourAlong(at + 0.01 * normal, -normal);
           // A control: the same comparison a brick's width (0.4) along, which a right unfolding
@@ -110,6 +116,10 @@ class TestUnfoldWalls : public QObject {
         "pixels (half a brick off: %.2f/255)",
         mean, n, control);
     QVERIFY2(mean < 12.0, qPrintable(QString::number(mean)));
+    const double coverage = double(covered) / double(std::max(1LL, wall_pixels));
+    qInfo("walls drawn over %.1f %% of their rectangles below the eaves (%lld px)",
+          100.0 * coverage, wall_pixels);
+    QVERIFY2(coverage > 0.97, qPrintable(QString::number(coverage)));
     QVERIFY2(mean < 0.6 * control, qPrintable(QString("%1 vs %2").arg(mean).arg(control)));
   }
 
