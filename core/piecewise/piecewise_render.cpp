@@ -103,8 +103,8 @@ struct Mesh {
   // second resampling.
   bool has_patch_frame = false;
   Eigen::Matrix3d source_from_patch = Eigen::Matrix3d::Identity();
-  // What keepOutlinePixel asks: the camera (outlives the mesh: meshFor's caller holds it), its
-  // patches' maps, and the rectangles' tolerance.
+  // The camera (outlives the mesh: the render's caller holds it), its patches' forward maps in
+  // pixels, and the rectangles' tolerance: set first by buildMesh, read by everything after.
   const PiecewiseCamera* camera = nullptr;
   std::vector<RationalMap> maps;
   double tolerance = 0.0;
@@ -158,6 +158,13 @@ void latticeRange(double origin, double step, double end, int count, double lo, 
   if (hi >= end) last = count - 1;  // the clamped last vertex sits on `end`
 }
 
+// Patch k has data at the patch-frame point: inside its rectangle (to `tolerance`) and its
+// support. What a vertex, a cell centre and an outline pixel are each held to.
+bool holdsData(const PiecewiseCamera& camera, size_t k, const Eigen::Vector2d& p,
+               double tolerance) {
+  return camera.patches[k].rect.contains(p, tolerance) && camera.supports(static_cast<int>(k), p);
+}
+
 // The patches' averaged map at a source point, as at the vertices, with the first patch's
 // Jacobian; false where no patch has data.
 bool averagedMap(const PiecewiseCamera& camera, const std::vector<RationalMap>& maps, const Eigen::Vector2d& s,
@@ -170,8 +177,7 @@ bool averagedMap(const PiecewiseCamera& camera, const std::vector<RationalMap>& 
   for (size_t k = 0; k < camera.patches.size(); ++k) {
     Eigen::Vector2d t;
     Eigen::Matrix2d j;
-    if (camera.patches[k].rect.contains(p, tolerance) && camera.supports(static_cast<int>(k), p) &&
-        maps[k].evaluate(s, t, count == 0 ? &j : nullptr)) {
+    if (holdsData(camera, k, p, tolerance) && maps[k].evaluate(s, t, count == 0 ? &j : nullptr)) {
       if (count == 0) jacobian = j;
       sum += t;
       ++count;
@@ -206,13 +212,11 @@ bool preimageNear(const PiecewiseCamera& camera, const std::vector<RationalMap>&
 // says where it is trusted) and the cell is drawn; keepOutlinePixel then cuts its triangles at
 // the outline pixel by pixel. A cell the outline only clips at a corner, none of whose
 // vertices has data, is still dropped (at most half a cell's corner).
-void extendToOutlines(Mesh& mesh, const PiecewiseCamera& camera,
-                      const std::vector<RationalMap>& maps, double tolerance) {
+void extendToOutlines(Mesh& mesh) {
   const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
   const auto holder = [&](const Eigen::Vector2d& v) {
-    for (size_t k = 0; k < camera.patches.size(); ++k)
-      if (camera.patches[k].rect.contains(v, tolerance) && camera.supports(static_cast<int>(k), v))
-        return static_cast<int>(k);
+    for (size_t k = 0; k < mesh.camera->patches.size(); ++k)
+      if (holdsData(*mesh.camera, k, v, mesh.tolerance)) return static_cast<int>(k);
     return -1;
   };
   for (int j = 0; j < cells_y; ++j)
@@ -237,7 +241,7 @@ void extendToOutlines(Mesh& mesh, const PiecewiseCamera& camera,
         if (mesh.valid[v[q]]) continue;
         const Eigen::Vector2d source = mesh.sourceAt(i + (q & 1), j + (q >> 1));
         Eigen::Vector2d t;
-        if (source.allFinite() && maps[static_cast<size_t>(k)].evaluate(source, t, nullptr) &&
+        if (source.allFinite() && mesh.maps[static_cast<size_t>(k)].evaluate(source, t, nullptr) &&
             t.allFinite()) {
           mesh.valid[v[q]] = 1;
           mesh.outside[v[q]] = 1;
@@ -264,8 +268,7 @@ bool keepOutlinePixel(const Mesh& mesh, int x, int y, float sx, float sy) {
   const Eigen::Vector2d centre(x + 0.5, y + 0.5);
   for (size_t k = 0; k < mesh.camera->patches.size(); ++k) {
     Eigen::Vector2d t;
-    if (mesh.camera->patches[k].rect.contains(*p, mesh.tolerance) &&
-        mesh.camera->supports(static_cast<int>(k), *p) &&
+    if (holdsData(*mesh.camera, k, *p, mesh.tolerance) &&
         mesh.maps[k].evaluate(source, t, nullptr) &&
         (t.cwiseProduct(mesh.out_scale) - centre).norm() <= 0.5)
       return true;
@@ -299,11 +302,13 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
   }
   const size_t vertices = static_cast<size_t>(nx) * static_cast<size_t>(ny);
   allocateArrays(mesh, vertices, static_cast<size_t>(std::max(0, nx - 1)) * static_cast<size_t>(std::max(0, ny - 1)));
-  const double tolerance = 1e-9 * std::max(all.width(), all.height());
+  const double tolerance = mesh.tolerance = 1e-9 * std::max(all.width(), all.height());
+  mesh.camera = &camera;
   // Each patch's forward map in pixels, evaluated from its six coefficients per form
   // (rational_map.h): the lattice asks it ~1.5 million times at 24 MP.
-  std::vector<RationalMap> maps;
-  for (const CameraPatch& p : camera.patches) maps.emplace_back(p.camera, camera.source_size, camera.target_size);
+  for (const CameraPatch& p : camera.patches)
+    mesh.maps.emplace_back(p.camera, camera.source_size, camera.target_size);
+  const std::vector<RationalMap>& maps = mesh.maps;
   const auto cellAt = [&](int i, int j) { return static_cast<size_t>(j) * static_cast<size_t>(nx - 1) + static_cast<size_t>(i); };
   ParallelOptions po;
   po.threads = threads;
@@ -326,7 +331,7 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
         for (int i = first; i <= last; ++i) {
           const Eigen::Vector2d v = mesh.latticeAt(i, j);
           Eigen::Vector2d t;
-          if (!r.contains(v, tolerance) || !camera.supports(static_cast<int>(k), v)) continue;
+          if (!holdsData(camera, k, v, tolerance)) continue;
           const Eigen::Vector2d source = mesh.sourceOf(v);
           if (source.allFinite() && maps[k].evaluate(source, t, nullptr)) {
             sum[static_cast<size_t>(i)] += t;
@@ -353,7 +358,7 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
           unsigned char& ok = mesh.cell_ok[cellAt(i, j)];
           if (ok) continue;
           const Eigen::Vector2d centre(std::min(all.x1, all.x0 + (i + 0.5) * step), centre_y);
-          ok = r.contains(centre) && camera.supports(static_cast<int>(k), centre) ? 1 : 0;
+          ok = holdsData(camera, k, centre, 0.0) ? 1 : 0;
         }
       }
     }
@@ -361,7 +366,7 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
   mesh.gaps = std::find(mesh.valid.begin(), mesh.valid.end(), 0) != mesh.valid.end() ||
               std::find(mesh.cell_ok.begin(), mesh.cell_ok.end(), 0) != mesh.cell_ok.end();
   if (whole_only && mesh.gaps) return mesh;
-  if (mesh.gaps) extendToOutlines(mesh, camera, maps, tolerance);
+  if (mesh.gaps) extendToOutlines(mesh);
   // Chunks: the target bounding box of each chunk's drawn triangles, per cell row first (in
   // parallel), then merged; the triangle count on the way.
   const int cells_x = std::max(0, nx - 1), cells_y = std::max(0, ny - 1);
@@ -427,9 +432,6 @@ Mesh buildMesh(const PiecewiseCamera& camera, FrameSize source_image, FrameSize 
       for (int band = y_begin / kBandRows; band <= y_end / kBandRows; ++band)
         mesh.bands[static_cast<size_t>(band)].push_back(cj * mesh.chunks_x + ci);
     }
-  mesh.camera = &camera;
-  mesh.tolerance = tolerance;
-  mesh.maps = std::move(maps);
   return mesh;
 }
 
@@ -467,9 +469,8 @@ inline Eigen::Vector2d quadratic(double wa, double wb, double wc, const Eigen::V
 // edge two drawn triangles share is measured once, by the cell's first triangle (kTriangles[0]:
 // top, right and diagonal edges) where that is drawn, else by the second (bottom, left,
 // diagonal): 8 evaluations a cell instead of 14.
-double meshError(const Mesh& mesh, const PiecewiseCamera& camera, int threads) {
-  std::vector<RationalMap> maps;
-  for (const CameraPatch& p : camera.patches) maps.emplace_back(p.camera, camera.source_size, camera.target_size);
+double meshError(const Mesh& mesh, int threads) {
+  const std::vector<RationalMap>& maps = mesh.maps;
   const int cells_x = mesh.nx - 1, cells_y = mesh.ny - 1;
   std::vector<double> row_worst(static_cast<size_t>(std::max(0, cells_y)), 0.0);
   // The centroid, then two points on each edge: a–b, b–c, c–a.
@@ -543,7 +544,9 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
   MeshChoice choice;
   if (options.mesh_step_px > 0.0) {
     choice.step_px = std::max(0.25, options.mesh_step_px);
-    if (!built) choice.error_px = meshError(buildMesh(camera, source_image, size, choice.step_px, options.threads), camera, options.threads);
+    if (!built)
+      choice.error_px = meshError(
+          buildMesh(camera, source_image, size, choice.step_px, options.threads), options.threads);
     else choice.error_px = -1.0;  // not measured
     return choice;
   }
@@ -558,11 +561,11 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
   // estimate grows less certain. The law extrapolated from so far overestimates the step (a
   // mild lens on a 320×240 frame: 0.0453 px at 128 predicted 0.0030 at 52, which measured
   // 0.0039), so the probe's step aims at kProbeAim of the budget.
-  // A triangle is drawn only where its three vertices have data, so where the patches leave
-  // holes or a ragged edge a lattice leaves up to a step uncovered along it: there the step
-  // stays at most 32 px. A coarser one is kept only where every vertex and cell centre of its
-  // lattice has data, a test at the lattice's own spacing (a notch narrower than a step
-  // between those points could still pass it).
+  // Where the patches leave holes or a ragged edge, the cells their outline crosses are drawn
+  // through a patch's camera past its data (extendToOutlines): there the step stays at most
+  // 32 px, so that extrapolation reaches at most a 32-px cell beyond the data. A coarser one is
+  // kept only where every vertex and cell centre of its lattice has data, a test at the lattice's
+  // own spacing (a notch narrower than a step between those points could still pass it).
   constexpr double kProbe = 128.0, kCoarsest = 64.0, kCoarsestAtEdges = 32.0, kFinest = 2.0, kAim = 0.8,
                    kProbeAim = 0.75;
   double step = kProbe;
@@ -573,7 +576,7 @@ MeshChoice chooseStep(const PiecewiseCamera& camera, FrameSize source_image, Fra
       step = kCoarsestAtEdges;
       continue;
     }
-    const double error = meshError(mesh, camera, options.threads);
+    const double error = meshError(mesh, options.threads);
     if (probe) {
       step = error > 0.0 ? std::min(kCoarsest, std::floor(step * std::cbrt(kProbeAim * options.max_error_px / error)))
                          : kCoarsest;
